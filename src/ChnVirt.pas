@@ -1,0 +1,752 @@
+{ ChnVirt - tChnVirt, the ancestor of every layer, and the layer registry.
+
+  Reconstructed from the ChnDF1, ChnFT1_2 and ChnICS manuals (SPEC.md
+  section 4); identifiers legacy code uses are binding.
+
+  A channel is a stack of layers built from one parameter string:
+    'NAM=DF1 NOD=1 DNO=2 NAM=COM DEV=/dev/ttyUSB0 BD=19200'
+  Every layer speaks the same Ch* methods. A physical layer's "message" is a
+  chunk of raw bytes; a protocol layer sends through CH_Low^.ChSend and pulls
+  bytes through CH_Low^.ChReceiveReady / ChReceive (see ChLowGetByte), never
+  around it.
+
+  Parameter strings are validated whole: ChSetParam first asks every layer
+  to check its tokens (ChSetOneParam with cmd_Check, no side effects) and
+  only then applies them (cmd_Set). On a bad token ChResult tells why,
+  ChParamError names the token, and the previous configuration stays. }
+unit ChnVirt;
+
+{$I chn.inc}
+
+interface
+
+uses
+  ChnTypes, uString;
+
+const
+  MaxLowChunk = 256;   { bytes a protocol layer pulls from below at once }
+  MaxChnManagers = 32;
+
+type
+  pChnVirt = ^tChnVirt;
+  tChnVirt = object
+    CH_Type    : string[15];   { layer type, the registry name ('DF1') }
+    CH_Name    : string[15];   { instance name, CH_Type unless changed }
+    CH_NumName : Word;         { ChNumName(CH_Type) }
+    CH_Node    : tNode;        { own station address }
+    CH_DNode   : tNode;        { destination station address }
+    CH_RSNode  : tNode;        { source address of the last received message }
+    CH_RDNode  : tNode;        { destination address of the last received message }
+    CH_RCtrl   : tChState;     { receiver automaton state }
+    CH_State   : tChState;     { life cycle: CHS_Close/Open/Connect/DisConnect }
+    CH_Result  : tChResult;    { result of the last life-cycle call }
+    CH_SResult : tChResult;    { result of the last send }
+    CH_RResult : tChResult;    { result of the last receive step }
+    CH_Low     : pChnVirt;     { the layer below; nil in a physical layer }
+    CH_RBuff   : Pointer;      { the application's receive buffer }
+    CH_RSize   : Word;         { and its size }
+    CH_ParamErr: tWordString;  { token that made the last ChSetParam fail }
+    IData      : LongInt;      { free for the application }
+    { bytes pulled from the lower layer and not yet consumed }
+    CH_LowBuf  : array[0..MaxLowChunk - 1] of Byte;
+    CH_LowLen, CH_LowPos: Word;
+
+    constructor Init;
+    constructor ChInitParam(const S: tParamStr);
+    destructor  Done; virtual;
+
+    procedure ChSetParam(const S: tParamStr); virtual;
+    function  ChSetOneParam(const S: tWordString; var CmdL: tCmd): tChResult; virtual;
+    function  ChGetParam(const S: tParamStr): tParamStr; virtual;
+
+    procedure ChOpen; virtual;
+    procedure ChClose; virtual;
+    procedure ChConnect; virtual;
+    procedure ChDisConnect; virtual;
+    function  ChReady: tChState; virtual;
+    function  ChResult: tChResult; virtual;
+
+    procedure ChSend(Buff: Pointer; Len: Word); virtual;
+    function  ChSendReady: tChState; virtual;
+    function  ChSendResult: tChResult; virtual;
+
+    procedure ChReceiveBuffer(Buff: Pointer; Size: Word); virtual;
+    function  ChReceiveReady: tChState; virtual;
+    procedure ChReceive(var Len: Word); virtual;
+    function  ChReceiveResult: tChResult; virtual;
+    procedure ChReceiveFlush; virtual;
+    procedure ChReceiveTick; virtual;
+
+    procedure ChDestNode(DNode: tNode); virtual;
+    procedure ChGetNode(var SNode, DNode: tNode); virtual;
+
+    { --- additions of the port (not in the SofCon manuals) --- }
+    { The token that made the last ChSetParam fail ('' after success). }
+    function  ChParamError: tWordString; virtual;
+    { Readable text of a result code of this layer (protocol codes included). }
+    function  ChResultStr(R: tChResult): string; virtual;
+    { Own parameters as ' KEY=VALUE' tokens, for ChGetParam; descendants
+      append theirs to inherited ChOwnParams. }
+    function  ChOwnParams: tParamStr; virtual;
+    { False for a physical layer, which cannot have a layer below. }
+    function  ChHasLow: Boolean; virtual;
+    { Highest station address NOD=/DNO= accept; 0: the layer has none. }
+    function  ChMaxNode: tNode; virtual;
+    { Next byte received by the lower layer, False if none is waiting now.
+      Lower-layer errors are copied to CH_RResult. }
+    function  ChLowGetByte(var B: Byte): Boolean;
+    { Hand Len bytes to the lower layer's ChSend; result in CH_SResult. }
+    procedure ChLowSend(Buff: Pointer; Len: Word);
+    { Discard bytes pulled from the lower layer but not consumed yet. }
+    procedure ChLowDiscard;
+  end;
+
+  pAddChnVirt = ^tAddChnVirt;
+  { A manager knows how to create one layer type; one per layer unit,
+    registered in ChnCollection from the unit's initialization. }
+  tAddChnVirt = object
+    Name: string[15];
+    constructor Init(const AName: string);
+    destructor  Done; virtual;
+    function    ChInit: pChnVirt; virtual;
+  end;
+
+  pChnCollection = ^tChnCollection;
+  tChnCollection = object
+    Count: Integer;
+    Items: array[1..MaxChnManagers] of pAddChnVirt;
+    constructor Init;
+    destructor  Done; virtual;
+    { Register a manager; a manager of the same name is replaced. }
+    procedure Insert(Item: pAddChnVirt);
+    function  Search(const Name: string): pAddChnVirt;
+    { A new, initialised layer of that type, or nil for an unknown name. }
+    function  ChNewInit(const Name: string): pChnVirt;
+  end;
+
+{ Numeric identifier of a layer name: CRC-16 of the upper-cased name, the
+  same in every program; registration refuses a clash. }
+function ChNumName(const Name: string): Word;
+
+{ Milliseconds from a monotonic clock, for timeouts and line-idle gaps. }
+function ChMsTick: QWord;
+
+{ Helpers for ChSetOneParam/ChOwnParams of every layer, so that number
+  parsing, range checks and ON/OFF live in one place. }
+function ParamKey(const S: tWordString): string;
+function ParamValue(const S: tWordString): string;
+function ParamNum(const S: tWordString; Min, Max: LongInt; var N: LongInt): tChResult;
+function ParamChoice(const S: tWordString; const Choices: string; var Index: Integer): tChResult;
+function ParamText(const Key: string; N: LongInt): string;
+
+var
+  ChnCollection: pChnCollection;
+
+implementation
+
+uses
+  SysUtils;
+
+function ChNumName(const Name: string): Word;
+var
+  U: string;
+begin
+  U := UpStr(Name);
+  Result := Crc16Block(U[1], Length(U), $FFFF);
+end;
+
+function ChMsTick: QWord;
+begin
+  Result := GetTickCount64;
+end;
+
+function ParamKey(const S: tWordString): string;
+var
+  K, V: string;
+begin
+  if SplitKeyValue(S, K, V) then
+    Result := K
+  else
+    Result := '';
+end;
+
+function ParamValue(const S: tWordString): string;
+var
+  K, V: string;
+begin
+  if SplitKeyValue(S, K, V) then
+    Result := V
+  else
+    Result := '';
+end;
+
+function ParamNum(const S: tWordString; Min, Max: LongInt; var N: LongInt): tChResult;
+begin
+  if StrToNum(ParamValue(S), Min, Max, N) then
+    Result := res_Ok
+  else
+    Result := res_BadParam;
+end;
+
+function ParamChoice(const S: tWordString; const Choices: string; var Index: Integer): tChResult;
+var
+  I: Integer;
+begin
+  I := ChoiceIndex(ParamValue(S), Choices);
+  if I < 0 then
+    Exit(res_BadParam);
+  Index := I;
+  Result := res_Ok;
+end;
+
+function ParamText(const Key: string; N: LongInt): string;
+begin
+  Result := ' ' + Key + '=' + NumStr(N);
+end;
+
+{ ---------------------------------------------------------------- tChnVirt }
+
+constructor tChnVirt.Init;
+begin
+  CH_Type := '';
+  CH_Name := '';
+  CH_NumName := 0;
+  CH_Node := 0;
+  CH_DNode := 0;
+  CH_RSNode := 0;
+  CH_RDNode := 0;
+  CH_RCtrl := CHS_RecInactive;
+  CH_State := CHS_Close;
+  CH_Result := res_Ok;
+  CH_SResult := res_Ok;
+  CH_RResult := res_Ok;
+  CH_Low := nil;
+  CH_RBuff := nil;
+  CH_RSize := 0;
+  CH_ParamErr := '';
+  IData := 0;
+  CH_LowLen := 0;
+  CH_LowPos := 0;
+end;
+
+constructor tChnVirt.ChInitParam(const S: tParamStr);
+begin
+  { Constructors are not virtual: this calls tChnVirt.Init, so every
+    descendant declares its own ChInitParam that calls its own Init. }
+  Init;
+  ChSetParam(S);
+end;
+
+destructor tChnVirt.Done;
+begin
+  if CH_State <> CHS_Close then
+    ChClose;
+  if CH_Low <> nil then
+    Dispose(CH_Low, Done);
+  CH_Low := nil;
+end;
+
+procedure tChnVirt.ChSetParam(const S: tParamStr);
+const
+  MaxOwn = 128;
+var
+  OwnStart: array[1..MaxOwn] of Integer;   { where each own token begins }
+  OwnCount, I, J, P, Pos, TokStart, RestStart: Integer;
+  Tok, Prev, ErrTok: tWordString;
+  Key, Value: string;
+  Cmd: tCmd;
+  R: tChResult;
+  NewLow: pChnVirt;
+begin
+  CH_ParamErr := '';
+  FillChar(OwnStart, SizeOf(OwnStart), 0);
+  OwnCount := 0;
+  RestStart := 0;
+  Pos := 1;
+  R := res_Ok;
+  ErrTok := '';
+  { pass 1: check this layer's tokens and find where the lower layer starts }
+  while (R = res_Ok) and NextTokenAt(S, Pos, Tok, TokStart) do
+  begin
+    ErrTok := Tok;
+    if not SplitKeyValue(Tok, Key, Value) or (Value = '') then
+      R := res_BadParam
+    else if Key = 'NAM' then
+    begin
+      if (OwnCount = 0) and (UpStr(Value) = UpStr(CH_Type)) then
+        Continue;                       { names this layer itself }
+      RestStart := TokStart;
+      Break;
+    end
+    else
+    begin
+      for J := 1 to OwnCount do
+      begin
+        P := OwnStart[J];
+        if NextToken(S, P, Prev) and (ParamKey(Prev) = Key) then
+          R := res_DupParam;
+      end;
+      if R = res_Ok then
+      begin
+        Cmd := cmd_Check;
+        R := ChSetOneParam(Tok, Cmd);
+      end;
+      if (R = res_Ok) and (OwnCount >= MaxOwn) then
+        R := res_TooLong;
+      if R = res_Ok then
+      begin
+        Inc(OwnCount);
+        OwnStart[OwnCount] := TokStart;
+      end;
+    end;
+  end;
+  { build the new lower layer completely before changing anything }
+  NewLow := nil;
+  if (R = res_Ok) and (RestStart > 0) then
+  begin
+    if not ChHasLow then
+      R := res_BadParam                 { a physical layer has nothing below }
+    else if CH_State <> CHS_Close then
+      R := res_WrongState               { cannot swap the stack while open }
+    else
+    begin
+      NewLow := ChnCollection^.ChNewInit(Value);
+      if NewLow = nil then
+        R := res_UnknownLayer
+      else
+      begin
+        NewLow^.ChSetParam(Copy(S, RestStart, Length(S) - RestStart + 1));
+        R := NewLow^.ChResult;
+        if R <> res_Ok then
+        begin
+          ErrTok := NewLow^.ChParamError;
+          Dispose(NewLow, Done);
+          NewLow := nil;
+        end;
+      end;
+    end;
+  end;
+  if R <> res_Ok then
+  begin
+    CH_Result := R;
+    CH_ParamErr := ErrTok;
+    Exit;
+  end;
+  { pass 2: apply }
+  for I := 1 to OwnCount do
+  begin
+    P := OwnStart[I];
+    NextToken(S, P, Tok);
+    Cmd := cmd_Set;
+    ChSetOneParam(Tok, Cmd);
+  end;
+  if NewLow <> nil then
+  begin
+    if CH_Low <> nil then
+      Dispose(CH_Low, Done);
+    CH_Low := NewLow;
+  end;
+  CH_Result := res_Ok;
+end;
+
+function tChnVirt.ChSetOneParam(const S: tWordString; var CmdL: tCmd): tChResult;
+var
+  Key: string;
+  N: LongInt;
+begin
+  Key := ParamKey(S);
+  if ((Key = 'NOD') or (Key = 'DNO')) and (ChMaxNode > 0) then
+  begin
+    N := 0;
+    Result := ParamNum(S, 0, ChMaxNode, N);
+    if (Result = res_Ok) and (CmdL = cmd_Set) then
+      if Key = 'NOD' then
+        CH_Node := N
+      else
+        CH_DNode := N;
+  end
+  else
+    Result := res_UnknownParam;
+end;
+
+function tChnVirt.ChOwnParams: tParamStr;
+begin
+  if ChMaxNode > 0 then
+    Result := ParamText('NOD', CH_Node) + ParamText('DNO', CH_DNode)
+  else
+    Result := '';
+end;
+
+function tChnVirt.ChGetParam(const S: tParamStr): tParamStr;
+var
+  All: AnsiString;   { a deep stack may pass 255 characters; checked below }
+  Tok: string;
+  Pos: Integer;
+  Want: string;
+begin
+  All := 'NAM=' + CH_Type + ChOwnParams;
+  if CH_Low <> nil then
+    All := All + ' ' + CH_Low^.ChGetParam('');
+  Want := UpStr(S);
+  if Want = '' then
+  begin
+    if Length(All) > High(tParamStr) then
+      CH_Result := res_TooLong;
+    Exit(Copy(All, 1, High(tParamStr)));
+  end;
+  { S names a key: return only the tokens with that key }
+  Result := '';
+  Pos := 1;
+  while NextToken(Copy(All, 1, 255), Pos, Tok) do
+    if ParamKey(Tok) = Want then
+    begin
+      if Result <> '' then
+        Result := Result + ' ';
+      Result := Result + Tok;
+    end;
+end;
+
+function tChnVirt.ChParamError: tWordString;
+begin
+  Result := CH_ParamErr;
+end;
+
+function tChnVirt.ChResultStr(R: tChResult): string;
+begin
+  Result := ChResultText(R, CH_Type);
+end;
+
+function tChnVirt.ChHasLow: Boolean;
+begin
+  Result := True;
+end;
+
+function tChnVirt.ChMaxNode: tNode;
+begin
+  Result := 0;
+end;
+
+{ Life cycle. A protocol layer opens, connects, disconnects and closes the
+  whole stack below it; a physical layer overrides ChOpen/ChClose. }
+
+procedure tChnVirt.ChOpen;
+begin
+  if CH_State <> CHS_Close then
+  begin
+    CH_Result := res_WrongState;
+    Exit;
+  end;
+  if ChHasLow then
+  begin
+    if CH_Low = nil then
+    begin
+      CH_Result := res_NoLowLayer;
+      Exit;
+    end;
+    CH_Low^.ChOpen;
+    CH_Result := CH_Low^.ChResult;
+    if CH_Result <> res_Ok then
+      Exit;
+  end;
+  CH_LowLen := 0;
+  CH_LowPos := 0;
+  CH_State := CHS_Open;
+  CH_Result := res_Ok;
+end;
+
+procedure tChnVirt.ChClose;
+begin
+  if CH_State = CHS_Close then
+  begin
+    CH_Result := res_WrongState;
+    Exit;
+  end;
+  if (CH_Low <> nil) and (CH_Low^.ChReady <> CHS_Close) then
+    CH_Low^.ChClose;
+  CH_State := CHS_Close;
+  CH_RCtrl := CHS_RecInactive;
+  CH_Result := res_Ok;
+end;
+
+procedure tChnVirt.ChConnect;
+begin
+  if (CH_State <> CHS_Open) and (CH_State <> CHS_DisConnect) then
+  begin
+    CH_Result := res_WrongState;
+    Exit;
+  end;
+  if CH_Low <> nil then
+  begin
+    CH_Low^.ChConnect;
+    CH_Result := CH_Low^.ChResult;
+    if CH_Result <> res_Ok then
+      Exit;
+    CH_Low^.ChReceiveBuffer(@CH_LowBuf, SizeOf(CH_LowBuf));
+  end;
+  CH_LowLen := 0;
+  CH_LowPos := 0;
+  CH_State := CHS_Connect;
+  CH_RCtrl := CHS_Receiving;
+  CH_RResult := res_Ok;
+  CH_Result := res_Ok;
+end;
+
+procedure tChnVirt.ChDisConnect;
+begin
+  if CH_State <> CHS_Connect then
+  begin
+    CH_Result := res_WrongState;
+    Exit;
+  end;
+  if CH_Low <> nil then
+    CH_Low^.ChDisConnect;
+  CH_State := CHS_DisConnect;
+  CH_RCtrl := CHS_RecInactive;
+  CH_Result := res_Ok;
+end;
+
+function tChnVirt.ChReady: tChState;
+begin
+  Result := CH_State;
+end;
+
+function tChnVirt.ChResult: tChResult;
+begin
+  Result := CH_Result;
+  { a fault below (device lost ...) shows through every layer above }
+  if (Result = res_Ok) and (CH_Low <> nil) and (CH_State <> CHS_Close) then
+    Result := CH_Low^.ChResult;
+end;
+
+{ Sending. The base passes messages down unchanged (a transparent layer);
+  protocol layers encode and then call ChLowSend. }
+
+procedure tChnVirt.ChSend(Buff: Pointer; Len: Word);
+begin
+  if (CH_State = CHS_Close) or (CH_State = CHS_Opening) then
+    CH_SResult := res_WrongState
+  else if (Buff = nil) or (Len = 0) then
+    CH_SResult := res_BadLen
+  else
+    ChLowSend(Buff, Len);
+end;
+
+procedure tChnVirt.ChLowSend(Buff: Pointer; Len: Word);
+begin
+  if CH_Low = nil then
+    CH_SResult := res_NoLowLayer
+  else if CH_Low^.ChSendReady <> CHS_SendReady then
+    CH_SResult := res_Busy
+  else
+  begin
+    CH_Low^.ChSend(Buff, Len);
+    CH_SResult := CH_Low^.ChSendResult;
+  end;
+end;
+
+function tChnVirt.ChSendReady: tChState;
+begin
+  if CH_Low <> nil then
+    Result := CH_Low^.ChSendReady
+  else
+    Result := CHS_SendReady;
+end;
+
+function tChnVirt.ChSendResult: tChResult;
+begin
+  Result := CH_SResult;
+  if (Result = res_Ok) and (CH_Low <> nil) then
+    Result := CH_Low^.ChSendResult;
+end;
+
+{ Receiving }
+
+procedure tChnVirt.ChReceiveBuffer(Buff: Pointer; Size: Word);
+begin
+  if (Buff = nil) or (Size = 0) then
+  begin
+    CH_RBuff := nil;
+    CH_RSize := 0;
+    CH_RResult := res_NoRecBuff;
+  end
+  else
+  begin
+    CH_RBuff := Buff;
+    CH_RSize := Size;
+    CH_RResult := res_Ok;
+  end;
+end;
+
+function tChnVirt.ChReceiveReady: tChState;
+begin
+  ChReceiveTick;
+  Result := CH_RCtrl;
+  if Result >= CHS_ProtoBase then
+    Result := CHS_Receiving;     { private automaton states look alike outside }
+end;
+
+procedure tChnVirt.ChReceive(var Len: Word);
+begin
+  { the base has no receiver of its own; descendants implement it }
+  Len := 0;
+  if CH_State <> CHS_Connect then
+    CH_RResult := res_WrongState
+  else if CH_RBuff = nil then
+    CH_RResult := res_NoRecBuff
+  else
+    CH_RResult := res_NoMessage;
+end;
+
+function tChnVirt.ChReceiveResult: tChResult;
+begin
+  Result := CH_RResult;
+end;
+
+procedure tChnVirt.ChReceiveFlush;
+begin
+  ChLowDiscard;
+  if CH_Low <> nil then
+    CH_Low^.ChReceiveFlush;
+  if CH_State = CHS_Connect then
+    CH_RCtrl := CHS_Receiving;
+  CH_RResult := res_Ok;
+end;
+
+procedure tChnVirt.ChReceiveTick;
+begin
+end;
+
+procedure tChnVirt.ChDestNode(DNode: tNode);
+begin
+  CH_DNode := DNode;
+end;
+
+procedure tChnVirt.ChGetNode(var SNode, DNode: tNode);
+begin
+  SNode := CH_RSNode;
+  DNode := CH_RDNode;
+end;
+
+function tChnVirt.ChLowGetByte(var B: Byte): Boolean;
+var
+  N: Word;
+  R: tChResult;
+begin
+  if CH_LowPos >= CH_LowLen then
+  begin
+    CH_LowPos := 0;
+    CH_LowLen := 0;
+    if CH_Low = nil then
+      Exit(False);
+    if CH_Low^.ChReceiveReady <> CHS_ReceiveReady then
+    begin
+      R := CH_Low^.ChReceiveResult;
+      if R <> res_Ok then
+        CH_RResult := R;
+      Exit(False);
+    end;
+    N := 0;
+    CH_Low^.ChReceive(N);
+    R := CH_Low^.ChReceiveResult;
+    if R <> res_Ok then
+      CH_RResult := R;          { e.g. res_Overrun: report, keep the bytes }
+    if N > SizeOf(CH_LowBuf) then
+      N := SizeOf(CH_LowBuf);
+    CH_LowLen := N;
+    if N = 0 then
+      Exit(False);
+  end;
+  B := CH_LowBuf[CH_LowPos];
+  Inc(CH_LowPos);
+  Result := True;
+end;
+
+procedure tChnVirt.ChLowDiscard;
+begin
+  CH_LowLen := 0;
+  CH_LowPos := 0;
+end;
+
+{ ------------------------------------------------------------- tAddChnVirt }
+
+constructor tAddChnVirt.Init(const AName: string);
+begin
+  Name := UpStr(AName);
+end;
+
+destructor tAddChnVirt.Done;
+begin
+end;
+
+function tAddChnVirt.ChInit: pChnVirt;
+begin
+  Result := nil;
+end;
+
+{ ---------------------------------------------------------- tChnCollection }
+
+constructor tChnCollection.Init;
+begin
+  Count := 0;
+end;
+
+destructor tChnCollection.Done;
+var
+  I: Integer;
+begin
+  for I := 1 to Count do
+    Dispose(Items[I], Done);
+  Count := 0;
+end;
+
+procedure tChnCollection.Insert(Item: pAddChnVirt);
+var
+  I: Integer;
+begin
+  if Item = nil then
+    Exit;
+  for I := 1 to Count do
+    if Items[I]^.Name = Item^.Name then
+    begin
+      Dispose(Items[I], Done);
+      Items[I] := Item;
+      Exit;
+    end;
+  for I := 1 to Count do
+    if ChNumName(Items[I]^.Name) = ChNumName(Item^.Name) then
+      RunError(217);   { programming error: two names share a ChNumName }
+  if Count >= MaxChnManagers then
+    RunError(217);     { programming error: raise MaxChnManagers }
+  Inc(Count);
+  Items[Count] := Item;
+end;
+
+function tChnCollection.Search(const Name: string): pAddChnVirt;
+var
+  I: Integer;
+  U: string;
+begin
+  U := UpStr(Name);
+  for I := 1 to Count do
+    if Items[I]^.Name = U then
+      Exit(Items[I]);
+  Result := nil;
+end;
+
+function tChnCollection.ChNewInit(const Name: string): pChnVirt;
+var
+  M: pAddChnVirt;
+begin
+  M := Search(Name);
+  if M = nil then
+    Result := nil
+  else
+    Result := M^.ChInit;
+end;
+
+initialization
+  New(ChnCollection, Init);
+finalization
+  Dispose(ChnCollection, Done);
+  ChnCollection := nil;
+end.

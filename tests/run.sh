@@ -1,0 +1,58 @@
+#!/usr/bin/env bash
+# tests/run.sh - the whole regression suite, called by "make test".
+#  1. the FPCUnit suite (runtests, built with -Cr -Co -Ct and heaptrc);
+#  2. a heap check: heaptrc must report 0 unfreed blocks;
+#  3. legacy programs in tests/legacy compiled in -Mtp -Mfpc -Mobjfpc
+#     -Mdelphi and run (each asserts record sizes and offsets itself).
+# Ends with "N passed, N failed" alone on the last line; exit 1 on failure.
+set -u
+BUILD=${BUILD:-build}
+FPC=${FPC:-fpc}
+FILTER=${T:-}
+passed=0
+failed=0
+pass() { passed=$((passed + 1)); echo "ok    $1"; }
+fail() { failed=$((failed + 1)); echo "FAIL  $1"; }
+
+heaplog="$BUILD/heaptrc.log"
+rm -f "$heaplog"
+out="$BUILD/runtests.out"
+HEAPTRC="log=$heaplog" "$BUILD/test-bin/runtests" "$FILTER" 2>&1 | tee "$out" | grep -v '^RESULT '
+rc=${PIPESTATUS[0]}
+res=$(grep '^RESULT ' "$out" | tail -n 1)
+if [ -z "$res" ]; then
+  fail "runtests crashed (exit $rc) before it finished"
+else
+  read -r _ p f <<<"$res"
+  passed=$((passed + p)); failed=$((failed + f))
+  [ "$rc" = 0 ] || [ "$f" -gt 0 ] || fail "runtests exit code $rc"
+fi
+
+if [ -f "$heaplog" ] && grep -q '^0 unfreed memory blocks' "$heaplog"; then
+  pass "heap: no leaks (heaptrc)"
+else
+  fail "heap: leaks or no heaptrc report, see $heaplog"
+  [ -f "$heaplog" ] && sed -n 1,40p "$heaplog"
+fi
+
+if [ -z "$FILTER" ] || [ "$FILTER" = legacy ]; then
+  for prog in tests/legacy/*.pas; do
+    [ -e "$prog" ] || continue
+    name=$(basename "$prog" .pas)
+    for mode in tp fpc objfpc delphi; do
+      dir="$BUILD/legacy-$mode"
+      mkdir -p "$dir"
+      if ! "$FPC" -M$mode -Fusrc -Fisrc -FU"$dir" -FE"$dir" -Cr -Co -Ct "$prog" >"$dir/$name.log" 2>&1; then
+        fail "legacy $name -M$mode: does not compile"; tail -n 15 "$dir/$name.log"; continue
+      fi
+      if "$dir/$name" >"$dir/$name.run" 2>&1; then
+        pass "legacy $name -M$mode"
+      else
+        fail "legacy $name -M$mode: run failed"; tail -n 15 "$dir/$name.run"
+      fi
+    done
+  done
+fi
+
+echo "$passed passed, $failed failed"
+[ "$failed" = 0 ]

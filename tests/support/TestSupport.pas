@@ -1,0 +1,114 @@
+{ TestSupport - helpers shared by the test units: hex text <-> bytes and
+  polling a channel with a deadline so a broken test fails instead of
+  hanging. }
+unit TestSupport;
+
+{$MODE OBJFPC}{$H+}
+
+interface
+
+uses
+  ChnTypes, ChnVirt;
+
+type
+  TBytes = array of Byte;
+
+{ '10 02 0A' or '10020A' (blanks ignored) -> bytes }
+function HexToBytes(const S: string): TBytes;
+function BytesToHex(const B: array of Byte; Len: Integer): string;
+{ Poll Chn^.ChReceiveReady (and, if given, Other^.ChReceiveReady /
+  ChSendReady to keep a peer moving) until a message waits or TimeoutMs. }
+function WaitReceive(Chn: pChnVirt; TimeoutMs: Integer; Other: pChnVirt = nil): Boolean;
+function WaitSent(Chn: pChnVirt; TimeoutMs: Integer; Other: pChnVirt = nil): Boolean;
+{ Build a stack with ChNewInit + ChSetParam, open and connect it; nil and
+  Err set when any step fails. }
+function OpenStack(const Name, Params: string; var Err: string): pChnVirt;
+
+implementation
+
+uses
+  SysUtils;
+
+function HexToBytes(const S: string): TBytes;
+var
+  Clean: string;
+  I: Integer;
+begin
+  Clean := '';
+  for I := 1 to Length(S) do
+    if S[I] in ['0'..'9', 'A'..'F', 'a'..'f'] then
+      Clean := Clean + S[I];
+  SetLength(Result, Length(Clean) div 2);
+  for I := 0 to High(Result) do
+    Result[I] := StrToInt('$' + Copy(Clean, I * 2 + 1, 2));
+end;
+
+function BytesToHex(const B: array of Byte; Len: Integer): string;
+var
+  I: Integer;
+begin
+  Result := '';
+  for I := 0 to Len - 1 do
+  begin
+    if I > 0 then
+      Result := Result + ' ';
+    Result := Result + IntToHex(B[I], 2);
+  end;
+end;
+
+function WaitReceive(Chn: pChnVirt; TimeoutMs: Integer; Other: pChnVirt): Boolean;
+var
+  Deadline: QWord;
+begin
+  Deadline := GetTickCount64 + QWord(TimeoutMs);
+  repeat
+    if Other <> nil then
+    begin
+      Other^.ChSendReady;
+      Other^.ChReceiveReady;
+    end;
+    Chn^.ChSendReady;
+    if Chn^.ChReceiveReady = CHS_ReceiveReady then
+      Exit(True);
+  until GetTickCount64 > Deadline;
+  Result := False;
+end;
+
+function WaitSent(Chn: pChnVirt; TimeoutMs: Integer; Other: pChnVirt): Boolean;
+var
+  Deadline: QWord;
+begin
+  Deadline := GetTickCount64 + QWord(TimeoutMs);
+  repeat
+    if Other <> nil then
+      Other^.ChReceiveReady;
+    if Chn^.ChSendReady = CHS_SendReady then
+      Exit(True);
+  until GetTickCount64 > Deadline;
+  Result := False;
+end;
+
+function OpenStack(const Name, Params: string; var Err: string): pChnVirt;
+begin
+  Err := '';
+  Result := ChnCollection^.ChNewInit(Name);
+  if Result = nil then
+  begin
+    Err := 'unknown layer ' + Name;
+    Exit;
+  end;
+  Result^.ChSetParam(Params);
+  if Result^.ChResult = res_Ok then
+    Result^.ChOpen;
+  if Result^.ChResult = res_Ok then
+    Result^.ChConnect;
+  if Result^.ChResult <> res_Ok then
+  begin
+    Err := Params + ': ' + Result^.ChResultStr(Result^.ChResult) + ' ' +
+      Result^.ChParamError;
+    Dispose(Result, Done);
+    Result := nil;
+  end;
+end;
+
+end.
