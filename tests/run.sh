@@ -35,10 +35,12 @@ else
   [ -f "$heaplog" ] && sed -n 1,40p "$heaplog"
 fi
 
-if [ -z "$FILTER" ] || [ "$FILTER" = legacy ]; then
+if true; then
   for prog in tests/legacy/*.pas; do
     [ -e "$prog" ] || continue
     name=$(basename "$prog" .pas)
+    # with T=xyz only legacy programs whose name contains xyz
+    if [ -n "$FILTER" ] && [[ "${name,,}" != *"${FILTER,,}"* ]]; then continue; fi
     for mode in tp fpc objfpc delphi; do
       dir="$BUILD/legacy-$mode"
       mkdir -p "$dir"
