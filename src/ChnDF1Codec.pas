@@ -420,13 +420,13 @@ begin
         else if not D.Cfg.Master then
           D.State := dsPollStn
         else
-          Result := Fail(D, res_ErrFrame);   { a master is never polled }
+          Result := FailWhole(D, res_ErrFrame);   { a master is never polled }
       end;
     EOT:
       begin
         D.Skip := False;
         if D.Cfg.FullDup then
-          Result := Fail(D, res_ErrFrame)
+          Result := FailWhole(D, res_ErrFrame)
         else if D.Cfg.Master then
           Result := ShortMsg(D, tpNoPollRep, False);
         { a half-duplex slave ignores another slave's EOT }
@@ -439,9 +439,10 @@ begin
         SumLength(D);
       end
       else
-        Result := Fail(D, res_ErrFrame);     { ETX without STX }
+        Result := FailWhole(D, res_ErrFrame);     { ETX without STX }
   else
-    { DLE DLE or DLE + anything else outside a frame }
+    { DLE DLE or DLE + anything else outside a frame: we are probably in
+      a frame whose start was lost; skip its tail quietly }
     if not WasSkip then
       Result := Fail(D, res_ErrFrame);
   end;

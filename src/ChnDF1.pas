@@ -1,0 +1,464 @@
+{ ChnDF1 - Allen-Bradley DF1 protocol layer (NAM=DF1), full and half duplex,
+  master and slave, BCC or CRC-16.
+
+  Implements the SofCon manual "ChnDF1" v1.20 (seed 000) with the decisions
+  of SPEC.md section 6. The frame work is done by the I/O-free codec
+  ChnDF1Codec; tChnDF1 only glues it to the layer below (ChLowSend /
+  ChLowGetByte) and to the ChnVirt polling API.
+
+  Parameters: MAS=MASTER|SLAVE, FHD=FULL|HALF, CRC=ON|OFF, LSB=size,
+  NOD=n, DNO=n (0..255) and, added by the port, NAK=15|0F (the byte sent as
+  NAK; both are accepted on receive).
+
+  As in the SofCon design the link dialogue (ACK after a good frame,
+  NAK/ENQ/retries, polling) is the application's: it sends tpAckNak, tpEnq,
+  tpPoll, tpNoPollRep records with ChSend like any other message.
+
+  Differences from the manual, all deliberate (see docs/ChnDF1.md):
+  NAK = $15 (the manual prints $0F); replies never carry FNC, so a received
+  reply has CF low byte 0; a broken frame is reported by ChReceiveReady =
+  CHS_ReceiveReady and ChReceive giving Len = 0 with ChReceiveResult =
+  res_ErrSum / res_ErrFrame / res_ErrLen. }
+unit ChnDF1;
+
+{$I chn.inc}
+
+interface
+
+uses
+  ChnTypes, ChnVirt, ChnDF1Codec;
+
+const
+  cVerNo = $0100;                 { BCD: version 1.00 of the port }
+  cVer   = '01.00,21.11.2026';
+  cName  = 'DF1';
+
+  MaxDataLen = ChnDF1Codec.MaxDataLen;
+  MaxTBuff   = 65500;             { largest send buffer LSB= may ask for }
+
+  res_ErrFrame    = ChnDF1Codec.res_ErrFrame;
+  res_ErrSum      = ChnDF1Codec.res_ErrSum;
+  res_ErrLen      = ChnDF1Codec.res_ErrLen;
+  res_ErrMessFrame = res_ErrFrame;   { name used by manual v1.10 }
+
+  { control characters, manual 4.1 (NAK: SPEC 6) }
+  SOH    = ChnDF1Codec.SOH;
+  STX    = ChnDF1Codec.STX;
+  ETX    = ChnDF1Codec.ETX;
+  EOT    = ChnDF1Codec.EOT;
+  ENQ    = ChnDF1Codec.ENQ;
+  ACK    = ChnDF1Codec.ACK;
+  NAK    = ChnDF1Codec.NAK;
+  NAKAlt = ChnDF1Codec.NAKAlt;
+  DLE    = ChnDF1Codec.DLE;
+
+  { tMessType values, so that "uses ChnDF1" is enough }
+  tpAckNak    = ChnDF1Codec.tpAckNak;
+  tpEnq       = ChnDF1Codec.tpEnq;
+  tpPoll      = ChnDF1Codec.tpPoll;
+  tpNoPollRep = ChnDF1Codec.tpNoPollRep;
+  tpDataMess  = ChnDF1Codec.tpDataMess;
+
+  { header of a data message: Len = cSizeHead... + data bytes }
+  cSizeHeadSndMsg   = ChnDF1Codec.cSizeHead;
+  cSizeHeadRecMsg   = ChnDF1Codec.cSizeHead;
+  cSizeHeadMaSndMsg = ChnDF1Codec.cSizeHead;
+  cSizeHeadSlSndMsg = ChnDF1Codec.cSizeHead;
+
+  { CF = Command (high byte) and Function (low byte), manual 4.2 }
+  MskCF_Reply      = $4000;
+  MskCF_HiPriority = $2000;
+  MaskCmd          = $0F00;
+
+  CF_Echo              = $0600;
+  CF_ReadDiagnCounts   = $0601;
+  CF_SetVariables      = $0602;
+  CF_DiagnosticSts     = $0603;
+  CF_SetTimeOut        = $0604;
+  CF_SetNAKs           = $0605;
+  CF_SetENQs           = $0606;
+  CF_ResetDiagnCounts  = $0607;
+  CF_SetDataTableSize  = $0608;
+  CF_ReadLinkParams    = $0609;
+  CF_SetLinkParams     = $060A;
+  CF_DisableOutputs    = $0700;
+  CF_EnableOutputs     = $0701;
+  CF_EnablePLCScaning  = $0703;
+  CF_EnterDnLoadMode   = $0704;
+  CF_ExitDnUpLoadMode  = $0705;
+  CF_EnterUpLoadMode   = $0706;
+  CF_ShutDown          = $0F07;
+  CF_SetCPUMode        = $0F3A;
+  CF_ChangeMode1       = $0F3A;
+  CF_ChangeMode2       = $0F80;
+  CF_OpenFile          = $0F81;
+  CF_CloseFile         = $0F82;
+  CF_WordRangeWrite    = $0F00;
+  CF_WordRangeRead     = $0F01;
+  CF_WriteFile         = $0F03;
+  CF_ReadFile          = $0F04;
+  CF_WriteBytesPhysical= $0F18;
+  CF_ApplyPortConfg    = $0F8F;
+  CF_DisableForces     = $0F41;
+  CF_TypedRead         = $0F68;
+  CF_TypedWrite        = $0F67;
+  CF_DnLoadRequest     = $0F05;
+  CF_UpLoad            = $0F06;
+  CF_DnLoadAllRequest  = $0F50;
+  CF_DnLoadCompleted   = $0F52;
+  CF_UpLoadAllRequest  = $0F53;
+  CF_UpLoadCompleted   = $0F55;
+  CF_GetEditSource     = $0F11;
+  CF_InitMemory        = $0F57;
+  CF_ModifyPLC2File    = $0F5E;
+  CF_ProtectWrite      = $0000;
+  CF_UnProtectRead     = $0100;
+  CF_UnProtectWrite    = $0800;
+  CF_WriteBit          = $0F02;
+  CF_ProtectWriteBit   = $0200;
+  CF_UnProtectWriteBit = $0500;
+  CF_PhysicalWrite     = $0F08;
+  CF_PhysicalRead2     = $0F09;
+  CF_PhysicalRead1     = $0400;
+  CF_ProtectReadTFile  = $0FA7;
+  CF_ProtectWriteTFile = $0FAF;
+  CF_ProtectRead3Addr  = $0FA2;
+  CF_ProtectWrite3Addr = $0FAA;
+  CF_ReadBytesPhysical = $0F17;
+  CF_ReadModifyWrite   = $0F26;
+  CF_ReadModifyWriteN  = $0F79;
+  CF_ReadSectionSize   = $0F29;
+  CF_RestartRequest    = $0F0A;
+  CF_ReturnEditSource  = $0F12;
+
+  DF1DefaultSBuff = DF1MaxWire;   { send buffer when LSB= is not given }
+
+type
+  tMessType   = ChnDF1Codec.tMessType;
+  tSendRecord = ChnDF1Codec.tSendRecord;
+  pSendRecord = ChnDF1Codec.pSendRecord;
+  tRecRecord  = ChnDF1Codec.tRecRecord;
+  pRecRecord  = ChnDF1Codec.pRecRecord;
+  { names used by legacy SofCon programs (SPEC 2) }
+  tMaSendRecord = tSendRecord;   pMaSendRecord = pSendRecord;
+  tSlSendRecord = tSendRecord;   pSlSendRecord = pSendRecord;
+  tMaRecRecord  = tRecRecord;    pMaRecRecord  = pRecRecord;
+  tSlRecRecord  = tRecRecord;    pSlRecRecord  = pRecRecord;
+
+  pChnDF1 = ^tChnDF1;
+  tChnDF1 = object(tChnVirt)
+    CH_RTick   : Boolean;     { inside ChReceiveTick (debugging aid) }
+    CH_SBuff   : Pointer;     { send buffer (wire bytes of the last ChSend) }
+    CH_MSBuff  : Word;        { its size }
+    CH_LRMess  : Word;        { Len of the last received message }
+    CH_FlCrc   : Boolean;     { CRC-16, else BCC }
+    CH_RSumBcc : tBcc8;       { receiver's running BCC sum }
+    CH_SSumBcc : tBcc8;       { BCC of the last frame sent }
+    CH_RSumCrc : tCrc16;      { receiver's running CRC }
+    CH_SSumCrc : tCrc16;      { CRC of the last frame sent }
+    CH_Master  : Boolean;
+    CH_FullDup : Boolean;
+    CH_DLE     : Boolean;     { receiver has just seen a DLE }
+    CH_NakByte : Byte;        { NAK= : byte sent as NAK ($15 or $0F) }
+    CH_Dec     : tDF1Decoder; { receive automaton }
+    CH_Event   : tDF1Event;   { what is waiting while CH_RCtrl = CHS_ReceiveReady }
+
+    constructor Init;
+    constructor ChInitParam(const S: tParamStr);
+    destructor  Done; virtual;
+    function  ChSetOneParam(const S: tWordString; var CmdL: tCmd): tChResult; virtual;
+    function  ChOwnParams: tParamStr; virtual;
+    function  ChMaxNode: tNode; virtual;
+    procedure ChConnect; virtual;
+    procedure ChDisConnect; virtual;
+    procedure ChSend(Buff: Pointer; Len: Word); virtual;
+    procedure ChReceive(var Len: Word); virtual;
+    procedure ChReceiveFlush; virtual;
+    procedure ChReceiveTick; virtual;
+    { the codec's view of the current settings }
+    function  ChDF1Config: tDF1Config;
+  end;
+
+  pAddChnDF1 = ^tAddChnDF1;
+  tAddChnDF1 = object(tAddChnVirt)
+    function ChInit: pChnVirt; virtual;
+  end;
+
+implementation
+
+const
+  { bytes one ChReceiveTick may pull, so a babbling line cannot stall the
+    caller's polling loop }
+  MaxBytesPerTick = 4096;
+
+constructor tChnDF1.Init;
+begin
+  inherited Init;
+  CH_Type    := cName;
+  CH_Name    := CH_Type;
+  CH_NumName := ChNumName(CH_Type);
+  CH_RTick   := False;
+  CH_SBuff   := nil;
+  CH_MSBuff  := 0;
+  CH_LRMess  := 0;
+  CH_Master  := True;
+  CH_FullDup := True;
+  CH_FlCrc   := True;
+  CH_DLE     := False;
+  IData      := 0;
+  CH_NakByte := NAK;
+  CH_RSumBcc := 0;
+  CH_SSumBcc := 0;
+  CH_RSumCrc := 0;
+  CH_SSumCrc := 0;
+  CH_Event   := dfNone;
+  DF1DecoderInit(CH_Dec, ChDF1Config);
+end;
+
+constructor tChnDF1.ChInitParam(const S: tParamStr);
+begin
+  Init;
+  ChSetParam(S);
+end;
+
+destructor tChnDF1.Done;
+begin
+  inherited Done;
+  if CH_SBuff <> nil then
+    FreeMem(CH_SBuff, CH_MSBuff);
+  CH_SBuff := nil;
+  CH_MSBuff := 0;
+end;
+
+function tChnDF1.ChMaxNode: tNode;
+begin
+  Result := 255;
+end;
+
+function tChnDF1.ChDF1Config: tDF1Config;
+begin
+  Result.FullDup := CH_FullDup;
+  Result.Master := CH_Master;
+  Result.Crc := CH_FlCrc;
+  Result.Node := Byte(CH_Node);
+  Result.DNode := Byte(CH_DNode);
+  Result.NakByte := CH_NakByte;
+end;
+
+function tChnDF1.ChSetOneParam(const S: tWordString; var CmdL: tCmd): tChResult;
+var
+  Key: string;
+  I: Integer;
+  N: LongInt;
+begin
+  Key := ParamKey(S);
+  I := 0;
+  N := 0;
+  if Key = 'MAS' then
+  begin
+    Result := ParamChoice(S, 'MASTER|SLAVE', I);
+    if (Result = res_Ok) and (CmdL = cmd_Set) then
+      CH_Master := I = 0;
+  end
+  else if Key = 'FHD' then
+  begin
+    Result := ParamChoice(S, 'FULL|HALF', I);
+    if (Result = res_Ok) and (CmdL = cmd_Set) then
+      CH_FullDup := I = 0;
+  end
+  else if Key = 'CRC' then
+  begin
+    Result := ParamChoice(S, 'OFF|ON', I);
+    if (Result = res_Ok) and (CmdL = cmd_Set) then
+      CH_FlCrc := I = 1;
+  end
+  else if Key = 'NAK' then
+  begin
+    Result := ParamChoice(S, '15|0F', I);
+    if (Result = res_Ok) and (CmdL = cmd_Set) then
+      if I = 0 then
+        CH_NakByte := NAK
+      else
+        CH_NakByte := NAKAlt;
+  end
+  else if Key = 'LSB' then
+  begin
+    Result := ParamNum(S, 16, MaxTBuff, N);
+    { the layer below may still be sending from the old buffer }
+    if (Result = res_Ok) and (CH_State <> CHS_Close) then
+      Result := res_WrongState;
+    if (Result = res_Ok) and (CmdL = cmd_Set) then
+    begin
+      if CH_SBuff <> nil then
+        FreeMem(CH_SBuff, CH_MSBuff);
+      CH_MSBuff := N;
+      GetMem(CH_SBuff, CH_MSBuff);
+    end;
+  end
+  else
+    Result := inherited ChSetOneParam(S, CmdL);
+end;
+
+function tChnDF1.ChOwnParams: tParamStr;
+const
+  MasText: array[Boolean] of string[6] = ('SLAVE', 'MASTER');
+  FhdText: array[Boolean] of string[4] = ('HALF', 'FULL');
+  CrcText: array[Boolean] of string[3] = ('OFF', 'ON');
+var
+  NakText: string[2];
+begin
+  if CH_NakByte = NAKAlt then
+    NakText := '0F'
+  else
+    NakText := '15';
+  Result := inherited ChOwnParams + ' MAS=' + MasText[CH_Master] +
+    ' FHD=' + FhdText[CH_FullDup] + ' CRC=' + CrcText[CH_FlCrc] +
+    ' NAK=' + NakText;
+  if CH_MSBuff > 0 then
+    Result := Result + ParamText('LSB', CH_MSBuff);
+end;
+
+procedure tChnDF1.ChConnect;
+begin
+  inherited ChConnect;
+  if CH_Result = res_Ok then
+  begin
+    DF1DecoderInit(CH_Dec, ChDF1Config);
+    CH_Event := dfNone;
+    CH_DLE := False;
+  end;
+end;
+
+procedure tChnDF1.ChDisConnect;
+begin
+  inherited ChDisConnect;
+  if CH_Result = res_Ok then
+  begin
+    CH_RCtrl := CHS_RecInactive;
+    CH_Event := dfNone;
+  end;
+end;
+
+procedure tChnDF1.ChSend(Buff: Pointer; Len: Word);
+var
+  N: Word;
+  P: PByte;
+begin
+  if (CH_State = CHS_Close) or (CH_State = CHS_Opening) then
+  begin
+    CH_SResult := res_WrongState;
+    Exit;
+  end;
+  if Buff = nil then
+  begin
+    CH_SResult := res_BadLen;
+    Exit;
+  end;
+  if CH_SBuff = nil then
+  begin
+    CH_MSBuff := DF1DefaultSBuff;
+    GetMem(CH_SBuff, CH_MSBuff);
+  end;
+  N := 0;
+  CH_SResult := DF1Encode(ChDF1Config, pSendRecord(Buff)^, Len, CH_SBuff^, CH_MSBuff, N);
+  if CH_SResult <> res_Ok then
+    Exit;                           { nothing is sent }
+  { keep the checksum of a data frame for inspection, as the manual's fields }
+  P := CH_SBuff;
+  if pSendRecord(Buff)^.MessType = tpDataMess then
+    if CH_FlCrc then
+      CH_SSumCrc := P[N - 2] or (P[N - 1] shl 8)
+    else
+      CH_SSumBcc := P[N - 1];
+  ChLowSend(CH_SBuff, N);
+end;
+
+procedure tChnDF1.ChReceiveTick;
+var
+  B: Byte;
+  Count: Integer;
+begin
+  if (CH_State <> CHS_Connect) or (CH_RCtrl = CHS_ReceiveReady) then
+    Exit;
+  CH_RTick := True;
+  { settings may have changed (ChSetParam, or fields set directly) }
+  CH_Dec.Cfg := ChDF1Config;
+  Count := 0;
+  while (Count < MaxBytesPerTick) and ChLowGetByte(B) do
+  begin
+    Inc(Count);
+    CH_Event := DF1Feed(CH_Dec, B);
+    if CH_Event <> dfNone then
+      Break;
+  end;
+  CH_RSumBcc := Bcc8Final(CH_Dec.Bcc);
+  CH_RSumCrc := CH_Dec.Crc;
+  CH_DLE := CH_Dec.State in [dsIdleDle, dsStnDle, dsSohStx, dsBodyDle, dsPollStnDle];
+  if CH_Event <> dfNone then
+    CH_RCtrl := CHS_ReceiveReady
+  else if CH_Dec.State = dsIdle then
+    CH_RCtrl := CHS_Receiving
+  else
+    CH_RCtrl := CHS_ProtoBase + CH_Dec.State;   { inside a frame }
+  CH_RTick := False;
+end;
+
+procedure tChnDF1.ChReceive(var Len: Word);
+begin
+  Len := 0;
+  if CH_State <> CHS_Connect then
+  begin
+    CH_RResult := res_WrongState;
+    Exit;
+  end;
+  if CH_RBuff = nil then
+  begin
+    CH_RResult := res_NoRecBuff;      { the message stays waiting }
+    Exit;
+  end;
+  if CH_RCtrl <> CHS_ReceiveReady then
+    ChReceiveTick;
+  if CH_RCtrl <> CHS_ReceiveReady then
+  begin
+    CH_RResult := res_NoMessage;
+    Exit;
+  end;
+  if CH_Event = dfError then
+    CH_RResult := CH_Dec.Err
+  else if CH_Dec.MsgLen > CH_RSize then
+    CH_RResult := res_ErrLen          { does not fit: nothing is written }
+  else
+  begin
+    Move(CH_Dec.Msg, CH_RBuff^, CH_Dec.MsgLen);
+    Len := CH_Dec.MsgLen;
+    if CH_Dec.Msg.MessType in [tpDataMess, tpPoll] then
+    begin
+      CH_RSNode := CH_Dec.Src;
+      CH_RDNode := CH_Dec.Dst;
+    end;
+    CH_RResult := res_Ok;
+  end;
+  CH_LRMess := Len;
+  CH_Event := dfNone;
+  CH_RCtrl := CHS_Receiving;
+end;
+
+procedure tChnDF1.ChReceiveFlush;
+begin
+  DF1DecoderReset(CH_Dec);
+  CH_Event := dfNone;
+  CH_DLE := False;
+  inherited ChReceiveFlush;
+end;
+
+function tAddChnDF1.ChInit: pChnVirt;
+begin
+  Result := New(pChnDF1, Init);
+end;
+
+initialization
+  ChnCollection^.Insert(New(pAddChnDF1, Init(cName)));
+  ChRegisterResultText(cName, res_ErrFrame, 'malformed frame');
+  ChRegisterResultText(cName, res_ErrSum, 'checksum (BCC/CRC) error');
+  ChRegisterResultText(cName, res_ErrLen, 'message too long (data or receive buffer)');
+end.
