@@ -160,6 +160,7 @@ type
     CH_FullDup : Boolean;
     CH_DLE     : Boolean;     { receiver has just seen a DLE }
     CH_NakByte : Byte;        { NAK= : byte sent as NAK ($15 or $0F) }
+    CH_SLen    : Word;        { wire bytes of the last frame in CH_SBuff (tracing) }
     CH_Dec     : tDF1Decoder; { receive automaton }
     CH_Event   : tDF1Event;   { what is waiting while CH_RCtrl = CHS_ReceiveReady }
 
@@ -207,6 +208,7 @@ begin
   CH_DLE     := False;
   IData      := 0;
   CH_NakByte := NAK;
+  CH_SLen    := 0;
   CH_RSumBcc := 0;
   CH_SSumBcc := 0;
   CH_RSumCrc := 0;
@@ -370,6 +372,7 @@ begin
       CH_SSumCrc := P[N - 2] or (P[N - 1] shl 8)
     else
       CH_SSumBcc := P[N - 1];
+  CH_SLen := N;
   ChLowSend(CH_SBuff, N);
 end;
 
