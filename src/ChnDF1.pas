@@ -356,6 +356,12 @@ begin
     CH_SResult := res_BadLen;
     Exit;
   end;
+  { the layer below may still be sending from CH_SBuff: do not touch it }
+  if (CH_Low <> nil) and (CH_Low^.ChSendReady <> CHS_SendReady) then
+  begin
+    CH_SResult := res_Busy;
+    Exit;
+  end;
   if CH_SBuff = nil then
   begin
     CH_MSBuff := DF1DefaultSBuff;

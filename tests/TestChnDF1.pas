@@ -60,6 +60,7 @@ type
     procedure TestReceiveBufferTooSmall;
     procedure TestRefusedSendsSendNothing;
     procedure TestFlushDropsPartialFrame;
+    procedure TestSendWhileBusyKeepsFrame;
     procedure TestManualExchangesFullDuplex;
     procedure TestHalfDuplexTwoSlaves;
   end;
@@ -642,6 +643,46 @@ begin
   S^.ChReceive(Len);
   AssertEquals(res_Ok, S^.ChReceiveResult);
   AssertEquals(12, Len);
+end;
+
+procedure TTestChnDF1.TestSendWhileBusyKeepsFrame;
+var
+  M, Raw: pChnVirt;
+  R: tSendRecord;
+  Got: string;
+  Err: string;
+  Deadline: QWord;
+begin
+  M := Open('NAM=DF1 NOD=1 DNO=2 CRC=OFF NAM=LOOP PAIR=DF1Y END=1');
+  { a 4-byte receive ring at the far end: the frame stays pending. (LOOP
+    copies what it is given, so this cannot show that CH_SBuff is left
+    alone; it shows res_Busy and an intact first frame.) }
+  Raw := OpenStack('LOOP', 'NAM=LOOP PAIR=DF1Y END=2 LRB=4', Err);
+  AssertTrue(Err, Raw <> nil);
+  SetLength(FStacks, Length(FStacks) + 1);
+  FStacks[High(FStacks)] := Raw;
+  FillChar(R, SizeOf(R), 0);
+  R.MessType := tpDataMess;
+  R.CF := CF_Echo;
+  R.Tns := 10;
+  R.Data[0] := Ord('A'); R.Data[1] := Ord('h'); R.Data[2] := Ord('o'); R.Data[3] := Ord('j');
+  M^.ChSend(@R, 12);
+  AssertEquals(res_Ok, M^.ChSendResult);
+  AssertTrue('still sending', M^.ChSendReady = CHS_Sending);
+  R.Tns := 11;
+  R.MessType := tpAckNak;
+  M^.ChSend(@R, 2);
+  AssertEquals('busy', res_Busy, M^.ChSendResult);
+  { the first frame arrives intact }
+  Got := '';
+  Deadline := GetTickCount64 + TimeoutMs;
+  while (Length(Got) < Length(EchoBcc)) and (GetTickCount64 < Deadline) do
+  begin
+    M^.ChSendReady;
+    Got := Trim(Got + ' ' + ReadRaw(Raw));
+  end;
+  AssertEquals(EchoBcc, Got);
+  AssertTrue(M^.ChSendReady = CHS_SendReady);
 end;
 
 procedure TTestChnDF1.TestManualExchangesFullDuplex;
