@@ -608,6 +608,23 @@ begin
   R.MessType := tpDataMess;
   SendRec(M, R, 8 + 5);
   AssertTrue(ReadRaw(Raw) <> '');
+  { half duplex: no ENQ from the master, no poll, EOT or NAK from a slave }
+  M := Open('NAM=DF1 NOD=1 DNO=2 FHD=HALF NAM=LOOP PAIR=DF1H END=1');
+  Raw := OpenRaw('DF1H');
+  R.MessType := tpEnq;
+  Refused(0, res_BadMessage, 'ENQ from a half-duplex master');
+  R.MessType := tpNoPollRep;
+  Refused(0, res_BadMessage, 'EOT from a half-duplex master');
+  M^.ChSetParam('MAS=SLAVE');
+  R.MessType := tpPoll;
+  Refused(0, res_BadMessage, 'poll from a half-duplex slave');
+  R.MessType := tpAckNak;
+  R.FlAck := False;
+  Refused(0, res_BadMessage, 'NAK from a half-duplex slave');
+  AssertEquals('nothing on the half-duplex line', '', ReadRaw(Raw));
+  R.MessType := tpNoPollRep;
+  SendRec(M, R, 0);
+  AssertEquals('10 04', ReadRaw(Raw));
   Closed := ChnCollection^.ChNewInit('DF1');
   try
     Closed^.ChSend(@R, 12);
