@@ -38,6 +38,8 @@ var
 
 procedure Fail(const What: string; R: tChResult);
 begin
+  if R = res_Ok then
+    R := res_Timeout;          { the state never came }
   Write('df1echo: ', What, ': ', Chn^.ChResultStr(R));
   if Chn^.ChParamError <> '' then
     Write(' (', Chn^.ChParamError, ')');
@@ -64,10 +66,10 @@ begin
     if ChResult <> res_Ok then
       Fail('parameters "' + Params + '"', ChResult);
     ChOpen;
-    if ChResult <> res_Ok then
+    if not WaitState(Chn, CHS_Open) then
       Fail('open', ChResult);
     ChConnect;
-    if ChResult <> res_Ok then
+    if not WaitState(Chn, CHS_Connect) then
       Fail('connect', ChResult);
     WriteLn('df1echo: ', ChGetParam(''));
     Code := EchoExchange(Chn, 'Ahoj', 0, nil);

@@ -35,6 +35,8 @@ var
 
 procedure Fail(const What: string; R: tChResult);
 begin
+  if R = res_Ok then
+    R := res_Timeout;          { the state never came }
   Write('df1slave: ', What, ': ', Chn^.ChResultStr(R));
   if Chn^.ChParamError <> '' then
     Write(' (', Chn^.ChParamError, ')');
@@ -71,10 +73,10 @@ begin
   if pChnDF1(Chn)^.CH_Master then
     WriteLn('df1slave: note: MAS=MASTER given; answering anyway');
   Chn^.ChOpen;
-  if Chn^.ChResult <> res_Ok then
+  if not WaitState(Chn, CHS_Open) then
     Fail('open', Chn^.ChResult);
   Chn^.ChConnect;
-  if Chn^.ChResult <> res_Ok then
+  if not WaitState(Chn, CHS_Connect) then
     Fail('connect', Chn^.ChResult);
   WriteLn('df1slave: ', Chn^.ChGetParam(''));
   ResponderInit(Slave, Chn, 'slave');
