@@ -274,9 +274,11 @@ begin
   CH_AdrNext := CH_AdrLen;
   CH_NodGiven := False;
   CH_DnoGiven := False;
-  { new settings: the receiver starts afresh with them }
+  { new settings: a half-received frame starts afresh with them; a whole
+    frame waiting for ChReceive is kept }
   CH_Rx.Cfg := ChCodecConfig;
-  FT12RxReset(CH_Rx);
+  if CH_RCtrl <> CHS_ReceiveReady then
+    FT12RxReset(CH_Rx);
 end;
 
 function tChnFT1_2.ChMaxNode: tNode;
