@@ -40,6 +40,7 @@ type
     procedure TestUnbalancedMasterPollsTwoSlaves;
     procedure TestBalancedExchange;
     procedure TestGapDiscardsHalfFrame;
+    procedure TestSetParamKeepsWaitingFrame;
     procedure TestResultTexts;
   end;
 
@@ -807,6 +808,27 @@ begin
   AssertTrue(WaitReceive(S, 1000));
   S^.ChReceive(Len);
   AssertEquals(FCM_ReqLinkState, Rec.FC);
+end;
+
+procedure TTestChnFT1_2.TestSetParamKeepsWaitingFrame;
+var
+  S, Raw: pChnVirt;
+  Rec: tRecRecord;
+  Len: Word;
+begin
+  S := Open(1, 'NAM=FT1_2 MS=ON MAS=SLAVE LEN=0 NOD=1 NAM=LOOP PAIR=FTKW END=1');
+  Raw := OpenRaw(2, 'FTKW');
+  S^.ChReceiveBuffer(@Rec, SizeOf(Rec));
+  RawSend(Raw, '10 7B 01 7C 16');
+  AssertTrue(WaitReceive(S, 1000));
+  S^.ChSetParam('GAP=3');
+  AssertEquals(res_Ok, S^.ChResult);
+  AssertEquals(CHS_ReceiveReady, S^.ChReceiveReady);
+  S^.ChReceive(Len);
+  AssertEquals(res_Ok, S^.ChReceiveResult);
+  AssertEquals(4, Len);
+  AssertTrue(Rec.MessType = tpShortM);
+  AssertEquals(FCM_ReqUserData2, Rec.FC);
 end;
 
 procedure TTestChnFT1_2.TestResultTexts;
