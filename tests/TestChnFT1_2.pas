@@ -10,7 +10,7 @@ interface
 
 uses
   SysUtils, fpcunit, testregistry, ChnTypes, ChnVirt, ChnLoop, ChnFT1_2,
-  TestSupport, LoopHub;
+  TestSupport, LoopHub, ChnBaudTestLayer;
 
 type
   TTestChnFT1_2 = class(TTestCase)
@@ -40,6 +40,7 @@ type
     procedure TestUnbalancedMasterPollsTwoSlaves;
     procedure TestBalancedExchange;
     procedure TestGapDiscardsHalfFrame;
+    procedure TestGapUsesBaudRateBelow;
     procedure TestSetParamKeepsWaitingFrame;
     procedure TestResultTexts;
   end;
@@ -140,7 +141,7 @@ begin
   AssertEquals('FC@3', 3, PtrUInt(@R.FC) - PtrUInt(@R));
   AssertEquals('Data[1]@4', 4, PtrUInt(@R.Data[1]) - PtrUInt(@R));
   AssertEquals('Data[247]@250', 250, PtrUInt(@R.Data[247]) - PtrUInt(@R));
-  AssertEquals('FT1_2', cName);
+  AssertEquals('FT1_2', ChnFT1_2.cName);
   AssertEquals(65500, MaxTBuf);
   AssertEquals(247, MaxDataLen);
   AssertEquals($10, SD1); AssertEquals($68, SD2); AssertEquals($16, ED);
@@ -808,6 +809,31 @@ begin
   AssertTrue(WaitReceive(S, 1000));
   S^.ChReceive(Len);
   AssertEquals(FCM_ReqLinkState, Rec.FC);
+end;
+
+procedure TTestChnFT1_2.TestGapUsesBaudRateBelow;
+var
+  C: pChnFT1_2;
+begin
+  New(C, Init);
+  try
+    { 10 characters * 11 bits at 1200 Bd = 91.7 ms -> 92 }
+    C^.ChSetParam('NAM=FT1_2 GAP=10 NAM=BDT BD=1200 NAM=LOOP PAIR=FTBD');
+    AssertEquals(res_Ok, C^.ChResult);
+    AssertEquals(92, C^.ChGapMs);
+    { 1 character at 115200 Bd = 0.095 ms: at least one tick }
+    C^.ChSetParam('NAM=FT1_2 GAP=1 NAM=BDT BD=115200 NAM=LOOP PAIR=FTBD');
+    AssertEquals(1, C^.ChGapMs);
+    { 3 characters * 11 bits at 2400 Bd = 13.75 ms -> 14 }
+    C^.ChSetParam('NAM=FT1_2 GAP=3 NAM=BDT BD=2400 NAM=LOOP PAIR=FTBD');
+    AssertEquals(14, C^.ChGapMs);
+    C^.ChOpen;
+    C^.ChConnect;
+    AssertEquals(res_Ok, C^.ChResult);
+    AssertEquals('the receiver uses it', 14, C^.CH_Rx.Cfg.GapMs);
+  finally
+    Dispose(C, Done);
+  end;
 end;
 
 procedure TTestChnFT1_2.TestSetParamKeepsWaitingFrame;
