@@ -42,6 +42,8 @@ type
     procedure TestGapDiscardsHalfFrame;
     procedure TestGapUsesBaudRateBelow;
     procedure TestSetParamKeepsWaitingFrame;
+    procedure TestFlushAndDisConnect;
+    procedure TestChInitParam;
     procedure TestResultTexts;
   end;
 
@@ -855,6 +857,51 @@ begin
   AssertEquals(4, Len);
   AssertTrue(Rec.MessType = tpShortM);
   AssertEquals(FCM_ReqUserData2, Rec.FC);
+end;
+
+procedure TTestChnFT1_2.TestFlushAndDisConnect;
+var
+  S, Raw: pChnVirt;
+  Rec: tRecRecord;
+  Len: Word;
+begin
+  S := Open(1, 'NAM=FT1_2 MS=ON MAS=SLAVE LEN=0 NOD=1 NAM=LOOP PAIR=FTFL END=1');
+  Raw := OpenRaw(2, 'FTFL');
+  S^.ChReceiveBuffer(@Rec, SizeOf(Rec));
+  RawSend(Raw, '10 49');
+  AssertTrue(S^.ChReceiveReady <> CHS_ReceiveReady);   { half a frame taken }
+  S^.ChReceiveFlush;
+  RawSend(Raw, '01 4A 16 10 7B 01 7C 16');
+  AssertTrue(WaitReceive(S, 1000));
+  S^.ChReceive(Len);
+  AssertEquals('the half frame was flushed', FCM_ReqUserData2, Rec.FC);
+  S^.ChDisConnect;
+  AssertEquals(res_Ok, S^.ChResult);
+  AssertEquals(CHS_RecInactive, S^.ChReceiveReady);
+  S^.ChReceive(Len);
+  AssertEquals(res_WrongState, S^.ChReceiveResult);
+  S^.ChConnect;
+  AssertEquals(res_Ok, S^.ChResult);
+  RawSend(Raw, '10 49 01 4A 16');
+  AssertTrue(WaitReceive(S, 1000));
+  S^.ChReceive(Len);
+  AssertEquals(FCM_ReqLinkState, Rec.FC);
+end;
+
+procedure TTestChnFT1_2.TestChInitParam;
+var
+  C: pChnFT1_2;
+begin
+  New(C, ChInitParam('MS=OFF PRI=OFF LEN=0'));
+  try
+    AssertEquals(res_Ok, C^.ChResult);
+    AssertEquals('FT1_2', C^.CH_Type);
+    AssertFalse(C^.CH_MaSl);
+    AssertFalse(C^.CH_Master);
+    AssertEquals(0, C^.CH_LenShortM);
+  finally
+    Dispose(C, Done);
+  end;
 end;
 
 procedure TTestChnFT1_2.TestResultTexts;
