@@ -488,14 +488,15 @@ procedure TTestChnICSCodec.TestSOHInsideFrameStartsNextFrame;
 var
   F: string;
 begin
-  AssertEquals('after DNO', 'E20 F', Events(#1'2' + FrameA));
-  AssertEquals('in the op code', 'E20 F', Events(#1'2'#2'1R' + FrameA));
-  AssertEquals('in the data', 'E24 F', Events(#1'2'#2'1RD0,12' + FrameA));
-  AssertEquals('in the text', 'E20 F', Events(#1'2'#2'1RD0,"ab' + FrameA));
-  AssertEquals('after the text', 'E24 F', Events(#1'2'#2'1RD0,"ab"' + FrameA));
+  { one SOH only: the SOH that breaks a frame must itself start the next }
+  AssertEquals('after DNO', 'E20 F', Events(#1'2' + #1 + BodyA));
+  AssertEquals('in the op code', 'E20 F', Events(#1'2'#2'1R' + #1 + BodyA));
+  AssertEquals('in the data', 'E24 F', Events(#1'2'#2'1RD0,12' + #1 + BodyA));
+  AssertEquals('in the text', 'E20 F', Events(#1'2'#2'1RD0,"ab' + #1 + BodyA));
+  AssertEquals('after the text', 'E24 F', Events(#1'2'#2'1RD0,"ab"' + #1 + BodyA));
   F := WithField(Sample(33));
   AssertEquals('33rd number, then SOH: one error', 'E22 F',
-    Events(Copy(F, 1, Length(F) - 3) + FrameA));
+    Events(Copy(F, 1, Length(F) - 3) + #1 + BodyA));
 end;
 
 procedure TTestChnICSCodec.TestEncodeRefusesBadRecords;
