@@ -186,12 +186,13 @@ var
 begin
   OutLen := 0;
   Count := ICSCountOfLen(Len);
-  { The length bytes of the short strings are checked too: a record filled
-    by Move or read from a file may hold anything. }
-  if (Count < 0) or (Length(Rec.Text) > ICSMaxTextLen) then
+  { BlockNum and the text's length byte are read as plain bytes: a record
+    filled by Move or read from a file may hold anything, and the compiler
+    may assume a 0..9 or string[200] field stays in its range. }
+  if (Count < 0) or (PByte(@Rec.Text)^ > ICSMaxTextLen) then
     Exit(ICS_ErrLen);
   if (DNode > ICSMaxNode) or (SNode > ICSMaxNode) or
-     (Byte(Rec.BlockNum) > 9) or (Length(Rec.OpCode) <> 2) or
+     (PByte(@Rec.BlockNum)^ > 9) or (Length(Rec.OpCode) <> 2) or
      (Rec.OpCode[1] < #$20) or (Rec.OpCode[2] < #$20) or
      not TextValid(Rec.Text) then
     Exit(res_BadMessage);
