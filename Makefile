@@ -19,8 +19,9 @@ SYNAPSE_FLAGS := $(if $(SYNAPSE_DIR),-Fu$(SYNAPSE_DIR) -Fi$(SYNAPSE_DIR) -dCHN_S
 COMMON   := -Fusrc -Fisrc -Futests/support $(SYNAPSE_FLAGS) -v0ew -l-
 # units: warnings are errors; release code is optimised
 UNITFLAGS := $(COMMON) -O2 -Sew -FU$(UNITDIR) -FE$(BINDIR)
-# tests: range, overflow and stack checks, heaptrc, line info
-TESTFLAGS := $(COMMON) -Cr -Co -Ct -gh -gl -FU$(TUNITDIR) -FE$(TBINDIR) -Fi$(BUILD)
+# tests: range, overflow and stack checks, heaptrc, line info; -B rebuilds
+# everything, as FPC's one-second timestamps can miss a quick edit
+TESTFLAGS := $(COMMON) -B -Cr -Co -Ct -gh -gl -FU$(TUNITDIR) -FE$(TBINDIR) -Fi$(BUILD)
 
 # Units that only build on another OS or with an optional library.
 OPTIONAL_UNITS := $(if $(SYNAPSE_DIR),,src/ChnPortSynapse.pas) src/ChnPortWin.pas

@@ -44,7 +44,7 @@ if true; then
     for mode in tp fpc objfpc delphi; do
       dir="$BUILD/legacy-$mode"
       mkdir -p "$dir"
-      if ! "$FPC" -M$mode -Fusrc -Fisrc -FU"$dir" -FE"$dir" -Cr -Co -Ct "$prog" >"$dir/$name.log" 2>&1; then
+      if ! "$FPC" -M$mode -Fusrc -Fisrc -FU"$dir" -FE"$dir" -B -Cr -Co -Ct "$prog" >"$dir/$name.log" 2>&1; then
         fail "legacy $name -M$mode: does not compile"; tail -n 15 "$dir/$name.log"; continue
       fi
       if "$dir/$name" >"$dir/$name.run" 2>&1; then

@@ -1,0 +1,147 @@
+{ ft12master - the example of the ChnFT1_2 manual (chapter 7), corrected.
+
+  Sends one variable-length message from a master to a slave and decodes
+  the answer. Corrections to the printed example (SPEC section 9):
+  MAS=MASTER instead of MASTER=ON, a blank between the concatenated
+  parameter strings, "while not (ChReceiveReady = CHS_ReceiveReady)",
+  missing semicolons; and FCM_UserDataReply with FCV = True instead of
+  FCM_CheckLink with FCV = False (the manual marks FC 2 "balanced only" and
+  wants FCV = True for it). Every wait has a timeout and every error is
+  printed with ChResultStr, so the program never hangs.
+
+  Usage:  ft12master ['parameter string' [timeout-ms]]
+  e.g.    ft12master 'NAM=FT1_2 MS=ON MAS=MASTER LSB=500 NOD=1 DNO=2 NAM=COM COM=1 BD=9600 BIT=8 STOP=1 PAR=E LRB=1000'
+
+  The physical layer is chosen by NAM= in the string; its unit must be in
+  the uses clause (ChnLoop here; add ChnCom for NAM=COM). }
+program ft12master;
+
+{$MODE OBJFPC}{$H-}
+
+uses
+  SysUtils,
+  uString,
+  ChnTypes,
+  ChnVirt,
+  ChnLoop,
+  ChnFT1_2;
+
+const
+  DefaultParams: tParamStr =
+    'NAM=FT1_2 MS=ON MAS=MASTER LSB=500 NOD=1 DNO=2 ' +
+    'NAM=COM COM=1 IRQ=4 BD=9600 BIT=8 STOP=1 PAR=E LRB=1000';
+
+var
+  Chn   : pChnVirt;
+  SMess : pSendRecord;
+  RMess : pRecRecord;
+  LSMess: Word;
+  LRMess: Word;
+  I     : Integer;
+  Params: tParamStr;
+  TimeoutMs: LongInt;
+  Deadline: QWord;
+  Code  : Integer;
+
+{ Print what went wrong, clean up and stop with exit code 1. }
+procedure Fail(const What: string; R: tChResult);
+begin
+  WriteLn('Error: ', What, ': ', Chn^.ChResultStr(R));
+  if Chn^.ChParamError <> '' then
+    WriteLn('  in parameter ', Chn^.ChParamError);
+  Dispose(Chn, Done);
+  Dispose(SMess);
+  Dispose(RMess);
+  Halt(1);
+end;
+
+begin
+  Params := DefaultParams;
+  if ParamCount >= 1 then
+    Params := ParamStr(1);
+  TimeoutMs := 2000;
+  if ParamCount >= 2 then
+  begin
+    Val(ParamStr(2), TimeoutMs, Code);
+    if (Code <> 0) or (TimeoutMs <= 0) then
+    begin
+      WriteLn('Error: timeout must be a positive number of milliseconds');
+      Halt(2);
+    end;
+  end;
+  New(SMess);
+  New(RMess);
+  { create the channel }
+  Chn := ChnCollection^.ChNewInit(ChnFT1_2.cName);
+  with Chn^ do
+  begin
+    { communication parameters }
+    ChSetParam(Params);
+    if ChResult <> res_Ok then Fail('ChSetParam', ChResult);
+    ChOpen;
+    if ChResult <> res_Ok then Fail('ChOpen', ChResult);
+    { where received messages go }
+    ChReceiveBuffer(RMess, SizeOf(RMess^));
+    if ChReceiveResult <> res_Ok then Fail('ChReceiveBuffer', ChReceiveResult);
+    ChConnect;
+    if ChResult <> res_Ok then Fail('ChConnect', ChResult);
+    { fill the message }
+    with SMess^ do
+    begin
+      MessType := tpLongM;
+      FCB_ACD  := False;
+      FCV_DFC  := True;
+      FC       := FCM_UserDataReply;
+      Data[1]  := $10;
+      Data[2]  := $20;
+      Data[3]  := $30;
+      Data[4]  := $40;
+      Data[5]  := $50;
+      LSMess := cSizeHeadSndMsg + 5; { 5 is the length of Data }
+    end;
+    { send it and wait until it is out }
+    Deadline := ChMsTick + QWord(TimeoutMs);
+    while ChSendReady <> CHS_SendReady do
+      if ChMsTick > Deadline then Fail('transmitter busy', res_Timeout);
+    ChSend(SMess, LSMess);
+    if ChSendResult <> res_Ok then Fail('ChSend', ChSendResult);
+    while ChSendReady <> CHS_SendReady do
+    begin
+      if ChSendResult <> res_Ok then Fail('sending', ChSendResult);
+      if ChMsTick > Deadline then Fail('sending', res_Timeout);
+    end;
+    { wait for the answer }
+    Deadline := ChMsTick + QWord(TimeoutMs);
+    while not (ChReceiveReady = CHS_ReceiveReady) do
+      if ChMsTick > Deadline then Fail('no answer', res_Timeout);
+    ChReceive(LRMess);
+    if ChReceiveResult <> res_Ok then
+      Fail('received a broken frame', ChReceiveResult)
+    else
+      { decode the answer }
+      with RMess^ do
+        case MessType of
+          tpSACK:
+            WriteLn('SACK received');
+          tpSNAK:
+            WriteLn('SNAK received');
+          tpShortM, tpLongM:
+            begin
+              if MessType = tpShortM then
+                Write('Fixed-length message')
+              else
+                Write('Variable-length message');
+              Write(', FC ', FC, ', ACD ', FCB_ACD, ', DFC ', FCV_DFC, ', data:');
+              for I := 1 to LRMess - cSizeHeadRecMsg do
+                Write(' ', IntToHex(Data[I], 2));
+              WriteLn;
+            end;
+        end;
+    { done }
+    ChDisConnect;
+    ChClose;
+  end;
+  Dispose(Chn, Done);
+  Dispose(SMess);
+  Dispose(RMess);
+end.

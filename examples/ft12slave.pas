@@ -1,0 +1,150 @@
+{ ft12slave - an unbalanced FT 1.2 slave (secondary station) that answers
+  the link services of IEC 60870-5-101 / -2:
+    reset of remote link (FC 0)      -> ACK (FC 0), FCB expected next: 1
+    reset of user process (FC 1)     -> ACK
+    user data, confirm (FC 3)        -> single character ACK ($E5)
+    user data, no reply (FC 4)       -> nothing
+    request status of link (FC 9)    -> status of link (FC 11)
+    request class 1/2 data (FC 10/11)-> user data (FC 8, a counter) or
+                                        "data not available" (FC 9)
+  A repeated request (FCV = 1 and the same FCB as the last one) gets the
+  last answer again, as the standard wants; the library leaves this to the
+  application. Broken frames are printed with ChResultStr and not answered.
+
+  Usage:  ft12slave ['parameter string' [seconds]]      (default 60 s)
+  e.g.    ft12slave 'NAM=FT1_2 MS=ON MAS=SLAVE LEN=0 NOD=1 NAM=COM DEV=/dev/ttyUSB0 BD=9600 PAR=E'
+  The physical layer's unit must be in the uses clause (ChnLoop here; add
+  ChnCom for NAM=COM). }
+program ft12slave;
+
+{$MODE OBJFPC}{$H-}
+
+uses
+  SysUtils,
+  ChnTypes,
+  ChnVirt,
+  ChnLoop,
+  ChnFT12Codec,
+  ChnFT1_2;
+
+const
+  DefaultParams: tParamStr =
+    'NAM=FT1_2 MS=ON MAS=SLAVE LEN=0 NOD=1 ' +
+    'NAM=COM COM=1 BD=9600 BIT=8 STOP=1 PAR=E';
+
+var
+  Chn: pChnVirt;
+  Req: tRecRecord;
+  Ans: tSendRecord;
+  LReq, LAns: Word;
+  HaveAns: Boolean;
+  NextFcb: Boolean;       { FCB the next new request must carry }
+  Counter: Byte;
+  Params: tParamStr;
+  Seconds: LongInt;
+  Code: Integer;
+  EndTime: QWord;
+  SNode, DNode: tNode;
+
+procedure Fail(const What: string; R: tChResult);
+begin
+  WriteLn('Error: ', What, ': ', Chn^.ChResultStr(R), ' ', Chn^.ChParamError);
+  Dispose(Chn, Done);
+  Halt(1);
+end;
+
+procedure Answer(T: tMessType; FC: Byte; DataLen: Word);
+begin
+  FillChar(Ans, cSizeHeadSlSndMsg, 0);
+  Ans.MessType := T;
+  Ans.FC := FC;
+  LAns := cSizeHeadSlSndMsg + DataLen;
+  HaveAns := True;
+end;
+
+begin
+  Params := DefaultParams;
+  if ParamCount >= 1 then
+    Params := ParamStr(1);
+  Seconds := 60;
+  if ParamCount >= 2 then
+  begin
+    Val(ParamStr(2), Seconds, Code);
+    if (Code <> 0) or (Seconds <= 0) then
+    begin
+      WriteLn('Error: run time must be a positive number of seconds');
+      Halt(2);
+    end;
+  end;
+  Chn := ChnCollection^.ChNewInit(ChnFT1_2.cName);
+  Chn^.ChSetParam(Params);
+  if Chn^.ChResult <> res_Ok then Fail('ChSetParam', Chn^.ChResult);
+  Chn^.ChOpen;
+  if Chn^.ChResult <> res_Ok then Fail('ChOpen', Chn^.ChResult);
+  Chn^.ChReceiveBuffer(@Req, SizeOf(Req));
+  Chn^.ChConnect;
+  if Chn^.ChResult <> res_Ok then Fail('ChConnect', Chn^.ChResult);
+  HaveAns := False;
+  NextFcb := True;
+  Counter := 0;
+  LAns := 0;
+  EndTime := ChMsTick + QWord(Seconds) * 1000;
+  WriteLn('ft12slave: ', Chn^.ChGetParam(''));
+  while ChMsTick < EndTime do
+  begin
+    if Chn^.ChResult <> res_Ok then Fail('line', Chn^.ChResult);
+    if Chn^.ChReceiveReady <> CHS_ReceiveReady then
+    begin
+      Sleep(1);     { the physical layer may already wait; never spin hard }
+      Continue;
+    end;
+    Chn^.ChReceive(LReq);
+    if Chn^.ChReceiveResult <> res_Ok then
+    begin
+      WriteLn('broken frame: ', Chn^.ChResultStr(Chn^.ChReceiveResult));
+      Continue;
+    end;
+    Chn^.ChGetNode(SNode, DNode);
+    Write('FC ', Req.FC, ' to ', DNode);
+    if Req.FCV_DFC and HaveAns and (Req.FCB_ACD <> NextFcb) then
+      WriteLn(' (repeated: last answer again)')
+    else
+    begin
+      WriteLn;
+      if Req.FCV_DFC then
+        NextFcb := not Req.FCB_ACD;
+      HaveAns := False;
+      case Req.FC of
+        FCM_1stSetTransmit:
+          begin
+            NextFcb := True;
+            Answer(tpShortM, FCS_Ack, 0);
+          end;
+        FCM_1stSetUserFun: Answer(tpShortM, FCS_Ack, 0);
+        FCM_UserDataReply: Answer(tpSACK, 0, 0);
+        FCM_UserDataNoRep: ;
+        FCM_ReqLinkState: Answer(tpShortM, FCS_LinkSAccesReq, 0);
+        FCM_ReqUserData1: Answer(tpShortM, FCS_DataNotAcces, 0);
+        FCM_ReqUserData2:
+          begin
+            Inc(Counter);
+            Answer(tpLongM, FCS_UserData, 1);
+            Ans.Data[1] := Counter;
+          end;
+      else
+        Answer(tpShortM, FCS_NackBusy, 0);
+      end;
+    end;
+    { no answer to a broadcast }
+    if HaveAns and (DNode <> FT12Broadcast(pChnFT1_2(Chn)^.CH_AdrLen)) then
+    begin
+      if Chn^.ChSendReady = CHS_SendReady then
+        Chn^.ChSend(@Ans, LAns);
+      if Chn^.ChSendResult <> res_Ok then
+        WriteLn('send: ', Chn^.ChResultStr(Chn^.ChSendResult));
+    end;
+  end;
+  Chn^.ChDisConnect;
+  Chn^.ChClose;
+  Dispose(Chn, Done);
+end.

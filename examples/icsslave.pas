@@ -1,0 +1,203 @@
+{ icsslave - an ICSlink slave with a table of 1024 registers, the partner
+  of icsread:
+
+    RD n1 n2 ...          -> DB with the values of registers n1, n2, ...
+    RL                    -> LB with the register count and a text
+    WD first v1 v2 ...    -> OK (registers first, first+1, ... := v1, v2, ...)
+
+  (Which registers the numbers of RD and WD name is this example's own
+  convention; the manual defines only the frame.) Register i starts as
+  i * 10. A request for a register outside 0..1023 is answered with its
+  op code and the text '!bad register!' and no data. Broken frames are
+  reported and not answered (ICSlink has no negative acknowledgement);
+  frames for another station are ignored.
+
+    icsslave [-t seconds] [-n requests] 'NAM=ICS MAS=SLAVE NOD=2 DNO=1 NAM=COM DEV=/dev/ttyUSB1'
+
+  Runs until -n requests were answered or -t seconds passed (default 60),
+  never endlessly. As in icsread, add ChnCom to the uses clause for a
+  serial port once that unit is part of the build. }
+program icsslave;
+
+{$MODE OBJFPC}{$H+}
+
+uses
+  SysUtils,
+  uString,
+  ChnTypes,
+  ChnVirt,
+  ChnLoop,
+  ChnICS;
+
+const
+  RegCount = 1024;
+  BadRegister = '!bad register!';
+
+var
+  Chn     : pChnVirt;
+  Req, Ans: tRecRecord;
+  Regs    : array[0..RegCount - 1] of tData;
+  Params  : string;
+  Seconds, MaxRequests, Answered: LongInt;
+
+procedure Usage;
+begin
+  WriteLn('usage: icsslave [-t seconds] [-n requests] ''NAM=ICS MAS=SLAVE NOD=2 DNO=1 NAM=...''');
+  Halt(1);
+end;
+
+procedure ParseArgs;
+var
+  I: Integer;
+  N: LongInt;
+begin
+  Seconds := 60;
+  MaxRequests := 0;            { 0: no limit but the time }
+  Params := '';
+  I := 1;
+  while I <= ParamCount do
+  begin
+    N := 0;
+    if (ParamStr(I) = '-t') or (ParamStr(I) = '-n') then
+    begin
+      if (I = ParamCount) or not StrToNum(ParamStr(I + 1), 1, 86400, N) then
+        Usage;
+      if ParamStr(I) = '-t' then
+        Seconds := N
+      else
+        MaxRequests := N;
+      Inc(I, 2);
+    end
+    else
+    begin
+      Params := Trim(Params + ' ' + ParamStr(I));
+      Inc(I);
+    end;
+  end;
+  if Params = '' then
+    Usage;
+end;
+
+procedure Stop(const What: string; R: tChResult);
+begin
+  WriteLn(StdErr, 'icsslave: ', What, ': ', Chn^.ChResultStr(R));
+  if Chn^.ChParamError <> '' then
+    WriteLn(StdErr, '  offending parameter: ', Chn^.ChParamError);
+  Dispose(Chn, Done);
+  Halt(2);
+end;
+
+{ Fill Ans for the request in Req (Len bytes); False: no answer. }
+function Answer(Len: Word; var ALen: Word): Boolean;
+var
+  Count, I, Reg: Integer;
+begin
+  Result := True;
+  Count := (Len - 4) div SizeOf(tData);
+  FillChar(Ans, SizeOf(Ans), 0);
+  Ans.BlockNum := Req.BlockNum;
+  ALen := 4;
+  if Req.OpCode = OCM_ReadData then
+  begin
+    Ans.OpCode := OCS_ReadData;
+    for I := 0 to Count - 1 do
+      if (Req.Data[I] < 0) or (Req.Data[I] >= RegCount) then
+      begin
+        Ans.Text := BadRegister;
+        Exit;
+      end;
+    for I := 0 to Count - 1 do
+      Ans.Data[I] := Regs[Req.Data[I]];
+    ALen := 4 + Count * SizeOf(tData);
+  end
+  else if Req.OpCode = OCM_ReadParams then
+  begin
+    Ans.OpCode := OCS_ReadParams;
+    Ans.Data[0] := RegCount;
+    Ans.Text := '"icsslave, ' + IntToStr(RegCount) + ' registers"';
+    ALen := 4 + SizeOf(tData);
+  end
+  else if Req.OpCode = OCM_WriteData then
+  begin
+    Ans.OpCode := OCS_WriteData;
+    if Count = 0 then
+      Exit;
+    Reg := Req.Data[0];
+    if (Reg < 0) or (Reg + Count - 1 > RegCount) then
+    begin
+      Ans.Text := BadRegister;
+      Exit;
+    end;
+    for I := 1 to Count - 1 do
+      Regs[Reg + I - 1] := Req.Data[I];
+  end
+  else
+  begin
+    WriteLn('unknown op code ', Req.OpCode, ', not answered');
+    Result := False;
+  end;
+end;
+
+var
+  I: Integer;
+  Len, ALen: Word;
+  SNode, DNode: tNode;
+  Deadline: QWord;
+
+begin
+  ParseArgs;
+  for I := 0 to RegCount - 1 do
+    Regs[I] := I * 10;
+  Chn := ChnCollection^.ChNewInit(ChnICS.cName);
+  Chn^.ChSetParam(Params);
+  if Chn^.ChResult <> res_Ok then
+    Stop('parameters', Chn^.ChResult);
+  Chn^.ChOpen;
+  if Chn^.ChResult <> res_Ok then
+    Stop('open', Chn^.ChResult);
+  Chn^.ChReceiveBuffer(@Req, SizeOf(Req));
+  Chn^.ChConnect;
+  if Chn^.ChResult <> res_Ok then
+    Stop('connect', Chn^.ChResult);
+  WriteLn('icsslave: station ', pChnICS(Chn)^.CH_Node, ' listening for ', Seconds, ' s');
+
+  Answered := 0;
+  Deadline := ChMsTick + QWord(Seconds) * 1000;
+  while (ChMsTick < Deadline) and ((MaxRequests = 0) or (Answered < MaxRequests)) do
+  begin
+    if Chn^.ChReceiveReady <> CHS_ReceiveReady then
+    begin
+      if Chn^.ChResult <> res_Ok then
+        Stop('line', Chn^.ChResult);         { device lost ... }
+      Sleep(1);
+      Continue;
+    end;
+    Chn^.ChReceive(Len);
+    if Chn^.ChReceiveResult <> res_Ok then
+    begin
+      WriteLn('broken frame: ', Chn^.ChResultStr(Chn^.ChReceiveResult));
+      Continue;
+    end;
+    Chn^.ChGetNode(SNode, DNode);
+    if DNode <> pChnICS(Chn)^.CH_Node then
+      Continue;                               { for another station }
+    WriteLn('from ', SNode, ': ', Req.OpCode, ' block ', Req.BlockNum,
+      ' with ', (Len - 4) div SizeOf(tData), ' numbers');
+    if not Answer(Len, ALen) then
+      Continue;
+    Chn^.ChDestNode(SNode);
+    while Chn^.ChSendReady <> CHS_SendReady do
+      if ChMsTick > Deadline then
+        Stop('transmitter busy', res_Timeout)
+      else
+        Sleep(1);
+    Chn^.ChSend(@Ans, ALen);
+    if Chn^.ChSendResult <> res_Ok then
+      Stop('send', Chn^.ChSendResult);
+    Inc(Answered);
+  end;
+  WriteLn('icsslave: ', Answered, ' requests answered');
+  Chn^.ChDisConnect;
+  Chn^.ChClose;
+  Dispose(Chn, Done);
+end.

@@ -1,0 +1,549 @@
+{ ChnFT1_2 - IEC 60870-5-2 frame format FT 1.2, balanced and unbalanced
+  (SofCon manual ChnFT1_2, seed 001; SPEC.md section 7).
+
+  tChnFT1_2 is a protocol layer: it encodes tSendRecord into FT 1.2 frames
+  and decodes received frames into tRecRecord through ChnFT12Codec, and
+  moves the bytes through the layer below (COM, LOOP, ...).
+
+    'NAM=FT1_2 MS=ON MAS=MASTER LSB=500 NOD=1 DNO=2 LEN=0 NAM=COM ...'
+
+  Parameters of the manual: MS=ON|OFF, MAS=MASTER|SLAVE, PRI=ON|OFF, LSB=,
+  NOD=, DNO=, LEN=. Added by the port (see docs/ChnFT1_2.md):
+    ADR=0|1|2  link address octets (default 1 as in the manual; 2 octets are
+               little-endian and NOD=/DNO= then range up to 65535)
+    DIR=0|1    DIR bit sent in balanced mode (default 0)
+    GAP=n      line-idle gap in character times that discards a
+               half-received frame (0 = off, default); the character time
+               is 11 bits at the BD= of the layer below, 9600 Bd if none
+  The link dialogue (FCB toggling, repetition, answering) is the
+  application's job, as in the SofCon design. }
+unit ChnFT1_2;
+
+{$I chn.inc}
+
+interface
+
+uses
+  ChnTypes, ChnVirt, ChnFT12Codec;
+
+const
+  cVerNo = $0100;                 { BCD }
+  cVer   = '01.00,21.11.2026';
+  cName  = 'FT1_2';
+  MaxTBuf = 65500;                { largest send buffer (LSB=) }
+  MaxDataLen = ChnFT12Codec.MaxDataLen;
+
+  { control characters (manual 4.1) }
+  SD1  = ChnFT12Codec.SD1;
+  SD2  = ChnFT12Codec.SD2;
+  ED   = ChnFT12Codec.ED;
+  SACK = ChnFT12Codec.SACK;
+  SNAK = ChnFT12Codec.SNAK;
+
+  { function codes from a master/primary station (manual 4.2);
+    V = balanced, N = unbalanced }
+  FCM_1stSetTransmit =  0;  { V N  reset of remote link, FCV = False }
+  FCM_1stSetUserFun  =  1;  { V N  reset of user process, FCV = False }
+  FCM_CheckLink      =  2;  { V    test function for link, FCV = True }
+  FCM_UserDataReply  =  3;  { V N  user data, confirm expected, FCV = True }
+  FCM_UserDataNoRep  =  4;  { V N  user data, no reply, FCV = False }
+  FCM_ReqReplyAcces  =  8;  {   N  request for access demand, FCV = False }
+  FCM_ReqLinkState   =  9;  { V N  request status of link, FCV = False }
+  FCM_ReqUserData1   = 10;  {   N  request user data class 1, FCV = True }
+  FCM_ReqUserData2   = 11;  {   N  request user data class 2, FCV = True }
+
+  { function codes from a slave/secondary station }
+  FCS_Ack            =  0;  { V N  ACK }
+  FCS_NackBusy       =  1;  { V N  NACK: message not accepted, link busy }
+  FCS_UserData       =  8;  {   N  user data }
+  FCS_DataNotAcces   =  9;  {   N  NACK: requested data not available }
+  FCS_LinkSAccesReq  = 11;  { V N  status of link or access demand }
+
+  { receive results (manual 4.3) }
+  res_ErrSum   = ChnFT12Codec.res_ErrSum;     { $20 }
+  res_ErrLen   = ChnFT12Codec.res_ErrLen;     { $21 }
+  res_ErrCode  = ChnFT12Codec.res_ErrCode;    { $22 }
+  res_ErrFrame = ChnFT12Codec.res_ErrFrame;   { $23 }
+
+  { message types (manual 4) }
+  tpSACK   = ChnFT12Codec.tpSACK;
+  tpSNAK   = ChnFT12Codec.tpSNAK;
+  tpShortM = ChnFT12Codec.tpShortM;
+  tpLongM  = ChnFT12Codec.tpLongM;
+
+  { header sizes (manual 4.5) and the names the manual's text uses }
+  cSizeHeadSndMsg   = ChnFT12Codec.cSizeHeadSndMsg;
+  cSizeHeadRecMsg   = ChnFT12Codec.cSizeHeadRecMsg;
+  cSizeHeadMaSndMsg = cSizeHeadSndMsg;
+  cSizeHeadSlSndMsg = cSizeHeadSndMsg;
+  cSizeHeadMaRecMsg = cSizeHeadRecMsg;
+  cSizeHeadSlRecMsg = cSizeHeadRecMsg;
+
+type
+  { receiver control type of the manual; the port keeps the automaton
+    state in the codec and CH_RCtrl, the type is kept for old sources }
+  tRec = (Znk, NoZnk, Err);
+  tMessType = ChnFT12Codec.tMessType;
+  tData = ChnFT12Codec.tData;
+
+  pSendRecord = ^tSendRecord;
+  tSendRecord = ChnFT12Codec.tFT12Record;
+  pRecRecord  = ^tRecRecord;
+  tRecRecord  = tSendRecord;
+
+  { names the manual's method descriptions use }
+  pMaSendRecord = pSendRecord;  tMaSendRecord = tSendRecord;
+  pSlSendRecord = pSendRecord;  tSlSendRecord = tSendRecord;
+  pMaRecRecord  = pRecRecord;   tMaRecRecord  = tRecRecord;
+  pSlRecRecord  = pRecRecord;   tSlRecRecord  = tRecRecord;
+
+  pChnFT1_2 = ^tChnFT1_2;
+  tChnFT1_2 = object(tChnVirt)
+    CH_RTick    : Boolean;   { the receive automaton is running (debugging) }
+    CH_SBuff    : Pointer;   { send buffer }
+    CH_MSBuff   : Word;      { and its size }
+    CH_LRMess   : Word;      { length of the last received message }
+    CH_RSum     : tSum8;     { receiver checksum }
+    CH_SSum     : tSum8;     { checksum of the last frame sent }
+    CH_MaSl     : Boolean;   { True: unbalanced (MS=ON) }
+    CH_Master   : Boolean;   { master (unbalanced) or primary (balanced) }
+    CH_LenShortM: Byte;      { LEN=: data octets of a fixed frame }
+    { --- additions of the port --- }
+    CH_MasParam : Boolean;   { MAS=MASTER; CH_Master follows it when MS=ON }
+    CH_PriParam : Boolean;   { PRI=ON; CH_Master follows it when MS=OFF }
+    CH_AdrLen   : Byte;      { ADR= }
+    CH_Dir      : Boolean;   { DIR= }
+    CH_Gap      : Word;      { GAP= in character times }
+    CH_Rx       : tFT12Rx;   { receive automaton }
+    CH_RErr     : tChResult; { result of the frame waiting for ChReceive }
+    { ChSetParam looks ahead at the whole string, so that NOD=/DNO= are
+      checked against the ADR= in force after it, in any token order }
+    CH_AdrNext  : Byte;
+    CH_NodGiven, CH_DnoGiven: Boolean;
+
+    constructor Init;
+    constructor ChInitParam(const S: tParamStr);
+    destructor  Done; virtual;
+    procedure ChSetParam(const S: tParamStr); virtual;
+    function  ChSetOneParam(const S: tWordString; var CmdL: tCmd): tChResult; virtual;
+    function  ChOwnParams: tParamStr; virtual;
+    function  ChMaxNode: tNode; virtual;
+    procedure ChConnect; virtual;
+    procedure ChDisConnect; virtual;
+    procedure ChSend(Buff: Pointer; Len: Word); virtual;
+    procedure ChReceive(var Len: Word); virtual;
+    procedure ChReceiveFlush; virtual;
+    procedure ChReceiveTick; virtual;
+    { codec settings from the parameters now in force }
+    function  ChCodecConfig: tFT12Config;
+    { GAP= in milliseconds (0 = off) }
+    function  ChGapMs: LongWord;
+  end;
+
+  pAddChnFT1_2 = ^tAddChnFT1_2;
+  tAddChnFT1_2 = object(tAddChnVirt)
+    function ChInit: pChnVirt; virtual;
+  end;
+
+implementation
+
+uses
+  uString;
+
+const
+  cBitsPerChar = 11;     { FT 1.2 character: start, 8 data, even parity, stop }
+  cDefaultBaud = 9600;   { for GAP= when no layer below has BD= }
+  OnOff: array[Boolean] of string[3] = ('OFF', 'ON');
+
+constructor tChnFT1_2.Init;
+begin
+  inherited Init;
+  CH_Type := cName;
+  CH_Name := CH_Type;
+  CH_NumName := ChNumName(CH_Type);
+  CH_RTick := False;
+  CH_SBuff := nil;
+  CH_MSBuff := 0;
+  CH_LRMess := 0;
+  CH_RSum := 0;
+  CH_SSum := 0;
+  CH_MaSl := True;
+  CH_Master := True;
+  CH_LenShortM := 4;
+  IData := 0;
+  CH_MasParam := True;
+  CH_PriParam := True;
+  CH_AdrLen := 1;
+  CH_Dir := False;
+  CH_Gap := 0;
+  CH_RErr := res_Ok;
+  CH_AdrNext := CH_AdrLen;
+  CH_NodGiven := False;
+  CH_DnoGiven := False;
+  FillChar(CH_Rx, SizeOf(CH_Rx), 0);
+  CH_Rx.Cfg := ChCodecConfig;
+  FT12RxReset(CH_Rx);
+end;
+
+constructor tChnFT1_2.ChInitParam(const S: tParamStr);
+begin
+  Init;
+  ChSetParam(S);
+end;
+
+destructor tChnFT1_2.Done;
+begin
+  inherited Done;
+  if CH_SBuff <> nil then
+    FreeMem(CH_SBuff);
+  CH_SBuff := nil;
+  CH_MSBuff := 0;
+end;
+
+function tChnFT1_2.ChGapMs: LongWord;
+var
+  Baud: LongInt;
+  Tok: string;
+  P: Integer;
+begin
+  if CH_Gap = 0 then
+    Exit(0);
+  Baud := cDefaultBaud;
+  if CH_Low <> nil then
+  begin
+    P := 1;
+    if NextToken(CH_Low^.ChGetParam('BD'), P, Tok) then
+      StrToNum(ParamValue(Tok), 1, 10000000, Baud);
+  end;
+  { round up: a gap shorter than one tick cannot be measured }
+  Result := (QWord(CH_Gap) * cBitsPerChar * 1000 + LongWord(Baud) - 1) div LongWord(Baud);
+  if Result = 0 then
+    Result := 1;
+end;
+
+function tChnFT1_2.ChCodecConfig: tFT12Config;
+begin
+  FillChar(Result, SizeOf(Result), 0);
+  Result.AddrLen := CH_AdrLen;
+  Result.FixedLen := CH_LenShortM;
+  Result.Balanced := not CH_MaSl;
+  Result.Dir := CH_Dir;
+  Result.Primary := CH_Master;
+  Result.CheckPrm := True;
+  { a slave/secondary takes only its own and broadcast frames }
+  Result.Filter := (not CH_Master) and (CH_AdrLen > 0);
+  Result.OwnAddr := CH_Node;
+  Result.GapMs := ChGapMs;
+end;
+
+procedure tChnFT1_2.ChSetParam(const S: tParamStr);
+var
+  P: Integer;
+  Tok, Key, Value: string;
+  N: LongInt;
+  SeenOwn: Boolean;
+begin
+  { Look ahead at this layer's tokens (the same split as the base: up to a
+    NAM= naming another layer) for ADR=, NOD= and DNO=, so that the checks
+    of the base's first pass see the address length the string will set. }
+  CH_AdrNext := CH_AdrLen;
+  CH_NodGiven := False;
+  CH_DnoGiven := False;
+  SeenOwn := False;
+  P := 1;
+  while NextToken(S, P, Tok) do
+  begin
+    if not SplitKeyValue(Tok, Key, Value) then
+      Continue;                   { the base reports it }
+    if Key = 'NAM' then
+    begin
+      if (not SeenOwn) and (UpStr(Value) = UpStr(CH_Type)) then
+        Continue;
+      Break;
+    end;
+    SeenOwn := True;
+    N := 0;
+    if (Key = 'ADR') and StrToNum(Value, 0, 2, N) then
+      CH_AdrNext := N
+    else if Key = 'NOD' then
+      CH_NodGiven := True
+    else if Key = 'DNO' then
+      CH_DnoGiven := True;
+  end;
+  inherited ChSetParam(S);
+  CH_AdrNext := CH_AdrLen;
+  CH_NodGiven := False;
+  CH_DnoGiven := False;
+  { new settings: a half-received frame starts afresh with them; a whole
+    frame waiting for ChReceive is kept }
+  CH_Rx.Cfg := ChCodecConfig;
+  if CH_RCtrl <> CHS_ReceiveReady then
+    FT12RxReset(CH_Rx);
+end;
+
+function tChnFT1_2.ChMaxNode: tNode;
+begin
+  Result := FT12MaxAddr(CH_AdrNext);
+end;
+
+function tChnFT1_2.ChSetOneParam(const S: tWordString; var CmdL: tCmd): tChResult;
+var
+  Key: string;
+  N: LongInt;
+  I: Integer;
+begin
+  Key := ParamKey(S);
+  N := 0;
+  I := 0;
+  if Key = 'MS' then
+  begin
+    Result := ParamChoice(S, 'OFF|ON', I);
+    if (Result = res_Ok) and (CmdL = cmd_Set) then
+      CH_MaSl := I = 1;
+  end
+  else if Key = 'MAS' then
+  begin
+    Result := ParamChoice(S, 'SLAVE|MASTER', I);
+    if (Result = res_Ok) and (CmdL = cmd_Set) then
+      CH_MasParam := I = 1;
+  end
+  else if Key = 'PRI' then
+  begin
+    Result := ParamChoice(S, 'OFF|ON', I);
+    if (Result = res_Ok) and (CmdL = cmd_Set) then
+      CH_PriParam := I = 1;
+  end
+  else if Key = 'LSB' then
+  begin
+    Result := ParamNum(S, 1, MaxTBuf, N);
+    if (Result = res_Ok) and (CmdL = cmd_Set) then
+    begin
+      if CH_SBuff <> nil then
+        FreeMem(CH_SBuff);
+      GetMem(CH_SBuff, N);
+      CH_MSBuff := N;
+    end;
+  end
+  else if Key = 'LEN' then
+  begin
+    Result := ParamNum(S, 0, MaxDataLen, N);
+    if (Result = res_Ok) and (CmdL = cmd_Set) then
+      CH_LenShortM := N;
+  end
+  else if Key = 'ADR' then
+  begin
+    Result := ParamNum(S, 0, 2, N);
+    { addresses kept from before must still fit the new length }
+    if (Result = res_Ok) and
+       ((not CH_NodGiven and (CH_Node > FT12MaxAddr(N))) or
+        (not CH_DnoGiven and (CH_DNode > FT12MaxAddr(N)))) then
+      Result := res_BadParam;
+    if (Result = res_Ok) and (CmdL = cmd_Set) then
+      CH_AdrLen := N;
+  end
+  else if Key = 'DIR' then
+  begin
+    Result := ParamNum(S, 0, 1, N);
+    if (Result = res_Ok) and (CmdL = cmd_Set) then
+      CH_Dir := N = 1;
+  end
+  else if Key = 'GAP' then
+  begin
+    Result := ParamNum(S, 0, 10000, N);
+    if (Result = res_Ok) and (CmdL = cmd_Set) then
+      CH_Gap := N;
+  end
+  else
+    Result := inherited ChSetOneParam(S, CmdL);
+  if (Result = res_Ok) and (CmdL = cmd_Set) then
+  begin
+    { the manual's one role field follows MAS= or PRI= by the mode }
+    if CH_MaSl then
+      CH_Master := CH_MasParam
+    else
+      CH_Master := CH_PriParam;
+  end;
+end;
+
+function tChnFT1_2.ChOwnParams: tParamStr;
+const
+  MasText: array[Boolean] of string[6] = ('SLAVE', 'MASTER');
+begin
+  Result := inherited ChOwnParams + ' MS=' + OnOff[CH_MaSl] +
+    ' MAS=' + MasText[CH_MasParam] + ' PRI=' + OnOff[CH_PriParam];
+  if CH_MSBuff > 0 then
+    Result := Result + ParamText('LSB', CH_MSBuff);
+  Result := Result + ParamText('LEN', CH_LenShortM) + ParamText('ADR', CH_AdrLen) +
+    ParamText('DIR', Ord(CH_Dir)) + ParamText('GAP', CH_Gap);
+end;
+
+procedure tChnFT1_2.ChConnect;
+begin
+  inherited ChConnect;
+  if CH_Result = res_Ok then
+  begin
+    CH_Rx.Cfg := ChCodecConfig;   { GAP= needs the BD= of the stack below }
+    FT12RxReset(CH_Rx);
+    CH_RErr := res_Ok;
+  end;
+end;
+
+procedure tChnFT1_2.ChDisConnect;
+begin
+  inherited ChDisConnect;
+  if CH_Result = res_Ok then
+    CH_RCtrl := CHS_RecInactive;
+end;
+
+procedure tChnFT1_2.ChSend(Buff: Pointer; Len: Word);
+var
+  Addr: tNode;
+  N: Word;
+  R: tChResult;
+begin
+  if (CH_State = CHS_Close) or (CH_State = CHS_Opening) then
+  begin
+    CH_SResult := res_WrongState;
+    Exit;
+  end;
+  if (Buff = nil) or (Len = 0) then
+  begin
+    CH_SResult := res_BadLen;
+    Exit;
+  end;
+  if CH_Low = nil then
+  begin
+    CH_SResult := res_NoLowLayer;
+    Exit;
+  end;
+  { check before encoding: the layer below may still read CH_SBuff }
+  if CH_Low^.ChSendReady <> CHS_SendReady then
+  begin
+    CH_SResult := res_Busy;
+    Exit;
+  end;
+  if CH_SBuff = nil then
+  begin
+    GetMem(CH_SBuff, cFT12MaxFrame);   { no LSB= given: room for any frame }
+    CH_MSBuff := cFT12MaxFrame;
+  end;
+  { one address field: the destination from a master/primary, the own
+    address (SNO) from a slave/secondary }
+  if CH_Master then
+    Addr := CH_DNode
+  else
+    Addr := CH_Node;
+  N := 0;
+  R := FT12Encode(ChCodecConfig, pSendRecord(Buff)^, Len, Addr, CH_SBuff,
+    CH_MSBuff, N);
+  if R <> res_Ok then
+  begin
+    CH_SResult := R;
+    Exit;
+  end;
+  if N > 1 then
+    CH_SSum := PByte(CH_SBuff)[N - 2];
+  ChLowSend(CH_SBuff, N);
+end;
+
+procedure tChnFT1_2.ChReceiveTick;
+var
+  B: Byte;
+  Now: QWord;
+begin
+  if (CH_State <> CHS_Connect) or (CH_RCtrl <> CHS_Receiving) then
+    Exit;
+  CH_RTick := True;
+  Now := ChMsTick;     { one time stamp for the bytes pulled in this tick }
+  while ChLowGetByte(B) do
+    case FT12Feed(CH_Rx, B, Now) of
+      fe_Frame:
+        begin
+          CH_RErr := res_Ok;
+          CH_RCtrl := CHS_ReceiveReady;
+          Break;        { the rest stays below for the next frame }
+        end;
+      fe_Error:
+        begin
+          CH_RErr := CH_Rx.Err;
+          CH_RCtrl := CHS_ReceiveReady;
+          Break;
+        end;
+    end;
+  CH_RSum := CH_Rx.Sum;
+  CH_RTick := False;
+end;
+
+procedure tChnFT1_2.ChReceive(var Len: Word);
+var
+  Addr: tNode;
+begin
+  Len := 0;
+  if CH_State <> CHS_Connect then
+  begin
+    CH_RResult := res_WrongState;
+    Exit;
+  end;
+  if CH_RBuff = nil then
+  begin
+    CH_RResult := res_NoRecBuff;
+    Exit;
+  end;
+  if CH_RCtrl <> CHS_ReceiveReady then
+  begin
+    CH_RResult := res_NoMessage;
+    Exit;
+  end;
+  CH_RCtrl := CHS_Receiving;
+  if CH_RErr <> res_Ok then
+  begin
+    CH_RResult := CH_RErr;     { broken frame: the application answers }
+    CH_RErr := res_Ok;
+    CH_LRMess := 0;
+    Exit;
+  end;
+  CH_RResult := FT12GetRecord(CH_Rx, CH_RBuff, CH_RSize, Len);
+  CH_LRMess := Len;
+  if CH_RResult <> res_Ok then
+    Exit;
+  { one address on the line: report it on the side it belongs to; with no
+    address field (ADR=0, single characters) the configured peer }
+  if FT12FramePrm(CH_Rx) then
+  begin
+    if CH_AdrLen > 0 then
+      Addr := CH_Rx.Addr
+    else
+      Addr := CH_Node;
+    CH_RDNode := Addr;
+    CH_RSNode := CH_DNode;
+  end
+  else
+  begin
+    if (CH_AdrLen > 0) and (CH_Rx.Kind in [tpShortM, tpLongM]) then
+      Addr := CH_Rx.Addr
+    else
+      Addr := CH_DNode;
+    CH_RSNode := Addr;
+    CH_RDNode := CH_Node;
+  end;
+end;
+
+procedure tChnFT1_2.ChReceiveFlush;
+begin
+  FT12RxReset(CH_Rx);
+  CH_RErr := res_Ok;
+  inherited ChReceiveFlush;
+end;
+
+function tAddChnFT1_2.ChInit: pChnVirt;
+begin
+  Result := New(pChnFT1_2, Init);
+end;
+
+initialization
+  ChnCollection^.Insert(New(pAddChnFT1_2, Init(cName)));
+  ChRegisterResultText(cName, res_ErrSum, 'checksum error');
+  ChRegisterResultText(cName, res_ErrLen, 'bad frame length');
+  ChRegisterResultText(cName, res_ErrCode, 'PRM bit does not fit this station''s role');
+  ChRegisterResultText(cName, res_ErrFrame, 'frame error (start or end character)');
+end.

@@ -1,0 +1,318 @@
+{ ChnTrc - trace layer (NAM=TRC): a transparent layer that can sit between
+  any two layers and logs every chunk passing through it.
+
+    'NAM=DF1 NOD=1 DNO=2 NAM=TRC FILE=trace.log NAM=COM DEV=/dev/ttyUSB0'
+
+  Not in the SofCon manuals; an addition of the port (issue 6). Each chunk
+  handed down by ChSend is logged as 'tx', each chunk taken up by ChReceive
+  as 'rx', in the RACOM capture format of seed 002 (see ChnTrcFormat, which
+  also reads the log back):
+
+    13:33:33.065 tx   2 | TRC
+    1006
+
+  The layer changes nothing: ChSend passes the caller's buffer down
+  unchanged and logs it after the layer below took it (a refused send, e.g.
+  res_Busy, is not logged); ChReceiveBuffer hands the caller's own buffer
+  and size down, so the layer below writes straight into it, never more
+  than Size bytes, and ChReceive logs what arrived. States and results are
+  those of the layer below. The only cost is formatting and one write per
+  chunk.
+
+  Parameters:
+    FILE=path|STDERR|STDOUT  where the log goes (default STDERR). A file is
+             opened in append mode (created if missing) by ChOpen and
+             closed by ChClose; if it cannot be opened, ChOpen gives
+             res_CannotOpen and the stack stays closed. FILE= cannot name
+             another file while the layer is open (res_WrongState).
+    MOD=HEX|DEC  bytes in hex groups as in the capture (default) or as
+             3-digit decimal numbers.
+  A failed write to the log is counted in CH_LogErrors and never affects
+  the data passing through. }
+unit ChnTrc;
+
+{$I chn.inc}
+
+interface
+
+uses
+  ChnTypes, ChnVirt, ChnTrcFormat;
+
+const
+  cName = 'TRC';
+  TrcStdErr = 'STDERR';
+  TrcStdOut = 'STDOUT';
+
+type
+  pChnTrc = ^tChnTrc;
+  tChnTrc = object(tChnVirt)
+    CH_File     : tWordString;  { FILE=: a path, STDERR or STDOUT }
+    CH_Mode     : tTrcMode;     { MOD=HEX|DEC }
+    CH_Handle   : THandle;      { the log while open }
+    CH_LogOpen  : Boolean;      { CH_Handle is valid }
+    CH_OwnHandle: Boolean;      { CH_Handle is a file this layer opened }
+    CH_LogErrors: LongInt;      { log writes that failed }
+    constructor Init;
+    constructor ChInitParam(const S: tParamStr);
+    destructor  Done; virtual;
+    function  ChSetOneParam(const S: tWordString; var CmdL: tCmd): tChResult; virtual;
+    function  ChOwnParams: tParamStr; virtual;
+    procedure ChOpen; virtual;
+    procedure ChClose; virtual;
+    procedure ChConnect; virtual;
+    procedure ChSend(Buff: Pointer; Len: Word); virtual;
+    procedure ChReceiveBuffer(Buff: Pointer; Size: Word); virtual;
+    function  ChReceiveReady: tChState; virtual;
+    procedure ChReceive(var Len: Word); virtual;
+    procedure ChReceiveTick; virtual;
+    procedure ChDestNode(DNode: tNode); virtual;
+    procedure ChGetNode(var SNode, DNode: tNode); virtual;
+    { Write one entry to the log (also usable by tools for their own notes). }
+    procedure ChTrcLog(Dir: tTrcDir; Buff: Pointer; Len: Word);
+  end;
+
+  pAddChnTrc = ^tAddChnTrc;
+  tAddChnTrc = object(tAddChnVirt)
+    function ChInit: pChnVirt; virtual;
+  end;
+
+implementation
+
+uses
+  {$IFDEF UNIX}BaseUnix,{$ENDIF}
+  SysUtils, uString;
+
+const
+  ModeNames = 'HEX|DEC';
+  ModeText: array[tTrcMode] of string[3] = ('HEX', 'DEC');
+
+{ Milliseconds since local midnight. }
+function MsOfDay: LongInt;
+var
+  H, M, S, Ms: Word;
+begin
+  DecodeTime(Now, H, M, S, Ms);
+  Result := ((LongInt(H) * 60 + M) * 60 + S) * 1000 + Ms;
+end;
+
+constructor tChnTrc.Init;
+begin
+  inherited Init;
+  CH_Type := cName;
+  CH_Name := CH_Type;
+  CH_NumName := ChNumName(CH_Type);
+  CH_File := TrcStdErr;
+  CH_Mode := trcHex;
+  CH_Handle := 0;
+  CH_LogOpen := False;
+  CH_OwnHandle := False;
+  CH_LogErrors := 0;
+end;
+
+constructor tChnTrc.ChInitParam(const S: tParamStr);
+begin
+  Init;
+  ChSetParam(S);
+end;
+
+destructor tChnTrc.Done;
+begin
+  inherited Done;               { closes the stack, and with it the log }
+end;
+
+function tChnTrc.ChSetOneParam(const S: tWordString; var CmdL: tCmd): tChResult;
+var
+  Key, Value: string;
+  I: Integer;
+begin
+  Key := ParamKey(S);
+  Value := ParamValue(S);
+  I := 0;
+  if Key = 'FILE' then
+  begin
+    if (UpStr(Value) = TrcStdErr) or (UpStr(Value) = TrcStdOut) then
+      Value := UpStr(Value);
+    Result := res_Ok;
+    if (CH_State <> CHS_Close) and (Value <> CH_File) then
+      Result := res_WrongState;         { the open log stays what it is }
+    if (Result = res_Ok) and (CmdL = cmd_Set) then
+      CH_File := Value;
+  end
+  else if Key = 'MOD' then
+  begin
+    Result := ParamChoice(S, ModeNames, I);
+    if (Result = res_Ok) and (CmdL = cmd_Set) then
+      CH_Mode := tTrcMode(I);
+  end
+  else
+    Result := inherited ChSetOneParam(S, CmdL);
+end;
+
+function tChnTrc.ChOwnParams: tParamStr;
+begin
+  Result := inherited ChOwnParams + ' FILE=' + CH_File + ' MOD=' + ModeText[CH_Mode];
+end;
+
+procedure tChnTrc.ChOpen;
+begin
+  if CH_State <> CHS_Close then
+  begin
+    CH_Result := res_WrongState;
+    Exit;
+  end;
+  { the log first: if it cannot be opened nothing below is opened either }
+  CH_OwnHandle := False;
+  if CH_File = TrcStdErr then
+    CH_Handle := StdErrorHandle
+  else if CH_File = TrcStdOut then
+    CH_Handle := StdOutputHandle
+  else
+  begin
+    {$IFDEF UNIX}
+    { O_APPEND: several layers (both ends of a test) may share one file }
+    CH_Handle := FpOpen(CH_File, O_WRONLY or O_CREAT or O_APPEND, &666);
+    {$ELSE}
+    if FileExists(CH_File) then
+      CH_Handle := FileOpen(CH_File, fmOpenWrite or fmShareDenyNone)
+    else
+      CH_Handle := FileCreate(CH_File);
+    {$ENDIF}
+    if CH_Handle = THandle(-1) then
+    begin
+      CH_Result := res_CannotOpen;
+      Exit;
+    end;
+    CH_OwnHandle := True;
+  end;
+  CH_LogOpen := True;
+  inherited ChOpen;
+  if CH_Result <> res_Ok then
+  begin
+    if CH_OwnHandle then
+      FileClose(CH_Handle);
+    CH_LogOpen := False;
+    CH_OwnHandle := False;
+  end;
+end;
+
+procedure tChnTrc.ChClose;
+begin
+  inherited ChClose;
+  if CH_LogOpen and CH_OwnHandle then
+    FileClose(CH_Handle);
+  CH_LogOpen := False;
+  CH_OwnHandle := False;
+end;
+
+procedure tChnTrc.ChConnect;
+begin
+  inherited ChConnect;
+  { the base gave the layer below CH_LowBuf; it gets the caller's buffer }
+  if (CH_Result = res_Ok) and (CH_Low <> nil) and (CH_RBuff <> nil) then
+    CH_Low^.ChReceiveBuffer(CH_RBuff, CH_RSize);
+end;
+
+procedure tChnTrc.ChTrcLog(Dir: tTrcDir; Buff: Pointer; Len: Word);
+var
+  Text: AnsiString;
+  Written, N: LongInt;
+begin
+  if not CH_LogOpen then
+    Exit;
+  Text := TrcFormat(MsOfDay, Dir, Buff^, Len, CH_Mode, CH_Name);
+  {$IFNDEF UNIX}
+  if CH_OwnHandle then
+    FileSeek(CH_Handle, 0, fsFromEnd);
+  {$ENDIF}
+  Written := 0;
+  while Written < Length(Text) do        { a pipe may take it in pieces }
+  begin
+    N := FileWrite(CH_Handle, Text[Written + 1], Length(Text) - Written);
+    if N <= 0 then
+    begin
+      Inc(CH_LogErrors);
+      Exit;
+    end;
+    Inc(Written, N);
+  end;
+end;
+
+procedure tChnTrc.ChSend(Buff: Pointer; Len: Word);
+begin
+  inherited ChSend(Buff, Len);    { checks state and Len, then ChLowSend }
+  if CH_SResult = res_Ok then
+    ChTrcLog(trcTx, Buff, Len);
+end;
+
+procedure tChnTrc.ChReceiveBuffer(Buff: Pointer; Size: Word);
+begin
+  inherited ChReceiveBuffer(Buff, Size);
+  { the layer below always holds exactly the caller's buffer, so no byte
+    is copied and none can be written past it }
+  if CH_Low <> nil then
+    CH_Low^.ChReceiveBuffer(CH_RBuff, CH_RSize);
+end;
+
+function tChnTrc.ChReceiveReady: tChState;
+begin
+  if (CH_State <> CHS_Connect) or (CH_Low = nil) then
+  begin
+    CH_RCtrl := CHS_RecInactive;
+    Exit(CHS_RecInactive);
+  end;
+  Result := CH_Low^.ChReceiveReady;
+  CH_RResult := CH_Low^.ChReceiveResult;
+  CH_RCtrl := Result;
+end;
+
+procedure tChnTrc.ChReceive(var Len: Word);
+begin
+  Len := 0;
+  if (CH_State <> CHS_Connect) or (CH_Low = nil) then
+  begin
+    CH_RResult := res_WrongState;
+    Exit;
+  end;
+  if CH_RBuff = nil then
+  begin
+    CH_RResult := res_NoRecBuff;
+    Exit;
+  end;
+  CH_Low^.ChReceive(Len);
+  CH_RResult := CH_Low^.ChReceiveResult;
+  if Len > CH_RSize then
+    Len := CH_RSize;             { never log (or report) past the buffer }
+  if Len > 0 then
+    ChTrcLog(trcRx, CH_RBuff, Len);
+  CH_RCtrl := CHS_Receiving;
+end;
+
+procedure tChnTrc.ChReceiveTick;
+begin
+  if (CH_State = CHS_Connect) and (CH_Low <> nil) then
+    CH_Low^.ChReceiveTick;
+end;
+
+procedure tChnTrc.ChDestNode(DNode: tNode);
+begin
+  inherited ChDestNode(DNode);
+  if CH_Low <> nil then
+    CH_Low^.ChDestNode(DNode);
+end;
+
+procedure tChnTrc.ChGetNode(var SNode, DNode: tNode);
+begin
+  if CH_Low <> nil then
+    CH_Low^.ChGetNode(SNode, DNode)
+  else
+    inherited ChGetNode(SNode, DNode);
+end;
+
+function tAddChnTrc.ChInit: pChnVirt;
+begin
+  Result := New(pChnTrc, Init);
+end;
+
+initialization
+  ChnCollection^.Insert(New(pAddChnTrc, Init(cName)));
+end.

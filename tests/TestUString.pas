@@ -1,0 +1,149 @@
+{ Tests of uString: tokenising, key/value splitting, strict numbers. }
+unit TestUString;
+
+{$MODE OBJFPC}{$H+}
+
+interface
+
+uses
+  fpcunit, testregistry, uString;
+
+type
+  TTestUString = class(TTestCase)
+  published
+    procedure TestUpStr;
+    procedure TestTokensSkipAnyBlanks;
+    procedure TestTokenStartPositions;
+    procedure TestSplitKeyValue;
+    procedure TestFusedTokenIsRefused;
+    procedure TestStrToNumAccepts;
+    procedure TestStrToNumRefusesMalformed;
+    procedure TestStrToNumRange;
+    procedure TestChoiceIndex;
+  end;
+
+implementation
+
+procedure TTestUString.TestUpStr;
+begin
+  AssertEquals('NAM=COM DEV=/DEV/TTYUSB0', UpStr('nam=Com dev=/dev/ttyUSB0'));
+  AssertEquals('', UpStr(''));
+  AssertEquals('non-ASCII bytes untouched', #$E9'A', UpStr(#$E9'a'));
+end;
+
+procedure TTestUString.TestTokensSkipAnyBlanks;
+var
+  P, N: Integer;
+  Tok: ShortString;
+  S: ShortString;
+begin
+  S := '  NAM=DF1'#9'NOD=1 '#13#10' CRC=ON  ';
+  P := 1;
+  N := 0;
+  while NextToken(S, P, Tok) do
+  begin
+    Inc(N);
+    case N of
+      1: AssertEquals('NAM=DF1', Tok);
+      2: AssertEquals('NOD=1', Tok);
+      3: AssertEquals('CRC=ON', Tok);
+    end;
+  end;
+  AssertEquals(3, N);
+  P := 1;
+  AssertFalse('empty string has no token', NextToken('', P, Tok));
+  P := 1;
+  AssertFalse('blanks only', NextToken('   ', P, Tok));
+end;
+
+procedure TTestUString.TestTokenStartPositions;
+var
+  P, Start: Integer;
+  Tok: ShortString;
+begin
+  P := 1;
+  NextTokenAt('A=1  B=2', P, Tok, Start);
+  AssertEquals(1, Start);
+  NextTokenAt('A=1  B=2', P, Tok, Start);
+  AssertEquals(6, Start);
+  AssertEquals('B=2', Tok);
+end;
+
+procedure TTestUString.TestSplitKeyValue;
+var
+  K, V: ShortString;
+begin
+  AssertTrue(SplitKeyValue('dev=/dev/serial/by-id/usb-FTDI_x-if00-port0', K, V));
+  AssertEquals('DEV', K);
+  AssertEquals('value keeps its case', '/dev/serial/by-id/usb-FTDI_x-if00-port0', V);
+  AssertTrue('empty value splits', SplitKeyValue('BD=', K, V));
+  AssertEquals('', V);
+  AssertFalse('no =', SplitKeyValue('CRC', K, V));
+  AssertFalse('empty key', SplitKeyValue('=5', K, V));
+end;
+
+procedure TTestUString.TestFusedTokenIsRefused;
+var
+  K, V: ShortString;
+begin
+  { the seed example's 'CRC=ON' + 'NAM=COM' without a blank }
+  AssertFalse(SplitKeyValue('CRC=ONNAM=COM', K, V));
+end;
+
+procedure TTestUString.TestStrToNumAccepts;
+var
+  N: LongInt;
+begin
+  N := 0;
+  AssertTrue(StrToNum('9600', 0, 4000000, N));
+  AssertEquals(9600, N);
+  AssertTrue(StrToNum('-32768', -32768, 32767, N));
+  AssertEquals(-32768, N);
+  AssertTrue(StrToNum('+5', 0, 10, N));
+  AssertEquals(5, N);
+  AssertTrue(StrToNum('$FF', 0, 255, N));
+  AssertEquals(255, N);
+  AssertTrue(StrToNum('007', 0, 10, N));
+  AssertEquals(7, N);
+end;
+
+procedure TTestUString.TestStrToNumRefusesMalformed;
+const
+  Bad: array[1..12] of string = ('', '-', '+', '$', '12a', 'a12', ' 1', '1 ',
+    '--5', '5-', '1.0', '99999999999999999999');
+var
+  I: Integer;
+  N: LongInt;
+begin
+  for I := Low(Bad) to High(Bad) do
+  begin
+    N := 42;
+    AssertFalse('"' + Bad[I] + '"', StrToNum(Bad[I], -MaxLongInt, MaxLongInt, N));
+    AssertEquals('N unchanged for "' + Bad[I] + '"', 42, N);
+  end;
+  AssertFalse('hex digits need $', StrToNum('FF', 0, 255, N));
+end;
+
+procedure TTestUString.TestStrToNumRange;
+var
+  N: LongInt;
+begin
+  N := 0;
+  AssertFalse(StrToNum('255', 0, 254, N));
+  AssertTrue(StrToNum('254', 0, 254, N));
+  AssertFalse(StrToNum('-1', 0, 254, N));
+  AssertFalse('above LongWord', StrToNum('4294967296', 0, MaxLongInt, N));
+end;
+
+procedure TTestUString.TestChoiceIndex;
+begin
+  AssertEquals(0, ChoiceIndex('full', 'FULL|HALF'));
+  AssertEquals(1, ChoiceIndex('HALF', 'FULL|HALF'));
+  AssertEquals(-1, ChoiceIndex('HAL', 'FULL|HALF'));
+  AssertEquals(-1, ChoiceIndex('', 'FULL|HALF'));
+  AssertEquals(-1, ChoiceIndex('FULL|HALF', 'FULL|HALF'));
+end;
+
+initialization
+  RegisterTest(TTestUString);
+end.
