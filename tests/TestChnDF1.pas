@@ -28,11 +28,13 @@ type
     IntFile: array[0..63] of Byte;   { "N7:" of the typed read/write }
   end;
 
-  { the half-duplex line: the master's transmit line goes to every slave,
-    the slaves' transmit lines are merged into the master's receive line
-    (a four-wire multidrop; slaves do not hear each other) }
+  { the half-duplex line. Four-wire multidrop: the master's transmit line
+    goes to every slave, the slaves' transmit lines are merged into the
+    master's receive line, slaves do not hear each other. Two-wire
+    (TwoWire): every station hears every other one. }
   TBus = record
     Master, SlaveA, SlaveB: pChnVirt;  { raw LOOP ends facing the stations }
+    TwoWire: Boolean;
   end;
 
   TTestChnDF1 = class(TTestCase)
@@ -46,6 +48,7 @@ type
     function WaitMsg(Chn: pChnVirt; Slave: Pointer; Bus: Pointer = nil): Boolean;
     procedure SlaveStep(var S: TSlaveSim);
     procedure PumpBus(var B: TBus);
+    procedure HalfDuplexSession(TwoWire: Boolean; const Tag: string);
     function MasterExchange(M: pChnVirt; var S: TSlaveSim; CF, Tns: Word;
       const Data: array of Byte; var Rep: tRecRecord): Word;
   protected
@@ -62,7 +65,8 @@ type
     procedure TestFlushDropsPartialFrame;
     procedure TestSendWhileBusyKeepsFrame;
     procedure TestManualExchangesFullDuplex;
-    procedure TestHalfDuplexTwoSlaves;
+    procedure TestHalfDuplexTwoSlavesFourWire;
+    procedure TestHalfDuplexTwoSlavesTwoWire;
   end;
 
 implementation
@@ -179,8 +183,16 @@ var
 
 begin
   Move1(B.Master, [B.SlaveA, B.SlaveB]);
-  Move1(B.SlaveA, [B.Master]);
-  Move1(B.SlaveB, [B.Master]);
+  if B.TwoWire then
+  begin
+    Move1(B.SlaveA, [B.Master, B.SlaveB]);
+    Move1(B.SlaveB, [B.Master, B.SlaveA]);
+  end
+  else
+  begin
+    Move1(B.SlaveA, [B.Master]);
+    Move1(B.SlaveB, [B.Master]);
+  end;
 end;
 
 { One step of the slave: take at most one message and answer it. Full
@@ -776,7 +788,11 @@ begin
   AssertEquals('ACKs seen by the slave', 8, S.Acks);
 end;
 
-procedure TTestChnDF1.TestHalfDuplexTwoSlaves;
+{ Poll / data / ACK / EOT with slaves 2 and 16 on one line. On a two-wire
+  line each slave also hears the other's ACKs, replies and EOTs: replies
+  and EOTs must not reach its application, ACKs do (they carry no
+  address), and must not make it drop its own reply. }
+procedure TTestChnDF1.HalfDuplexSession(TwoWire: Boolean; const Tag: string);
 var
   M: pChnVirt;
   A, B: TSlaveSim;
@@ -818,13 +834,14 @@ var
 begin
   FillChar(A, SizeOf(A), 0);
   FillChar(B, SizeOf(B), 0);
-  M := Open('NAM=DF1 NOD=1 DNO=2 MAS=MASTER FHD=HALF CRC=ON NAM=LOOP PAIR=HDM END=1');
-  A.Chn := Open('NAM=DF1 NOD=2 DNO=1 MAS=SLAVE FHD=HALF CRC=ON NAM=LOOP PAIR=HDA END=1');
+  M := Open('NAM=DF1 NOD=1 DNO=2 MAS=MASTER FHD=HALF CRC=ON NAM=LOOP PAIR=' + Tag + 'M END=1');
+  A.Chn := Open('NAM=DF1 NOD=2 DNO=1 MAS=SLAVE FHD=HALF CRC=ON NAM=LOOP PAIR=' + Tag + 'A END=1');
   { station 16 = $10: its STN is stuffed in every frame and poll }
-  B.Chn := Open('NAM=DF1 NOD=16 DNO=1 MAS=SLAVE FHD=HALF CRC=ON NAM=LOOP PAIR=HDB END=1');
-  Bus.Master := OpenRaw('HDM');
-  Bus.SlaveA := OpenRaw('HDA');
-  Bus.SlaveB := OpenRaw('HDB');
+  B.Chn := Open('NAM=DF1 NOD=16 DNO=1 MAS=SLAVE FHD=HALF CRC=ON NAM=LOOP PAIR=' + Tag + 'B END=1');
+  Bus.Master := OpenRaw(Tag + 'M');
+  Bus.SlaveA := OpenRaw(Tag + 'A');
+  Bus.SlaveB := OpenRaw(Tag + 'B');
+  Bus.TwoWire := TwoWire;
   M^.ChReceiveBuffer(@Rep, SizeOf(Rep));
 
   { 1. data frame to station 2: station 2 ACKs, station 16 ignores it }
@@ -839,7 +856,8 @@ begin
   MasterGets('ACK from 2');
   AssertTrue('ACK', (Rep.MessType = tpAckNak) and Rep.FlAck);
   AssertEquals(1, A.Commands);
-  AssertEquals('16 saw nothing', 0, B.Commands + B.Polls + B.Acks);
+  AssertEquals('16 got no command or poll', 0, B.Commands + B.Polls);
+  AssertEquals('16 heard the ACK of 2 only on two wires', Ord(TwoWire), B.Acks);
 
   { 2. data frame to station 16 }
   M^.ChDestNode(16);
@@ -903,8 +921,21 @@ begin
   AssertEquals('polls seen by 16', 2, B.Polls);
   { both slaves hear every ACK of the master (one line to all slaves) and
     keep or drop their reply correctly: checked by the EOTs above }
-  AssertEquals('ACKs heard by 2', 2, A.Acks);
-  AssertEquals('ACKs heard by 16', 2, B.Acks);
+  { two master ACKs each; on two wires also the other slave's data ACK }
+  AssertEquals('ACKs heard by 2', 2 + Ord(TwoWire), A.Acks);
+  AssertEquals('ACKs heard by 16', 2 + Ord(TwoWire), B.Acks);
+  AssertEquals('commands of 2', 1, A.Commands);
+  AssertEquals('commands of 16', 1, B.Commands);
+end;
+
+procedure TTestChnDF1.TestHalfDuplexTwoSlavesFourWire;
+begin
+  HalfDuplexSession(False, 'HD4');
+end;
+
+procedure TTestChnDF1.TestHalfDuplexTwoSlavesTwoWire;
+begin
+  HalfDuplexSession(True, 'HD2');
 end;
 
 initialization
