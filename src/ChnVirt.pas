@@ -23,6 +23,59 @@ interface
 uses
   ChnTypes, uString;
 
+{ The manuals' programs use tParamStr, res_Ok and CHS_* with only
+  "uses ChnVirt" (ChnTypes is not in their uses clauses), so ChnVirt
+  re-exports the ChnTypes names. These are aliases: the same types and
+  values, whichever unit a program names. }
+type
+  tParamStr   = ChnTypes.tParamStr;
+  tWordString = ChnTypes.tWordString;
+  tCmd        = ChnTypes.tCmd;
+  tNode       = ChnTypes.tNode;
+  tChResult   = ChnTypes.tChResult;
+  tChState    = ChnTypes.tChState;
+  tBcc8       = ChnTypes.tBcc8;
+  tCrc16      = ChnTypes.tCrc16;
+  tSum8       = ChnTypes.tSum8;
+  tXor8       = ChnTypes.tXor8;
+
+const
+  cmd_Set          = ChnTypes.cmd_Set;
+  cmd_Check        = ChnTypes.cmd_Check;
+  CHS_Close        = ChnTypes.CHS_Close;
+  CHS_Open         = ChnTypes.CHS_Open;
+  CHS_Connect      = ChnTypes.CHS_Connect;
+  CHS_DisConnect   = ChnTypes.CHS_DisConnect;
+  CHS_SendReady    = ChnTypes.CHS_SendReady;
+  CHS_Sending      = ChnTypes.CHS_Sending;
+  CHS_ReceiveReady = ChnTypes.CHS_ReceiveReady;
+  CHS_Receiving    = ChnTypes.CHS_Receiving;
+  CHS_RecInactive  = ChnTypes.CHS_RecInactive;
+  CHS_Opening      = ChnTypes.CHS_Opening;
+  CHS_ProtoBase    = ChnTypes.CHS_ProtoBase;
+  res_Ok           = ChnTypes.res_Ok;
+  res_BadParam     = ChnTypes.res_BadParam;
+  res_UnknownParam = ChnTypes.res_UnknownParam;
+  res_DupParam     = ChnTypes.res_DupParam;
+  res_UnknownLayer = ChnTypes.res_UnknownLayer;
+  res_WrongState   = ChnTypes.res_WrongState;
+  res_CannotOpen   = ChnTypes.res_CannotOpen;
+  res_NoPermission = ChnTypes.res_NoPermission;
+  res_BadSetting   = ChnTypes.res_BadSetting;
+  res_IOError      = ChnTypes.res_IOError;
+  res_DeviceLost   = ChnTypes.res_DeviceLost;
+  res_NoRecBuff    = ChnTypes.res_NoRecBuff;
+  res_SmallRecBuff = ChnTypes.res_SmallRecBuff;
+  res_Busy         = ChnTypes.res_Busy;
+  res_TooLong      = ChnTypes.res_TooLong;
+  res_Overrun      = ChnTypes.res_Overrun;
+  res_NoLowLayer   = ChnTypes.res_NoLowLayer;
+  res_BadLen       = ChnTypes.res_BadLen;
+  res_BadMessage   = ChnTypes.res_BadMessage;
+  res_NoMessage    = ChnTypes.res_NoMessage;
+  res_Timeout      = ChnTypes.res_Timeout;
+  res_Proto        = ChnTypes.res_Proto;
+
 const
   MaxLowChunk = 256;   { bytes a protocol layer pulls from below at once }
   MaxChnManagers = 32;

@@ -9,7 +9,6 @@ program legacy_df1;
 
 uses
   uString,
-  ChnTypes,
   ChnVirt,
   ChnLoop,
   ChnDF1;
