@@ -1,0 +1,34 @@
+#!/usr/bin/env bash
+# tools/build-win64.sh - cross-compile the serial layer for win64 on Debian.
+#
+# Not part of "make test". Builds a win64 RTL from Debian's fpc-source
+# (copied to a writable folder outside the repository), then compiles
+# src/ChnPortWin.pas and src/ChnCom.pas (and any program given) against it.
+#   tools/build-win64.sh                  units only
+#   tools/build-win64.sh prog.pas ...     also these programs (.exe in $OUT/bin)
+# Environment: FPCSRC (default /usr/share/fpcsrc/3.2.2), WORK (default
+# /tmp/win64rtl), OUT (default build/win64).
+# Needs: apt-get install fpc-source (and wine to run the result).
+set -eu
+FPCSRC=${FPCSRC:-/usr/share/fpcsrc/3.2.2}
+WORK=${WORK:-/tmp/win64rtl}
+OUT=${OUT:-build/win64}
+PPC=${PPC:-ppcx64}
+RTLU="$WORK/units"
+if [ ! -f "$RTLU/system.ppu" ] || [ ! -f "$RTLU/windows.ppu" ]; then
+  [ -d "$FPCSRC/rtl/win64" ] || { echo "no $FPCSRC/rtl/win64: apt-get install fpc-source"; exit 1; }
+  mkdir -p "$WORK" "$RTLU"
+  [ -d "$WORK/rtl" ] || cp -r "$FPCSRC/rtl" "$WORK/rtl"
+  R="$WORK/rtl"
+  INC="-Fi$R/inc -Fi$R/x86_64 -Fi$R/win -Fi$R/win64 -Fi$R/objpas -Fi$R/objpas/sysutils -Fi$R/objpas/classes"
+  UNI="-Fu$R/inc -Fu$R/win -Fu$R/win64 -Fu$R/objpas -Fu$R/x86_64"
+  COMMONF="-Twin64 -Px86_64 -n -v0 -FU$RTLU -FE$RTLU $INC $UNI"
+  (cd "$R/win64" && $PPC $COMMONF -Us -Sg system.pp)
+  (cd "$R/win64" && $PPC $COMMONF -Fu"$RTLU" buildrtl.pp)
+fi
+mkdir -p "$OUT/units" "$OUT/bin"
+FLAGS="-Twin64 -Px86_64 -n -v0ew -Sew -O2 -Fu$RTLU -Fusrc -Fisrc -FU$OUT/units -FE$OUT/bin"
+$PPC $FLAGS -Fi$RTLU src/ChnPortWin.pas
+$PPC $FLAGS src/ChnCom.pas
+for p in "$@"; do $PPC $FLAGS "$p"; done
+echo "win64 build ok: $OUT"
