@@ -291,9 +291,8 @@ begin
   else if (Key = 'ADR') or (Key = 'BASE') or (Key = 'PORT') then
   begin
     Result := res_Ok;             { DOS port address: accepted and ignored }
-    if (Length(S) > High(CH_DosKey)) or ((CmdL = cmd_Check) and (CH_DosKey <> '') and
-       (ParamKey(CH_DosKey) <> Key)) then
-      Result := res_BadParam;     { one address key only }
+    if Length(S) > High(CH_DosKey) then
+      Result := res_BadParam;     { the last one given is reported }
     if (Result = res_Ok) and (CmdL = cmd_Set) then
       CH_DosKey := Key + '=' + Value;
   end

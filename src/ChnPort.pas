@@ -62,7 +62,7 @@ type
     { Open Path ('/dev/ttyUSB0', '\\.\COM3') for exclusive use, raw and
       non-blocking; the settings are those of Configure's defaults until
       Configure is called. }
-    function Open(const Path: string): tChResult; virtual; abstract;
+    function Open(const Path: tWordString): tChResult; virtual; abstract;
     { Apply every setting; a value the device cannot take exactly (a baud
       rate the OS or the chip lacks, mark parity without support) gives
       res_BadSetting and no silent fallback. }
@@ -94,6 +94,9 @@ type
     { Receive overruns the OS counted since Open (UART or driver buffer);
       0 where the OS does not count them. }
     function OsOverruns(out N: LongWord): tChResult; virtual; abstract;
+    { The OS handle (file descriptor, HANDLE), for tests and special calls;
+      -1 when closed. }
+    function OsHandle: PtrInt; virtual; abstract;
     { Close; safe to call when not open. }
     procedure Close; virtual; abstract;
 

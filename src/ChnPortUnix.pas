@@ -30,7 +30,7 @@ type
     function Counters(out N: LongWord): Boolean;
   public
     constructor Create; override;
-    function Open(const Path: string): tChResult; override;
+    function Open(const Path: tWordString): tChResult; override;
     function Configure(const S: tPortSettings): tChResult; override;
     function Read(var Buf; Size: LongInt; out Got: LongInt): tChResult; override;
     function WaitInput(Ms: LongInt): Boolean; override;
@@ -44,8 +44,8 @@ type
     function GetLines(out Lines: tPortLines): tChResult; override;
     function SetKernelRs485(On: Boolean): tChResult; override;
     function OsOverruns(out N: LongWord): tChResult; override;
+    function OsHandle: PtrInt; override;
     procedure Close; override;
-    property Fd: cint read FFd;
   end;
 
 implementation
@@ -138,7 +138,7 @@ begin
   end;
 end;
 
-function TChnPortUnix.Open(const Path: string): tChResult;
+function TChnPortUnix.Open(const Path: tWordString): tChResult;
 var
   NewFd: cint;
   T: Termios;
@@ -501,6 +501,11 @@ begin
   if Counters(N) then
     N := N - FOverrunBase;
   Result := res_Ok;
+end;
+
+function TChnPortUnix.OsHandle: PtrInt;
+begin
+  Result := FFd;
 end;
 
 procedure TChnPortUnix.Close;

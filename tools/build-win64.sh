@@ -20,7 +20,7 @@ if [ ! -f "$RTLU/system.ppu" ] || [ ! -f "$RTLU/windows.ppu" ]; then
   mkdir -p "$WORK" "$RTLU"
   [ -d "$WORK/rtl" ] || cp -r "$FPCSRC/rtl" "$WORK/rtl"
   R="$WORK/rtl"
-  INC="-Fi$R/inc -Fi$R/x86_64 -Fi$R/win -Fi$R/win64 -Fi$R/objpas -Fi$R/objpas/sysutils -Fi$R/objpas/classes"
+  INC="-Fi$R/inc -Fi$R/x86_64 -Fi$R/win -Fi$R/win/wininc -Fi$R/win64 -Fi$R/objpas -Fi$R/objpas/sysutils -Fi$R/objpas/classes"
   UNI="-Fu$R/inc -Fu$R/win -Fu$R/win64 -Fu$R/objpas -Fu$R/x86_64"
   COMMONF="-Twin64 -Px86_64 -n -v0 -FU$RTLU -FE$RTLU $INC $UNI"
   (cd "$R/win64" && $PPC $COMMONF -Us -Sg system.pp)
