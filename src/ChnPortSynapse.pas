@@ -80,6 +80,9 @@ const
   {$ELSE}
   SynapseMaxBaud = 256000;
   {$ENDIF}
+  {$IFDEF WINDOWS}
+  WinOutBudget = 4096;   { bytes handed to the driver ahead of the line }
+  {$ENDIF}
   SynapseBauds: array[0..29] of LongInt = (
     50, 75, 110, 134, 150, 200, 300, 600, 1200, 1800, 2400, 4800, 9600,
     19200, 38400, 57600, 115200, 230400, 460800, 500000, 576000, 921600,
@@ -121,7 +124,7 @@ begin
     ERROR_INVALID_PARAMETER, ERROR_NOT_SUPPORTED, ErrWrongParameter:
       Result := res_BadSetting;
     ERROR_BAD_COMMAND, ERROR_GEN_FAILURE, ERROR_OPERATION_ABORTED,
-    ERROR_DEVICE_NOT_CONNECTED, ERROR_INVALID_HANDLE:
+    1167 { ERROR_DEVICE_NOT_CONNECTED }, ERROR_INVALID_HANDLE:
       Result := res_DeviceLost;
     ErrOverrun, ErrRxOver:
       Result := res_Overrun;
@@ -291,7 +294,7 @@ begin
     Exit(res_Ok);
   {$IFDEF WINDOWS}
   { overlapped SendBuffer waits for completion: give it what fits now }
-  N := FSer.SizeRecvBuffer - FSer.SendingData;
+  N := WinOutBudget - FSer.SendingData;
   if N <= 0 then
     Exit(res_Ok);
   if Len > N then
