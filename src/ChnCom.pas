@@ -351,6 +351,8 @@ begin
   if R = res_Ok then
     R := Port.Configure(CH_Set);
   CH_RtsToggle := False;
+  if (R = res_Ok) and (CH_Rs485 <> rs485Off) and (CH_Set.Flow = flowRtsCts) then
+    R := res_BadSetting;            { RTS cannot be handshake and direction }
   if R = res_Ok then
     case CH_Rs485 of
       rs485Off: ;                 { the driver's own setting stays }

@@ -60,8 +60,8 @@ type
     constructor Create; virtual;
     destructor Destroy; override;
     { Open Path ('/dev/ttyUSB0', '\\.\COM3') for exclusive use, raw and
-      non-blocking; the settings are those of Configure's defaults until
-      Configure is called. }
+      non-blocking. Rate and framing stay as the OS had them: call
+      Configure next. }
     function Open(const Path: tWordString): tChResult; virtual; abstract;
     { Apply every setting; a value the device cannot take exactly (a baud
       rate the OS or the chip lacks, mark parity without support) gives

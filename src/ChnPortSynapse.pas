@@ -169,9 +169,6 @@ begin
     Exit;
   end;
   FOpen := True;
-  Result := Configure(DefaultPortSettings);
-  if Result <> res_Ok then
-    Close;
 end;
 
 function TChnPortSynapse.Configure(const S: tPortSettings): tChResult;

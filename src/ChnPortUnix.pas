@@ -165,15 +165,22 @@ begin
     Exit;
   end;
   FpIOCtl(NewFd, TIOCEXCL, nil);   { best effort: keeps other non-root users out }
-  FFd := NewFd;
-  FOpen := True;
-  Result := Configure(DefaultPortSettings);
-  if Result <> res_Ok then
+  { raw at once, rate and framing as found; Configure sets them }
+  CFMakeRaw(T);
+  T.c_iflag := T.c_iflag and not (IXON or IXOFF or IXANY);
+  T.c_cflag := T.c_cflag or CREAD or CLOCAL;
+  T.c_cc[VMIN] := 1;           { with O_NONBLOCK: EAGAIN when empty, 0 = hangup }
+  T.c_cc[VTIME] := 0;
+  if TCSetAttr(NewFd, TCSANOW, T) <> 0 then
   begin
-    Close;
+    Result := Fail(FpGetErrno);
+    FpClose(NewFd);
     Exit;
   end;
+  FFd := NewFd;
+  FOpen := True;
   Counters(FOverrunBase);
+  Result := res_Ok;
 end;
 
 function TChnPortUnix.Configure(const S: tPortSettings): tChResult;
@@ -192,7 +199,7 @@ begin
     Exit(Fail(FpGetErrno));
   CFMakeRaw(T);
   T.c_iflag := T.c_iflag and not (IXON or IXOFF or IXANY or INPCK or IGNPAR);
-  T.c_cc[VMIN] := 1;           { with O_NONBLOCK: EAGAIN when empty, 0 = hangup }
+  T.c_cc[VMIN] := 1;
   T.c_cc[VTIME] := 0;
   Flags := CREAD or CLOCAL;
   case S.DataBits of

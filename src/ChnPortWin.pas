@@ -172,9 +172,7 @@ begin
   FH := H;
   FOpen := True;
   FOverruns := 0;
-  Result := Configure(DefaultPortSettings);
-  if Result <> res_Ok then
-    Close;
+  Result := res_Ok;
 end;
 
 function TChnPortWin.ApplyDcb(var D: TDCB): tChResult;

@@ -1046,6 +1046,11 @@ begin
     C^.ChOpen;
     AssertEquals('KERNEL alone is refused', res_BadSetting, C^.ChResult);
     AssertEquals('closed', CHS_Close, C^.ChReady);
+    TFakePort.KernelOk := True;
+    C^.ChSetParam('RS485=AUTO FLW=RTSCTS');
+    C^.ChOpen;
+    AssertEquals('RTS is either handshake or direction', res_BadSetting, C^.ChResult);
+    AssertEquals('closed too', CHS_Close, C^.ChReady);
   finally
     Dispose(C, Done);
   end;

@@ -24,8 +24,9 @@ if [ ! -f "$RTLU/system.ppu" ] || [ ! -f "$RTLU/windows.ppu" ]; then
   INC="-Fi$R/inc -Fi$R/x86_64 -Fi$R/win -Fi$R/win/wininc -Fi$R/win64 -Fi$R/objpas -Fi$R/objpas/sysutils -Fi$R/objpas/classes"
   UNI="-Fu$R/inc -Fu$R/win -Fu$R/win64 -Fu$R/objpas -Fu$R/x86_64"
   COMMONF="-Twin64 -Px86_64 -n -v0 -FU$RTLU -FE$RTLU $INC $UNI"
-  (cd "$R/win64" && $PPC $COMMONF -Us -Sg system.pp) >"$WORK/rtl-build.log"
-  (cd "$R/win64" && $PPC $COMMONF -Fu"$RTLU" buildrtl.pp) >>"$WORK/rtl-build.log"
+  LOG="$WORK/rtl-build.log"
+  (cd "$R/win64" && $PPC $COMMONF -Us -Sg system.pp && $PPC $COMMONF -Fu"$RTLU" buildrtl.pp) \
+    >"$LOG" 2>&1 || { tail -n 20 "$LOG"; echo "win64 RTL build failed, see $LOG"; exit 1; }
 fi
 mkdir -p "$OUT/units" "$OUT/bin"
 FLAGS="-Twin64 -Px86_64 -n -v0ew -Sew -O2 -Fu$RTLU -Fusrc -Fisrc -FU$OUT/units -FE$OUT/bin"
