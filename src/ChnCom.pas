@@ -1,0 +1,750 @@
+{ ChnCom - the serial physical layer (NAM=COM), SPEC.md sections 4 and 5.
+
+  tChnCom is the bottom of a channel stack: its "message" is a chunk of raw
+  bytes. It drives a TChnPort (unit ChnPort) chosen by DRV=, so no OS code
+  lives here. Parameters (ChGetParam reports them all):
+
+    COM=n     port number: /dev/ttyS<n-1> on Unix, \\.\COMn on Windows
+    DEV=path  any device (/dev/ttyUSB0, /dev/pts/3, \\.\COM12); overrides COM
+    BD=       rate 50..4000000; one the OS or chip cannot set is an error
+    BIT=5..8  STOP=1|2  PAR=N|E|O|M|S
+    FLW=NONE|RTSCTS|XONXOFF                   flow control
+    RS485=OFF|RTS|KERNEL|AUTO                 RS-485 direction control:
+              OFF: none by this layer (a driver set up for RS-485 by the
+              system, e.g. a device tree, keeps working);
+              RTS: this layer raises RTS before a message and drops it once
+              the last bit has left (output queue empty, then tcdrain);
+              KERNEL: the driver does it (Linux TIOCSRS485, Windows
+              RTS_CONTROL_TOGGLE), refused if the driver cannot;
+              AUTO: KERNEL where supported, else RTS
+    LRB=      receive buffer (bytes held between ChReceive calls)
+    LSB=      longest message ChSend accepts (res_TooLong above it)
+    IDL=ms    when a poll finds nothing, wait on the device at most this long
+              for input (returns at the first byte); 0 never waits. Default 1,
+              so legacy busy loops do not burn a CPU.
+    DRV=RTL|SYNAPSE                           port backend (docs/ChnCom.md);
+              default SYNAPSE when built with it (-dCHN_SYNAPSE), else RTL
+    IRQ=, ADR=, BASE=, PORT=                  DOS hardware keys: accepted,
+              reported back, ignored
+
+  Receive buffer: every poll moves what the OS holds into the LRB ring. When
+  the ring is full, with FLW=NONE further bytes are lost as on the original
+  interrupt-driven UART, counted, and the next ChReceive answers
+  res_Overrun (the kept bytes are delivered); with flow control reading
+  pauses instead, so the OS throttles the sender and nothing is lost. Bytes
+  the OS itself lost (Linux TIOCGICOUNT, Windows CE_OVERRUN/CE_RXOVER) are
+  reported the same way.
+
+  Faults: a device that cannot be opened, is not accessible or refuses a
+  setting leaves the layer in CHS_Close with ChResult = res_CannotOpen,
+  res_NoPermission or res_BadSetting. A device lost while open (USB adapter
+  pulled) makes ChResult, ChReceiveResult and ChSendResult answer
+  res_DeviceLost (or res_IOError) from the next poll on; the layer stops
+  touching the device, bytes already received can still be taken, and
+  ChClose + ChOpen starts again.
+
+  Differences from the SofCon original: DEV=, FLW=, RS485=, IDL=, DRV= are
+  additions of the port; IRQ and port addresses mean nothing here. }
+unit ChnCom;
+
+{$I chn.inc}
+
+interface
+
+uses
+  ChnTypes, ChnVirt, ChnPort
+  {$IFDEF WINDOWS}, ChnPortWin{$ELSE}, ChnPortUnix{$ENDIF}
+  {$IFDEF CHN_SYNAPSE}, ChnPortSynapse{$ENDIF};
+
+const
+  cName = 'COM';
+  ComDefaultLRB = 4096;
+  ComDefaultLSB = 65535;
+  ComDefaultIdle = 1;
+
+  rs485Off = 0;
+  rs485Rts = 1;
+  rs485Kernel = 2;
+  rs485Auto = 3;
+
+type
+  pChnCom = ^tChnCom;
+  tChnCom = object(tChnVirt)
+    CH_Com     : LongInt;          { COM= }
+    CH_Dev     : tWordString;      { DEV=, '' = use COM }
+    CH_Drv     : string[15];       { DRV= }
+    CH_Set     : tPortSettings;    { BD BIT STOP PAR FLW }
+    CH_LRB     : LongInt;          { LRB= }
+    CH_LSB     : LongInt;          { LSB= }
+    CH_Idle    : LongInt;          { IDL= }
+    CH_Rs485   : Byte;             { RS485=, rs485* }
+    CH_Irq     : string[15];       { IRQ= as given (ignored) }
+    CH_DosKey  : string[31];       { ADR=/BASE=/PORT= token as given (ignored) }
+    CH_Port    : TChnPort;         { the open port, nil when closed }
+    CH_RtsToggle: Boolean;         { this layer switches RTS (RS485=RTS/AUTO) }
+    CH_RtsUp   : Boolean;          { RTS raised for the message being sent }
+    CH_Fault   : tChResult;        { device lost / I/O error while open }
+    CH_Ring    : PByte;            { receive ring of CH_LRB bytes }
+    CH_Head, CH_Count: LongInt;
+    CH_Lost    : LongWord;         { bytes lost since open (ring or OS) }
+    CH_LostShown: LongWord;        { part of CH_Lost already reported }
+    CH_OsLost  : LongWord;         { OS overrun count last seen }
+    CH_TxBuf   : PByte;            { copy of the message being sent }
+    CH_TxCap, CH_TxLen, CH_TxPos: LongInt;
+    constructor Init;
+    constructor ChInitParam(const S: tParamStr);
+    destructor  Done; virtual;
+    function  ChSetOneParam(const S: tWordString; var CmdL: tCmd): tChResult; virtual;
+    function  ChOwnParams: tParamStr; virtual;
+    function  ChHasLow: Boolean; virtual;
+    procedure ChOpen; virtual;
+    procedure ChClose; virtual;
+    procedure ChSend(Buff: Pointer; Len: Word); virtual;
+    function  ChSendReady: tChState; virtual;
+    function  ChReceiveReady: tChState; virtual;
+    procedure ChReceive(var Len: Word); virtual;
+    procedure ChReceiveFlush; virtual;
+    { --- additions of the port --- }
+    { The device path COM=/DEV= stand for now. }
+    function  ChDevicePath: string;
+    { Modem lines, for applications that drive them by hand. }
+    function  ChSetRts(On: Boolean): tChResult;
+    function  ChSetDtr(On: Boolean): tChResult;
+    function  ChModemLines(var Lines: tPortLines): tChResult;
+    { Bytes lost on receive since ChOpen (ring full or OS overrun). }
+    function  ChLostBytes: LongWord;
+  private
+    procedure ComFault(R: tChResult);
+    procedure ComPull;
+    procedure ComPumpTx;
+    procedure ComFreeBuffers;
+  end;
+
+  pAddChnCom = ^tAddChnCom;
+  tAddChnCom = object(tAddChnVirt)
+    function ChInit: pChnVirt; virtual;
+  end;
+
+implementation
+
+uses
+  SysUtils, uString;
+
+const
+  ParityLetters: array[tPortParity] of Char = ('N', 'E', 'O', 'M', 'S');
+  FlowNames: array[tPortFlow] of string[7] = ('NONE', 'RTSCTS', 'XONXOFF');
+  Rs485Names: array[0..3] of string[6] = ('OFF', 'RTS', 'KERNEL', 'AUTO');
+  MaxDrainPerPoll = 65536;   { bytes discarded per poll when the ring is full }
+
+constructor tChnCom.Init;
+begin
+  inherited Init;
+  CH_Type := cName;
+  CH_Name := CH_Type;
+  CH_NumName := ChNumName(CH_Type);
+  CH_Com := 1;
+  CH_Dev := '';
+  CH_Drv := DefaultPortDriver;
+  CH_Set := DefaultPortSettings;
+  CH_LRB := ComDefaultLRB;
+  CH_LSB := ComDefaultLSB;
+  CH_Idle := ComDefaultIdle;
+  CH_Rs485 := rs485Off;
+  CH_Irq := '';
+  CH_DosKey := '';
+  CH_Port := nil;
+  CH_RtsToggle := False;
+  CH_RtsUp := False;
+  CH_Fault := res_Ok;
+  CH_Ring := nil;
+  CH_Head := 0;
+  CH_Count := 0;
+  CH_Lost := 0;
+  CH_LostShown := 0;
+  CH_OsLost := 0;
+  CH_TxBuf := nil;
+  CH_TxCap := 0;
+  CH_TxLen := 0;
+  CH_TxPos := 0;
+end;
+
+constructor tChnCom.ChInitParam(const S: tParamStr);
+begin
+  Init;
+  ChSetParam(S);
+end;
+
+destructor tChnCom.Done;
+begin
+  inherited Done;               { closes the port }
+  ComFreeBuffers;
+end;
+
+function tChnCom.ChHasLow: Boolean;
+begin
+  Result := False;
+end;
+
+procedure tChnCom.ComFreeBuffers;
+begin
+  if CH_Ring <> nil then
+    FreeMem(CH_Ring);
+  CH_Ring := nil;
+  if CH_TxBuf <> nil then
+    FreeMem(CH_TxBuf);
+  CH_TxBuf := nil;
+  CH_TxCap := 0;
+end;
+
+function tChnCom.ChSetOneParam(const S: tWordString; var CmdL: tCmd): tChResult;
+var
+  Key, Value: string;
+  N: LongInt;
+  I: Integer;
+begin
+  Key := ParamKey(S);
+  Value := ParamValue(S);
+  N := 0;
+  I := 0;
+  if Key = 'COM' then
+  begin
+    Result := ParamNum(S, 1, 256, N);
+    if (Result = res_Ok) and (CmdL = cmd_Set) then
+      CH_Com := N;
+  end
+  else if Key = 'DEV' then
+  begin
+    Result := res_Ok;               { tWordString holds any token }
+    if CmdL = cmd_Set then
+      CH_Dev := Value;
+  end
+  else if Key = 'DRV' then
+  begin
+    if FindPortDriver(Value) = nil then
+      Result := res_BadParam      { not built in, see docs/ChnCom.md }
+    else
+      Result := res_Ok;
+    if (Result = res_Ok) and (CmdL = cmd_Set) then
+      CH_Drv := UpStr(Value);
+  end
+  else if Key = 'BD' then
+  begin
+    Result := ParamNum(S, 50, 4000000, N);
+    if (Result = res_Ok) and (CmdL = cmd_Set) then
+      CH_Set.Baud := N;
+  end
+  else if Key = 'BIT' then
+  begin
+    Result := ParamNum(S, 5, 8, N);
+    if (Result = res_Ok) and (CmdL = cmd_Set) then
+      CH_Set.DataBits := N;
+  end
+  else if Key = 'STOP' then
+  begin
+    Result := ParamNum(S, 1, 2, N);
+    if (Result = res_Ok) and (CmdL = cmd_Set) then
+      CH_Set.StopBits := N;
+  end
+  else if Key = 'PAR' then
+  begin
+    Result := ParamChoice(S, 'N|E|O|M|S', I);
+    if (Result = res_Ok) and (CmdL = cmd_Set) then
+      CH_Set.Parity := tPortParity(I);
+  end
+  else if Key = 'FLW' then
+  begin
+    Result := ParamChoice(S, 'NONE|RTSCTS|XONXOFF', I);
+    if (Result = res_Ok) and (CmdL = cmd_Set) then
+      CH_Set.Flow := tPortFlow(I);
+  end
+  else if Key = 'RS485' then
+  begin
+    Result := ParamChoice(S, 'OFF|RTS|KERNEL|AUTO', I);
+    if (Result = res_Ok) and (CmdL = cmd_Set) then
+      CH_Rs485 := I;
+  end
+  else if Key = 'LRB' then
+  begin
+    Result := ParamNum(S, 1, 1 shl 24, N);
+    if (Result = res_Ok) and (CmdL = cmd_Set) then
+      CH_LRB := N;
+  end
+  else if Key = 'LSB' then
+  begin
+    Result := ParamNum(S, 1, 65535, N);
+    if (Result = res_Ok) and (CmdL = cmd_Set) then
+      CH_LSB := N;
+  end
+  else if Key = 'IDL' then
+  begin
+    Result := ParamNum(S, 0, 1000, N);
+    if (Result = res_Ok) and (CmdL = cmd_Set) then
+      CH_Idle := N;
+  end
+  else if Key = 'IRQ' then
+  begin
+    Result := res_Ok;             { DOS only: accepted and ignored }
+    if Length(Value) > High(CH_Irq) then
+      Result := res_BadParam;
+    if (Result = res_Ok) and (CmdL = cmd_Set) then
+      CH_Irq := Value;
+  end
+  else if (Key = 'ADR') or (Key = 'BASE') or (Key = 'PORT') then
+  begin
+    Result := res_Ok;             { DOS port address: accepted and ignored }
+    if Length(S) > High(CH_DosKey) then
+      Result := res_BadParam;     { the last one given is reported }
+    if (Result = res_Ok) and (CmdL = cmd_Set) then
+      CH_DosKey := Key + '=' + Value;
+  end
+  else
+    Result := inherited ChSetOneParam(S, CmdL);
+end;
+
+function tChnCom.ChOwnParams: tParamStr;
+var
+  R: string;
+begin
+  R := inherited ChOwnParams + ' DRV=' + CH_Drv;
+  if CH_Dev <> '' then
+    R := R + ' DEV=' + CH_Dev
+  else
+    R := R + ParamText('COM', CH_Com);
+  R := R + ParamText('BD', CH_Set.Baud) + ParamText('BIT', CH_Set.DataBits) +
+    ParamText('STOP', CH_Set.StopBits) + ' PAR=' + ParityLetters[CH_Set.Parity] +
+    ' FLW=' + FlowNames[CH_Set.Flow] + ' RS485=' + Rs485Names[CH_Rs485] +
+    ParamText('LRB', CH_LRB) + ParamText('LSB', CH_LSB) + ParamText('IDL', CH_Idle);
+  if CH_Irq <> '' then
+    R := R + ' IRQ=' + CH_Irq;
+  if CH_DosKey <> '' then
+    R := R + ' ' + CH_DosKey;
+  Result := R;
+end;
+
+function tChnCom.ChDevicePath: string;
+begin
+  if CH_Dev <> '' then
+    Result := CH_Dev
+  else
+    Result := ComDevicePath(CH_Com);
+end;
+
+procedure tChnCom.ChOpen;
+var
+  Cls: TChnPortClass;
+  Port: TChnPort;
+  R: tChResult;
+begin
+  if CH_State <> CHS_Close then
+  begin
+    CH_Result := res_WrongState;
+    Exit;
+  end;
+  Cls := FindPortDriver(CH_Drv);
+  if Cls = nil then
+  begin
+    CH_Result := res_BadParam;
+    Exit;
+  end;
+  Port := Cls.Create;
+  CH_Set.InQueue := CH_LRB;
+  R := Port.Open(ChDevicePath);
+  if R = res_Ok then
+    R := Port.Configure(CH_Set);
+  CH_RtsToggle := False;
+  if (R = res_Ok) and (CH_Rs485 <> rs485Off) and (CH_Set.Flow = flowRtsCts) then
+    R := res_BadSetting;            { RTS cannot be handshake and direction }
+  if R = res_Ok then
+    case CH_Rs485 of
+      rs485Off: ;                 { the driver's own setting stays }
+      rs485Kernel:
+        R := Port.SetKernelRs485(True);
+      rs485Rts:
+        begin
+          CH_RtsToggle := True;
+          R := Port.SetRts(False);    { receive direction until we send }
+        end;
+      rs485Auto:
+        if Port.SetKernelRs485(True) <> res_Ok then
+        begin
+          CH_RtsToggle := True;
+          R := Port.SetRts(False);
+        end;
+    end;
+  if R <> res_Ok then
+  begin
+    Port.Free;                      { closes it }
+    CH_Result := R;
+    Exit;
+  end;
+  CH_Port := Port;
+  ReAllocMem(CH_Ring, CH_LRB);
+  CH_Head := 0;
+  CH_Count := 0;
+  CH_Lost := 0;
+  CH_LostShown := 0;
+  CH_OsLost := 0;
+  CH_TxLen := 0;
+  CH_TxPos := 0;
+  CH_RtsUp := False;
+  CH_Fault := res_Ok;
+  CH_State := CHS_Open;
+  CH_RCtrl := CHS_RecInactive;
+  CH_Result := res_Ok;
+  CH_SResult := res_Ok;
+  CH_RResult := res_Ok;
+end;
+
+procedure tChnCom.ChClose;
+begin
+  if CH_State = CHS_Close then
+  begin
+    CH_Result := res_WrongState;
+    Exit;
+  end;
+  if CH_Port <> nil then
+  begin
+    if CH_Fault = res_Ok then
+    begin
+      if CH_TxPos < CH_TxLen then
+        CH_Port.Flush(False, True);  { abandon the unsent rest }
+      if CH_RtsUp then
+        CH_Port.SetRts(False);
+    end;
+    CH_Port.Free;
+    CH_Port := nil;
+  end;
+  CH_TxLen := 0;
+  CH_TxPos := 0;
+  CH_RtsUp := False;
+  CH_Count := 0;
+  CH_Fault := res_Ok;
+  CH_State := CHS_Close;
+  CH_RCtrl := CHS_RecInactive;
+  CH_Result := res_Ok;
+end;
+
+{ The device failed: remember why, report it everywhere, stop using it. }
+procedure tChnCom.ComFault(R: tChResult);
+begin
+  if CH_Fault <> res_Ok then
+    Exit;
+  CH_Fault := R;
+  CH_Result := R;
+  CH_RResult := R;
+  CH_SResult := R;
+  CH_TxLen := 0;
+  CH_TxPos := 0;
+  CH_RtsUp := False;
+end;
+
+{ Move what the OS holds into the ring; see the unit header for a full ring. }
+procedure tChnCom.ComPull;
+var
+  Tail, Room, Got, Dropped: LongInt;
+  Scratch: array[0..1023] of Byte;
+  R: tChResult;
+  Os: LongWord;
+begin
+  if (CH_Port = nil) or (CH_Fault <> res_Ok) then
+    Exit;
+  Got := 0;
+  while CH_Count < CH_LRB do
+  begin
+    Tail := (CH_Head + CH_Count) mod CH_LRB;
+    Room := CH_LRB - CH_Count;
+    if Room > CH_LRB - Tail then
+      Room := CH_LRB - Tail;
+    R := CH_Port.Read(CH_Ring[Tail], Room, Got);
+    if R <> res_Ok then
+    begin
+      ComFault(R);
+      Exit;
+    end;
+    if Got = 0 then
+      Break;
+    Inc(CH_Count, Got);
+  end;
+  if (CH_Count >= CH_LRB) and (CH_Set.Flow = flowNone) then
+  begin
+    { no flow control can stop the sender: bytes beyond LRB are lost, and
+      said so, as with the interrupt-driven ring of the original }
+    Dropped := 0;
+    repeat
+      R := CH_Port.Read(Scratch, SizeOf(Scratch), Got);
+      if R <> res_Ok then
+      begin
+        ComFault(R);
+        Exit;
+      end;
+      Inc(Dropped, Got);
+    until (Got = 0) or (Dropped >= MaxDrainPerPoll);
+    Inc(CH_Lost, Dropped);
+  end;
+  if CH_Port.OsOverruns(Os) = res_Ok then
+    if Os > CH_OsLost then
+    begin
+      Inc(CH_Lost, Os - CH_OsLost);
+      CH_OsLost := Os;
+    end;
+end;
+
+{ Hand as much of the pending message to the OS as it takes now; drop RTS
+  once an RS-485 transmission has completely left the line. }
+procedure tChnCom.ComPumpTx;
+var
+  Written, Queued: LongInt;
+  R: tChResult;
+begin
+  if (CH_Port = nil) or (CH_Fault <> res_Ok) then
+    Exit;
+  while CH_TxPos < CH_TxLen do
+  begin
+    R := CH_Port.Write(CH_TxBuf[CH_TxPos], CH_TxLen - CH_TxPos, Written);
+    if R <> res_Ok then
+    begin
+      ComFault(R);
+      Exit;
+    end;
+    if Written = 0 then
+      Exit;
+    Inc(CH_TxPos, Written);
+  end;
+  if CH_RtsUp then
+  begin
+    R := CH_Port.OutQueue(Queued);
+    if R <> res_Ok then
+    begin
+      ComFault(R);
+      Exit;
+    end;
+    if Queued > 0 then
+      Exit;
+    { only the UART FIFO and shift register are left: a short wait }
+    R := CH_Port.Drain;
+    if R = res_Ok then
+      R := CH_Port.SetRts(False);
+    if R <> res_Ok then
+    begin
+      ComFault(R);
+      Exit;
+    end;
+    CH_RtsUp := False;
+  end;
+end;
+
+procedure tChnCom.ChSend(Buff: Pointer; Len: Word);
+var
+  R: tChResult;
+begin
+  if (CH_State = CHS_Close) or (CH_Port = nil) then
+  begin
+    CH_SResult := res_WrongState;
+    Exit;
+  end;
+  if CH_Fault <> res_Ok then
+  begin
+    CH_SResult := CH_Fault;
+    Exit;
+  end;
+  if (Buff = nil) or (Len = 0) then
+  begin
+    CH_SResult := res_BadLen;
+    Exit;
+  end;
+  if Len > CH_LSB then
+  begin
+    CH_SResult := res_TooLong;
+    Exit;
+  end;
+  ComPumpTx;
+  if (CH_TxPos < CH_TxLen) or CH_RtsUp then
+  begin
+    CH_SResult := res_Busy;
+    Exit;
+  end;
+  if CH_Fault <> res_Ok then
+  begin
+    CH_SResult := CH_Fault;
+    Exit;
+  end;
+  if Len > CH_TxCap then
+  begin
+    ReAllocMem(CH_TxBuf, Len);
+    CH_TxCap := Len;
+  end;
+  Move(Buff^, CH_TxBuf^, Len);
+  if CH_RtsToggle then
+  begin
+    R := CH_Port.SetRts(True);
+    if R <> res_Ok then
+    begin
+      ComFault(R);
+      Exit;
+    end;
+    CH_RtsUp := True;
+  end;
+  CH_TxLen := Len;
+  CH_TxPos := 0;
+  CH_SResult := res_Ok;
+  ComPumpTx;
+  if CH_Fault <> res_Ok then
+    CH_SResult := CH_Fault;
+end;
+
+function tChnCom.ChSendReady: tChState;
+begin
+  Result := CHS_SendReady;
+  if (CH_Port = nil) or (CH_Fault <> res_Ok) then
+    Exit;
+  ComPumpTx;
+  if (CH_TxPos < CH_TxLen) and (CH_Fault = res_Ok) then
+  begin
+    { OS buffer full: wait for room, bounded like the receive side }
+    if CH_Idle > 0 then
+    begin
+      CH_Port.WaitOutput(CH_Idle);
+      ComPumpTx;
+    end;
+  end
+  else if CH_RtsUp and (CH_Fault = res_Ok) and (CH_Idle > 0) then
+  begin
+    Sleep(1);                     { the last bytes are on the line }
+    ComPumpTx;
+  end;
+  if (CH_Fault = res_Ok) and ((CH_TxPos < CH_TxLen) or CH_RtsUp) then
+    Result := CHS_Sending;
+end;
+
+function tChnCom.ChReceiveReady: tChState;
+begin
+  if CH_State <> CHS_Connect then
+    Exit(CHS_RecInactive);
+  if CH_RCtrl <> CHS_ReceiveReady then
+  begin
+    ComPumpTx;                    { a long message keeps moving meanwhile }
+    ComPull;
+    if (CH_Count = 0) and (CH_Idle > 0) then
+    begin
+      if CH_Fault <> res_Ok then
+        Sleep(CH_Idle)            { nothing to wait on; still no busy loop }
+      else if CH_Port.WaitInput(CH_Idle) then
+        ComPull;
+    end;
+    if CH_Count > 0 then
+      CH_RCtrl := CHS_ReceiveReady
+    else
+      CH_RCtrl := CHS_Receiving;
+  end;
+  Result := CH_RCtrl;
+end;
+
+procedure tChnCom.ChReceive(var Len: Word);
+var
+  N, Chunk: LongInt;
+  Dst: PByte;
+begin
+  Len := 0;
+  if CH_State <> CHS_Connect then
+  begin
+    CH_RResult := res_WrongState;
+    Exit;
+  end;
+  if CH_RBuff = nil then
+  begin
+    CH_RResult := res_NoRecBuff;
+    Exit;
+  end;
+  if CH_RCtrl <> CHS_ReceiveReady then
+    ComPull;
+  N := CH_Count;
+  if N > CH_RSize then
+    N := CH_RSize;
+  Len := N;
+  Dst := CH_RBuff;
+  while N > 0 do
+  begin
+    Chunk := N;
+    if Chunk > CH_LRB - CH_Head then
+      Chunk := CH_LRB - CH_Head;
+    Move(CH_Ring[CH_Head], Dst^, Chunk);
+    Inc(Dst, Chunk);
+    CH_Head := (CH_Head + Chunk) mod CH_LRB;
+    Dec(CH_Count, Chunk);
+    Dec(N, Chunk);
+  end;
+  if CH_Count = 0 then
+    CH_Head := 0;
+  if CH_Lost > CH_LostShown then
+  begin
+    CH_LostShown := CH_Lost;     { reported once, with the bytes kept }
+    CH_RResult := res_Overrun;
+  end
+  else if CH_Fault <> res_Ok then
+    CH_RResult := CH_Fault
+  else if Len = 0 then
+    CH_RResult := res_NoMessage
+  else
+    CH_RResult := res_Ok;
+  if CH_Count > 0 then
+    CH_RCtrl := CHS_ReceiveReady
+  else
+    CH_RCtrl := CHS_Receiving;
+end;
+
+procedure tChnCom.ChReceiveFlush;
+begin
+  if (CH_Port <> nil) and (CH_Fault = res_Ok) then
+    CH_Port.Flush(True, False);
+  CH_Head := 0;
+  CH_Count := 0;
+  CH_LostShown := CH_Lost;
+  inherited ChReceiveFlush;
+  if CH_Fault <> res_Ok then
+    CH_RResult := CH_Fault;
+end;
+
+function tChnCom.ChSetRts(On: Boolean): tChResult;
+begin
+  if CH_Port = nil then
+    Result := res_WrongState
+  else if CH_Fault <> res_Ok then
+    Result := CH_Fault
+  else
+    Result := CH_Port.SetRts(On);
+end;
+
+function tChnCom.ChSetDtr(On: Boolean): tChResult;
+begin
+  if CH_Port = nil then
+    Result := res_WrongState
+  else if CH_Fault <> res_Ok then
+    Result := CH_Fault
+  else
+    Result := CH_Port.SetDtr(On);
+end;
+
+function tChnCom.ChModemLines(var Lines: tPortLines): tChResult;
+begin
+  Lines := [];
+  if CH_Port = nil then
+    Result := res_WrongState
+  else if CH_Fault <> res_Ok then
+    Result := CH_Fault
+  else
+    Result := CH_Port.GetLines(Lines);
+end;
+
+function tChnCom.ChLostBytes: LongWord;
+begin
+  Result := CH_Lost;
+end;
+
+function tAddChnCom.ChInit: pChnVirt;
+begin
+  Result := New(pChnCom, Init);
+end;
+
+initialization
+  ChnCollection^.Insert(New(pAddChnCom, Init(cName)));
+end.

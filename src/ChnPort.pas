@@ -1,0 +1,217 @@
+{ ChnPort - the small serial-port interface under tChnCom (SPEC.md section 5).
+
+  One abstract class, TChnPort, in the spirit of Synapse's TBlockSerial: open
+  a device, configure it, move bytes without blocking, wait for input for a
+  bounded time, control the modem lines, close. Every operation answers with
+  a tChResult of ChnTypes, never with an exception, so the channel layer can
+  pass it on unchanged. OS code lives only in the backends:
+
+    ChnPortUnix     termios (Free Pascal RTL), driver name 'RTL' on Unix
+    ChnPortWin      Windows API,               driver name 'RTL' on Windows
+    ChnPortSynapse  Synapse's synaser,         driver name 'SYNAPSE'
+                    (built only with -dCHN_SYNAPSE, see docs/ChnCom.md)
+
+  Backends register a class under a driver name; tChnCom picks one with its
+  DRV= parameter. Tests register their own fake backends the same way.
+
+  Result codes used by every backend:
+    res_CannotOpen    device missing, in use, or not a device at all
+    res_NoPermission  the OS denied access
+    res_BadSetting    the device refuses a setting (rate, parity, RS-485 ...)
+    res_DeviceLost    the device went away (USB adapter pulled, pty closed)
+    res_IOError       any other failure of a read, write or control call
+    res_WrongState    call on a port that is not open }
+unit ChnPort;
+
+{$I chn.inc}
+
+interface
+
+uses
+  ChnTypes;
+
+type
+  tPortParity = (ppNone, ppEven, ppOdd, ppMark, ppSpace);
+  tPortFlow = (flowNone, flowRtsCts, flowXonXoff);
+
+  tPortSettings = record
+    Baud    : LongInt;      { bits per second }
+    DataBits: Byte;         { 5..8 }
+    StopBits: Byte;         { 1 or 2 }
+    Parity  : tPortParity;
+    Flow    : tPortFlow;
+    InQueue : LongInt;      { receive buffer size the OS should use, a hint }
+  end;
+
+  { Modem lines, for GetLines }
+  tPortLine = (plCts, plDsr, plRing, plCarrier);
+  tPortLines = set of tPortLine;
+
+  TChnPortClass = class of TChnPort;
+
+  { The serial-port interface. A descendant implements every abstract
+    method; all of them return at once unless the text says otherwise. }
+  TChnPort = class
+  protected
+    FDevice: string;
+    FOpen: Boolean;
+    FOSError: LongInt;   { OS error code of the last failure, 0 if none }
+  public
+    constructor Create; virtual;
+    destructor Destroy; override;
+    { Open Path ('/dev/ttyUSB0', '\\.\COM3') for exclusive use, raw and
+      non-blocking. Rate and framing stay as the OS had them: call
+      Configure next. }
+    function Open(const Path: tWordString): tChResult; virtual; abstract;
+    { Apply every setting; a value the device cannot take exactly (a baud
+      rate the OS or the chip lacks, mark parity without support) gives
+      res_BadSetting and no silent fallback. }
+    function Configure(const S: tPortSettings): tChResult; virtual; abstract;
+    { Copy up to Size waiting bytes into Buf, never wait. Got = 0 with
+      res_Ok means nothing is waiting. }
+    function Read(var Buf; Size: LongInt; out Got: LongInt): tChResult; virtual; abstract;
+    { Wait at most Ms milliseconds for input; True as soon as a byte (or a
+      fault, which the next Read reports) is waiting. Ms = 0 only looks. }
+    function WaitInput(Ms: LongInt): Boolean; virtual; abstract;
+    { Wait at most Ms milliseconds until Write could accept bytes. }
+    function WaitOutput(Ms: LongInt): Boolean; virtual; abstract;
+    { Hand up to Len bytes to the OS, never wait: Done tells how many were
+      taken (possibly 0 when the OS buffer is full). }
+    function Write(const Buf; Len: LongInt; out Done: LongInt): tChResult; virtual; abstract;
+    { Bytes handed to the OS but not yet on the line; 0 where unknown. }
+    function OutQueue(out N: LongInt): tChResult; virtual; abstract;
+    { Wait until the last bit has left the transmitter (tcdrain). Blocks for
+      as long as the OS still holds bytes: call it when OutQueue is 0. }
+    function Drain: tChResult; virtual; abstract;
+    { Discard received and/or not yet sent bytes held by the OS. }
+    function Flush(Input, Output: Boolean): tChResult; virtual; abstract;
+    function SetRts(On: Boolean): tChResult; virtual; abstract;
+    function SetDtr(On: Boolean): tChResult; virtual; abstract;
+    function GetLines(out Lines: tPortLines): tChResult; virtual; abstract;
+    { Let the driver switch RTS around each transmission (Linux TIOCSRS485,
+      Windows RTS_CONTROL_TOGGLE). res_BadSetting where not supported. }
+    function SetKernelRs485(On: Boolean): tChResult; virtual; abstract;
+    { Receive overruns the OS counted since Open (UART or driver buffer);
+      0 where the OS does not count them. }
+    function OsOverruns(out N: LongWord): tChResult; virtual; abstract;
+    { The OS handle (file descriptor, HANDLE), for tests and special calls;
+      -1 when closed. }
+    function OsHandle: PtrInt; virtual; abstract;
+    { Close; safe to call when not open. }
+    procedure Close; virtual; abstract;
+
+    property Device: string read FDevice;
+    property IsOpen: Boolean read FOpen;
+    property OSError: LongInt read FOSError;
+  end;
+
+const
+  { Defaults of a new port and of tChnCom: 9600 8N1, no flow control }
+  DefaultPortSettings: tPortSettings = (
+    Baud: 9600; DataBits: 8; StopBits: 1; Parity: ppNone; Flow: flowNone;
+    InQueue: 4096);
+
+{ Device of COM=n: /dev/ttyS<n-1> on Unix, \\.\COMn on Windows. }
+function ComDevicePath(N: LongInt): string;
+
+{ Backend registry. Names are upper case ('RTL', 'SYNAPSE'); registering a
+  name again replaces the class. }
+procedure RegisterPortDriver(const Name: string; Cls: TChnPortClass);
+function FindPortDriver(const Name: string): TChnPortClass;
+{ 'RTL|SYNAPSE|...' in registration order, for ParamChoice and messages. }
+function PortDriverNames: string;
+{ The driver tChnCom uses without DRV=: 'SYNAPSE' when built with
+  -dCHN_SYNAPSE, otherwise 'RTL'. }
+function DefaultPortDriver: string;
+
+implementation
+
+uses
+  uString;
+
+const
+  MaxDrivers = 8;
+
+var
+  DriverNames: array[1..MaxDrivers] of string[15];
+  DriverClasses: array[1..MaxDrivers] of TChnPortClass;
+  DriverCount: Integer = 0;
+
+constructor TChnPort.Create;
+begin
+  inherited Create;
+  FDevice := '';
+  FOpen := False;
+  FOSError := 0;
+end;
+
+destructor TChnPort.Destroy;
+begin
+  if FOpen then
+    Close;
+  inherited Destroy;
+end;
+
+procedure RegisterPortDriver(const Name: string; Cls: TChnPortClass);
+var
+  I: Integer;
+  U: string;
+begin
+  U := UpStr(Name);
+  for I := 1 to DriverCount do
+    if DriverNames[I] = U then
+    begin
+      DriverClasses[I] := Cls;
+      Exit;
+    end;
+  if DriverCount >= MaxDrivers then
+    RunError(217);      { programming error: raise MaxDrivers }
+  Inc(DriverCount);
+  DriverNames[DriverCount] := U;
+  DriverClasses[DriverCount] := Cls;
+end;
+
+function FindPortDriver(const Name: string): TChnPortClass;
+var
+  I: Integer;
+  U: string;
+begin
+  U := UpStr(Name);
+  for I := 1 to DriverCount do
+    if DriverNames[I] = U then
+      Exit(DriverClasses[I]);
+  Result := nil;
+end;
+
+function PortDriverNames: string;
+var
+  I: Integer;
+begin
+  Result := '';
+  for I := 1 to DriverCount do
+  begin
+    if I > 1 then
+      Result := Result + '|';
+    Result := Result + DriverNames[I];
+  end;
+end;
+
+function ComDevicePath(N: LongInt): string;
+begin
+  {$IFDEF WINDOWS}
+  Result := '\\.\COM' + NumStr(N);
+  {$ELSE}
+  Result := '/dev/ttyS' + NumStr(N - 1);
+  {$ENDIF}
+end;
+
+function DefaultPortDriver: string;
+begin
+  {$IFDEF CHN_SYNAPSE}
+  Result := 'SYNAPSE';
+  {$ELSE}
+  Result := 'RTL';
+  {$ENDIF}
+end;
+
+end.

@@ -1,0 +1,410 @@
+{ ChnPortSynapse - TChnPort on Synapse's TBlockSerial (unit synaser).
+  Registered as driver 'SYNAPSE'. Built only when the build is given a
+  Synapse source folder: make SYNAPSE_DIR=/path/to/synapse (the Makefile
+  then passes -dCHN_SYNAPSE). Synapse is not part of this repository; get
+  it from https://github.com/geby/synapse (or the Ararat Synapse release,
+  http://synapse.ararat.cz), see docs/ChnCom.md.
+
+  How TBlockSerial is used, and what this unit adds around it:
+  * RaiseExcept stays False: every call is followed by a look at LastError,
+    mapped to a tChResult (Connect's errno, Windows' GetLastError).
+  * LinuxLock is switched off: Synapse's /var/lock/LCK..<name> files cannot
+    name /dev/pts/N or /dev/serial/by-id paths. Like the RTL backend this
+    unit takes an flock on the descriptor instead.
+  * On Unix Synapse opens the device blocking; this unit sets O_NONBLOCK on
+    TBlockSerial.Handle so SendBuffer/RecvBuffer never stall the caller
+    (a partial write is fine, the layer retries from ChSendReady). On
+    Windows, where Synapse uses overlapped I/O and waits for completion,
+    writes are cut to what the driver's output queue has room for.
+  * After Config the settings are read back (GetCommState): what the driver
+    changed (a pty forces 8 bits without parity) is res_BadSetting.
+  * Config takes only the rates of Synapse's own table (50..4000000 on
+    Linux, up to 256000 on Windows) and cannot do mark/space parity on Unix:
+    anything else is res_BadSetting here rather than Synapse's silent B0
+    (which would hang the line up).
+  * RS-485: Synapse has no kernel RS-485 call, so KERNEL is refused (AUTO
+    then falls back to RTS toggling by tChnCom). }
+unit ChnPortSynapse;
+
+{$I chn.inc}
+
+interface
+
+uses
+  SysUtils, synaser, ChnTypes, ChnPort;
+
+type
+  TChnPortSynapse = class(TChnPort)
+  private
+    FSer: TBlockSerial;
+    function Check: tChResult;
+    function MapError(E: Integer): tChResult;
+  public
+    function Open(const Path: tWordString): tChResult; override;
+    function Configure(const S: tPortSettings): tChResult; override;
+    function Read(var Buf; Size: LongInt; out Got: LongInt): tChResult; override;
+    function WaitInput(Ms: LongInt): Boolean; override;
+    function WaitOutput(Ms: LongInt): Boolean; override;
+    function Write(const Buf; Len: LongInt; out Done: LongInt): tChResult; override;
+    function OutQueue(out N: LongInt): tChResult; override;
+    function Drain: tChResult; override;
+    function Flush(Input, Output: Boolean): tChResult; override;
+    function SetRts(On: Boolean): tChResult; override;
+    function SetDtr(On: Boolean): tChResult; override;
+    function GetLines(out Lines: tPortLines): tChResult; override;
+    function SetKernelRs485(On: Boolean): tChResult; override;
+    function OsOverruns(out N: LongWord): tChResult; override;
+    function OsHandle: PtrInt; override;
+    procedure Close; override;
+    property Serial: TBlockSerial read FSer;
+  end;
+
+implementation
+
+{$IFDEF UNIX}
+uses
+  BaseUnix, Unix, TermIO;
+
+const
+  { c_cflag bits set by synaser's Config and read back }
+  CheckedCFlags = CBAUD or CSIZE or CSTOPB or PARENB or PARODD or CRTSCTS;
+{$ELSE}
+uses
+  Windows;
+{$ENDIF}
+
+const
+  { the rates in synaser's table for this OS }
+  {$IFDEF UNIX}
+  SynapseMaxBaud = 4000000;
+  {$ELSE}
+  SynapseMaxBaud = 256000;
+  {$ENDIF}
+  {$IFDEF WINDOWS}
+  WinOutBudget = 4096;   { bytes handed to the driver ahead of the line }
+  {$ENDIF}
+  SynapseBauds: array[0..29] of LongInt = (
+    50, 75, 110, 134, 150, 200, 300, 600, 1200, 1800, 2400, 4800, 9600,
+    19200, 38400, 57600, 115200, 230400, 460800, 500000, 576000, 921600,
+    1000000, 1152000, 1500000, 2000000, 2500000, 3000000, 3500000, 4000000);
+
+function TChnPortSynapse.MapError(E: Integer): tChResult;
+begin
+  FOSError := E;
+  if E = 0 then
+    Exit(res_Ok);
+  {$IFDEF UNIX}
+  case E of
+    ESysEACCES, ESysEPERM, ErrAccessDenied:
+      Result := res_NoPermission;
+    ESysENOENT, ESysENODEV, ESysENXIO, ESysEBUSY, ESysEISDIR, ESysENOTDIR,
+    ESysELOOP, ErrAlreadyOwned, ErrAlreadyInUse, ErrNoDeviceAnswer:
+      if FOpen then
+        Result := res_DeviceLost
+      else
+        Result := res_CannotOpen;
+    ESysEIO, ESysEBADF, ESysEPIPE:
+      Result := res_DeviceLost;
+    ESysENOTTY, ESysEINVAL, ErrWrongParameter:
+      Result := res_BadSetting;
+    ErrOverrun, ErrRxOver:
+      Result := res_Overrun;
+  else
+    Result := res_IOError;
+  end;
+  {$ELSE}
+  case E of
+    ERROR_ACCESS_DENIED:
+      if FOpen then
+        Result := res_DeviceLost
+      else
+        Result := res_NoPermission;
+    ERROR_FILE_NOT_FOUND, ERROR_PATH_NOT_FOUND, ERROR_SHARING_VIOLATION:
+      Result := res_CannotOpen;
+    ERROR_INVALID_PARAMETER, ERROR_NOT_SUPPORTED, ErrWrongParameter:
+      Result := res_BadSetting;
+    ERROR_BAD_COMMAND, ERROR_GEN_FAILURE, ERROR_OPERATION_ABORTED,
+    1167 { ERROR_DEVICE_NOT_CONNECTED }, ERROR_INVALID_HANDLE:
+      Result := res_DeviceLost;
+    ErrOverrun, ErrRxOver:
+      Result := res_Overrun;
+  else
+    Result := res_IOError;
+  end;
+  {$ENDIF}
+end;
+
+function TChnPortSynapse.Check: tChResult;
+begin
+  Result := MapError(FSer.LastError);
+end;
+
+function TChnPortSynapse.Open(const Path: tWordString): tChResult;
+begin
+  if FOpen then
+    Exit(res_WrongState);
+  FDevice := Path;
+  FOSError := 0;
+  FSer := TBlockSerial.Create;
+  FSer.RaiseExcept := False;
+  {$IFDEF UNIX}
+  FSer.LinuxLock := False;
+  {$ENDIF}
+  FSer.Connect(Path);
+  Result := Check;
+  {$IFDEF UNIX}
+  if (Result = res_Ok) and (FpFlock(cint(FSer.Handle), LOCK_EX or LOCK_NB) <> 0) then
+  begin
+    FOSError := FpGetErrno;
+    Result := res_CannotOpen;     { in use by another program }
+  end;
+  if Result = res_Ok then
+    FpFcntl(cint(FSer.Handle), F_SETFL,
+      FpFcntl(cint(FSer.Handle), F_GETFL) or O_NONBLOCK);
+  {$ENDIF}
+  if Result <> res_Ok then
+  begin
+    FSer.Free;                    { closes the handle }
+    FSer := nil;
+    Exit;
+  end;
+  FOpen := True;
+end;
+
+function TChnPortSynapse.Configure(const S: tPortSettings): tChResult;
+const
+  Letters: array[tPortParity] of Char = ('N', 'E', 'O', 'M', 'S');
+var
+  I: Integer;
+  Known: Boolean;
+  {$IFDEF UNIX}
+  Want: Cardinal;
+  {$ELSE}
+  Want: TDCB;
+  {$ENDIF}
+begin
+  if not FOpen then
+    Exit(res_WrongState);
+  Known := False;
+  for I := Low(SynapseBauds) to High(SynapseBauds) do
+    if SynapseBauds[I] = S.Baud then
+      Known := True;
+  if not Known or (S.Baud > SynapseMaxBaud) then
+    Exit(res_BadSetting);
+  {$IFDEF UNIX}
+  if S.Parity in [ppMark, ppSpace] then
+    Exit(res_BadSetting);         { synaser sets no CMSPAR }
+  {$ENDIF}
+  if not (S.DataBits in [5..8]) or not (S.StopBits in [1, 2]) then
+    Exit(res_BadSetting);
+  {$IFDEF WINDOWS}
+  FSer.SizeRecvBuffer := S.InQueue;
+  {$ENDIF}
+  if S.StopBits = 2 then
+    I := SB2
+  else
+    I := SB1;
+  FSer.Config(S.Baud, S.DataBits, Letters[S.Parity], I,
+    S.Flow = flowXonXoff, S.Flow = flowRtsCts);
+  Result := Check;
+  if Result <> res_Ok then
+    Exit;
+  { synaser does not look at what the driver really took: read it back }
+  {$IFDEF UNIX}
+  Want := FSer.TermiosStruc.c_cflag;
+  FSer.GetCommState;
+  Result := Check;
+  if (Result = res_Ok) and ((FSer.TermiosStruc.c_cflag and CheckedCFlags) <>
+     (Want and CheckedCFlags)) then
+    Result := res_BadSetting;
+  {$ELSE}
+  Want := FSer.DCB;
+  FSer.GetCommState;
+  Result := Check;
+  if (Result = res_Ok) and ((FSer.DCB.BaudRate <> Want.BaudRate) or
+     (FSer.DCB.ByteSize <> Want.ByteSize) or (FSer.DCB.Parity <> Want.Parity) or
+     (FSer.DCB.StopBits <> Want.StopBits)) then
+    Result := res_BadSetting;
+  {$ENDIF}
+end;
+
+function TChnPortSynapse.Read(var Buf; Size: LongInt; out Got: LongInt): tChResult;
+var
+  N: Integer;
+begin
+  Got := 0;
+  if not FOpen then
+    Exit(res_WrongState);
+  if Size <= 0 then
+    Exit(res_Ok);
+  N := FSer.WaitingData;
+  Result := Check;
+  if Result <> res_Ok then
+    Exit;
+  if N <= 0 then
+  begin
+    {$IFDEF UNIX}
+    { FIONREAD says 0 both for "nothing yet" and for a hung-up line; poll
+      tells them apart, and the read then shows the hang-up }
+    if not FSer.CanRead(0) then
+      Exit(res_Ok);
+    N := 1;
+    {$ELSE}
+    Exit(res_Ok);
+    {$ENDIF}
+  end;
+  if N > Size then
+    N := Size;
+  N := FSer.RecvBuffer(@Buf, N);
+  {$IFDEF UNIX}
+  if N = 0 then
+    Exit(MapError(ESysEIO))       { end of file: the line was hung up }
+  else if (N < 0) and ((FSer.LastError = ESysEAGAIN) or (FSer.LastError = ESysEWOULDBLOCK)) then
+    Exit(res_Ok);
+  {$ENDIF}
+  Result := Check;
+  if (Result = res_Ok) or (Result = res_Overrun) then
+    if N > 0 then
+      Got := N;
+  if Result = res_Overrun then
+    Result := res_Ok;              { counted by OsOverruns on Windows }
+end;
+
+function TChnPortSynapse.WaitInput(Ms: LongInt): Boolean;
+begin
+  Result := FOpen and FSer.CanRead(Ms);
+end;
+
+function TChnPortSynapse.WaitOutput(Ms: LongInt): Boolean;
+begin
+  Result := FOpen and FSer.CanWrite(Ms);
+end;
+
+function TChnPortSynapse.Write(const Buf; Len: LongInt; out Done: LongInt): tChResult;
+var
+  N: Integer;
+begin
+  Done := 0;
+  if not FOpen then
+    Exit(res_WrongState);
+  if Len <= 0 then
+    Exit(res_Ok);
+  {$IFDEF WINDOWS}
+  { overlapped SendBuffer waits for completion: give it what fits now }
+  N := WinOutBudget - FSer.SendingData;
+  if N <= 0 then
+    Exit(res_Ok);
+  if Len > N then
+    Len := N;
+  {$ENDIF}
+  N := FSer.SendBuffer(@Buf, Len);
+  {$IFDEF UNIX}
+  if (N < 0) and ((FSer.LastError = ESysEAGAIN) or (FSer.LastError = ESysEWOULDBLOCK)) then
+    Exit(res_Ok);
+  {$ENDIF}
+  Result := Check;
+  if (Result = res_Ok) and (N > 0) then
+    Done := N;
+end;
+
+function TChnPortSynapse.OutQueue(out N: LongInt): tChResult;
+begin
+  N := 0;
+  if not FOpen then
+    Exit(res_WrongState);
+  N := FSer.SendingData;
+  Result := Check;
+end;
+
+function TChnPortSynapse.Drain: tChResult;
+begin
+  if not FOpen then
+    Exit(res_WrongState);
+  FSer.Flush;                       { tcdrain / FlushFileBuffers }
+  Result := Check;
+end;
+
+function TChnPortSynapse.Flush(Input, Output: Boolean): tChResult;
+begin
+  if not FOpen then
+    Exit(res_WrongState);
+  if Input or Output then
+    FSer.Purge;                     { synaser purges both directions }
+  Result := Check;
+end;
+
+function TChnPortSynapse.SetRts(On: Boolean): tChResult;
+begin
+  if not FOpen then
+    Exit(res_WrongState);
+  FSer.RTS := On;     { the setter reads the lines first: LastError tells }
+  Result := Check;
+end;
+
+function TChnPortSynapse.SetDtr(On: Boolean): tChResult;
+begin
+  if not FOpen then
+    Exit(res_WrongState);
+  FSer.DTR := On;
+  Result := Check;
+end;
+
+function TChnPortSynapse.GetLines(out Lines: tPortLines): tChResult;
+begin
+  Lines := [];
+  if not FOpen then
+    Exit(res_WrongState);
+  FSer.ModemStatus;
+  Result := Check;
+  if Result <> res_Ok then
+    Exit;
+  if FSer.CTS then
+    Include(Lines, plCts);
+  if FSer.DSR then
+    Include(Lines, plDsr);
+  if FSer.Ring then
+    Include(Lines, plRing);
+  if FSer.Carrier then
+    Include(Lines, plCarrier);
+end;
+
+function TChnPortSynapse.SetKernelRs485(On: Boolean): tChResult;
+begin
+  if not FOpen then
+    Exit(res_WrongState);
+  if On then
+    Result := res_BadSetting
+  else
+    Result := res_Ok;
+end;
+
+function TChnPortSynapse.OsOverruns(out N: LongWord): tChResult;
+begin
+  N := 0;                           { synaser does not count them }
+  if not FOpen then
+    Exit(res_WrongState);
+  Result := res_Ok;
+end;
+
+function TChnPortSynapse.OsHandle: PtrInt;
+begin
+  if FSer = nil then
+    Result := -1
+  else
+    Result := PtrInt(FSer.Handle);
+end;
+
+procedure TChnPortSynapse.Close;
+begin
+  if FSer <> nil then
+  begin
+    FSer.CloseSocket;
+    FSer.Free;
+  end;
+  FSer := nil;
+  FOpen := False;
+end;
+
+initialization
+  RegisterPortDriver('SYNAPSE', TChnPortSynapse);
+end.

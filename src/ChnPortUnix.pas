@@ -1,0 +1,528 @@
+{ ChnPortUnix - TChnPort on termios, Free Pascal's own run-time library
+  (units BaseUnix, Unix, TermIO). Registered as driver 'RTL' on Unix.
+
+  The descriptor is opened O_NONBLOCK | O_NOCTTY and locked with flock, so
+  a second user gets res_CannotOpen instead of a garbled line (TIOCEXCL is
+  set as well; root ignores it, flock it does not). Raw mode with VMIN=1 and
+  VTIME=0: then a non-blocking read answers EAGAIN when nothing waits, and 0
+  only when the line is hung up (USB adapter pulled, pty master closed),
+  which this unit reports as res_DeviceLost.
+
+  Every setting is read back after tcsetattr: the kernel writes back what the
+  driver really took (an 8250 falls back to 9600 for a rate it cannot make,
+  a driver without CMSPAR clears it), and any difference is res_BadSetting.
+  Rates outside the termios table use termios2/BOTHER on Linux. }
+unit ChnPortUnix;
+
+{$I chn.inc}
+
+interface
+
+uses
+  BaseUnix, Unix, TermIO, ChnTypes, ChnPort;
+
+type
+  TChnPortUnix = class(TChnPort)
+  private
+    FFd: cint;
+    FOverrunBase: LongWord;
+    function Fail(Err: cint): tChResult;
+    function Counters(out N: LongWord): Boolean;
+  public
+    constructor Create; override;
+    function Open(const Path: tWordString): tChResult; override;
+    function Configure(const S: tPortSettings): tChResult; override;
+    function Read(var Buf; Size: LongInt; out Got: LongInt): tChResult; override;
+    function WaitInput(Ms: LongInt): Boolean; override;
+    function WaitOutput(Ms: LongInt): Boolean; override;
+    function Write(const Buf; Len: LongInt; out Done: LongInt): tChResult; override;
+    function OutQueue(out N: LongInt): tChResult; override;
+    function Drain: tChResult; override;
+    function Flush(Input, Output: Boolean): tChResult; override;
+    function SetRts(On: Boolean): tChResult; override;
+    function SetDtr(On: Boolean): tChResult; override;
+    function GetLines(out Lines: tPortLines): tChResult; override;
+    function SetKernelRs485(On: Boolean): tChResult; override;
+    function OsOverruns(out N: LongWord): tChResult; override;
+    function OsHandle: PtrInt; override;
+    procedure Close; override;
+  end;
+
+implementation
+
+type
+  tBaudCode = record
+    Baud: LongInt;
+    Code: Cardinal;
+  end;
+
+const
+  BaudCodes: array[0..{$IFDEF LINUX}29{$ELSE}17{$ENDIF}] of tBaudCode = (
+    (Baud: 50; Code: B50), (Baud: 75; Code: B75), (Baud: 110; Code: B110),
+    (Baud: 134; Code: B134), (Baud: 150; Code: B150), (Baud: 200; Code: B200),
+    (Baud: 300; Code: B300), (Baud: 600; Code: B600), (Baud: 1200; Code: B1200),
+    (Baud: 1800; Code: B1800), (Baud: 2400; Code: B2400), (Baud: 4800; Code: B4800),
+    (Baud: 9600; Code: B9600), (Baud: 19200; Code: B19200),
+    (Baud: 38400; Code: B38400), (Baud: 57600; Code: B57600),
+    (Baud: 115200; Code: B115200), (Baud: 230400; Code: B230400)
+    {$IFDEF LINUX}
+    , (Baud: 460800; Code: B460800), (Baud: 500000; Code: B500000),
+    (Baud: 576000; Code: B576000), (Baud: 921600; Code: B921600),
+    (Baud: 1000000; Code: B1000000), (Baud: 1152000; Code: B1152000),
+    (Baud: 1500000; Code: B1500000), (Baud: 2000000; Code: B2000000),
+    (Baud: 2500000; Code: B2500000), (Baud: 3000000; Code: B3000000),
+    (Baud: 3500000; Code: B3500000), (Baud: 4000000; Code: B4000000)
+    {$ENDIF}
+    );
+
+{$IFDEF LINUX}
+type
+  { struct termios2 of <asm-generic/termbits.h> }
+  tTermios2 = record
+    c_iflag, c_oflag, c_cflag, c_lflag: Cardinal;
+    c_line: Byte;
+    c_cc: array[0..18] of Byte;
+    c_ispeed, c_ospeed: Cardinal;
+  end;
+  { struct serial_rs485 of <linux/serial.h> }
+  tSerialRs485 = record
+    Flags, DelayRtsBeforeSend, DelayRtsAfterSend: Cardinal;
+    Padding: array[0..4] of Cardinal;
+  end;
+  { struct serial_icounter_struct of <linux/serial.h> }
+  tSerialICounter = record
+    Cts, Dsr, Rng, Dcd, Rx, Tx, Frame, Overrun, Parity, Brk, BufOverrun: cint;
+    Reserved: array[0..8] of cint;
+  end;
+
+const
+  TCGETS2 = $802C542A;
+  TIOCSRS485 = $542F;
+  BOTHER = $1000;             { c_cflag speed code: rate in c_ispeed/c_ospeed }        { _IOR('T', 0x2A, struct termios2) }
+  TCSETS2 = $402C542B;        { _IOW('T', 0x2B, struct termios2) }
+  SER_RS485_ENABLED = 1;
+  SER_RS485_RTS_ON_SEND = 2;  { RTS high while sending, low afterwards }
+  { bits of c_cflag this unit sets and reads back }
+  CheckedCFlags = CBAUD or CSIZE or CSTOPB or PARENB or PARODD or CMSPAR or CRTSCTS;
+{$ELSE}
+const
+  CheckedCFlags = CSIZE or CSTOPB or PARENB or PARODD or CRTSCTS;
+{$ENDIF}
+
+constructor TChnPortUnix.Create;
+begin
+  inherited Create;
+  FFd := -1;
+  FOverrunBase := 0;
+end;
+
+{ Map errno to a result code, remember it, and say which. }
+function TChnPortUnix.Fail(Err: cint): tChResult;
+begin
+  FOSError := Err;
+  case Err of
+    ESysEACCES, ESysEPERM:
+      Result := res_NoPermission;
+    ESysENOENT, ESysENODEV, ESysENXIO, ESysEBUSY, ESysEISDIR, ESysENOTDIR,
+    ESysELOOP, ESysENAMETOOLONG, ESysEROFS:
+      if FOpen then
+        Result := res_DeviceLost
+      else
+        Result := res_CannotOpen;
+    ESysEIO, ESysEBADF, ESysEPIPE:
+      Result := res_DeviceLost;
+    ESysENOTTY, ESysEINVAL, ESysEOPNOTSUPP:
+      Result := res_BadSetting;
+  else
+    Result := res_IOError;
+  end;
+end;
+
+function TChnPortUnix.Open(const Path: tWordString): tChResult;
+var
+  NewFd: cint;
+  T: Termios;
+begin
+  if FOpen then
+    Exit(res_WrongState);
+  FOSError := 0;
+  FDevice := Path;
+  NewFd := FpOpen(Path, O_RDWR or O_NOCTTY or O_NONBLOCK);
+  if NewFd < 0 then
+    Exit(Fail(FpGetErrno));
+  { flock: one user per device, honoured by root too }
+  if FpFlock(NewFd, LOCK_EX or LOCK_NB) <> 0 then
+  begin
+    FOSError := FpGetErrno;
+    FpClose(NewFd);
+    Exit(res_CannotOpen);
+  end;
+  { not a terminal (a regular file, /dev/null ...): it takes no settings }
+  if TCGetAttr(NewFd, T) <> 0 then
+  begin
+    Result := Fail(FpGetErrno);
+    FpClose(NewFd);
+    Exit;
+  end;
+  FpIOCtl(NewFd, TIOCEXCL, nil);   { best effort: keeps other non-root users out }
+  { raw at once, rate and framing as found; Configure sets them }
+  CFMakeRaw(T);
+  T.c_iflag := T.c_iflag and not (IXON or IXOFF or IXANY);
+  T.c_cflag := T.c_cflag or CREAD or CLOCAL;
+  T.c_cc[VMIN] := 1;           { with O_NONBLOCK: EAGAIN when empty, 0 = hangup }
+  T.c_cc[VTIME] := 0;
+  if TCSetAttr(NewFd, TCSANOW, T) <> 0 then
+  begin
+    Result := Fail(FpGetErrno);
+    FpClose(NewFd);
+    Exit;
+  end;
+  FFd := NewFd;
+  FOpen := True;
+  Counters(FOverrunBase);
+  Result := res_Ok;
+end;
+
+function TChnPortUnix.Configure(const S: tPortSettings): tChResult;
+var
+  T, Back: Termios;
+  Flags: Cardinal;
+  I: Integer;
+  Code: Cardinal;
+  {$IFDEF LINUX}
+  T2: tTermios2;
+  {$ENDIF}
+begin
+  if not FOpen then
+    Exit(res_WrongState);
+  if TCGetAttr(FFd, T) <> 0 then
+    Exit(Fail(FpGetErrno));
+  CFMakeRaw(T);
+  T.c_iflag := T.c_iflag and not (IXON or IXOFF or IXANY or INPCK or IGNPAR);
+  T.c_cc[VMIN] := 1;
+  T.c_cc[VTIME] := 0;
+  Flags := CREAD or CLOCAL;
+  case S.DataBits of
+    5: Flags := Flags or CS5;
+    6: Flags := Flags or CS6;
+    7: Flags := Flags or CS7;
+    8: Flags := Flags or CS8;
+  else
+    Exit(res_BadSetting);
+  end;
+  case S.StopBits of
+    1: ;
+    2: Flags := Flags or CSTOPB;
+  else
+    Exit(res_BadSetting);
+  end;
+  case S.Parity of
+    ppNone: ;
+    ppEven: Flags := Flags or PARENB;
+    ppOdd: Flags := Flags or PARENB or PARODD;
+    {$IFDEF LINUX}
+    ppMark: Flags := Flags or PARENB or PARODD or CMSPAR;
+    ppSpace: Flags := Flags or PARENB or CMSPAR;
+    {$ELSE}
+    ppMark, ppSpace: Exit(res_BadSetting);
+    {$ENDIF}
+  end;
+  case S.Flow of
+    flowNone: ;
+    flowRtsCts: Flags := Flags or CRTSCTS;
+    flowXonXoff: T.c_iflag := T.c_iflag or IXON or IXOFF;
+  end;
+  Code := 0;
+  for I := Low(BaudCodes) to High(BaudCodes) do
+    if BaudCodes[I].Baud = S.Baud then
+      Code := BaudCodes[I].Code;
+  T.c_cflag := (T.c_cflag and not (CheckedCFlags or CREAD or CLOCAL or HUPCL)) or Flags;
+  if Code <> 0 then
+  begin
+    CFSetISpeed(T, Code);
+    CFSetOSpeed(T, Code);
+    if TCSetAttr(FFd, TCSANOW, T) <> 0 then
+      Exit(Fail(FpGetErrno));
+    if TCGetAttr(FFd, Back) <> 0 then
+      Exit(Fail(FpGetErrno));
+    if (Back.c_cflag and CheckedCFlags) <> (T.c_cflag and CheckedCFlags) then
+      Exit(res_BadSetting);     { the driver changed something: no fallback }
+  end
+  else
+  begin
+    {$IFDEF LINUX}
+    { a rate without a B constant: termios2 with BOTHER }
+    FillChar(T2, SizeOf(T2), 0);
+    if FpIOCtl(FFd, TCGETS2, @T2) <> 0 then
+      Exit(Fail(FpGetErrno));
+    T2.c_iflag := T.c_iflag;
+    T2.c_oflag := T.c_oflag;
+    T2.c_lflag := T.c_lflag;
+    T2.c_cflag := (T.c_cflag and not CBAUD) or BOTHER;
+    Move(T.c_cc, T2.c_cc, SizeOf(T2.c_cc));
+    T2.c_ispeed := S.Baud;
+    T2.c_ospeed := S.Baud;
+    if FpIOCtl(FFd, TCSETS2, @T2) <> 0 then
+      Exit(Fail(FpGetErrno));
+    FillChar(T2, SizeOf(T2), 0);
+    if FpIOCtl(FFd, TCGETS2, @T2) <> 0 then
+      Exit(Fail(FpGetErrno));
+    { the kernel writes back the rate it set; allow 2 % as UARTs do }
+    if (Abs(Int64(T2.c_ospeed) - S.Baud) * 50 > S.Baud) or
+       ((T2.c_cflag and (CheckedCFlags and not CBAUD)) <>
+        (T.c_cflag and (CheckedCFlags and not CBAUD))) then
+      Exit(res_BadSetting);
+    {$ELSE}
+    Exit(res_BadSetting);
+    {$ENDIF}
+  end;
+  Result := res_Ok;
+end;
+
+function TChnPortUnix.Read(var Buf; Size: LongInt; out Got: LongInt): tChResult;
+var
+  N: TSsize;
+  E: cint;
+begin
+  Got := 0;
+  if not FOpen then
+    Exit(res_WrongState);
+  if Size <= 0 then
+    Exit(res_Ok);
+  repeat
+    N := FpRead(FFd, Buf, Size);
+    E := FpGetErrno;
+  until (N >= 0) or (E <> ESysEINTR);
+  if N > 0 then
+  begin
+    Got := N;
+    Result := res_Ok;
+  end
+  else if N = 0 then
+  begin
+    FOSError := ESysEIO;      { end of file on a tty: the line was hung up }
+    Result := res_DeviceLost;
+  end
+  else if (E = ESysEAGAIN) or (E = ESysEWOULDBLOCK) then
+    Result := res_Ok
+  else
+    Result := Fail(E);
+end;
+
+function PollFd(Fd: cint; Events: cshort; Ms: LongInt): Boolean;
+var
+  P: TPollFd;
+  R: cint;
+begin
+  P.fd := Fd;
+  P.events := Events;
+  P.revents := 0;
+  R := FpPoll(@P, 1, Ms);
+  Result := (R > 0) and (P.revents <> 0);
+end;
+
+function TChnPortUnix.WaitInput(Ms: LongInt): Boolean;
+begin
+  if not FOpen then
+    Exit(False);
+  Result := PollFd(FFd, POLLIN, Ms);
+end;
+
+function TChnPortUnix.WaitOutput(Ms: LongInt): Boolean;
+begin
+  if not FOpen then
+    Exit(False);
+  Result := PollFd(FFd, POLLOUT, Ms);
+end;
+
+function TChnPortUnix.Write(const Buf; Len: LongInt; out Done: LongInt): tChResult;
+var
+  N: TSsize;
+  E: cint;
+begin
+  Done := 0;
+  if not FOpen then
+    Exit(res_WrongState);
+  if Len <= 0 then
+    Exit(res_Ok);
+  repeat
+    N := FpWrite(FFd, Buf, Len);
+    E := FpGetErrno;
+  until (N >= 0) or (E <> ESysEINTR);
+  if N >= 0 then
+  begin
+    Done := N;
+    Result := res_Ok;
+  end
+  else if (E = ESysEAGAIN) or (E = ESysEWOULDBLOCK) then
+    Result := res_Ok
+  else
+    Result := Fail(E);
+end;
+
+function TChnPortUnix.OutQueue(out N: LongInt): tChResult;
+var
+  Q: cint;
+begin
+  N := 0;
+  if not FOpen then
+    Exit(res_WrongState);
+  Q := 0;
+  if FpIOCtl(FFd, TIOCOUTQ, @Q) <> 0 then
+    Exit(Fail(FpGetErrno));
+  N := Q;
+  Result := res_Ok;
+end;
+
+function TChnPortUnix.Drain: tChResult;
+begin
+  if not FOpen then
+    Exit(res_WrongState);
+  if TCDrain(FFd) <> 0 then
+    Exit(Fail(FpGetErrno));
+  Result := res_Ok;
+end;
+
+function TChnPortUnix.Flush(Input, Output: Boolean): tChResult;
+var
+  Q: cint;
+begin
+  if not FOpen then
+    Exit(res_WrongState);
+  if Input and Output then
+    Q := TCIOFLUSH
+  else if Input then
+    Q := TCIFLUSH
+  else if Output then
+    Q := TCOFLUSH
+  else
+    Exit(res_Ok);
+  if TCFlush(FFd, Q) <> 0 then
+    Exit(Fail(FpGetErrno));
+  Result := res_Ok;
+end;
+
+function ModemBit(Fd: cint; Bit: cint; On: Boolean): cint;
+begin
+  if On then
+    Result := FpIOCtl(Fd, TIOCMBIS, @Bit)
+  else
+    Result := FpIOCtl(Fd, TIOCMBIC, @Bit);
+end;
+
+function TChnPortUnix.SetRts(On: Boolean): tChResult;
+begin
+  if not FOpen then
+    Exit(res_WrongState);
+  if ModemBit(FFd, TIOCM_RTS, On) <> 0 then
+    Exit(Fail(FpGetErrno));     { a pty has no modem lines: res_BadSetting }
+  Result := res_Ok;
+end;
+
+function TChnPortUnix.SetDtr(On: Boolean): tChResult;
+begin
+  if not FOpen then
+    Exit(res_WrongState);
+  if ModemBit(FFd, TIOCM_DTR, On) <> 0 then
+    Exit(Fail(FpGetErrno));
+  Result := res_Ok;
+end;
+
+function TChnPortUnix.GetLines(out Lines: tPortLines): tChResult;
+var
+  Bits: cint;
+begin
+  Lines := [];
+  if not FOpen then
+    Exit(res_WrongState);
+  Bits := 0;
+  if FpIOCtl(FFd, TIOCMGET, @Bits) <> 0 then
+    Exit(Fail(FpGetErrno));
+  if Bits and TIOCM_CTS <> 0 then
+    Include(Lines, plCts);
+  if Bits and TIOCM_DSR <> 0 then
+    Include(Lines, plDsr);
+  if Bits and TIOCM_RNG <> 0 then
+    Include(Lines, plRing);
+  if Bits and TIOCM_CAR <> 0 then
+    Include(Lines, plCarrier);
+  Result := res_Ok;
+end;
+
+function TChnPortUnix.SetKernelRs485(On: Boolean): tChResult;
+{$IFDEF LINUX}
+var
+  R: tSerialRs485;
+begin
+  if not FOpen then
+    Exit(res_WrongState);
+  FillChar(R, SizeOf(R), 0);
+  if On then
+    R.Flags := SER_RS485_ENABLED or SER_RS485_RTS_ON_SEND;
+  if FpIOCtl(FFd, TIOCSRS485, @R) <> 0 then
+  begin
+    Result := Fail(FpGetErrno);
+    if Result = res_BadSetting then
+      FOSError := ESysENOTTY;
+    if not On and (Result = res_BadSetting) then
+      Result := res_Ok;        { nothing to switch off }
+    Exit;
+  end;
+  Result := res_Ok;
+end;
+{$ELSE}
+begin
+  if not FOpen then
+    Exit(res_WrongState);
+  if On then
+    Result := res_BadSetting
+  else
+    Result := res_Ok;
+end;
+{$ENDIF}
+
+{ OS count of lost received bytes (UART overrun + tty buffer overrun). }
+function TChnPortUnix.Counters(out N: LongWord): Boolean;
+{$IFDEF LINUX}
+var
+  C: tSerialICounter;
+begin
+  N := 0;
+  FillChar(C, SizeOf(C), 0);
+  Result := FpIOCtl(FFd, TIOCGICOUNT, @C) = 0;   { a pty does not count }
+  if Result then
+    N := LongWord(C.Overrun) + LongWord(C.BufOverrun);
+end;
+{$ELSE}
+begin
+  N := 0;
+  Result := False;
+end;
+{$ENDIF}
+
+function TChnPortUnix.OsOverruns(out N: LongWord): tChResult;
+begin
+  N := 0;
+  if not FOpen then
+    Exit(res_WrongState);
+  if Counters(N) then
+    N := N - FOverrunBase;
+  Result := res_Ok;
+end;
+
+function TChnPortUnix.OsHandle: PtrInt;
+begin
+  Result := FFd;
+end;
+
+procedure TChnPortUnix.Close;
+begin
+  if FFd >= 0 then
+    FpClose(FFd);                { also releases the flock }
+  FFd := -1;
+  FOpen := False;
+end;
+
+initialization
+  RegisterPortDriver('RTL', TChnPortUnix);
+end.

@@ -1,0 +1,461 @@
+{ ChnPortWin - TChnPort on the Windows API (CreateFile, SetCommState,
+  SetCommTimeouts, ReadFile, WriteFile, ClearCommError). Registered as
+  driver 'RTL' on Windows; compiled only there (tools/build-win64.sh
+  cross-compiles it on Debian).
+
+  The handle is opened exclusively and without overlapped I/O. Reads never
+  wait: ReadIntervalTimeout = MAXDWORD with zero totals makes ReadFile
+  return at once with what the driver holds. Writes never wait either:
+  Write hands over only what fits in the driver's output queue (SetupComm
+  size minus ClearCommError's cbOutQue), and a 1 ms write timeout bounds
+  any driver that still blocks. WaitInput polls cbInQue in 1 ms steps,
+  which keeps an idle loop far below 1 % of a core.
+
+  Result mapping: ERROR_FILE_NOT_FOUND/PATH_NOT_FOUND, and ACCESS_DENIED or
+  SHARING_VIOLATION at open (Windows' answer for a port in use by another
+  program) -> res_CannotOpen; a handle that takes no DCB (not a serial
+  device) or a DCB the driver rejects or changes -> res_BadSetting; the
+  errors a pulled USB adapter gives (ACCESS_DENIED, BAD_COMMAND,
+  GEN_FAILURE, OPERATION_ABORTED, DEVICE_NOT_CONNECTED) -> res_DeviceLost.
+  CE_OVERRUN / CE_RXOVER are counted for OsOverruns, one per event (Windows
+  does not say how many bytes were lost). }
+unit ChnPortWin;
+
+{$I chn.inc}
+
+interface
+
+uses
+  Windows, ChnTypes, ChnPort;
+
+type
+  TChnPortWin = class(TChnPort)
+  private
+    FH: THandle;
+    FOutSize: DWORD;
+    FToggle: Boolean;          { RTS_CONTROL_TOGGLE requested }
+    FFlow: tPortFlow;
+    FOverruns: LongWord;
+    function Fail(E: DWORD): tChResult;
+    function Status(out InQue, OutQue: DWORD): tChResult;
+    function ApplyDcb(var D: TDCB): tChResult;
+  public
+    constructor Create; override;
+    function Open(const Path: tWordString): tChResult; override;
+    function Configure(const S: tPortSettings): tChResult; override;
+    function Read(var Buf; Size: LongInt; out Got: LongInt): tChResult; override;
+    function WaitInput(Ms: LongInt): Boolean; override;
+    function WaitOutput(Ms: LongInt): Boolean; override;
+    function Write(const Buf; Len: LongInt; out Done: LongInt): tChResult; override;
+    function OutQueue(out N: LongInt): tChResult; override;
+    function Drain: tChResult; override;
+    function Flush(Input, Output: Boolean): tChResult; override;
+    function SetRts(On: Boolean): tChResult; override;
+    function SetDtr(On: Boolean): tChResult; override;
+    function GetLines(out Lines: tPortLines): tChResult; override;
+    function SetKernelRs485(On: Boolean): tChResult; override;
+    function OsOverruns(out N: LongWord): tChResult; override;
+    function OsHandle: PtrInt; override;
+    procedure Close; override;
+  end;
+
+implementation
+
+const
+  ERROR_DEVICE_NOT_CONNECTED_ = 1167;
+  DefaultOutQueue = 4096;
+  { DCB.flags bits (winbase.h) }
+  fBinary          = $0001;
+  fParity          = $0002;
+  fOutxCtsFlow     = $0004;
+  fOutxDsrFlow     = $0008;
+  fDtrControlMask  = $0030;
+  fDtrControlEnable = $0010;
+  fDsrSensitivity  = $0040;
+  fTXContinueOnXoff = $0080;
+  fOutX            = $0100;
+  fInX             = $0200;
+  fErrorChar       = $0400;
+  fNull            = $0800;
+  fRtsControlMask  = $3000;
+  fRtsControlEnable = $1000;
+  fRtsControlHandshake = $2000;
+  fRtsControlToggle = $3000;
+  fAbortOnError    = $4000;
+
+constructor TChnPortWin.Create;
+begin
+  inherited Create;
+  FH := INVALID_HANDLE_VALUE;
+  FOutSize := DefaultOutQueue;
+  FToggle := False;
+  FFlow := flowNone;
+  FOverruns := 0;
+end;
+
+function TChnPortWin.Fail(E: DWORD): tChResult;
+begin
+  FOSError := LongInt(E);
+  case E of
+    ERROR_FILE_NOT_FOUND, ERROR_PATH_NOT_FOUND, ERROR_SHARING_VIOLATION:
+      if FOpen then
+        Result := res_DeviceLost
+      else
+        Result := res_CannotOpen;
+    ERROR_ACCESS_DENIED:
+      if FOpen then
+        Result := res_DeviceLost
+      else
+        Result := res_CannotOpen;   { in use; Windows says the same for rights }
+    ERROR_INVALID_FUNCTION, ERROR_INVALID_PARAMETER, ERROR_NOT_SUPPORTED:
+      Result := res_BadSetting;
+    ERROR_BAD_COMMAND, ERROR_GEN_FAILURE, ERROR_OPERATION_ABORTED,
+    ERROR_INVALID_HANDLE, ERROR_DEVICE_NOT_CONNECTED_:
+      Result := res_DeviceLost;
+  else
+    Result := res_IOError;
+  end;
+end;
+
+{ Queue sizes and line errors; overrun events are counted here. }
+function TChnPortWin.Status(out InQue, OutQue: DWORD): tChResult;
+var
+  Errs: DWORD;
+  St: TComStat;
+begin
+  InQue := 0;
+  OutQue := 0;
+  Errs := 0;
+  FillChar(St, SizeOf(St), 0);
+  if not ClearCommError(FH, Errs, @St) then
+    Exit(Fail(GetLastError));
+  if Errs and (CE_OVERRUN or CE_RXOVER) <> 0 then
+    Inc(FOverruns);
+  InQue := St.cbInQue;
+  OutQue := St.cbOutQue;
+  Result := res_Ok;
+end;
+
+function TChnPortWin.Open(const Path: tWordString): tChResult;
+var
+  Name: AnsiString;
+  H: THandle;
+  D: TDCB;
+  T: TCommTimeouts;
+begin
+  if FOpen then
+    Exit(res_WrongState);
+  FDevice := Path;
+  FOSError := 0;
+  Name := Path;
+  H := CreateFileA(PAnsiChar(Name), GENERIC_READ or GENERIC_WRITE, 0, nil,
+    OPEN_EXISTING, FILE_ATTRIBUTE_NORMAL, 0);
+  if H = INVALID_HANDLE_VALUE then
+    Exit(Fail(GetLastError));
+  FillChar(D, SizeOf(D), 0);
+  D.DCBlength := SizeOf(D);
+  if not GetCommState(H, D) then
+  begin
+    CloseHandle(H);
+    FOSError := LongInt(GetLastError);
+    Exit(res_BadSetting);           { not a serial device }
+  end;
+  FillChar(T, SizeOf(T), 0);
+  T.ReadIntervalTimeout := MAXDWORD;  { ReadFile returns at once }
+  T.WriteTotalTimeoutConstant := 1;   { a blocking driver stalls 1 ms at most }
+  if not SetCommTimeouts(H, T) then
+  begin
+    Result := Fail(GetLastError);
+    CloseHandle(H);
+    Exit;
+  end;
+  FH := H;
+  FOpen := True;
+  FOverruns := 0;
+  Result := res_Ok;
+end;
+
+function TChnPortWin.ApplyDcb(var D: TDCB): tChResult;
+var
+  Back: TDCB;
+begin
+  if not SetCommState(FH, D) then
+    Exit(Fail(GetLastError));
+  FillChar(Back, SizeOf(Back), 0);
+  Back.DCBlength := SizeOf(Back);
+  if not GetCommState(FH, Back) then
+    Exit(Fail(GetLastError));
+  if (Back.BaudRate <> D.BaudRate) or (Back.ByteSize <> D.ByteSize) or
+     (Back.Parity <> D.Parity) or (Back.StopBits <> D.StopBits) or
+     ((Back.flags and fRtsControlMask) <> (D.flags and fRtsControlMask)) then
+    Exit(res_BadSetting);           { the driver changed it: no fallback }
+  Result := res_Ok;
+end;
+
+function TChnPortWin.Configure(const S: tPortSettings): tChResult;
+var
+  D: TDCB;
+  InSize: DWORD;
+begin
+  if not FOpen then
+    Exit(res_WrongState);
+  if not (S.DataBits in [5..8]) or not (S.StopBits in [1, 2]) then
+    Exit(res_BadSetting);
+  InSize := S.InQueue;
+  if InSize < 16 then
+    InSize := 16;
+  FOutSize := DefaultOutQueue;
+  SetupComm(FH, InSize, FOutSize);  { a hint; drivers may keep their own }
+  FillChar(D, SizeOf(D), 0);
+  D.DCBlength := SizeOf(D);
+  if not GetCommState(FH, D) then
+    Exit(Fail(GetLastError));
+  D.BaudRate := S.Baud;
+  D.ByteSize := S.DataBits;
+  case S.Parity of
+    ppNone: D.Parity := NOPARITY;
+    ppEven: D.Parity := EVENPARITY;
+    ppOdd: D.Parity := ODDPARITY;
+    ppMark: D.Parity := MARKPARITY;
+    ppSpace: D.Parity := SPACEPARITY;
+  end;
+  if S.StopBits = 2 then
+    D.StopBits := TWOSTOPBITS
+  else
+    D.StopBits := ONESTOPBIT;
+  D.flags := fBinary or fDtrControlEnable or fTXContinueOnXoff;
+  if S.Parity <> ppNone then
+    D.flags := D.flags or fParity;
+  case S.Flow of
+    flowNone: D.flags := D.flags or fRtsControlEnable;
+    flowRtsCts: D.flags := D.flags or fOutxCtsFlow or fRtsControlHandshake;
+    flowXonXoff: D.flags := D.flags or fOutX or fInX or fRtsControlEnable;
+  end;
+  if FToggle and (S.Flow <> flowRtsCts) then
+    D.flags := (D.flags and not fRtsControlMask) or fRtsControlToggle;
+  D.XonChar := #17;
+  D.XoffChar := #19;
+  D.XonLim := InSize div 4;
+  D.XoffLim := InSize div 4;
+  FFlow := S.Flow;
+  Result := ApplyDcb(D);
+end;
+
+function TChnPortWin.Read(var Buf; Size: LongInt; out Got: LongInt): tChResult;
+var
+  N, InQ, OutQ: DWORD;
+begin
+  Got := 0;
+  if not FOpen then
+    Exit(res_WrongState);
+  if Size <= 0 then
+    Exit(res_Ok);
+  N := 0;
+  if not ReadFile(FH, Buf, DWORD(Size), N, nil) then
+    Exit(Fail(GetLastError));
+  Got := N;
+  if N > 0 then
+    Result := Status(InQ, OutQ)      { picks up overrun flags }
+  else
+    Result := res_Ok;
+end;
+
+function TChnPortWin.WaitInput(Ms: LongInt): Boolean;
+var
+  Deadline: QWord;
+  InQ, OutQ: DWORD;
+begin
+  Result := False;
+  if not FOpen then
+    Exit;
+  Deadline := GetTickCount64 + QWord(Ms);
+  repeat
+    if (Status(InQ, OutQ) <> res_Ok) or (InQ > 0) then
+      Exit(True);                   { a byte, or a fault the read reports }
+    if GetTickCount64 >= Deadline then
+      Exit;
+    Sleep(1);
+  until False;
+end;
+
+function TChnPortWin.WaitOutput(Ms: LongInt): Boolean;
+var
+  Deadline: QWord;
+  InQ, OutQ: DWORD;
+begin
+  Result := False;
+  if not FOpen then
+    Exit;
+  Deadline := GetTickCount64 + QWord(Ms);
+  repeat
+    if (Status(InQ, OutQ) <> res_Ok) or (OutQ < FOutSize) then
+      Exit(True);
+    if GetTickCount64 >= Deadline then
+      Exit;
+    Sleep(1);
+  until False;
+end;
+
+function TChnPortWin.Write(const Buf; Len: LongInt; out Done: LongInt): tChResult;
+var
+  InQ, OutQ, N: DWORD;
+  Room: LongInt;
+begin
+  Done := 0;
+  if not FOpen then
+    Exit(res_WrongState);
+  if Len <= 0 then
+    Exit(res_Ok);
+  Result := Status(InQ, OutQ);
+  if Result <> res_Ok then
+    Exit;
+  Room := LongInt(FOutSize) - LongInt(OutQ);
+  if Room <= 0 then
+    Exit(res_Ok);
+  if Len > Room then
+    Len := Room;
+  N := 0;
+  if not WriteFile(FH, Buf, DWORD(Len), N, nil) then
+    Exit(Fail(GetLastError));
+  Done := N;                        { a write timeout leaves N < Len }
+  Result := res_Ok;
+end;
+
+function TChnPortWin.OutQueue(out N: LongInt): tChResult;
+var
+  InQ, OutQ: DWORD;
+begin
+  N := 0;
+  if not FOpen then
+    Exit(res_WrongState);
+  Result := Status(InQ, OutQ);
+  N := OutQ;
+end;
+
+function TChnPortWin.Drain: tChResult;
+begin
+  if not FOpen then
+    Exit(res_WrongState);
+  if not FlushFileBuffers(FH) then   { returns when the driver has sent all }
+    Exit(Fail(GetLastError));
+  Result := res_Ok;
+end;
+
+function TChnPortWin.Flush(Input, Output: Boolean): tChResult;
+var
+  F: DWORD;
+begin
+  if not FOpen then
+    Exit(res_WrongState);
+  F := 0;
+  if Input then
+    F := F or PURGE_RXCLEAR or PURGE_RXABORT;
+  if Output then
+    F := F or PURGE_TXCLEAR or PURGE_TXABORT;
+  if (F <> 0) and not PurgeComm(FH, F) then
+    Exit(Fail(GetLastError));
+  Result := res_Ok;
+end;
+
+function TChnPortWin.SetRts(On: Boolean): tChResult;
+var
+  F: DWORD;
+begin
+  if not FOpen then
+    Exit(res_WrongState);
+  if On then
+    F := SETRTS
+  else
+    F := CLRRTS;
+  if not EscapeCommFunction(FH, F) then
+    Exit(Fail(GetLastError));       { RTS under handshake: res_BadSetting }
+  Result := res_Ok;
+end;
+
+function TChnPortWin.SetDtr(On: Boolean): tChResult;
+var
+  F: DWORD;
+begin
+  if not FOpen then
+    Exit(res_WrongState);
+  if On then
+    F := SETDTR
+  else
+    F := CLRDTR;
+  if not EscapeCommFunction(FH, F) then
+    Exit(Fail(GetLastError));
+  Result := res_Ok;
+end;
+
+function TChnPortWin.GetLines(out Lines: tPortLines): tChResult;
+var
+  M: DWORD;
+begin
+  Lines := [];
+  if not FOpen then
+    Exit(res_WrongState);
+  M := 0;
+  if not GetCommModemStatus(FH, M) then
+    Exit(Fail(GetLastError));
+  if M and MS_CTS_ON <> 0 then
+    Include(Lines, plCts);
+  if M and MS_DSR_ON <> 0 then
+    Include(Lines, plDsr);
+  if M and MS_RING_ON <> 0 then
+    Include(Lines, plRing);
+  if M and MS_RLSD_ON <> 0 then
+    Include(Lines, plCarrier);
+  Result := res_Ok;
+end;
+
+function TChnPortWin.SetKernelRs485(On: Boolean): tChResult;
+var
+  D: TDCB;
+begin
+  if not FOpen then
+    Exit(res_WrongState);
+  if On = FToggle then
+    Exit(res_Ok);
+  if On and (FFlow = flowRtsCts) then
+    Exit(res_BadSetting);           { RTS cannot be handshake and toggle }
+  FillChar(D, SizeOf(D), 0);
+  D.DCBlength := SizeOf(D);
+  if not GetCommState(FH, D) then
+    Exit(Fail(GetLastError));
+  if On then
+    D.flags := (D.flags and not fRtsControlMask) or fRtsControlToggle
+  else
+    D.flags := (D.flags and not fRtsControlMask) or fRtsControlEnable;
+  Result := ApplyDcb(D);            { drivers without toggle refuse or change it }
+  if Result = res_Ok then
+    FToggle := On;
+end;
+
+function TChnPortWin.OsOverruns(out N: LongWord): tChResult;
+begin
+  N := FOverruns;
+  if not FOpen then
+    Exit(res_WrongState);
+  Result := res_Ok;
+end;
+
+function TChnPortWin.OsHandle: PtrInt;
+begin
+  if FOpen then
+    Result := PtrInt(FH)
+  else
+    Result := -1;
+end;
+
+procedure TChnPortWin.Close;
+begin
+  if FH <> INVALID_HANDLE_VALUE then
+    CloseHandle(FH);
+  FH := INVALID_HANDLE_VALUE;
+  FOpen := False;
+  FToggle := False;
+end;
+
+initialization
+  RegisterPortDriver('RTL', TChnPortWin);
+end.

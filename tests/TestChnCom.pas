@@ -1,0 +1,1152 @@
+{ Tests of ChnCom over real pseudo-terminal pairs (no hardware): the pty
+  tests run once per port backend built in (TTestChnComRtl always,
+  TTestChnComSynapse with make SYNAPSE_DIR=...). Settings are checked by
+  reading the kernel's termios of the open descriptor, not through the code
+  under test. TTestChnComLogic covers parameters and the RS-485/overrun
+  logic of tChnCom on a scripted fake port. }
+unit TestChnCom;
+
+{$MODE OBJFPC}{$H+}
+
+interface
+
+uses
+  SysUtils, Classes, fpcunit, testregistry, BaseUnix, Unix, TermIO, Linux,
+  ChnTypes, ChnVirt, ChnPort, ChnCom, PtyPair, TestSupport;
+
+type
+  TTestChnComPty = class(TTestCase)
+  protected
+    FPty: TPtyPair;
+    FChn: pChnVirt;
+    FRBuf: array[0..65534] of Byte;
+    function Drv: string; virtual; abstract;
+    procedure SetUp; override;
+    procedure TearDown; override;
+    { NAM=COM DRV=<Drv> DEV=<slave> + Extra, then ChOpen; ChConnect when the
+      open worked. Returns ChResult of the open. }
+    function OpenCom(const Extra: string): tChResult;
+    function Com: pChnCom;
+    { Receive exactly N bytes from the channel into Dst within TimeoutMs. }
+    function ChnReceiveAll(Dst: PByte; N: LongInt; TimeoutMs: LongInt): LongInt;
+    procedure CheckTermios(const What: string; CFlag: Cardinal; Speed: Cardinal);
+    procedure ExchangeAllByteValues(const What: string);
+  published
+    procedure TestBytesBothWaysAtSeveralSettings;
+    procedure TestSettingsThePtyRefuses;
+    procedure TestXonXoffFlowControl;
+    procedure TestNonStandardBaud;
+    procedure TestOneMiBBothWaysNoLoss;
+    procedure TestLargeWritesCompleteThroughSendReady;
+    procedure TestMissingDevice;
+    procedure TestNoPermission;
+    procedure TestNotATerminalIsRefused;
+    procedure TestDeviceInUse;
+    procedure TestDeviceLostThenReopen;
+    procedure TestOverrunReportedWithoutFlowControl;
+    procedure TestFlowControlPausesInsteadOfDropping;
+    procedure TestRs485RefusedOnPty;
+    procedure TestIdleWaitReturnsOnFirstByte;
+    procedure TestLegacyPollingLoopCpu;
+  end;
+
+  TTestChnComRtl = class(TTestChnComPty)
+  protected
+    function Drv: string; override;
+  end;
+
+  {$IFDEF CHN_SYNAPSE}
+  TTestChnComSynapse = class(TTestChnComPty)
+  protected
+    function Drv: string; override;
+  end;
+  {$ENDIF}
+
+  TTestChnComLogic = class(TTestCase)
+  protected
+    procedure SetUp; override;
+  published
+    procedure TestDefaultParams;
+    procedure TestGetParamRoundTrip;
+    procedure TestBadParamsChangeNothing;
+    procedure TestDosKeysAcceptedAndIgnored;
+    procedure TestComNumberNamesTtyS;
+    procedure TestRs485RtsRaisedUntilLastBitLeft;
+    procedure TestRs485AutoPrefersKernel;
+    procedure TestRs485AutoFallsBackToRts;
+    procedure TestOsOverrunReported;
+    procedure TestSendErrors;
+    procedure TestSettingRefusedLeavesClosed;
+  end;
+
+implementation
+
+type
+  tTermios2 = record
+    c_iflag, c_oflag, c_cflag, c_lflag: Cardinal;
+    c_line: Byte;
+    c_cc: array[0..18] of Byte;
+    c_ispeed, c_ospeed: Cardinal;
+  end;
+
+const
+  TCGETS2 = $802C542A;
+  KBOTHER = $1000;
+  KCBAUD = $100F;
+  { the c_cflag bits the layer is responsible for (Linux <asm/termbits.h>) }
+  KCSIZE = $30; KCS5 = $00; KCS6 = $10; KCS7 = $20; KCS8 = $30;
+  KCSTOPB = $40; KPARENB = $100; KPARODD = $200;
+  KCMSPAR = $40000000; KCRTSCTS = $80000000;
+  KB50 = $1; KB1200 = $9; KB9600 = $D; KB115200 = $1002; KB4000000 = $100F;
+
+function Pattern(I: LongInt): Byte; inline;
+begin
+  Result := Byte((I * 7) xor (I shr 8) xor (I shr 16));
+end;
+
+function CpuMs: Double;
+var
+  T: TTimeSpec;
+begin
+  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, @T);
+  Result := T.tv_sec * 1000.0 + T.tv_nsec / 1e6;
+end;
+
+{ ------------------------------------------------------------ pty tests }
+
+procedure TTestChnComPty.SetUp;
+begin
+  FPty := TPtyPair.Create;
+  FChn := nil;
+end;
+
+procedure TTestChnComPty.TearDown;
+begin
+  if FChn <> nil then
+    Dispose(FChn, Done);
+  FChn := nil;
+  FPty.Free;
+end;
+
+function TTestChnComPty.Com: pChnCom;
+begin
+  Result := pChnCom(FChn);
+end;
+
+function TTestChnComPty.OpenCom(const Extra: string): tChResult;
+begin
+  if FChn <> nil then
+    Dispose(FChn, Done);
+  FChn := ChnCollection^.ChNewInit(ChnCom.cName);
+  AssertTrue('COM registered', FChn <> nil);
+  FChn^.ChSetParam('NAM=COM DRV=' + Drv + ' DEV=' + FPty.SlavePath + ' ' + Extra);
+  AssertEquals('params ' + Extra + ' ' + FChn^.ChParamError, res_Ok, FChn^.ChResult);
+  FChn^.ChOpen;
+  Result := FChn^.ChResult;
+  if Result = res_Ok then
+  begin
+    FChn^.ChReceiveBuffer(@FRBuf, SizeOf(FRBuf));
+    FChn^.ChConnect;
+    AssertEquals('connect', res_Ok, FChn^.ChResult);
+  end;
+end;
+
+function TTestChnComPty.ChnReceiveAll(Dst: PByte; N: LongInt; TimeoutMs: LongInt): LongInt;
+var
+  Deadline: QWord;
+  Len: Word;
+  Take: LongInt;
+begin
+  Result := 0;
+  Deadline := GetTickCount64 + QWord(TimeoutMs);
+  while (Result < N) and (GetTickCount64 <= Deadline) do
+    if FChn^.ChReceiveReady = CHS_ReceiveReady then
+    begin
+      Len := 0;
+      FChn^.ChReceive(Len);
+      AssertEquals('receive result', res_Ok, FChn^.ChReceiveResult);
+      Take := Len;
+      if Take > N - Result then
+        Take := N - Result;   { more than asked for: the test reads too little }
+      AssertEquals('no extra bytes', Take, Len);
+      Move(FRBuf, Dst[Result], Take);
+      Inc(Result, Take);
+    end;
+end;
+
+procedure TTestChnComPty.CheckTermios(const What: string; CFlag: Cardinal; Speed: Cardinal);
+var
+  T: tTermios2;
+  Mask: Cardinal;
+begin
+  FillChar(T, SizeOf(T), 0);
+  AssertEquals(What + ': TCGETS2', 0, FpIOCtl(Com^.CH_Port.OsHandle, TCGETS2, @T));
+  Mask := KCSIZE or KCSTOPB or KPARENB or KPARODD or KCMSPAR or KCRTSCTS;
+  AssertEquals(What + ': c_cflag bits', IntToHex(CFlag and Mask, 8),
+    IntToHex(T.c_cflag and Mask, 8));
+  if Speed = KBOTHER then
+    AssertEquals(What + ': rate code', KBOTHER, T.c_cflag and KCBAUD)
+  else
+    AssertEquals(What + ': rate code', Speed, T.c_cflag and KCBAUD);
+  AssertEquals(What + ': raw (no ICANON/ECHO)', 0, T.c_lflag and (ICANON or ECHO));
+end;
+
+{ all 256 byte values from the channel to the master and back }
+procedure TTestChnComPty.ExchangeAllByteValues(const What: string);
+var
+  Out, Back: array[0..255] of Byte;
+  I: Integer;
+begin
+  for I := 0 to 255 do
+    Out[I] := I;
+  AssertEquals(What + ': send ready', CHS_SendReady, FChn^.ChSendReady);
+  FChn^.ChSend(@Out, 256);
+  AssertEquals(What + ': send result', res_Ok, FChn^.ChSendResult);
+  AssertTrue(What + ': sent', WaitSent(FChn, 2000));
+  FillChar(Back, SizeOf(Back), 0);
+  AssertEquals(What + ': master got all', 256, FPty.MasterReadAll(Back, 256, 2000));
+  for I := 0 to 255 do
+    AssertEquals(What + ': byte to master ' + IntToStr(I), I, Back[I]);
+  for I := 0 to 255 do
+    Out[I] := 255 - I;
+  AssertTrue(What + ': master write', FPty.MasterWriteAll(Out, 256, 2000));
+  FillChar(Back, SizeOf(Back), 0);
+  AssertEquals(What + ': channel got all', 256, ChnReceiveAll(@Back, 256, 2000));
+  for I := 0 to 255 do
+    AssertEquals(What + ': byte from master ' + IntToStr(I), 255 - I, Back[I]);
+end;
+
+procedure TTestChnComPty.TestBytesBothWaysAtSeveralSettings;
+type
+  tCase = record
+    P: string;
+    CFlag, Speed: Cardinal;
+  end;
+const
+  { a Linux pty keeps rate, stop bits and RTS/CTS, but always has 8 data
+    bits and no parity (see TestSettingsThePtyRefuses) }
+  Cases: array[0..3] of tCase = (
+    (P: 'BD=9600 BIT=8 STOP=1 PAR=N'; CFlag: KCS8; Speed: KB9600),
+    (P: 'BD=115200 STOP=2'; CFlag: KCS8 or KCSTOPB; Speed: KB115200),
+    (P: 'BD=4000000 FLW=RTSCTS'; CFlag: KCS8 or KCRTSCTS; Speed: KB4000000),
+    (P: 'BD=50 STOP=2'; CFlag: KCS8 or KCSTOPB; Speed: KB50));
+var
+  I: Integer;
+begin
+  for I := Low(Cases) to High(Cases) do
+  begin
+    AssertEquals(Cases[I].P + ' open', res_Ok, OpenCom(Cases[I].P));
+    CheckTermios(Cases[I].P, Cases[I].CFlag, Cases[I].Speed);
+    ExchangeAllByteValues(Cases[I].P);
+    FChn^.ChClose;
+    AssertEquals(Cases[I].P + ' close', res_Ok, FChn^.ChResult);
+  end;
+end;
+
+{ Linux's pty driver forces CS8 and clears PARENB in every tcsetattr: the
+  kernel's answer differs from the request, and the layer must refuse
+  rather than run the line with settings nobody asked for. }
+procedure TTestChnComPty.TestSettingsThePtyRefuses;
+const
+  Refused: array[0..4] of string = ('BIT=7 PAR=E', 'BIT=5', 'PAR=O', 'PAR=M', 'BIT=6 PAR=S STOP=2');
+var
+  I: Integer;
+begin
+  for I := Low(Refused) to High(Refused) do
+  begin
+    AssertEquals(Refused[I], res_BadSetting, OpenCom(Refused[I]));
+    AssertEquals(Refused[I] + ' stays closed', CHS_Close, FChn^.ChReady);
+  end;
+  AssertEquals('and 8N1 opens', res_Ok, OpenCom('BIT=8 PAR=N'));
+end;
+
+procedure TTestChnComPty.TestXonXoffFlowControl;
+var
+  B: Byte;
+  Msg: array[0..2] of Byte;
+  Back: array[0..2] of Byte;
+  Got, N: LongInt;
+  Deadline: QWord;
+begin
+  AssertEquals('open', res_Ok, OpenCom('FLW=XONXOFF IDL=0'));
+  CheckTermios('XONXOFF', KCS8, KB9600);
+  B := $13;                                 { XOFF from the peer }
+  AssertTrue('xoff', FPty.MasterWriteAll(B, 1, 1000));
+  Sleep(50);
+  Msg[0] := Ord('a'); Msg[1] := Ord('b'); Msg[2] := Ord('c');
+  FChn^.ChSend(@Msg, 3);
+  AssertEquals('send accepted', res_Ok, FChn^.ChSendResult);
+  Sleep(100);
+  FChn^.ChSendReady;
+  AssertEquals('held back by XOFF', 0, FPty.MasterRead(Back, 3));
+  AssertEquals('XOFF is not data', CHS_Receiving, FChn^.ChReceiveReady);
+  B := $11;                                 { XON }
+  AssertTrue('xon', FPty.MasterWriteAll(B, 1, 1000));
+  Got := 0;
+  Deadline := GetTickCount64 + 2000;
+  while (Got < 3) and (GetTickCount64 < Deadline) do
+  begin
+    FChn^.ChSendReady;
+    N := FPty.MasterRead(Back[Got], 3 - Got);
+    AssertTrue('master read', N >= 0);
+    Inc(Got, N);
+  end;
+  AssertEquals('released by XON', 3, Got);
+  AssertEquals('a', Ord('a'), Back[0]);
+  AssertEquals('c', Ord('c'), Back[2]);
+  AssertEquals('idle', CHS_SendReady, FChn^.ChSendReady);
+end;
+
+procedure TTestChnComPty.TestNonStandardBaud;
+var
+  T: tTermios2;
+begin
+  if Drv = 'SYNAPSE' then
+  begin
+    AssertEquals('12345 Bd is not in synaser''s table', res_BadSetting, OpenCom('BD=12345'));
+    AssertEquals('closed', CHS_Close, FChn^.ChReady);
+    Exit;
+  end;
+  AssertEquals('12345 Bd through termios2', res_Ok, OpenCom('BD=12345'));
+  FillChar(T, SizeOf(T), 0);
+  AssertEquals('TCGETS2', 0, FpIOCtl(Com^.CH_Port.OsHandle, TCGETS2, @T));
+  AssertEquals('BOTHER', KBOTHER, T.c_cflag and KCBAUD);
+  AssertEquals('output rate', 12345, T.c_ospeed);
+  AssertEquals('input rate', 12345, T.c_ispeed);
+  ExchangeAllByteValues('12345 Bd');
+end;
+
+procedure TTestChnComPty.TestOneMiBBothWaysNoLoss;
+const
+  Total = 1024 * 1024;
+var
+  Sent, ToMaster, MasterSent, FromMaster, N, I, Chunk: LongInt;
+  SBuf: array[0..65534] of Byte;
+  MBuf: array[0..8191] of Byte;
+  Len: Word;
+  Deadline: QWord;
+begin
+  AssertEquals('open', res_Ok, OpenCom('BD=115200 LRB=8192'));
+  Sent := 0; ToMaster := 0; MasterSent := 0; FromMaster := 0;
+  Chunk := 1;
+  Deadline := GetTickCount64 + 60000;
+  while ((ToMaster < Total) or (FromMaster < Total)) and (GetTickCount64 < Deadline) do
+  begin
+    { channel -> master, messages of changing size up to 65535 }
+    if (Sent < Total) and (FChn^.ChSendReady = CHS_SendReady) then
+    begin
+      Chunk := (Chunk * 37 + 1001) mod 65535 + 1;
+      N := Chunk;
+      if N > Total - Sent then
+        N := Total - Sent;
+      for I := 0 to N - 1 do
+        SBuf[I] := Pattern(Sent + I);
+      FChn^.ChSend(@SBuf, N);
+      AssertEquals('send result', res_Ok, FChn^.ChSendResult);
+      Inc(Sent, N);
+    end;
+    N := FPty.MasterRead(MBuf, SizeOf(MBuf));
+    AssertTrue('master read', N >= 0);
+    for I := 0 to N - 1 do
+      if MBuf[I] <> Pattern(ToMaster + I) then
+        Fail(Format('to master: byte %d is %d, expected %d',
+          [ToMaster + I, MBuf[I], Pattern(ToMaster + I)]));
+    Inc(ToMaster, N);
+    { master -> channel }
+    if MasterSent < Total then
+    begin
+      N := 4096;
+      if N > Total - MasterSent then
+        N := Total - MasterSent;
+      for I := 0 to N - 1 do
+        MBuf[I] := Pattern(MasterSent + I) xor $5A;
+      N := FPty.MasterWrite(MBuf, N);
+      AssertTrue('master write', N >= 0);
+      Inc(MasterSent, N);
+    end;
+    if FChn^.ChReceiveReady = CHS_ReceiveReady then
+    begin
+      Len := 0;
+      FChn^.ChReceive(Len);
+      AssertEquals('receive result', res_Ok, FChn^.ChReceiveResult);
+      for I := 0 to Len - 1 do
+        if FRBuf[I] <> Pattern(FromMaster + I) xor $5A then
+          Fail(Format('from master: byte %d wrong', [FromMaster + I]));
+      Inc(FromMaster, Len);
+    end;
+  end;
+  AssertEquals('1 MiB reached the master', Total, ToMaster);
+  AssertEquals('1 MiB reached the channel', Total, FromMaster);
+  AssertEquals('nothing lost', 0, Com^.ChLostBytes);
+  AssertEquals('nothing left over', 0, FPty.MasterRead(MBuf, SizeOf(MBuf)));
+end;
+
+procedure TTestChnComPty.TestLargeWritesCompleteThroughSendReady;
+const
+  Msg = 65535;
+var
+  SBuf: array[0..Msg - 1] of Byte;
+  MBuf: array[0..8191] of Byte;
+  I, Messages, Got, N: LongInt;
+  T0, Slowest: QWord;
+  Busy: Boolean;
+  Deadline: QWord;
+begin
+  AssertEquals('open', res_Ok, OpenCom('BD=9600 IDL=0'));
+  for I := 0 to Msg - 1 do
+    SBuf[I] := Pattern(I);
+  { nobody reads the master: the pty (about 64 KiB) fills up; each ChSend
+    must still return at once and ChSendReady report the rest pending }
+  Messages := 0;
+  Slowest := 0;
+  Busy := False;
+  while (Messages < 4) and not Busy do
+  begin
+    T0 := GetTickCount64;
+    FChn^.ChSend(@SBuf, Msg);
+    if GetTickCount64 - T0 > Slowest then
+      Slowest := GetTickCount64 - T0;
+    AssertEquals('send result', res_Ok, FChn^.ChSendResult);
+    Inc(Messages);
+    Busy := FChn^.ChSendReady = CHS_Sending;
+  end;
+  AssertTrue('a message larger than the OS buffer is pending', Busy);
+  AssertTrue('ChSend did not block (' + IntToStr(Slowest) + ' ms)', Slowest < 200);
+  FChn^.ChSend(@SBuf, 10);
+  AssertEquals('busy while sending', res_Busy, FChn^.ChSendResult);
+  { now the master reads; ChSendReady polling completes the message }
+  Got := 0;
+  Deadline := GetTickCount64 + 10000;
+  while (Got < Messages * Msg) and (GetTickCount64 < Deadline) do
+  begin
+    FChn^.ChSendReady;
+    N := FPty.MasterRead(MBuf, SizeOf(MBuf));
+    AssertTrue('master read', N >= 0);
+    for I := 0 to N - 1 do
+      if MBuf[I] <> Pattern((Got + I) mod Msg) then
+        Fail(Format('byte %d wrong', [Got + I]));
+    Inc(Got, N);
+  end;
+  AssertEquals('every byte arrived', Messages * Msg, Got);
+  AssertEquals('transmitter idle', CHS_SendReady, FChn^.ChSendReady);
+end;
+
+procedure TTestChnComPty.TestMissingDevice;
+begin
+  FChn := ChnCollection^.ChNewInit(ChnCom.cName);
+  FChn^.ChSetParam('DRV=' + Drv + ' DEV=/dev/chn-no-such-tty');
+  AssertEquals('params', res_Ok, FChn^.ChResult);
+  FChn^.ChOpen;
+  AssertEquals('missing device', res_CannotOpen, FChn^.ChResult);
+  AssertEquals('state', CHS_Close, FChn^.ChReady);
+  FChn^.ChSend(@FRBuf, 1);
+  AssertEquals('send on closed', res_WrongState, FChn^.ChSendResult);
+  { the path is the device: a typo in COM's directory is just as missing }
+  FChn^.ChSetParam('DEV=/nonexistent-dir/ttyUSB0');
+  FChn^.ChOpen;
+  AssertEquals('missing directory', res_CannotOpen, FChn^.ChResult);
+  { a directory is no device either }
+  FChn^.ChSetParam('DEV=/tmp');
+  FChn^.ChOpen;
+  AssertEquals('a directory', res_CannotOpen, FChn^.ChResult);
+  AssertEquals('state after all', CHS_Close, FChn^.ChReady);
+end;
+
+{ Opening a device the user may not access. Root may access everything, so
+  when the suite runs as root the open is tried in a forked child that has
+  dropped to nobody (65534) first; the child's exit code carries ChResult. }
+procedure TTestChnComPty.TestNoPermission;
+var
+  Pid: TPid;
+  Status: cint;
+  C: pChnVirt;
+  Code: Integer;
+begin
+  AssertEquals('chmod 000', 0, FpChmod(PChar(FPty.SlavePath), 0));
+  Pid := FpFork;
+  AssertTrue('fork', Pid >= 0);
+  if Pid = 0 then
+  begin
+    { child: no FPCUnit here, only an exit code }
+    if FpGetuid = 0 then
+      if (FpSetgid(65534) <> 0) or (FpSetuid(65534) <> 0) then
+        FpExit(90);
+    if FpGetuid = 0 then
+      FpExit(91);
+    C := ChnCollection^.ChNewInit(ChnCom.cName);
+    C^.ChSetParam('DRV=' + Drv + ' DEV=' + FPty.SlavePath);
+    C^.ChOpen;
+    Code := C^.ChResult;
+    if C^.ChReady <> CHS_Close then
+      Code := Code + 50;
+    FpExit(Code);
+  end;
+  Status := 0;
+  AssertEquals('wait', Pid, FpWaitPid(Pid, @Status, 0));
+  AssertTrue('child exited', WIFEXITED(Status));
+  Code := WEXITSTATUS(Status);
+  AssertTrue('child could drop root (code ' + IntToStr(Code) + ')', Code < 90);
+  AssertEquals('no permission, state closed', res_NoPermission, Code);
+end;
+
+procedure TTestChnComPty.TestNotATerminalIsRefused;
+var
+  Path: string;
+  F: THandle;
+begin
+  Path := GetTempDir + 'chn-com-not-a-tty-' + IntToStr(FpGetPid);
+  F := FileCreate(Path);
+  AssertTrue('temp file', F <> THandle(-1));
+  FileClose(F);
+  try
+    FChn := ChnCollection^.ChNewInit(ChnCom.cName);
+    FChn^.ChSetParam('DRV=' + Drv + ' DEV=' + Path);
+    FChn^.ChOpen;
+    AssertEquals('regular file refuses serial settings', res_BadSetting, FChn^.ChResult);
+    AssertEquals('state', CHS_Close, FChn^.ChReady);
+    FChn^.ChSetParam('DEV=/dev/null');
+    FChn^.ChOpen;
+    AssertEquals('/dev/null refuses serial settings', res_BadSetting, FChn^.ChResult);
+    AssertEquals('state', CHS_Close, FChn^.ChReady);
+  finally
+    DeleteFile(Path);
+  end;
+end;
+
+procedure TTestChnComPty.TestDeviceInUse;
+var
+  Second: pChnVirt;
+begin
+  AssertEquals('first open', res_Ok, OpenCom(''));
+  Second := ChnCollection^.ChNewInit(ChnCom.cName);
+  try
+    Second^.ChSetParam('DRV=' + Drv + ' DEV=' + FPty.SlavePath);
+    Second^.ChOpen;
+    AssertEquals('second open of the same device', res_CannotOpen, Second^.ChResult);
+    AssertEquals('second stays closed', CHS_Close, Second^.ChReady);
+    FChn^.ChClose;
+    Second^.ChOpen;
+    AssertEquals('free again after close', res_Ok, Second^.ChResult);
+  finally
+    Dispose(Second, Done);
+  end;
+end;
+
+procedure TTestChnComPty.TestDeviceLostThenReopen;
+var
+  B: array[0..2] of Byte;
+  T0: QWord;
+begin
+  AssertEquals('open', res_Ok, OpenCom(''));
+  B[0] := 1; B[1] := 2; B[2] := 3;
+  AssertTrue('master write', FPty.MasterWriteAll(B, 3, 1000));
+  AssertEquals('3 bytes before the loss', 3, ChnReceiveAll(@B, 3, 2000));
+  FPty.CloseMaster;                 { the USB adapter is pulled }
+  FChn^.ChReceiveReady;             { the next tick notices }
+  AssertEquals('ChResult', res_DeviceLost, FChn^.ChResult);
+  AssertEquals('ChReceiveResult', res_DeviceLost, FChn^.ChReceiveResult);
+  FChn^.ChSend(@B, 3);
+  AssertEquals('ChSendResult', res_DeviceLost, FChn^.ChSendResult);
+  AssertEquals('still open until the application closes', CHS_Connect, FChn^.ChReady);
+  { a lost device must not turn a polling loop into a busy loop or a hang }
+  T0 := GetTickCount64;
+  AssertEquals('nothing to receive', CHS_Receiving, FChn^.ChReceiveReady);
+  AssertTrue('poll returns', GetTickCount64 - T0 < 100);
+  FChn^.ChClose;
+  AssertEquals('close', res_Ok, FChn^.ChResult);
+  AssertEquals('closed', CHS_Close, FChn^.ChReady);
+  { the adapter comes back (here: a new pty) }
+  FPty.Free;
+  FPty := TPtyPair.Create;
+  FChn^.ChSetParam('DEV=' + FPty.SlavePath);
+  FChn^.ChOpen;
+  AssertEquals('reopen', res_Ok, FChn^.ChResult);
+  FChn^.ChReceiveBuffer(@FRBuf, SizeOf(FRBuf));
+  FChn^.ChConnect;
+  ExchangeAllByteValues('after reopen');
+end;
+
+procedure TTestChnComPty.TestOverrunReportedWithoutFlowControl;
+var
+  Flood: array[0..999] of Byte;
+  I: Integer;
+  Len: Word;
+begin
+  AssertEquals('open', res_Ok, OpenCom('LRB=64 FLW=NONE IDL=0'));
+  for I := 0 to High(Flood) do
+    Flood[I] := Pattern(I);
+  AssertTrue('flood', FPty.MasterWriteAll(Flood, 1000, 1000));
+  Sleep(100);                       { let the kernel deliver all of it }
+  AssertEquals('ready', CHS_ReceiveReady, FChn^.ChReceiveReady);
+  Len := 0;
+  FChn^.ChReceive(Len);
+  AssertEquals('overrun reported', res_Overrun, FChn^.ChReceiveResult);
+  AssertEquals('the kept bytes: LRB of them', 64, Len);
+  for I := 0 to 63 do
+    AssertEquals('kept byte ' + IntToStr(I), Pattern(I), FRBuf[I]);
+  AssertEquals('lost bytes counted', 936, Com^.ChLostBytes);
+  { reported once; later data is fine }
+  Flood[0] := $AA; Flood[1] := $55;
+  AssertTrue('more', FPty.MasterWriteAll(Flood, 2, 1000));
+  AssertEquals('2 new bytes', 2, ChnReceiveAll(@Flood[10], 2, 2000));
+  AssertEquals('first new', $AA, Flood[10]);
+  AssertEquals('second new', $55, Flood[11]);
+end;
+
+procedure TTestChnComPty.TestFlowControlPausesInsteadOfDropping;
+var
+  Flood, Back: array[0..9999] of Byte;
+  I: Integer;
+begin
+  AssertEquals('open', res_Ok, OpenCom('LRB=64 FLW=RTSCTS IDL=0'));
+  for I := 0 to High(Flood) do
+    Flood[I] := Pattern(I);
+  AssertTrue('flood', FPty.MasterWriteAll(Flood, SizeOf(Flood), 1000));
+  Sleep(100);
+  FillChar(Back, SizeOf(Back), 0);
+  AssertEquals('everything arrives', SizeOf(Flood), ChnReceiveAll(@Back, SizeOf(Back), 5000));
+  for I := 0 to High(Flood) do
+    AssertEquals('byte ' + IntToStr(I), Flood[I], Back[I]);
+  AssertEquals('nothing lost', 0, Com^.ChLostBytes);
+end;
+
+procedure TTestChnComPty.TestRs485RefusedOnPty;
+begin
+  { a pty has neither RS-485 support nor an RTS line: every mode that needs
+    one is refused instead of silently sending without direction control }
+  AssertEquals('KERNEL', res_BadSetting, OpenCom('RS485=KERNEL'));
+  AssertEquals('KERNEL closed', CHS_Close, FChn^.ChReady);
+  AssertEquals('RTS', res_BadSetting, OpenCom('RS485=RTS'));
+  AssertEquals('RTS closed', CHS_Close, FChn^.ChReady);
+  AssertEquals('AUTO', res_BadSetting, OpenCom('RS485=AUTO'));
+  AssertEquals('OFF opens', res_Ok, OpenCom('RS485=OFF'));
+end;
+
+type
+  TDelayedWriter = class(TThread)
+    Pty: TPtyPair;
+    DelayMs: Integer;
+    WrittenAt: QWord;
+    procedure Execute; override;
+  end;
+
+procedure TDelayedWriter.Execute;
+var
+  B: Byte;
+begin
+  Sleep(DelayMs);
+  B := $42;
+  WrittenAt := GetTickCount64;
+  Pty.MasterWrite(B, 1);
+end;
+
+procedure TTestChnComPty.TestIdleWaitReturnsOnFirstByte;
+var
+  T0, Took: QWord;
+  W: TDelayedWriter;
+  St: tChState;
+begin
+  AssertEquals('open', res_Ok, OpenCom('IDL=400'));
+  { no input: one poll waits about IDL }
+  T0 := GetTickCount64;
+  AssertEquals('nothing', CHS_Receiving, FChn^.ChReceiveReady);
+  Took := GetTickCount64 - T0;
+  AssertTrue('waited IDL (' + IntToStr(Took) + ' ms)', (Took >= 350) and (Took < 1000));
+  { a byte after 100 ms ends the wait at once }
+  W := TDelayedWriter.Create(True);
+  try
+    W.Pty := FPty;
+    W.DelayMs := 100;
+    T0 := GetTickCount64;
+    W.Start;
+    St := FChn^.ChReceiveReady;
+    Took := GetTickCount64 - T0;
+    W.WaitFor;
+    AssertEquals('byte seen', CHS_ReceiveReady, St);
+    AssertTrue('returned on the byte (' + IntToStr(Took) + ' ms)', Took < 300);
+  finally
+    W.Free;
+  end;
+  { IDL=0 never waits }
+  AssertEquals('open IDL=0', res_Ok, OpenCom('IDL=0'));
+  T0 := GetTickCount64;
+  AssertEquals('nothing', CHS_Receiving, FChn^.ChReceiveReady);
+  AssertTrue('no wait', GetTickCount64 - T0 < 20);
+end;
+
+procedure TTestChnComPty.TestLegacyPollingLoopCpu;
+var
+  C0, Used, Busy: Double;
+  T0: QWord;
+  St: tChState;
+  Polls: LongInt;
+begin
+  { sanity of the measurement: IDL=0 spins and must show as busy }
+  AssertEquals('open IDL=0', res_Ok, OpenCom('IDL=0'));
+  C0 := CpuMs;
+  T0 := GetTickCount64;
+  repeat
+    St := FChn^.ChReceiveReady;
+  until (St = CHS_ReceiveReady) or (GetTickCount64 - T0 >= 300);
+  Busy := (CpuMs - C0) / 300 * 100;
+  AssertTrue(Format('IDL=0 spins (%.0f %% of a core)', [Busy]), Busy > 10);
+  { the legacy loop: repeat until ChReceiveReady = CHS_ReceiveReady, 2 s,
+    default IDL }
+  AssertEquals('open default IDL', res_Ok, OpenCom(''));
+  Polls := 0;
+  C0 := CpuMs;
+  T0 := GetTickCount64;
+  repeat
+    St := FChn^.ChReceiveReady;
+    Inc(Polls);
+  until (St = CHS_ReceiveReady) or (GetTickCount64 - T0 >= 2000);
+  Used := CpuMs - C0;
+  AssertEquals('no byte came', CHS_Receiving, St);
+  WriteLn(Format('info  COM %s: idle legacy loop used %.1f ms CPU in 2 s (%.2f %% of a core, %d polls)',
+    [Drv, Used, Used / 20, Polls]));
+  AssertTrue(Format('under 5 %% of a core: %.1f ms in 2000 ms', [Used]), Used < 100);
+end;
+
+function TTestChnComRtl.Drv: string;
+begin
+  Result := 'RTL';
+end;
+
+{$IFDEF CHN_SYNAPSE}
+function TTestChnComSynapse.Drv: string;
+begin
+  Result := 'SYNAPSE';
+end;
+{$ENDIF}
+
+{ --------------------------------------------------- fake port, logic tests }
+
+type
+  TFakePort = class(TChnPort)
+  public
+    class var Log: string;
+    class var KernelOk: Boolean;
+    class var RefuseConfig: Boolean;
+    class var Queue: LongInt;        { OutQueue answers this, then -100 }
+    class var RxData: string;
+    class var OsLost: LongWord;
+    function Open(const Path: tWordString): tChResult; override;
+    function Configure(const S: tPortSettings): tChResult; override;
+    function Read(var Buf; Size: LongInt; out Got: LongInt): tChResult; override;
+    function WaitInput(Ms: LongInt): Boolean; override;
+    function WaitOutput(Ms: LongInt): Boolean; override;
+    function Write(const Buf; Len: LongInt; out Done: LongInt): tChResult; override;
+    function OutQueue(out N: LongInt): tChResult; override;
+    function Drain: tChResult; override;
+    function Flush(Input, Output: Boolean): tChResult; override;
+    function SetRts(On: Boolean): tChResult; override;
+    function SetDtr(On: Boolean): tChResult; override;
+    function GetLines(out Lines: tPortLines): tChResult; override;
+    function SetKernelRs485(On: Boolean): tChResult; override;
+    function OsOverruns(out N: LongWord): tChResult; override;
+    function OsHandle: PtrInt; override;
+    procedure Close; override;
+  end;
+
+function TFakePort.Open(const Path: tWordString): tChResult;
+begin
+  FDevice := Path;
+  FOpen := True;
+  Log := Log + 'open ' + Path + ';';
+  Result := res_Ok;
+end;
+
+function TFakePort.Configure(const S: tPortSettings): tChResult;
+begin
+  if RefuseConfig then
+    Exit(res_BadSetting);
+  Log := Log + Format('cfg %d %d%s%d;', [S.Baud, S.DataBits, 'NEOMS'[Ord(S.Parity) + 1], S.StopBits]);
+  Result := res_Ok;
+end;
+
+function TFakePort.Read(var Buf; Size: LongInt; out Got: LongInt): tChResult;
+begin
+  Got := Length(RxData);
+  if Got > Size then
+    Got := Size;
+  if Got > 0 then
+    Move(RxData[1], Buf, Got);
+  Delete(RxData, 1, Got);
+  Result := res_Ok;
+end;
+
+function TFakePort.WaitInput(Ms: LongInt): Boolean;
+begin
+  Result := RxData <> '';
+end;
+
+function TFakePort.WaitOutput(Ms: LongInt): Boolean;
+begin
+  Result := True;
+end;
+
+function TFakePort.Write(const Buf; Len: LongInt; out Done: LongInt): tChResult;
+begin
+  Done := Len;
+  if Done > 100 then
+    Done := 100;
+  Inc(Queue, Done);
+  Log := Log + 'w' + IntToStr(Done) + ';';
+  Result := res_Ok;
+end;
+
+function TFakePort.OutQueue(out N: LongInt): tChResult;
+begin
+  N := Queue;
+  Log := Log + 'q' + IntToStr(N) + ';';
+  Dec(Queue, 100);
+  if Queue < 0 then
+    Queue := 0;
+  Result := res_Ok;
+end;
+
+function TFakePort.Drain: tChResult;
+begin
+  Log := Log + 'drain;';
+  Result := res_Ok;
+end;
+
+function TFakePort.Flush(Input, Output: Boolean): tChResult;
+begin
+  Result := res_Ok;
+end;
+
+function TFakePort.SetRts(On: Boolean): tChResult;
+begin
+  Log := Log + 'rts' + IntToStr(Ord(On)) + ';';
+  Result := res_Ok;
+end;
+
+function TFakePort.SetDtr(On: Boolean): tChResult;
+begin
+  Result := res_Ok;
+end;
+
+function TFakePort.GetLines(out Lines: tPortLines): tChResult;
+begin
+  Lines := [];
+  Result := res_Ok;
+end;
+
+function TFakePort.SetKernelRs485(On: Boolean): tChResult;
+begin
+  if not KernelOk then
+    Exit(res_BadSetting);
+  Log := Log + 'k' + IntToStr(Ord(On)) + ';';
+  Result := res_Ok;
+end;
+
+function TFakePort.OsOverruns(out N: LongWord): tChResult;
+begin
+  N := OsLost;
+  Result := res_Ok;
+end;
+
+function TFakePort.OsHandle: PtrInt;
+begin
+  Result := -1;
+end;
+
+procedure TFakePort.Close;
+begin
+  if FOpen then
+    Log := Log + 'close;';
+  FOpen := False;
+end;
+
+procedure TTestChnComLogic.SetUp;
+begin
+  RegisterPortDriver('FAKE', TFakePort);
+  TFakePort.Log := '';
+  TFakePort.KernelOk := False;
+  TFakePort.RefuseConfig := False;
+  TFakePort.Queue := 0;
+  TFakePort.RxData := '';
+  TFakePort.OsLost := 0;
+end;
+
+procedure TTestChnComLogic.TestDefaultParams;
+var
+  C: pChnVirt;
+begin
+  C := ChnCollection^.ChNewInit('COM');
+  try
+    AssertEquals('defaults of the manual (COM=1 9600 8N1) and the port',
+      'NAM=COM DRV=' + DefaultPortDriver + ' COM=1 BD=9600 BIT=8 STOP=1 PAR=N ' +
+      'FLW=NONE RS485=OFF LRB=4096 LSB=65535 IDL=1', C^.ChGetParam(''));
+  finally
+    Dispose(C, Done);
+  end;
+end;
+
+procedure TTestChnComLogic.TestGetParamRoundTrip;
+const
+  P = 'NAM=COM DRV=FAKE DEV=/dev/serial/by-id/usb-FTDI_FT232R_USB_UART_A50285BI-if00-port0 ' +
+      'BD=19200 BIT=7 STOP=2 PAR=E FLW=RTSCTS RS485=AUTO LRB=1000 LSB=500 IDL=5 IRQ=4 ADR=$3F8';
+var
+  A, B: pChnVirt;
+begin
+  A := ChnCollection^.ChNewInit('COM');
+  B := ChnCollection^.ChNewInit('COM');
+  try
+    A^.ChSetParam(P);
+    AssertEquals('set ' + A^.ChParamError, res_Ok, A^.ChResult);
+    AssertEquals('reported as given', P, A^.ChGetParam(''));
+    B^.ChSetParam(A^.ChGetParam(''));
+    AssertEquals('rebuilt', A^.ChGetParam(''), B^.ChGetParam(''));
+    AssertEquals('one key', 'BD=19200', A^.ChGetParam('BD'));
+  finally
+    Dispose(A, Done);
+    Dispose(B, Done);
+  end;
+end;
+
+procedure TTestChnComLogic.TestBadParamsChangeNothing;
+const
+  Bad: array[0..14] of string = ('BD=49', 'BD=4000001', 'BD=96OO', 'BIT=4', 'BIT=9',
+    'STOP=0', 'STOP=3', 'PAR=X', 'FLW=CTS', 'RS485=YES', 'LRB=0', 'LSB=65536',
+    'IDL=1001', 'COM=0', 'DRV=NOPE');
+var
+  C: pChnVirt;
+  Before: string;
+  I: Integer;
+begin
+  C := ChnCollection^.ChNewInit('COM');
+  try
+    Before := C^.ChGetParam('');
+    for I := Low(Bad) to High(Bad) do
+    begin
+      C^.ChSetParam('IRQ=4 ' + Bad[I]);
+      AssertEquals(Bad[I], res_BadParam, C^.ChResult);
+      AssertEquals(Bad[I] + ' named', Bad[I], C^.ChParamError);
+      AssertEquals(Bad[I] + ' changed nothing', Before, C^.ChGetParam(''));
+    end;
+    C^.ChSetParam('XYZ=1');
+    AssertEquals('unknown key', res_UnknownParam, C^.ChResult);
+    C^.ChSetParam('NAM=DF1');
+    AssertEquals('nothing below a physical layer', res_BadParam, C^.ChResult);
+  finally
+    Dispose(C, Done);
+  end;
+end;
+
+procedure TTestChnComLogic.TestDosKeysAcceptedAndIgnored;
+var
+  C: pChnVirt;
+begin
+  C := ChnCollection^.ChNewInit('COM');
+  try
+    { the manuals' example line, with the port's DEV= added }
+    C^.ChSetParam('NAM=COM COM=1 IRQ=4 BD=9600 BIT=8 STOP=1 PAR=E LRB=1000 DRV=FAKE DEV=/x');
+    AssertEquals('manual example', res_Ok, C^.ChResult);
+    C^.ChOpen;
+    AssertEquals('open', res_Ok, C^.ChResult);
+    AssertEquals('IRQ does not reach the port', 'open /x;cfg 9600 8E1;', TFakePort.Log);
+    AssertEquals('IRQ reported back', 'IRQ=4', C^.ChGetParam('IRQ'));
+    C^.ChClose;
+    C^.ChSetParam('PORT=$2F8');
+    AssertEquals('port address', res_Ok, C^.ChResult);
+    C^.ChSetParam('BASE=3F8h');
+    AssertEquals('base address in any notation', res_Ok, C^.ChResult);
+  finally
+    Dispose(C, Done);
+  end;
+end;
+
+procedure TTestChnComLogic.TestComNumberNamesTtyS;
+var
+  C: pChnVirt;
+begin
+  C := ChnCollection^.ChNewInit('COM');
+  try
+    C^.ChSetParam('DRV=FAKE COM=3');
+    C^.ChOpen;
+    {$IFDEF WINDOWS}
+    AssertEquals('COM3', 'open \\.\COM3;cfg 9600 8N1;', TFakePort.Log);
+    {$ELSE}
+    AssertEquals('COM=3 is the third UART', 'open /dev/ttyS2;cfg 9600 8N1;', TFakePort.Log);
+    {$ENDIF}
+    C^.ChClose;
+    TFakePort.Log := '';
+    C^.ChSetParam('DEV=/dev/ttyUSB0');
+    C^.ChOpen;
+    AssertEquals('DEV overrides COM', 'open /dev/ttyUSB0;cfg 9600 8N1;', TFakePort.Log);
+  finally
+    Dispose(C, Done);
+  end;
+end;
+
+procedure TTestChnComLogic.TestRs485RtsRaisedUntilLastBitLeft;
+var
+  C: pChnVirt;
+  Msg: array[0..249] of Byte;
+begin
+  C := ChnCollection^.ChNewInit('COM');
+  try
+    C^.ChSetParam('DRV=FAKE DEV=/x RS485=RTS IDL=0');
+    C^.ChOpen;
+    AssertEquals('open', res_Ok, C^.ChResult);
+    AssertEquals('receive direction after open', 'open /x;cfg 9600 8N1;rts0;', TFakePort.Log);
+    TFakePort.Log := '';
+    FillChar(Msg, SizeOf(Msg), $55);
+    C^.ChSend(@Msg, SizeOf(Msg));
+    AssertEquals('send', res_Ok, C^.ChSendResult);
+    AssertEquals('RTS before the first byte', 'rts1;w100;w100;w50;q250;', TFakePort.Log);
+    AssertEquals('150 bytes still queued', CHS_Sending, C^.ChSendReady);
+    C^.ChSend(@Msg, 1);               { looks at the queue once more: 50 left }
+    AssertEquals('no new message while RTS is up', res_Busy, C^.ChSendResult);
+    AssertEquals('queue empty, drained, RTS down', CHS_SendReady, C^.ChSendReady);
+    AssertEquals('sequence', 'rts1;w100;w100;w50;q250;q150;q50;q0;drain;rts0;', TFakePort.Log);
+  finally
+    Dispose(C, Done);
+  end;
+end;
+
+procedure TTestChnComLogic.TestRs485AutoPrefersKernel;
+var
+  C: pChnVirt;
+  Msg: array[0..9] of Byte;
+begin
+  TFakePort.KernelOk := True;
+  C := ChnCollection^.ChNewInit('COM');
+  try
+    C^.ChSetParam('DRV=FAKE DEV=/x RS485=AUTO');
+    C^.ChOpen;
+    FillChar(Msg, SizeOf(Msg), 0);
+    C^.ChSend(@Msg, 10);
+    AssertEquals('sent', CHS_SendReady, C^.ChSendReady);
+    AssertEquals('the driver switches, not the layer', 'open /x;cfg 9600 8N1;k1;w10;', TFakePort.Log);
+  finally
+    Dispose(C, Done);
+  end;
+end;
+
+procedure TTestChnComLogic.TestRs485AutoFallsBackToRts;
+var
+  C: pChnVirt;
+  Msg: array[0..9] of Byte;
+begin
+  C := ChnCollection^.ChNewInit('COM');
+  try
+    C^.ChSetParam('DRV=FAKE DEV=/x RS485=AUTO IDL=0');
+    C^.ChOpen;
+    AssertEquals('open', res_Ok, C^.ChResult);
+    FillChar(Msg, SizeOf(Msg), 0);
+    C^.ChSend(@Msg, 10);
+    C^.ChSendReady;
+    AssertEquals('layer toggles RTS', 'open /x;cfg 9600 8N1;rts0;rts1;w10;q10;q0;drain;rts0;',
+      TFakePort.Log);
+    C^.ChSetParam('RS485=KERNEL');
+    C^.ChClose;
+    C^.ChOpen;
+    AssertEquals('KERNEL alone is refused', res_BadSetting, C^.ChResult);
+    AssertEquals('closed', CHS_Close, C^.ChReady);
+    TFakePort.KernelOk := True;
+    C^.ChSetParam('RS485=AUTO FLW=RTSCTS');
+    C^.ChOpen;
+    AssertEquals('RTS is either handshake or direction', res_BadSetting, C^.ChResult);
+    AssertEquals('closed too', CHS_Close, C^.ChReady);
+  finally
+    Dispose(C, Done);
+  end;
+end;
+
+procedure TTestChnComLogic.TestOsOverrunReported;
+var
+  C: pChnVirt;
+  Buf: array[0..15] of Byte;
+  Len: Word;
+begin
+  C := ChnCollection^.ChNewInit('COM');
+  try
+    C^.ChSetParam('DRV=FAKE DEV=/x');
+    C^.ChOpen;
+    C^.ChReceiveBuffer(@Buf, SizeOf(Buf));
+    C^.ChConnect;
+    TFakePort.OsLost := 5;          { the UART lost 5 bytes }
+    TFakePort.RxData := 'abc';
+    AssertEquals('ready', CHS_ReceiveReady, C^.ChReceiveReady);
+    C^.ChReceive(Len);
+    AssertEquals('3 bytes', 3, Len);
+    AssertEquals('overrun', res_Overrun, C^.ChReceiveResult);
+    AssertEquals('counted', 5, pChnCom(C)^.ChLostBytes);
+    TFakePort.RxData := 'd';
+    AssertEquals('ready again', CHS_ReceiveReady, C^.ChReceiveReady);
+    C^.ChReceive(Len);
+    AssertEquals('reported once', res_Ok, C^.ChReceiveResult);
+    AssertEquals('byte', Ord('d'), Buf[0]);
+    { a small application buffer takes the rest on the next call }
+    TFakePort.RxData := StringOfChar('x', 20);
+    C^.ChReceiveReady;
+    C^.ChReceive(Len);
+    AssertEquals('buffer size', 16, Len);
+    AssertEquals('rest waits', CHS_ReceiveReady, C^.ChReceiveReady);
+    C^.ChReceive(Len);
+    AssertEquals('rest', 4, Len);
+    C^.ChReceive(Len);
+    AssertEquals('nothing', 0, Len);
+    AssertEquals('no message', res_NoMessage, C^.ChReceiveResult);
+  finally
+    Dispose(C, Done);
+  end;
+end;
+
+procedure TTestChnComLogic.TestSendErrors;
+var
+  C: pChnVirt;
+  Msg: array[0..99] of Byte;
+begin
+  C := ChnCollection^.ChNewInit('COM');
+  try
+    C^.ChSetParam('DRV=FAKE DEV=/x LSB=50');
+    FillChar(Msg, SizeOf(Msg), 0);
+    C^.ChSend(@Msg, 10);
+    AssertEquals('closed', res_WrongState, C^.ChSendResult);
+    C^.ChOpen;
+    C^.ChSend(@Msg, 0);
+    AssertEquals('empty', res_BadLen, C^.ChSendResult);
+    C^.ChSend(nil, 5);
+    AssertEquals('nil', res_BadLen, C^.ChSendResult);
+    TFakePort.Log := '';
+    C^.ChSend(@Msg, 51);
+    AssertEquals('above LSB', res_TooLong, C^.ChSendResult);
+    AssertEquals('nothing written', '', TFakePort.Log);
+    C^.ChSend(@Msg, 50);
+    AssertEquals('LSB itself', res_Ok, C^.ChSendResult);
+    C^.ChClose;
+    C^.ChClose;
+    AssertEquals('close twice', res_WrongState, C^.ChResult);
+  finally
+    Dispose(C, Done);
+  end;
+end;
+
+procedure TTestChnComLogic.TestSettingRefusedLeavesClosed;
+var
+  C: pChnVirt;
+begin
+  TFakePort.RefuseConfig := True;
+  C := ChnCollection^.ChNewInit('COM');
+  try
+    C^.ChSetParam('DRV=FAKE DEV=/x');
+    C^.ChOpen;
+    AssertEquals('refused', res_BadSetting, C^.ChResult);
+    AssertEquals('closed', CHS_Close, C^.ChReady);
+    AssertEquals('port closed again', 'open /x;close;', TFakePort.Log);
+  finally
+    Dispose(C, Done);
+  end;
+end;
+
+initialization
+  RegisterTest(TTestChnComRtl);
+  {$IFDEF CHN_SYNAPSE}
+  RegisterTest(TTestChnComSynapse);
+  {$ENDIF}
+  RegisterTest(TTestChnComLogic);
+end.

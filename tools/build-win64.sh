@@ -1,0 +1,47 @@
+#!/usr/bin/env bash
+# tools/build-win64.sh - cross-compile the serial layer for win64 on Debian.
+#
+# Not part of "make test". Builds a win64 RTL from Debian's fpc-source
+# (copied to a writable folder outside the repository), then compiles
+# src/ChnPortWin.pas and src/ChnCom.pas (and any program given) against it.
+#   tools/build-win64.sh                  units only
+#   tools/build-win64.sh prog.pas ...     also these programs (.exe in $OUT/bin)
+# Environment: FPCSRC (default /usr/share/fpcsrc/3.2.2), WORK (default
+# /tmp/win64rtl), OUT (default build/win64), SYNAPSE_DIR (also build the
+# Synapse backend for Windows).
+# Needs: apt-get install fpc-source (and wine to run the result).
+set -eu
+FPCSRC=${FPCSRC:-/usr/share/fpcsrc/3.2.2}
+WORK=${WORK:-/tmp/win64rtl}
+OUT=${OUT:-build/win64}
+PPC=${PPC:-ppcx64}
+RTLU="$WORK/units"
+if [ ! -f "$RTLU/system.ppu" ] || [ ! -f "$RTLU/windows.ppu" ]; then
+  [ -d "$FPCSRC/rtl/win64" ] || { echo "no $FPCSRC/rtl/win64: apt-get install fpc-source"; exit 1; }
+  mkdir -p "$WORK" "$RTLU"
+  [ -d "$WORK/rtl" ] || cp -r "$FPCSRC/rtl" "$WORK/rtl"
+  R="$WORK/rtl"
+  INC="-Fi$R/inc -Fi$R/x86_64 -Fi$R/win -Fi$R/win/wininc -Fi$R/win64 -Fi$R/objpas -Fi$R/objpas/sysutils -Fi$R/objpas/classes"
+  UNI="-Fu$R/inc -Fu$R/win -Fu$R/win64 -Fu$R/objpas -Fu$R/x86_64"
+  COMMONF="-Twin64 -Px86_64 -n -v0 -FU$RTLU -FE$RTLU $INC $UNI"
+  LOG="$WORK/rtl-build.log"
+  (cd "$R/win64" && $PPC $COMMONF -Us -Sg system.pp && $PPC $COMMONF -Fu"$RTLU" buildrtl.pp) \
+    >"$LOG" 2>&1 || { tail -n 20 "$LOG"; echo "win64 RTL build failed, see $LOG"; exit 1; }
+fi
+mkdir -p "$OUT/units" "$OUT/bin"
+FLAGS="-Twin64 -Px86_64 -n -v0ew -Sew -O2 -Fu$RTLU -Fusrc -Fisrc -FU$OUT/units -FE$OUT/bin"
+if [ -n "${SYNAPSE_DIR:-}" ]; then
+  # synaser needs registry and winver from the FPC packages; its own
+  # warnings are not ours, so no -Sew for it
+  P="$FPCSRC/packages"
+  $PPC -Twin64 -Px86_64 -n -v0 -Fu"$RTLU" -FU"$OUT/units" \
+    -Fu"$P/winunits-base/src" -Fu"$P/fcl-registry/src" -Fi"$P/fcl-registry/src" \
+    -Fu"$P/fcl-base/src" -Fi"$P/fcl-base/src" -Fu"$P/fcl-xml/src" -Fi"$P/fcl-xml/src" \
+    -Fu"$SYNAPSE_DIR" -Fi"$SYNAPSE_DIR" "$SYNAPSE_DIR/synaser.pas" >/dev/null
+  FLAGS="$FLAGS -Fu$SYNAPSE_DIR -Fi$SYNAPSE_DIR -dCHN_SYNAPSE"
+  $PPC $FLAGS src/ChnPortSynapse.pas
+fi
+$PPC $FLAGS src/ChnPortWin.pas
+$PPC $FLAGS src/ChnCom.pas
+for p in "$@"; do $PPC $FLAGS "$p"; done
+echo "win64 build ok: $OUT"
