@@ -38,33 +38,17 @@ type
 implementation
 
 uses
-  SysUtils, TermIO;
-
-const
-  TIOCSPTLCK = $40045431;   { _IOW('T', 0x31, int) }
-  TIOCGPTN   = $80045430;   { _IOR('T', 0x30, unsigned int) }
+  SysUtils, ChnPty;
 
 constructor TPtyPair.Create;
 var
-  Unlock: cint;
-  N: cuint;
-  T: Termios;
+  Err: cint;
 begin
   inherited Create;
-  FMaster := FpOpen('/dev/ptmx', O_RDWR or O_NOCTTY or O_NONBLOCK);
-  if FMaster < 0 then
-    raise Exception.CreateFmt('cannot open /dev/ptmx (errno %d)', [FpGetErrno]);
-  Unlock := 0;
-  N := 0;
-  if (FpIOCtl(FMaster, TIOCSPTLCK, @Unlock) <> 0) or
-     (FpIOCtl(FMaster, TIOCGPTN, @N) <> 0) then
-    raise Exception.CreateFmt('cannot unlock pty (errno %d)', [FpGetErrno]);
-  FSlavePath := '/dev/pts/' + IntToStr(N);
-  if TCGetAttr(FMaster, T) = 0 then
-  begin
-    CFMakeRaw(T);
-    TCSetAttr(FMaster, TCSANOW, T);
-  end;
+  { the pair itself comes from src/ChnPty, shared with tools/df1sim --pty }
+  Err := PtyCreate(FMaster, FSlavePath);
+  if Err <> 0 then
+    raise Exception.CreateFmt('cannot create a pty pair (errno %d)', [Err]);
 end;
 
 destructor TPtyPair.Destroy;

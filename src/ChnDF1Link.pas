@@ -1,0 +1,332 @@
+{ ChnDF1Link - the DF1 link dialogue that SofCon's ChnDF1 leaves to the
+  application (manual section 5; Rockwell 1770-6.5.16 chapters 2-4), for
+  both ends, on top of any tChnDF1 channel:
+
+  * tDF1Station, a slave/responder: full duplex - ACK a good command, NAK a
+    broken frame, repeat the last ACK/NAK on ENQ, send the reply and send it
+    again on a NAK of it; half duplex - ACK, keep the reply for the
+    master's poll, EOT when there is nothing to send, and stay silent on a
+    broken frame (a half-duplex slave never NAKs). Commands are answered by
+    ChnSlc.SlcHandle from a tSlcTable.
+  * DF1Transact, a master: send a command, up to three tries (NAK or
+    no answer -> again; full duplex asks with ENQ first), then wait for the
+    reply (half duplex: poll for it), ACK it.
+
+  Both poll the channel; nothing blocks for longer than the timeouts given.
+  A caller that runs both ends in one thread (tests over NAM=LOOP) passes
+  an Idle procedure that steps the other end while one waits. }
+unit ChnDF1Link;
+
+{$I chn.inc}
+{$H+}
+
+interface
+
+uses
+  ChnTypes, ChnVirt, ChnDF1, ChnSlc;
+
+const
+  DF1LinkTimeoutMs = 1000;   { the RACOM note's link timeout }
+  DF1LinkTries     = 3;
+
+type
+  tDF1Idle = procedure(Data: Pointer);
+  tDF1LogProc = procedure(const Line: string);
+
+  pDF1Station = ^tDF1Station;
+  tDF1Station = record
+    Chn      : pChnVirt;
+    Table    : pSlcTable;
+    FullDup  : Boolean;
+    RMess    : tRecRecord;
+    Reply    : tSendRecord;
+    ReplyLen : Word;
+    HasReply : Boolean;       { a reply not yet ACKed by the master }
+    AwaitAck : Boolean;       { half duplex: the reply just went out }
+    LastLink : tSendRecord;   { last ACK/NAK sent, repeated on ENQ }
+    Requests : LongInt;       { commands answered }
+    Messages : LongInt;       { messages taken, good or broken }
+    Log      : tDF1LogProc;   { nil: quiet }
+  end;
+
+procedure DF1StationInit(var S: tDF1Station; Chn: pChnVirt; Table: pSlcTable);
+{ Take at most one message and act on it; False when none was waiting. }
+function DF1StationStep(var S: tDF1Station): Boolean;
+
+{ One command/reply exchange as a master. Req/ReqLen the command; the reply
+  goes to Rep (RepLen). Results: res_Ok; res_Timeout (no ACK after the
+  tries, or no reply); res_BadMessage (a reply with another TNS or
+  command); a send error of the channel. Idle may be nil. }
+function DF1Transact(Chn: pChnVirt; constref Req: tSendRecord; ReqLen: Word;
+  var Rep: tRecRecord; var RepLen: Word; Idle: tDF1Idle; IdleData: Pointer;
+  TimeoutMs: LongInt): tChResult;
+
+{ One line describing a record, for logs. }
+function DF1Describe(const R: tRecRecord; Len: Word): string;
+
+implementation
+
+uses
+  SysUtils;
+
+function HexOf(P: PByte; Len: Integer): string;
+var
+  I: Integer;
+begin
+  Result := '';
+  for I := 0 to Len - 1 do
+  begin
+    if I > 0 then
+      Result := Result + ' ';
+    Result := Result + IntToHex(P[I], 2);
+  end;
+end;
+
+function DF1Describe(const R: tRecRecord; Len: Word): string;
+var
+  Name: string;
+begin
+  case R.MessType of
+    tpAckNak:
+      if R.FlAck then
+        Result := 'ACK'
+      else
+        Result := 'NAK';
+    tpEnq: Result := 'ENQ';
+    tpPoll: Result := 'poll';
+    tpNoPollRep: Result := 'EOT';
+    tpDataMess:
+      begin
+        Name := SlcCommandName(Hi(R.CF), Lo(R.CF));
+        if Name = '' then
+          Name := 'CF=$' + IntToHex(R.CF, 4);
+        if R.CF and MskCF_Reply <> 0 then
+          Name := 'reply to ' + Name;
+        Result := Format('%s STS=$%.2x TNS=%d', [Name, R.Sts, R.Tns]);
+        if Len > 8 then
+          Result := Result + ' data: ' + HexOf(@R.Data[0], Len - 8);
+      end;
+  else
+    Result := '?';
+  end;
+end;
+
+{ Send once the transmitter is free (bounded wait). }
+function SendNow(Chn: pChnVirt; constref R: tSendRecord; Len: Word): tChResult;
+var
+  Deadline: QWord;
+begin
+  Deadline := ChMsTick + DF1LinkTimeoutMs;
+  while Chn^.ChSendReady <> CHS_SendReady do
+  begin
+    if Chn^.ChResult <> res_Ok then
+      Exit(Chn^.ChResult);
+    if ChMsTick > Deadline then
+      Exit(res_Timeout);
+  end;
+  Chn^.ChSend(@R, Len);
+  Result := Chn^.ChSendResult;
+end;
+
+{ ------------------------------------------------------------- station }
+
+procedure DF1StationInit(var S: tDF1Station; Chn: pChnVirt; Table: pSlcTable);
+begin
+  FillChar(S, SizeOf(S), 0);
+  S.Chn := Chn;
+  S.Table := Table;
+  S.FullDup := pChnDF1(Chn)^.CH_FullDup;
+  S.LastLink.MessType := tpAckNak;
+  S.LastLink.FlAck := False;    { ENQ before anything: NAK }
+  Chn^.ChReceiveBuffer(@S.RMess, SizeOf(S.RMess));
+end;
+
+procedure Say(var S: tDF1Station; const Line: string);
+begin
+  if Assigned(S.Log) then
+    S.Log(Line);
+end;
+
+procedure StationSend(var S: tDF1Station; constref R: tSendRecord; Len: Word);
+var
+  Res: tChResult;
+begin
+  Res := SendNow(S.Chn, R, Len);
+  if Res = res_Ok then
+  begin
+    Inc(S.Table^.Diag[dgFramesOut]);
+    Say(S, '-> ' + DF1Describe(R, Len));
+  end
+  else
+    Say(S, '-> send failed: ' + S.Chn^.ChResultStr(Res));
+end;
+
+procedure SendLink(var S: tDF1Station; Ack: Boolean);
+begin
+  FillChar(S.LastLink, SizeOf(S.LastLink), 0);
+  S.LastLink.MessType := tpAckNak;
+  S.LastLink.FlAck := Ack;
+  StationSend(S, S.LastLink, 2);
+end;
+
+function DF1StationStep(var S: tDF1Station): Boolean;
+var
+  Len: Word;
+  R: tChResult;
+  Eot: tSendRecord;
+begin
+  Result := False;
+  if S.Chn^.ChReceiveReady <> CHS_ReceiveReady then
+    Exit;
+  Result := True;
+  Inc(S.Messages);
+  Len := 0;
+  S.Chn^.ChReceive(Len);
+  R := S.Chn^.ChReceiveResult;
+  if R <> res_Ok then
+  begin
+    Say(S, '<- broken frame: ' + S.Chn^.ChResultStr(R));
+    if S.FullDup then
+    begin
+      Inc(S.Table^.Diag[dgNaksOut]);
+      SendLink(S, False);
+    end;
+    Exit;
+  end;
+  Say(S, '<- ' + DF1Describe(S.RMess, Len));
+  case S.RMess.MessType of
+    tpAckNak:
+      begin
+        if not S.RMess.FlAck then
+          Inc(S.Table^.Diag[dgNaksIn]);
+        if S.HasReply and (S.FullDup or S.AwaitAck) then
+          if S.RMess.FlAck then
+            S.HasReply := False            { the master has the reply }
+          else if S.FullDup then
+            StationSend(S, S.Reply, S.ReplyLen);
+        { half duplex NAK: the reply waits for the next poll }
+        S.AwaitAck := False;
+      end;
+    tpEnq:
+      begin
+        Inc(S.Table^.Diag[dgEnqsIn]);
+        StationSend(S, S.LastLink, 2);
+      end;
+    tpPoll:
+      if S.HasReply then
+      begin
+        StationSend(S, S.Reply, S.ReplyLen);
+        S.AwaitAck := True;
+      end
+      else
+      begin
+        FillChar(Eot, SizeOf(Eot), 0);
+        Eot.MessType := tpNoPollRep;
+        StationSend(S, Eot, 1);
+      end;
+    tpDataMess:
+      begin
+        Inc(S.Table^.Diag[dgFramesIn]);
+        SendLink(S, True);
+        if SlcHandle(S.Table^, S.RMess, Len, S.Reply, S.ReplyLen) then
+        begin
+          Inc(S.Requests);
+          S.HasReply := True;
+          S.AwaitAck := False;
+          if S.FullDup then
+            StationSend(S, S.Reply, S.ReplyLen);
+        end;
+      end;
+  end;
+end;
+
+{ -------------------------------------------------------------- master }
+
+function DF1Transact(Chn: pChnVirt; constref Req: tSendRecord; ReqLen: Word;
+  var Rep: tRecRecord; var RepLen: Word; Idle: tDF1Idle; IdleData: Pointer;
+  TimeoutMs: LongInt): tChResult;
+var
+  Link: tSendRecord;
+  Tries: Integer;
+  FullDup, Acked, Got: Boolean;
+  Deadline: QWord;
+
+  { wait up to Ms for a message; Got = a good one is in Rep }
+  function Next(Ms: LongInt): Boolean;
+  var
+    Until_: QWord;
+  begin
+    Got := False;
+    Result := False;
+    Until_ := ChMsTick + QWord(Ms);
+    repeat
+      if Assigned(Idle) then
+        Idle(IdleData);
+      if Chn^.ChReceiveReady = CHS_ReceiveReady then
+      begin
+        RepLen := 0;
+        Chn^.ChReceive(RepLen);
+        Got := Chn^.ChReceiveResult = res_Ok;
+        Exit(True);
+      end;
+      if Chn^.ChResult <> res_Ok then
+        Exit;
+      if not Assigned(Idle) then
+        Sleep(1);
+    until ChMsTick > Until_;
+  end;
+
+begin
+  FullDup := pChnDF1(Chn)^.CH_FullDup;
+  Chn^.ChReceiveBuffer(@Rep, SizeOf(Rep));
+  FillChar(Link, SizeOf(Link), 0);
+  Acked := False;
+  Got := False;
+  Tries := 0;
+  while not Acked and (Tries < DF1LinkTries) do
+  begin
+    Inc(Tries);
+    Result := SendNow(Chn, Req, ReqLen);
+    if Result <> res_Ok then
+      Exit;
+    if not Next(TimeoutMs) and FullDup then
+    begin
+      Link.MessType := tpEnq;
+      Result := SendNow(Chn, Link, 1);
+      if Result <> res_Ok then
+        Exit;
+      Next(TimeoutMs);
+    end;
+    if Got and (Rep.MessType = tpAckNak) then
+      Acked := Rep.FlAck
+    else if Got and (Rep.MessType = tpDataMess) then
+      Acked := True;               { the reply overtook the ACK }
+  end;
+  if not Acked then
+    Exit(res_Timeout);
+  Deadline := ChMsTick + QWord(3 * TimeoutMs);
+  while not (Got and (Rep.MessType = tpDataMess)) do
+  begin
+    if ChMsTick > Deadline then
+      Exit(res_Timeout);
+    if FullDup then
+      Next(TimeoutMs)
+    else
+    begin
+      Link.MessType := tpPoll;     { half duplex: the slave speaks when polled }
+      Result := SendNow(Chn, Link, 1);
+      if Result <> res_Ok then
+        Exit;
+      Next(TimeoutMs);
+    end;
+  end;
+  Link.MessType := tpAckNak;
+  Link.FlAck := True;
+  Result := SendNow(Chn, Link, 2);
+  if Result <> res_Ok then
+    Exit;
+  if (Rep.CF and $FF00 <> (Req.CF and $FF00) or MskCF_Reply) or (Rep.Tns <> Req.Tns) then
+    Result := res_BadMessage;
+end;
+
+end.

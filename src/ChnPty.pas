@@ -1,0 +1,115 @@
+{ ChnPty - pseudo-terminal pairs (Unix only): a serial line on one machine
+  with no hardware and no root.
+
+  PtyCreate opens /dev/ptmx, unlocks the slave side and returns its path
+  (/dev/pts/N): a program opens that path with NAM=COM DEV=/dev/pts/N as if
+  it were a serial port, while the creator talks through the master side.
+
+  The port driver 'PTY' (NAM=COM DRV=PTY) makes tChnCom itself the master
+  side of a new pair: DEV= and COM= are ignored, the pair is created on
+  ChOpen and gone on ChClose (closing the master hangs the slave up). The
+  slave path is TChnPortPty(CH_Port).SlavePath, also kept in PtyLastSlave.
+  Line settings on a pty master are accepted and mean nothing, as on any
+  pty. tools/df1sim --pty and tests/support/PtyPair use this unit. }
+unit ChnPty;
+
+{$I chn.inc}
+{$H+}
+
+interface
+
+uses
+  BaseUnix, ChnTypes, ChnPort, ChnPortUnix;
+
+const
+  PtyDriver = 'PTY';
+
+type
+  TChnPortPty = class(TChnPortUnix)
+  private
+    FSlavePath: string;
+  public
+    { Creates a new pair; Path is ignored. }
+    function Open(const Path: tWordString): tChResult; override;
+    property SlavePath: string read FSlavePath;
+  end;
+
+{ Make the master side Fd (already open on /dev/ptmx) usable: unlock the
+  slave and return its path. 0 or the errno of the failing call. }
+function PtyUnlock(Fd: cint; out SlavePath: string): cint;
+
+{ A new pair: master opened read/write, non-blocking, raw; 0 or an errno
+  (then Fd = -1). }
+function PtyCreate(out Fd: cint; out SlavePath: string): cint;
+
+var
+  PtyLastSlave: string = '';   { slave path of the last TChnPortPty opened }
+
+implementation
+
+uses
+  SysUtils, TermIO;
+
+const
+  TIOCSPTLCK = $40045431;   { _IOW('T', 0x31, int) }
+  TIOCGPTN   = $80045430;   { _IOR('T', 0x30, unsigned int) }
+
+function PtyUnlock(Fd: cint; out SlavePath: string): cint;
+var
+  Unlock: cint;
+  N: cuint;
+begin
+  SlavePath := '';
+  Unlock := 0;
+  N := 0;
+  if (FpIOCtl(Fd, TIOCSPTLCK, @Unlock) <> 0) or
+     (FpIOCtl(Fd, TIOCGPTN, @N) <> 0) then
+    Exit(FpGetErrno);
+  SlavePath := '/dev/pts/' + IntToStr(N);
+  Result := 0;
+end;
+
+function PtyCreate(out Fd: cint; out SlavePath: string): cint;
+var
+  T: Termios;
+begin
+  SlavePath := '';
+  Fd := FpOpen('/dev/ptmx', O_RDWR or O_NOCTTY or O_NONBLOCK);
+  if Fd < 0 then
+    Exit(FpGetErrno);
+  Result := PtyUnlock(Fd, SlavePath);
+  if Result <> 0 then
+  begin
+    FpClose(Fd);
+    Fd := -1;
+    Exit;
+  end;
+  if TCGetAttr(Fd, T) = 0 then
+  begin
+    CFMakeRaw(T);
+    TCSetAttr(Fd, TCSANOW, T);
+  end;
+end;
+
+function TChnPortPty.Open(const Path: tWordString): tChResult;
+var
+  Err: cint;
+begin
+  FSlavePath := '';
+  { the termios backend opens, locks and makes the master raw }
+  Result := inherited Open('/dev/ptmx');
+  if Result <> res_Ok then
+    Exit;
+  Err := PtyUnlock(OsHandle, FSlavePath);
+  if Err <> 0 then
+  begin
+    FOSError := Err;
+    Close;
+    Exit(res_CannotOpen);
+  end;
+  PtyLastSlave := FSlavePath;
+end;
+
+initialization
+  RegisterPortDriver(PtyDriver, TChnPortPty);
+end.
