@@ -21,9 +21,9 @@ program df1echo;
 
 uses
   {$IFDEF UNIX}cthreads,{$ENDIF}
-  SysUtils, uString, ChnTypes, ChnVirt, ChnLoop, ChnDF1;
-  { add ChnCom to this list once the COM layer exists: units register
-    their layer names when they are linked in }
+  SysUtils, uString, ChnTypes, ChnVirt, ChnLoop, ChnCom, ChnTrc, ChnDF1;
+  { units register their layer names when they are linked in: LOOP, COM,
+    TRC and DF1 can be named in the parameter string }
 
 {$I df1common.inc}
 

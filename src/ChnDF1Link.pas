@@ -97,11 +97,14 @@ begin
     tpNoPollRep: Result := 'EOT';
     tpDataMess:
       begin
-        Name := SlcCommandName(Hi(R.CF), Lo(R.CF));
-        if Name = '' then
-          Name := 'CF=$' + IntToHex(R.CF, 4);
         if R.CF and MskCF_Reply <> 0 then
-          Name := 'reply to ' + Name;
+          Name := 'reply CMD=$' + IntToHex(Hi(R.CF), 2)   { replies carry no FNC }
+        else
+        begin
+          Name := SlcCommandName(Hi(R.CF), Lo(R.CF));
+          if Name = '' then
+            Name := 'CF=$' + IntToHex(R.CF, 4);
+        end;
         Result := Format('%s STS=$%.2x TNS=%d', [Name, R.Sts, R.Tns]);
         if Len > 8 then
           Result := Result + ' data: ' + HexOf(@R.Data[0], Len - 8);

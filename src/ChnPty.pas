@@ -10,7 +10,9 @@
   ChOpen and gone on ChClose (closing the master hangs the slave up). The
   slave path is TChnPortPty(CH_Port).SlavePath, also kept in PtyLastSlave.
   Line settings on a pty master are accepted and mean nothing, as on any
-  pty. tools/df1sim --pty and tests/support/PtyPair use this unit. }
+  pty. While no program has the slave open (before the first one, between
+  two), the master reads nothing and bytes written to it are dropped, as
+  on a line with nothing attached: a simulator outlives its clients. tools/df1sim --pty and tests/support/PtyPair use this unit. }
 unit ChnPty;
 
 {$I chn.inc}
@@ -31,6 +33,10 @@ type
   public
     { Creates a new pair; Path is ignored. }
     function Open(const Path: tWordString): tChResult; override;
+    { No program on the slave side (never opened, or closed again) is an
+      idle line here, not a lost device: a simulator outlives its clients. }
+    function Read(var Buf; Size: LongInt; out Got: LongInt): tChResult; override;
+    function Write(const Buf; Len: LongInt; out Done: LongInt): tChResult; override;
     property SlavePath: string read FSlavePath;
   end;
 
@@ -108,6 +114,28 @@ begin
     Exit(res_CannotOpen);
   end;
   PtyLastSlave := FSlavePath;
+end;
+
+function TChnPortPty.Read(var Buf; Size: LongInt; out Got: LongInt): tChResult;
+begin
+  Result := inherited Read(Buf, Size, Got);
+  if (Result = res_DeviceLost) and (FOSError = ESysEIO) then
+  begin
+    FOSError := 0;
+    Got := 0;
+    Result := res_Ok;
+  end;
+end;
+
+function TChnPortPty.Write(const Buf; Len: LongInt; out Done: LongInt): tChResult;
+begin
+  Result := inherited Write(Buf, Len, Done);
+  if (Result = res_DeviceLost) and (FOSError = ESysEIO) then
+  begin
+    FOSError := 0;
+    Done := Len;             { nobody listens: the bytes are gone }
+    Result := res_Ok;
+  end;
 end;
 
 initialization

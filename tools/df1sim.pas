@@ -1,0 +1,265 @@
+{ df1sim - a DF1 slave that behaves like an Allen-Bradley SLC 5/0x, on a
+  serial port or on a pseudo terminal it creates itself. Built on the
+  library: tChnDF1 (NAM=DF1) over tChnCom (NAM=COM), the link dialogue of
+  unit ChnDF1Link and the data table / command handler of unit ChnSlc.
+  See docs/df1sim.md.
+
+    df1sim [options] [parameter string]
+      --pty             create a pty pair; the first line on standard output
+                        is "PTY /dev/pts/N", the device to connect to
+      --dev=PATH        serial device (NAM=COM DEV=PATH), default /dev/ttyS0
+      --bd=N            baud rate (default 19200), --par=N|E|O (default N)
+      --half            half duplex (default full duplex)
+      --bcc | --crc     checksum (default CRC)
+      --node=N          station address (default 1); --dno=N peer (default 0)
+      --config=FILE     data table (tools/df1sim.conf); default: built in
+      --count=N         exit after answering N commands
+      --timeout=S       exit after S seconds without a message
+      --quiet           no per-message log
+    A parameter string given instead of the options ('NAM=DF1 MAS=SLAVE
+    ... NAM=COM DEV=/dev/ttyUSB0 BD=9600 PAR=E') is used as it is.
+
+  SIGINT and SIGTERM end it cleanly: the port is closed (a pty it created
+  disappears), nothing else is touched. Exit code 0, 1 on a setup error. }
+program df1sim;
+
+{$MODE OBJFPC}{$H+}
+
+uses
+  {$IFDEF UNIX}BaseUnix, ChnPty,{$ENDIF}
+  SysUtils, Classes, uString, ChnTypes, ChnVirt, ChnCom, ChnTrc, ChnDF1,
+  ChnSlc, ChnDF1Link;
+
+const
+  DefaultConfig =
+    'S2 32'#10 +
+    'B3 8'#10'B3:0 = $0001 $8000 $00FF'#10 +
+    'N7 50'#10'N7:0 = 0 10 20 30 40 50 60 70 80 90'#10 +
+    'F8 10'#10'F8:0 = 1.5 -2.25 3.14159 1000000'#10 +
+    'N9 64'#10'CIF 9'#10;
+  LingerMs = 1000;   { after the last counted command: time for the master's ACK }
+
+var
+  Stop: Boolean = False;
+  Quiet: Boolean = False;
+
+{$IFDEF UNIX}
+procedure OnSignal(Sig: cint); cdecl;
+begin
+  Stop := True;
+end;
+
+procedure CatchSignals;
+var
+  Act: SigActionRec;
+begin
+  FillChar(Act, SizeOf(Act), 0);
+  Act.sa_handler := SigActionHandler(@OnSignal);
+  FpSigAction(SIGINT, @Act, nil);
+  FpSigAction(SIGTERM, @Act, nil);
+end;
+{$ENDIF}
+
+procedure LogLine(const Line: string);
+begin
+  if Quiet then
+    Exit;
+  WriteLn(FormatDateTime('hh:nn:ss.zzz', Now), ' ', Line);
+  Flush(Output);
+end;
+
+procedure Die(const Why: string);
+begin
+  WriteLn(StdErr, 'df1sim: ', Why);
+  Halt(1);
+end;
+
+function NumArg(const Name, Value: string; Min, Max: LongInt): LongInt;
+begin
+  Result := 0;
+  if not StrToNum(Value, Min, Max, Result) then
+    Die(Format('%s wants a number %d..%d', [Name, Min, Max]));
+end;
+
+function LoadFile(const Name: string): AnsiString;
+var
+  S: TFileStream;
+begin
+  Result := '';
+  try
+    S := TFileStream.Create(Name, fmOpenRead or fmShareDenyNone);
+    try
+      SetLength(Result, S.Size);
+      if S.Size > 0 then
+        S.ReadBuffer(Result[1], S.Size);
+    finally
+      S.Free;
+    end;
+  except
+    on E: Exception do
+      Die(Name + ': ' + E.Message);
+  end;
+end;
+
+var
+  Table: tSlcTable;
+  Station: tDF1Station;
+  Chn: pChnVirt;
+  Params, Arg, Key, Value, Dev, Par, ConfigName, Err: string;
+  ConfigText: AnsiString;
+  UsePty, Half, Crc: Boolean;
+  Node, DNo, Bd, Count, TimeoutS, I, ErrLine: LongInt;
+  LastMsg, CountReached: QWord;
+  Deadline: QWord;
+
+begin
+  Params := '';
+  Dev := '/dev/ttyS0';
+  Par := 'N';
+  ConfigName := '';
+  UsePty := False;
+  Half := False;
+  Crc := True;
+  Node := 1;
+  DNo := 0;
+  Bd := 19200;
+  Count := 0;
+  TimeoutS := 0;
+  I := 1;
+  while I <= ParamCount do
+  begin
+    Arg := ParamStr(I);
+    Inc(I);
+    if Copy(Arg, 1, 2) <> '--' then
+    begin
+      Params := Trim(Params + ' ' + Arg);
+      Continue;
+    end;
+    Key := Arg;
+    Value := '';
+    if Pos('=', Arg) > 0 then
+    begin
+      Key := Copy(Arg, 1, Pos('=', Arg) - 1);
+      Value := Copy(Arg, Pos('=', Arg) + 1, MaxInt);
+    end
+    else if ((Key = '--count') or (Key = '--timeout') or (Key = '--config') or
+             (Key = '--dev') or (Key = '--node') or (Key = '--dno') or
+             (Key = '--bd') or (Key = '--par')) and (I <= ParamCount) then
+    begin
+      Value := ParamStr(I);         { "--count 3" as well as "--count=3" }
+      Inc(I);
+    end;
+    if Key = '--pty' then UsePty := True
+    else if Key = '--half' then Half := True
+    else if Key = '--full' then Half := False
+    else if Key = '--bcc' then Crc := False
+    else if Key = '--crc' then Crc := True
+    else if Key = '--quiet' then Quiet := True
+    else if Key = '--dev' then Dev := Value
+    else if Key = '--par' then Par := Value
+    else if Key = '--bd' then Bd := NumArg(Key, Value, 50, 4000000)
+    else if Key = '--node' then Node := NumArg(Key, Value, 0, 254)
+    else if Key = '--dno' then DNo := NumArg(Key, Value, 0, 254)
+    else if Key = '--count' then Count := NumArg(Key, Value, 1, MaxLongInt)
+    else if Key = '--timeout' then TimeoutS := NumArg(Key, Value, 1, 86400)
+    else if Key = '--config' then ConfigName := Value
+    else
+      Die('unknown option ' + Arg + ' (see docs/df1sim.md)');
+  end;
+
+  if ConfigName <> '' then
+    ConfigText := LoadFile(ConfigName)
+  else
+    ConfigText := DefaultConfig;
+  if not SlcLoadConfig(Table, ConfigText, ErrLine, Err) then
+    Die(Format('%s line %d: %s', [ConfigName, ErrLine, Err]));
+
+  if Params = '' then
+  begin
+    Params := Format('NAM=DF1 MAS=SLAVE NOD=%d DNO=%d', [Node, DNo]);
+    if Half then
+      Params := Params + ' FHD=HALF'
+    else
+      Params := Params + ' FHD=FULL';
+    if Crc then
+      Params := Params + ' CRC=ON'
+    else
+      Params := Params + ' CRC=OFF';
+    if UsePty then
+      Params := Params + ' NAM=COM DRV=PTY'
+    else
+      Params := Params + Format(' NAM=COM DEV=%s BD=%d PAR=%s', [Dev, Bd, Par]);
+  end
+  else if UsePty and (Pos('DRV=PTY', UpperCase(Params)) = 0) then
+    Die('--pty with a parameter string: put NAM=COM DRV=PTY in it');
+
+  Chn := ChnCollection^.ChNewInit(ChnDF1.cName);
+  Chn^.ChSetParam(Params);
+  if Chn^.ChResult <> res_Ok then
+  begin
+    Err := Chn^.ChResultStr(Chn^.ChResult) + ' ' + Chn^.ChParamError;
+    Dispose(Chn, Done);
+    Die('parameters "' + Params + '": ' + Err);
+  end;
+  Chn^.ChOpen;
+  Deadline := ChMsTick + 3000;
+  while (Chn^.ChReady <> CHS_Open) and (Chn^.ChResult = res_Ok) and (ChMsTick < Deadline) do
+    Sleep(1);
+  if Chn^.ChReady = CHS_Open then
+  begin
+    Chn^.ChConnect;
+    while (Chn^.ChReady <> CHS_Connect) and (Chn^.ChResult = res_Ok) and (ChMsTick < Deadline) do
+      Sleep(1);
+  end;
+  if Chn^.ChReady <> CHS_Connect then
+  begin
+    Err := Chn^.ChResultStr(Chn^.ChResult);
+    Dispose(Chn, Done);
+    Die('cannot open "' + Params + '": ' + Err);
+  end;
+  {$IFDEF UNIX}
+  if UsePty then
+    WriteLn('PTY ', PtyLastSlave);
+  Flush(Output);
+  CatchSignals;
+  {$ENDIF}
+  LogLine('df1sim: ' + Chn^.ChGetParam(''));
+
+  DF1StationInit(Station, Chn, @Table);
+  Station.Log := @LogLine;
+  LastMsg := ChMsTick;
+  CountReached := 0;
+  while not Stop do
+  begin
+    if DF1StationStep(Station) then
+      LastMsg := ChMsTick
+    else if Chn^.ChResult <> res_Ok then
+    begin
+      LogLine('df1sim: line lost: ' + Chn^.ChResultStr(Chn^.ChResult));
+      Break;
+    end
+    else
+      Sleep(1);
+    if (TimeoutS > 0) and (ChMsTick - LastMsg > QWord(TimeoutS) * 1000) then
+    begin
+      LogLine(Format('df1sim: %d s without a message, done', [TimeoutS]));
+      Break;
+    end;
+    if (Count > 0) and (Station.Requests >= Count) then
+    begin
+      { wait for the ACK of the last reply, at most LingerMs }
+      if CountReached = 0 then
+        CountReached := ChMsTick;
+      if not Station.HasReply or (ChMsTick - CountReached > LingerMs) then
+      begin
+        LogLine(Format('df1sim: %d commands answered, done', [Station.Requests]));
+        Break;
+      end;
+    end;
+  end;
+  if Stop then
+    LogLine('df1sim: signal, closing');
+  Chn^.ChDisConnect;
+  Chn^.ChClose;
+  Dispose(Chn, Done);
+end.
