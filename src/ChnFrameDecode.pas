@@ -7,7 +7,8 @@
   received chunk. Each direction (tx, rx) has its own receive automaton of
   the protocol's codec (DF1Feed, FT12Feed, ICSFeed), fed with the chunks of
   that direction in order, so a frame may span chunks: its description is
-  printed under the chunk in which it ends.
+  printed under the chunk in which it ends. A DF1 reply is named after the
+  command with the same TNS seen before (replies carry no FNC).
 
   Per frame: the fields, the checksum verdict (a good frame passed the
   codec's BCC/CRC/sum check; a bad one says what was received and what was
@@ -69,6 +70,13 @@ uses
   SysUtils, ChnDF1, ChnFT1_2, ChnICS, ChnSlc;
 
 type
+  { commands seen, by TNS: names the replies (which carry no FNC) }
+  tTnsTable = array[Byte] of record
+    Used: Boolean;
+    Tns : Word;
+    Cmd, Fnc: Byte;
+  end;
+
   tDirState = record
     Name : string;
     DF1  : tDF1Decoder;
@@ -170,7 +178,7 @@ begin
     Result := Format('BCC $%.2x', [D.RxSum]);
 end;
 
-function DF1Message(const D: tDF1Decoder): string;
+function DF1Message(const D: tDF1Decoder; var Seen: tTnsTable): string;
 var
   M: ChnDF1Codec.tRecRecord;
   Cmd, Fnc: Byte;
@@ -199,6 +207,16 @@ begin
         if D.HdMaster then
           Result := Format('STN=%d ', [D.Stn]) + Result;
         Name := SlcCommandName(Cmd, Fnc);
+        if Cmd and $40 = 0 then
+        begin
+          Seen[Lo(M.Tns)].Used := True;
+          Seen[Lo(M.Tns)].Tns := M.Tns;
+          Seen[Lo(M.Tns)].Cmd := Cmd;
+          Seen[Lo(M.Tns)].Fnc := Fnc;
+        end
+        else if Seen[Lo(M.Tns)].Used and (Seen[Lo(M.Tns)].Tns = M.Tns) and
+                (Seen[Lo(M.Tns)].Cmd or $40 = Cmd) then
+          Name := SlcCommandName(Cmd, Seen[Lo(M.Tns)].Fnc);
         if Cmd and $40 <> 0 then
         begin
           if Name = '' then
@@ -267,7 +285,8 @@ begin
   DF1DecoderInit(S.DF1, Cfg);
 end;
 
-procedure DF1Byte(var S: tDirState; B: Byte; Lines: TStrings; var Stats: tDecStats);
+procedure DF1Byte(var S: tDirState; B: Byte; Lines: TStrings; var Stats: tDecStats;
+  var Seen: tTnsTable);
 var
   Before: Byte;
   Ev: tDF1Event;
@@ -283,7 +302,7 @@ begin
     dfMessage:
       begin
         Inc(Stats.Frames);
-        Lines.Add('  ' + S.Name + ' DF1 ' + DF1Message(S.DF1));
+        Lines.Add('  ' + S.Name + ' DF1 ' + DF1Message(S.DF1, Seen));
       end;
     dfError:
       begin
@@ -392,11 +411,13 @@ procedure DecodeRun(const Opt: tDecOptions; const Frames: tTrcFrames; Count: Lon
   Lines: TStrings; out Stats: tDecStats);
 var
   Dirs: array[tTrcDir] of tDirState;
+  Seen: tTnsTable;
   D: tTrcDir;
   I, K: LongInt;
   Head: string;
 begin
   FillChar(Stats, SizeOf(Stats), 0);
+  FillChar(Seen, SizeOf(Seen), 0);
   for D := Low(D) to High(D) do
   begin
     if D = trcTx then
@@ -432,7 +453,7 @@ begin
       Lines.Add(Head);
       for K := 0 to High(Data) do
         case Opt.Proto of
-          dpDF1: DF1Byte(Dirs[Dir], Data[K], Lines, Stats);
+          dpDF1: DF1Byte(Dirs[Dir], Data[K], Lines, Stats, Seen);
           dpFT12: FTByte(Dirs[Dir], Data[K], Lines, Stats);
           dpICS: ICSByte(Dirs[Dir], Data[K], Lines, Stats);
         end;
