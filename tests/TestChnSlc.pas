@@ -1,0 +1,255 @@
+{ Tests of ChnSlc, the simulated SLC 5/0x data table and command handler
+  behind tools/df1sim: the configuration text (values, every error with its
+  line) and each command's reply bytes, worked out by hand from the
+  request layouts of Rockwell 1770-6.5.16 (typed logical read/write with
+  three address fields, PLC-2 unprotected read/write, diagnostics) and the
+  STS / EXT STS codes documented in ChnSlc's header. }
+unit TestChnSlc;
+
+{$MODE OBJFPC}{$H+}
+
+interface
+
+uses
+  SysUtils, fpcunit, testregistry, ChnTypes, ChnDF1Codec, ChnSlc, TestSupport;
+
+type
+  TTestChnSlc = class(TTestCase)
+  private
+    T: tSlcTable;
+    { 'STS=xx' + ' ' + reply data in hex, from CF and request data in hex }
+    function Ask(CF: Word; const DataHex: string; Tns: Word = 7): string;
+    function ConfigError(const Text: string): string;
+  protected
+    procedure SetUp; override;
+  published
+    procedure TestConfigValues;
+    procedure TestConfigErrors;
+    procedure TestEchoAndTns;
+    procedure TestTypedReadIntegerAndFloat;
+    procedure TestTypedReadExtendedFields;
+    procedure TestTypedWriteThenRead;
+    procedure TestTypedErrors;
+    procedure TestUnprotectedReadWrite;
+    procedure TestUnprotectedErrors;
+    procedure TestDiagnostics;
+    procedure TestUnknownCommandAndReplies;
+  end;
+
+implementation
+
+const
+  Config =
+    '# test table'#10 +
+    'N7 20'#10 +
+    'N7:0 = 1 2 3 -1 $1234   # five values'#13#10 +
+    'B3 4'#10 +
+    'F8 2'#10 +
+    'F8:0 = 1.5 -2.25'#10 +
+    'N9 8'#10 +
+    'N9:0 = $0102 $0304'#10 +
+    'CIF 9'#10 +
+    'N10 400'#10 +
+    'N10:300 = 77'#10;
+
+procedure TTestChnSlc.SetUp;
+var
+  Line: Integer;
+  Err: string;
+begin
+  AssertTrue('config', SlcLoadConfig(T, Config, Line, Err));
+end;
+
+function TTestChnSlc.Ask(CF: Word; const DataHex: string; Tns: Word): string;
+var
+  Req: tRecRecord;
+  Rep: tSendRecord;
+  D: TBytes;
+  RepLen: Word;
+begin
+  FillChar(Req, SizeOf(Req), 0);
+  FillChar(Rep, SizeOf(Rep), $EE);
+  Req.MessType := tpDataMess;
+  Req.CF := CF;
+  Req.Tns := Tns;
+  D := HexToBytes(DataHex);
+  if Length(D) > 0 then
+    Move(D[0], Req.Data[0], Length(D));
+  RepLen := 0;
+  AssertTrue('handled', SlcHandle(T, Req, 8 + Length(D), Rep, RepLen));
+  AssertEquals('reply MessType', Ord(tpDataMess), Ord(Rep.MessType));
+  AssertEquals('reply CF: CMD + $40, no FNC', (CF and $FF00) or $4000, Rep.CF);
+  AssertEquals('reply TNS', Tns, Rep.Tns);
+  Result := Format('STS=%.2x', [Rep.Sts]);
+  if RepLen > 8 then
+    Result := Result + ' ' + BytesToHex(Rep.Data, RepLen - 8);
+end;
+
+function TTestChnSlc.ConfigError(const Text: string): string;
+var
+  Line: Integer;
+  Err: string;
+  X: tSlcTable;
+begin
+  if SlcLoadConfig(X, Text, Line, Err) then
+    Result := 'ok'
+  else
+    Result := IntToStr(Line);
+end;
+
+procedure TTestChnSlc.TestConfigValues;
+begin
+  AssertEquals('N7:0', 1, SlcGetWord(T, 7, 0));
+  AssertEquals('N7:3 = -1', $FFFF, SlcGetWord(T, 7, 3));
+  AssertEquals('N7:4 = $1234', $1234, SlcGetWord(T, 7, 4));
+  AssertEquals('N7:5 untouched', 0, SlcGetWord(T, 7, 5));
+  AssertEquals('N10:300', 77, SlcGetWord(T, 10, 300));
+  AssertEquals('F8:1', -2.25, SlcGetFloat(T, 8, 1), 0);
+  AssertEquals('N7 elements', 20, T.Files[7].Elems);
+  AssertEquals('B3 kind', 'B', T.Files[3].Kind);
+  AssertEquals('no N11', #0, T.Files[11].Kind);
+  AssertEquals('CIF', 9, T.Cif);
+end;
+
+procedure TTestChnSlc.TestConfigErrors;
+begin
+  AssertEquals('unknown type', '2', ConfigError('N7 5'#10'X7 5'));
+  AssertEquals('file number too large', '1', ConfigError('N256 5'));
+  AssertEquals('no element count', '1', ConfigError('N7'));
+  AssertEquals('zero elements', '1', ConfigError('N7 0'));
+  AssertEquals('too many elements', '1', ConfigError('N7 4097'));
+  AssertEquals('values before the declaration', '1', ConfigError('N7:0 = 1'#10'N7 5'));
+  AssertEquals('values past the end', '2', ConfigError('N7 2'#10'N7:1 = 1 2'));
+  AssertEquals('no =', '2', ConfigError('N7 2'#10'N7:0 1'));
+  AssertEquals('no values', '2', ConfigError('N7 2'#10'N7:0 ='));
+  AssertEquals('out of 16 bits', '2', ConfigError('N7 2'#10'N7:0 = 65536'));
+  AssertEquals('not a float', '3', ConfigError('#'#10'F8 2'#10'F8:0 = x'));
+  AssertEquals('type differs', '2', ConfigError('N7 2'#10'F7:0 = 1'));
+  AssertEquals('bad CIF', '1', ConfigError('CIF'));
+  AssertEquals('good', 'ok', ConfigError('  # only a comment'#10#10'B3 1  '));
+end;
+
+procedure TTestChnSlc.TestEchoAndTns;
+begin
+  AssertEquals('STS=00 41 68 6F 6A', Ask($0600, '41 68 6F 6A', $1234));
+  AssertEquals('empty echo', 'STS=00', Ask($0600, ''));
+end;
+
+procedure TTestChnSlc.TestTypedReadIntegerAndFloat;
+begin
+  { SIZE 10, FILE 7, TYPE $89, ELEMENT 0, SUB 0 }
+  AssertEquals('N7:0..4', 'STS=00 01 00 02 00 03 00 FF FF 34 12', Ask($0FA2, '0A 07 89 00 00'));
+  AssertEquals('N7:3', 'STS=00 FF FF', Ask($0FA2, '02 07 89 03 00'));
+  { 1.5 = $3FC00000, -2.25 = $C0100000, low byte first }
+  AssertEquals('F8:0..1', 'STS=00 00 00 C0 3F 00 00 10 C0', Ask($0FA2, '08 08 8A 00 00'));
+  AssertEquals('B3:0', 'STS=00 00 00', Ask($0FA2, '02 03 85 00 00'));
+end;
+
+procedure TTestChnSlc.TestTypedReadExtendedFields;
+begin
+  { ELEMENT 300 = $FF $2C $01; FILE 10 also as $FF $0A $00 }
+  AssertEquals('N10:300', 'STS=00 4D 00', Ask($0FA2, '02 0A 89 FF 2C 01 00'));
+  AssertEquals('N10:300 long file field', 'STS=00 4D 00', Ask($0FA2, '02 FF 0A 00 89 FF 2C 01 00'));
+  AssertEquals('file 256 does not exist', 'STS=F0 06', Ask($0FA2, '02 FF 00 01 89 00 00'));
+  AssertEquals('cut inside an extended field', 'STS=10', Ask($0FA2, '02 0A 89 FF 2C'));
+end;
+
+procedure TTestChnSlc.TestTypedWriteThenRead;
+begin
+  AssertEquals('write N7:5..6', 'STS=00', Ask($0FAA, '04 07 89 05 00 39 30 C7 CF'));
+  AssertEquals('N7:5', 12345, SlcGetWord(T, 7, 5));
+  AssertEquals('N7:6 = -12345', $CFC7, SlcGetWord(T, 7, 6));
+  AssertEquals('read back', 'STS=00 39 30 C7 CF', Ask($0FA2, '04 07 89 05 00'));
+  AssertEquals('write F8:1', 'STS=00', Ask($0FAA, '04 08 8A 01 00 00 00 C0 3F'));
+  AssertEquals('F8:1', 1.5, SlcGetFloat(T, 8, 1), 0);
+end;
+
+procedure TTestChnSlc.TestTypedErrors;
+begin
+  AssertEquals('missing file N11', 'STS=F0 06', Ask($0FA2, '02 0B 89 00 00'));
+  AssertEquals('N7 asked as float', 'STS=F0 06', Ask($0FA2, '04 07 8A 00 00'));
+  AssertEquals('element 20 of 20', 'STS=F0 06', Ask($0FA2, '02 07 89 14 00'));
+  AssertEquals('sub-element 1', 'STS=F0 06', Ask($0FA2, '02 07 89 00 01'));
+  AssertEquals('N7:19 + 2 elements', 'STS=F0 07', Ask($0FA2, '04 07 89 13 00'));
+  AssertEquals('N7:19 one element is fine', 'STS=00 00 00', Ask($0FA2, '02 07 89 13 00'));
+  AssertEquals('size 0', 'STS=F0 01', Ask($0FA2, '00 07 89 00 00'));
+  AssertEquals('odd size for words', 'STS=F0 01', Ask($0FA2, '03 07 89 00 00'));
+  AssertEquals('size 246', 'STS=F0 01', Ask($0FA2, 'F6 0A 89 00 00'));
+  AssertEquals('fields missing', 'STS=10', Ask($0FA2, '02 07 89'));
+  AssertEquals('write: data shorter than SIZE', 'STS=10', Ask($0FAA, '04 07 89 00 00 01 00'));
+  AssertEquals('write: data longer than SIZE', 'STS=10', Ask($0FAA, '02 07 89 00 00 01 00 02'));
+  AssertEquals('write to a missing file', 'STS=F0 06', Ask($0FAA, '02 0B 89 00 00 01 00'));
+  AssertEquals('write past the end', 'STS=F0 07', Ask($0FAA, '04 07 89 13 00 01 00 02 00'));
+  AssertEquals('nothing written by the refused write', 0, SlcGetWord(T, 7, 19));
+end;
+
+procedure TTestChnSlc.TestUnprotectedReadWrite;
+begin
+  { ADDR is a byte offset into the CIF N9, low byte first; SIZE in bytes }
+  AssertEquals('read N9:0..1', 'STS=00 02 01 04 03', Ask($0100, '00 00 04'));
+  AssertEquals('read N9:1', 'STS=00 04 03', Ask($0100, '02 00 02'));
+  AssertEquals('write N9:7', 'STS=00', Ask($0800, '0E 00 AA 55'));
+  AssertEquals('N9:7', $55AA, SlcGetWord(T, 9, 7));
+end;
+
+procedure TTestChnSlc.TestUnprotectedErrors;
+var
+  Line: Integer;
+  Err: string;
+begin
+  AssertEquals('odd address', 'STS=10', Ask($0100, '01 00 02'));
+  AssertEquals('size 0', 'STS=10', Ask($0100, '00 00 00'));
+  AssertEquals('odd size', 'STS=10', Ask($0100, '00 00 03'));
+  AssertEquals('ADDR+SIZE missing', 'STS=10', Ask($0100, '00 00'));
+  AssertEquals('extra byte', 'STS=10', Ask($0100, '00 00 02 00'));
+  AssertEquals('past the CIF (16 bytes)', 'STS=50', Ask($0100, '0E 00 04'));
+  AssertEquals('write past the CIF', 'STS=50', Ask($0800, '10 00 01 00'));
+  AssertEquals('write, odd data', 'STS=10', Ask($0800, '00 00 01'));
+  { a table without the CIF file }
+  AssertTrue(SlcLoadConfig(T, 'N7 5'#10'CIF 20', Line, Err));
+  AssertEquals('no CIF', 'STS=50', Ask($0100, '00 00 02'));
+end;
+
+procedure TTestChnSlc.TestDiagnostics;
+var
+  S: string;
+begin
+  T.Diag[dgFramesIn] := $0102;
+  T.Diag[dgNaksOut] := 5;
+  { ADDR 0, SIZE 6: counters 0..2, low byte first }
+  AssertEquals('read counters', 'STS=00 02 01 00 00 05 00', Ask($0601, '00 00 06'));
+  AssertEquals('read from byte 1', 'STS=00 01 00', Ask($0601, '01 00 02'));
+  AssertEquals('past the block', 'STS=10', Ask($0601, '0F 00 02'));
+  AssertEquals('no ADDR/SIZE', 'STS=10', Ask($0601, ''));
+  AssertEquals('reset', 'STS=00', Ask($0607, ''));
+  AssertEquals('zero after reset', 'STS=00 00 00 00 00', Ask($0601, '00 00 04'));
+  S := Ask($0603, '');
+  AssertEquals('diagnostic status block', 'STS=00 06 EE 49 00 21 64 66 31 73 69 6D', S);
+end;
+
+procedure TTestChnSlc.TestUnknownCommandAndReplies;
+var
+  Req: tRecRecord;
+  Rep: tSendRecord;
+  RepLen: Word;
+begin
+  AssertEquals('CMD 06 FNC 09', 'STS=10', Ask($0609, ''));
+  AssertEquals('CMD 0F FNC 68', 'STS=10', Ask($0F68, '00'));
+  AssertEquals('CMD 02', 'STS=10', Ask($0200, '00'));
+  AssertEquals('error replies counted', 3, T.Diag[dgErrReplies]);
+  FillChar(Req, SizeOf(Req), 0);
+  Req.MessType := tpDataMess;
+  Req.CF := $4600;
+  RepLen := 99;
+  AssertFalse('a reply is not answered', SlcHandle(T, Req, 8, Rep, RepLen));
+  Req.MessType := tpAckNak;
+  AssertFalse('an ACK is not answered', SlcHandle(T, Req, 2, Rep, RepLen));
+  Req.MessType := tpDataMess;
+  Req.CF := $0600;
+  AssertFalse('Len below 8', SlcHandle(T, Req, 7, Rep, RepLen));
+  AssertFalse('Len above 252', SlcHandle(T, Req, 253, Rep, RepLen));
+end;
+
+initialization
+  RegisterTest(TTestChnSlc);
+end.

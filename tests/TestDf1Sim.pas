@@ -1,0 +1,334 @@
+{ Tests of the DF1 simulator: the station of unit ChnDF1Link answering from
+  a ChnSlc table, against a master built on tChnDF1 (DF1Transact) over the
+  in-memory null modem NAM=LOOP, in full and half duplex with CRC and BCC;
+  its link behaviour byte by byte against a raw LOOP end (frames and
+  checksums worked out by hand); and tools/df1sim itself, started with
+  --pty through TProcess and spoken to over NAM=COM. }
+unit TestDf1Sim;
+
+{$MODE OBJFPC}{$H+}
+
+interface
+
+uses
+  {$IFDEF UNIX}BaseUnix,{$ENDIF}
+  SysUtils, Classes, Process, fpcunit, testregistry, ChnTypes, ChnVirt,
+  ChnLoop, ChnCom, ChnDF1, ChnSlc, ChnDF1Link, TestSupport;
+
+type
+  TTestDf1Sim = class(TTestCase)
+  private
+    Table: tSlcTable;
+    Station: tDF1Station;
+    Master, Slave, Raw: pChnVirt;
+    Proc: TProcess;
+    function Open(const Params: string): pChnVirt;
+    procedure StartPair(Full, Crc: Boolean; const Pair: string);
+    { one exchange through DF1Transact; 'STS=xx data...' }
+    function Ask(CF: Word; const DataHex: string; Tns: Word): string;
+    procedure AllCommands(Full, Crc: Boolean; const Pair: string);
+    { raw end: send hex, collect what comes back within Ms (stepping the station) }
+    function RawSay(const Hex: string; Ms: Integer): string;
+  protected
+    procedure SetUp; override;
+    procedure TearDown; override;
+  published
+    procedure TestFullDuplexCrc;
+    procedure TestFullDuplexBcc;
+    procedure TestHalfDuplexCrc;
+    procedure TestHalfDuplexBcc;
+    procedure TestFullDuplexLinkBytes;
+    procedure TestHalfDuplexLinkBytes;
+    procedure TestNakOfReplySendsItAgain;
+    procedure TestBinaryOverPty;
+  end;
+
+implementation
+
+const
+  Config = 'N7 20'#10'N7:0 = 1 2 3 -1 $1234'#10'F8 2'#10'F8:0 = 1.5'#10 +
+           'B3 2'#10'S2 4'#10'N9 8'#10'N9:0 = $0102 $0304'#10;
+
+procedure StepStation(Data: Pointer);
+begin
+  DF1StationStep(pDF1Station(Data)^);
+end;
+
+procedure TTestDf1Sim.SetUp;
+var
+  Line: Integer;
+  Err: string;
+begin
+  Master := nil;
+  Slave := nil;
+  Raw := nil;
+  Proc := nil;
+  AssertTrue('config', SlcLoadConfig(Table, Config, Line, Err));
+end;
+
+procedure TTestDf1Sim.TearDown;
+begin
+  if Master <> nil then Dispose(Master, Done);
+  if Slave <> nil then Dispose(Slave, Done);
+  if Raw <> nil then Dispose(Raw, Done);
+  if Proc <> nil then
+  begin
+    if Proc.Running then
+      Proc.Terminate(1);
+    Proc.Free;
+  end;
+end;
+
+function TTestDf1Sim.Open(const Params: string): pChnVirt;
+var
+  Err: string;
+begin
+  Result := OpenStack('DF1', Params, Err);
+  AssertTrue('open ' + Err, Result <> nil);
+end;
+
+procedure TTestDf1Sim.StartPair(Full, Crc: Boolean; const Pair: string);
+const
+  FHD: array[Boolean] of string = ('HALF', 'FULL');
+  CRCS: array[Boolean] of string = ('OFF', 'ON');
+begin
+  Slave := Open(Format('NAM=DF1 NOD=1 DNO=0 MAS=SLAVE FHD=%s CRC=%s NAM=LOOP PAIR=%s END=2',
+    [FHD[Full], CRCS[Crc], Pair]));
+  Master := Open(Format('NAM=DF1 NOD=0 DNO=1 MAS=MASTER FHD=%s CRC=%s NAM=LOOP PAIR=%s END=1',
+    [FHD[Full], CRCS[Crc], Pair]));
+  DF1StationInit(Station, Slave, @Table);
+end;
+
+function TTestDf1Sim.Ask(CF: Word; const DataHex: string; Tns: Word): string;
+var
+  Req: tSendRecord;
+  Rep: tRecRecord;
+  RepLen: Word;
+  D: TBytes;
+  R: tChResult;
+begin
+  FillChar(Req, SizeOf(Req), 0);
+  Req.MessType := tpDataMess;
+  Req.CF := CF;
+  Req.Tns := Tns;
+  D := HexToBytes(DataHex);
+  if Length(D) > 0 then
+    Move(D[0], Req.Data[0], Length(D));
+  RepLen := 0;
+  R := DF1Transact(Master, Req, 8 + Length(D), Rep, RepLen, @StepStation, @Station, 500);
+  AssertEquals('transaction result', res_Ok, R);
+  AssertEquals('reply CF', (CF and $FF00) or $4000, Rep.CF);
+  AssertEquals('reply TNS', Tns, Rep.Tns);
+  Result := Format('STS=%.2x', [Rep.Sts]);
+  if RepLen > 8 then
+    Result := Result + ' ' + BytesToHex(Rep.Data, RepLen - 8);
+end;
+
+procedure TTestDf1Sim.AllCommands(Full, Crc: Boolean; const Pair: string);
+begin
+  StartPair(Full, Crc, Pair);
+  AssertEquals('echo', 'STS=00 41 68 6F 6A', Ask(CF_Echo, '41 68 6F 6A', 1));
+  AssertEquals('diagnostic status', 'STS=00 06 EE 49 00 21 64 66 31 73 69 6D',
+    Ask(CF_DiagnosticSts, '', 2));
+  { good frames in: echo, status and this one; ADDR 0 SIZE 2 }
+  AssertEquals('read counters', 'STS=00 03 00', Ask(CF_ReadDiagnCounts, '00 00 02', 3));
+  AssertEquals('reset counters', 'STS=00', Ask(CF_ResetDiagnCounts, '', 4));
+  AssertEquals('read counters after reset: this command', 'STS=00 01 00',
+    Ask(CF_ReadDiagnCounts, '00 00 02', 5));
+  AssertEquals('typed read N7:0..4', 'STS=00 01 00 02 00 03 00 FF FF 34 12',
+    Ask(CF_ProtectRead3Addr, '0A 07 89 00 00', 6));
+  AssertEquals('typed write N7:10', 'STS=00', Ask(CF_ProtectWrite3Addr, '02 07 89 0A 00 39 30', 7));
+  AssertEquals('table written', 12345, SlcGetWord(Table, 7, 10));
+  AssertEquals('typed read F8:0', 'STS=00 00 00 C0 3F', Ask(CF_ProtectRead3Addr, '04 08 8A 00 00', 8));
+  AssertEquals('unprotected read', 'STS=00 02 01 04 03', Ask(CF_UnProtectRead, '00 00 04', 9));
+  AssertEquals('unprotected write', 'STS=00', Ask(CF_UnProtectWrite, '04 00 CD AB', 10));
+  AssertEquals('N9:2', $ABCD, SlcGetWord(Table, 9, 2));
+  AssertEquals('missing file N11', 'STS=F0 06', Ask(CF_ProtectRead3Addr, '02 0B 89 00 00', 11));
+  AssertEquals('N7:30 out of range', 'STS=F0 06', Ask(CF_ProtectRead3Addr, '02 07 89 1E 00', 12));
+  AssertEquals('N7:18 + 4 elements', 'STS=F0 07', Ask(CF_ProtectRead3Addr, '08 07 89 12 00', 13));
+  AssertEquals('unprotected past the CIF', 'STS=50', Ask(CF_UnProtectRead, '10 00 02', 14));
+  AssertEquals('unknown command', 'STS=10', Ask($0609, '', 15));
+  AssertEquals('requests answered', 15, Station.Requests);
+end;
+
+procedure TTestDf1Sim.TestFullDuplexCrc;
+begin
+  AllCommands(True, True, 'SIMFC');
+end;
+
+procedure TTestDf1Sim.TestFullDuplexBcc;
+begin
+  AllCommands(True, False, 'SIMFB');
+end;
+
+procedure TTestDf1Sim.TestHalfDuplexCrc;
+begin
+  AllCommands(False, True, 'SIMHC');
+end;
+
+procedure TTestDf1Sim.TestHalfDuplexBcc;
+begin
+  AllCommands(False, False, 'SIMHB');
+end;
+
+function TTestDf1Sim.RawSay(const Hex: string; Ms: Integer): string;
+var
+  D: TBytes;
+  Buf: array[0..511] of Byte;
+  Len: Word;
+  Got: AnsiString;
+  Deadline: QWord;
+begin
+  D := HexToBytes(Hex);
+  if Length(D) > 0 then
+  begin
+    Raw^.ChSend(@D[0], Length(D));
+    AssertEquals('raw send', res_Ok, Raw^.ChSendResult);
+  end;
+  Got := '';
+  Raw^.ChReceiveBuffer(@Buf, SizeOf(Buf));
+  Deadline := ChMsTick + QWord(Ms);
+  repeat
+    DF1StationStep(Station);
+    if Raw^.ChReceiveReady = CHS_ReceiveReady then
+    begin
+      Len := 0;
+      Raw^.ChReceive(Len);
+      if Got <> '' then
+        Got := Got + ' ';
+      Got := Got + BytesToHex(Buf, Len);
+    end;
+  until ChMsTick > Deadline;
+  Result := Got;
+end;
+
+procedure TTestDf1Sim.TestFullDuplexLinkBytes;
+var
+  Err: string;
+begin
+  Slave := Open('NAM=DF1 NOD=1 DNO=0 MAS=SLAVE FHD=FULL CRC=ON NAM=LOOP PAIR=SIMLF END=2');
+  Raw := OpenStack('LOOP', 'NAM=LOOP PAIR=SIMLF END=1', Err);
+  AssertTrue(Err, Raw <> nil);
+  DF1StationInit(Station, Slave, @Table);
+  AssertEquals('ENQ before anything: NAK', '10 15', RawSay('10 05', 50));
+  { echo 'A', TNS 5, CRC $C1D7 by hand; one wrong CRC byte -> NAK }
+  AssertEquals('bad CRC: NAK', '10 15', RawSay('10 02 01 00 06 00 05 00 00 41 10 03 D7 C2', 50));
+  AssertEquals('ENQ repeats the NAK', '10 15', RawSay('10 05', 50));
+  AssertEquals('nothing executed', 0, Station.Requests);
+  AssertEquals('good frame: ACK, then the reply',
+    '10 06 10 02 00 01 46 00 05 00 41 10 03 6E FB',
+    StringReplace(RawSay('10 02 01 00 06 00 05 00 00 41 10 03 D7 C1', 50), '  ', ' ', [rfReplaceAll]));
+  AssertEquals('ENQ repeats the ACK', '10 06', RawSay('10 05', 50));
+  AssertEquals('ACK of the reply: silence', '', RawSay('10 06', 50));
+  AssertEquals('NAKs sent counted', 1, Table.Diag[dgNaksOut]);
+  AssertEquals('ENQs counted', 3, Table.Diag[dgEnqsIn]);
+end;
+
+procedure TTestDf1Sim.TestHalfDuplexLinkBytes;
+var
+  Err: string;
+begin
+  Slave := Open('NAM=DF1 NOD=1 DNO=0 MAS=SLAVE FHD=HALF CRC=OFF NAM=LOOP PAIR=SIMLH END=2');
+  Raw := OpenStack('LOOP', 'NAM=LOOP PAIR=SIMLH END=1', Err);
+  AssertTrue(Err, Raw <> nil);
+  DF1StationInit(Station, Slave, @Table);
+  AssertEquals('poll, nothing to send: EOT', '10 04', RawSay('10 05 01 FF', 50));
+  AssertEquals('poll for station 2: silence', '', RawSay('10 05 02 FE', 50));
+  { master frame: DLE SOH STN DLE STX body DLE ETX BCC over STN+body = $B2 }
+  AssertEquals('bad BCC: a half-duplex slave stays silent', '',
+    RawSay('10 01 01 10 02 01 00 06 00 05 00 00 41 10 03 B3', 50));
+  AssertEquals('good frame: ACK only', '10 06',
+    RawSay('10 01 01 10 02 01 00 06 00 05 00 00 41 10 03 B2', 50));
+  AssertEquals('poll: the reply', '10 02 00 01 46 00 05 00 41 10 03 73', RawSay('10 05 01 FF', 50));
+  AssertEquals('poll before the ACK: the reply again', '10 02 00 01 46 00 05 00 41 10 03 73',
+    RawSay('10 05 01 FF', 50));
+  AssertEquals('ACK: silence', '', RawSay('10 06', 50));
+  AssertEquals('poll after the ACK: EOT', '10 04', RawSay('10 05 01 FF', 50));
+end;
+
+procedure TTestDf1Sim.TestNakOfReplySendsItAgain;
+var
+  Err: string;
+begin
+  Slave := Open('NAM=DF1 NOD=1 DNO=0 MAS=SLAVE FHD=FULL CRC=OFF NAM=LOOP PAIR=SIMLN END=2');
+  Raw := OpenStack('LOOP', 'NAM=LOOP PAIR=SIMLN END=1', Err);
+  AssertTrue(Err, Raw <> nil);
+  DF1StationInit(Station, Slave, @Table);
+  AssertEquals('ACK + reply', '10 06 10 02 00 01 46 00 05 00 41 10 03 73',
+    RawSay('10 02 01 00 06 00 05 00 00 41 10 03 B3', 50));
+  AssertEquals('NAK of the reply: sent again', '10 02 00 01 46 00 05 00 41 10 03 73',
+    RawSay('10 15', 50));
+  AssertEquals('ACK: done', '', RawSay('10 06', 50));
+  AssertEquals('a late NAK: nothing to repeat', '', RawSay('10 15', 50));
+  AssertEquals('executed once', 1, Station.Requests);
+end;
+
+procedure TTestDf1Sim.TestBinaryOverPty;
+var
+  Bin, Line, PtyPath: string;
+  C: Char;
+  Deadline: QWord;
+  Req: tSendRecord;
+  Rep: tRecRecord;
+  RepLen: Word;
+begin
+  Bin := GetEnvironmentVariable('BUILD');
+  if Bin = '' then
+    Bin := 'build';
+  Bin := Bin + '/bin/df1sim';
+  AssertTrue(Bin + ' missing (make tools)', FileExists(Bin));
+  Proc := TProcess.Create(nil);
+  Proc.Executable := Bin;
+  Proc.Parameters.Add('--pty');
+  Proc.Parameters.Add('--bcc');
+  Proc.Parameters.Add('--node=3');
+  Proc.Parameters.Add('--timeout=10');
+  Proc.Parameters.Add('--quiet');
+  Proc.Options := [poUsePipes];
+  Proc.Execute;
+  { first line: PTY /dev/pts/N }
+  Line := '';
+  Deadline := ChMsTick + 3000;
+  repeat
+    if Proc.Output.NumBytesAvailable > 0 then
+    begin
+      Proc.Output.Read(C, 1);
+      if C = #10 then
+        Break;
+      Line := Line + C;
+    end
+    else
+      Sleep(2);
+  until ChMsTick > Deadline;
+  AssertEquals('first line starts with PTY', 'PTY /dev/', Copy(Line, 1, 9));
+  PtyPath := Copy(Line, 5, 255);
+  Master := Open('NAM=DF1 NOD=0 DNO=3 MAS=MASTER FHD=FULL CRC=OFF NAM=COM DEV=' + PtyPath);
+  FillChar(Req, SizeOf(Req), 0);
+  Req.MessType := tpDataMess;
+  Req.CF := CF_Echo;
+  Req.Tns := 77;
+  Req.Data[0] := $41;
+  RepLen := 0;
+  AssertEquals('echo over the pty', res_Ok, DF1Transact(Master, Req, 9, Rep, RepLen, nil, nil, 1000));
+  AssertEquals('echo data', 9, RepLen);
+  AssertEquals('echo byte', $41, Rep.Data[0]);
+  { the built-in table: N7:0..2 = 0 10 20 }
+  Req.CF := CF_ProtectRead3Addr;
+  Req.Tns := 78;
+  Move(PByte(HexToBytes('06 07 89 00 00'))^, Req.Data[0], 5);
+  AssertEquals('typed read over the pty', res_Ok, DF1Transact(Master, Req, 13, Rep, RepLen, nil, nil, 1000));
+  AssertEquals('N7:0..2', '00 00 0A 00 14 00', BytesToHex(Rep.Data, RepLen - 8));
+  { SIGTERM: a clean exit with code 0 }
+  {$IFDEF UNIX}
+  FpKill(Proc.ProcessID, SIGTERM);
+  {$ENDIF}
+  Deadline := ChMsTick + 3000;
+  while Proc.Running and (ChMsTick < Deadline) do
+    Sleep(5);
+  AssertFalse('df1sim ended on SIGTERM', Proc.Running);
+  AssertEquals('exit code', 0, Proc.ExitCode);
+end;
+
+initialization
+  RegisterTest(TTestDf1Sim);
+end.
