@@ -11,8 +11,9 @@
   slave path is TChnPortPty(CH_Port).SlavePath, also kept in PtyLastSlave.
   Line settings on a pty master are accepted and mean nothing, as on any
   pty. While no program has the slave open (before the first one, between
-  two), the master reads nothing and bytes written to it are dropped, as
-  on a line with nothing attached: a simulator outlives its clients. tools/df1sim --pty and tests/support/PtyPair use this unit. }
+  two), the master reads nothing and a write the kernel refuses counts as
+  sent, as on a line with nothing attached: a simulator outlives its
+  clients. (Bytes the kernel accepts meanwhile wait for the next client.) tools/df1sim --pty and tests/support/PtyPair use this unit. }
 unit ChnPty;
 
 {$I chn.inc}
