@@ -21,9 +21,7 @@ program df1echo;
 
 uses
   {$IFDEF UNIX}cthreads,{$ENDIF}
-  SysUtils, uString, ChnTypes, ChnVirt, ChnLoop, ChnDF1;
-  { add ChnCom to this list once the COM layer exists: units register
-    their layer names when they are linked in }
+  SysUtils, uString, ChnTypes, ChnVirt, ChnLoop, ChnCom, ChnDF1;
 
 {$I df1common.inc}
 

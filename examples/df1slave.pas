@@ -16,8 +16,7 @@ program df1slave;
 {$MODE OBJFPC}{$H+}
 
 uses
-  SysUtils, uString, ChnTypes, ChnVirt, ChnLoop, ChnDF1;
-  { add ChnCom to this list once the COM layer exists }
+  SysUtils, uString, ChnTypes, ChnVirt, ChnLoop, ChnCom, ChnDF1;
 
 {$I df1common.inc}
 
