@@ -10,8 +10,9 @@ program legacy_df1;
 uses
   uString,
   ChnVirt,
-  ChnLoop,
-  ChnDF1;
+  ChnCom,     { the manual's uses clause, unchanged ... }
+  ChnDF1,
+  ChnLoop;    { ... plus the in-memory line this test runs on }
 
 const
   ParamStr : tParamStr =
