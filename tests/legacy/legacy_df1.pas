@@ -8,11 +8,11 @@
 program legacy_df1;
 
 uses
-  uString,
+  ChnLoop,    { the in-memory line this test runs on, then ... }
+  uString,    { ... the manual's uses clause, unchanged }
   ChnVirt,
-  ChnCom,     { the manual's uses clause, unchanged ... }
-  ChnDF1,
-  ChnLoop;    { ... plus the in-memory line this test runs on }
+  ChnCom,
+  ChnDF1;
 
 const
   ParamStr : tParamStr =
