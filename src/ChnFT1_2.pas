@@ -153,7 +153,6 @@ uses
 const
   cBitsPerChar = 11;     { FT 1.2 character: start, 8 data, even parity, stop }
   cDefaultBaud = 9600;   { for GAP= when no layer below has BD= }
-  OnOff: array[Boolean] of string[3] = ('OFF', 'ON');
 
 constructor tChnFT1_2.Init;
 begin
@@ -296,23 +295,11 @@ begin
   N := 0;
   I := 0;
   if Key = 'MS' then
-  begin
-    Result := ParamChoice(S, 'OFF|ON', I);
-    if (Result = res_Ok) and (CmdL = cmd_Set) then
-      CH_MaSl := I = 1;
-  end
+    Result := ParamFlag(S, OnOffChoice, CmdL, CH_MaSl)
   else if Key = 'MAS' then
-  begin
-    Result := ParamChoice(S, 'SLAVE|MASTER', I);
-    if (Result = res_Ok) and (CmdL = cmd_Set) then
-      CH_MasParam := I = 1;
-  end
+    Result := ParamFlag(S, MasterChoice, CmdL, CH_MasParam)
   else if Key = 'PRI' then
-  begin
-    Result := ParamChoice(S, 'OFF|ON', I);
-    if (Result = res_Ok) and (CmdL = cmd_Set) then
-      CH_PriParam := I = 1;
-  end
+    Result := ParamFlag(S, OnOffChoice, CmdL, CH_PriParam)
   else if Key = 'LSB' then
   begin
     Result := ParamNum(S, 1, MaxTBuf, N);
@@ -366,11 +353,9 @@ begin
 end;
 
 function tChnFT1_2.ChOwnParams: tParamStr;
-const
-  MasText: array[Boolean] of string[6] = ('SLAVE', 'MASTER');
 begin
-  Result := inherited ChOwnParams + ' MS=' + OnOff[CH_MaSl] +
-    ' MAS=' + MasText[CH_MasParam] + ' PRI=' + OnOff[CH_PriParam];
+  Result := inherited ChOwnParams + FlagText('MS', OnOffChoice, CH_MaSl) +
+    FlagText('MAS', MasterChoice, CH_MasParam) + FlagText('PRI', OnOffChoice, CH_PriParam);
   if CH_MSBuff > 0 then
     Result := Result + ParamText('LSB', CH_MSBuff);
   Result := Result + ParamText('LEN', CH_LenShortM) + ParamText('ADR', CH_AdrLen) +

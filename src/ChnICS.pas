@@ -155,11 +155,7 @@ begin
   N := 0;
   I := 0;
   if Key = 'MAS' then
-  begin
-    Result := ParamChoice(S, 'MASTER|SLAVE', I);
-    if (Result = res_Ok) and (CmdL = cmd_Set) then
-      CH_Master := I = 0;
-  end
+    Result := ParamFlag(S, MasterChoice, CmdL, CH_Master)
   else if Key = 'LSB' then
   begin
     Result := ParamNum(S, 0, MaxTBuf, N);
@@ -181,10 +177,8 @@ begin
 end;
 
 function tChnICS.ChOwnParams: tParamStr;
-const
-  Roles: array[Boolean] of string[6] = ('SLAVE', 'MASTER');
 begin
-  Result := inherited ChOwnParams + ' MAS=' + Roles[CH_Master] +
+  Result := inherited ChOwnParams + FlagText('MAS', MasterChoice, CH_Master) +
     ParamText('LSB', CH_MSBuff);
 end;
 

@@ -191,6 +191,16 @@ function ParamValue(const S: tWordString): string;
 function ParamNum(const S: tWordString; Min, Max: LongInt; var N: LongInt): tChResult;
 function ParamChoice(const S: tWordString; const Choices: string; var Index: Integer): tChResult;
 function ParamText(const Key: string; N: LongInt): string;
+{ A two-way choice kept in a Boolean. Choices lists the False word first
+  ('OFF|ON', 'SLAVE|MASTER'); Flag is set only when CmdL = cmd_Set. }
+function ParamFlag(const S: tWordString; const Choices: string; CmdL: tCmd;
+  var Flag: Boolean): tChResult;
+{ ' KEY=WORD' for a Boolean kept as in ParamFlag. }
+function FlagText(const Key, Choices: string; Flag: Boolean): string;
+
+const
+  OnOffChoice  = 'OFF|ON';
+  MasterChoice = 'SLAVE|MASTER';
 
 var
   ChnCollection: pChnCollection;
@@ -255,6 +265,22 @@ end;
 function ParamText(const Key: string; N: LongInt): string;
 begin
   Result := ' ' + Key + '=' + NumStr(N);
+end;
+
+function ParamFlag(const S: tWordString; const Choices: string; CmdL: tCmd;
+  var Flag: Boolean): tChResult;
+var
+  I: Integer;
+begin
+  I := 0;
+  Result := ParamChoice(S, Choices, I);
+  if (Result = res_Ok) and (CmdL = cmd_Set) then
+    Flag := I = 1;
+end;
+
+function FlagText(const Key, Choices: string; Flag: Boolean): string;
+begin
+  Result := ' ' + Key + '=' + ChoiceWord(Choices, Ord(Flag));
 end;
 
 { ---------------------------------------------------------------- tChnVirt }
