@@ -644,17 +644,8 @@ var
   N, Chunk: LongInt;
   Dst: PByte;
 begin
-  Len := 0;
-  if CH_State <> CHS_Connect then
-  begin
-    CH_RResult := res_WrongState;
+  if not ChReceiveAllowed(Len) then
     Exit;
-  end;
-  if CH_RBuff = nil then
-  begin
-    CH_RResult := res_NoRecBuff;
-    Exit;
-  end;
   if CH_RCtrl <> CHS_ReceiveReady then
     ComPull;
   N := CH_Count;

@@ -399,17 +399,8 @@ end;
 
 procedure tChnDF1.ChReceive(var Len: Word);
 begin
-  Len := 0;
-  if CH_State <> CHS_Connect then
-  begin
-    CH_RResult := res_WrongState;
+  if not ChReceiveAllowed(Len) then
     Exit;
-  end;
-  if CH_RBuff = nil then
-  begin
-    CH_RResult := res_NoRecBuff;      { the message stays waiting }
-    Exit;
-  end;
   if CH_RCtrl <> CHS_ReceiveReady then
     ChReceiveTick;
   if CH_RCtrl <> CHS_ReceiveReady then

@@ -463,17 +463,8 @@ procedure tChnFT1_2.ChReceive(var Len: Word);
 var
   Addr: tNode;
 begin
-  Len := 0;
-  if CH_State <> CHS_Connect then
-  begin
-    CH_RResult := res_WrongState;
+  if not ChReceiveAllowed(Len) then
     Exit;
-  end;
-  if CH_RBuff = nil then
-  begin
-    CH_RResult := res_NoRecBuff;
-    Exit;
-  end;
   if CH_RCtrl <> CHS_ReceiveReady then
   begin
     CH_RResult := res_NoMessage;

@@ -375,17 +375,8 @@ var
   N, Chunk: LongInt;
   Dst: PByte;
 begin
-  Len := 0;
-  if (CH_State <> CHS_Connect) or (CH_PairRef = nil) then
-  begin
-    CH_RResult := res_WrongState;
+  if not ChReceiveAllowed(Len) then
     Exit;
-  end;
-  if CH_RBuff = nil then
-  begin
-    CH_RResult := res_NoRecBuff;
-    Exit;
-  end;
   Dst := CH_RBuff;
   EnterCriticalSection(Lock);
   try

@@ -152,6 +152,9 @@ type
     procedure ChLowSend(Buff: Pointer; Len: Word);
     { Discard bytes pulled from the lower layer but not consumed yet. }
     procedure ChLowDiscard;
+    { The checks every ChReceive starts with: connected and a receive
+      buffer given. When one fails: Len = 0, CH_RResult says why, False. }
+    function  ChReceiveAllowed(var Len: Word): Boolean;
   end;
 
   pAddChnVirt = ^tAddChnVirt;
@@ -667,13 +670,20 @@ end;
 procedure tChnVirt.ChReceive(var Len: Word);
 begin
   { the base has no receiver of its own; descendants implement it }
+  if ChReceiveAllowed(Len) then
+    CH_RResult := res_NoMessage;
+end;
+
+function tChnVirt.ChReceiveAllowed(var Len: Word): Boolean;
+begin
   Len := 0;
+  Result := False;
   if CH_State <> CHS_Connect then
     CH_RResult := res_WrongState
   else if CH_RBuff = nil then
     CH_RResult := res_NoRecBuff
   else
-    CH_RResult := res_NoMessage;
+    Result := True;
 end;
 
 function tChnVirt.ChReceiveResult: tChResult;

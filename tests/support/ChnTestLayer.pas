@@ -110,12 +110,7 @@ var
   B: Byte;
   P: PByte;
 begin
-  Len := 0;
-  if CH_State <> CHS_Connect then
-    CH_RResult := res_WrongState
-  else if CH_RBuff = nil then
-    CH_RResult := res_NoRecBuff
-  else
+  if ChReceiveAllowed(Len) then
   begin
     CH_RResult := res_Ok;
     P := CH_RBuff;
