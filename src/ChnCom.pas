@@ -528,19 +528,11 @@ procedure tChnCom.ChSend(Buff: Pointer; Len: Word);
 var
   R: tChResult;
 begin
-  if (CH_State = CHS_Close) or (CH_Port = nil) then
-  begin
-    CH_SResult := res_WrongState;
+  if not ChSendAllowed(Buff, Len, True) then
     Exit;
-  end;
   if CH_Fault <> res_Ok then
   begin
     CH_SResult := CH_Fault;
-    Exit;
-  end;
-  if (Buff = nil) or (Len = 0) then
-  begin
-    CH_SResult := res_BadLen;
     Exit;
   end;
   if Len > CH_LSB then

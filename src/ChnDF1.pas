@@ -331,22 +331,9 @@ var
   N: Word;
   P: PByte;
 begin
-  if (CH_State = CHS_Close) or (CH_State = CHS_Opening) then
-  begin
-    CH_SResult := res_WrongState;
+  { Len only counts for data messages: the codec checks it }
+  if not ChSendAllowed(Buff, Len, False) then
     Exit;
-  end;
-  if Buff = nil then
-  begin
-    CH_SResult := res_BadLen;
-    Exit;
-  end;
-  { the layer below may still be sending from CH_SBuff: do not touch it }
-  if (CH_Low <> nil) and (CH_Low^.ChSendReady <> CHS_SendReady) then
-  begin
-    CH_SResult := res_Busy;
-    Exit;
-  end;
   if CH_SBuff = nil then
   begin
     CH_MSBuff := DF1DefaultSBuff;

@@ -386,27 +386,8 @@ var
   N: Word;
   R: tChResult;
 begin
-  if (CH_State = CHS_Close) or (CH_State = CHS_Opening) then
-  begin
-    CH_SResult := res_WrongState;
+  if not ChSendAllowed(Buff, Len, True) then
     Exit;
-  end;
-  if (Buff = nil) or (Len = 0) then
-  begin
-    CH_SResult := res_BadLen;
-    Exit;
-  end;
-  if CH_Low = nil then
-  begin
-    CH_SResult := res_NoLowLayer;
-    Exit;
-  end;
-  { check before encoding: the layer below may still read CH_SBuff }
-  if CH_Low^.ChSendReady <> CHS_SendReady then
-  begin
-    CH_SResult := res_Busy;
-    Exit;
-  end;
   if CH_SBuff = nil then
   begin
     GetMem(CH_SBuff, cFT12MaxFrame);   { no LSB= given: room for any frame }

@@ -207,27 +207,9 @@ var
   N: Word;
   R: tChResult;
 begin
-  if (CH_State = CHS_Close) or (CH_State = CHS_Opening) then
-  begin
-    CH_SResult := res_WrongState;
+  { Len = 4 (no numbers) is valid: the codec checks it }
+  if not ChSendAllowed(Buff, Len, False) then
     Exit;
-  end;
-  if Buff = nil then
-  begin
-    CH_SResult := res_BadLen;
-    Exit;
-  end;
-  if CH_Low = nil then
-  begin
-    CH_SResult := res_NoLowLayer;
-    Exit;
-  end;
-  { do not overwrite the buffer the layer below may still be sending }
-  if CH_Low^.ChSendReady <> CHS_SendReady then
-  begin
-    CH_SResult := res_Busy;
-    Exit;
-  end;
   if CH_SBuff = nil then
   begin
     GetMem(CH_SBuff, ICSMaxFrame);

@@ -257,16 +257,8 @@ end;
 
 procedure tChnLoop.ChSend(Buff: Pointer; Len: Word);
 begin
-  if (CH_State = CHS_Close) or (CH_PairRef = nil) then
-  begin
-    CH_SResult := res_WrongState;
+  if not ChSendAllowed(Buff, Len, True) then
     Exit;
-  end;
-  if (Buff = nil) or (Len = 0) then
-  begin
-    CH_SResult := res_BadLen;
-    Exit;
-  end;
   if ChSendReady <> CHS_SendReady then
   begin
     CH_SResult := res_Busy;

@@ -155,6 +155,11 @@ type
     { The checks every ChReceive starts with: connected and a receive
       buffer given. When one fails: Len = 0, CH_RResult says why, False. }
     function  ChReceiveAllowed(var Len: Word): Boolean;
+    { The checks every ChSend starts with: the channel open, a buffer given
+      (and Len > 0 when NeedLen), the layer below present and idle - a
+      protocol layer must not overwrite a send buffer the layer below may
+      still be reading. When one fails: CH_SResult says why, False. }
+    function  ChSendAllowed(Buff: Pointer; Len: Word; NeedLen: Boolean): Boolean;
   end;
 
   pAddChnVirt = ^tAddChnVirt;
@@ -605,12 +610,23 @@ end;
 
 procedure tChnVirt.ChSend(Buff: Pointer; Len: Word);
 begin
+  if ChSendAllowed(Buff, Len, True) then
+    ChLowSend(Buff, Len);
+end;
+
+function tChnVirt.ChSendAllowed(Buff: Pointer; Len: Word; NeedLen: Boolean): Boolean;
+begin
+  Result := False;
   if (CH_State = CHS_Close) or (CH_State = CHS_Opening) then
     CH_SResult := res_WrongState
-  else if (Buff = nil) or (Len = 0) then
+  else if (Buff = nil) or (NeedLen and (Len = 0)) then
     CH_SResult := res_BadLen
+  else if ChHasLow and (CH_Low = nil) then
+    CH_SResult := res_NoLowLayer
+  else if (CH_Low <> nil) and (CH_Low^.ChSendReady <> CHS_SendReady) then
+    CH_SResult := res_Busy
   else
-    ChLowSend(Buff, Len);
+    Result := True;
 end;
 
 procedure tChnVirt.ChLowSend(Buff: Pointer; Len: Word);
