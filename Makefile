@@ -4,6 +4,7 @@
 #   make test T=DF1 only tests whose name contains DF1
 #   make demo       a DF1 exchange on this machine, no hardware needed
 #   make bench      codec and channel benchmarks
+#   make fuzz       random-mutation fuzzing of the codecs (SECONDS=10)
 #   make clean
 # Optional: SYNAPSE_DIR=/path/to/synapse builds the Synapse serial backend.
 
@@ -31,7 +32,7 @@ TOOLS    := $(wildcard tools/*.pas)
 BENCHES  := $(wildcard bench/*.pas)
 TESTUNITS := $(wildcard tests/Test*.pas)
 
-.PHONY: all units examples tools test demo bench clean check-fpc dirs
+.PHONY: all units examples tools test demo bench fuzz clean check-fpc dirs
 
 all: units examples tools
 
@@ -75,6 +76,13 @@ demo: all
 
 bench: units
 	@set -e; for p in $(BENCHES); do $(FPC) $(UNITFLAGS) $$p; $(BINDIR)/$$(basename $$p .pas); done
+
+# Random-mutation fuzzing of the three codecs with run-time checks on;
+# SECONDS=n for longer runs, SEED=n to repeat one.
+SECONDS ?= 10
+fuzz: units
+	@$(FPC) $(TESTFLAGS) tests/fuzz/fuzzcodecs.pas >$(BUILD)/fuzz-build.log 2>&1 || { cat $(BUILD)/fuzz-build.log; exit 1; }
+	@rm -f $(BUILD)/fuzz-heap.log; HEAPTRC="log=$(BUILD)/fuzz-heap.log" $(TBINDIR)/fuzzcodecs $(SECONDS) $(SEED)
 
 clean:
 	rm -rf $(BUILD)

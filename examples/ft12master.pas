@@ -13,7 +13,7 @@
   e.g.    ft12master 'NAM=FT1_2 MS=ON MAS=MASTER LSB=500 NOD=1 DNO=2 NAM=COM COM=1 BD=9600 BIT=8 STOP=1 PAR=E LRB=1000'
 
   The physical layer is chosen by NAM= in the string; its unit must be in
-  the uses clause (ChnLoop here; add ChnCom for NAM=COM). }
+  the uses clause (ChnLoop and ChnCom here). }
 program ft12master;
 
 {$MODE OBJFPC}{$H-}
@@ -24,6 +24,7 @@ uses
   ChnTypes,
   ChnVirt,
   ChnLoop,
+  ChnCom,
   ChnFT1_2;
 
 const

@@ -13,8 +13,8 @@
 
   Usage:  ft12slave ['parameter string' [seconds]]      (default 60 s)
   e.g.    ft12slave 'NAM=FT1_2 MS=ON MAS=SLAVE LEN=0 NOD=1 NAM=COM DEV=/dev/ttyUSB0 BD=9600 PAR=E'
-  The physical layer's unit must be in the uses clause (ChnLoop here; add
-  ChnCom for NAM=COM). }
+  The physical layer's unit must be in the uses clause (ChnLoop and
+  ChnCom here). }
 program ft12slave;
 
 {$MODE OBJFPC}{$H-}
@@ -24,6 +24,7 @@ uses
   ChnTypes,
   ChnVirt,
   ChnLoop,
+  ChnCom,
   ChnFT12Codec,
   ChnFT1_2;
 

@@ -17,8 +17,7 @@
   ends), and errors say what went wrong instead of 'Chyba'.
 
   Physical layers are found through the registry, so a layer is available
-  when its unit is in the uses clause below: ChnLoop is; add ChnCom for a
-  serial port once that unit is part of the build. }
+  when its unit is in the uses clause below (ChnLoop and ChnCom). }
 program icsread;
 
 {$MODE OBJFPC}{$H+}
@@ -29,6 +28,7 @@ uses
   ChnTypes,
   ChnVirt,
   ChnLoop,
+  ChnCom,
   ChnICS;
 
 const

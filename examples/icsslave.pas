@@ -15,8 +15,7 @@
     icsslave [-t seconds] [-n requests] 'NAM=ICS MAS=SLAVE NOD=2 DNO=1 NAM=COM DEV=/dev/ttyUSB1'
 
   Runs until -n requests were answered or -t seconds passed (default 60),
-  never endlessly. As in icsread, add ChnCom to the uses clause for a
-  serial port once that unit is part of the build. }
+  never endlessly. }
 program icsslave;
 
 {$MODE OBJFPC}{$H+}
@@ -27,6 +26,7 @@ uses
   ChnTypes,
   ChnVirt,
   ChnLoop,
+  ChnCom,
   ChnICS;
 
 const

@@ -52,7 +52,7 @@ unit ChnCom;
 interface
 
 uses
-  ChnTypes, ChnVirt, ChnPort
+  ChnTypes, ChnVirt, ChnRing, ChnPort
   {$IFDEF WINDOWS}, ChnPortWin{$ELSE}, ChnPortUnix{$ENDIF}
   {$IFDEF CHN_SYNAPSE}, ChnPortSynapse{$ENDIF};
 
@@ -84,8 +84,7 @@ type
     CH_RtsToggle: Boolean;         { this layer switches RTS (RS485=RTS/AUTO) }
     CH_RtsUp   : Boolean;          { RTS raised for the message being sent }
     CH_Fault   : tChResult;        { device lost / I/O error while open }
-    CH_Ring    : PByte;            { receive ring of CH_LRB bytes }
-    CH_Head, CH_Count: LongInt;
+    CH_Ring    : tByteRing;        { receive ring of CH_LRB bytes }
     CH_Lost    : LongWord;         { bytes lost since open (ring or OS) }
     CH_LostShown: LongWord;        { part of CH_Lost already reported }
     CH_OsLost  : LongWord;         { OS overrun count last seen }
@@ -156,9 +155,7 @@ begin
   CH_RtsToggle := False;
   CH_RtsUp := False;
   CH_Fault := res_Ok;
-  CH_Ring := nil;
-  CH_Head := 0;
-  CH_Count := 0;
+  FillChar(CH_Ring, SizeOf(CH_Ring), 0);
   CH_Lost := 0;
   CH_LostShown := 0;
   CH_OsLost := 0;
@@ -187,9 +184,7 @@ end;
 
 procedure tChnCom.ComFreeBuffers;
 begin
-  if CH_Ring <> nil then
-    FreeMem(CH_Ring);
-  CH_Ring := nil;
+  RingFree(CH_Ring);
   if CH_TxBuf <> nil then
     FreeMem(CH_TxBuf);
   CH_TxBuf := nil;
@@ -378,9 +373,7 @@ begin
     Exit;
   end;
   CH_Port := Port;
-  ReAllocMem(CH_Ring, CH_LRB);
-  CH_Head := 0;
-  CH_Count := 0;
+  RingAlloc(CH_Ring, CH_LRB);
   CH_Lost := 0;
   CH_LostShown := 0;
   CH_OsLost := 0;
@@ -417,7 +410,7 @@ begin
   CH_TxLen := 0;
   CH_TxPos := 0;
   CH_RtsUp := False;
-  CH_Count := 0;
+  RingClear(CH_Ring);
   CH_Fault := res_Ok;
   CH_State := CHS_Close;
   CH_RCtrl := CHS_RecInactive;
@@ -441,7 +434,8 @@ end;
 { Move what the OS holds into the ring; see the unit header for a full ring. }
 procedure tChnCom.ComPull;
 var
-  Tail, Room, Got, Dropped: LongInt;
+  Room, Got, Dropped: LongInt;
+  Tail: PByte;
   Scratch: array[0..1023] of Byte;
   R: tChResult;
   Os: LongWord;
@@ -449,13 +443,10 @@ begin
   if (CH_Port = nil) or (CH_Fault <> res_Ok) then
     Exit;
   Got := 0;
-  while CH_Count < CH_LRB do
+  while RingRoom(CH_Ring) > 0 do
   begin
-    Tail := (CH_Head + CH_Count) mod CH_LRB;
-    Room := CH_LRB - CH_Count;
-    if Room > CH_LRB - Tail then
-      Room := CH_LRB - Tail;
-    R := CH_Port.Read(CH_Ring[Tail], Room, Got);
+    Room := RingTailSpan(CH_Ring, Tail);
+    R := CH_Port.Read(Tail^, Room, Got);
     if R <> res_Ok then
     begin
       ComFault(R);
@@ -463,9 +454,9 @@ begin
     end;
     if Got = 0 then
       Break;
-    Inc(CH_Count, Got);
+    RingCommit(CH_Ring, Got);
   end;
-  if (CH_Count >= CH_LRB) and (CH_Set.Flow = flowNone) then
+  if (RingRoom(CH_Ring) = 0) and (CH_Set.Flow = flowNone) then
   begin
     { no flow control can stop the sender: bytes beyond LRB are lost, and
       said so, as with the interrupt-driven ring of the original }
@@ -537,19 +528,11 @@ procedure tChnCom.ChSend(Buff: Pointer; Len: Word);
 var
   R: tChResult;
 begin
-  if (CH_State = CHS_Close) or (CH_Port = nil) then
-  begin
-    CH_SResult := res_WrongState;
+  if not ChSendAllowed(Buff, Len, True) then
     Exit;
-  end;
   if CH_Fault <> res_Ok then
   begin
     CH_SResult := CH_Fault;
-    Exit;
-  end;
-  if (Buff = nil) or (Len = 0) then
-  begin
-    CH_SResult := res_BadLen;
     Exit;
   end;
   if Len > CH_LSB then
@@ -624,14 +607,14 @@ begin
   begin
     ComPumpTx;                    { a long message keeps moving meanwhile }
     ComPull;
-    if (CH_Count = 0) and (CH_Idle > 0) then
+    if (CH_Ring.Count = 0) and (CH_Idle > 0) then
     begin
       if CH_Fault <> res_Ok then
         Sleep(CH_Idle)            { nothing to wait on; still no busy loop }
       else if CH_Port.WaitInput(CH_Idle) then
         ComPull;
     end;
-    if CH_Count > 0 then
+    if CH_Ring.Count > 0 then
       CH_RCtrl := CHS_ReceiveReady
     else
       CH_RCtrl := CHS_Receiving;
@@ -640,41 +623,12 @@ begin
 end;
 
 procedure tChnCom.ChReceive(var Len: Word);
-var
-  N, Chunk: LongInt;
-  Dst: PByte;
 begin
-  Len := 0;
-  if CH_State <> CHS_Connect then
-  begin
-    CH_RResult := res_WrongState;
+  if not ChReceiveAllowed(Len) then
     Exit;
-  end;
-  if CH_RBuff = nil then
-  begin
-    CH_RResult := res_NoRecBuff;
-    Exit;
-  end;
   if CH_RCtrl <> CHS_ReceiveReady then
     ComPull;
-  N := CH_Count;
-  if N > CH_RSize then
-    N := CH_RSize;
-  Len := N;
-  Dst := CH_RBuff;
-  while N > 0 do
-  begin
-    Chunk := N;
-    if Chunk > CH_LRB - CH_Head then
-      Chunk := CH_LRB - CH_Head;
-    Move(CH_Ring[CH_Head], Dst^, Chunk);
-    Inc(Dst, Chunk);
-    CH_Head := (CH_Head + Chunk) mod CH_LRB;
-    Dec(CH_Count, Chunk);
-    Dec(N, Chunk);
-  end;
-  if CH_Count = 0 then
-    CH_Head := 0;
+  Len := RingGet(CH_Ring, CH_RBuff, CH_RSize);
   if CH_Lost > CH_LostShown then
   begin
     CH_LostShown := CH_Lost;     { reported once, with the bytes kept }
@@ -686,7 +640,7 @@ begin
     CH_RResult := res_NoMessage
   else
     CH_RResult := res_Ok;
-  if CH_Count > 0 then
+  if CH_Ring.Count > 0 then
     CH_RCtrl := CHS_ReceiveReady
   else
     CH_RCtrl := CHS_Receiving;
@@ -696,8 +650,7 @@ procedure tChnCom.ChReceiveFlush;
 begin
   if (CH_Port <> nil) and (CH_Fault = res_Ok) then
     CH_Port.Flush(True, False);
-  CH_Head := 0;
-  CH_Count := 0;
+  RingClear(CH_Ring);
   CH_LostShown := CH_Lost;
   inherited ChReceiveFlush;
   if CH_Fault <> res_Ok then

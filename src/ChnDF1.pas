@@ -191,6 +191,7 @@ const
   { bytes one ChReceiveTick may pull, so a babbling line cannot stall the
     caller's polling loop }
   MaxBytesPerTick = 4096;
+  DuplexChoice = 'HALF|FULL';   { FHD=, False first as ParamFlag wants }
 
 constructor tChnDF1.Init;
 begin
@@ -257,23 +258,11 @@ begin
   I := 0;
   N := 0;
   if Key = 'MAS' then
-  begin
-    Result := ParamChoice(S, 'MASTER|SLAVE', I);
-    if (Result = res_Ok) and (CmdL = cmd_Set) then
-      CH_Master := I = 0;
-  end
+    Result := ParamFlag(S, MasterChoice, CmdL, CH_Master)
   else if Key = 'FHD' then
-  begin
-    Result := ParamChoice(S, 'FULL|HALF', I);
-    if (Result = res_Ok) and (CmdL = cmd_Set) then
-      CH_FullDup := I = 0;
-  end
+    Result := ParamFlag(S, DuplexChoice, CmdL, CH_FullDup)
   else if Key = 'CRC' then
-  begin
-    Result := ParamChoice(S, 'OFF|ON', I);
-    if (Result = res_Ok) and (CmdL = cmd_Set) then
-      CH_FlCrc := I = 1;
-  end
+    Result := ParamFlag(S, OnOffChoice, CmdL, CH_FlCrc)
   else if Key = 'NAK' then
   begin
     Result := ParamChoice(S, '15|0F', I);
@@ -302,10 +291,6 @@ begin
 end;
 
 function tChnDF1.ChOwnParams: tParamStr;
-const
-  MasText: array[Boolean] of string[6] = ('SLAVE', 'MASTER');
-  FhdText: array[Boolean] of string[4] = ('HALF', 'FULL');
-  CrcText: array[Boolean] of string[3] = ('OFF', 'ON');
 var
   NakText: string[2];
 begin
@@ -313,8 +298,8 @@ begin
     NakText := '0F'
   else
     NakText := '15';
-  Result := inherited ChOwnParams + ' MAS=' + MasText[CH_Master] +
-    ' FHD=' + FhdText[CH_FullDup] + ' CRC=' + CrcText[CH_FlCrc] +
+  Result := inherited ChOwnParams + FlagText('MAS', MasterChoice, CH_Master) +
+    FlagText('FHD', DuplexChoice, CH_FullDup) + FlagText('CRC', OnOffChoice, CH_FlCrc) +
     ' NAK=' + NakText;
   if CH_MSBuff > 0 then
     Result := Result + ParamText('LSB', CH_MSBuff);
@@ -346,22 +331,9 @@ var
   N: Word;
   P: PByte;
 begin
-  if (CH_State = CHS_Close) or (CH_State = CHS_Opening) then
-  begin
-    CH_SResult := res_WrongState;
+  { Len only counts for data messages: the codec checks it }
+  if not ChSendAllowed(Buff, Len, False) then
     Exit;
-  end;
-  if Buff = nil then
-  begin
-    CH_SResult := res_BadLen;
-    Exit;
-  end;
-  { the layer below may still be sending from CH_SBuff: do not touch it }
-  if (CH_Low <> nil) and (CH_Low^.ChSendReady <> CHS_SendReady) then
-  begin
-    CH_SResult := res_Busy;
-    Exit;
-  end;
   if CH_SBuff = nil then
   begin
     CH_MSBuff := DF1DefaultSBuff;
@@ -414,17 +386,8 @@ end;
 
 procedure tChnDF1.ChReceive(var Len: Word);
 begin
-  Len := 0;
-  if CH_State <> CHS_Connect then
-  begin
-    CH_RResult := res_WrongState;
+  if not ChReceiveAllowed(Len) then
     Exit;
-  end;
-  if CH_RBuff = nil then
-  begin
-    CH_RResult := res_NoRecBuff;      { the message stays waiting }
-    Exit;
-  end;
   if CH_RCtrl <> CHS_ReceiveReady then
     ChReceiveTick;
   if CH_RCtrl <> CHS_ReceiveReady then

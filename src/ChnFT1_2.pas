@@ -153,7 +153,6 @@ uses
 const
   cBitsPerChar = 11;     { FT 1.2 character: start, 8 data, even parity, stop }
   cDefaultBaud = 9600;   { for GAP= when no layer below has BD= }
-  OnOff: array[Boolean] of string[3] = ('OFF', 'ON');
 
 constructor tChnFT1_2.Init;
 begin
@@ -296,23 +295,11 @@ begin
   N := 0;
   I := 0;
   if Key = 'MS' then
-  begin
-    Result := ParamChoice(S, 'OFF|ON', I);
-    if (Result = res_Ok) and (CmdL = cmd_Set) then
-      CH_MaSl := I = 1;
-  end
+    Result := ParamFlag(S, OnOffChoice, CmdL, CH_MaSl)
   else if Key = 'MAS' then
-  begin
-    Result := ParamChoice(S, 'SLAVE|MASTER', I);
-    if (Result = res_Ok) and (CmdL = cmd_Set) then
-      CH_MasParam := I = 1;
-  end
+    Result := ParamFlag(S, MasterChoice, CmdL, CH_MasParam)
   else if Key = 'PRI' then
-  begin
-    Result := ParamChoice(S, 'OFF|ON', I);
-    if (Result = res_Ok) and (CmdL = cmd_Set) then
-      CH_PriParam := I = 1;
-  end
+    Result := ParamFlag(S, OnOffChoice, CmdL, CH_PriParam)
   else if Key = 'LSB' then
   begin
     Result := ParamNum(S, 1, MaxTBuf, N);
@@ -366,11 +353,9 @@ begin
 end;
 
 function tChnFT1_2.ChOwnParams: tParamStr;
-const
-  MasText: array[Boolean] of string[6] = ('SLAVE', 'MASTER');
 begin
-  Result := inherited ChOwnParams + ' MS=' + OnOff[CH_MaSl] +
-    ' MAS=' + MasText[CH_MasParam] + ' PRI=' + OnOff[CH_PriParam];
+  Result := inherited ChOwnParams + FlagText('MS', OnOffChoice, CH_MaSl) +
+    FlagText('MAS', MasterChoice, CH_MasParam) + FlagText('PRI', OnOffChoice, CH_PriParam);
   if CH_MSBuff > 0 then
     Result := Result + ParamText('LSB', CH_MSBuff);
   Result := Result + ParamText('LEN', CH_LenShortM) + ParamText('ADR', CH_AdrLen) +
@@ -401,27 +386,8 @@ var
   N: Word;
   R: tChResult;
 begin
-  if (CH_State = CHS_Close) or (CH_State = CHS_Opening) then
-  begin
-    CH_SResult := res_WrongState;
+  if not ChSendAllowed(Buff, Len, True) then
     Exit;
-  end;
-  if (Buff = nil) or (Len = 0) then
-  begin
-    CH_SResult := res_BadLen;
-    Exit;
-  end;
-  if CH_Low = nil then
-  begin
-    CH_SResult := res_NoLowLayer;
-    Exit;
-  end;
-  { check before encoding: the layer below may still read CH_SBuff }
-  if CH_Low^.ChSendReady <> CHS_SendReady then
-  begin
-    CH_SResult := res_Busy;
-    Exit;
-  end;
   if CH_SBuff = nil then
   begin
     GetMem(CH_SBuff, cFT12MaxFrame);   { no LSB= given: room for any frame }
@@ -478,17 +444,8 @@ procedure tChnFT1_2.ChReceive(var Len: Word);
 var
   Addr: tNode;
 begin
-  Len := 0;
-  if CH_State <> CHS_Connect then
-  begin
-    CH_RResult := res_WrongState;
+  if not ChReceiveAllowed(Len) then
     Exit;
-  end;
-  if CH_RBuff = nil then
-  begin
-    CH_RResult := res_NoRecBuff;
-    Exit;
-  end;
   if CH_RCtrl <> CHS_ReceiveReady then
   begin
     CH_RResult := res_NoMessage;

@@ -155,11 +155,7 @@ begin
   N := 0;
   I := 0;
   if Key = 'MAS' then
-  begin
-    Result := ParamChoice(S, 'MASTER|SLAVE', I);
-    if (Result = res_Ok) and (CmdL = cmd_Set) then
-      CH_Master := I = 0;
-  end
+    Result := ParamFlag(S, MasterChoice, CmdL, CH_Master)
   else if Key = 'LSB' then
   begin
     Result := ParamNum(S, 0, MaxTBuf, N);
@@ -181,10 +177,8 @@ begin
 end;
 
 function tChnICS.ChOwnParams: tParamStr;
-const
-  Roles: array[Boolean] of string[6] = ('SLAVE', 'MASTER');
 begin
-  Result := inherited ChOwnParams + ' MAS=' + Roles[CH_Master] +
+  Result := inherited ChOwnParams + FlagText('MAS', MasterChoice, CH_Master) +
     ParamText('LSB', CH_MSBuff);
 end;
 
@@ -213,27 +207,9 @@ var
   N: Word;
   R: tChResult;
 begin
-  if (CH_State = CHS_Close) or (CH_State = CHS_Opening) then
-  begin
-    CH_SResult := res_WrongState;
+  { Len = 4 (no numbers) is valid: the codec checks it }
+  if not ChSendAllowed(Buff, Len, False) then
     Exit;
-  end;
-  if Buff = nil then
-  begin
-    CH_SResult := res_BadLen;
-    Exit;
-  end;
-  if CH_Low = nil then
-  begin
-    CH_SResult := res_NoLowLayer;
-    Exit;
-  end;
-  { do not overwrite the buffer the layer below may still be sending }
-  if CH_Low^.ChSendReady <> CHS_SendReady then
-  begin
-    CH_SResult := res_Busy;
-    Exit;
-  end;
   if CH_SBuff = nil then
   begin
     GetMem(CH_SBuff, ICSMaxFrame);
@@ -279,17 +255,8 @@ var
   Need: LongInt;
   Rec: pICSRecord;
 begin
-  Len := 0;
-  if CH_State <> CHS_Connect then
-  begin
-    CH_RResult := res_WrongState;
+  if not ChReceiveAllowed(Len) then
     Exit;
-  end;
-  if CH_RBuff = nil then
-  begin
-    CH_RResult := res_NoRecBuff;
-    Exit;
-  end;
   if CH_RCtrl <> CHS_ReceiveReady then
   begin
     CH_RResult := res_NoMessage;

@@ -21,7 +21,7 @@ unit ChnLoop;
 interface
 
 uses
-  ChnTypes, ChnVirt;
+  ChnTypes, ChnVirt, ChnRing;
 
 const
   cName = 'LOOP';
@@ -55,8 +55,7 @@ type
   end;
 
   tLoopDir = record             { bytes flowing towards one end }
-    Ring: PByte;                { nil while that end is closed }
-    Cap, Head, Count: LongInt;
+    Ring: tByteRing;            { Buf is nil while that end is closed }
     Pend: PByte;                { sender's message not yet in the ring }
     PendLen, PendPos: LongInt;
   end;
@@ -89,26 +88,11 @@ end;
 
 { Move what fits of the pending message into the ring. Caller holds Lock. }
 procedure Pump(var D: tLoopDir);
-var
-  Tail, N: LongInt;
 begin
-  if D.Ring = nil then
-  begin
-    D.PendPos := D.PendLen;     { nobody listening: the bytes are gone }
-    Exit;
-  end;
-  while (D.PendPos < D.PendLen) and (D.Count < D.Cap) do
-  begin
-    Tail := (D.Head + D.Count) mod D.Cap;
-    N := D.PendLen - D.PendPos;
-    if N > D.Cap - D.Count then
-      N := D.Cap - D.Count;
-    if N > D.Cap - Tail then
-      N := D.Cap - Tail;
-    Move(D.Pend[D.PendPos], D.Ring[Tail], N);
-    Inc(D.PendPos, N);
-    Inc(D.Count, N);
-  end;
+  if D.Ring.Buf = nil then
+    D.PendPos := D.PendLen      { nobody listening: the bytes are gone }
+  else if D.PendPos < D.PendLen then
+    Inc(D.PendPos, RingPut(D.Ring, @D.Pend[D.PendPos], D.PendLen - D.PendPos));
 end;
 
 constructor tChnLoop.Init;
@@ -221,13 +205,7 @@ begin
       Exit;
     end;
     P^.Open[CH_End] := True;
-    with P^.Dir[CH_End] do
-    begin
-      GetMem(Ring, CH_LRB);
-      Cap := CH_LRB;
-      Head := 0;
-      Count := 0;
-    end;
+    RingAlloc(P^.Dir[CH_End].Ring, CH_LRB);
     CH_PairRef := P;
   finally
     LeaveCriticalSection(Lock);
@@ -253,12 +231,7 @@ begin
   try
     P := CH_PairRef;
     P^.Open[CH_End] := False;
-    with P^.Dir[CH_End] do
-    begin
-      FreeMem(Ring);
-      Ring := nil;
-      Count := 0;
-    end;
+    RingFree(P^.Dir[CH_End].Ring);
     with P^.Dir[OtherEnd(CH_End)] do
     begin
       Pend := nil;                  { our transmit buffer may go away now }
@@ -284,16 +257,8 @@ end;
 
 procedure tChnLoop.ChSend(Buff: Pointer; Len: Word);
 begin
-  if (CH_State = CHS_Close) or (CH_PairRef = nil) then
-  begin
-    CH_SResult := res_WrongState;
+  if not ChSendAllowed(Buff, Len, True) then
     Exit;
-  end;
-  if (Buff = nil) or (Len = 0) then
-  begin
-    CH_SResult := res_BadLen;
-    Exit;
-  end;
   if ChSendReady <> CHS_SendReady then
   begin
     CH_SResult := res_Busy;
@@ -350,7 +315,7 @@ begin
     EnterCriticalSection(Lock);
     try
       Pump(CH_PairRef^.Dir[CH_End]);
-      Avail := CH_PairRef^.Dir[CH_End].Count;
+      Avail := CH_PairRef^.Dir[CH_End].Ring.Count;
     finally
       LeaveCriticalSection(Lock);
     end;
@@ -371,43 +336,16 @@ begin
 end;
 
 procedure tChnLoop.ChReceive(var Len: Word);
-var
-  N, Chunk: LongInt;
-  Dst: PByte;
 begin
-  Len := 0;
-  if (CH_State <> CHS_Connect) or (CH_PairRef = nil) then
-  begin
-    CH_RResult := res_WrongState;
+  if not ChReceiveAllowed(Len) then
     Exit;
-  end;
-  if CH_RBuff = nil then
-  begin
-    CH_RResult := res_NoRecBuff;
-    Exit;
-  end;
-  Dst := CH_RBuff;
   EnterCriticalSection(Lock);
   try
     with CH_PairRef^.Dir[CH_End] do
     begin
       Pump(CH_PairRef^.Dir[CH_End]);
-      N := Count;
-      if N > CH_RSize then
-        N := CH_RSize;
-      Len := N;
-      while N > 0 do
-      begin
-        Chunk := N;
-        if Chunk > Cap - Head then
-          Chunk := Cap - Head;
-        Move(Ring[Head], Dst^, Chunk);
-        Inc(Dst, Chunk);
-        Head := (Head + Chunk) mod Cap;
-        Dec(Count, Chunk);
-        Dec(N, Chunk);
-      end;
-      Pump(CH_PairRef^.Dir[CH_End]);
+      Len := RingGet(Ring, CH_RBuff, CH_RSize);
+      Pump(CH_PairRef^.Dir[CH_End]);   { room again for the sender }
     end;
   finally
     LeaveCriticalSection(Lock);
@@ -425,11 +363,7 @@ begin
   begin
     EnterCriticalSection(Lock);
     try
-      with CH_PairRef^.Dir[CH_End] do
-      begin
-        Head := 0;
-        Count := 0;
-      end;
+      RingClear(CH_PairRef^.Dir[CH_End].Ring);
     finally
       LeaveCriticalSection(Lock);
     end;

@@ -267,17 +267,8 @@ end;
 
 procedure tChnTrc.ChReceive(var Len: Word);
 begin
-  Len := 0;
-  if (CH_State <> CHS_Connect) or (CH_Low = nil) then
-  begin
-    CH_RResult := res_WrongState;
+  if not ChReceiveAllowed(Len) then
     Exit;
-  end;
-  if CH_RBuff = nil then
-  begin
-    CH_RResult := res_NoRecBuff;
-    Exit;
-  end;
   CH_Low^.ChReceive(Len);
   CH_RResult := CH_Low^.ChReceiveResult;
   if Len > CH_RSize then

@@ -152,6 +152,14 @@ type
     procedure ChLowSend(Buff: Pointer; Len: Word);
     { Discard bytes pulled from the lower layer but not consumed yet. }
     procedure ChLowDiscard;
+    { The checks every ChReceive starts with: connected and a receive
+      buffer given. When one fails: Len = 0, CH_RResult says why, False. }
+    function  ChReceiveAllowed(var Len: Word): Boolean;
+    { The checks every ChSend starts with: the channel open, a buffer given
+      (and Len > 0 when NeedLen), the layer below present and idle - a
+      protocol layer must not overwrite a send buffer the layer below may
+      still be reading. When one fails: CH_SResult says why, False. }
+    function  ChSendAllowed(Buff: Pointer; Len: Word; NeedLen: Boolean): Boolean;
   end;
 
   pAddChnVirt = ^tAddChnVirt;
@@ -191,6 +199,16 @@ function ParamValue(const S: tWordString): string;
 function ParamNum(const S: tWordString; Min, Max: LongInt; var N: LongInt): tChResult;
 function ParamChoice(const S: tWordString; const Choices: string; var Index: Integer): tChResult;
 function ParamText(const Key: string; N: LongInt): string;
+{ A two-way choice kept in a Boolean. Choices lists the False word first
+  ('OFF|ON', 'SLAVE|MASTER'); Flag is set only when CmdL = cmd_Set. }
+function ParamFlag(const S: tWordString; const Choices: string; CmdL: tCmd;
+  var Flag: Boolean): tChResult;
+{ ' KEY=WORD' for a Boolean kept as in ParamFlag. }
+function FlagText(const Key, Choices: string; Flag: Boolean): string;
+
+const
+  OnOffChoice  = 'OFF|ON';
+  MasterChoice = 'SLAVE|MASTER';
 
 var
   ChnCollection: pChnCollection;
@@ -255,6 +273,22 @@ end;
 function ParamText(const Key: string; N: LongInt): string;
 begin
   Result := ' ' + Key + '=' + NumStr(N);
+end;
+
+function ParamFlag(const S: tWordString; const Choices: string; CmdL: tCmd;
+  var Flag: Boolean): tChResult;
+var
+  I: Integer;
+begin
+  I := 0;
+  Result := ParamChoice(S, Choices, I);
+  if (Result = res_Ok) and (CmdL = cmd_Set) then
+    Flag := I = 1;
+end;
+
+function FlagText(const Key, Choices: string; Flag: Boolean): string;
+begin
+  Result := ' ' + Key + '=' + ChoiceWord(Choices, Ord(Flag));
 end;
 
 { ---------------------------------------------------------------- tChnVirt }
@@ -576,12 +610,23 @@ end;
 
 procedure tChnVirt.ChSend(Buff: Pointer; Len: Word);
 begin
+  if ChSendAllowed(Buff, Len, True) then
+    ChLowSend(Buff, Len);
+end;
+
+function tChnVirt.ChSendAllowed(Buff: Pointer; Len: Word; NeedLen: Boolean): Boolean;
+begin
+  Result := False;
   if (CH_State = CHS_Close) or (CH_State = CHS_Opening) then
     CH_SResult := res_WrongState
-  else if (Buff = nil) or (Len = 0) then
+  else if (Buff = nil) or (NeedLen and (Len = 0)) then
     CH_SResult := res_BadLen
+  else if ChHasLow and (CH_Low = nil) then
+    CH_SResult := res_NoLowLayer
+  else if (CH_Low <> nil) and (CH_Low^.ChSendReady <> CHS_SendReady) then
+    CH_SResult := res_Busy
   else
-    ChLowSend(Buff, Len);
+    Result := True;
 end;
 
 procedure tChnVirt.ChLowSend(Buff: Pointer; Len: Word);
@@ -641,13 +686,20 @@ end;
 procedure tChnVirt.ChReceive(var Len: Word);
 begin
   { the base has no receiver of its own; descendants implement it }
+  if ChReceiveAllowed(Len) then
+    CH_RResult := res_NoMessage;
+end;
+
+function tChnVirt.ChReceiveAllowed(var Len: Word): Boolean;
+begin
   Len := 0;
+  Result := False;
   if CH_State <> CHS_Connect then
     CH_RResult := res_WrongState
   else if CH_RBuff = nil then
     CH_RResult := res_NoRecBuff
   else
-    CH_RResult := res_NoMessage;
+    Result := True;
 end;
 
 function tChnVirt.ChReceiveResult: tChResult;

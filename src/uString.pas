@@ -34,6 +34,9 @@ function StrToNum(const S: string; Min, Max: LongInt; var N: LongInt): Boolean;
   such as 'FULL|HALF'; -1 when not found. }
 function ChoiceIndex(const S, Choices: string): Integer;
 
+{ The word at Index (0-based) of a '|' separated list; '' if none. }
+function ChoiceWord(const Choices: string; Index: Integer): string;
+
 { Decimal text of N. }
 function NumStr(N: LongInt): string;
 
@@ -157,6 +160,22 @@ begin
       Start := I + 1;
     end;
   Result := -1;
+end;
+
+function ChoiceWord(const Choices: string; Index: Integer): string;
+var
+  I, Start: Integer;
+begin
+  Start := 1;
+  for I := 1 to Length(Choices) + 1 do
+    if (I > Length(Choices)) or (Choices[I] = '|') then
+    begin
+      if Index = 0 then
+        Exit(Copy(Choices, Start, I - Start));
+      Dec(Index);
+      Start := I + 1;
+    end;
+  Result := '';
 end;
 
 function NumStr(N: LongInt): string;

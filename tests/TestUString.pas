@@ -20,6 +20,7 @@ type
     procedure TestStrToNumRefusesMalformed;
     procedure TestStrToNumRange;
     procedure TestChoiceIndex;
+    procedure TestChoiceWord;
   end;
 
 implementation
@@ -142,6 +143,15 @@ begin
   AssertEquals(-1, ChoiceIndex('HAL', 'FULL|HALF'));
   AssertEquals(-1, ChoiceIndex('', 'FULL|HALF'));
   AssertEquals(-1, ChoiceIndex('FULL|HALF', 'FULL|HALF'));
+end;
+
+procedure TTestUString.TestChoiceWord;
+begin
+  AssertEquals('OFF', ChoiceWord('OFF|ON', 0));
+  AssertEquals('ON', ChoiceWord('OFF|ON', 1));
+  AssertEquals('', ChoiceWord('OFF|ON', 2));
+  AssertEquals('', ChoiceWord('OFF|ON', -1));
+  AssertEquals('C', ChoiceWord('A|B|C', 2));
 end;
 
 initialization

@@ -8,9 +8,10 @@
 program legacy_df1;
 
 uses
-  uString,
+  ChnLoop,    { the in-memory line this test runs on, then ... }
+  uString,    { ... the manual's uses clause, unchanged }
   ChnVirt,
-  ChnLoop,
+  ChnCom,
   ChnDF1;
 
 const

@@ -9,7 +9,7 @@ unit ChnTestLayer;
 interface
 
 uses
-  ChnTypes, ChnVirt;
+  ChnTypes, ChnVirt, uString;
 
 const
   cName = 'TSTP';
@@ -81,22 +81,15 @@ begin
       CH_Count := N;
   end
   else if Key = 'FLG' then
-  begin
-    Result := ParamChoice(S, 'OFF|ON', I);
-    if (Result = res_Ok) and (CmdL = cmd_Set) then
-      CH_Flag := I = 1;
-  end
+    Result := ParamFlag(S, OnOffChoice, CmdL, CH_Flag)
   else
     Result := inherited ChSetOneParam(S, CmdL);
 end;
 
 function tChnTestLayer.ChOwnParams: tParamStr;
-const
-  Modes: array[0..2] of string[1] = ('A', 'B', 'C');
-  Flags: array[Boolean] of string[3] = ('OFF', 'ON');
 begin
-  Result := inherited ChOwnParams + ' MOD=' + Modes[CH_Mode] +
-    ParamText('CNT', CH_Count) + ' FLG=' + Flags[CH_Flag];
+  Result := inherited ChOwnParams + ' MOD=' + ChoiceWord('A|B|C', CH_Mode) +
+    ParamText('CNT', CH_Count) + FlagText('FLG', OnOffChoice, CH_Flag);
 end;
 
 procedure tChnTestLayer.ChSend(Buff: Pointer; Len: Word);
@@ -117,12 +110,7 @@ var
   B: Byte;
   P: PByte;
 begin
-  Len := 0;
-  if CH_State <> CHS_Connect then
-    CH_RResult := res_WrongState
-  else if CH_RBuff = nil then
-    CH_RResult := res_NoRecBuff
-  else
+  if ChReceiveAllowed(Len) then
   begin
     CH_RResult := res_Ok;
     P := CH_RBuff;

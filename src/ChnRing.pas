@@ -1,0 +1,123 @@
+{ ChnRing - a byte ring buffer, the receive queue of the physical layers
+  (ChnLoop, ChnCom). A plain record and procedures: no locking, no I/O;
+  the caller holds whatever lock its threads need. }
+unit ChnRing;
+
+{$I chn.inc}
+
+interface
+
+type
+  tByteRing = record
+    Buf  : PByte;     { Cap bytes; nil until RingAlloc }
+    Cap  : LongInt;
+    Head : LongInt;   { index of the oldest byte }
+    Count: LongInt;   { bytes held }
+  end;
+
+{ (Re)allocate for Cap bytes and empty the ring. }
+procedure RingAlloc(var R: tByteRing; Cap: LongInt);
+{ Free the memory; the ring holds nothing afterwards. }
+procedure RingFree(var R: tByteRing);
+procedure RingClear(var R: tByteRing);
+function  RingRoom(const R: tByteRing): LongInt; inline;
+{ Copy up to N bytes in; returns how many fitted. }
+function  RingPut(var R: tByteRing; Src: PByte; N: LongInt): LongInt;
+{ Copy up to N bytes out (oldest first); returns how many. }
+function  RingGet(var R: tByteRing; Dst: PByte; N: LongInt): LongInt;
+{ For a reader that fills the ring in place (e.g. from read(2)): the free
+  space directly after the last byte, without wrapping; RingCommit then
+  counts what was written there. }
+function  RingTailSpan(var R: tByteRing; var P: PByte): LongInt;
+procedure RingCommit(var R: tByteRing; N: LongInt);
+
+implementation
+
+procedure RingAlloc(var R: tByteRing; Cap: LongInt);
+begin
+  ReAllocMem(R.Buf, Cap);
+  R.Cap := Cap;
+  RingClear(R);
+end;
+
+procedure RingFree(var R: tByteRing);
+begin
+  if R.Buf <> nil then
+    FreeMem(R.Buf);
+  R.Buf := nil;
+  R.Cap := 0;
+  RingClear(R);
+end;
+
+procedure RingClear(var R: tByteRing);
+begin
+  R.Head := 0;
+  R.Count := 0;
+end;
+
+function RingRoom(const R: tByteRing): LongInt;
+begin
+  Result := R.Cap - R.Count;
+end;
+
+function RingTailSpan(var R: tByteRing; var P: PByte): LongInt;
+var
+  Tail: LongInt;
+begin
+  P := nil;
+  Result := 0;
+  if R.Count >= R.Cap then
+    Exit;
+  Tail := (R.Head + R.Count) mod R.Cap;
+  P := @R.Buf[Tail];
+  Result := R.Cap - R.Count;
+  if Result > R.Cap - Tail then
+    Result := R.Cap - Tail;
+end;
+
+procedure RingCommit(var R: tByteRing; N: LongInt);
+begin
+  Inc(R.Count, N);
+end;
+
+function RingPut(var R: tByteRing; Src: PByte; N: LongInt): LongInt;
+var
+  Span: LongInt;
+  P: PByte;
+begin
+  Result := 0;
+  while Result < N do
+  begin
+    Span := RingTailSpan(R, P);
+    if Span = 0 then
+      Break;
+    if Span > N - Result then
+      Span := N - Result;
+    Move(Src[Result], P^, Span);
+    RingCommit(R, Span);
+    Inc(Result, Span);
+  end;
+end;
+
+function RingGet(var R: tByteRing; Dst: PByte; N: LongInt): LongInt;
+var
+  Chunk: LongInt;
+begin
+  Result := 0;
+  if N > R.Count then
+    N := R.Count;
+  while Result < N do
+  begin
+    Chunk := N - Result;
+    if Chunk > R.Cap - R.Head then
+      Chunk := R.Cap - R.Head;
+    Move(R.Buf[R.Head], Dst[Result], Chunk);
+    R.Head := (R.Head + Chunk) mod R.Cap;
+    Dec(R.Count, Chunk);
+    Inc(Result, Chunk);
+  end;
+  if R.Count = 0 then
+    R.Head := 0;          { keeps the next read in one piece }
+end;
+
+end.
