@@ -1,46 +1,57 @@
-{ df1demo - a DF1 echo exchange with no hardware (make demo): the master
-  of df1echo and the slave of df1slave in one process, joined by the
-  in-memory null modem NAM=LOOP, first in full duplex with CRC, then in half
-  duplex with BCC (poll / EOT / data / ACK). Prints every message and its
-  wire bytes; exit code 0 when both exchanges succeed. }
+{ df1demo - a DF1 echo exchange with no hardware: a master (DF1Transact,
+  as in df1echo) and a slave (tDF1Station answering from the default SLC
+  table, as in df1slave) in one process, joined by the in-memory null modem
+  NAM=LOOP, first in full duplex with CRC, then in half duplex with BCC
+  (poll / EOT / data / ACK). Prints every message and the wire bytes of
+  each frame sent; exit code 0 when both exchanges succeed. }
 program df1demo;
 
 {$MODE OBJFPC}{$H+}
 
 uses
-  SysUtils, uString, ChnTypes, ChnVirt, ChnLoop, ChnDF1;
-
-{$I df1common.inc}
+  SysUtils, ChnTypes, ChnVirt, ChnLoop, ChnDF1, ChnSlc, ChnDF1Link;
 
 var
-  Slave: tResponder;
+  Table: tSlcTable;
+  Slave: tDF1Station;
   Failures: Integer;
 
-{ the slave runs while the master waits }
-procedure RunSlave;
+procedure MasterLog(const Line: string);
 begin
-  ResponderStep(Slave);
+  WriteLn('master ', Line);
+end;
+
+procedure SlaveLog(const Line: string);
+begin
+  WriteLn('slave  ', Line);
+end;
+
+{ the slave runs while the master waits }
+procedure RunSlave(Data: Pointer);
+begin
+  DF1StationStep(pDF1Station(Data)^);
 end;
 
 function Open(const Params: string): pChnVirt;
+var
+  Err: string;
 begin
-  Result := ChnCollection^.ChNewInit(ChnDF1.cName);
-  Result^.ChSetParam(Params);
-  if Result^.ChResult = res_Ok then
-    Result^.ChOpen;
-  if Result^.ChResult = res_Ok then
-    Result^.ChConnect;
-  if Result^.ChResult <> res_Ok then
+  Result := DF1OpenStack(Params, 1000, Err);
+  if Result = nil then
   begin
-    WriteLn('df1demo: ', Params, ': ', Result^.ChResultStr(Result^.ChResult));
-    Halt(ex_Setup);
+    WriteLn('df1demo: ', Err);
+    Halt(1);
   end;
 end;
 
 procedure Run(const Title, MasterParams, SlaveParams, Text: string; Tns: Word);
 var
   M, S: pChnVirt;
-  Code: Integer;
+  Req: tSendRecord;
+  Rep: tRecRecord;
+  ReqLen, RepLen: Word;
+  R: tChResult;
+  Deadline: QWord;
 begin
   WriteLn;
   WriteLn('== ', Title);
@@ -48,16 +59,30 @@ begin
   S := Open(SlaveParams);
   WriteLn('master: ', M^.ChGetParam(''));
   WriteLn('slave : ', S^.ChGetParam(''));
-  ResponderInit(Slave, S, 'slave ');
-  Code := EchoExchange(M, Text, Tns, @RunSlave);
+  DF1StationInit(Slave, S, @Table);
+  Slave.Log := @SlaveLog;
+  Slave.LogWire := True;
+  { the Echo command of manual section 6.3.1 }
+  FillChar(Req, SizeOf(Req), 0);
+  Req.MessType := tpDataMess;
+  Req.CF := CF_Echo;
+  Req.Tns := Tns;
+  Move(Text[1], Req.Data[0], Length(Text));
+  ReqLen := 8 + Length(Text);
+  RepLen := 0;
+  R := DF1Transact(M, Req, ReqLen, Rep, RepLen, @RunSlave, @Slave, DF1LinkTimeoutMs,
+    @MasterLog, True);
   { let the slave take the master's last ACK }
-  WaitMessage(S, 100, nil);
-  RunSlave;
-  if Code = ex_Ok then
+  Deadline := ChMsTick + 100;
+  while not DF1StationStep(Slave) and (ChMsTick <= Deadline) do
+    Sleep(1);
+  { an echo: the same TNS (DF1Transact checked it), STS 0 and the data back }
+  if (R = res_Ok) and (Rep.Sts = 0) and (RepLen = ReqLen) and
+     (CompareByte(Rep.Data, Req.Data, ReqLen - 8) = 0) then
     WriteLn('echo ok')
   else
   begin
-    WriteLn('echo FAILED (', Code, ')');
+    WriteLn('echo FAILED: ', M^.ChResultStr(R));
     Inc(Failures);
   end;
   Dispose(M, Done);
@@ -66,6 +91,7 @@ end;
 
 begin
   Failures := 0;
+  SlcLoadDefault(Table);
   Run('full duplex, CRC (manual section 7)',
       'NAM=DF1 LSB=500 NOD=1 DNO=2 FHD=FULL CRC=ON NAM=LOOP PAIR=DEMO1 END=1',
       'NAM=DF1 NOD=2 DNO=1 MAS=SLAVE FHD=FULL CRC=ON NAM=LOOP PAIR=DEMO1 END=2',

@@ -9,9 +9,11 @@
   manual's string is used. Corrections to the manual's program: a space
   between 'CRC=ON' and 'NAM=COM'; Data[0..3] := 'Ahoj' (the manual assigns
   Data[0] four times); the reply is 8+4 bytes long (replies carry no FNC
-  byte; the manual checks 8+5); "while not (ChReceiveReady = ...)" with
-  parentheses and with a timeout; the link dialogue (NAK, ENQ, retries,
-  ACK of the reply, polling in half duplex) that the manual leaves out.
+  byte; the manual checks 8+5); the waits for CHS_Open and CHS_Connect end
+  on an error or after 3 s; the send and the two "while not
+  (ChReceiveReady = ...)" loops are DF1Transact of unit ChnDF1Link, which
+  adds the link dialogue the manual leaves out (NAK, ENQ, retries, ACK of
+  the reply, polling in half duplex) and bounds every wait.
 
   Exit code: 0 echo ok, 1 setup error (parameters, open, connect),
   2 no answer, 3 wrong answer. Every error is printed as text. }
@@ -21,20 +23,24 @@ program df1echo;
 
 uses
   {$IFDEF UNIX}cthreads,{$ENDIF}
-  SysUtils, uString, ChnTypes, ChnVirt, ChnLoop, ChnCom, ChnTrc, ChnDF1;
+  SysUtils, uString, ChnTypes, ChnVirt, ChnLoop, ChnCom, ChnTrc, ChnDF1,
+  ChnDF1Link;
   { units register their layer names when they are linked in: LOOP, COM,
     TRC and DF1 can be named in the parameter string }
-
-{$I df1common.inc}
 
 const
   DefaultParams = 'NAM=DF1 LSB=500 NOD=1 DNO=2 FHD=FULL CRC=ON ' +
                   'NAM=COM COM=1 IRQ=4 BD=9600 BIT=8 STOP=1 PAR=E LRB=1000';
+  Text = 'Ahoj';
 
 var
   Chn: pChnVirt;
+  SMess: tSendRecord;
+  RMess: tRecRecord;
+  LSMess, LRMess: Word;
   Params: string;
   I, Code: Integer;
+  R: tChResult;
 
 procedure Fail(const What: string; R: tChResult);
 begin
@@ -45,7 +51,23 @@ begin
     Write(' (', Chn^.ChParamError, ')');
   WriteLn;
   Dispose(Chn, Done);
-  Halt(ex_Setup);
+  Halt(1);
+end;
+
+{ the manual's "repeat until ChReady = ...", bounded }
+function WaitFor(State: tChState): Boolean;
+var
+  Deadline: QWord;
+begin
+  Deadline := ChMsTick + 3000;
+  while (Chn^.ChReady <> State) and (Chn^.ChResult = res_Ok) and (ChMsTick < Deadline) do
+    Sleep(1);
+  Result := Chn^.ChReady = State;
+end;
+
+procedure ShowLine(const Line: string);
+begin
+  WriteLn('master ', Line);
 end;
 
 begin
@@ -57,7 +79,7 @@ begin
   if Length(Params) > High(tParamStr) then
   begin
     WriteLn('df1echo: parameter string longer than ', High(tParamStr), ' characters');
-    Halt(ex_Setup);
+    Halt(1);
   end;
   Chn := ChnCollection^.ChNewInit(ChnDF1.cName);
   with Chn^ do
@@ -66,17 +88,44 @@ begin
     if ChResult <> res_Ok then
       Fail('parameters "' + Params + '"', ChResult);
     ChOpen;
-    if not WaitState(Chn, CHS_Open) then
+    if not WaitFor(CHS_Open) then
       Fail('open', ChResult);
     ChConnect;
-    if not WaitState(Chn, CHS_Connect) then
+    if not WaitFor(CHS_Connect) then
       Fail('connect', ChResult);
     WriteLn('df1echo: ', ChGetParam(''));
-    Code := EchoExchange(Chn, 'Ahoj', 0, nil);
-    if Code = ex_Ok then
-      WriteLn('Ok')
+    FillChar(SMess, SizeOf(SMess), 0);
+    with SMess do
+    begin
+      MessType := tpDataMess;
+      CF := CF_Echo;
+      Sts := 0;
+      Tns := 0;
+      Move(Text[1], Data[0], Length(Text));    { Data[0..3] := 'Ahoj' }
+      LSMess := 8 + Length(Text);
+    end;
+    LRMess := 0;
+    R := DF1Transact(Chn, SMess, LSMess, RMess, LRMess, nil, nil, DF1LinkTimeoutMs,
+      @ShowLine, True);
+    if R <> res_Ok then
+    begin
+      WriteLn('Chyba (error): ', ChResultStr(R));
+      Code := 2;
+    end
     else
-      WriteLn('Chyba (error) ', Code);
+      with RMess do
+        if (MessType = tpDataMess) and (CF = CF_Echo or MskCF_Reply) and
+           (Tns = 0) and (Sts = 0) and (LRMess = 8 + Length(Text)) and
+           (CompareByte(Data, SMess.Data, Length(Text)) = 0) then
+        begin
+          WriteLn('Ok');
+          Code := 0;
+        end
+        else
+        begin
+          WriteLn('Chyba (error): the reply is not the echo');
+          Code := 3;
+        end;
     ChDisConnect;
     ChClose;
   end;

@@ -27,7 +27,6 @@ var
   Rep: tRecRecord;
   RepLen: Word;
   R: tChResult;
-  Deadline: QWord;
   W: Word;
   L: LongWord;
   F: Single;
@@ -73,20 +72,9 @@ begin
   if Count * ES > 244 then
     Fail('too many elements for one reply (244 bytes)', 1);
 
-  Chn := ChnCollection^.ChNewInit(ChnDF1.cName);
-  Chn^.ChSetParam(Params);
-  if Chn^.ChResult <> res_Ok then
-    Fail('parameters "' + Params + '": ' + Chn^.ChResultStr(Chn^.ChResult) + ' ' +
-      Chn^.ChParamError, 1);
-  Chn^.ChOpen;
-  Deadline := ChMsTick + 3000;
-  while (Chn^.ChReady <> CHS_Open) and (Chn^.ChResult = res_Ok) and (ChMsTick < Deadline) do
-    Sleep(1);
-  Chn^.ChConnect;
-  while (Chn^.ChReady <> CHS_Connect) and (Chn^.ChResult = res_Ok) and (ChMsTick < Deadline) do
-    Sleep(1);
-  if Chn^.ChReady <> CHS_Connect then
-    Fail('open/connect: ' + Chn^.ChResultStr(Chn^.ChResult), 1);
+  Chn := DF1OpenStack(Params, 3000, Arg);
+  if Chn = nil then
+    Fail(Arg, 1);
   WriteLn('df1read: ', Chn^.ChGetParam(''));
 
   { SIZE, FILE, TYPE, ELEMENT, SUB-ELEMENT (one byte each, or $FF + word) }

@@ -1,9 +1,13 @@
-{ df1slave - a small DF1 slave: answers Echo, Diagnostic Status, Read and
-  Reset Diagnostic Counters and the protected typed logical read/write with
-  three address fields (manual section 6.3) from a 256-byte integer file;
-  other commands get STS $10. Full duplex: ACK good frames, NAK broken
-  ones, repeat the last ACK/NAK on ENQ. Half duplex: ACK, hold the reply
-  for the master's poll, EOT when there is nothing to send.
+{ df1slave - a small DF1 slave: a tDF1Station (unit ChnDF1Link) that
+  answers from the default SLC data table of unit ChnSlc (docs/df1sim.md:
+  N7:0..9 = 0, 10 .. 90, F8, B3, S2, N9) the commands of manual section
+  6.3 - Echo, Diagnostic Status, Read and Reset Diagnostic Counters, the
+  protected typed logical read/write with three address fields and the
+  unprotected read/write; other commands get STS $10. Full duplex: ACK good
+  frames, NAK broken ones, repeat the last ACK/NAK on ENQ. Half duplex:
+  ACK, hold the reply for the master's poll, EOT when there is nothing to
+  send. tools/df1sim is the same station with options, a configurable
+  table and a pty of its own.
 
     df1slave [-t seconds] [parameter string]
     df1slave -t 30 NAM=DF1 NOD=2 DNO=1 MAS=SLAVE CRC=ON NAM=COM DEV=/dev/ttyUSB0 BD=19200 PAR=E
@@ -16,9 +20,8 @@ program df1slave;
 {$MODE OBJFPC}{$H+}
 
 uses
-  SysUtils, uString, ChnTypes, ChnVirt, ChnLoop, ChnCom, ChnTrc, ChnDF1;
-
-{$I df1common.inc}
+  SysUtils, uString, ChnTypes, ChnVirt, ChnLoop, ChnCom, ChnTrc, ChnDF1,
+  ChnSlc, ChnDF1Link;
 
 const
   DefaultParams = 'NAM=DF1 LSB=500 NOD=2 DNO=1 MAS=SLAVE FHD=FULL CRC=ON ' +
@@ -26,22 +29,16 @@ const
 
 var
   Chn: pChnVirt;
-  Slave: tResponder;
-  Params: string;
+  Table: tSlcTable;
+  Slave: tDF1Station;
+  Params, Err: string;
   I: Integer;
   IdleSec: LongInt;
   LastMsg: QWord;
 
-procedure Fail(const What: string; R: tChResult);
+procedure SlaveLog(const Line: string);
 begin
-  if R = res_Ok then
-    R := res_Timeout;          { the state never came }
-  Write('df1slave: ', What, ': ', Chn^.ChResultStr(R));
-  if Chn^.ChParamError <> '' then
-    Write(' (', Chn^.ChParamError, ')');
-  WriteLn;
-  Dispose(Chn, Done);
-  Halt(1);
+  WriteLn('slave ', Line);
 end;
 
 begin
@@ -65,23 +62,22 @@ begin
   end;
   if Params = '' then
     Params := DefaultParams;
-  Chn := ChnCollection^.ChNewInit(ChnDF1.cName);
-  Chn^.ChSetParam(Params);
-  if Chn^.ChResult <> res_Ok then
-    Fail('parameters "' + Params + '"', Chn^.ChResult);
+  Chn := DF1OpenStack(Params, 3000, Err);
+  if Chn = nil then
+  begin
+    WriteLn('df1slave: ', Err);
+    Halt(1);
+  end;
   if pChnDF1(Chn)^.CH_Master then
     WriteLn('df1slave: note: MAS=MASTER given; answering anyway');
-  Chn^.ChOpen;
-  if not WaitState(Chn, CHS_Open) then
-    Fail('open', Chn^.ChResult);
-  Chn^.ChConnect;
-  if not WaitState(Chn, CHS_Connect) then
-    Fail('connect', Chn^.ChResult);
   WriteLn('df1slave: ', Chn^.ChGetParam(''));
-  ResponderInit(Slave, Chn, 'slave');
+  SlcLoadDefault(Table);
+  DF1StationInit(Slave, Chn, @Table);
+  Slave.Log := @SlaveLog;
+  Slave.LogWire := True;
   LastMsg := ChMsTick;
   repeat
-    if ResponderStep(Slave) then
+    if DF1StationStep(Slave) then
       LastMsg := ChMsTick
     else if Chn^.ChResult <> res_Ok then
     begin

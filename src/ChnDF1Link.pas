@@ -12,9 +12,14 @@
     no answer -> again; full duplex asks with ENQ first), then wait for the
     reply (half duplex: poll for it), ACK it.
 
+  * DF1OpenStack, a tChnDF1 stack built from a parameter string, opened and
+    connected within a deadline.
+
   Both poll the channel; nothing blocks for longer than the timeouts given.
   A caller that runs both ends in one thread (tests over NAM=LOOP) passes
-  an Idle procedure that steps the other end while one waits. }
+  an Idle procedure that steps the other end while one waits. Both can log
+  each message as a line ('-> ' sent, '<- ' received, DF1Describe), the
+  sent ones with their wire bytes if asked (DF1WireText). }
 unit ChnDF1Link;
 
 {$I chn.inc}
@@ -47,6 +52,7 @@ type
     Requests : LongInt;       { commands answered }
     Messages : LongInt;       { messages taken, good or broken }
     Log      : tDF1LogProc;   { nil: quiet }
+    LogWire  : Boolean;       { lines of sent frames end with the wire bytes }
   end;
 
 procedure DF1StationInit(var S: tDF1Station; Chn: pChnVirt; Table: pSlcTable);
@@ -56,13 +62,22 @@ function DF1StationStep(var S: tDF1Station): Boolean;
 { One command/reply exchange as a master. Req/ReqLen the command; the reply
   goes to Rep (RepLen). Results: res_Ok; res_Timeout (no ACK after the
   tries, or no reply); res_BadMessage (a reply with another TNS or
-  command); a send error of the channel. Idle may be nil. }
+  command); a send error of the channel. Idle and Log may be nil; LogWire
+  as in tDF1Station. }
 function DF1Transact(Chn: pChnVirt; constref Req: tSendRecord; ReqLen: Word;
   var Rep: tRecRecord; var RepLen: Word; Idle: tDF1Idle; IdleData: Pointer;
-  TimeoutMs: LongInt): tChResult;
+  TimeoutMs: LongInt; Log: tDF1LogProc = nil; LogWire: Boolean = False): tChResult;
 
 { One line describing a record, for logs. }
 function DF1Describe(const R: tRecRecord; Len: Word): string;
+{ The wire bytes of the frame Chn (a tChnDF1) sent last, as hex
+  ('10 02 ... 10 03 E3 88'): framing, DLE doubling and checksum included. }
+function DF1WireText(Chn: pChnVirt): string;
+
+{ A new tChnDF1 stack (its lower layers' units must be linked in) with
+  Params set, opened and connected, waiting at most TimeoutMs for each
+  state. nil on failure, with Err saying which step failed and why. }
+function DF1OpenStack(const Params: string; TimeoutMs: LongInt; out Err: string): pChnVirt;
 
 implementation
 
@@ -80,6 +95,63 @@ begin
       Result := Result + ' ';
     Result := Result + IntToHex(P[I], 2);
   end;
+end;
+
+function DF1WireText(Chn: pChnVirt): string;
+begin
+  Result := HexOf(pChnDF1(Chn)^.CH_SBuff, pChnDF1(Chn)^.CH_SLen);
+end;
+
+{ Wait until Chn reaches Want, an error result or the deadline. }
+function WaitState(Chn: pChnVirt; Want: tChState; Deadline: QWord): Boolean;
+begin
+  while (Chn^.ChReady <> Want) and (Chn^.ChResult = res_Ok) and (ChMsTick <= Deadline) do
+    Sleep(1);
+  Result := Chn^.ChReady = Want;
+end;
+
+function DF1OpenStack(const Params: string; TimeoutMs: LongInt; out Err: string): pChnVirt;
+var
+  Step: string;
+  R: tChResult;
+begin
+  Err := '';
+  if Length(Params) > High(tParamStr) then
+  begin
+    Err := 'parameter string longer than ' + IntToStr(High(tParamStr)) + ' characters';
+    Exit(nil);
+  end;
+  Result := ChnCollection^.ChNewInit(ChnDF1.cName);
+  Result^.ChSetParam(Params);
+  Step := 'parameters "' + Params + '"';
+  if Result^.ChResult = res_Ok then
+  begin
+    Step := 'open "' + Params + '"';
+    Result^.ChOpen;
+    if WaitState(Result, CHS_Open, ChMsTick + QWord(TimeoutMs)) then
+    begin
+      Step := 'connect "' + Params + '"';
+      Result^.ChConnect;
+      if WaitState(Result, CHS_Connect, ChMsTick + QWord(TimeoutMs)) then
+        Exit;
+    end;
+  end;
+  R := Result^.ChResult;
+  if R = res_Ok then
+    R := res_Timeout;            { the state never came }
+  Err := Step + ': ' + Result^.ChResultStr(R);
+  if Result^.ChParamError <> '' then
+    Err := Err + ' (' + Result^.ChParamError + ')';
+  Dispose(Result, Done);
+  Result := nil;
+end;
+
+{ '-> ' + the record [+ its wire bytes] }
+function SentLine(Chn: pChnVirt; constref R: tSendRecord; Len: Word; Wire: Boolean): string;
+begin
+  Result := '-> ' + DF1Describe(R, Len);
+  if Wire then
+    Result := Result + '   [' + DF1WireText(Chn) + ']';
 end;
 
 function DF1Describe(const R: tRecRecord; Len: Word): string;
@@ -158,7 +230,8 @@ begin
   if Res = res_Ok then
   begin
     Inc(S.Table^.Diag[dgFramesOut]);
-    Say(S, '-> ' + DF1Describe(R, Len));
+    if Assigned(S.Log) then
+      S.Log(SentLine(S.Chn, R, Len, S.LogWire));
   end
   else
     Say(S, '-> send failed: ' + S.Chn^.ChResultStr(Res));
@@ -247,12 +320,27 @@ end;
 
 function DF1Transact(Chn: pChnVirt; constref Req: tSendRecord; ReqLen: Word;
   var Rep: tRecRecord; var RepLen: Word; Idle: tDF1Idle; IdleData: Pointer;
-  TimeoutMs: LongInt): tChResult;
+  TimeoutMs: LongInt; Log: tDF1LogProc; LogWire: Boolean): tChResult;
 var
   Link: tSendRecord;
   Tries: Integer;
   FullDup, Acked, Got: Boolean;
   Deadline: QWord;
+
+  procedure Say(const Line: string);
+  begin
+    if Assigned(Log) then
+      Log(Line);
+  end;
+
+  function Send(constref R: tSendRecord; Len: Word): tChResult;
+  begin
+    Result := SendNow(Chn, R, Len);
+    if Result <> res_Ok then
+      Say('-> send failed: ' + Chn^.ChResultStr(Result))
+    else if Assigned(Log) then
+      Log(SentLine(Chn, R, Len, LogWire));
+  end;
 
   { wait up to Ms for a message; Got = a good one is in Rep }
   function Next(Ms: LongInt): Boolean;
@@ -270,6 +358,10 @@ var
         RepLen := 0;
         Chn^.ChReceive(RepLen);
         Got := Chn^.ChReceiveResult = res_Ok;
+        if Got then
+          Say('<- ' + DF1Describe(Rep, RepLen))
+        else
+          Say('<- broken frame: ' + Chn^.ChResultStr(Chn^.ChReceiveResult));
         Exit(True);
       end;
       if Chn^.ChResult <> res_Ok then
@@ -289,13 +381,13 @@ begin
   while not Acked and (Tries < DF1LinkTries) do
   begin
     Inc(Tries);
-    Result := SendNow(Chn, Req, ReqLen);
+    Result := Send(Req, ReqLen);
     if Result <> res_Ok then
       Exit;
     if not Next(TimeoutMs) and FullDup then
     begin
       Link.MessType := tpEnq;
-      Result := SendNow(Chn, Link, 1);
+      Result := Send(Link, 1);
       if Result <> res_Ok then
         Exit;
       Next(TimeoutMs);
@@ -306,18 +398,24 @@ begin
       Acked := True;               { the reply overtook the ACK }
   end;
   if not Acked then
+  begin
+    Say('-- no ACK after ' + IntToStr(Tries) + ' tries');
     Exit(res_Timeout);
+  end;
   Deadline := ChMsTick + QWord(3 * TimeoutMs);
   while not (Got and (Rep.MessType = tpDataMess)) do
   begin
     if ChMsTick > Deadline then
+    begin
+      Say('-- no reply');
       Exit(res_Timeout);
+    end;
     if FullDup then
       Next(TimeoutMs)
     else
     begin
       Link.MessType := tpPoll;     { half duplex: the slave speaks when polled }
-      Result := SendNow(Chn, Link, 1);
+      Result := Send(Link, 1);
       if Result <> res_Ok then
         Exit;
       Next(TimeoutMs);
@@ -325,11 +423,14 @@ begin
   end;
   Link.MessType := tpAckNak;
   Link.FlAck := True;
-  Result := SendNow(Chn, Link, 2);
+  Result := Send(Link, 2);
   if Result <> res_Ok then
     Exit;
   if (Rep.CF and $FF00 <> (Req.CF and $FF00) or MskCF_Reply) or (Rep.Tns <> Req.Tns) then
+  begin
+    Say('-- the reply is not the one to this command');
     Result := res_BadMessage;
+  end;
 end;
 
 end.

@@ -70,6 +70,15 @@ const
   SlcMaxElements = 4096;   { per file }
   SlcDefaultCif  = 9;
 
+  { The table tools/df1sim, examples/df1slave and examples/df1demo answer
+    from when given no configuration (docs/df1sim.md). }
+  SlcDefaultConfig =
+    'S2 32'#10 +
+    'B3 8'#10'B3:0 = $0001 $8000 $00FF'#10 +
+    'N7 50'#10'N7:0 = 0 10 20 30 40 50 60 70 80 90'#10 +
+    'F8 10'#10'F8:0 = 1.5 -2.25 3.14159 1000000'#10 +
+    'N9 64'#10'CIF 9'#10;
+
   { STS / EXT STS }
   sts_Ok         = $00;
   sts_IllegalCmd = $10;
@@ -113,6 +122,8 @@ function SlcAddFile(var T: tSlcTable; Kind: Char; Num: Byte; Elems: LongInt): Bo
   failure ErrLine/Err tell where and why; the table is then undefined. }
 function SlcLoadConfig(var T: tSlcTable; const Text: AnsiString;
   out ErrLine: Integer; out Err: string): Boolean;
+{ Load SlcDefaultConfig (it is valid: a test loads it). }
+procedure SlcLoadDefault(var T: tSlcTable);
 
 { Element access for tools and tests (word files / float files). }
 function SlcGetWord(const T: tSlcTable; Num: Byte; Elem: LongInt): Word;
@@ -382,6 +393,15 @@ begin
       Exit(Bad('no values after "="'));
   end;
   Result := True;
+end;
+
+procedure SlcLoadDefault(var T: tSlcTable);
+var
+  ErrLine: Integer;
+  Err: string;
+begin
+  if not SlcLoadConfig(T, SlcDefaultConfig, ErrLine, Err) then
+    SlcClear(T);   { not reached; TestChnSlc.TestDefaultTable checks it }
 end;
 
 { ------------------------------------------------------------- commands }

@@ -25,6 +25,7 @@ type
   published
     procedure TestConfigValues;
     procedure TestConfigErrors;
+    procedure TestDefaultTable;
     procedure TestEchoAndTns;
     procedure TestTypedReadIntegerAndFloat;
     procedure TestTypedReadExtendedFields;
@@ -95,6 +96,32 @@ begin
     Result := 'ok'
   else
     Result := IntToStr(Line);
+end;
+
+procedure TTestChnSlc.TestDefaultTable;
+var
+  Line: Integer;
+  Err: string;
+begin
+  AssertTrue('SlcDefaultConfig loads: ' + Err,
+    SlcLoadConfig(T, SlcDefaultConfig, Line, Err));
+  SlcClear(T);
+  SlcLoadDefault(T);
+  { the values docs/df1sim.md lists for the built-in table }
+  AssertEquals('S2 elements', 32, T.Files[2].Elems);
+  AssertEquals('S2 kind', 'S', T.Files[2].Kind);
+  AssertEquals('B3 elements', 8, T.Files[3].Elems);
+  AssertEquals('B3:1', $8000, SlcGetWord(T, 3, 1));
+  AssertEquals('N7 elements', 50, T.Files[7].Elems);
+  AssertEquals('N7:0', 0, SlcGetWord(T, 7, 0));
+  AssertEquals('N7:9', 90, SlcGetWord(T, 7, 9));
+  AssertEquals('N7:10', 0, SlcGetWord(T, 7, 10));
+  AssertEquals('F8 elements', 10, T.Files[8].Elems);
+  AssertEquals('F8:1', -2.25, SlcGetFloat(T, 8, 1), 0);
+  AssertEquals('F8:3', 1000000, SlcGetFloat(T, 8, 3), 0);
+  AssertEquals('N9 elements', 64, T.Files[9].Elems);
+  AssertEquals('CIF', 9, T.Cif);
+  AssertEquals('nothing else: N10', #0, T.Files[10].Kind);
 end;
 
 procedure TTestChnSlc.TestConfigValues;

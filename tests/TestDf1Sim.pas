@@ -41,6 +41,9 @@ type
     procedure TestHalfDuplexLinkBytes;
     procedure TestNakOfReplySendsItAgain;
     procedure TestBinaryOverPty;
+    procedure TestLogLines;
+    procedure TestLogNoAck;
+    procedure TestOpenStack;
   end;
 
 implementation
@@ -48,6 +51,19 @@ implementation
 const
   Config = 'N7 20'#10'N7:0 = 1 2 3 -1 $1234'#10'F8 2'#10'F8:0 = 1.5'#10 +
            'B3 2'#10'S2 4'#10'N9 8'#10'N9:0 = $0102 $0304'#10;
+
+var
+  LogText: string;   { what MasterLog and StationLog were given }
+
+procedure MasterLog(const Line: string);
+begin
+  LogText := LogText + 'M ' + Line + #10;
+end;
+
+procedure StationLog(const Line: string);
+begin
+  LogText := LogText + 'S ' + Line + #10;
+end;
 
 procedure StepStation(Data: Pointer);
 begin
@@ -327,6 +343,95 @@ begin
     Sleep(5);
   AssertFalse('df1sim ended on SIGTERM', Proc.Running);
   AssertEquals('exit code', 0, Proc.ExitCode);
+end;
+
+procedure TTestDf1Sim.TestLogLines;
+var
+  Req: tSendRecord;
+  Rep: tRecRecord;
+  RepLen: Word;
+begin
+  StartPair(True, True, 'SIMLOG');
+  Station.Log := @StationLog;
+  LogText := '';
+  FillChar(Req, SizeOf(Req), 0);
+  Req.MessType := tpDataMess;
+  Req.CF := CF_Echo;
+  Req.Tns := 5;
+  Req.Data[0] := $41;
+  RepLen := 0;
+  AssertEquals('exchange', res_Ok, DF1Transact(Master, Req, 9, Rep, RepLen,
+    @StepStation, @Station, 500, @MasterLog, True));
+  WaitReceive(Slave, 100);
+  DF1StationStep(Station);
+  { frames as in TestFullDuplexLinkBytes (CRC worked out by hand); the
+    station logs no wire bytes (LogWire off), the master does }
+  AssertEquals('log',
+    'M -> Echo STS=$00 TNS=5 data: 41   [10 02 01 00 06 00 05 00 00 41 10 03 D7 C1]'#10 +
+    'S <- Echo STS=$00 TNS=5 data: 41'#10 +
+    'S -> ACK'#10 +
+    'S -> reply CMD=$46 STS=$00 TNS=5 data: 41'#10 +
+    'M <- ACK'#10 +
+    'M <- reply CMD=$46 STS=$00 TNS=5 data: 41'#10 +
+    'M -> ACK   [10 06]'#10 +
+    'S <- ACK'#10, LogText);
+  { and the station's wire bytes: ENQ repeats the last ACK }
+  Station.LogWire := True;
+  LogText := '';
+  Req.MessType := tpEnq;
+  Master^.ChSend(@Req, 1);
+  WaitReceive(Slave, 100);
+  DF1StationStep(Station);
+  AssertEquals('station wire', 'S <- ENQ'#10'S -> ACK   [10 06]'#10, LogText);
+  AssertEquals('DF1WireText of the master: the ENQ', '10 05', DF1WireText(Master));
+end;
+
+procedure TTestDf1Sim.TestLogNoAck;
+var
+  Req: tSendRecord;
+  Rep: tRecRecord;
+  RepLen: Word;
+  Err: string;
+begin
+  { nobody answers: three tries, each followed by an ENQ (full duplex) }
+  Master := Open('NAM=DF1 NOD=0 DNO=1 MAS=MASTER FHD=FULL CRC=OFF NAM=LOOP PAIR=SIMNA END=1');
+  Raw := OpenStack('LOOP', 'NAM=LOOP PAIR=SIMNA END=2', Err);
+  AssertTrue(Err, Raw <> nil);
+  FillChar(Req, SizeOf(Req), 0);
+  Req.MessType := tpDataMess;
+  Req.CF := CF_Echo;
+  Req.Tns := 5;
+  RepLen := 0;
+  LogText := '';
+  AssertEquals('result', res_Timeout, DF1Transact(Master, Req, 8, Rep, RepLen,
+    nil, nil, 20, @MasterLog));
+  AssertEquals('log',
+    'M -> Echo STS=$00 TNS=5'#10'M -> ENQ'#10 +
+    'M -> Echo STS=$00 TNS=5'#10'M -> ENQ'#10 +
+    'M -> Echo STS=$00 TNS=5'#10'M -> ENQ'#10 +
+    'M -- no ACK after 3 tries'#10, LogText);
+end;
+
+procedure TTestDf1Sim.TestOpenStack;
+var
+  Err: string;
+  Long: string;
+begin
+  Master := DF1OpenStack('NAM=DF1 NOD=0 DNO=1 NAM=LOOP PAIR=SIMOS END=1', 1000, Err);
+  AssertTrue('opened: ' + Err, Master <> nil);
+  AssertEquals('no error text', '', Err);
+  AssertTrue('connected', Master^.ChReady = CHS_Connect);
+  AssertTrue('a tChnDF1 on top', pChnDF1(Master)^.CH_Master);
+  AssertTrue('bad parameter: nil', DF1OpenStack('NAM=DF1 XYZ=1 NAM=LOOP PAIR=SIMOS2 END=1',
+    1000, Err) = nil);
+  AssertEquals('says which step', 'parameters "', Copy(Err, 1, 12));
+  AssertTrue('says which parameter: ' + Err, Pos('XYZ', Err) > 0);
+  AssertTrue('no such device: nil', DF1OpenStack('NAM=DF1 NAM=COM DEV=/nonexistent/ttyX',
+    1000, Err) = nil);
+  AssertEquals('open failed: ' + Err, 'open "', Copy(Err, 1, 6));
+  Long := 'NAM=DF1 NOD=0 DNO=1 NAM=LOOP PAIR=SIMOS3 END=1' + StringOfChar(' ', 250);
+  AssertTrue('too long: nil', DF1OpenStack(Long, 1000, Err) = nil);
+  AssertTrue('too long: says so: ' + Err, Pos('longer than 255', Err) > 0);
 end;
 
 initialization

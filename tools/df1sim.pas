@@ -31,12 +31,6 @@ uses
   ChnSlc, ChnDF1Link;
 
 const
-  DefaultConfig =
-    'S2 32'#10 +
-    'B3 8'#10'B3:0 = $0001 $8000 $00FF'#10 +
-    'N7 50'#10'N7:0 = 0 10 20 30 40 50 60 70 80 90'#10 +
-    'F8 10'#10'F8:0 = 1.5 -2.25 3.14159 1000000'#10 +
-    'N9 64'#10'CIF 9'#10;
   LingerMs = 1000;   { after the last counted command: time for the master's ACK }
 
 var
@@ -106,11 +100,9 @@ var
   Station: tDF1Station;
   Chn: pChnVirt;
   Params, Arg, Key, Value, Dev, Par, ConfigName, Err: string;
-  ConfigText: AnsiString;
   UsePty, Half, Crc: Boolean;
   Node, DNo, Bd, Count, TimeoutS, I, ErrLine: LongInt;
   LastMsg, CountReached: QWord;
-  Deadline: QWord;
 
 begin
   Params := '';
@@ -167,11 +159,9 @@ begin
       Die('unknown option ' + Arg + ' (see docs/df1sim.md)');
   end;
 
-  if ConfigName <> '' then
-    ConfigText := LoadFile(ConfigName)
-  else
-    ConfigText := DefaultConfig;
-  if not SlcLoadConfig(Table, ConfigText, ErrLine, Err) then
+  if ConfigName = '' then
+    SlcLoadDefault(Table)
+  else if not SlcLoadConfig(Table, LoadFile(ConfigName), ErrLine, Err) then
     Die(Format('%s line %d: %s', [ConfigName, ErrLine, Err]));
 
   if Params = '' then
@@ -193,30 +183,9 @@ begin
   else if UsePty and (Pos('DRV=PTY', UpperCase(Params)) = 0) then
     Die('--pty with a parameter string: put NAM=COM DRV=PTY in it');
 
-  Chn := ChnCollection^.ChNewInit(ChnDF1.cName);
-  Chn^.ChSetParam(Params);
-  if Chn^.ChResult <> res_Ok then
-  begin
-    Err := Chn^.ChResultStr(Chn^.ChResult) + ' ' + Chn^.ChParamError;
-    Dispose(Chn, Done);
-    Die('parameters "' + Params + '": ' + Err);
-  end;
-  Chn^.ChOpen;
-  Deadline := ChMsTick + 3000;
-  while (Chn^.ChReady <> CHS_Open) and (Chn^.ChResult = res_Ok) and (ChMsTick < Deadline) do
-    Sleep(1);
-  if Chn^.ChReady = CHS_Open then
-  begin
-    Chn^.ChConnect;
-    while (Chn^.ChReady <> CHS_Connect) and (Chn^.ChResult = res_Ok) and (ChMsTick < Deadline) do
-      Sleep(1);
-  end;
-  if Chn^.ChReady <> CHS_Connect then
-  begin
-    Err := Chn^.ChResultStr(Chn^.ChResult);
-    Dispose(Chn, Done);
-    Die('cannot open "' + Params + '": ' + Err);
-  end;
+  Chn := DF1OpenStack(Params, 3000, Err);
+  if Chn = nil then
+    Die(Err);
   {$IFDEF UNIX}
   if UsePty then
     WriteLn('PTY ', PtyLastSlave);
