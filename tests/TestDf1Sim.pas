@@ -13,7 +13,7 @@ interface
 uses
   {$IFDEF UNIX}BaseUnix,{$ENDIF}
   SysUtils, Classes, Process, fpcunit, testregistry, ChnTypes, ChnVirt,
-  ChnLoop, ChnCom, ChnDF1, ChnSlc, ChnDF1Link, TestSupport;
+  ChnLoop, ChnCom, ChnDF1, ChnSlc, ChnDF1Link, TestSupport, BinSupport;
 
 type
   TTestDf1Sim = class(TTestCase)
@@ -281,43 +281,15 @@ end;
 
 procedure TTestDf1Sim.TestBinaryOverPty;
 var
-  Bin, Line, PtyPath: string;
-  C: Char;
+  PtyPath: string;
   Deadline: QWord;
   Req: tSendRecord;
   Rep: tRecRecord;
   RepLen: Word;
 begin
-  Bin := GetEnvironmentVariable('BUILD');
-  if Bin = '' then
-    Bin := 'build';
-  Bin := Bin + '/bin/df1sim';
-  AssertTrue(Bin + ' missing (make tools)', FileExists(Bin));
-  Proc := TProcess.Create(nil);
-  Proc.Executable := Bin;
-  Proc.Parameters.Add('--pty');
-  Proc.Parameters.Add('--bcc');
-  Proc.Parameters.Add('--node=3');
-  Proc.Parameters.Add('--timeout=10');
-  Proc.Parameters.Add('--quiet');
-  Proc.Options := [poUsePipes];
-  Proc.Execute;
-  { first line: PTY /dev/pts/N }
-  Line := '';
-  Deadline := ChMsTick + 3000;
-  repeat
-    if Proc.Output.NumBytesAvailable > 0 then
-    begin
-      Proc.Output.Read(C, 1);
-      if C = #10 then
-        Break;
-      Line := Line + C;
-    end
-    else
-      Sleep(2);
-  until ChMsTick > Deadline;
-  AssertEquals('first line starts with PTY', 'PTY /dev/', Copy(Line, 1, 9));
-  PtyPath := Copy(Line, 5, 255);
+  AssertTrue(BinPath('df1sim') + ' missing (make tools)', FileExists(BinPath('df1sim')));
+  Proc := StartSimPty(['--bcc', '--node=3', '--timeout=10', '--quiet'], PtyPath);
+  AssertTrue('first line: PTY /dev/...', Copy(PtyPath, 1, 5) = '/dev/');
   Master := Open('NAM=DF1 NOD=0 DNO=3 MAS=MASTER FHD=FULL CRC=OFF NAM=COM DEV=' + PtyPath);
   FillChar(Req, SizeOf(Req), 0);
   Req.MessType := tpDataMess;

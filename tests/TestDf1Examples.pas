@@ -1,0 +1,89 @@
+{ Tests of the DF1 example programs as built (build/bin), run through
+  TProcess with a deadline: df1demo (master and slave over NAM=LOOP, full
+  and half duplex) and df1echo against tools/df1sim on a pty. The wire
+  bytes expected in df1demo's output were worked out by hand from the CRC
+  (CRC-16, poly $A001, over DST..data and ETX) and BCC (two's complement
+  of the byte sum) definitions. }
+unit TestDf1Examples;
+
+{$MODE OBJFPC}{$H+}
+
+interface
+
+uses
+  SysUtils, Classes, Process, fpcunit, testregistry, BinSupport;
+
+type
+  TTestDf1Examples = class(TTestCase)
+  published
+    procedure TestDf1DemoAllOk;
+    procedure TestDf1EchoAgainstSim;
+  end;
+
+implementation
+
+function Count(const Sub, S: string): Integer;
+var
+  P: Integer;
+begin
+  Result := 0;
+  P := Pos(Sub, S);
+  while P > 0 do
+  begin
+    Inc(Result);
+    P := Pos(Sub, S, P + Length(Sub));
+  end;
+end;
+
+procedure TTestDf1Examples.TestDf1DemoAllOk;
+var
+  Output: string;
+begin
+  AssertTrue(BinPath('df1demo') + ' missing (make examples)', FileExists(BinPath('df1demo')));
+  AssertEquals('exit code (-1: still running after 10 s)', 0,
+    RunBin('df1demo', [], 10000, Output));
+  AssertTrue('all exchanges ok:'#10 + Output, Pos('df1demo: all exchanges ok', Output) > 0);
+  AssertEquals('two echoes ok', 2, Count(#10'echo ok', Output));
+  { full duplex, CRC: Echo 'Ahoj' TNS 10 from 1 to 2, and the slave's reply }
+  AssertTrue('master frame', Pos('master -> Echo STS=$00 TNS=10 data: 41 68 6F 6A   ' +
+    '[10 02 02 01 06 00 0A 00 00 41 68 6F 6A 10 03 E3 88]', Output) > 0);
+  AssertTrue('slave reply frame', Pos('slave  -> reply CMD=$46 STS=$00 TNS=10 data: 41 68 6F 6A   ' +
+    '[10 02 01 02 46 00 0A 00 41 68 6F 6A 10 03 6B 86]', Output) > 0);
+  { half duplex, BCC, station 16: DLE bytes doubled, a poll, the reply }
+  AssertTrue('half-duplex master frame', Pos('[10 01 10 10 10 02 10 10 01 06 00 0B 00 00 ' +
+    '41 10 10 42 10 03 3B]', Output) > 0);
+  AssertTrue('poll', Pos('master -> poll   [10 05 10 10 F0]', Output) > 0);
+  AssertTrue('half-duplex reply', Pos('[10 02 01 10 10 46 00 0B 00 41 10 10 42 10 03 0B]',
+    Output) > 0);
+  AssertEquals('the slave took both final ACKs', 2, Count('slave  <- ACK', Output));
+end;
+
+procedure TTestDf1Examples.TestDf1EchoAgainstSim;
+var
+  Sim: TProcess;
+  Pty, Output: string;
+  Code: Integer;
+begin
+  AssertTrue(BinPath('df1echo') + ' missing (make examples)', FileExists(BinPath('df1echo')));
+  Sim := StartSimPty(['--timeout=10', '--quiet'], Pty);
+  try
+    AssertTrue('df1sim printed its pty', Pty <> '');
+    Code := RunBin('df1echo', ['NAM=DF1', 'NOD=0', 'DNO=1', 'FHD=FULL', 'CRC=ON', 'NAM=COM',
+      'DEV=' + Pty, 'BD=19200'], 10000, Output);
+    AssertEquals('df1echo exit code:'#10 + Output, 0, Code);
+    AssertTrue('Ok', Pos(#10'Ok'#10, Output) > 0);
+    AssertTrue('the reply logged', Pos('master <- reply CMD=$46 STS=$00 TNS=0 data: 41 68 6F 6A',
+      Output) > 0);
+  finally
+    if Sim.Running then
+      Sim.Terminate(0);
+    Sim.Free;
+  end;
+  Code := RunBin('df1echo', ['NAM=DF1', 'XYZ=1', 'NAM=LOOP'], 10000, Output);
+  AssertEquals('bad parameter: exit 1', 1, Code);
+  AssertTrue('says which:'#10 + Output, Pos('XYZ', Output) > 0);
+end;
+
+initialization
+  RegisterTest(TTestDf1Examples);
+end.

@@ -1,0 +1,118 @@
+{ BinSupport - running the programs of $BUILD/bin (examples, tools) from
+  tests: with a deadline, so a hanging program fails a test instead of
+  stopping the suite, and tools/df1sim on a pty of its own. }
+unit BinSupport;
+
+{$MODE OBJFPC}{$H+}
+
+interface
+
+uses
+  SysUtils, Classes, Process;
+
+{ $BUILD/bin/Name (BUILD defaults to build). }
+function BinPath(const Name: string): string;
+{ Run a program to its end; its exit code, or -1 when it did not end
+  within TimeoutMs (it is killed then). Output gets standard output and
+  standard error. }
+function RunBin(const Name: string; const Args: array of string; TimeoutMs: Integer;
+  out Output: string): Integer;
+{ Start tools/df1sim --pty with Args; Pty gets the device it printed on its
+  first line ('' if none came within 3 s). The caller frees the process. }
+function StartSimPty(const Args: array of string; out Pty: string): TProcess;
+
+implementation
+
+uses
+  ChnVirt;
+
+function BinPath(const Name: string): string;
+begin
+  Result := GetEnvironmentVariable('BUILD');
+  if Result = '' then
+    Result := 'build';
+  Result := Result + '/bin/' + Name;
+end;
+
+{ Move what the pipe holds to Output. }
+procedure Drain(P: TProcess; var Output: string);
+var
+  Buf: array[0..4095] of Char;
+  N: Integer;
+begin
+  while P.Output.NumBytesAvailable > 0 do
+  begin
+    N := P.Output.Read(Buf, SizeOf(Buf));
+    if N <= 0 then
+      Break;
+    Output := Output + Copy(Buf, 0, N);
+  end;
+end;
+
+function RunBin(const Name: string; const Args: array of string; TimeoutMs: Integer;
+  out Output: string): Integer;
+var
+  P: TProcess;
+  A: string;
+  Deadline: QWord;
+begin
+  Output := '';
+  P := TProcess.Create(nil);
+  try
+    P.Executable := BinPath(Name);
+    for A in Args do
+      P.Parameters.Add(A);
+    P.Options := [poUsePipes, poStderrToOutPut];
+    P.Execute;
+    Deadline := ChMsTick + QWord(TimeoutMs);
+    while P.Running and (ChMsTick < Deadline) do
+    begin
+      Drain(P, Output);
+      Sleep(2);
+    end;
+    if P.Running then
+    begin
+      P.Terminate(255);
+      P.WaitOnExit;
+      Result := -1;
+    end
+    else
+      Result := P.ExitCode;
+    Drain(P, Output);
+  finally
+    P.Free;
+  end;
+end;
+
+function StartSimPty(const Args: array of string; out Pty: string): TProcess;
+var
+  A, Line: string;
+  C: Char;
+  Deadline: QWord;
+begin
+  Pty := '';
+  Result := TProcess.Create(nil);
+  Result.Executable := BinPath('df1sim');
+  Result.Parameters.Add('--pty');
+  for A in Args do
+    Result.Parameters.Add(A);
+  Result.Options := [poUsePipes];
+  Result.Execute;
+  Line := '';
+  Deadline := ChMsTick + 3000;
+  repeat
+    if Result.Output.NumBytesAvailable > 0 then
+    begin
+      Result.Output.Read(C, 1);
+      if C = #10 then
+        Break;
+      Line := Line + C;
+    end
+    else
+      Sleep(2);
+  until ChMsTick > Deadline;
+  if Copy(Line, 1, 4) = 'PTY ' then
+    Pty := Copy(Line, 5, 255);
+end;
+
+end.
