@@ -65,6 +65,16 @@ begin
   LogText := LogText + 'S ' + Line + #10;
 end;
 
+{ Echo of 'A' (send 9 bytes, or 8 for no data) }
+procedure EchoA(out Req: tSendRecord; Tns: Word);
+begin
+  FillChar(Req, SizeOf(Req), 0);
+  Req.MessType := tpDataMess;
+  Req.CF := CF_Echo;
+  Req.Tns := Tns;
+  Req.Data[0] := $41;
+end;
+
 procedure StepStation(Data: Pointer);
 begin
   DF1StationStep(pDF1Station(Data)^);
@@ -291,11 +301,7 @@ begin
   Proc := StartSimPty(['--bcc', '--node=3', '--timeout=10', '--quiet'], PtyPath);
   AssertTrue('first line: PTY /dev/...', Copy(PtyPath, 1, 5) = '/dev/');
   Master := Open('NAM=DF1 NOD=0 DNO=3 MAS=MASTER FHD=FULL CRC=OFF NAM=COM DEV=' + PtyPath);
-  FillChar(Req, SizeOf(Req), 0);
-  Req.MessType := tpDataMess;
-  Req.CF := CF_Echo;
-  Req.Tns := 77;
-  Req.Data[0] := $41;
+  EchoA(Req, 77);
   RepLen := 0;
   AssertEquals('echo over the pty', res_Ok, DF1Transact(Master, Req, 9, Rep, RepLen, nil, nil, 1000));
   AssertEquals('echo data', 9, RepLen);
@@ -326,11 +332,7 @@ begin
   StartPair(True, True, 'SIMLOG');
   Station.Log := @StationLog;
   LogText := '';
-  FillChar(Req, SizeOf(Req), 0);
-  Req.MessType := tpDataMess;
-  Req.CF := CF_Echo;
-  Req.Tns := 5;
-  Req.Data[0] := $41;
+  EchoA(Req, 5);
   RepLen := 0;
   AssertEquals('exchange', res_Ok, DF1Transact(Master, Req, 9, Rep, RepLen,
     @StepStation, @Station, 500, @MasterLog, True));
@@ -369,10 +371,7 @@ begin
   Master := Open('NAM=DF1 NOD=0 DNO=1 MAS=MASTER FHD=FULL CRC=OFF NAM=LOOP PAIR=SIMNA END=1');
   Raw := OpenStack('LOOP', 'NAM=LOOP PAIR=SIMNA END=2', Err);
   AssertTrue(Err, Raw <> nil);
-  FillChar(Req, SizeOf(Req), 0);
-  Req.MessType := tpDataMess;
-  Req.CF := CF_Echo;
-  Req.Tns := 5;
+  EchoA(Req, 5);
   RepLen := 0;
   LogText := '';
   AssertEquals('result', res_Timeout, DF1Transact(Master, Req, 8, Rep, RepLen,
