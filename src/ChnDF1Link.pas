@@ -82,24 +82,11 @@ function DF1OpenStack(const Params: string; TimeoutMs: LongInt; out Err: string)
 implementation
 
 uses
-  SysUtils;
-
-function HexOf(P: PByte; Len: Integer): string;
-var
-  I: Integer;
-begin
-  Result := '';
-  for I := 0 to Len - 1 do
-  begin
-    if I > 0 then
-      Result := Result + ' ';
-    Result := Result + IntToHex(P[I], 2);
-  end;
-end;
+  SysUtils, uString;
 
 function DF1WireText(Chn: pChnVirt): string;
 begin
-  Result := HexOf(pChnDF1(Chn)^.CH_SBuff, pChnDF1(Chn)^.CH_SLen);
+  Result := HexBytes(pChnDF1(Chn)^.CH_SBuff, pChnDF1(Chn)^.CH_SLen);
 end;
 
 { Wait until Chn reaches Want, an error result or the deadline. }
@@ -179,7 +166,7 @@ begin
         end;
         Result := Format('%s STS=$%.2x TNS=%d', [Name, R.Sts, R.Tns]);
         if Len > 8 then
-          Result := Result + ' data: ' + HexOf(@R.Data[0], Len - 8);
+          Result := Result + ' data: ' + HexBytes(@R.Data[0], Len - 8);
       end;
   else
     Result := '?';

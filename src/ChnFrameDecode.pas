@@ -67,7 +67,7 @@ procedure DecodeRun(const Opt: tDecOptions; const Frames: tTrcFrames; Count: Lon
 implementation
 
 uses
-  SysUtils, ChnDF1, ChnFT1_2, ChnICS, ChnSlc;
+  SysUtils, uString, ChnDF1, ChnFT1_2, ChnICS, ChnSlc;
 
 type
   { commands seen, by TNS: names the replies (which carry no FNC) }
@@ -94,16 +94,6 @@ begin
   Opt.AddrLen := 1;
 end;
 
-function HexVal(C: Char): Integer;
-begin
-  case C of
-    '0'..'9': Result := Ord(C) - Ord('0');
-    'A'..'F': Result := Ord(C) - Ord('A') + 10;
-    'a'..'f': Result := Ord(C) - Ord('a') + 10;
-  else
-    Result := -1;
-  end;
-end;
 
 function DecodeHexText(const Text: AnsiString; var Data: tTrcBytes; out Err: string): Boolean;
 var
@@ -117,13 +107,13 @@ begin
   begin
     if (Text[I] = '0') and (I < Length(Text)) and (Text[I + 1] in ['x', 'X']) then
       Inc(I, 2);
-    if (I > Length(Text)) or (HexVal(Text[I]) < 0) then
+    if (I > Length(Text)) or (HexDigit(Text[I]) < 0) then
     begin
       Inc(I);
       Continue;
     end;
     J := I;
-    while (J <= Length(Text)) and (HexVal(Text[J]) >= 0) do
+    while (J <= Length(Text)) and (HexDigit(Text[J]) >= 0) do
       Inc(J);
     if Odd(J - I) then
     begin
@@ -133,7 +123,7 @@ begin
     end;
     while I < J do
     begin
-      Data[N] := HexVal(Text[I]) * 16 + HexVal(Text[I + 1]);
+      Data[N] := HexDigit(Text[I]) * 16 + HexDigit(Text[I + 1]);
       Inc(N);
       Inc(I, 2);
     end;
@@ -155,18 +145,6 @@ begin
   Frames[0].Status := res_Ok;
 end;
 
-function Hex(const B: array of Byte; From, Count: Integer): string;
-var
-  I: Integer;
-begin
-  Result := '';
-  for I := From to From + Count - 1 do
-  begin
-    if I > From then
-      Result := Result + ' ';
-    Result := Result + IntToHex(B[I], 2);
-  end;
-end;
 
 { ----------------------------------------------------------------- DF1 }
 
@@ -235,7 +213,7 @@ begin
         Result := Result + ' (' + Name + ')';
         Result := Result + Format(', %d data bytes', [N]);
         if N > 0 then
-          Result := Result + ': ' + Hex(M.Data, 0, N);
+          Result := Result + ': ' + HexBytes(@M.Data[0], N);
         Result := Result + ', ' + DF1SumText(D) + ' ok';
       end;
   else
@@ -267,7 +245,7 @@ begin
     Result := Result + ': ' + DF1SumText(D) + ' ok';
     if (D.Err = ChnDF1Codec.res_ErrFrame) and (D.BodyLen < 6) then
       Result := Result + Format(', but only %d bytes between DLE STX and DLE ETX (%s);' +
-        ' DST SRC CMD STS TNS need 6', [D.BodyLen, Hex(D.Body, 0, D.BodyLen)]);
+        ' DST SRC CMD STS TNS need 6', [D.BodyLen, HexBytes(@D.Body[0], D.BodyLen)]);
   end;
 end;
 
@@ -346,7 +324,7 @@ begin
               T := T + Format(' ADDR=%d', [S.FT.Addr]);
             T := T + Format(', %d data bytes', [S.FT.DataLen]);
             if S.FT.DataLen > 0 then
-              T := T + ': ' + Hex(S.FT.Data, 0, S.FT.DataLen);
+              T := T + ': ' + HexBytes(@S.FT.Data[0], S.FT.DataLen);
             T := T + ', checksum ok';
           end;
         end;

@@ -108,7 +108,7 @@ uses
   uString;
 
 const
-  HexDigit: array[0..15] of Char = '0123456789ABCDEF';
+  HexChars: array[0..15] of Char = '0123456789ABCDEF';
   DirName: array[tTrcDir] of string[2] = ('tx', 'rx');
 
 { ------------------------------------------------------------------ writer }
@@ -179,7 +179,7 @@ begin
     begin
       if (I > First) and ((I - First) mod 2 = 0) then
         Result := Result + ' ';        { a blank between groups of two bytes }
-      Result := Result + HexDigit[B shr 4] + HexDigit[B and 15];
+      Result := Result + HexChars[B shr 4] + HexChars[B and 15];
     end;
   end;
 end;
@@ -238,16 +238,6 @@ begin
       Result := False;
 end;
 
-function HexVal(C: Char): Integer;
-begin
-  case C of
-    '0'..'9': Result := Ord(C) - Ord('0');
-    'A'..'F': Result := Ord(C) - Ord('A') + 10;
-    'a'..'f': Result := Ord(C) - Ord('a') + 10;
-  else
-    Result := -1;
-  end;
-end;
 
 { Bytes of one data token into Out (up to 2); False if W is not one. }
 function DataToken(const W: AnsiString; var Out: array of Byte; var N: Integer): Boolean;
@@ -262,10 +252,10 @@ begin
     2, 4:
       begin
         for I := 1 to Length(W) do
-          if HexVal(W[I]) < 0 then
+          if HexDigit(W[I]) < 0 then
             Exit;
         for I := 0 to Length(W) div 2 - 1 do
-          Out[I] := HexVal(W[2 * I + 1]) * 16 + HexVal(W[2 * I + 2]);
+          Out[I] := HexDigit(W[2 * I + 1]) * 16 + HexDigit(W[2 * I + 2]);
         N := Length(W) div 2;
       end;
     3:

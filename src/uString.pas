@@ -37,6 +37,13 @@ function ChoiceIndex(const S, Choices: string): Integer;
 { The word at Index (0-based) of a '|' separated list; '' if none. }
 function ChoiceWord(const Choices: string; Index: Integer): string;
 
+{ Value of a hexadecimal digit, -1 for any other character. }
+function HexDigit(C: Char): Integer;
+
+{ 'XX XX ...': Len bytes at P in hex, blank-separated. An AnsiString:
+  a frame's bytes pass 255 characters. }
+function HexBytes(P: PByte; Len: Integer): AnsiString;
+
 { Decimal text of N. }
 function NumStr(N: LongInt): string;
 
@@ -117,14 +124,8 @@ begin
   V := 0;
   while I <= Length(S) do
   begin
-    case S[I] of
-      '0'..'9': D := Ord(S[I]) - Ord('0');
-      'A'..'F': D := Ord(S[I]) - Ord('A') + 10;
-      'a'..'f': D := Ord(S[I]) - Ord('a') + 10;
-    else
-      Exit;
-    end;
-    if (D > 9) and not Hex then
+    D := HexDigit(S[I]);
+    if (D < 0) or ((D > 9) and not Hex) then
       Exit;
     if Hex then
       V := V * 16 + D
@@ -176,6 +177,35 @@ begin
       Start := I + 1;
     end;
   Result := '';
+end;
+
+function HexDigit(C: Char): Integer;
+begin
+  case C of
+    '0'..'9': Result := Ord(C) - Ord('0');
+    'A'..'F': Result := Ord(C) - Ord('A') + 10;
+    'a'..'f': Result := Ord(C) - Ord('a') + 10;
+  else
+    Result := -1;
+  end;
+end;
+
+function HexBytes(P: PByte; Len: Integer): AnsiString;
+const
+  Digits: array[0..15] of Char = '0123456789ABCDEF';
+var
+  I: Integer;
+begin
+  if Len <= 0 then
+    Exit('');
+  SetLength(Result, Len * 3 - 1);
+  for I := 0 to Len - 1 do
+  begin
+    Result[I * 3 + 1] := Digits[P[I] shr 4];
+    Result[I * 3 + 2] := Digits[P[I] and $F];
+    if I < Len - 1 then
+      Result[I * 3 + 3] := ' ';
+  end;
 end;
 
 function NumStr(N: LongInt): string;

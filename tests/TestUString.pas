@@ -21,6 +21,8 @@ type
     procedure TestStrToNumRange;
     procedure TestChoiceIndex;
     procedure TestChoiceWord;
+    procedure TestHexDigit;
+    procedure TestHexBytesPastShortString;
   end;
 
 implementation
@@ -152,6 +154,30 @@ begin
   AssertEquals('', ChoiceWord('OFF|ON', 2));
   AssertEquals('', ChoiceWord('OFF|ON', -1));
   AssertEquals('C', ChoiceWord('A|B|C', 2));
+end;
+
+procedure TTestUString.TestHexDigit;
+begin
+  AssertEquals(0, HexDigit('0'));
+  AssertEquals(10, HexDigit('a'));
+  AssertEquals(15, HexDigit('F'));
+  AssertEquals(-1, HexDigit('G'));
+  AssertEquals(-1, HexDigit(' '));
+end;
+
+procedure TTestUString.TestHexBytesPastShortString;
+var
+  B: array[0..299] of Byte;
+  S: AnsiString;
+  I: Integer;
+begin
+  for I := 0 to 299 do
+    B[I] := I;
+  AssertEquals('', HexBytes(@B[0], 0));
+  AssertEquals('00 01 0A FF', HexBytes(@B[0], 2) + ' 0A ' + HexBytes(@B[255], 1));
+  S := HexBytes(@B[0], 300);
+  AssertEquals('300 bytes, no truncation at 255 characters', 899, Length(S));
+  AssertEquals('2B', Copy(S, 898, 2));
 end;
 
 initialization

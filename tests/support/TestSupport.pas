@@ -27,7 +27,7 @@ function OpenStack(const Name, Params: string; var Err: string): pChnVirt;
 implementation
 
 uses
-  SysUtils;
+  SysUtils, uString;
 
 function HexToBytes(const S: string): TBytes;
 var
@@ -44,16 +44,10 @@ begin
 end;
 
 function BytesToHex(const B: array of Byte; Len: Integer): string;
-var
-  I: Integer;
 begin
-  Result := '';
-  for I := 0 to Len - 1 do
-  begin
-    if I > 0 then
-      Result := Result + ' ';
-    Result := Result + IntToHex(B[I], 2);
-  end;
+  if Len <= 0 then
+    Exit('');
+  Result := HexBytes(@B[0], Len);
 end;
 
 function WaitReceive(Chn: pChnVirt; TimeoutMs: Integer; Other: pChnVirt): Boolean;
