@@ -172,7 +172,7 @@ var
   I: Integer;
 begin
   for I := 0 to 299 do
-    B[I] := I;
+    B[I] := Byte(I);
   AssertEquals('', HexBytes(@B[0], 0));
   AssertEquals('00 01 0A FF', HexBytes(@B[0], 2) + ' 0A ' + HexBytes(@B[255], 1));
   S := HexBytes(@B[0], 300);
