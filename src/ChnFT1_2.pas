@@ -116,8 +116,8 @@ type
     CH_Gap      : Word;      { GAP= in character times }
     CH_Rx       : tFT12Rx;   { receive automaton }
     CH_RErr     : tChResult; { result of the frame waiting for ChReceive }
-    { ChSetParam looks ahead at the whole string, so that NOD=/DNO= are
-      checked against the ADR= in force after it, in any token order }
+    { noted when ChSetParam peeks at the string (cmd_Peek), so that NOD=/
+      DNO= are checked against the ADR= in force after it, in any order }
     CH_AdrNext  : Byte;
     CH_NodGiven, CH_DnoGiven: Boolean;
 
@@ -236,39 +236,12 @@ begin
 end;
 
 procedure tChnFT1_2.ChSetParam(const S: tParamStr);
-var
-  P: Integer;
-  Tok, Key, Value: string;
-  N: LongInt;
-  SeenOwn: Boolean;
 begin
-  { Look ahead at this layer's tokens (the same split as the base: up to a
-    NAM= naming another layer) for ADR=, NOD= and DNO=, so that the checks
-    of the base's first pass see the address length the string will set. }
+  { ChSetOneParam notes ADR=, NOD=, DNO= of this string when peeked at, so
+    that NOD=/DNO= are checked against the ADR= in force after it }
   CH_AdrNext := CH_AdrLen;
   CH_NodGiven := False;
   CH_DnoGiven := False;
-  SeenOwn := False;
-  P := 1;
-  while NextToken(S, P, Tok) do
-  begin
-    if not SplitKeyValue(Tok, Key, Value) then
-      Continue;                   { the base reports it }
-    if Key = 'NAM' then
-    begin
-      if (not SeenOwn) and (UpStr(Value) = UpStr(CH_Type)) then
-        Continue;
-      Break;
-    end;
-    SeenOwn := True;
-    N := 0;
-    if (Key = 'ADR') and StrToNum(Value, 0, 2, N) then
-      CH_AdrNext := N
-    else if Key = 'NOD' then
-      CH_NodGiven := True
-    else if Key = 'DNO' then
-      CH_DnoGiven := True;
-  end;
   inherited ChSetParam(S);
   CH_AdrNext := CH_AdrLen;
   CH_NodGiven := False;
@@ -294,7 +267,18 @@ begin
   Key := ParamKey(S);
   N := 0;
   I := 0;
-  if Key = 'MS' then
+  if CmdL = cmd_Peek then
+  begin
+    { note what the checks of NOD=/DNO=/ADR= in this string depend on }
+    if (Key = 'ADR') and (ParamNum(S, 0, 2, N) = res_Ok) then
+      CH_AdrNext := N
+    else if Key = 'NOD' then
+      CH_NodGiven := True
+    else if Key = 'DNO' then
+      CH_DnoGiven := True;
+    Result := res_Ok;
+  end
+  else if Key = 'MS' then
     Result := ParamFlag(S, OnOffChoice, CmdL, CH_MaSl)
   else if Key = 'MAS' then
     Result := ParamFlag(S, MasterChoice, CmdL, CH_MasParam)

@@ -23,9 +23,14 @@ type
 
 const
   { tCmd: ChSetParam validates the whole string first (cmd_Check, no side
-    effects), then applies it (cmd_Set); so a bad token changes nothing. }
+    effects), then applies it (cmd_Set); so a bad token changes nothing.
+    Before both it shows every token once with cmd_Peek: a layer whose
+    checks depend on another key of the same string (FT 1.2: the NOD range
+    on ADR=) notes that value then; the result of a peek is ignored and a
+    layer that needs no look-ahead treats cmd_Peek like cmd_Check. }
   cmd_Set   = 0;
   cmd_Check = 1;
+  cmd_Peek  = 2;
 
   { Life-cycle states returned by ChReady }
   CHS_Close        = 0;

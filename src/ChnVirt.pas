@@ -42,6 +42,7 @@ type
 const
   cmd_Set          = ChnTypes.cmd_Set;
   cmd_Check        = ChnTypes.cmd_Check;
+  cmd_Peek         = ChnTypes.cmd_Peek;
   CHS_Close        = ChnTypes.CHS_Close;
   CHS_Open         = ChnTypes.CHS_Open;
   CHS_Connect      = ChnTypes.CHS_Connect;
@@ -352,6 +353,20 @@ begin
   Pos := 1;
   R := res_Ok;
   ErrTok := '';
+  { pass 0: let the layer peek at its tokens (see cmd_Peek) }
+  I := 0;
+  while NextTokenAt(S, Pos, Tok, TokStart) do
+  begin
+    if SplitKeyValue(Tok, Key, Value) and (Key = 'NAM') then
+      if (I > 0) or (UpStr(Value) <> UpStr(CH_Type)) then
+        Break
+      else
+        Continue;                       { names this layer itself }
+    Inc(I);
+    Cmd := cmd_Peek;
+    ChSetOneParam(Tok, Cmd);
+  end;
+  Pos := 1;
   { pass 1: check this layer's tokens and find where the lower layer starts }
   while (R = res_Ok) and NextTokenAt(S, Pos, Tok, TokStart) do
   begin
