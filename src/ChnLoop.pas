@@ -12,8 +12,9 @@
   Parameters: PAIR=name (default A), END=1|2 (default 1; PAIR= and END=
   cannot change while the end is open: res_WrongState), LRB=receive ring
   size (default 4096, taken at the next ChOpen), IDL=ms to sleep in
-  ChReceiveReady when nothing is waiting (default 0: the peer usually runs in the same thread, where
-  waiting only adds latency; give IDL when the peer runs in another thread).
+  ChReceiveReady when nothing is waiting (default 0: the peer usually runs
+  in the same thread, where waiting only adds latency; give IDL when the
+  peer runs in another thread).
   Safe for two threads when the program uses cthreads. }
 unit ChnLoop;
 
