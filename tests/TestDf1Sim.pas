@@ -44,6 +44,7 @@ type
     procedure TestLogLines;
     procedure TestLogNoAck;
     procedure TestOpenStack;
+    procedure TestTransactGivesBackTheReceiveBuffer;
   end;
 
 implementation
@@ -381,6 +382,23 @@ begin
     'M -> Echo STS=$00 TNS=5'#10'M -> ENQ'#10 +
     'M -> Echo STS=$00 TNS=5'#10'M -> ENQ'#10 +
     'M -- no ACK after 3 tries'#10, LogText);
+end;
+
+{ DF1Transact receives into its Rep, often a local of the caller: the
+  channel kept pointing at it, and the next ChReceive wrote into a dead
+  stack frame. The caller's buffer (or none) must be in force afterwards. }
+procedure TTestDf1Sim.TestTransactGivesBackTheReceiveBuffer;
+var
+  Mine: tRecRecord;
+begin
+  StartPair(True, True, 'SIMRB');
+  AssertEquals('echo', 'STS=00 41', Ask(CF_Echo, '41', 1));
+  AssertTrue('no buffer before, none after', Master^.CH_RBuff = nil);
+  AssertEquals(0, Master^.CH_RSize);
+  Master^.ChReceiveBuffer(@Mine, 100);
+  AssertEquals('echo again', 'STS=00 42', Ask(CF_Echo, '42', 2));
+  AssertTrue('the caller''s buffer again', Master^.CH_RBuff = @Mine);
+  AssertEquals('and its size', 100, Master^.CH_RSize);
 end;
 
 procedure TTestDf1Sim.TestOpenStack;
