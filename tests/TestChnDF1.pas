@@ -615,6 +615,11 @@ begin
   Refused(12, res_BadMessage, 'MessType 9');
   M^.ChSend(nil, 12);
   AssertEquals('nil buffer', res_BadLen, M^.ChSendResult);
+  { tNode is a Word; DF1 addresses are one byte: 256 is not station 0 }
+  R.MessType := tpDataMess;
+  M^.ChDestNode(256);
+  Refused(8, res_BadMessage, 'ChDestNode(256)');
+  M^.ChDestNode(2);
   AssertEquals('nothing on the line', '', ReadRaw(Raw));
   { the channel still works }
   R.MessType := tpDataMess;
@@ -633,6 +638,12 @@ begin
   R.MessType := tpAckNak;
   R.FlAck := False;
   Refused(0, res_BadMessage, 'NAK from a half-duplex slave');
+  M^.ChSetParam('MAS=MASTER');
+  M^.ChDestNode(300);
+  R.MessType := tpPoll;
+  Refused(0, res_BadMessage, 'poll of station 300');
+  M^.ChDestNode(2);
+  M^.ChSetParam('MAS=SLAVE');
   AssertEquals('nothing on the half-duplex line', '', ReadRaw(Raw));
   R.MessType := tpNoPollRep;
   SendRec(M, R, 0);
