@@ -287,7 +287,10 @@ begin
   else if Key = 'LSB' then
   begin
     Result := ParamNum(S, 1, MaxTBuf, N);
-    if (Result = res_Ok) and (CmdL = cmd_Set) then
+    { the layer below may still be sending from the old buffer }
+    if (Result = res_Ok) and (CH_State <> CHS_Close) and (N <> CH_MSBuff) then
+      Result := res_WrongState;
+    if (Result = res_Ok) and (CmdL = cmd_Set) and (N <> CH_MSBuff) then
     begin
       if CH_SBuff <> nil then
         FreeMem(CH_SBuff);

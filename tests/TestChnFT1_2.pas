@@ -385,7 +385,18 @@ begin
   M^.ChSend(@R, 4);
   AssertEquals('frame larger than LSB', res_TooLong, M^.ChSendResult);
   AssertEquals('nothing on the line', '', RawRead(Raw));
+  { the layer below may still be sending from the buffer: LSB= is fixed
+    while open (the same value is fine), as in DF1 and ICS }
   M^.ChSetParam('LSB=5');
+  AssertEquals('LSB= while open', res_WrongState, M^.ChResult);
+  M^.ChSetParam('LSB=4');
+  AssertEquals('the same LSB= while open', res_Ok, M^.ChResult);
+  M^.ChDisConnect;
+  M^.ChClose;
+  M^.ChSetParam('LSB=5');
+  AssertEquals(res_Ok, M^.ChResult);
+  M^.ChOpen;
+  M^.ChConnect;
   M^.ChSend(@R, 4);
   AssertEquals(res_Ok, M^.ChSendResult);
   AssertEquals('10 49 01 4A 16', RawRead(Raw));
