@@ -106,7 +106,9 @@ var
   Err: cint;
 begin
   FSlavePath := '';
-  { the termios backend opens, locks and makes the master raw }
+  { the termios backend opens and makes the master raw; no flock: it would
+    lock the one /dev/ptmx inode and refuse every other pair on the system }
+  FNoLock := True;
   Result := inherited Open('/dev/ptmx');
   if Result <> res_Ok then
     Exit;

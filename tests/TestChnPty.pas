@@ -25,6 +25,7 @@ type
     procedure TestDriverPairBothWays;
     procedure TestOutlivesItsClients;
     procedure TestNoBusyLoopWithoutClient;
+    procedure TestTwoPairsAtOnce;
   end;
 
 implementation
@@ -161,6 +162,21 @@ begin
   AssertEquals('still no error', res_Ok, Host^.ChResult);
   { 100 ms at IDL=5 is about 20 polls; a busy loop makes 100000s }
   AssertTrue('polls in 100 ms: ' + IntToStr(N), N <= 40);
+end;
+
+{ Every open of /dev/ptmx is a new pair: a lock on the /dev/ptmx inode
+  must not keep a second DRV=PTY channel (here, or in any other process:
+  a second df1sim --pty, a test run beside this one) from opening. }
+procedure TTestChnPty.TestTwoPairsAtOnce;
+var
+  Err, First: string;
+begin
+  Host := OpenStack('COM', 'NAM=COM DRV=PTY', Err);
+  AssertTrue(Err, Host <> nil);
+  First := PtyLastSlave;
+  Client := OpenStack('COM', 'NAM=COM DRV=PTY', Err);
+  AssertTrue('second pair: ' + Err, Client <> nil);
+  AssertTrue('another slave', PtyLastSlave <> First);
 end;
 
 initialization
