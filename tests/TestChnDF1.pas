@@ -10,7 +10,7 @@ unit TestChnDF1;
 interface
 
 uses
-  SysUtils, fpcunit, testregistry, ChnTypes, ChnVirt, ChnLoop, ChnDF1, TestSupport;
+  SysUtils, fpcunit, testregistry, ChnTypes, ChnVirt, ChnLoop, ChnDF1, TestSupport, ChnNoiseLayer;
 
 type
   { the test's DF1 slave: answers commands like a small PLC }
@@ -67,6 +67,7 @@ type
     procedure TestManualExchangesFullDuplex;
     procedure TestHalfDuplexTwoSlavesFourWire;
     procedure TestHalfDuplexTwoSlavesTwoWire;
+    procedure TestBabblingLineDoesNotStallAPoll;
   end;
 
 implementation
@@ -947,6 +948,21 @@ end;
 procedure TTestChnDF1.TestHalfDuplexTwoSlavesTwoWire;
 begin
   HalfDuplexSession(True, 'HD2');
+end;
+
+{ A line that never stops sending bytes that start no frame (zeros, never a DLE):
+  one ChReceiveReady must return after a bounded number of bytes, not hang
+  the caller's polling loop for as long as the babble goes on. }
+procedure TTestChnDF1.TestBabblingLineDoesNotStallAPoll;
+var
+  State: tChState;
+  N: LongInt;
+begin
+  State := CHS_Close;
+  N := NoiseOnePoll('NAM=DF1 NAM=NOISE BYTE=0 CNT=1000000', State);
+  AssertTrue('stack opened', N >= 0);
+  AssertEquals('no message', CHS_Receiving, State);
+  AssertTrue('one poll took ' + IntToStr(N) + ' bytes', N <= 65536);
 end;
 
 initialization
