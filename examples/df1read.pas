@@ -62,7 +62,9 @@ begin
   if Params = '' then
     Fail('no parameter string (e.g. NAM=DF1 NOD=0 DNO=1 NAM=COM DEV=/dev/ttyUSB0)', 1);
   Colon := Pos(':', Addr);
-  Kind := Addr[1];
+  Kind := #0;
+  if Addr <> '' then
+    Kind := Addr[1];
   ES := SlcElemSize(Kind);
   FileNo := 0;
   Elem := 0;
@@ -84,7 +86,15 @@ begin
   Req.Tns := 1;
   I := 0;
   Req.Data[I] := Count * ES; Inc(I);
-  Req.Data[I] := FileNo; Inc(I);
+  { a field of 255 or more is $FF and a word: a lone $FF is the escape }
+  if FileNo < 255 then
+  begin
+    Req.Data[I] := FileNo; Inc(I);
+  end
+  else
+  begin
+    Req.Data[I] := $FF; Req.Data[I + 1] := Lo(FileNo); Req.Data[I + 2] := Hi(FileNo); Inc(I, 3);
+  end;
   Req.Data[I] := SlcTypeCode(Kind); Inc(I);
   if Elem < 255 then
   begin

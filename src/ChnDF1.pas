@@ -334,6 +334,13 @@ begin
   { Len only counts for data messages: the codec checks it }
   if not ChSendAllowed(Buff, Len, False) then
     Exit;
+  { DST/STN are one byte: ChDestNode(256) must not go to station 0 }
+  if (CH_DNode > 255) and
+     (Byte(pSendRecord(Buff)^.MessType) in [Ord(tpDataMess), Ord(tpPoll)]) then
+  begin
+    CH_SResult := res_BadMessage;
+    Exit;
+  end;
   if CH_SBuff = nil then
   begin
     CH_MSBuff := DF1DefaultSBuff;

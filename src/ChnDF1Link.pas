@@ -60,10 +60,12 @@ procedure DF1StationInit(var S: tDF1Station; Chn: pChnVirt; Table: pSlcTable);
 function DF1StationStep(var S: tDF1Station): Boolean;
 
 { One command/reply exchange as a master. Req/ReqLen the command; the reply
-  goes to Rep (RepLen). Results: res_Ok; res_Timeout (no ACK after the
-  tries, or no reply); res_BadMessage (a reply with another TNS or
-  command); a send error of the channel. Idle and Log may be nil; LogWire
-  as in tDF1Station. }
+  goes to Rep (RepLen); the channel's receive buffer is the caller's again
+  afterwards (ChReceiveBuffer before the call stays in force). Results:
+  res_Ok; res_Timeout (no ACK after the tries, or no reply); res_BadMessage
+  (a reply with another TNS or command); a send error of the channel, or
+  its ChResult when the line fails (res_DeviceLost ...) while waiting for
+  the reply. Idle and Log may be nil; LogWire as in tDF1Station. }
 function DF1Transact(Chn: pChnVirt; constref Req: tSendRecord; ReqLen: Word;
   var Rep: tRecRecord; var RepLen: Word; Idle: tDF1Idle; IdleData: Pointer;
   TimeoutMs: LongInt; Log: tDF1LogProc = nil; LogWire: Boolean = False): tChResult;
@@ -305,7 +307,7 @@ end;
 
 { -------------------------------------------------------------- master }
 
-function DF1Transact(Chn: pChnVirt; constref Req: tSendRecord; ReqLen: Word;
+function Transact(Chn: pChnVirt; constref Req: tSendRecord; ReqLen: Word;
   var Rep: tRecRecord; var RepLen: Word; Idle: tDF1Idle; IdleData: Pointer;
   TimeoutMs: LongInt; Log: tDF1LogProc; LogWire: Boolean): tChResult;
 var
@@ -392,6 +394,11 @@ begin
   Deadline := ChMsTick + QWord(3 * TimeoutMs);
   while not (Got and (Rep.MessType = tpDataMess)) do
   begin
+    if Chn^.ChResult <> res_Ok then
+    begin
+      Say('-- line lost: ' + Chn^.ChResultStr(Chn^.ChResult));
+      Exit(Chn^.ChResult);          { no reply can come any more }
+    end;
     if ChMsTick > Deadline then
     begin
       Say('-- no reply');
@@ -418,6 +425,23 @@ begin
     Say('-- the reply is not the one to this command');
     Result := res_BadMessage;
   end;
+end;
+
+function DF1Transact(Chn: pChnVirt; constref Req: tSendRecord; ReqLen: Word;
+  var Rep: tRecRecord; var RepLen: Word; Idle: tDF1Idle; IdleData: Pointer;
+  TimeoutMs: LongInt; Log: tDF1LogProc; LogWire: Boolean): tChResult;
+var
+  OldBuf: Pointer;
+  OldSize: Word;
+begin
+  { Rep is often a local of the caller: the channel must not keep pointing
+    at it afterwards, so the caller's own receive buffer comes back }
+  OldBuf := Chn^.CH_RBuff;
+  OldSize := Chn^.CH_RSize;
+  Result := Transact(Chn, Req, ReqLen, Rep, RepLen, Idle, IdleData, TimeoutMs,
+    Log, LogWire);
+  Chn^.CH_RBuff := OldBuf;
+  Chn^.CH_RSize := OldSize;
 end;
 
 end.

@@ -153,6 +153,9 @@ uses
 const
   cBitsPerChar = 11;     { FT 1.2 character: start, 8 data, even parity, stop }
   cDefaultBaud = 9600;   { for GAP= when no layer below has BD= }
+  { bytes one ChReceiveTick may pull, so a babbling line cannot stall the
+    caller's polling loop (as in ChnDF1) }
+  MaxBytesPerTick = 4096;
 
 constructor tChnFT1_2.Init;
 begin
@@ -287,7 +290,10 @@ begin
   else if Key = 'LSB' then
   begin
     Result := ParamNum(S, 1, MaxTBuf, N);
-    if (Result = res_Ok) and (CmdL = cmd_Set) then
+    { the layer below may still be sending from the old buffer }
+    if (Result = res_Ok) and (CH_State <> CHS_Close) and (N <> CH_MSBuff) then
+      Result := res_WrongState;
+    if (Result = res_Ok) and (CmdL = cmd_Set) and (N <> CH_MSBuff) then
     begin
       if CH_SBuff <> nil then
         FreeMem(CH_SBuff);
@@ -400,12 +406,16 @@ procedure tChnFT1_2.ChReceiveTick;
 var
   B: Byte;
   Now: QWord;
+  Count: Integer;
 begin
   if (CH_State <> CHS_Connect) or (CH_RCtrl <> CHS_Receiving) then
     Exit;
   CH_RTick := True;
   Now := ChMsTick;     { one time stamp for the bytes pulled in this tick }
-  while ChLowGetByte(B) do
+  Count := 0;
+  while (Count < MaxBytesPerTick) and ChLowGetByte(B) do
+  begin
+    Inc(Count);
     case FT12Feed(CH_Rx, B, Now) of
       fe_Frame:
         begin
@@ -420,6 +430,7 @@ begin
           Break;
         end;
     end;
+  end;
   CH_RSum := CH_Rx.Sum;
   CH_RTick := False;
 end;

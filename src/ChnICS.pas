@@ -106,6 +106,11 @@ type
 
 implementation
 
+const
+  { bytes one ChReceiveTick may pull, so a babbling line cannot stall the
+    caller's polling loop (as in ChnDF1) }
+  MaxBytesPerTick = 4096;
+
 constructor tChnICS.Init;
 begin
   inherited Init;
@@ -230,12 +235,15 @@ end;
 procedure tChnICS.ChReceiveTick;
 var
   B: Byte;
+  Count: Integer;
 begin
   if (CH_State <> CHS_Connect) or (CH_RCtrl <> CHS_Receiving) then
     Exit;
   CH_RTick := True;
-  while ChLowGetByte(B) do
+  Count := 0;
+  while (Count < MaxBytesPerTick) and ChLowGetByte(B) do
   begin
+    Inc(Count);
     CH_Event := ICSFeed(CH_Codec, B);
     if CH_Event <> icsNone then
     begin

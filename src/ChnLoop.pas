@@ -9,10 +9,12 @@
   CHS_Sending meanwhile). Bytes sent while the other end is closed are lost,
   as on a cable with nobody listening.
 
-  Parameters: PAIR=name (default A), END=1|2 (default 1), LRB=receive ring
-  size (default 4096), IDL=ms to sleep in ChReceiveReady when nothing is
-  waiting (default 0: the peer usually runs in the same thread, where
-  waiting only adds latency; give IDL when the peer runs in another thread).
+  Parameters: PAIR=name (default A), END=1|2 (default 1; PAIR= and END=
+  cannot change while the end is open: res_WrongState), LRB=receive ring
+  size (default 4096, taken at the next ChOpen), IDL=ms to sleep in
+  ChReceiveReady when nothing is waiting (default 0: the peer usually runs
+  in the same thread, where waiting only adds latency; give IDL when the
+  peer runs in another thread).
   Safe for two threads when the program uses cthreads. }
 unit ChnLoop;
 
@@ -146,12 +148,17 @@ begin
     for I := 1 to Length(Value) do
       if not (Value[I] in ['A'..'Z', 'a'..'z', '0'..'9', '_', '-', '.']) then
         Result := res_BadParam;
+    { an open end holds the rings of its pair: they cannot change under it }
+    if (Result = res_Ok) and (CH_State <> CHS_Close) and (UpStr(Value) <> CH_Pair) then
+      Result := res_WrongState;
     if (Result = res_Ok) and (CmdL = cmd_Set) then
       CH_Pair := UpStr(Value);
   end
   else if Key = 'END' then
   begin
     Result := ParamNum(S, 1, 2, N);
+    if (Result = res_Ok) and (CH_State <> CHS_Close) and (N <> CH_End) then
+      Result := res_WrongState;
     if (Result = res_Ok) and (CmdL = cmd_Set) then
       CH_End := N;
   end

@@ -28,6 +28,10 @@ type
     FOverrunBase: LongWord;
     function Fail(Err: cint): tChResult;
     function Counters(out N: LongWord): Boolean;
+  protected
+    { Open takes no flock: for /dev/ptmx (ChnPty), where every open is a
+      new pair but a lock would hold the one inode for the whole system }
+    FNoLock: Boolean;
   public
     constructor Create; override;
     function Open(const Path: tWordString): tChResult; override;
@@ -151,7 +155,7 @@ begin
   if NewFd < 0 then
     Exit(Fail(FpGetErrno));
   { flock: one user per device, honoured by root too }
-  if FpFlock(NewFd, LOCK_EX or LOCK_NB) <> 0 then
+  if not FNoLock and (FpFlock(NewFd, LOCK_EX or LOCK_NB) <> 0) then
   begin
     FOSError := FpGetErrno;
     FpClose(NewFd);

@@ -38,6 +38,9 @@ type
       idle line here, not a lost device: a simulator outlives its clients. }
     function Read(var Buf; Size: LongInt; out Got: LongInt): tChResult; override;
     function Write(const Buf; Len: LongInt; out Done: LongInt): tChResult; override;
+    { Without a client poll(2) answers POLLHUP at once, every time; that
+      is no input, so wait the Ms as on an idle line (no busy loop). }
+    function WaitInput(Ms: LongInt): Boolean; override;
     property SlavePath: string read FSlavePath;
   end;
 
@@ -103,7 +106,9 @@ var
   Err: cint;
 begin
   FSlavePath := '';
-  { the termios backend opens, locks and makes the master raw }
+  { the termios backend opens and makes the master raw; no flock: it would
+    lock the one /dev/ptmx inode and refuse every other pair on the system }
+  FNoLock := True;
   Result := inherited Open('/dev/ptmx');
   if Result <> res_Ok then
     Exit;
@@ -137,6 +142,20 @@ begin
     Done := Len;             { nobody listens: the bytes are gone }
     Result := res_Ok;
   end;
+end;
+
+function TChnPortPty.WaitInput(Ms: LongInt): Boolean;
+var
+  P: TPollFd;
+begin
+  if not IsOpen then
+    Exit(False);
+  P.fd := OsHandle;
+  P.events := POLLIN;
+  P.revents := 0;
+  Result := (FpPoll(@P, 1, Ms) > 0) and (P.revents and (POLLIN or POLLERR) <> 0);
+  if not Result and (P.revents and POLLHUP <> 0) and (Ms > 0) then
+    Sleep(Ms);                 { hung up, nothing waiting: an idle line }
 end;
 
 initialization

@@ -67,6 +67,7 @@ type
     procedure ChReceiveTick; virtual;
     procedure ChDestNode(DNode: tNode); virtual;
     procedure ChGetNode(var SNode, DNode: tNode); virtual;
+    function  ChResultStr(R: tChResult): string; virtual;
     { Write one entry to the log (also usable by tools for their own notes). }
     procedure ChTrcLog(Dir: tTrcDir; Buff: Pointer; Len: Word);
   end;
@@ -297,6 +298,16 @@ begin
     CH_Low^.ChGetNode(SNode, DNode)
   else
     inherited ChGetNode(SNode, DNode);
+end;
+
+function tChnTrc.ChResultStr(R: tChResult): string;
+begin
+  { results from res_Proto up come from the layer below (TRC's own codes
+    of that range belong to the log reader, never to the layer) }
+  if (R >= res_Proto) and (CH_Low <> nil) then
+    Result := CH_Low^.ChResultStr(R)
+  else
+    Result := inherited ChResultStr(R);
 end;
 
 function tAddChnTrc.ChInit: pChnVirt;

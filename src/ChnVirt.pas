@@ -111,6 +111,8 @@ type
 
     procedure ChSetParam(const S: tParamStr); virtual;
     function  ChSetOneParam(const S: tWordString; var CmdL: tCmd): tChResult; virtual;
+    { '' : the whole configuration (cut after the last whole token that
+      fits 255 characters); a key: only the tokens with that key }
     function  ChGetParam(const S: tParamStr): tParamStr; virtual;
 
     procedure ChOpen; virtual;
@@ -481,9 +483,9 @@ end;
 
 function tChnVirt.ChGetParam(const S: tParamStr): tParamStr;
 var
-  All: AnsiString;   { a deep stack may pass 255 characters; checked below }
+  All: AnsiString;   { a deep stack may pass 255 characters }
   Tok: string;
-  Pos: Integer;
+  P, Start: Integer;
   Want: string;
 begin
   All := 'NAM=' + CH_Type + ChOwnParams;
@@ -492,20 +494,36 @@ begin
   Want := UpStr(S);
   if Want = '' then
   begin
+    { too long for a tParamStr: cut at the last whole token, so the text
+      still parses. A getter leaves CH_Result alone: polling loops read a
+      result there as a fault of the line. }
     if Length(All) > High(tParamStr) then
-      CH_Result := res_TooLong;
-    Exit(Copy(All, 1, High(tParamStr)));
+    begin
+      P := High(tParamStr) + 1;
+      while (P > 1) and (All[P] <> ' ') do
+        Dec(P);
+      SetLength(All, P - 1);
+    end;
+    Exit(All);
   end;
-  { S names a key: return only the tokens with that key }
+  { S names a key: return only the tokens with that key, from the whole text }
   Result := '';
-  Pos := 1;
-  while NextToken(Copy(All, 1, 255), Pos, Tok) do
-    if ParamKey(Tok) = Want then
+  P := 1;
+  while P <= Length(All) do
+  begin
+    while (P <= Length(All)) and (All[P] = ' ') do
+      Inc(P);
+    Start := P;
+    while (P <= Length(All)) and (All[P] <> ' ') do
+      Inc(P);
+    Tok := Copy(All, Start, P - Start);
+    if (Tok <> '') and (ParamKey(Tok) = Want) then
     begin
       if Result <> '' then
         Result := Result + ' ';
       Result := Result + Tok;
     end;
+  end;
 end;
 
 function tChnVirt.ChParamError: tWordString;

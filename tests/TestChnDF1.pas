@@ -10,7 +10,7 @@ unit TestChnDF1;
 interface
 
 uses
-  SysUtils, fpcunit, testregistry, ChnTypes, ChnVirt, ChnLoop, ChnDF1, TestSupport;
+  SysUtils, fpcunit, testregistry, ChnTypes, ChnVirt, ChnLoop, ChnDF1, TestSupport, ChnNoiseLayer;
 
 type
   { the test's DF1 slave: answers commands like a small PLC }
@@ -67,6 +67,7 @@ type
     procedure TestManualExchangesFullDuplex;
     procedure TestHalfDuplexTwoSlavesFourWire;
     procedure TestHalfDuplexTwoSlavesTwoWire;
+    procedure TestBabblingLineDoesNotStallAPoll;
   end;
 
 implementation
@@ -615,6 +616,11 @@ begin
   Refused(12, res_BadMessage, 'MessType 9');
   M^.ChSend(nil, 12);
   AssertEquals('nil buffer', res_BadLen, M^.ChSendResult);
+  { tNode is a Word; DF1 addresses are one byte: 256 is not station 0 }
+  R.MessType := tpDataMess;
+  M^.ChDestNode(256);
+  Refused(8, res_BadMessage, 'ChDestNode(256)');
+  M^.ChDestNode(2);
   AssertEquals('nothing on the line', '', ReadRaw(Raw));
   { the channel still works }
   R.MessType := tpDataMess;
@@ -633,6 +639,12 @@ begin
   R.MessType := tpAckNak;
   R.FlAck := False;
   Refused(0, res_BadMessage, 'NAK from a half-duplex slave');
+  M^.ChSetParam('MAS=MASTER');
+  M^.ChDestNode(300);
+  R.MessType := tpPoll;
+  Refused(0, res_BadMessage, 'poll of station 300');
+  M^.ChDestNode(2);
+  M^.ChSetParam('MAS=SLAVE');
   AssertEquals('nothing on the half-duplex line', '', ReadRaw(Raw));
   R.MessType := tpNoPollRep;
   SendRec(M, R, 0);
@@ -936,6 +948,21 @@ end;
 procedure TTestChnDF1.TestHalfDuplexTwoSlavesTwoWire;
 begin
   HalfDuplexSession(True, 'HD2');
+end;
+
+{ A line that never stops sending bytes that start no frame (zeros, never a DLE):
+  one ChReceiveReady must return after a bounded number of bytes, not hang
+  the caller's polling loop for as long as the babble goes on. }
+procedure TTestChnDF1.TestBabblingLineDoesNotStallAPoll;
+var
+  State: tChState;
+  N: LongInt;
+begin
+  State := CHS_Close;
+  N := NoiseOnePoll('NAM=DF1 NAM=NOISE BYTE=0 CNT=1000000', State);
+  AssertTrue('stack opened', N >= 0);
+  AssertEquals('no message', CHS_Receiving, State);
+  AssertTrue('one poll took ' + IntToStr(N) + ' bytes', N <= 65536);
 end;
 
 initialization

@@ -10,7 +10,7 @@ interface
 
 uses
   SysUtils, fpcunit, testregistry, ChnTypes, ChnVirt, ChnLoop, ChnFT1_2,
-  TestSupport, LoopHub, ChnBaudTestLayer;
+  TestSupport, LoopHub, ChnBaudTestLayer, ChnNoiseLayer;
 
 type
   TTestChnFT1_2 = class(TTestCase)
@@ -45,6 +45,7 @@ type
     procedure TestFlushAndDisConnect;
     procedure TestChInitParam;
     procedure TestResultTexts;
+    procedure TestBabblingLineDoesNotStallAPoll;
   end;
 
 implementation
@@ -385,7 +386,18 @@ begin
   M^.ChSend(@R, 4);
   AssertEquals('frame larger than LSB', res_TooLong, M^.ChSendResult);
   AssertEquals('nothing on the line', '', RawRead(Raw));
+  { the layer below may still be sending from the buffer: LSB= is fixed
+    while open (the same value is fine), as in DF1 and ICS }
   M^.ChSetParam('LSB=5');
+  AssertEquals('LSB= while open', res_WrongState, M^.ChResult);
+  M^.ChSetParam('LSB=4');
+  AssertEquals('the same LSB= while open', res_Ok, M^.ChResult);
+  M^.ChDisConnect;
+  M^.ChClose;
+  M^.ChSetParam('LSB=5');
+  AssertEquals(res_Ok, M^.ChResult);
+  M^.ChOpen;
+  M^.ChConnect;
   M^.ChSend(@R, 4);
   AssertEquals(res_Ok, M^.ChSendResult);
   AssertEquals('10 49 01 4A 16', RawRead(Raw));
@@ -917,6 +929,21 @@ begin
   finally
     Dispose(C, Done);
   end;
+end;
+
+{ A line that never stops sending bytes that start no frame (zeros, never a start character):
+  one ChReceiveReady must return after a bounded number of bytes, not hang
+  the caller's polling loop for as long as the babble goes on. }
+procedure TTestChnFT1_2.TestBabblingLineDoesNotStallAPoll;
+var
+  State: tChState;
+  N: LongInt;
+begin
+  State := CHS_Close;
+  N := NoiseOnePoll('NAM=FT1_2 NAM=NOISE BYTE=0 CNT=1000000', State);
+  AssertTrue('stack opened', N >= 0);
+  AssertEquals('no message', CHS_Receiving, State);
+  AssertTrue('one poll took ' + IntToStr(N) + ' bytes', N <= 65536);
 end;
 
 initialization

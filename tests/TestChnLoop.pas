@@ -23,6 +23,7 @@ type
     procedure TestSendWhileBusy;
     procedure TestSmallReceiveBufferGivesChunks;
     procedure TestSameEndTwiceCannotOpen;
+    procedure TestPairAndEndFixedWhileOpen;
     procedure TestBytesToClosedPeerAreLost;
     procedure TestReceiveFlush;
     procedure TestTwoThreadsWithIdleWait;
@@ -207,6 +208,32 @@ begin
   finally
     Dispose(C, Done);
   end;
+end;
+
+{ PAIR=/END= name the rings an open end holds: changing them while open
+  made ChClose free the peer's ring and leak its own. }
+procedure TTestChnLoop.TestPairAndEndFixedWhileOpen;
+var
+  S, D: array[0..2] of Byte;
+begin
+  OpenPair('FIXED');
+  A^.ChSetParam('END=2');
+  AssertEquals('END= while open', res_WrongState, A^.ChResult);
+  A^.ChSetParam('PAIR=OTHER');
+  AssertEquals('PAIR= while open', res_WrongState, A^.ChResult);
+  A^.ChSetParam('PAIR=fixed END=1 LRB=100');
+  AssertEquals('the same values (and LRB) are fine', res_Ok, A^.ChResult);
+  AssertEquals('END=1', 1, pChnLoop(A)^.CH_End);
+  A^.ChClose;
+  A^.ChOpen;
+  A^.ChConnect;
+  AssertEquals('reopens', res_Ok, A^.ChResult);
+  S[0] := 1; S[1] := 2; S[2] := 3;
+  B^.ChSend(@S, 3);
+  AssertEquals(3, Drain(A, B, D, 3));
+  A^.ChClose;
+  A^.ChSetParam('END=2 PAIR=OTHER');
+  AssertEquals('closed: anything goes', res_Ok, A^.ChResult);
 end;
 
 procedure TTestChnLoop.TestBytesToClosedPeerAreLost;

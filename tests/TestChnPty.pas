@@ -24,6 +24,8 @@ type
     procedure TestPtyCreate;
     procedure TestDriverPairBothWays;
     procedure TestOutlivesItsClients;
+    procedure TestNoBusyLoopWithoutClient;
+    procedure TestTwoPairsAtOnce;
   end;
 
 implementation
@@ -132,6 +134,49 @@ begin
   AssertTrue('second client: ' + Err, Client <> nil);
   AssertEquals('second client', '02', Pass(Client, Host, '02'));
   AssertEquals('and back', '03', Pass(Host, Client, '03'));
+end;
+
+{ After a client hung up, poll(2) on the master reports POLLHUP at once,
+  every time: ChReceiveReady must still wait its IDL= instead of spinning. }
+procedure TTestChnPty.TestNoBusyLoopWithoutClient;
+var
+  Err: string;
+  D: Byte;
+  S: cint;
+  N: Integer;
+  T0: QWord;
+begin
+  Host := OpenStack('COM', 'NAM=COM DRV=PTY IDL=5', Err);
+  AssertTrue(Err, Host <> nil);
+  S := FpOpen(PtyLastSlave, O_RDWR or O_NOCTTY);
+  AssertTrue('slave opens', S >= 0);
+  FpClose(S);
+  Host^.ChReceiveBuffer(@D, 1);
+  N := 0;
+  T0 := ChMsTick;
+  while ChMsTick - T0 < 100 do
+  begin
+    Host^.ChReceiveReady;
+    Inc(N);
+  end;
+  AssertEquals('still no error', res_Ok, Host^.ChResult);
+  { 100 ms at IDL=5 is about 20 polls; a busy loop makes 100000s }
+  AssertTrue('polls in 100 ms: ' + IntToStr(N), N <= 40);
+end;
+
+{ Every open of /dev/ptmx is a new pair: a lock on the /dev/ptmx inode
+  must not keep a second DRV=PTY channel (here, or in any other process:
+  a second df1sim --pty, a test run beside this one) from opening. }
+procedure TTestChnPty.TestTwoPairsAtOnce;
+var
+  Err, First: string;
+begin
+  Host := OpenStack('COM', 'NAM=COM DRV=PTY', Err);
+  AssertTrue(Err, Host <> nil);
+  First := PtyLastSlave;
+  Client := OpenStack('COM', 'NAM=COM DRV=PTY', Err);
+  AssertTrue('second pair: ' + Err, Client <> nil);
+  AssertTrue('another slave', PtyLastSlave <> First);
 end;
 
 initialization

@@ -12,7 +12,7 @@ interface
 uses
   {$IFDEF UNIX}BaseUnix,{$ENDIF}
   SysUtils, fpcunit, testregistry, ChnTypes, ChnVirt, ChnLoop, ChnTestLayer,
-  ChnTrc, ChnTrcFormat, TestSupport, TestTempDir;
+  ChnDF1, ChnTrc, ChnTrcFormat, TestSupport, TestTempDir;
 
 type
   TTestChnTrc = class(TTestCase)
@@ -49,6 +49,7 @@ type
     procedure TestNodesPassThrough;
     procedure TestLengthBeyondBufferIsCut;
     procedure TestFailedLogWriteKeepsData;
+    procedure TestResultTextOfTheLayerBelow;
   end;
 
 implementation
@@ -845,6 +846,21 @@ begin
   AssertEquals('3:01 02 03;|2:04 05;|', Seen);
   AssertEquals('both writes failed, counted', 2, pChnTrc(A)^.CH_LogErrors);
   AssertEquals(res_Ok, A^.ChResult);
+end;
+
+{ On top of a protocol layer TRC passes its codes ($20 up) through: their
+  text is the protocol's, not TRC's own reader codes ($20 res_TrcShort,
+  $21 res_TrcLong) that share the numbers. }
+procedure TTestChnTrc.TestResultTextOfTheLayerBelow;
+begin
+  A := ChnCollection^.ChNewInit('TRC');
+  A^.ChSetParam('NAM=TRC NAM=DF1 NAM=LOOP PAIR=RTX END=1');
+  AssertEquals(res_Ok, A^.ChResult);
+  AssertEquals('DF1 checksum', ChResultText(ChnDF1.res_ErrSum, 'DF1'),
+    A^.ChResultStr(ChnDF1.res_ErrSum));
+  AssertEquals('DF1 frame', ChResultText(ChnDF1.res_ErrFrame, 'DF1'),
+    A^.ChResultStr(ChnDF1.res_ErrFrame));
+  AssertEquals('general', 'transmitter busy', A^.ChResultStr(res_Busy));
 end;
 
 initialization

@@ -38,6 +38,7 @@ type
     procedure TestPhysicalLayerCannotHaveLower;
     procedure TestStackTwoLayersAndRoundTrip;
     procedure TestGetParamKeyFilter;
+    procedure TestGetParamLongerThan255;
     procedure TestChInitParamConstructor;
     procedure TestSwapStackWhileOpenIsRefused;
     procedure TestChangeOwnParamWhileOpenKeepsStack;
@@ -192,6 +193,33 @@ begin
   Chn^.CH_Low^.ChSetParam(S);
   AssertEquals(res_BadParam, Chn^.CH_Low^.ChResult);
   AssertEquals(S, Chn^.CH_Low^.ChParamError);
+end;
+
+{ A stack whose configuration text passes 255 characters (long DEV= or
+  FILE= paths): ChGetParam is a getter and must not leave a fault in
+  ChResult (polling loops take that for a lost line), and what it returns
+  is cut at a whole token, so that it still parses. }
+procedure TTestChnVirt.TestGetParamLongerThan255;
+const
+  Tstp = 'NAM=TSTP NOD=0 DNO=0 MOD=A CNT=0 FLG=OFF';
+var
+  Full, G: string;
+begin
+  SetParamExpect('MOD=A NAM=TSTP MOD=A NAM=TSTP MOD=A NAM=TSTP MOD=A NAM=TSTP MOD=A ' +
+    'NAM=TSTP MOD=A NAM=LOOP PAIR=LONG', res_Ok, '');
+  Full := Tstp + ' ' + Tstp + ' ' + Tstp + ' ' + Tstp + ' ' + Tstp + ' ' + Tstp +
+    ' NAM=LOOP PAIR=LONG END=1 LRB=4096 IDL=0';
+  AssertTrue(Length(Full) > 255);
+  Chn^.ChOpen;
+  Chn^.ChConnect;
+  AssertEquals(res_Ok, Chn^.ChResult);
+  G := Chn^.ChGetParam('');
+  AssertEquals('a getter leaves no fault behind', res_Ok, Chn^.ChResult);
+  AssertTrue('at most 255', Length(G) <= 255);
+  AssertEquals('a prefix of the whole text', G, Copy(Full, 1, Length(G)));
+  AssertEquals('cut between tokens: ' + G, ' ', Full[Length(G) + 1]);
+  AssertTrue('not shorter than needed', Length(G) > 255 - Length(' FLG=OFF'));
+  AssertEquals('a key still finds lower layers', 'PAIR=LONG', Chn^.ChGetParam('PAIR'));
 end;
 
 procedure TTestChnVirt.TestFusedTokenIsAnError;

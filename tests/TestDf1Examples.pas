@@ -18,6 +18,7 @@ type
   published
     procedure TestDf1DemoAllOk;
     procedure TestDf1EchoAgainstSim;
+    procedure TestDf1ReadAddresses;
   end;
 
 implementation
@@ -82,6 +83,36 @@ begin
   Code := RunBin('df1echo', ['NAM=DF1', 'XYZ=1', 'NAM=LOOP'], 10000, Output);
   AssertEquals('bad parameter: exit 1', 1, Code);
   AssertTrue('says which:'#10 + Output, Pos('XYZ', Output) > 0);
+end;
+
+{ df1read's address argument: an empty one is a setup error (it crashed
+  on Addr[1]); file 255 goes out as $FF $FF $00 (a lone $FF is the escape
+  of the 3-address fields, 1770-6.5.16 p. 7-17), so the simulator finds no
+  such file (EXT STS $06) instead of an illegal format. }
+procedure TTestDf1Examples.TestDf1ReadAddresses;
+var
+  Sim: TProcess;
+  Pty, Output: string;
+  Code: Integer;
+begin
+  AssertTrue(BinPath('df1read') + ' missing (make examples)', FileExists(BinPath('df1read')));
+  Code := RunExe('/bin/sh', ['-c', BinPath('df1read') + ' "" NAM=DF1 NAM=LOOP'], 10000, Output);
+  AssertEquals('empty address: exit 1'#10 + Output, 1, Code);
+  AssertTrue('says why:'#10 + Output, Pos('address', Output) > 0);
+  Sim := StartSimPty(['--timeout=10', '--quiet'], Pty);
+  try
+    AssertTrue('df1sim printed its pty', Pty <> '');
+    Code := RunBin('df1read', ['N255:0', '1', 'NAM=DF1', 'NOD=0', 'DNO=1', 'NAM=COM',
+      'DEV=' + Pty, 'BD=19200'], 10000, Output);
+    AssertEquals('error reply: exit 3'#10 + Output, 3, Code);
+    AssertTrue('file 255 encoded as $FF $FF $00:'#10 + Output,
+      Pos('data: 02 FF FF 00 89 00 00', Output) > 0);
+    AssertTrue('no such file:'#10 + Output, Pos('EXT STS', Output) + Pos('usable', Output) > 0);
+  finally
+    if Sim.Running then
+      Sim.Terminate(0);
+    Sim.Free;
+  end;
 end;
 
 initialization

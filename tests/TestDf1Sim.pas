@@ -13,7 +13,8 @@ interface
 uses
   {$IFDEF UNIX}BaseUnix,{$ENDIF}
   SysUtils, Classes, Process, fpcunit, testregistry, ChnTypes, ChnVirt,
-  ChnLoop, ChnCom, ChnDF1, ChnSlc, ChnDF1Link, TestSupport, BinSupport;
+  ChnLoop, ChnCom, ChnDF1, ChnSlc, ChnDF1Link, TestSupport, BinSupport
+  {$IFDEF UNIX}, PtyPair{$ENDIF};
 
 type
   TTestDf1Sim = class(TTestCase)
@@ -44,6 +45,8 @@ type
     procedure TestLogLines;
     procedure TestLogNoAck;
     procedure TestOpenStack;
+    procedure TestTransactGivesBackTheReceiveBuffer;
+    procedure TestTransactReportsLostLine;
   end;
 
 implementation
@@ -382,6 +385,82 @@ begin
     'M -> Echo STS=$00 TNS=5'#10'M -> ENQ'#10 +
     'M -- no ACK after 3 tries'#10, LogText);
 end;
+
+{ DF1Transact receives into its Rep, often a local of the caller: the
+  channel kept pointing at it, and the next ChReceive wrote into a dead
+  stack frame. The caller's buffer (or none) must be in force afterwards. }
+procedure TTestDf1Sim.TestTransactGivesBackTheReceiveBuffer;
+var
+  Mine: tRecRecord;
+begin
+  StartPair(True, True, 'SIMRB');
+  AssertEquals('echo', 'STS=00 41', Ask(CF_Echo, '41', 1));
+  AssertTrue('no buffer before, none after', Master^.CH_RBuff = nil);
+  AssertEquals(0, Master^.CH_RSize);
+  Master^.ChReceiveBuffer(@Mine, 100);
+  AssertEquals('echo again', 'STS=00 42', Ask(CF_Echo, '42', 2));
+  AssertTrue('the caller''s buffer again', Master^.CH_RBuff = @Mine);
+  AssertEquals('and its size', 100, Master^.CH_RSize);
+end;
+
+{$IFDEF UNIX}
+var
+  HangAcked: Boolean;
+
+{ Idle of TestTransactReportsLostLine: ACK the command, then hang up. }
+procedure AckThenHangUp(Data: Pointer);
+var
+  P: TPtyPair;
+  B: array[0..63] of Byte;
+  Ack: array[0..1] of Byte;
+begin
+  P := TPtyPair(Data);
+  if P.Master < 0 then
+    Exit;
+  if HangAcked then
+    P.CloseMaster                   { the adapter is pulled }
+  else if P.MasterRead(B, SizeOf(B)) > 0 then
+  begin
+    Ack[0] := $10;
+    Ack[1] := $06;
+    P.MasterWrite(Ack, 2);
+    HangAcked := True;
+  end;
+end;
+{$ENDIF}
+
+{ The line goes away while the master waits for the reply: DF1Transact
+  says so at once (res_DeviceLost), not res_Timeout after 3 timeouts. }
+procedure TTestDf1Sim.TestTransactReportsLostLine;
+{$IFDEF UNIX}
+var
+  P: TPtyPair;
+  Req: tSendRecord;
+  Rep: tRecRecord;
+  RepLen: Word;
+  R: tChResult;
+  T0: QWord;
+begin
+  P := TPtyPair.Create;
+  try
+    Master := Open('NAM=DF1 NOD=0 DNO=1 NAM=COM DEV=' + P.SlavePath);
+    EchoA(Req, 3);
+    HangAcked := False;
+    RepLen := 0;
+    T0 := ChMsTick;
+    R := DF1Transact(Master, Req, 9, Rep, RepLen, @AckThenHangUp, P, 300);
+    AssertTrue('the command was ACKed first', HangAcked);
+    AssertEquals('result', res_DeviceLost, R);
+    AssertTrue('at once, not after the timeouts: ' + IntToStr(ChMsTick - T0) + ' ms',
+      ChMsTick - T0 < 300);
+  finally
+    P.Free;
+  end;
+end;
+{$ELSE}
+begin
+end;
+{$ENDIF}
 
 procedure TTestDf1Sim.TestOpenStack;
 var

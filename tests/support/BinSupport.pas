@@ -17,6 +17,10 @@ function BinPath(const Name: string): string;
   standard error. }
 function RunBin(const Name: string; const Args: array of string; TimeoutMs: Integer;
   out Output: string): Integer;
+{ The same for any executable (e.g. /bin/sh -c, to pass an empty argument,
+  which TProcess drops). }
+function RunExe(const Exe: string; const Args: array of string; TimeoutMs: Integer;
+  out Output: string): Integer;
 { Start tools/df1sim --pty with Args; Pty gets the device it printed on its
   first line ('' if none came within 3 s). The caller frees the process. }
 function StartSimPty(const Args: array of string; out Pty: string): TProcess;
@@ -51,6 +55,12 @@ end;
 
 function RunBin(const Name: string; const Args: array of string; TimeoutMs: Integer;
   out Output: string): Integer;
+begin
+  Result := RunExe(BinPath(Name), Args, TimeoutMs, Output);
+end;
+
+function RunExe(const Exe: string; const Args: array of string; TimeoutMs: Integer;
+  out Output: string): Integer;
 var
   P: TProcess;
   A: string;
@@ -59,7 +69,7 @@ begin
   Output := '';
   P := TProcess.Create(nil);
   try
-    P.Executable := BinPath(Name);
+    P.Executable := Exe;
     for A in Args do
       P.Parameters.Add(A);
     P.Options := [poUsePipes, poStderrToOutPut];
