@@ -341,7 +341,7 @@ const
   MaxOwn = 128;
 var
   OwnStart: array[1..MaxOwn] of Integer;   { where each own token begins }
-  OwnCount, I, J, P, Pos, TokStart, RestStart: Integer;
+  OwnCount, I, J, P, Pos, TokStart, RestStart, Start: Integer;
   Tok, Prev, ErrTok: tWordString;
   Key, Value: string;
   Cmd: tCmd;
@@ -355,20 +355,22 @@ begin
   Pos := 1;
   R := res_Ok;
   ErrTok := '';
+  { a leading NAM=<this layer's type> names this layer itself; any later
+    NAM= starts the layer below (so 'NAM=TSTP NAM=TSTP' is two layers) }
+  Start := 1;
+  if NextToken(S, Pos, Tok) and SplitKeyValue(Tok, Key, Value) and
+     (Key = 'NAM') and (UpStr(Value) = UpStr(CH_Type)) then
+    Start := Pos;
   { pass 0: let the layer peek at its tokens (see cmd_Peek) }
-  I := 0;
+  Pos := Start;
   while NextTokenAt(S, Pos, Tok, TokStart) do
   begin
     if SplitKeyValue(Tok, Key, Value) and (Key = 'NAM') then
-      if (I > 0) or (UpStr(Value) <> UpStr(CH_Type)) then
-        Break
-      else
-        Continue;                       { names this layer itself }
-    Inc(I);
+      Break;
     Cmd := cmd_Peek;
     ChSetOneParam(Tok, Cmd);
   end;
-  Pos := 1;
+  Pos := Start;
   { pass 1: check this layer's tokens and find where the lower layer starts }
   while (R = res_Ok) and NextTokenAt(S, Pos, Tok, TokStart) do
   begin
@@ -377,8 +379,6 @@ begin
       R := res_BadParam
     else if Key = 'NAM' then
     begin
-      if (OwnCount = 0) and (UpStr(Value) = UpStr(CH_Type)) then
-        Continue;                       { names this layer itself }
       RestStart := TokStart;
       Break;
     end

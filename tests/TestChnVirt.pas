@@ -37,6 +37,7 @@ type
     procedure TestUnknownLowerLayer;
     procedure TestPhysicalLayerCannotHaveLower;
     procedure TestStackTwoLayersAndRoundTrip;
+    procedure TestSameTypeTwiceMakesTwoLayers;
     procedure TestGetParamKeyFilter;
     procedure TestGetParamLongerThan255;
     procedure TestChInitParamConstructor;
@@ -298,6 +299,17 @@ begin
   finally
     Dispose(Fresh, Done);
   end;
+end;
+
+procedure TTestChnVirt.TestSameTypeTwiceMakesTwoLayers;
+begin
+  { the first NAM=TSTP names this layer, the second starts one below }
+  SetParamExpect('NAM=TSTP NAM=TSTP CNT=5 NAM=LOOP PAIR=TT', res_Ok, '');
+  AssertNotNull(Chn^.CH_Low);
+  AssertEquals('TSTP', Chn^.CH_Low^.CH_Type);
+  AssertEquals(0, pChnTestLayer(Chn)^.CH_Count);
+  AssertEquals(5, pChnTestLayer(Chn^.CH_Low)^.CH_Count);
+  AssertEquals('LOOP', Chn^.CH_Low^.CH_Low^.CH_Type);
 end;
 
 procedure TTestChnVirt.TestGetParamKeyFilter;
