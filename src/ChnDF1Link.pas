@@ -218,7 +218,7 @@ begin
   Res := SendNow(S.Chn, R, Len);
   if Res = res_Ok then
   begin
-    Inc(S.Table^.Diag[dgFramesOut]);
+    SlcCount(S.Table^, dgFramesOut);
     if Assigned(S.Log) then
       S.Log(SentLine(S.Chn, R, Len, S.LogWire));
   end
@@ -253,7 +253,7 @@ begin
     Say(S, '<- broken frame: ' + S.Chn^.ChResultStr(R));
     if S.FullDup then
     begin
-      Inc(S.Table^.Diag[dgNaksOut]);
+      SlcCount(S.Table^, dgNaksOut);
       SendLink(S, False);
     end;
     Exit;
@@ -263,7 +263,7 @@ begin
     tpAckNak:
       begin
         if not S.RMess.FlAck then
-          Inc(S.Table^.Diag[dgNaksIn]);
+          SlcCount(S.Table^, dgNaksIn);
         if S.HasReply and (S.FullDup or S.AwaitAck) then
           if S.RMess.FlAck then
             S.HasReply := False            { the master has the reply }
@@ -274,7 +274,7 @@ begin
       end;
     tpEnq:
       begin
-        Inc(S.Table^.Diag[dgEnqsIn]);
+        SlcCount(S.Table^, dgEnqsIn);
         StationSend(S, S.LastLink, 2);
       end;
     tpPoll:
@@ -291,7 +291,7 @@ begin
       end;
     tpDataMess:
       begin
-        Inc(S.Table^.Diag[dgFramesIn]);
+        SlcCount(S.Table^, dgFramesIn);
         SendLink(S, True);
         if SlcHandle(S.Table^, S.RMess, Len, S.Reply, S.ReplyLen) then
         begin

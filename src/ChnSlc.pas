@@ -142,6 +142,10 @@ function SlcCommandName(Cmd, Fnc: Byte): string;
 function SlcStsText(Sts: Byte): string;
 function SlcExtStsText(Ext: Byte): string;
 
+{ Count one event in a diagnostic counter; it wraps at 65535 like the
+  PLC's 16-bit counters (and never trips an overflow check). }
+procedure SlcCount(var T: tSlcTable; Index: Integer);
+
 implementation
 
 uses
@@ -552,6 +556,11 @@ begin
   end;
 end;
 
+procedure SlcCount(var T: tSlcTable; Index: Integer);
+begin
+  T.Diag[Index] := Word(T.Diag[Index] + 1);
+end;
+
 { The Diagnostic Status reply: shaped like an SLC's (mode/status byte,
   type code $EE, extended type, series/revision, name), not byte-exact
   with any real processor. }
@@ -637,7 +646,7 @@ begin
     SetSts(Rep, N, sts_IllegalCmd, 0);
   end;
   if Rep.Sts <> sts_Ok then
-    Inc(T.Diag[dgErrReplies]);
+    SlcCount(T, dgErrReplies);
   RepLen := cSizeHead + N;
 end;
 

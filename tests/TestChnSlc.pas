@@ -34,6 +34,7 @@ type
     procedure TestUnprotectedReadWrite;
     procedure TestUnprotectedErrors;
     procedure TestDiagnostics;
+    procedure TestCounterWrapsLikeThePlc;
     procedure TestUnknownCommandAndReplies;
   end;
 
@@ -52,6 +53,16 @@ const
     'CIF 9'#10 +
     'N10 400'#10 +
     'N10:300 = 77'#10;
+
+procedure TTestChnSlc.TestCounterWrapsLikeThePlc;
+begin
+  { this build has overflow checks on: a plain Inc would stop the test }
+  T.Diag[dgFramesIn] := 65535;
+  SlcCount(T, dgFramesIn);
+  AssertEquals(0, T.Diag[dgFramesIn]);
+  SlcCount(T, dgFramesIn);
+  AssertEquals(1, T.Diag[dgFramesIn]);
+end;
 
 procedure TTestChnSlc.SetUp;
 var
