@@ -706,6 +706,8 @@ begin
     begin
       SetLength(Lines, Length(Lines) + 1);
       Lines[High(Lines)] := Copy(Text, P, I - P);
+      if Copy(LineEnding, 1, 1) = #13 then        { CR LF on Windows }
+        SetLength(Lines[High(Lines)], Length(Lines[High(Lines)]) - 1);
       P := I + 1;
     end;
   AssertEquals(2, Length(Lines));
