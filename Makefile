@@ -5,6 +5,7 @@
 #   make demo       a DF1 exchange on this machine, no hardware needed
 #   make bench      codec and channel benchmarks
 #   make fuzz       random-mutation fuzzing of the codecs (SECONDS=10)
+#   make wintest    the suite as win64 programs under Wine (docs/Windows.md)
 #   make clean
 # Optional: SYNAPSE_DIR=/path/to/synapse builds the Synapse serial backend.
 
@@ -32,7 +33,7 @@ TOOLS    := $(wildcard tools/*.pas)
 BENCHES  := $(wildcard bench/*.pas)
 TESTUNITS := $(wildcard tests/Test*.pas)
 
-.PHONY: all units examples tools test demo bench fuzz clean check-fpc dirs
+.PHONY: all units examples tools test demo bench fuzz wintest clean check-fpc dirs
 
 all: units examples tools
 
@@ -83,6 +84,10 @@ SECONDS ?= 10
 fuzz: units
 	@$(FPC) $(TESTFLAGS) tests/fuzz/fuzzcodecs.pas >$(BUILD)/fuzz-build.log 2>&1 || { cat $(BUILD)/fuzz-build.log; exit 1; }
 	@rm -f $(BUILD)/fuzz-heap.log; HEAPTRC="log=$(BUILD)/fuzz-heap.log" $(TBINDIR)/fuzzcodecs $(SECONDS) $(SEED)
+
+# Cross-built for win64 and run under Wine; not part of test (CI has no Wine).
+wintest: all
+	@BUILD=$(BUILD) FPC=$(FPC) T="$(T)" bash tools/wintest.sh
 
 clean:
 	rm -rf $(BUILD)
