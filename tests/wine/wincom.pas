@@ -185,6 +185,7 @@ var
   T0, Took: QWord;
   St: tChState;
   T: string;
+  Len: Word;
 begin
   C := OpenCom('COM=' + EchoCom + ' BD=19200 LRB=65536', R);
   Check(C <> nil, 'COM' + EchoCom + ' BD=19200 opens: ' + ResName(R));
@@ -269,6 +270,46 @@ begin
   C^.ChOpen;
   C^.ChConnect;
   Check(C^.ChResult = res_Ok, 'open again after refused settings: ' + ResName(C^.ChResult));
+
+  { IDL: a poll waits for the first byte and returns with it }
+  C^.ChSetParam('IDL=500');
+  S := 'i';
+  C^.ChSend(@S[1], 1);
+  T0 := ChMsTick;
+  St := C^.ChReceiveReady;
+  Took := ChMsTick - T0;
+  Check((St = CHS_ReceiveReady) and (Took < 250),
+    Format('poll with IDL=500 returns with the echo after %d ms', [Took]));
+  C^.ChReceive(Len);
+
+  { ring overrun with FLW=NONE: the first LRB bytes kept, the rest counted }
+  C^.ChClose;
+  C^.ChSetParam('LRB=64 IDL=0');
+  C^.ChOpen;
+  C^.ChReceiveBuffer(@RBuf, SizeOf(RBuf));
+  C^.ChConnect;
+  SetLength(S, 1000);
+  for I := 0 to 999 do
+    S[I + 1] := Chr(Pattern(I));
+  C^.ChSend(@S[1], 1000);
+  T0 := ChMsTick;
+  while (C^.ChSendReady <> CHS_SendReady) and (ChMsTick - T0 < 2000) do
+    Sleep(1);
+  Sleep(200);                      { the echo arrives in Wine's queue }
+  St := C^.ChReceiveReady;
+  Len := 0;
+  C^.ChReceive(Len);
+  R := C^.ChReceiveResult;
+  Same := (Len = 64) and (CompareByte(RBuf, S[1], 64) = 0);
+  Check((St = CHS_ReceiveReady) and (R = res_Overrun) and Same and
+    (pChnCom(C)^.ChLostBytes = 936),
+    Format('1000 bytes into LRB=64: %s, %d kept (first ones: %s), %d lost',
+      [ResName(R), Len, BoolToStr(Same, True), pChnCom(C)^.ChLostBytes]));
+  C^.ChClose;
+  C^.ChSetParam('LRB=65536 IDL=1');
+  C^.ChOpen;
+  C^.ChReceiveBuffer(@RBuf, SizeOf(RBuf));
+  C^.ChConnect;
 
   { the far end goes away: ptyecho closes the master on this command }
   Got := '';
