@@ -7,9 +7,9 @@
 #  2. every tests/legacy program cross-compiled in -Mtp -Mfpc -Mobjfpc
 #     -Mdelphi and run under Wine;
 #  3. the FPCUnit suite (tests/runtests.pas, -Cr -Co -Ct -gh -gl) for win64
-#     under Wine, and heaptrc's verdict; test units that need Unix are left
-#     out of the generated uses list (UNIX_ONLY below), single Unix-only
-#     tests by {$IFDEF UNIX} in their unit;
+#     under Wine, and heaptrc's verdict; test units that need Unix are in
+#     {$IFDEF UNIX} in the uses list make generates (UNIX_TESTS in the
+#     Makefile), single Unix-only tests in their unit;
 #  4. the Windows serial backend (ChnPortWin) on a real Wine COM port: Wine
 #     maps COMn to a symlink in $WINEPREFIX/dosdevices, which this script
 #     points at a Linux pty: tests/wine/wincom.exe against the Linux helper
@@ -17,7 +17,8 @@
 #     the Linux tools/df1sim --pty.
 # Ends with "N passed, N failed" on the last line; exit 1 on any failure.
 #
-#   tools/wintest.sh [BUILD]        BUILD defaults to build (needs make all)
+#   tools/wintest.sh [BUILD]        BUILD defaults to build (needs make all
+#                                   and $BUILD/testunits.inc: make wintest)
 # Environment: WINE (default /usr/lib/wine/wine64, else wine64/wine on the
 # PATH), WINEPREFIX (default /tmp/chn-wine, created on first use, never
 # ~/.wine), T=xyz (only tests and legacy programs whose name contains xyz),
@@ -40,10 +41,6 @@ fi
 [ -n "${WINE:-}" ] || { echo "wine not found: apt-get install wine64"; echo "0 passed, 1 failed"; exit 1; }
 WINESERVER=${WINESERVER:-$(dirname "$WINE")/wineserver}
 [ -x "$WINESERVER" ] || WINESERVER=$(command -v wineserver || echo wineserver)
-
-# Test units that need Unix as a whole (ptys, termios, fork):
-#   TestChnPty  - ChnPty, pseudo terminals of the Linux kernel
-UNIX_ONLY="TestChnPty"
 
 passed=0
 failed=0
@@ -104,18 +101,12 @@ for prog in tests/legacy/*.pas; do
 done
 
 # ---------------------------------------------------------------- FPCUnit
-inc="$OUT/testunits.inc"
-: >"$inc"
-for t in tests/Test*.pas; do
-  n=$(basename "$t" .pas)
-  if [[ " $UNIX_ONLY " == *" $n "* ]]; then
-    echo "{\$IFDEF UNIX}$n,{\$ENDIF}" >>"$inc"
-  else
-    echo "$n," >>"$inc"
-  fi
-done
-if "$PPC" -Twin64 -Px86_64 -n -v0ew -Fu"$RTLU" -Fusrc -Fisrc -Futests/support \
-     -B -Cr -Co -Ct -gh -gl -FU"$OUT/test-units" -FE"$OUT/test-bin" -Fi"$OUT" \
+# the uses list make generates ($BUILD/testunits.inc): Unix-only units
+# in it are in {$IFDEF UNIX}
+if [ ! -f "$BUILD/testunits.inc" ]; then
+  fail "no $BUILD/testunits.inc: run make wintest"
+elif "$PPC" -Twin64 -Px86_64 -n -v0ew -Fu"$RTLU" -Fusrc -Fisrc -Futests/support \
+     -B -Cr -Co -Ct -gh -gl -FU"$OUT/test-units" -FE"$OUT/test-bin" -Fi"$BUILD" \
      tests/runtests.pas >"$LOG/runtests-build.log" 2>&1; then
   heaplog="$OUT/heaptrc.log"
   out="$OUT/runtests.out"
