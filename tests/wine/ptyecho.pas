@@ -8,8 +8,9 @@
   Two commands in the byte stream, echoed like all other bytes:
     ESC 'CHN!TERMIOS' ESC  then the line settings Wine gave the slave are
                            appended: 'speed=19200 bits=8 parity=N stop=1
-                           rtscts=0 ixon=0' and LF (read with tcgetattr on a
-                           descriptor of our own on the slave)
+                           rtscts=0 ixon=0' and LF (read with tcgetattr, and
+                           TCGETS2 for a non-standard rate, on a descriptor
+                           of our own on the slave)
     ESC 'CHN!HANGUP' ESC   close the master (the COM port's device is gone
                            for the Windows side) and exit 0
   Exits 2 after --timeout=N seconds (default 60) without a hang-up.
@@ -33,7 +34,20 @@ var
   Pending: string;            { bytes still to be written back }
   TimeoutS: LongInt;
 
-function SpeedOf(T: Termios): LongInt;
+type
+  { struct termios2 of <asm/termbits.h>: the rate itself for BOTHER }
+  tTermios2 = record
+    c_iflag, c_oflag, c_cflag, c_lflag: Cardinal;
+    c_line: Byte;
+    c_cc: array[0..18] of Byte;
+    c_ispeed, c_ospeed: Cardinal;
+  end;
+
+const
+  TCGETS2 = $802C542A;
+  KBOTHER = $1000;
+
+function SpeedOf(Fd: cint; T: Termios): LongInt;
 const
   Codes: array[0..11] of LongInt = (B1200, B2400, B4800, B9600, B19200,
     B38400, B57600, B115200, B230400, B460800, B500000, B921600);
@@ -42,8 +56,15 @@ const
 var
   I: Integer;
   S: LongInt;
+  T2: tTermios2;
 begin
   S := T.c_cflag and CBAUD;
+  if S = KBOTHER then
+  begin
+    FillChar(T2, SizeOf(T2), 0);
+    if FpIOCtl(Fd, TCGETS2, @T2) = 0 then
+      Exit(T2.c_ospeed);
+  end;
   for I := 0 to High(Codes) do
     if Codes[I] = S then
       Exit(Rates[I]);
@@ -57,6 +78,7 @@ var
   T: Termios;
   Bits: Integer;
   Par: Char;
+  Speed: LongInt;
 begin
   Fd := FpOpen(Slave, O_RDWR or O_NOCTTY or O_NONBLOCK);
   if Fd < 0 then
@@ -67,6 +89,7 @@ begin
     FpClose(Fd);
     Exit('error=tcgetattr' + #10);
   end;
+  Speed := SpeedOf(Fd, T);
   FpClose(Fd);
   case T.c_cflag and CSIZE of
     CS5: Bits := 5;
@@ -82,7 +105,7 @@ begin
   else
     Par := 'E';
   Result := Format('speed=%d bits=%d parity=%s stop=%d rtscts=%d ixon=%d'#10,
-    [SpeedOf(T), Bits, Par, 1 + Ord(T.c_cflag and CSTOPB <> 0),
+    [Speed, Bits, Par, 1 + Ord(T.c_cflag and CSTOPB <> 0),
      Ord(T.c_cflag and CRTSCTS <> 0), Ord(T.c_iflag and IXON <> 0)]);
 end;
 

@@ -248,6 +248,24 @@ begin
   Check(T = 'speed=115200 bits=8 parity=N stop=1 rtscts=0 ixon=1',
     'termios after BD=115200 FLW=XONXOFF: ' + T);
   C^.ChClose;
+  { a rate no Bxxx constant names (DMX): Wine 8 takes it, sets 38400 (its
+    custom-divisor fallback, which a pty ignores) and reads 38400 back, so
+    ApplyDcb must refuse it; a Wine with termios2 sets the rate itself.
+    Never acceptable: open, but another rate on the line. }
+  C^.ChSetParam('BD=250000 FLW=NONE');
+  C^.ChOpen;
+  R := C^.ChResult;
+  if R = res_Ok then
+  begin
+    C^.ChConnect;
+    T := AskTermios(C);
+    Check(T = 'speed=250000 bits=8 parity=N stop=1 rtscts=0 ixon=0',
+      'BD=250000 opened, and the line has it: ' + T);
+  end
+  else
+    Check((R = res_BadSetting) and (C^.ChReady = CHS_Close),
+      'BD=250000 the driver changed: res_BadSetting, got ' + ResName(R));
+  C^.ChClose;
 
   { a pty keeps 8 data bits and no parity: the driver changes the setting
     and ApplyDcb must say so instead of falling back silently }
