@@ -1,7 +1,8 @@
 { ChnPortWin - TChnPort on the Windows API (CreateFile, SetCommState,
   SetCommTimeouts, ReadFile, WriteFile, ClearCommError). Registered as
   driver 'RTL' on Windows; compiled only there (tools/build-win64.sh
-  cross-compiles it on Debian).
+  cross-compiles it on Debian, make wintest runs it under Wine on COM
+  ports linked to Linux ptys: docs/Windows.md).
 
   The handle is opened exclusively and without overlapped I/O. Reads never
   wait: ReadIntervalTimeout = MAXDWORD with zero totals makes ReadFile
