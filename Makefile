@@ -97,7 +97,7 @@ fuzz: units
 
 # Cross-built for win64 and run under Wine; not part of test (CI has no Wine).
 wintest: all $(BUILD)/testunits.inc
-	@BUILD=$(BUILD) FPC=$(FPC) T="$(T)" bash tools/wintest.sh
+	@BUILD=$(BUILD) FPC=$(FPC) T="$(T)" SYNAPSE_DIR="$(SYNAPSE_DIR)" bash tools/wintest.sh
 
 clean:
 	rm -rf $(BUILD)

@@ -22,7 +22,9 @@
 # Environment: WINE (default /usr/lib/wine/wine64, else wine64/wine on the
 # PATH), WINEPREFIX (default /tmp/chn-wine, created on first use, never
 # ~/.wine), T=xyz (only tests and legacy programs whose name contains xyz),
-# FPC (native compiler, default fpc), and those of tools/build-win64.sh.
+# FPC (native compiler, default fpc), SYNAPSE_DIR (also run the serial
+# checks on the Synapse backend, built in $BUILD/win64-synapse), and those
+# of tools/build-win64.sh.
 # Needs: apt-get install wine64 fpc-source.
 set -u
 BUILD=${1:-${BUILD:-build}}
@@ -60,7 +62,7 @@ mkdir -p "$OUT/test-units" "$OUT/test-bin" "$OUT/legacy" "$OUT/wine"
 LOG=$OUT/wine
 
 # ---------------------------------------------------------------- build
-if ! OUT=$OUT PPC=$PPC bash tools/build-win64.sh examples/*.pas tools/*.pas tests/wine/wincom.pas \
+if ! SYNAPSE_DIR= OUT=$OUT PPC=$PPC bash tools/build-win64.sh examples/*.pas tools/*.pas tests/wine/wincom.pas \
      >"$LOG/build.log" 2>&1; then
   cat "$LOG/build.log"; fail "win64 build (tools/build-win64.sh)"; finish
 fi
@@ -151,67 +153,85 @@ stop() { kill "$1" 2>/dev/null; wait "$1" 2>/dev/null; }
 # COMn of the Wine prefix -> a Linux device
 link_com() { ln -sfn "$2" "$WINEPREFIX/dosdevices/com$1"; }
 
-serial=1
-if [ -n "$FILTER" ] && [[ "wincom df1echo df1read chncom" != *"${FILTER,,}"* ]]; then serial=0; fi
-if [ "$serial" = 1 ]; then
-  # ChnPortWin against the echo; COM9 has no device
+# The serial checks on the programs in $1 (a bin folder) with driver $2.
+serial_tests() {
+  local bin=$1 drv=$2 tag="win64 $2"
+  # tChnCom on the echo; COM9 has no device
   rm -f "$WINEPREFIX/dosdevices/com9"
-  start_pty "$LOG/ptyecho.out" "$BUILD/bin/ptyecho" --timeout=60
+  start_pty "$LOG/ptyecho-$drv.out" "$BUILD/bin/ptyecho" --timeout=60
   if [ -z "$PTY" ]; then
-    fail "ptyecho gave no pty"; cat "$LOG/ptyecho.out"
+    fail "ptyecho gave no pty"; cat "$LOG/ptyecho-$drv.out"
   else
     link_com 5 "$PTY"
-    wrun "$OUT/bin/wincom.exe" 5 9 2>&1 | tr -d '\r' >"$LOG/wincom.out"
+    wrun "$bin/wincom.exe" 5 9 "$drv" 2>&1 | tr -d '\r' >"$LOG/wincom-$drv.out"
     rc=${PIPESTATUS[0]}
-    grep -E '^(ok|FAIL|note) ' "$LOG/wincom.out" | win64_lines
-    res=$(grep '^RESULT ' "$LOG/wincom.out" | tail -n 1)
+    grep -E '^(ok|FAIL|note) ' "$LOG/wincom-$drv.out" | win64_lines
+    res=$(grep '^RESULT ' "$LOG/wincom-$drv.out" | tail -n 1)
     if [ -z "$res" ]; then
-      fail "win64 wincom crashed (exit $rc)"
+      fail "$tag wincom crashed (exit $rc)"
     else
       read -r _ p f <<<"$res"
       passed=$((passed + p)); failed=$((failed + f))
-      [ "$rc" = 0 ] || [ "$f" -gt 0 ] || fail "win64 wincom exit code $rc"
+      [ "$rc" = 0 ] || [ "$f" -gt 0 ] || fail "$tag wincom exit code $rc"
     fi
   fi
   stop "$PID"
 
   # the DF1 example, full duplex CRC, against the Linux simulator
-  start_pty "$LOG/df1sim-full.out" "$BUILD/bin/df1sim" --pty --timeout=20
+  start_pty "$LOG/df1sim-full-$drv.out" "$BUILD/bin/df1sim" --pty --timeout=20
   if [ -z "$PTY" ]; then
-    fail "df1sim --pty gave no pty"; cat "$LOG/df1sim-full.out"
+    fail "df1sim --pty gave no pty"; cat "$LOG/df1sim-full-$drv.out"
   else
     link_com 6 "$PTY"
-    wrun "$OUT/bin/df1echo.exe" NAM=DF1 NOD=0 DNO=1 FHD=FULL CRC=ON NAM=COM COM=6 BD=19200 \
-      2>&1 | tr -d '\r' >"$LOG/df1echo.out"
+    wrun "$bin/df1echo.exe" NAM=DF1 NOD=0 DNO=1 FHD=FULL CRC=ON NAM=COM DRV="$drv" COM=6 \
+      BD=19200 2>&1 | tr -d '\r' >"$LOG/df1echo-$drv.out"
     rc=${PIPESTATUS[0]}
-    if [ "$rc" = 0 ] && grep -qx 'Ok' "$LOG/df1echo.out" &&
-       grep -q 'master <- reply CMD=\$46 STS=\$00 TNS=0 data: 41 68 6F 6A' "$LOG/df1echo.out" &&
-       grep -q -- '<- Echo STS=\$00 TNS=0 data: 41 68 6F 6A' "$LOG/df1sim-full.out"; then
-      pass "win64 df1echo.exe COM6 (full duplex, CRC) against Linux df1sim --pty"
+    if [ "$rc" = 0 ] && grep -qx 'Ok' "$LOG/df1echo-$drv.out" &&
+       grep -q 'master <- reply CMD=\$46 STS=\$00 TNS=0 data: 41 68 6F 6A' "$LOG/df1echo-$drv.out" &&
+       grep -q -- '<- Echo STS=\$00 TNS=0 data: 41 68 6F 6A' "$LOG/df1sim-full-$drv.out"; then
+      pass "$tag df1echo.exe COM6 (full duplex, CRC) against Linux df1sim --pty"
     else
-      fail "win64 df1echo.exe COM6 against df1sim: exit $rc"; cat "$LOG/df1echo.out" "$LOG/df1sim-full.out"
+      fail "$tag df1echo.exe COM6 against df1sim: exit $rc"
+      cat "$LOG/df1echo-$drv.out" "$LOG/df1sim-full-$drv.out"
     fi
   fi
   stop "$PID"
 
   # the typed read, half duplex BCC (polls), against the simulator's table
-  start_pty "$LOG/df1sim-half.out" "$BUILD/bin/df1sim" --pty --half --bcc --node=3 --timeout=20
+  start_pty "$LOG/df1sim-half-$drv.out" "$BUILD/bin/df1sim" --pty --half --bcc --node=3 --timeout=20
   if [ -z "$PTY" ]; then
-    fail "df1sim --pty --half gave no pty"; cat "$LOG/df1sim-half.out"
+    fail "df1sim --pty --half gave no pty"; cat "$LOG/df1sim-half-$drv.out"
   else
     link_com 6 "$PTY"
-    wrun "$OUT/bin/df1read.exe" N7:0 3 NAM=DF1 NOD=0 DNO=3 FHD=HALF CRC=OFF NAM=COM COM=6 \
-      BD=19200 2>&1 | tr -d '\r' >"$LOG/df1read.out"
+    wrun "$bin/df1read.exe" N7:0 3 NAM=DF1 NOD=0 DNO=3 FHD=HALF CRC=OFF NAM=COM DRV="$drv" \
+      COM=6 BD=19200 2>&1 | tr -d '\r' >"$LOG/df1read-$drv.out"
     rc=${PIPESTATUS[0]}
-    if [ "$rc" = 0 ] && grep -qx 'N7:0 = 0' "$LOG/df1read.out" &&
-       grep -qx 'N7:1 = 10' "$LOG/df1read.out" && grep -qx 'N7:2 = 20' "$LOG/df1read.out"; then
-      pass "win64 df1read.exe COM6 (half duplex, BCC) against Linux df1sim --pty: N7:0..2 = 0 10 20"
+    if [ "$rc" = 0 ] && grep -qx 'N7:0 = 0' "$LOG/df1read-$drv.out" &&
+       grep -qx 'N7:1 = 10' "$LOG/df1read-$drv.out" && grep -qx 'N7:2 = 20' "$LOG/df1read-$drv.out"; then
+      pass "$tag df1read.exe COM6 (half duplex, BCC) against Linux df1sim --pty: N7:0..2 = 0 10 20"
     else
-      fail "win64 df1read.exe COM6 against df1sim: exit $rc"; cat "$LOG/df1read.out" "$LOG/df1sim-half.out"
+      fail "$tag df1read.exe COM6 against df1sim: exit $rc"
+      cat "$LOG/df1read-$drv.out" "$LOG/df1sim-half-$drv.out"
     fi
   fi
   stop "$PID"
   rm -f "$WINEPREFIX/dosdevices/com5" "$WINEPREFIX/dosdevices/com6"
+}
+
+serial=1
+if [ -n "$FILTER" ] && [[ "wincom df1echo df1read chncom synapse" != *"${FILTER,,}"* ]]; then serial=0; fi
+if [ "$serial" = 1 ]; then
+  serial_tests "$OUT/bin" RTL
+  # with SYNAPSE_DIR the same on a second build whose tChnCom has synaser
+  # (-dCHN_SYNAPSE), like make test SYNAPSE_DIR=... on Linux
+  if [ -n "${SYNAPSE_DIR:-}" ]; then
+    if OUT=$OUT-synapse PPC=$PPC bash tools/build-win64.sh examples/df1echo.pas \
+         examples/df1read.pas tests/wine/wincom.pas >"$LOG/build-synapse.log" 2>&1; then
+      serial_tests "$OUT-synapse/bin" SYNAPSE
+    else
+      cat "$LOG/build-synapse.log"; fail "win64 build with SYNAPSE_DIR=$SYNAPSE_DIR"
+    fi
+  fi
 fi
 
 finish

@@ -1,7 +1,10 @@
 { wincom - ChnCom on the Windows API backend (ChnPortWin), run under Wine
   by tools/wintest.sh against tests/wine/ptyecho on the Linux side.
 
-    wincom <echo COM number> <COM number with no device>
+    wincom <echo COM number> <COM number with no device> [driver]
+
+  driver is DRV= of tChnCom: RTL (default, ChnPortWin) or SYNAPSE (a build
+  with -dCHN_SYNAPSE).
 
   Wine's COM<n> is a symlink in $WINEPREFIX/dosdevices; the script points
   the first one at ptyecho's pty slave, so the bytes go
@@ -24,13 +27,13 @@ const
 
 var
   Passed, Failed: Integer;
-  EchoCom, MissingCom: string;
+  EchoCom, MissingCom, Drv: string;
   RBuf: array[0..65534] of Byte;
 
 { What Wine does differently from Windows: reported, not counted. }
 procedure Note(const What: string);
 begin
-  WriteLn('note  wincom: ', What);
+  WriteLn('note  wincom ', Drv, ': ', What);
   Flush(Output);
 end;
 
@@ -39,12 +42,12 @@ begin
   if Ok then
   begin
     Inc(Passed);
-    WriteLn('ok    wincom: ', What);
+    WriteLn('ok    wincom ', Drv, ': ', What);
   end
   else
   begin
     Inc(Failed);
-    WriteLn('FAIL  wincom: ', What);
+    WriteLn('FAIL  wincom ', Drv, ': ', What);
   end;
   Flush(Output);
 end;
@@ -72,7 +75,7 @@ end;
 function OpenCom(const Params: string; out R: tChResult): pChnVirt;
 begin
   Result := ChnCollection^.ChNewInit(ChnCom.cName);
-  Result^.ChSetParam('NAM=COM ' + Params);
+  Result^.ChSetParam('NAM=COM DRV=' + Drv + ' ' + Params);
   R := Result^.ChResult;
   if R = res_Ok then
   begin
@@ -160,7 +163,7 @@ begin
   Check((C = nil) and (R = res_CannotOpen),
     'COM' + MissingCom + ' (no device): res_CannotOpen, got ' + ResName(R));
   C := ChnCollection^.ChNewInit(ChnCom.cName);
-  C^.ChSetParam('NAM=COM COM=' + MissingCom);
+  C^.ChSetParam('NAM=COM DRV=' + Drv + ' COM=' + MissingCom);
   C^.ChOpen;
   Check(C^.ChReady = CHS_Close, 'missing port stays closed');
   Dispose(C, Done);
@@ -341,8 +344,11 @@ begin
     if R = res_Ok then
       R := C^.ChResult;
   end;
-  Note('receiving on the hung-up pty for 3 s: ' + ResName(R) +
-    ' (Wine reads a hung-up tty as "no data"; Windows drivers fail the read)');
+  if R = res_Ok then
+    Note('receiving on the hung-up pty for 3 s: res_Ok (a non-overlapped ' +
+      'ReadFile gets no error from Wine for a hung-up tty; Windows drivers fail the read)')
+  else
+    Note('receiving on the hung-up pty: ' + ResName(R));
   { writing is where Wine sees it: write() gives EIO }
   S := 'x';
   T0 := ChMsTick;
@@ -367,11 +373,14 @@ end;
 begin
   if ParamCount < 2 then
   begin
-    WriteLn('usage: wincom <echo COM number> <COM number with no device>');
+    WriteLn('usage: wincom <echo COM number> <COM number with no device> [driver]');
     Halt(2);
   end;
   EchoCom := ParamStr(1);
   MissingCom := ParamStr(2);
+  Drv := 'RTL';
+  if ParamCount >= 3 then
+    Drv := ParamStr(3);
   Passed := 0;
   Failed := 0;
   TestMissingAndNotSerial;
