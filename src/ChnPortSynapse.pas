@@ -15,7 +15,9 @@
     TBlockSerial.Handle so SendBuffer/RecvBuffer never stall the caller
     (a partial write is fine, the layer retries from ChSendReady). On
     Windows, where Synapse uses overlapped I/O and waits for completion,
-    writes are cut to what the driver's output queue has room for.
+    writes are cut to what the driver's output queue has room for, and
+    WaitInput polls the input queue (synaser's WaitCommEvent wait ends at
+    once under Wine).
   * After Config the settings are read back (GetCommState): what the driver
     changed (a pty forces 8 bits without parity) is res_BadSetting.
   * Config takes only the rates of Synapse's own table (50..4000000 on
