@@ -22,8 +22,10 @@
     IDL=ms    when a poll finds nothing, wait on the device at most this long
               for input (returns at the first byte); 0 never waits. Default 1,
               so legacy busy loops do not burn a CPU.
-    DRV=RTL|SYNAPSE                           port backend (docs/ChnCom.md);
-              default SYNAPSE when built with it (-dCHN_SYNAPSE), else RTL
+    DRV=RTL|SYNAPSE|PTY                       port backend (docs/ChnCom.md);
+              default SYNAPSE when built with it (-dCHN_SYNAPSE), else RTL;
+              PTY (unit ChnPty, Unix) makes a new pseudo-terminal pair and
+              serves its master side
     IRQ=, ADR=, BASE=, PORT=                  DOS hardware keys: accepted,
               reported back, ignored
 

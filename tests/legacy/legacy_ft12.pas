@@ -6,10 +6,10 @@
 program legacy_ft12;
 
 uses
-  uString,
-  ChnTypes,
+  ChnLoop,    { the in-memory line this test runs on, then ... }
+  uString,    { ... the manual's uses clause, unchanged }
   ChnVirt,
-  ChnLoop,
+  ChnCom,
   ChnFT1_2;
 
 const

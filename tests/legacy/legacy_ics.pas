@@ -5,10 +5,10 @@
 program legacy_ics;
 
 uses
-  uString,
-  ChnTypes,
+  ChnLoop,    { the in-memory line this test runs on, then ... }
+  uString,    { ... the manual's uses clause, unchanged }
   ChnVirt,
-  ChnLoop,
+  ChnCom,
   ChnICS;
 
 const
