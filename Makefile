@@ -5,6 +5,7 @@
 #   make demo       a DF1 exchange on this machine, no hardware needed
 #   make bench      codec and channel benchmarks
 #   make fuzz       random-mutation fuzzing of the codecs (SECONDS=10)
+#   make wintest    the suite as win64 programs under Wine (docs/Windows.md)
 #   make clean
 # Optional: SYNAPSE_DIR=/path/to/synapse builds the Synapse serial backend.
 
@@ -25,14 +26,19 @@ UNITFLAGS := $(COMMON) -O2 -Sew -FU$(UNITDIR) -FE$(BINDIR)
 TESTFLAGS := $(COMMON) -B -Cr -Co -Ct -gh -gl -FU$(TUNITDIR) -FE$(TBINDIR) -Fi$(BUILD)
 
 # Units that only build on another OS or with an optional library.
-OPTIONAL_UNITS := $(if $(SYNAPSE_DIR),,src/ChnPortSynapse.pas) src/ChnPortWin.pas
+ifeq ($(OS),Windows_NT)
+OS_UNITS := src/ChnPortUnix.pas src/ChnPty.pas
+else
+OS_UNITS := src/ChnPortWin.pas
+endif
+OPTIONAL_UNITS := $(if $(SYNAPSE_DIR),,src/ChnPortSynapse.pas) $(OS_UNITS)
 UNITS    := $(filter-out $(OPTIONAL_UNITS),$(wildcard src/*.pas))
 EXAMPLES := $(wildcard examples/*.pas)
 TOOLS    := $(wildcard tools/*.pas)
 BENCHES  := $(wildcard bench/*.pas)
 TESTUNITS := $(wildcard tests/Test*.pas)
 
-.PHONY: all units examples tools test demo bench fuzz clean check-fpc dirs
+.PHONY: all units examples tools test demo bench fuzz wintest clean check-fpc dirs
 
 all: units examples tools
 
@@ -62,9 +68,14 @@ tools: units
 	@set -e; for p in $(TOOLS); do $(FPC) $(UNITFLAGS) $$p; done
 
 # The runner's uses clause is generated from tests/Test*.pas, so adding a
-# test unit needs no edit anywhere else.
+# test unit needs no edit anywhere else. Units that need Unix as a whole
+# (ptys) are listed here and built only there; single Unix-only tests are
+# {$IFDEF UNIX} in their unit.
+UNIX_TESTS := TestChnPty
+comma := ,
+uses_entry = $(if $(filter $(1),$(UNIX_TESTS)),'{$$IFDEF UNIX}$(1)$(comma){$$ENDIF}','$(1)$(comma)')
 $(BUILD)/testunits.inc: $(TESTUNITS) | dirs
-	@printf '%s\n' $(foreach t,$(TESTUNITS),'$(basename $(notdir $(t))),') > $@.tmp
+	@printf '%s\n' $(foreach t,$(basename $(notdir $(TESTUNITS))),$(call uses_entry,$(t))) > $@.tmp
 	@cmp -s $@.tmp $@ 2>/dev/null && rm -f $@.tmp || mv $@.tmp $@
 
 test: all $(BUILD)/testunits.inc
@@ -83,6 +94,10 @@ SECONDS ?= 10
 fuzz: units
 	@$(FPC) $(TESTFLAGS) tests/fuzz/fuzzcodecs.pas >$(BUILD)/fuzz-build.log 2>&1 || { cat $(BUILD)/fuzz-build.log; exit 1; }
 	@rm -f $(BUILD)/fuzz-heap.log; HEAPTRC="log=$(BUILD)/fuzz-heap.log" $(TBINDIR)/fuzzcodecs $(SECONDS) $(SEED)
+
+# Cross-built for win64 and run under Wine; not part of test (CI has no Wine).
+wintest: all $(BUILD)/testunits.inc
+	@BUILD=$(BUILD) FPC=$(FPC) T="$(T)" SYNAPSE_DIR="$(SYNAPSE_DIR)" bash tools/wintest.sh
 
 clean:
 	rm -rf $(BUILD)

@@ -15,7 +15,9 @@
     TBlockSerial.Handle so SendBuffer/RecvBuffer never stall the caller
     (a partial write is fine, the layer retries from ChSendReady). On
     Windows, where Synapse uses overlapped I/O and waits for completion,
-    writes are cut to what the driver's output queue has room for.
+    writes are cut to what the driver's output queue has room for, and
+    WaitInput polls the input queue (synaser's WaitCommEvent wait ends at
+    once under Wine).
   * After Config the settings are read back (GetCommState): what the driver
     changed (a pty forces 8 bits without parity) is res_BadSetting.
   * Config takes only the rates of Synapse's own table (50..4000000 on
@@ -123,8 +125,14 @@ begin
       Result := res_CannotOpen;
     ERROR_INVALID_PARAMETER, ERROR_NOT_SUPPORTED, ErrWrongParameter:
       Result := res_BadSetting;
+    ERROR_INVALID_HANDLE, ERROR_INVALID_FUNCTION:
+      if FOpen then
+        Result := res_DeviceLost
+      else
+        Result := res_BadSetting;   { opened, but no comm calls: not a port }
     ERROR_BAD_COMMAND, ERROR_GEN_FAILURE, ERROR_OPERATION_ABORTED,
-    1167 { ERROR_DEVICE_NOT_CONNECTED }, ERROR_INVALID_HANDLE:
+    1167 { ERROR_DEVICE_NOT_CONNECTED },
+    ERROR_NOT_READY:                { Wine's word for EIO: a tty hung up }
       Result := res_DeviceLost;
     ErrOverrun, ErrRxOver:
       Result := res_Overrun;
@@ -271,9 +279,30 @@ begin
 end;
 
 function TChnPortSynapse.WaitInput(Ms: LongInt): Boolean;
+{$IFDEF WINDOWS}
+var
+  Deadline: QWord;
+begin
+  { synaser's CanRead waits with WaitCommEvent, which under Wine ends at
+    once (ERROR_OPERATION_ABORTED): poll the input queue in 1 ms steps, as
+    ChnPortWin does }
+  Result := False;
+  if not FOpen then
+    Exit;
+  Deadline := GetTickCount64 + QWord(Ms);
+  repeat
+    if (FSer.WaitingData > 0) or (FSer.LastError <> 0) then
+      Exit(True);                   { a byte, or a fault the read reports }
+    if GetTickCount64 >= Deadline then
+      Exit;
+    Sleep(1);
+  until False;
+end;
+{$ELSE}
 begin
   Result := FOpen and FSer.CanRead(Ms);
 end;
+{$ENDIF}
 
 function TChnPortSynapse.WaitOutput(Ms: LongInt): Boolean;
 begin

@@ -1,7 +1,8 @@
 { ChnPortWin - TChnPort on the Windows API (CreateFile, SetCommState,
   SetCommTimeouts, ReadFile, WriteFile, ClearCommError). Registered as
   driver 'RTL' on Windows; compiled only there (tools/build-win64.sh
-  cross-compiles it on Debian).
+  cross-compiles it on Debian, make wintest runs it under Wine on COM
+  ports linked to Linux ptys: docs/Windows.md).
 
   The handle is opened exclusively and without overlapped I/O. Reads never
   wait: ReadIntervalTimeout = MAXDWORD with zero totals makes ReadFile
@@ -16,7 +17,8 @@
   program) -> res_CannotOpen; a handle that takes no DCB (not a serial
   device) or a DCB the driver rejects or changes -> res_BadSetting; the
   errors a pulled USB adapter gives (ACCESS_DENIED, BAD_COMMAND,
-  GEN_FAILURE, OPERATION_ABORTED, DEVICE_NOT_CONNECTED) -> res_DeviceLost.
+  GEN_FAILURE, OPERATION_ABORTED, DEVICE_NOT_CONNECTED) and NOT_READY (what
+  Wine makes of EIO from a hung-up tty) -> res_DeviceLost.
   CE_OVERRUN / CE_RXOVER are counted for OsOverruns, one per event (Windows
   does not say how many bytes were lost). }
 unit ChnPortWin;
@@ -110,7 +112,8 @@ begin
     ERROR_INVALID_FUNCTION, ERROR_INVALID_PARAMETER, ERROR_NOT_SUPPORTED:
       Result := res_BadSetting;
     ERROR_BAD_COMMAND, ERROR_GEN_FAILURE, ERROR_OPERATION_ABORTED,
-    ERROR_INVALID_HANDLE, ERROR_DEVICE_NOT_CONNECTED_:
+    ERROR_INVALID_HANDLE, ERROR_DEVICE_NOT_CONNECTED_,
+    ERROR_NOT_READY:                { Wine's word for EIO: a tty hung up }
       Result := res_DeviceLost;
   else
     Result := res_IOError;
@@ -178,6 +181,7 @@ end;
 function TChnPortWin.ApplyDcb(var D: TDCB): tChResult;
 var
   Back: TDCB;
+  Rts, BackRts: DWORD;
 begin
   if not SetCommState(FH, D) then
     Exit(Fail(GetLastError));
@@ -185,9 +189,17 @@ begin
   Back.DCBlength := SizeOf(Back);
   if not GetCommState(FH, Back) then
     Exit(Fail(GetLastError));
+  Rts := D.flags and fRtsControlMask;
+  BackRts := Back.flags and fRtsControlMask;
+  { Wine reads RTS/CTS handshake back as RTS_CONTROL_ENABLE plus
+    fOutxCtsFlow (its termios CRTSCTS covers both directions) }
+  if (Rts = fRtsControlHandshake) and (BackRts = fRtsControlEnable) and
+     (Back.flags and fOutxCtsFlow <> 0) then
+    BackRts := fRtsControlHandshake;
   if (Back.BaudRate <> D.BaudRate) or (Back.ByteSize <> D.ByteSize) or
      (Back.Parity <> D.Parity) or (Back.StopBits <> D.StopBits) or
-     ((Back.flags and fRtsControlMask) <> (D.flags and fRtsControlMask)) then
+     (BackRts <> Rts) or
+     ((Back.flags and fOutxCtsFlow) <> (D.flags and fOutxCtsFlow)) then
     Exit(res_BadSetting);           { the driver changed it: no fallback }
   Result := res_Ok;
 end;

@@ -173,10 +173,12 @@ begin
     { O_APPEND: several layers (both ends of a test) may share one file }
     CH_Handle := FpOpen(CH_File, O_WRONLY or O_CREAT or O_APPEND, &666);
     {$ELSE}
+    { shared like the Unix file: FileCreate alone would open it exclusively
+      and lock out a second layer on the same log and any reader }
     if FileExists(CH_File) then
       CH_Handle := FileOpen(CH_File, fmOpenWrite or fmShareDenyNone)
     else
-      CH_Handle := FileCreate(CH_File);
+      CH_Handle := FileCreate(CH_File, fmShareDenyNone, 0);
     {$ENDIF}
     if CH_Handle = THandle(-1) then
     begin

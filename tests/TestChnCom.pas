@@ -3,7 +3,9 @@
   TTestChnComSynapse with make SYNAPSE_DIR=...). Settings are checked by
   reading the kernel's termios of the open descriptor, not through the code
   under test. TTestChnComLogic covers parameters and the RS-485/overrun
-  logic of tChnCom on a scripted fake port. }
+  logic of tChnCom on a scripted fake port. On Windows only the logic
+  tests are built (no ptys there; tools/wintest.sh runs ChnPortWin on a
+  Wine COM port instead). }
 unit TestChnCom;
 
 {$MODE OBJFPC}{$H+}
@@ -11,10 +13,12 @@ unit TestChnCom;
 interface
 
 uses
-  SysUtils, Classes, fpcunit, testregistry, BaseUnix, Unix, TermIO, Linux,
-  ChnTypes, ChnVirt, ChnPort, ChnCom, PtyPair, TestSupport;
+  SysUtils, Classes, fpcunit, testregistry,
+  {$IFDEF UNIX}BaseUnix, Unix, TermIO, Linux, PtyPair,{$ENDIF}
+  ChnTypes, ChnVirt, ChnPort, ChnCom, TestSupport;
 
 type
+  {$IFDEF UNIX}
   TTestChnComPty = class(TTestCase)
   protected
     FPty: TPtyPair;
@@ -61,6 +65,7 @@ type
     function Drv: string; override;
   end;
   {$ENDIF}
+  {$ENDIF UNIX}
 
   TTestChnComLogic = class(TTestCase)
   protected
@@ -81,6 +86,7 @@ type
 
 implementation
 
+{$IFDEF UNIX}
 type
   tTermios2 = record
     c_iflag, c_oflag, c_cflag, c_lflag: Cardinal;
@@ -718,6 +724,7 @@ begin
   Result := 'SYNAPSE';
 end;
 {$ENDIF}
+{$ENDIF UNIX}
 
 { --------------------------------------------------- fake port, logic tests }
 
@@ -1144,9 +1151,11 @@ begin
 end;
 
 initialization
+  {$IFDEF UNIX}
   RegisterTest(TTestChnComRtl);
   {$IFDEF CHN_SYNAPSE}
   RegisterTest(TTestChnComSynapse);
+  {$ENDIF}
   {$ENDIF}
   RegisterTest(TTestChnComLogic);
 end.

@@ -41,7 +41,9 @@ type
     procedure TestFullDuplexLinkBytes;
     procedure TestHalfDuplexLinkBytes;
     procedure TestNakOfReplySendsItAgain;
-    procedure TestBinaryOverPty;
+    {$IFDEF UNIX}
+    procedure TestBinaryOverPty;   { df1sim --pty: a Unix pty }
+    {$ENDIF}
     procedure TestLogLines;
     procedure TestLogNoAck;
     procedure TestOpenStack;
@@ -292,6 +294,7 @@ begin
   AssertEquals('executed once', 1, Station.Requests);
 end;
 
+{$IFDEF UNIX}
 procedure TTestDf1Sim.TestBinaryOverPty;
 var
   PtyPath: string;
@@ -316,15 +319,14 @@ begin
   AssertEquals('typed read over the pty', res_Ok, DF1Transact(Master, Req, 13, Rep, RepLen, nil, nil, 1000));
   AssertEquals('N7:0..2', '00 00 0A 00 14 00', BytesToHex(Rep.Data, RepLen - 8));
   { SIGTERM: a clean exit with code 0 }
-  {$IFDEF UNIX}
   FpKill(Proc.ProcessID, SIGTERM);
-  {$ENDIF}
   Deadline := ChMsTick + 3000;
   while Proc.Running and (ChMsTick < Deadline) do
     Sleep(5);
   AssertFalse('df1sim ended on SIGTERM', Proc.Running);
   AssertEquals('exit code', 0, Proc.ExitCode);
 end;
+{$ENDIF}
 
 procedure TTestDf1Sim.TestLogLines;
 var

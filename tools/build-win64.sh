@@ -1,9 +1,11 @@
 #!/usr/bin/env bash
 # tools/build-win64.sh - cross-compile the serial layer for win64 on Debian.
 #
-# Not part of "make test". Builds a win64 RTL from Debian's fpc-source
-# (copied to a writable folder outside the repository), then compiles
+# Not part of "make test". Builds a win64 RTL and the FCL units the test
+# runner needs (fpcunit, process) from Debian's fpc-source (the RTL copied
+# to a writable folder outside the repository), then compiles
 # src/ChnPortWin.pas and src/ChnCom.pas (and any program given) against it.
+# tools/wintest.sh ("make wintest") runs the results under Wine.
 #   tools/build-win64.sh                  units only
 #   tools/build-win64.sh prog.pas ...     also these programs (.exe in $OUT/bin)
 # Environment: FPCSRC (default /usr/share/fpcsrc/3.2.2), WORK (default
@@ -27,6 +29,21 @@ if [ ! -f "$RTLU/system.ppu" ] || [ ! -f "$RTLU/windows.ppu" ]; then
   LOG="$WORK/rtl-build.log"
   (cd "$R/win64" && $PPC $COMMONF -Us -Sg system.pp && $PPC $COMMONF -Fu"$RTLU" buildrtl.pp) \
     >"$LOG" 2>&1 || { tail -n 20 "$LOG"; echo "win64 RTL build failed, see $LOG"; exit 1; }
+fi
+# FCL units the FPCUnit runner needs (fpcunit, testregistry, process with
+# pipes) and lnfodwrf for -gl, from the same sources into the same folder
+if [ ! -f "$RTLU/fpcunit.ppu" ] || [ ! -f "$RTLU/process.ppu" ] || [ ! -f "$RTLU/lnfodwrf.ppu" ]; then
+  P="$FPCSRC/packages"
+  R="$WORK/rtl"
+  FCLF="-Twin64 -Px86_64 -n -v0 -Fu$RTLU -FU$RTLU"
+  LOG="$WORK/fcl-build.log"
+  { $PPC $FCLF -Fi"$R/inc" -Fi"$R/win" -Fi"$R/x86_64" "$R/inc/lnfodwrf.pp" &&
+    $PPC $FCLF -Fu"$P/fcl-fpcunit/src" "$P/fcl-fpcunit/src/fpcunit.pp" &&
+    $PPC $FCLF -Fu"$P/fcl-fpcunit/src" "$P/fcl-fpcunit/src/testregistry.pp" &&
+    $PPC $FCLF -Fu"$P/fcl-fpcunit/src" "$P/fcl-fpcunit/src/testutils.pp" &&
+    $PPC $FCLF -Fu"$P/fcl-process/src" -Fi"$P/fcl-process/src" -Fi"$P/fcl-process/src/win" \
+      "$P/fcl-process/src/process.pp"; } >"$LOG" 2>&1 \
+    || { tail -n 20 "$LOG"; echo "win64 FCL build failed, see $LOG"; exit 1; }
 fi
 mkdir -p "$OUT/units" "$OUT/bin"
 FLAGS="-Twin64 -Px86_64 -n -v0ew -Sew -O2 -Fu$RTLU -Fusrc -Fisrc -FU$OUT/units -FE$OUT/bin"

@@ -10,7 +10,7 @@ interface
 uses
   SysUtils, Classes, Process;
 
-{ $BUILD/bin/Name (BUILD defaults to build). }
+{ $BUILD/bin/Name (BUILD defaults to build; Name.exe on Windows). }
 function BinPath(const Name: string): string;
 { Run a program to its end; its exit code, or -1 when it did not end
   within TimeoutMs (it is killed then). Output gets standard output and
@@ -35,7 +35,7 @@ begin
   Result := GetEnvironmentVariable('BUILD');
   if Result = '' then
     Result := 'build';
-  Result := Result + '/bin/' + Name;
+  Result := Result + '/bin/' + Name {$IFDEF WINDOWS} + '.exe'{$ENDIF};
 end;
 
 { Move what the pipe holds to Output. }
