@@ -73,7 +73,8 @@ type
   { What the codec needs to know about this station and the link. }
   tFT12Config = record
     AddrLen  : Byte;     { link address octets: 0, 1 or 2 }
-    FixedLen : Byte;     { data octets of a fixed frame (LEN=) }
+    FixedLen : Byte;     { data octets of a fixed frame (LEN=), 0..MaxDataLen;
+                           above that every fixed frame is res_ErrLen }
     Balanced : Boolean;  { balanced: bit 7 is DIR, else RES (sent as 0) }
     Dir      : Boolean;  { DIR bit this station sends in balanced mode }
     Primary  : Boolean;  { PRM bit this station sends }
@@ -343,6 +344,9 @@ begin
     rxHunt:
       case B of
         SD1:
+          if S.Cfg.FixedLen > MaxDataLen then
+            Result := Fail(S, res_ErrLen)   { a configuration no frame fits }
+          else
           begin
             S.Kind := tpShortM;
             S.DataLen := S.Cfg.FixedLen;

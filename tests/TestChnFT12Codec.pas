@@ -47,6 +47,7 @@ type
     procedure TestSlaveIgnoresSingleCharacters;
     procedure TestGapDiscardsHalfFrame;
     procedure TestGetRecordBufferTooSmall;
+    procedure TestFixedLenAboveMaxIsRefused;
     procedure TestSingleByteCorruptionNeverAccepted;
     procedure TestRandomRecordsRoundTrip;
     procedure TestRandomNoiseIsSafe;
@@ -579,6 +580,17 @@ begin
   AssertEquals(14, Len);
   AssertEquals('byte after the record untouched', $CC, Buf[14]);
   AssertEquals(res_NoRecBuff, FT12GetRecord(S, nil, 14, Len));
+end;
+
+procedure TTestChnFT12Codec.TestFixedLenAboveMaxIsRefused;
+var
+  S: tFT12Rx;
+begin
+  { LEN= stops at 247, but the codec API takes any byte: a fixed frame can
+    then never fit the automaton's Data, so it is refused at its start }
+  S := NewRx(Cfg(False, 1, 250));
+  AssertEquals('E....', FeedAll(S, '10 49 01 4A 16'));
+  AssertEquals(res_ErrLen, S.Err);
 end;
 
 procedure TTestChnFT12Codec.TestSingleByteCorruptionNeverAccepted;
