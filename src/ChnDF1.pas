@@ -188,9 +188,6 @@ type
 implementation
 
 const
-  { bytes one ChReceiveTick may pull, so a babbling line cannot stall the
-    caller's polling loop }
-  MaxBytesPerTick = 4096;
   DuplexChoice = 'HALF|FULL';   { FHD=, False first as ParamFlag wants }
 
 constructor tChnDF1.Init;

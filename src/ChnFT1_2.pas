@@ -153,9 +153,6 @@ uses
 const
   cBitsPerChar = 11;     { FT 1.2 character: start, 8 data, even parity, stop }
   cDefaultBaud = 9600;   { for GAP= when no layer below has BD= }
-  { bytes one ChReceiveTick may pull, so a babbling line cannot stall the
-    caller's polling loop (as in ChnDF1) }
-  MaxBytesPerTick = 4096;
 
 constructor tChnFT1_2.Init;
 begin

@@ -106,11 +106,6 @@ type
 
 implementation
 
-const
-  { bytes one ChReceiveTick may pull, so a babbling line cannot stall the
-    caller's polling loop (as in ChnDF1) }
-  MaxBytesPerTick = 4096;
-
 constructor tChnICS.Init;
 begin
   inherited Init;

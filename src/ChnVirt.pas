@@ -79,6 +79,9 @@ const
 
 const
   MaxLowChunk = 256;   { bytes a protocol layer pulls from below at once }
+  { bytes one ChReceiveTick of a protocol layer may feed its automaton, so
+    a line babbling bytes that never make a frame cannot stall a poll }
+  MaxBytesPerTick = 4096;
   MaxChnManagers = 32;
 
 type
