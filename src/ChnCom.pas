@@ -383,11 +383,7 @@ begin
   CH_TxPos := 0;
   CH_RtsUp := False;
   CH_Fault := res_Ok;
-  CH_State := CHS_Open;
-  CH_RCtrl := CHS_RecInactive;
-  CH_Result := res_Ok;
-  CH_SResult := res_Ok;
-  CH_RResult := res_Ok;
+  ChOpened;
 end;
 
 procedure tChnCom.ChClose;

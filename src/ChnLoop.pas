@@ -217,11 +217,7 @@ begin
   finally
     LeaveCriticalSection(Lock);
   end;
-  CH_State := CHS_Open;
-  CH_RCtrl := CHS_RecInactive;
-  CH_Result := res_Ok;
-  CH_SResult := res_Ok;
-  CH_RResult := res_Ok;
+  ChOpened;
 end;
 
 procedure tChnLoop.ChClose;

@@ -166,6 +166,9 @@ type
       protocol layer must not overwrite a send buffer the layer below may
       still be reading. When one fails: CH_SResult says why, False. }
     function  ChSendAllowed(Buff: Pointer; Len: Word; NeedLen: Boolean): Boolean;
+    { The end of every successful ChOpen: state CHS_Open, receiver off until
+      ChConnect, every result Ok, nothing pulled from below. }
+    procedure ChOpened;
   end;
 
   pAddChnVirt = ^tAddChnVirt;
@@ -571,10 +574,18 @@ begin
     if CH_Result <> res_Ok then
       Exit;
   end;
+  ChOpened;
+end;
+
+procedure tChnVirt.ChOpened;
+begin
   CH_LowLen := 0;
   CH_LowPos := 0;
   CH_State := CHS_Open;
+  CH_RCtrl := CHS_RecInactive;
   CH_Result := res_Ok;
+  CH_SResult := res_Ok;
+  CH_RResult := res_Ok;
 end;
 
 procedure tChnVirt.ChClose;
