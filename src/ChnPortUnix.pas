@@ -522,7 +522,13 @@ end;
 procedure TChnPortUnix.Close;
 begin
   if FFd >= 0 then
-    FpClose(FFd);                { also releases the flock }
+  begin
+    { a pty slave's tty outlives this descriptor while its master is open,
+      and so would TIOCEXCL: every later open by a non-root user would get
+      EBUSY. Clear it; closing the descriptor releases the flock. }
+    FpIOCtl(FFd, TIOCNXCL, nil);
+    FpClose(FFd);
+  end;
   FFd := -1;
   FOpen := False;
 end;

@@ -46,6 +46,7 @@ type
     procedure TestNoPermission;
     procedure TestNotATerminalIsRefused;
     procedure TestDeviceInUse;
+    procedure TestOtherUserCanOpenAfterClose;
     procedure TestDeviceLostThenReopen;
     procedure TestOverrunReportedWithoutFlowControl;
     procedure TestFlowControlPausesInsteadOfDropping;
@@ -517,6 +518,41 @@ begin
   finally
     DeleteFile(Path);
   end;
+end;
+
+{ Exclusive use ends with ChClose: TIOCEXCL would outlive the descriptor
+  on a pty slave (its master stays open) and lock out every other non-root
+  user. The second open runs in a child as nobody, as in TestNoPermission. }
+procedure TTestChnComPty.TestOtherUserCanOpenAfterClose;
+var
+  Pid: TPid;
+  Status: cint;
+  C: pChnVirt;
+  Code: Integer;
+begin
+  AssertEquals('first open', res_Ok, OpenCom(''));
+  FChn^.ChClose;
+  if FpGetuid = 0 then
+    AssertEquals('chown to nobody', 0, FpChown(PChar(FPty.SlavePath), 65534, 65534));
+  Pid := FpFork;
+  AssertTrue('fork', Pid >= 0);
+  if Pid = 0 then
+  begin
+    if FpGetuid = 0 then
+      if (FpSetgid(65534) <> 0) or (FpSetuid(65534) <> 0) then
+        FpExit(90);
+    C := ChnCollection^.ChNewInit(ChnCom.cName);
+    C^.ChSetParam('DRV=' + Drv + ' DEV=' + FPty.SlavePath);
+    C^.ChOpen;
+    Code := C^.ChResult;
+    FpExit(Code);
+  end;
+  Status := 0;
+  AssertEquals('wait', Pid, FpWaitPid(Pid, @Status, 0));
+  AssertTrue('child exited', WIFEXITED(Status));
+  Code := WEXITSTATUS(Status);
+  AssertTrue('child could drop root (code ' + IntToStr(Code) + ')', Code < 90);
+  AssertEquals('another user opens the closed device', res_Ok, Code);
 end;
 
 procedure TTestChnComPty.TestDeviceInUse;
