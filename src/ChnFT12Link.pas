@@ -1,0 +1,521 @@
+{ ChnFT12Link - the IEC 60870-5-2 unbalanced link procedures that SofCon's
+  ChnFT1_2 leaves to the application (manual 4.4: "evaluating FCB and
+  repeating a message with unchanged FCB is the job of the application";
+  SPEC.md section 7: "or optional helpers"), for both ends, on top of a
+  tChnFT1_2 channel with MS=ON:
+
+  * FT12Transact, the primary (master): one SEND/CONFIRM, REQUEST/RESPOND
+    or SEND/NO REPLY service to one secondary, with the frame count bit
+    kept per secondary in a tFT12Link record:
+      - FCV = 1 for FC 2, 3, 10, 11, else 0 (IEC 60870-5-2 function table;
+        the manual's FCM_* comments say the same);
+      - every new FCV = 1 transmission to a secondary carries the opposite
+        FCB of the previous one; a repetition after a missing or garbled
+        reply carries the same FCB;
+      - reset of remote link (FC 0) is sent with FCB = 0, FCV = 0; after
+        its ACK the next FCV = 1 frame carries FCB = 1;
+      - an FCV = 1 service to a link not reset (new record, or after a
+        service failed) is preceded by a reset of remote link;
+      - SEND/NO REPLY (FC 4) and the broadcast address expect no reply.
+  * tFT12Station / FT12StationStep, the secondary (slave): answers the
+    unbalanced functions, and when an FCV = 1 frame carries the same FCB
+    as the last one it accepted it sends the last reply again without
+    executing the frame a second time (a repetition by the primary).
+
+  Both poll the channel; nothing blocks for longer than the timeouts given.
+  A caller that runs both ends in one thread passes an Idle procedure that
+  steps the other end while the primary waits (as ChnDF1Link does).
+
+  Not covered: balanced mode (both stations primary and secondary), the
+  DFC flow control beyond reporting it, the "link service not functioning"
+  (FC 14) state. }
+unit ChnFT12Link;
+
+{$I chn.inc}
+
+interface
+
+uses
+  ChnTypes, ChnVirt, ChnFT1_2;
+
+const
+  FT12LinkTimeoutMs = 1000;
+  FT12LinkRetries   = 3;
+
+  { secondary function codes of IEC 60870-5-2 that the manual does not name }
+  FCS_NotFunctioning  = 14;  { link service not functioning }
+  FCS_NotImplemented  = 15;  { link service not implemented }
+
+type
+  tFT12Idle = procedure(Data: Pointer);
+
+  { What the primary keeps per secondary. }
+  tFT12Link = record
+    Addr    : Word;      { link address of the secondary (DNO) }
+    Fcb     : Boolean;   { FCB for the next new FCV = 1 transmission }
+    Reset   : Boolean;   { reset of remote link acknowledged, no failure since }
+    Acd     : Boolean;   { ACD of the last reply: class 1 data waiting }
+    Dfc     : Boolean;   { DFC of the last reply: secondary cannot take more }
+    Repeats : LongInt;   { repetitions sent after a missing reply }
+    Ignored : LongInt;   { frames ignored while waiting (other address, broken) }
+  end;
+
+  { Secondary callbacks; Data is tFT12Station.Data.
+    UserData: user data of FC 3 (Confirm = True) or FC 4 / broadcast
+      (Confirm = False); Len data octets in Buf^. True accepts it (ACK),
+      False refuses it (NACK, FC 1); the result of FC 4 is not sent.
+    ClassData: data of class 1 or 2 for the reply; put up to MaxDataLen
+      octets in Rep.Data and their count in Len; False: none (FC 9).
+    Class1Waiting: ACD of every reply; nil = never. }
+  tFT12UserDataFunc = function(Data: Pointer; Buf: PByte; Len: Word;
+    Confirm: Boolean): Boolean;
+  tFT12ClassDataFunc = function(Data: Pointer; ClassNo: Byte;
+    var Rep: tSendRecord; var Len: Word): Boolean;
+  tFT12Class1Func = function(Data: Pointer): Boolean;
+
+  tFT12Station = record
+    Chn        : pChnVirt;
+    RMess      : tRecRecord;
+    Reply      : tSendRecord;  { last reply to an FCV = 1 frame or a reset }
+    ReplyLen   : Word;
+    HasReply   : Boolean;
+    LinkReset  : Boolean;      { a reset of remote link was received }
+    LastFcb    : Boolean;      { FCB of the last accepted FCV = 1 frame (0 after reset) }
+    Dfc        : Boolean;      { DFC sent in every reply (set by the application) }
+    SingleAck  : Boolean;      { ACK as E5 when no class 1 data is waiting }
+    OnUserData : tFT12UserDataFunc;
+    OnClassData: tFT12ClassDataFunc;
+    OnClass1   : tFT12Class1Func;
+    Data       : Pointer;
+    { counters }
+    Frames     : LongInt;      { frames taken, good or broken }
+    Executed   : LongInt;      { FC 3/4/10/11 frames handed to the callbacks }
+    Repeats    : LongInt;      { repetitions answered with the last reply }
+    Refused    : LongInt;      { FCV = 1 frames before a reset (NACK) }
+  end;
+
+procedure FT12LinkInit(var Link: tFT12Link; Addr: Word);
+
+{ One service of the primary to Link.Addr. Req/ReqLen as for ChSend (the
+  FCB_ACD and FCV_DFC fields are set here from Link and Req.FC); the reply
+  goes to Rep/RepLen (RepLen = 0 when none is expected). The channel's
+  receive buffer and DNO are the caller's again afterwards.
+  Results: res_Ok (a reply that fits the function: FC 0/1/3 -> ACK, NACK
+  or E5; FC 8/9 -> status of link; FC 10/11 -> user data, no data or E5;
+  FC 2 -> ACK/NACK); res_Timeout (no fitting reply after 1 + Retries
+  transmissions); res_BadMessage (a reply whose function does not fit, the
+  broadcast address with a function other than FC 4, SACK/SNAK as request,
+  a channel that is no tChnFT1_2 in unbalanced master mode); res_BadParam
+  (Retries < 0, TimeoutMs < 1); a send error of the channel, or its
+  ChResult when the line fails while waiting (res_DeviceLost ...), at once.
+  Any result but res_Ok for an FCV = 1 or reset service clears Link.Reset. }
+function FT12Transact(Chn: pChnVirt; var Link: tFT12Link; constref Req: tSendRecord;
+  ReqLen: Word; var Rep: tRecRecord; var RepLen: Word; TimeoutMs: LongInt;
+  Retries: Integer; Idle: tFT12Idle = nil; IdleData: Pointer = nil): tChResult;
+
+{ Reset of remote link (FC 0) as a fixed frame. }
+function FT12ResetLink(Chn: pChnVirt; var Link: tFT12Link; TimeoutMs: LongInt;
+  Retries: Integer; Idle: tFT12Idle = nil; IdleData: Pointer = nil): tChResult;
+
+{ Request user data of class 1 (FC 10) or 2 (FC 11) as a fixed frame;
+  res_BadParam for another ClassNo. Rep.FC tells FCS_UserData or
+  FCS_DataNotAcces (E5 arrives as tpSACK). }
+function FT12RequestClass(Chn: pChnVirt; var Link: tFT12Link; ClassNo: Byte;
+  var Rep: tRecRecord; var RepLen: Word; TimeoutMs: LongInt; Retries: Integer;
+  Idle: tFT12Idle = nil; IdleData: Pointer = nil): tChResult;
+
+{ FCV the standard gives a primary function code. }
+function FT12FcvOf(FC: Byte): Boolean;
+
+procedure FT12StationInit(var S: tFT12Station; Chn: pChnVirt);
+{ Take at most one frame and act on it; False when none was waiting. }
+function FT12StationStep(var S: tFT12Station): Boolean;
+
+implementation
+
+uses
+  SysUtils, ChnFT12Codec;
+
+function FT12FcvOf(FC: Byte): Boolean;
+begin
+  Result := FC in [FCM_CheckLink, FCM_UserDataReply, FCM_ReqUserData1,
+    FCM_ReqUserData2];
+end;
+
+procedure FT12LinkInit(var Link: tFT12Link; Addr: Word);
+begin
+  FillChar(Link, SizeOf(Link), 0);
+  Link.Addr := Addr;
+end;
+
+{ Octets of a fixed frame on this channel (LEN=), as a record length. }
+function FixedLen(Chn: pChnVirt): Word;
+begin
+  Result := cSizeHeadSndMsg + pChnFT1_2(Chn)^.CH_LenShortM;
+end;
+
+{ Send once the transmitter is free (bounded wait). }
+function SendNow(Chn: pChnVirt; constref R: tSendRecord; Len: Word): tChResult;
+var
+  Deadline: QWord;
+begin
+  Deadline := ChMsTick + FT12LinkTimeoutMs;
+  while Chn^.ChSendReady <> CHS_SendReady do
+  begin
+    if Chn^.ChResult <> res_Ok then
+      Exit(Chn^.ChResult);
+    if ChMsTick > Deadline then
+      Exit(res_Timeout);
+  end;
+  Chn^.ChSend(@R, Len);
+  Result := Chn^.ChSendResult;
+end;
+
+{ ------------------------------------------------------------- primary }
+
+{ Does a secondary's reply of type T and function FC answer primary
+  function Req? (IEC 60870-5-2 table of services) }
+function ReplyFits(Req: Byte; T: tMessType; FC: Byte): Boolean;
+begin
+  if T = tpSNAK then
+    Exit(False);                           { not an IEC 60870-5-2 reply }
+  case Req of
+    FCM_1stSetTransmit, FCM_1stSetUserFun, FCM_UserDataReply, FCM_CheckLink:
+      Result := (T = tpSACK) or (FC in [FCS_Ack, FCS_NackBusy]);
+    FCM_ReqReplyAcces, FCM_ReqLinkState:
+      Result := (T <> tpSACK) and (FC = FCS_LinkSAccesReq);
+    FCM_ReqUserData1, FCM_ReqUserData2:
+      Result := (T = tpSACK) or (FC in [FCS_UserData, FCS_DataNotAcces]);
+  else
+    Result := T <> tpSACK;                { not a standard function: any frame }
+  end;
+  { "not functioning" / "not implemented" answer anything }
+  if (T in [tpShortM, tpLongM]) and (FC in [FCS_NotFunctioning, FCS_NotImplemented]) then
+    Result := True;
+end;
+
+function Exchange(Chn: pChnVirt; var Link: tFT12Link; constref Req: tSendRecord;
+  ReqLen: Word; var Rep: tRecRecord; var RepLen: Word; TimeoutMs: LongInt;
+  Retries: Integer; Idle: tFT12Idle; IdleData: Pointer): tChResult;
+var
+  F: pChnFT1_2;
+  Out: tSendRecord;
+  Fcv, NoReply: Boolean;
+  Try_: Integer;
+  Until_: QWord;
+  Len: Word;
+  Junk: tRecRecord;
+begin
+  F := pChnFT1_2(Chn);
+  RepLen := 0;
+  Fcv := FT12FcvOf(Req.FC);
+  NoReply := (Req.FC = FCM_UserDataNoRep) or
+    ((F^.CH_AdrLen > 0) and (Link.Addr = FT12Broadcast(F^.CH_AdrLen)));
+  if NoReply and (Req.FC <> FCM_UserDataNoRep) then
+    Exit(res_BadMessage);               { broadcast is SEND/NO REPLY only }
+  if Fcv and not Link.Reset then
+  begin
+    { the secondary's FCB memory is unknown: reset it first }
+    FillChar(Out, SizeOf(Out), 0);
+    Out.MessType := tpShortM;
+    Out.FC := FCM_1stSetTransmit;
+    Result := Exchange(Chn, Link, Out, FixedLen(Chn), Rep, RepLen, TimeoutMs,
+      Retries, Idle, IdleData);
+    if Result <> res_Ok then
+      Exit;
+    RepLen := 0;
+  end;
+  FillChar(Out, SizeOf(Out), 0);
+  Move(Req, Out, ReqLen);
+  Out.FCV_DFC := Fcv;
+  Out.FCB_ACD := Fcv and Link.Fcb;      { FCB = 0 whenever FCV = 0 }
+  Chn^.CH_DNode := Link.Addr;
+  { a late frame from before is no answer to this service }
+  Chn^.ChReceiveBuffer(@Junk, SizeOf(Junk));
+  while Chn^.ChReceiveReady = CHS_ReceiveReady do
+  begin
+    Len := 0;
+    Chn^.ChReceive(Len);
+  end;
+  Chn^.ChReceiveBuffer(@Rep, SizeOf(Rep));
+  for Try_ := 0 to Retries do
+  begin
+    if Try_ > 0 then
+      Inc(Link.Repeats);
+    Result := SendNow(Chn, Out, ReqLen);   { a repetition: same FCB }
+    if Result <> res_Ok then
+      Break;
+    if NoReply then
+    begin
+      { hand the frame to the line before returning }
+      Until_ := ChMsTick + QWord(TimeoutMs);
+      while (Chn^.ChSendReady <> CHS_SendReady) and (Chn^.ChResult = res_Ok) and
+            (ChMsTick <= Until_) do
+        if Assigned(Idle) then
+          Idle(IdleData);
+      Exit(Chn^.ChResult);
+    end;
+    Until_ := ChMsTick + QWord(TimeoutMs);
+    Result := res_Timeout;
+    repeat
+      if Assigned(Idle) then
+        Idle(IdleData);
+      if Chn^.ChReceiveReady = CHS_ReceiveReady then
+      begin
+        Len := 0;
+        Chn^.ChReceive(Len);
+        if (Chn^.ChReceiveResult <> res_Ok) or
+           ((Rep.MessType in [tpShortM, tpLongM]) and (F^.CH_AdrLen > 0) and
+            (Chn^.CH_RSNode <> Link.Addr)) then
+          Inc(Link.Ignored)             { garbled, or another station's }
+        else
+        begin
+          RepLen := Len;
+          if not ReplyFits(Out.FC, Rep.MessType, Rep.FC) or
+             { a refused reset leaves the link not reset }
+             ((Out.FC = FCM_1stSetTransmit) and (Rep.MessType <> tpSACK) and
+              (Rep.FC <> FCS_Ack)) then
+            Result := res_BadMessage
+          else
+            Result := res_Ok;
+          Break;
+        end;
+      end
+      else if Chn^.ChResult <> res_Ok then
+      begin
+        Result := Chn^.ChResult;        { the line is gone: no reply can come }
+        Break;
+      end
+      else if not Assigned(Idle) then
+        Sleep(1);
+    until ChMsTick > Until_;
+    if Result <> res_Timeout then
+      Break;
+  end;
+  if Result = res_Ok then
+  begin
+    if Rep.MessType in [tpShortM, tpLongM] then
+    begin
+      Link.Acd := Rep.FCB_ACD;
+      Link.Dfc := Rep.FCV_DFC;
+    end
+    else
+    begin
+      Link.Acd := False;                { E5: nothing waiting }
+      Link.Dfc := False;
+    end;
+    if Out.FC = FCM_1stSetTransmit then
+    begin
+      Link.Reset := True;
+      Link.Fcb := True;                 { first FCV = 1 frame after a reset }
+    end
+    else if Fcv then
+      Link.Fcb := not Link.Fcb;
+  end
+  else if Fcv or (Out.FC = FCM_1stSetTransmit) then
+    Link.Reset := False;                { FCB state unknown: reset next time }
+end;
+
+function FT12Transact(Chn: pChnVirt; var Link: tFT12Link; constref Req: tSendRecord;
+  ReqLen: Word; var Rep: tRecRecord; var RepLen: Word; TimeoutMs: LongInt;
+  Retries: Integer; Idle: tFT12Idle; IdleData: Pointer): tChResult;
+var
+  OldBuf: Pointer;
+  OldSize: Word;
+  OldDNode: tNode;
+begin
+  RepLen := 0;
+  if (Retries < 0) or (TimeoutMs < 1) then
+    Exit(res_BadParam);
+  if (Chn = nil) or (Chn^.CH_Type <> ChnFT1_2.cName) or
+     not pChnFT1_2(Chn)^.CH_MaSl or not pChnFT1_2(Chn)^.CH_Master then
+    Exit(res_BadMessage);
+  if (ReqLen = 0) or (ReqLen > SizeOf(tSendRecord)) or
+     (PByte(@Req)^ > Ord(tpLongM)) or (Req.MessType in [tpSACK, tpSNAK]) then
+    Exit(res_BadMessage);
+  { Rep is often a local of the caller: the channel must not keep pointing
+    at it afterwards }
+  OldBuf := Chn^.CH_RBuff;
+  OldSize := Chn^.CH_RSize;
+  OldDNode := Chn^.CH_DNode;
+  Result := Exchange(Chn, Link, Req, ReqLen, Rep, RepLen, TimeoutMs, Retries,
+    Idle, IdleData);
+  Chn^.CH_RBuff := OldBuf;
+  Chn^.CH_RSize := OldSize;
+  Chn^.CH_DNode := OldDNode;
+end;
+
+{ A fixed frame with function FC and the channel's LEN= zero octets. }
+function FixedService(Chn: pChnVirt; var Link: tFT12Link; FC: Byte;
+  var Rep: tRecRecord; var RepLen: Word; TimeoutMs: LongInt; Retries: Integer;
+  Idle: tFT12Idle; IdleData: Pointer): tChResult;
+var
+  Req: tSendRecord;
+begin
+  RepLen := 0;
+  if (Chn = nil) or (Chn^.CH_Type <> ChnFT1_2.cName) then
+    Exit(res_BadMessage);
+  FillChar(Req, SizeOf(Req), 0);
+  Req.MessType := tpShortM;
+  Req.FC := FC;
+  Result := FT12Transact(Chn, Link, Req, FixedLen(Chn), Rep, RepLen, TimeoutMs,
+    Retries, Idle, IdleData);
+end;
+
+function FT12ResetLink(Chn: pChnVirt; var Link: tFT12Link; TimeoutMs: LongInt;
+  Retries: Integer; Idle: tFT12Idle; IdleData: Pointer): tChResult;
+var
+  Rep: tRecRecord;
+  Len: Word;
+begin
+  Result := FixedService(Chn, Link, FCM_1stSetTransmit, Rep, Len, TimeoutMs,
+    Retries, Idle, IdleData);
+end;
+
+function FT12RequestClass(Chn: pChnVirt; var Link: tFT12Link; ClassNo: Byte;
+  var Rep: tRecRecord; var RepLen: Word; TimeoutMs: LongInt; Retries: Integer;
+  Idle: tFT12Idle; IdleData: Pointer): tChResult;
+begin
+  RepLen := 0;
+  case ClassNo of
+    1: Result := FixedService(Chn, Link, FCM_ReqUserData1, Rep, RepLen,
+         TimeoutMs, Retries, Idle, IdleData);
+    2: Result := FixedService(Chn, Link, FCM_ReqUserData2, Rep, RepLen,
+         TimeoutMs, Retries, Idle, IdleData);
+  else
+    Result := res_BadParam;
+  end;
+end;
+
+{ ----------------------------------------------------------- secondary }
+
+procedure FT12StationInit(var S: tFT12Station; Chn: pChnVirt);
+begin
+  FillChar(S, SizeOf(S), 0);
+  S.Chn := Chn;
+  Chn^.ChReceiveBuffer(@S.RMess, SizeOf(S.RMess));
+end;
+
+{ Fill S.Reply as a fixed frame with function FC (ACK, E5 if asked). }
+procedure FixedReply(var S: tFT12Station; FC: Byte);
+begin
+  FillChar(S.Reply, SizeOf(S.Reply), 0);
+  S.Reply.FCB_ACD := Assigned(S.OnClass1) and S.OnClass1(S.Data);
+  S.Reply.FCV_DFC := S.Dfc;
+  S.Reply.FC := FC;
+  if S.SingleAck and (FC = FCS_Ack) and not S.Reply.FCB_ACD then
+  begin
+    S.Reply.MessType := tpSACK;
+    S.ReplyLen := 1;
+  end
+  else
+  begin
+    S.Reply.MessType := tpShortM;
+    S.ReplyLen := FixedLen(S.Chn);
+  end;
+end;
+
+procedure ClassReply(var S: tFT12Station; ClassNo: Byte);
+var
+  Len: Word;
+  Got: Boolean;
+begin
+  FillChar(S.Reply, SizeOf(S.Reply), 0);
+  Len := 0;
+  Got := Assigned(S.OnClassData) and S.OnClassData(S.Data, ClassNo, S.Reply, Len);
+  if Got and (Len <= MaxDataLen) then
+  begin
+    S.Reply.MessType := tpLongM;
+    S.Reply.FCB_ACD := Assigned(S.OnClass1) and S.OnClass1(S.Data);
+    S.Reply.FCV_DFC := S.Dfc;
+    S.Reply.FC := FCS_UserData;
+    S.ReplyLen := cSizeHeadSndMsg + Len;
+  end
+  else
+    FixedReply(S, FCS_DataNotAcces);
+end;
+
+function FT12StationStep(var S: tFT12Station): Boolean;
+var
+  Len: Word;
+  Broadcast, Fcv: Boolean;
+  F: pChnFT1_2;
+begin
+  Result := False;
+  if S.Chn^.ChReceiveReady <> CHS_ReceiveReady then
+    Exit;
+  Result := True;
+  Inc(S.Frames);
+  Len := 0;
+  S.Chn^.ChReceive(Len);
+  { a garbled frame is not answered (IEC 60870-5-2): the primary repeats }
+  if (S.Chn^.ChReceiveResult <> res_Ok) or not (S.RMess.MessType in [tpShortM, tpLongM]) then
+    Exit;
+  F := pChnFT1_2(S.Chn);
+  Broadcast := (F^.CH_AdrLen > 0) and (S.Chn^.CH_RDNode = FT12Broadcast(F^.CH_AdrLen));
+  Fcv := S.RMess.FCV_DFC;
+  if Broadcast or (S.RMess.FC = FCM_UserDataNoRep) then
+  begin
+    { SEND/NO REPLY: never answered; a broadcast can be nothing else }
+    if S.RMess.FC = FCM_UserDataNoRep then
+    begin
+      Inc(S.Executed);
+      if Assigned(S.OnUserData) then
+        S.OnUserData(S.Data, @S.RMess.Data[1], Len - cSizeHeadRecMsg, False);
+    end;
+    Exit;
+  end;
+  if Fcv then
+  begin
+    if not S.LinkReset then
+    begin
+      { the FCB memory is not set up: refuse until the primary resets }
+      Inc(S.Refused);
+      FixedReply(S, FCS_NackBusy);
+      SendNow(S.Chn, S.Reply, S.ReplyLen);
+      S.HasReply := False;
+      Exit;
+    end;
+    if S.HasReply and (S.RMess.FCB_ACD = S.LastFcb) then
+    begin
+      { same FCB as the last accepted frame: the primary lost our reply }
+      Inc(S.Repeats);
+      SendNow(S.Chn, S.Reply, S.ReplyLen);
+      Exit;
+    end;
+    S.LastFcb := S.RMess.FCB_ACD;
+  end;
+  case S.RMess.FC of
+    FCM_1stSetTransmit:
+      begin
+        S.LinkReset := True;
+        S.LastFcb := False;     { the reset's FCB: the next frame needs FCB = 1 }
+        FixedReply(S, FCS_Ack);
+      end;
+    FCM_1stSetUserFun:
+      FixedReply(S, FCS_Ack);
+    FCM_UserDataReply:
+      begin
+        Inc(S.Executed);
+        if Assigned(S.OnUserData) and
+           S.OnUserData(S.Data, @S.RMess.Data[1], Len - cSizeHeadRecMsg, True) then
+          FixedReply(S, FCS_Ack)
+        else
+          FixedReply(S, FCS_NackBusy);
+      end;
+    FCM_ReqReplyAcces, FCM_ReqLinkState:
+      FixedReply(S, FCS_LinkSAccesReq);
+    FCM_ReqUserData1, FCM_ReqUserData2:
+      begin
+        Inc(S.Executed);
+        ClassReply(S, S.RMess.FC - FCM_ReqUserData1 + 1);
+      end;
+  else
+    FixedReply(S, FCS_NotImplemented);   { FC 2 is balanced only }
+  end;
+  { the reply to a reset or an FCV = 1 frame is what a repetition gets }
+  S.HasReply := Fcv or (S.RMess.FC = FCM_1stSetTransmit);
+  SendNow(S.Chn, S.Reply, S.ReplyLen);
+end;
+
+end.
