@@ -128,7 +128,8 @@ function FT12RequestClass(Chn: pChnVirt; var Link: tFT12Link; ClassNo: Byte;
 function FT12FcvOf(FC: Byte): Boolean;
 
 procedure FT12StationInit(var S: tFT12Station; Chn: pChnVirt);
-{ Take at most one frame and act on it; False when none was waiting. }
+{ Take at most one frame and act on it; False when none was waiting, or
+  when S.Chn is not a tChnFT1_2 (then nothing is read). }
 function FT12StationStep(var S: tFT12Station): Boolean;
 
 implementation
@@ -442,6 +443,8 @@ var
   F: pChnFT1_2;
 begin
   Result := False;
+  if (S.Chn = nil) or (S.Chn^.CH_Type <> ChnFT1_2.cName) then
+    Exit;                       { only a tChnFT1_2 has the fields used below }
   if S.Chn^.ChReceiveReady <> CHS_ReceiveReady then
     Exit;
   Result := True;

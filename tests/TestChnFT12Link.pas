@@ -536,6 +536,10 @@ var
   Rep: tRecRecord;
   Len: Word;
   T0: QWord;
+  St: tFT12Station;
+  L1, L2: pChnVirt;
+  Err: string;
+  B: array[0..0] of Byte;
 begin
   SetUpPair;
   FillChar(Req, SizeOf(Req), 0);
@@ -554,6 +558,26 @@ begin
   { a fixed frame of the wrong length: the channel's send error }
   AssertEquals(res_BadLen, FT12Transact(FM, FLink, Req, 5, Rep, Len, TimeoutMs, 1));
   { the channel cannot send: its result at once, no retries }
+  { a station on a channel that is no tChnFT1_2 reads nothing, even with
+    bytes waiting; and one without a channel does nothing }
+  L1 := OpenStack(ChnLoop.cName, 'PAIR=LKX END=1', Err);
+  L2 := OpenStack(ChnLoop.cName, 'PAIR=LKX END=2', Err);
+  try
+    AssertTrue(Err, (L1 <> nil) and (L2 <> nil));
+    B[0] := $E5;
+    L2^.ChSend(@B, 1);
+    FT12StationInit(St, L1);
+    AssertFalse(FT12StationStep(St));
+    AssertEquals(0, St.Frames);
+    AssertTrue('the byte is still there', L1^.ChReceiveReady = CHS_ReceiveReady);
+    St.Chn := nil;
+    AssertFalse(FT12StationStep(St));
+  finally
+    if L1 <> nil then
+      Dispose(L1, Done);
+    if L2 <> nil then
+      Dispose(L2, Done);
+  end;
   FM^.ChClose;
   T0 := GetTickCount64;
   AssertEquals(res_WrongState, FT12Transact(FM, FLink, Req, 4, Rep, Len, 1000, 5, @Idle, Self));
