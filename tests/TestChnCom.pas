@@ -996,6 +996,17 @@ begin
     AssertEquals('port address', res_Ok, C^.ChResult);
     C^.ChSetParam('BASE=3F8h');
     AssertEquals('base address in any notation', res_Ok, C^.ChResult);
+    { kept as text for ChGetParam, so their length is bounded: IRQ= value
+      up to 15 characters, an ADR=/BASE=/PORT= token up to 31 }
+    C^.ChSetParam('IRQ=' + StringOfChar('1', 15));
+    AssertEquals('IRQ, 15 characters', res_Ok, C^.ChResult);
+    C^.ChSetParam('IRQ=' + StringOfChar('1', 16));
+    AssertEquals('IRQ, 16 characters', res_BadParam, C^.ChResult);
+    AssertEquals('IRQ kept', 'IRQ=' + StringOfChar('1', 15), C^.ChGetParam('IRQ'));
+    C^.ChSetParam('ADR=' + StringOfChar('3', 27));
+    AssertEquals('ADR token, 31 characters', res_Ok, C^.ChResult);
+    C^.ChSetParam('ADR=' + StringOfChar('3', 28));
+    AssertEquals('ADR token, 32 characters', res_BadParam, C^.ChResult);
   finally
     Dispose(C, Done);
   end;
@@ -1151,6 +1162,11 @@ begin
     C^.ChSend(@Msg, 10);
     AssertEquals('closed', res_WrongState, C^.ChSendResult);
     C^.ChOpen;
+    TFakePort.Log := '';
+    C^.ChOpen;
+    AssertEquals('open twice', res_WrongState, C^.ChResult);
+    AssertEquals('no second port opened', '', TFakePort.Log);
+    AssertEquals('still open', CHS_Open, C^.ChReady);
     C^.ChSend(@Msg, 0);
     AssertEquals('empty', res_BadLen, C^.ChSendResult);
     C^.ChSend(nil, 5);
