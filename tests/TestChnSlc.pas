@@ -269,6 +269,9 @@ begin
   AssertEquals('reset', 'STS=00', Ask($0607, ''));
   AssertEquals('zero after reset', 'STS=00 00 00 00 00', Ask($0601, '00 00 04'));
   S := Ask($0603, '');
+  { the simulator's own identity (no real SLC's block, see ChnSlc):
+    mode $06 (run), type $EE, $49 (5/03), $00, $21 (series B rev 1), then
+    the table name 'df1sim' = 64 66 31 73 69 6D }
   AssertEquals('diagnostic status block', 'STS=00 06 EE 49 00 21 64 66 31 73 69 6D', S);
 end;
 

@@ -162,6 +162,7 @@ procedure TTestDf1Sim.AllCommands(Full, Crc: Boolean; const Pair: string);
 begin
   StartPair(Full, Crc, Pair);
   AssertEquals('echo', 'STS=00 41 68 6F 6A', Ask(CF_Echo, '41 68 6F 6A', 1));
+  { mode, type, series/revision and 'df1sim' (TestChnSlc.TestDiagnostics) }
   AssertEquals('diagnostic status', 'STS=00 06 EE 49 00 21 64 66 31 73 69 6D',
     Ask(CF_DiagnosticSts, '', 2));
   { good frames in: echo, status and this one; ADDR 0 SIZE 2 }
