@@ -213,6 +213,7 @@ var
   Len: Word;
   Got: AnsiString;
   Deadline: QWord;
+  Polls: Integer;
 begin
   D := HexToBytes(Hex);
   if Length(D) > 0 then
@@ -223,7 +224,12 @@ begin
   Got := '';
   Raw^.ChReceiveBuffer(@Buf, SizeOf(Buf));
   Deadline := ChMsTick + QWord(Ms);
+  Polls := 0;
+  { Ms of wall time and at least 100 rounds (100 rounds alone get every
+    answer here): a loaded machine that takes the CPU away for Ms must not
+    cut an answer short }
   repeat
+    Inc(Polls);
     DF1StationStep(Station);
     if Raw^.ChReceiveReady = CHS_ReceiveReady then
     begin
@@ -233,7 +239,7 @@ begin
         Got := Got + ' ';
       Got := Got + BytesToHex(Buf, Len);
     end;
-  until ChMsTick > Deadline;
+  until (ChMsTick > Deadline) and (Polls >= 100);
   Result := Got;
 end;
 
