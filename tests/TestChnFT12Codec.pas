@@ -246,6 +246,15 @@ begin
   N := 99;
   AssertEquals(res_BadMessage, FT12Encode(Cfg(True, 1, 0), R, 1, 1, @B, 4, N));
   AssertEquals(0, N);
+  { Len 0 is refused for them too; no room for the one byte is res_TooLong }
+  N := 99;
+  AssertEquals('Len 0', res_BadLen, FT12Encode(Cfg(False, 1, 0), R, 0, 1, @B, 4, N));
+  AssertEquals(0, N);
+  B[0] := $CC;
+  N := 99;
+  AssertEquals('DestSize 0', res_TooLong, FT12Encode(Cfg(False, 1, 0), R, 1, 1, @B, 0, N));
+  AssertEquals(0, N);
+  AssertEquals('nothing written', $CC, B[0]);
 end;
 
 procedure TTestChnFT12Codec.TestEveryFCAndControlBitRoundTrips;
@@ -526,6 +535,13 @@ begin
   C.OwnAddr := 1;
   S := NewRx(C);
   AssertEquals('..', FeedAll(S, 'E5 A2'));
+  AssertEquals(2, S.Ignored);
+  { ignored for what they are, not for their address (they carry none):
+    a secondary with link address 0 ignores them as well }
+  C.OwnAddr := 0;
+  S := NewRx(C);
+  AssertEquals('..', FeedAll(S, 'E5 A2'));
+  AssertEquals(2, S.Ignored);
   { without a filter (no address field) they do not fit a secondary }
   C.Filter := False;
   S := NewRx(C);
@@ -605,10 +621,18 @@ var
   K, Pos, Mask, I: Integer;
   S: tFT12Rx;
   C: tFT12Config;
+  Ev: tFT12Event;
 begin
+  Ev := fe_None;
   for K := 1 to 3 do
   begin
     F := HexToBytes(Frames[K]);
+    { the frame itself is accepted, else the loop below proves nothing }
+    S := NewRx(Cfg(False, 1, Lens[K]));
+    for I := 0 to High(F) do
+      Ev := FT12Feed(S, F[I], 0);
+    AssertTrue(Format('frame %d accepted uncorrupted', [K]),
+      (Ev = fe_Frame) and (S.Kind in [tpShortM, tpLongM]));
     for Pos := 0 to High(F) do
       for Mask := 1 to 255 do
       begin

@@ -253,6 +253,9 @@ begin
     AssertEquals(res_BadParam, C^.ChResult);
     C^.ChSetParam('LSB=65501');
     AssertEquals(res_BadParam, C^.ChResult);
+    C^.ChSetParam('GAP=10001');
+    AssertEquals('GAP above 10000 character times', res_BadParam, C^.ChResult);
+    AssertEquals('GAP=10001', C^.ChParamError);
     C^.ChSetParam('MS=ONNAM=LOOP');
     AssertEquals(res_BadParam, C^.ChResult);
     AssertEquals('defaults kept', 4, C^.CH_LenShortM);

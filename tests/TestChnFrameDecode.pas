@@ -271,6 +271,8 @@ var
 begin
   AssertTrue(DecodeHexText('0x10,0x02 1003'#10'ab', D, Err));
   AssertEquals('10 02 10 03 AB', BytesToHex(D, Length(D)));
+  AssertTrue('0X as well', DecodeHexText('0X1F 0x0a', D, Err));
+  AssertEquals('1F 0A', BytesToHex(D, Length(D)));
   AssertFalse('odd digits', DecodeHexText('10 020', D, Err));
   AssertTrue('says where', Pos('character 4', Err) > 0);
   AssertEquals('nothing kept', 0, Length(D));

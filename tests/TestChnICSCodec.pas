@@ -433,6 +433,8 @@ begin
   AssertEquals('32 numbers', 'F', Events(WithField(Sample(32))));
   AssertEquals('33 numbers', 'E22 F', Events(WithField(Sample(33)) + FrameA));
   AssertEquals('33 numbers, extra commas', 'E22', Events(WithField(Sample(32) + ',,0')));
+  { reported at the 33rd number's first character, not when it ends }
+  AssertEquals('33rd number cut short', 'E22', Events(#1'2'#2'1RD0,' + Sample(32) + ',7'));
   AssertEquals('200 characters of text', 'F',
     Events(WithField('"' + StringOfChar('t', 198) + '"')));
   Ev := Events(WithField('"' + StringOfChar('t', 199) + '"') + FrameA);

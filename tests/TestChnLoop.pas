@@ -221,6 +221,9 @@ begin
   AssertEquals('END= while open', res_WrongState, A^.ChResult);
   A^.ChSetParam('PAIR=OTHER');
   AssertEquals('PAIR= while open', res_WrongState, A^.ChResult);
+  A^.ChOpen;
+  AssertEquals('ChOpen while open', res_WrongState, A^.ChResult);
+  AssertEquals('still connected', CHS_Connect, A^.ChReady);
   A^.ChSetParam('PAIR=fixed END=1 LRB=100');
   AssertEquals('the same values (and LRB) are fine', res_Ok, A^.ChResult);
   AssertEquals('END=1', 1, pChnLoop(A)^.CH_End);
@@ -234,6 +237,12 @@ begin
   A^.ChClose;
   A^.ChSetParam('END=2 PAIR=OTHER');
   AssertEquals('closed: anything goes', res_Ok, A^.ChResult);
+  { but PAIR= is kept in a string[31] }
+  A^.ChSetParam('PAIR=' + StringOfChar('P', 31));
+  AssertEquals('PAIR= of 31 characters', res_Ok, A^.ChResult);
+  A^.ChSetParam('PAIR=' + StringOfChar('Q', 32));
+  AssertEquals('PAIR= of 32 characters', res_BadParam, A^.ChResult);
+  AssertEquals('PAIR kept', 'PAIR=' + StringOfChar('P', 31), A^.ChGetParam('PAIR'));
 end;
 
 procedure TTestChnLoop.TestBytesToClosedPeerAreLost;

@@ -164,6 +164,13 @@ begin
   AssertEquals('not a float', '3', ConfigError('#'#10'F8 2'#10'F8:0 = x'));
   AssertEquals('type differs', '2', ConfigError('N7 2'#10'F7:0 = 1'));
   AssertEquals('bad CIF', '1', ConfigError('CIF'));
+  AssertEquals('CIF with two numbers', '1', ConfigError('CIF 9 10'));
+  AssertEquals('element count then more', '2', ConfigError('N7 5'#10'N8 5 6'));
+  AssertEquals('below -32768', '2', ConfigError('N7 2'#10'N7:0 = -32769'));
+  AssertEquals('-32768 fits', 'ok', ConfigError('N7 2'#10'N7:0 = -32768 65535'));
+  { 3.4e38 is about the largest Single; 1e39 would become +Inf }
+  AssertEquals('float out of range', '2', ConfigError('F8 2'#10'F8:0 = 1e39'));
+  AssertEquals('float out of range, negative', '2', ConfigError('F8 2'#10'F8:0 = -1e39'));
   AssertEquals('good', 'ok', ConfigError('  # only a comment'#10#10'B3 1  '));
 end;
 
@@ -262,6 +269,9 @@ begin
   AssertEquals('reset', 'STS=00', Ask($0607, ''));
   AssertEquals('zero after reset', 'STS=00 00 00 00 00', Ask($0601, '00 00 04'));
   S := Ask($0603, '');
+  { the simulator's own identity (no real SLC's block, see ChnSlc):
+    mode $06 (run), type $EE, $49 (5/03), $00, $21 (series B rev 1), then
+    the table name 'df1sim' = 64 66 31 73 69 6D }
   AssertEquals('diagnostic status block', 'STS=00 06 EE 49 00 21 64 66 31 73 69 6D', S);
 end;
 

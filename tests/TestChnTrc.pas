@@ -350,6 +350,8 @@ begin
   { the same file and another MOD are fine, MOD at once }
   A^.ChSetParam('FILE=' + Dir + 'a.log MOD=DEC');
   AssertEquals(res_Ok, A^.ChResult);
+  A^.ChOpen;
+  AssertEquals('ChOpen while open', res_WrongState, A^.ChResult);
   X[0] := 16; X[1] := 2; X[2] := 255;
   A^.ChSend(@X, 3);
   AssertEquals(res_Ok, A^.ChSendResult);

@@ -409,7 +409,7 @@ end;
 
 procedure TTestChnTrcFormat.TestNotAHeader;
 const
-  Bad: array[0..11] of string = (
+  Bad: array[0..12] of string = (
     '24:00:00.000 tx 2 | S00',       { hour out of range }
     '13:60:00.000 tx 2 | S00',
     '13:33:60.000 tx 2 | S00',
@@ -421,7 +421,8 @@ const
     '13:33:33.058 tx 65536 | S00',   { longer than any chunk }
     '13:33:33.058 tx -2 | S00',
     '13:33:33.058 tx $10 | S00',
-    '13:33:33.058 tx | S00');
+    '13:33:33.058 tx | S00',
+    '13:33:33.058 tx;0123456789abc 2 | S00');  { 16 characters: DirText holds 15 }
 var
   F: tTrcFrames;
   Skipped: LongInt;
@@ -437,7 +438,9 @@ end;
 
 procedure TTestChnTrcFormat.TestBadDataTokens;
 const
-  Bad: array[0..5] of string = ('1002 0G00', '1002 256', '10020', '1 2', '1002 0300 x', '1002|0300');
+  { '$0A', '+12', '-01' are numbers to StrToNum but no decimal data byte }
+  Bad: array[0..8] of string = ('1002 0G00', '1002 256', '10020', '1 2', '1002 0300 x', '1002|0300',
+    '016 $0A', '016 +12', '016 -01');
 var
   F: tTrcFrames;
   Skipped: LongInt;

@@ -20,6 +20,7 @@ type
 
 var
   Frames, Accepted, Errors: Int64;
+  Checked: array[1..3] of Int64;   { round trips checked: DF1, FT 1.2, ICS }
   Failures: Integer = 0;
 
 procedure Fail(const What: string);
@@ -142,6 +143,7 @@ begin
       N2 := 0;
       if DF1Encode(Tx2, D.Msg, D.MsgLen, Buf, SizeOf(Buf), N2) <> res_Ok then
         Continue;           { e.g. a poll: only a master may send it }
+      Inc(Checked[1]);
       DF1DecoderInit(D2, Rx);
       Ev := dfNone;
       for I := 0 to N2 - 1 do
@@ -219,6 +221,8 @@ begin
       N2 := 0;
       if FT12Encode(Tx, tFT12Record(Got), GotLen, S.Addr, @Buf, SizeOf(Buf), N2) <> res_Ok then
         Continue;           { e.g. a variable frame now as short as a fixed one }
+      if S.Kind in [tpShortM, tpLongM] then
+        Inc(Checked[2]);    { single characters alone would prove little }
       FillChar(S2, SizeOf(S2), 0);
       S2.Cfg := Rx;
       FT12RxReset(S2);
@@ -287,6 +291,7 @@ begin
       if ICSEncode(St.Rec, ICSRecLen(St), St.DNode, St.SNode, Buf, SizeOf(Buf),
         N2) <> res_Ok then
         Continue;           { e.g. a received op code the encoder refuses }
+      Inc(Checked[3]);
       ICSReset(St2);
       Ev := icsNone;
       for I := 0 to N2 - 1 do
@@ -315,6 +320,7 @@ begin
   WriteLn('fuzzcodecs: ', Seconds, ' s, seed ', Seed);
   Deadline := GetTickCount64 + QWord(Seconds) * 1000;
   Rounds := 0;
+  FillChar(Checked, SizeOf(Checked), 0);
   repeat
     FuzzDF1;
     FuzzFT12;
@@ -323,6 +329,13 @@ begin
   until GetTickCount64 >= Deadline;
   WriteLn(Format('%d rounds, %d frames encoded, %d accepted after mutation, %d errors reported, %d failures',
     [Rounds, Frames, Accepted, Errors, Failures]));
+  { a codec whose round trip never ran has been checked for nothing }
+  if (Checked[1] = 0) or (Checked[2] = 0) or (Checked[3] = 0) then
+  begin
+    WriteLn(Format('FAIL a codec had no round trip checked (DF1 %d, FT 1.2 %d, ICS %d)',
+      [Checked[1], Checked[2], Checked[3]]));
+    Inc(Failures);
+  end;
   if Failures > 0 then
     Halt(1);
 end.

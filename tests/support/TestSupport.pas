@@ -13,7 +13,8 @@ uses
 type
   TBytes = array of Byte;
 
-{ '10 02 0A' or '10020A' (blanks ignored) -> bytes }
+{ '10 02 0A' or '10020A' (blanks ignored) -> bytes; any other character
+  or an odd number of digits raises, so a typo fails the test }
 function HexToBytes(const S: string): TBytes;
 function BytesToHex(const B: array of Byte; Len: Integer): string;
 { Poll Chn^.ChReceiveReady (and, if given, Other^.ChReceiveReady /
@@ -37,7 +38,12 @@ begin
   Clean := '';
   for I := 1 to Length(S) do
     if S[I] in ['0'..'9', 'A'..'F', 'a'..'f'] then
-      Clean := Clean + S[I];
+      Clean := Clean + S[I]
+    else if S[I] <> ' ' then
+      { a typo in an expected frame must fail the test, not shorten it }
+      raise Exception.CreateFmt('HexToBytes: "%s" at %d in ''%s''', [S[I], I, S]);
+  if Odd(Length(Clean)) then
+    raise Exception.CreateFmt('HexToBytes: odd number of hex digits in ''%s''', [S]);
   SetLength(Result, Length(Clean) div 2);
   for I := 0 to High(Result) do
     Result[I] := StrToInt('$' + Copy(Clean, I * 2 + 1, 2));
