@@ -17,7 +17,8 @@ fail() { failed=$((failed + 1)); echo "FAIL  $1"; }
 heaplog="$BUILD/heaptrc.log"
 rm -f "$heaplog"
 out="$BUILD/runtests.out"
-HEAPTRC="log=$heaplog" "$BUILD/test-bin/runtests" "$FILTER" 2>&1 | tee "$out" | grep -v '^RESULT '
+# a hung test must not hang CI: 30 minutes is far beyond the ~10 s it takes
+HEAPTRC="log=$heaplog" timeout 1800 "$BUILD/test-bin/runtests" "$FILTER" 2>&1 | tee "$out" | grep -v '^RESULT '
 rc=${PIPESTATUS[0]}
 res=$(grep '^RESULT ' "$out" | tail -n 1)
 if [ -z "$res" ]; then
@@ -47,13 +48,19 @@ if true; then
       if ! "$FPC" -M$mode -Fusrc -Fisrc -FU"$dir" -FE"$dir" -B -Cr -Co -Ct "$prog" >"$dir/$name.log" 2>&1; then
         fail "legacy $name -M$mode: does not compile"; tail -n 15 "$dir/$name.log"; continue
       fi
-      if "$dir/$name" >"$dir/$name.run" 2>&1; then
+      if timeout 120 "$dir/$name" >"$dir/$name.run" 2>&1; then
         pass "legacy $name -M$mode"
       else
         fail "legacy $name -M$mode: run failed"; tail -n 15 "$dir/$name.run"
       fi
     done
   done
+fi
+
+# a T= filter that selects nothing is a mistake, not a pass (the heap
+# check always runs, so it alone means nothing was selected)
+if [ -n "$FILTER" ] && [ "$passed" -le 1 ] && [ "$failed" = 0 ]; then
+  fail "T=$FILTER selects no test"
 fi
 
 echo "$passed passed, $failed failed"
