@@ -177,19 +177,8 @@ end;
 
 { Send once the transmitter is free (bounded wait). }
 function SendNow(Chn: pChnVirt; constref R: tSendRecord; Len: Word): tChResult;
-var
-  Deadline: QWord;
 begin
-  Deadline := ChMsTick + DF1LinkTimeoutMs;
-  while Chn^.ChSendReady <> CHS_SendReady do
-  begin
-    if Chn^.ChResult <> res_Ok then
-      Exit(Chn^.ChResult);
-    if ChMsTick > Deadline then
-      Exit(res_Timeout);
-  end;
-  Chn^.ChSend(@R, Len);
-  Result := Chn^.ChSendResult;
+  Result := ChSendWhenFree(Chn, @R, Len, DF1LinkTimeoutMs);
 end;
 
 { ------------------------------------------------------------- station }

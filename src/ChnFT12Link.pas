@@ -157,19 +157,8 @@ end;
 
 { Send once the transmitter is free (bounded wait). }
 function SendNow(Chn: pChnVirt; constref R: tSendRecord; Len: Word): tChResult;
-var
-  Deadline: QWord;
 begin
-  Deadline := ChMsTick + FT12LinkTimeoutMs;
-  while Chn^.ChSendReady <> CHS_SendReady do
-  begin
-    if Chn^.ChResult <> res_Ok then
-      Exit(Chn^.ChResult);
-    if ChMsTick > Deadline then
-      Exit(res_Timeout);
-  end;
-  Chn^.ChSend(@R, Len);
-  Result := Chn^.ChSendResult;
+  Result := ChSendWhenFree(Chn, @R, Len, FT12LinkTimeoutMs);
 end;
 
 { ------------------------------------------------------------- primary }

@@ -201,6 +201,12 @@ function ChNumName(const Name: string): Word;
 { Milliseconds from a monotonic clock, for timeouts and line-idle gaps. }
 function ChMsTick: QWord;
 
+{ ChSend once the transmitter is free, waiting for it at most TimeoutMs
+  (res_Timeout); a channel fault while waiting is returned at once. For
+  helpers above a channel (the DF1 and FT 1.2 link procedures). }
+function ChSendWhenFree(Chn: pChnVirt; Buff: Pointer; Len: Word;
+  TimeoutMs: LongInt): tChResult;
+
 { Helpers for ChSetOneParam/ChOwnParams of every layer, so that number
   parsing, range checks and ON/OFF live in one place. }
 function ParamKey(const S: tWordString): string;
@@ -238,6 +244,23 @@ end;
 function ChMsTick: QWord;
 begin
   Result := GetTickCount64;
+end;
+
+function ChSendWhenFree(Chn: pChnVirt; Buff: Pointer; Len: Word;
+  TimeoutMs: LongInt): tChResult;
+var
+  Deadline: QWord;
+begin
+  Deadline := ChMsTick + QWord(TimeoutMs);
+  while Chn^.ChSendReady <> CHS_SendReady do
+  begin
+    if Chn^.ChResult <> res_Ok then
+      Exit(Chn^.ChResult);
+    if ChMsTick > Deadline then
+      Exit(res_Timeout);
+  end;
+  Chn^.ChSend(Buff, Len);
+  Result := Chn^.ChSendResult;
 end;
 
 function ParamKey(const S: tWordString): string;
