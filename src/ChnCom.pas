@@ -225,11 +225,7 @@ begin
       CH_Drv := UpStr(Value);
   end
   else if Key = 'BD' then
-  begin
-    Result := ParamNum(S, 50, 4000000, N);
-    if (Result = res_Ok) and (CmdL = cmd_Set) then
-      CH_Set.Baud := N;
-  end
+    Result := ParamSetNum(S, 50, 4000000, CmdL, CH_Set.Baud)
   else if Key = 'BIT' then
   begin
     Result := ParamNum(S, 5, 8, N);
@@ -261,23 +257,11 @@ begin
       CH_Rs485 := I;
   end
   else if Key = 'LRB' then
-  begin
-    Result := ParamNum(S, 1, 1 shl 24, N);
-    if (Result = res_Ok) and (CmdL = cmd_Set) then
-      CH_LRB := N;
-  end
+    Result := ParamSetNum(S, 1, 1 shl 24, CmdL, CH_LRB)
   else if Key = 'LSB' then
-  begin
-    Result := ParamNum(S, 1, 65535, N);
-    if (Result = res_Ok) and (CmdL = cmd_Set) then
-      CH_LSB := N;
-  end
+    Result := ParamSetNum(S, 1, 65535, CmdL, CH_LSB)
   else if Key = 'IDL' then
-  begin
-    Result := ParamNum(S, 0, 1000, N);
-    if (Result = res_Ok) and (CmdL = cmd_Set) then
-      CH_Idle := N;
-  end
+    Result := ParamSetNum(S, 0, 1000, CmdL, CH_Idle)
   else if Key = 'IRQ' then
   begin
     Result := res_Ok;             { DOS only: accepted and ignored }

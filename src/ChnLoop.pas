@@ -163,17 +163,9 @@ begin
       CH_End := N;
   end
   else if Key = 'LRB' then
-  begin
-    Result := ParamNum(S, 1, 1 shl 24, N);
-    if (Result = res_Ok) and (CmdL = cmd_Set) then
-      CH_LRB := N;
-  end
+    Result := ParamSetNum(S, 1, 1 shl 24, CmdL, CH_LRB)
   else if Key = 'IDL' then
-  begin
-    Result := ParamNum(S, 0, 1000, N);
-    if (Result = res_Ok) and (CmdL = cmd_Set) then
-      CH_Idle := N;
-  end
+    Result := ParamSetNum(S, 0, 1000, CmdL, CH_Idle)
   else
     Result := inherited ChSetOneParam(S, CmdL);
 end;

@@ -218,6 +218,10 @@ function ParamText(const Key: string; N: LongInt): string;
   ('OFF|ON', 'SLAVE|MASTER'); Flag is set only when CmdL = cmd_Set. }
 function ParamFlag(const S: tWordString; const Choices: string; CmdL: tCmd;
   var Flag: Boolean): tChResult;
+{ A number kept in a LongInt field: checked as ParamNum, Field set only
+  when CmdL = cmd_Set. }
+function ParamSetNum(const S: tWordString; Min, Max: LongInt; CmdL: tCmd;
+  var Field: LongInt): tChResult;
 { ' KEY=WORD' for a Boolean kept as in ParamFlag. }
 function FlagText(const Key, Choices: string; Flag: Boolean): string;
 
@@ -316,6 +320,17 @@ begin
   Result := ParamChoice(S, Choices, I);
   if (Result = res_Ok) and (CmdL = cmd_Set) then
     Flag := I = 1;
+end;
+
+function ParamSetNum(const S: tWordString; Min, Max: LongInt; CmdL: tCmd;
+  var Field: LongInt): tChResult;
+var
+  N: LongInt;
+begin
+  N := 0;
+  Result := ParamNum(S, Min, Max, N);
+  if (Result = res_Ok) and (CmdL = cmd_Set) then
+    Field := N;
 end;
 
 function FlagText(const Key, Choices: string; Flag: Boolean): string;
