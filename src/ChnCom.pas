@@ -54,7 +54,7 @@ unit ChnCom;
 interface
 
 uses
-  ChnTypes, ChnVirt, ChnRing, ChnPort
+  ChnTypes, ChnVirt, ChnRing, ChnWait, ChnPort
   {$IFDEF WINDOWS}, ChnPortWin{$ELSE}, ChnPortUnix{$ENDIF}
   {$IFDEF CHN_SYNAPSE}, ChnPortSynapse{$ENDIF};
 
@@ -92,6 +92,7 @@ type
     CH_OsLost  : LongWord;         { OS overrun count last seen }
     CH_TxBuf   : PByte;            { copy of the message being sent }
     CH_TxCap, CH_TxLen, CH_TxPos: LongInt;
+    CH_Wait    : pChnWaitSource;   { this port in the program-wide wait; nil: none }
     constructor Init;
     constructor ChInitParam(const S: tParamStr);
     destructor  Done; virtual;
@@ -136,6 +137,7 @@ const
   FlowNames: array[tPortFlow] of string[7] = ('NONE', 'RTSCTS', 'XONXOFF');
   Rs485Names: array[0..3] of string[6] = ('OFF', 'RTS', 'KERNEL', 'AUTO');
   MaxDrainPerPoll = 65536;   { bytes discarded per poll when the ring is full }
+  SmallChunk = 1024;         { a read this short emptied the driver, see ComPull }
 
 constructor tChnCom.Init;
 begin
@@ -165,6 +167,7 @@ begin
   CH_TxCap := 0;
   CH_TxLen := 0;
   CH_TxPos := 0;
+  CH_Wait := nil;
 end;
 
 constructor tChnCom.ChInitParam(const S: tParamStr);
@@ -315,6 +318,10 @@ var
   Cls: TChnPortClass;
   Port: TChnPort;
   R: tChResult;
+  WaitKind: tChnWaitKind;
+  WaitOs: PtrInt;
+  WaitRearm: tChnWaitRearm;
+  WaitData: Pointer;
 begin
   if CH_State <> CHS_Close then
   begin
@@ -359,6 +366,9 @@ begin
     Exit;
   end;
   CH_Port := Port;
+  CH_Wait := nil;
+  if ChnWaitShared and Port.WaitSource(WaitKind, WaitOs, WaitRearm, WaitData) then
+    CH_Wait := ChnWaitJoin(WaitKind, WaitOs, WaitRearm, WaitData);
   RingAlloc(CH_Ring, CH_LRB);
   CH_Lost := 0;
   CH_LostShown := 0;
@@ -377,6 +387,7 @@ begin
     CH_Result := res_WrongState;
     Exit;
   end;
+  ChnWaitLeave(CH_Wait);           { before the descriptor goes }
   if CH_Port <> nil then
   begin
     if CH_Fault = res_Ok then
@@ -411,6 +422,7 @@ begin
   CH_TxLen := 0;
   CH_TxPos := 0;
   CH_RtsUp := False;
+  ChnWaitServed(CH_Wait, False);  { nothing more to wait for on it }
 end;
 
 { Move what the OS holds into the ring; see the unit header for a full ring. }
@@ -434,9 +446,13 @@ begin
       ComFault(R);
       Exit;
     end;
-    if Got = 0 then
-      Break;
     RingCommit(CH_Ring, Got);
+    { a small chunk (a request, a reply) was all the driver had: asking
+      again would only get EAGAIN, one futile call per message. A bigger
+      one may hide more - Linux hands out at most 4 KiB of its line buffer
+      per read - so bulk input is read until the driver is empty. }
+    if (Got < Room) and (Got < SmallChunk) then
+      Break;
   end;
   if (RingRoom(CH_Ring) = 0) and (CH_Set.Flow = flowNone) then
   begin
@@ -460,6 +476,10 @@ begin
       Inc(CH_Lost, Os - CH_OsLost);
       CH_OsLost := Os;
     end;
+  { looked at the device: wake the program's waits for its next input,
+    unless the ring cannot take any (flow control holds the sender) }
+  ChnWaitServed(CH_Wait, ((RingRoom(CH_Ring) > 0) or (CH_Set.Flow = flowNone)) and
+    CH_Port.WaitUseful);
 end;
 
 { Hand as much of the pending message to the OS as it takes now; drop RTS
@@ -480,9 +500,13 @@ begin
       Exit;
     end;
     if Written = 0 then
+    begin
+      ChnWaitOutput(CH_Wait, True);  { ChnWaitAny wakes when it can go on }
       Exit;
+    end;
     Inc(CH_TxPos, Written);
   end;
+  ChnWaitOutput(CH_Wait, False);
   if CH_RtsUp then
   begin
     R := CH_Port.OutQueue(Queued);
@@ -591,7 +615,14 @@ begin
     ComPull;
     if (CH_Ring.Count = 0) and (CH_Idle > 0) then
     begin
-      if CH_Fault <> res_Ok then
+      if CH_Wait <> nil then
+      begin
+        { the program-wide wait: ends at the first input on any channel;
+          True only when it was this port's }
+        if ChnWaitIdle(CH_Wait, CH_Idle) then
+          ComPull;
+      end
+      else if CH_Fault <> res_Ok then
         Sleep(CH_Idle)            { nothing to wait on; still no busy loop }
       else if CH_Port.WaitInput(CH_Idle) then
         ComPull;
