@@ -376,7 +376,7 @@ begin
     KickPending := False;
   end;
   Result := False;
-  if (R >= WAIT_OBJECT_0) and (R < WAIT_OBJECT_0 + DWORD(N)) then
+  if R < WAIT_OBJECT_0 + DWORD(N) then   { WAIT_OBJECT_0 is 0 }
   begin
     Result := True;
     I := R - WAIT_OBJECT_0;
