@@ -69,6 +69,8 @@ function  SockWait(const Socks: array of tSock; ForWrite: Boolean; Ms: LongInt):
 function  SockOutQueue(S: tSock): LongInt;
 { The local port a socket is bound to (LISTEN=...:0 picks a free one). }
 function  SockLocalPort(S: tSock): Word;
+{ 'a.b.c.d:port' or '[v6]:port' of the local end, '' when unknown. }
+function  SockLocalName(S: tSock): string;
 procedure SockClose(var S: tSock);
 { The OS error code of the last failing call, for messages. }
 function  SockLastOsError: LongInt;
@@ -78,6 +80,7 @@ implementation
 uses
   {$IFDEF WINDOWS}WinSock2,{$ELSE}BaseUnix, Unix,{$ENDIF} Sockets, SysUtils, uString;
 
+{$PACKRECORDS C}   { an OS structure: C alignment, not chn.inc's packing }
 type
   { struct addrinfo: the field order differs between Linux and Windows }
   PAddrInfo = ^TAddrInfo;
@@ -94,6 +97,7 @@ type
     {$ENDIF}
     ai_next: PAddrInfo;
   end;
+{$PACKRECORDS 1}
 
 const
   AI_PASSIVE = 1;
@@ -446,6 +450,24 @@ begin
     Result := seOk
   else if Result in [seOther, seTimeout] then
     Result := seLost;
+end;
+
+function SockLocalName(S: tSock): string;
+var
+  A: tSockAddr;
+  L: TSockLen;
+begin
+  Result := '';
+  L := SizeOf(A.Data);
+  if (S = NoSock) or (fpGetSockName(S, PSockAddr(@A.Data), @L) <> 0) then
+    Exit;
+  if PSockAddr(@A.Data)^.sa_family = AF_INET then
+    Result := NetAddrToStr(PInetSockAddr(@A.Data)^.sin_addr)
+  else if PSockAddr(@A.Data)^.sa_family = AF_INET6 then
+    Result := '[' + NetAddrToStr6(PInetSockAddr6(@A.Data)^.sin6_addr) + ']'
+  else
+    Exit;
+  Result := Result + ':' + NumStr(SockLocalPort(S));
 end;
 
 function SockLocalPort(S: tSock): Word;

@@ -243,15 +243,12 @@ begin
       end;
     TN_DONT:
       begin
-        Asked := S^.UsAsked;
-        S^.UsAsked := False;
+        S^.UsAsked := False;             { a refused WILL of ours needs no reply }
         if S^.Us then
         begin
           S^.Us := False;
           Result := TN_WONT;
-        end
-        else if Asked then
-          Result := 0;                   { our WILL was refused }
+        end;
       end;
     TN_WILL:
       begin
