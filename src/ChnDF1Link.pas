@@ -23,7 +23,6 @@
 unit ChnDF1Link;
 
 {$I chn.inc}
-{$H+}
 
 interface
 
@@ -36,7 +35,7 @@ const
 
 type
   tDF1Idle = procedure(Data: Pointer);
-  tDF1LogProc = procedure(const Line: string);
+  tDF1LogProc = procedure(const Line: AnsiString);
 
   pDF1Station = ^tDF1Station;
   tDF1Station = record
@@ -71,22 +70,22 @@ function DF1Transact(Chn: pChnVirt; constref Req: tSendRecord; ReqLen: Word;
   TimeoutMs: LongInt; Log: tDF1LogProc = nil; LogWire: Boolean = False): tChResult;
 
 { One line describing a record, for logs. }
-function DF1Describe(const R: tRecRecord; Len: Word): string;
+function DF1Describe(const R: tRecRecord; Len: Word): AnsiString;
 { The wire bytes of the frame Chn (a tChnDF1) sent last, as hex
   ('10 02 ... 10 03 E3 88'): framing, DLE doubling and checksum included. }
-function DF1WireText(Chn: pChnVirt): string;
+function DF1WireText(Chn: pChnVirt): AnsiString;
 
 { A new tChnDF1 stack (its lower layers' units must be linked in) with
   Params set, opened and connected, waiting at most TimeoutMs for each
   state. nil on failure, with Err saying which step failed and why. }
-function DF1OpenStack(const Params: string; TimeoutMs: LongInt; out Err: string): pChnVirt;
+function DF1OpenStack(const Params: AnsiString; TimeoutMs: LongInt; out Err: AnsiString): pChnVirt;
 
 implementation
 
 uses
   SysUtils, uString;
 
-function DF1WireText(Chn: pChnVirt): string;
+function DF1WireText(Chn: pChnVirt): AnsiString;
 begin
   Result := HexBytes(pChnDF1(Chn)^.CH_SBuff, pChnDF1(Chn)^.CH_SLen);
 end;
@@ -99,9 +98,9 @@ begin
   Result := Chn^.ChReady = Want;
 end;
 
-function DF1OpenStack(const Params: string; TimeoutMs: LongInt; out Err: string): pChnVirt;
+function DF1OpenStack(const Params: AnsiString; TimeoutMs: LongInt; out Err: AnsiString): pChnVirt;
 var
-  Step: string;
+  Step: AnsiString;
   R: tChResult;
 begin
   Err := '';
@@ -136,16 +135,16 @@ begin
 end;
 
 { '-> ' + the record [+ its wire bytes] }
-function SentLine(Chn: pChnVirt; constref R: tSendRecord; Len: Word; Wire: Boolean): string;
+function SentLine(Chn: pChnVirt; constref R: tSendRecord; Len: Word; Wire: Boolean): AnsiString;
 begin
   Result := '-> ' + DF1Describe(R, Len);
   if Wire then
     Result := Result + '   [' + DF1WireText(Chn) + ']';
 end;
 
-function DF1Describe(const R: tRecRecord; Len: Word): string;
+function DF1Describe(const R: tRecRecord; Len: Word): AnsiString;
 var
-  Name: string;
+  Name: AnsiString;
 begin
   case R.MessType of
     tpAckNak:
@@ -194,7 +193,7 @@ begin
   Chn^.ChReceiveBuffer(@S.RMess, SizeOf(S.RMess));
 end;
 
-procedure Say(var S: tDF1Station; const Line: string);
+procedure Say(var S: tDF1Station; const Line: AnsiString);
 begin
   if Assigned(S.Log) then
     S.Log(Line);
@@ -305,7 +304,7 @@ var
   FullDup, Acked, Got: Boolean;
   Deadline: QWord;
 
-  procedure Say(const Line: string);
+  procedure Say(const Line: AnsiString);
   begin
     if Assigned(Log) then
       Log(Line);
