@@ -7,7 +7,9 @@
     again on a NAK of it; half duplex - ACK, keep the reply for the
     master's poll, EOT when there is nothing to send, and stay silent on a
     broken frame (a half-duplex slave never NAKs). Commands are answered by
-    ChnSlc.SlcHandle from a tSlcTable.
+    a handler the application gives (tools/df1sim plugs in its data table);
+    link events (frames in and out, NAKs, ENQs) can be counted through an
+    optional callback.
   * DF1Transact, a master: send a command, up to three tries (NAK or
     no answer -> again; full duplex asks with ENQ first), then wait for the
     reply (half duplex: poll for it), ACK it.
@@ -27,7 +29,7 @@ unit ChnDF1Link;
 interface
 
 uses
-  ChnTypes, ChnVirt, ChnDF1, ChnSlc;
+  ChnTypes, ChnVirt, ChnDF1, ChnPcccNames;
 
 const
   DF1LinkTimeoutMs = 1000;   { the RACOM note's link timeout }
@@ -37,10 +39,21 @@ type
   tDF1Idle = procedure(Data: Pointer);
   tDF1LogProc = procedure(const Line: AnsiString);
 
+  { Answer one command (Cmd/CmdLen as received, Len = 8 + data bytes):
+    fill Reply/ReplyLen and return True, or False to send no reply. }
+  tDF1Handler = function(Data: Pointer; constref Cmd: tRecRecord; CmdLen: Word;
+    var Reply: tSendRecord; var ReplyLen: Word): Boolean;
+  { What a station counts: a good frame in, a frame out, a broken frame
+    NAKed, an ENQ in, a NAK in. }
+  tDF1LinkEvent = (leFrameIn, leFrameOut, leNakOut, leEnqIn, leNakIn);
+  tDF1EventProc = procedure(Data: Pointer; Event: tDF1LinkEvent);
+
   pDF1Station = ^tDF1Station;
   tDF1Station = record
     Chn      : pChnVirt;
-    Table    : pSlcTable;
+    Handler  : tDF1Handler;
+    Data     : Pointer;       { given to Handler and OnEvent }
+    OnEvent  : tDF1EventProc; { nil: nothing counted }
     FullDup  : Boolean;
     RMess    : tRecRecord;
     Reply    : tSendRecord;
@@ -54,25 +67,33 @@ type
     LogWire  : Boolean;       { lines of sent frames end with the wire bytes }
   end;
 
-procedure DF1StationInit(var S: tDF1Station; Chn: pChnVirt; Table: pSlcTable);
-{ Take at most one message and act on it; False when none was waiting. }
+{ Set S up on Chn (a tChnDF1 stack) with the command handler and its data.
+  res_WrongLayer (and a station that reads nothing) when Chn is not DF1. }
+function DF1StationInit(var S: tDF1Station; Chn: pChnVirt; Handler: tDF1Handler;
+  Data: Pointer): tChResult;
+{ Take at most one message and act on it; False when none was waiting (or
+  the station has no DF1 channel). }
 function DF1StationStep(var S: tDF1Station): Boolean;
 
 { One command/reply exchange as a master. Req/ReqLen the command; the reply
   goes to Rep (RepLen); the channel's receive buffer is the caller's again
   afterwards (ChReceiveBuffer before the call stays in force). Results:
   res_Ok; res_Timeout (no ACK after the tries, or no reply); res_BadMessage
-  (a reply with another TNS or command); a send error of the channel, or
+  (a reply with another TNS or command); res_WrongLayer (Chn is not a
+  tChnDF1 stack: nothing is sent); a send error of the channel, or
   its ChResult when the line fails (res_DeviceLost ...) while waiting for
   the reply. Idle and Log may be nil; LogWire as in tDF1Station. }
 function DF1Transact(Chn: pChnVirt; constref Req: tSendRecord; ReqLen: Word;
   var Rep: tRecRecord; var RepLen: Word; Idle: tDF1Idle; IdleData: Pointer;
   TimeoutMs: LongInt; Log: tDF1LogProc = nil; LogWire: Boolean = False): tChResult;
 
+{ True when Chn is the top of a tChnDF1 stack. }
+function IsDF1Channel(Chn: pChnVirt): Boolean;
 { One line describing a record, for logs. }
 function DF1Describe(const R: tRecRecord; Len: Word): AnsiString;
 { The wire bytes of the frame Chn (a tChnDF1) sent last, as hex
-  ('10 02 ... 10 03 E3 88'): framing, DLE doubling and checksum included. }
+  ('10 02 ... 10 03 E3 88'): framing, DLE doubling and checksum included;
+  '' for a channel that is no tChnDF1. }
 function DF1WireText(Chn: pChnVirt): AnsiString;
 
 { A new tChnDF1 stack (its lower layers' units must be linked in) with
@@ -85,9 +106,17 @@ implementation
 uses
   SysUtils, uString;
 
+function IsDF1Channel(Chn: pChnVirt): Boolean;
+begin
+  Result := (Chn <> nil) and (Chn^.CH_Type = ChnDF1.cName);
+end;
+
 function DF1WireText(Chn: pChnVirt): AnsiString;
 begin
-  Result := HexBytes(pChnDF1(Chn)^.CH_SBuff, pChnDF1(Chn)^.CH_SLen);
+  if IsDF1Channel(Chn) then
+    Result := HexBytes(pChnDF1(Chn)^.CH_SBuff, pChnDF1(Chn)^.CH_SLen)
+  else
+    Result := '';
 end;
 
 { Wait until Chn reaches Want, an error result or the deadline. }
@@ -161,7 +190,7 @@ begin
           Name := 'reply CMD=$' + IntToHex(Hi(R.CF), 2)   { replies carry no FNC }
         else
         begin
-          Name := SlcCommandName(Hi(R.CF), Lo(R.CF));
+          Name := PcccCommandName(Hi(R.CF), Lo(R.CF));
           if Name = '' then
             Name := 'CF=$' + IntToHex(R.CF, 4);
         end;
@@ -182,21 +211,32 @@ end;
 
 { ------------------------------------------------------------- station }
 
-procedure DF1StationInit(var S: tDF1Station; Chn: pChnVirt; Table: pSlcTable);
+function DF1StationInit(var S: tDF1Station; Chn: pChnVirt; Handler: tDF1Handler;
+  Data: Pointer): tChResult;
 begin
   FillChar(S, SizeOf(S), 0);
-  S.Chn := Chn;
-  S.Table := Table;
-  S.FullDup := pChnDF1(Chn)^.CH_FullDup;
   S.LastLink.MessType := tpAckNak;
   S.LastLink.FlAck := False;    { ENQ before anything: NAK }
+  if not IsDF1Channel(Chn) then
+    Exit(res_WrongLayer);       { S.Chn stays nil: the station reads nothing }
+  S.Chn := Chn;
+  S.Handler := Handler;
+  S.Data := Data;
+  S.FullDup := pChnDF1(Chn)^.CH_FullDup;
   Chn^.ChReceiveBuffer(@S.RMess, SizeOf(S.RMess));
+  Result := res_Ok;
 end;
 
 procedure Say(var S: tDF1Station; const Line: AnsiString);
 begin
   if Assigned(S.Log) then
     S.Log(Line);
+end;
+
+procedure Count(var S: tDF1Station; Event: tDF1LinkEvent);
+begin
+  if Assigned(S.OnEvent) then
+    S.OnEvent(S.Data, Event);
 end;
 
 procedure StationSend(var S: tDF1Station; constref R: tSendRecord; Len: Word);
@@ -206,7 +246,7 @@ begin
   Res := SendNow(S.Chn, R, Len);
   if Res = res_Ok then
   begin
-    SlcCount(S.Table^, dgFramesOut);
+    Count(S, leFrameOut);
     if Assigned(S.Log) then
       S.Log(SentLine(S.Chn, R, Len, S.LogWire));
   end
@@ -229,7 +269,7 @@ var
   Eot: tSendRecord;
 begin
   Result := False;
-  if S.Chn^.ChReceiveReady <> CHS_ReceiveReady then
+  if (S.Chn = nil) or (S.Chn^.ChReceiveReady <> CHS_ReceiveReady) then
     Exit;
   Result := True;
   Inc(S.Messages);
@@ -241,7 +281,7 @@ begin
     Say(S, '<- broken frame: ' + S.Chn^.ChResultStr(R));
     if S.FullDup then
     begin
-      SlcCount(S.Table^, dgNaksOut);
+      Count(S, leNakOut);
       SendLink(S, False);
     end;
     Exit;
@@ -251,7 +291,7 @@ begin
     tpAckNak:
       begin
         if not S.RMess.FlAck then
-          SlcCount(S.Table^, dgNaksIn);
+          Count(S, leNakIn);
         if S.HasReply and (S.FullDup or S.AwaitAck) then
           if S.RMess.FlAck then
             S.HasReply := False            { the master has the reply }
@@ -262,7 +302,7 @@ begin
       end;
     tpEnq:
       begin
-        SlcCount(S.Table^, dgEnqsIn);
+        Count(S, leEnqIn);
         StationSend(S, S.LastLink, 2);
       end;
     tpPoll:
@@ -279,9 +319,9 @@ begin
       end;
     tpDataMess:
       begin
-        SlcCount(S.Table^, dgFramesIn);
+        Count(S, leFrameIn);
         SendLink(S, True);
-        if SlcHandle(S.Table^, S.RMess, Len, S.Reply, S.ReplyLen) then
+        if Assigned(S.Handler) and S.Handler(S.Data, S.RMess, Len, S.Reply, S.ReplyLen) then
         begin
           Inc(S.Requests);
           S.HasReply := True;
@@ -422,6 +462,8 @@ var
   OldBuf: Pointer;
   OldSize: Word;
 begin
+  if not IsDF1Channel(Chn) then
+    Exit(res_WrongLayer);
   { Rep is often a local of the caller: the channel must not keep pointing
     at it afterwards, so the caller's own receive buffer comes back }
   OldBuf := Chn^.CH_RBuff;

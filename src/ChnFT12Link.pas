@@ -105,7 +105,8 @@ procedure FT12LinkInit(var Link: tFT12Link; Addr: Word);
   FC 2 -> ACK/NACK); res_Timeout (no fitting reply after 1 + Retries
   transmissions); res_BadMessage (a reply whose function does not fit, the
   broadcast address with a function other than FC 4, SACK/SNAK as request,
-  a channel that is no tChnFT1_2 in unbalanced master mode); res_BadParam
+  a tChnFT1_2 not in unbalanced master mode); res_WrongLayer (Chn is no
+  tChnFT1_2 stack: nothing is sent); res_BadParam
   (Retries < 0, TimeoutMs < 1); a send error of the channel, or its
   ChResult when the line fails while waiting (res_DeviceLost ...), at once.
   Any result but res_Ok for an FCV = 1 or reset service clears Link.Reset. }
@@ -317,8 +318,9 @@ begin
   RepLen := 0;
   if (Retries < 0) or (TimeoutMs < 1) then
     Exit(res_BadParam);
-  if (Chn = nil) or (Chn^.CH_Type <> ChnFT1_2.cName) or
-     not pChnFT1_2(Chn)^.CH_MaSl or not pChnFT1_2(Chn)^.CH_Master then
+  if (Chn = nil) or (Chn^.CH_Type <> ChnFT1_2.cName) then
+    Exit(res_WrongLayer);
+  if not pChnFT1_2(Chn)^.CH_MaSl or not pChnFT1_2(Chn)^.CH_Master then
     Exit(res_BadMessage);
   if (ReqLen = 0) or (ReqLen > SizeOf(tSendRecord)) or
      (PByte(@Req)^ > Ord(tpLongM)) or (Req.MessType in [tpSACK, tpSNAK]) then
@@ -344,7 +346,7 @@ var
 begin
   RepLen := 0;
   if (Chn = nil) or (Chn^.CH_Type <> ChnFT1_2.cName) then
-    Exit(res_BadMessage);
+    Exit(res_WrongLayer);
   FillChar(Req, SizeOf(Req), 0);
   Req.MessType := tpShortM;
   Req.FC := FC;

@@ -71,6 +71,8 @@ const
   res_BadMessage   = 18;   { record content cannot be sent }
   res_NoMessage    = 19;   { ChReceive with no message waiting }
   res_Timeout      = 20;   { no answer in time (helpers, tools) }
+  res_WrongLayer   = 21;   { a helper got a channel of another layer type }
+  res_LastGeneral  = res_WrongLayer;   { the highest general code in use }
   res_Proto        = $20;  { first code a protocol unit may use }
 
 type
@@ -141,6 +143,7 @@ begin
     res_BadMessage:   Result := 'message cannot be sent';
     res_NoMessage:    Result := 'no message waiting';
     res_Timeout:      Result := 'timeout';
+    res_WrongLayer:   Result := 'the channel is not of the layer type this helper needs';
   else
     Result := '';
   end;

@@ -75,6 +75,7 @@ const
   res_BadMessage   = ChnTypes.res_BadMessage;
   res_NoMessage    = ChnTypes.res_NoMessage;
   res_Timeout      = ChnTypes.res_Timeout;
+  res_WrongLayer   = ChnTypes.res_WrongLayer;
   res_Proto        = ChnTypes.res_Proto;
 
 const

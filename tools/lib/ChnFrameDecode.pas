@@ -66,7 +66,7 @@ procedure DecodeRun(const Opt: tDecOptions; const Frames: tTrcFrames; Count: Lon
 implementation
 
 uses
-  SysUtils, uString, ChnDF1, ChnFT1_2, ChnICS, ChnSlc;
+  SysUtils, uString, ChnDF1, ChnFT1_2, ChnICS, ChnPcccNames;
 
 type
   { commands seen, by TNS: names the replies (which carry no FNC) }
@@ -183,7 +183,7 @@ begin
         Result := Result + Format(' STS=$%.2x TNS=$%.4x', [M.Sts, M.Tns]);
         if D.HdMaster then
           Result := Format('STN=%d ', [D.Stn]) + Result;
-        Name := SlcCommandName(Cmd, Fnc);
+        Name := PcccCommandName(Cmd, Fnc);
         if Cmd and $40 = 0 then
         begin
           Seen[Lo(M.Tns)].Used := True;
@@ -193,7 +193,7 @@ begin
         end
         else if Seen[Lo(M.Tns)].Used and (Seen[Lo(M.Tns)].Tns = M.Tns) and
                 (Seen[Lo(M.Tns)].Cmd or $40 = Cmd) then
-          Name := SlcCommandName(Cmd, Seen[Lo(M.Tns)].Fnc);
+          Name := PcccCommandName(Cmd, Seen[Lo(M.Tns)].Fnc);
         if Cmd and $40 <> 0 then
         begin
           if Name = '' then
@@ -202,9 +202,9 @@ begin
             Name := 'reply to ' + Name;
           if M.Sts <> 0 then
           begin
-            Name := Name + ', STS: ' + SlcStsText(M.Sts);
+            Name := Name + ', STS: ' + PcccStsText(M.Sts);
             if (M.Sts = $F0) and (N > 0) then
-              Name := Name + Format(', EXT STS $%.2x: %s', [M.Data[0], SlcExtStsText(M.Data[0])]);
+              Name := Name + Format(', EXT STS $%.2x: %s', [M.Data[0], PcccExtStsText(M.Data[0])]);
           end;
         end
         else if Name = '' then
