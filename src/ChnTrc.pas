@@ -75,7 +75,7 @@ type
     procedure ChReceiveTick; virtual;
     procedure ChDestNode(DNode: tNode); virtual;
     procedure ChGetNode(var SNode, DNode: tNode); virtual;
-    function  ChResultStr(R: tChResult): string; virtual;
+    function  ChResultStr(R: tChResult): ShortString; virtual;
     { Write one entry to the log (also usable by tools for their own notes). }
     procedure ChTrcLog(Dir: tTrcDir; Buff: Pointer; Len: Word);
     function  PcapStart: Boolean;
@@ -394,7 +394,7 @@ begin
     inherited ChGetNode(SNode, DNode);
 end;
 
-function tChnTrc.ChResultStr(R: tChResult): string;
+function tChnTrc.ChResultStr(R: tChResult): ShortString;
 begin
   { results from res_Proto up come from the layer below (TRC's own codes
     of that range belong to the log reader, never to the layer) }
