@@ -86,7 +86,7 @@ type
     Swapped : Boolean;             { the file is big-endian }
     LinkType: LongWord;
     ErrPos  : LongInt;             { byte offset of the culprit (result <> res_Ok) }
-    ErrText : string;              { what is wrong there }
+    ErrText : ShortString;         { what is wrong there }
   end;
 
 { The 24-byte file header (little-endian, link type 250). }
