@@ -107,7 +107,7 @@ type
     procedure ChReceiveFlush; virtual;
     { --- additions of the port --- }
     { The device path COM=/DEV= stand for now. }
-    function  ChDevicePath: string;
+    function  ChDevicePath: ShortString;
     { Modem lines, for applications that drive them by hand. }
     function  ChSetRts(On: Boolean): tChResult;
     function  ChSetDtr(On: Boolean): tChResult;
@@ -123,7 +123,7 @@ type
     procedure ComPumpTx;
     procedure ComFreeBuffers;
     { ' LRB=.. LSB=.. IDL=..' for ChOwnParams }
-    function  ComBufferText: string;
+    function  ComBufferText: ShortString;
   end;
 
   pAddChnCom = ^tAddChnCom;
@@ -132,7 +132,7 @@ type
   end;
 
 { ' BD=.. BIT=.. STOP=.. PAR=.. FLW=..' as ChGetParam reports them. }
-function ComLineText(const S: tPortSettings): string;
+function ComLineText(const S: tPortSettings): ShortString;
 
 implementation
 
@@ -308,19 +308,19 @@ begin
   Result := R;
 end;
 
-function ComLineText(const S: tPortSettings): string;
+function ComLineText(const S: tPortSettings): ShortString;
 begin
   Result := ParamText('BD', S.Baud) + ParamText('BIT', S.DataBits) +
     ParamText('STOP', S.StopBits) + ' PAR=' + ParityLetters[S.Parity] +
     ' FLW=' + FlowNames[S.Flow];
 end;
 
-function tChnCom.ComBufferText: string;
+function tChnCom.ComBufferText: ShortString;
 begin
   Result := ParamText('LRB', CH_LRB) + ParamText('LSB', CH_LSB) + ParamText('IDL', CH_Idle);
 end;
 
-function tChnCom.ChDevicePath: string;
+function tChnCom.ChDevicePath: ShortString;
 begin
   if CH_Dev <> '' then
     Result := CH_Dev

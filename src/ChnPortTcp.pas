@@ -31,7 +31,7 @@ type
   private
     FSock, FListen: tSock;
     FAddrs: tSockAddrs;
-    FAddrCount, FAddrNext: Integer;
+    FAddrCount, FAddrNext: LongInt;
     FDec: tTelnetDecoder;
     FNeg: tTelnetNeg;
     FOut: array of Byte;            { Telnet: encoded bytes not yet sent }
@@ -40,7 +40,7 @@ type
     FEarlyLen, FEarlyPos: LongInt;
     FWant: tPortSettings;           { what Configure asked for }
     FAsked: array[CPO_SETBAUDRATE..CPO_SETCONTROL] of Boolean;  { answer due }
-    FBad: string;                   { a setting the server answered otherwise }
+    FBad: ShortString;                  { a setting the server answered otherwise }
     FModem: Byte;                   { last NOTIFY-MODEMSTATE }
     FLineOverruns: LongWord;
     FConnecting: Boolean;
@@ -57,12 +57,12 @@ type
     procedure TakeClient;
   public
     { set before Open/Connect/Listen }
-    Host       : string;
+    Host       : ShortString;
     Port       : Word;
     ConnectMs  : LongInt;
     Rfc2217    : Boolean;
     { after a failure: the parameter key at fault ('HOST', 'BD', ...) }
-    FailKey    : string;
+    FailKey    : ShortString;
     { Open ignores Path: Connect, or Listen when IsServer }
     IsServer   : Boolean;
     constructor Create; override;

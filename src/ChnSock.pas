@@ -40,8 +40,8 @@ type
 
 { Addresses of Host (name, IPv4 or IPv6 literal; '' = loopback when not
   Passive, all interfaces when Passive) and Port, in the system's order. }
-function  SockResolve(const Host: string; Port: Word; Passive: Boolean;
-  out Addrs: tSockAddrs; out Count: Integer): tSockErr;
+function  SockResolve(const Host: ShortString; Port: Word; Passive: Boolean;
+  out Addrs: tSockAddrs; out Count: LongInt): tSockErr;
 { Start a non-blocking connect; seOk when already connected, seWouldBlock
   while in progress (finish with SockConnectDone). S is NoSock on failure. }
 function  SockConnectStart(const A: tSockAddr; out S: tSock): tSockErr;
@@ -70,7 +70,7 @@ function  SockOutQueue(S: tSock): LongInt;
 { The local port a socket is bound to (LISTEN=...:0 picks a free one). }
 function  SockLocalPort(S: tSock): Word;
 { 'a.b.c.d:port' or '[v6]:port' of the local end, '' when unknown. }
-function  SockLocalName(S: tSock): string;
+function  SockLocalName(S: tSock): ShortString;
 procedure SockClose(var S: tSock);
 { The OS error code of the last failing call, for messages. }
 function  SockLastOsError: LongInt;
@@ -251,8 +251,8 @@ end;
 
 { ---- portable over the sockets unit ---- }
 
-function SockResolve(const Host: string; Port: Word; Passive: Boolean;
-  out Addrs: tSockAddrs; out Count: Integer): tSockErr;
+function SockResolve(const Host: ShortString; Port: Word; Passive: Boolean;
+  out Addrs: tSockAddrs; out Count: LongInt): tSockErr;
 var
   Hints: TAddrInfo;
   Res, P: PAddrInfo;
@@ -452,7 +452,7 @@ begin
     Result := seLost;
 end;
 
-function SockLocalName(S: tSock): string;
+function SockLocalName(S: tSock): ShortString;
 var
   A: tSockAddr;
   L: TSockLen;

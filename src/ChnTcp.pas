@@ -81,14 +81,14 @@ type
   end;
 
 { Split 'addr:port', 'port' or '[v6addr]:port'; False when malformed. }
-function SplitHostPort(const S: string; out Host: string; out Port: LongInt): Boolean;
+function SplitHostPort(const S: ShortString; out Host: ShortString; out Port: LongInt): Boolean;
 
 implementation
 
 uses
   SysUtils, uString;
 
-function SplitHostPort(const S: string; out Host: string; out Port: LongInt): Boolean;
+function SplitHostPort(const S: ShortString; out Host: ShortString; out Port: LongInt): Boolean;
 var
   P: Integer;
   PortText: string;
@@ -141,7 +141,8 @@ end;
 
 function tChnTcp.ChSetOneParam(const S: tWordString; var CmdL: tCmd): tChResult;
 var
-  Key, H: string;
+  Key: string;
+  H: ShortString;
   N: LongInt;
 begin
   Key := ParamKey(S);
@@ -198,7 +199,7 @@ end;
 
 function tChnTcp.TcpNewPort: TChnPortTcp;
 var
-  H: string;
+  H: ShortString;
   N: LongInt;
 begin
   Result := TChnPortTcp.Create;

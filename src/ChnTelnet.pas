@@ -110,7 +110,7 @@ function  TelnetCmd(var Dst; Cmd, Opt: Byte): LongInt;
 function  ComPortCmd(var Dst; Code: Byte; const Value; ValLen: LongInt): LongInt;
 { The 4-byte big-endian value of SET-BAUDRATE and back. }
 procedure BaudToBytes(Baud: LongWord; var B: array of Byte);
-function  BytesToBaud(const B: array of Byte; Ofs: Integer): LongWord;
+function  BytesToBaud(const B: array of Byte; Ofs: LongInt): LongWord;
 
 implementation
 
@@ -345,7 +345,7 @@ begin
   B[3] := Byte(Baud);
 end;
 
-function BytesToBaud(const B: array of Byte; Ofs: Integer): LongWord;
+function BytesToBaud(const B: array of Byte; Ofs: LongInt): LongWord;
 begin
   Result := (LongWord(B[Ofs]) shl 24) or (LongWord(B[Ofs + 1]) shl 16) or
     (LongWord(B[Ofs + 2]) shl 8) or LongWord(B[Ofs + 3]);
