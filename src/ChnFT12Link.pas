@@ -163,7 +163,7 @@ type
     RMess      : tRecRecord;
     { settings (FT12BalancedInit gives the defaults) }
     TimeoutMs  : LongInt;     { wait for an answer (FT12LinkTimeoutMs) }
-    Retries    : Integer;     { repetitions before the link counts as lost }
+    Retries    : SmallInt;    { repetitions before the link counts as lost }
     TestMs     : LongInt;     { test function after this long without a
                                 request of ours; 0 = never }
     Dfc        : Boolean;     { DFC sent in every answer (set by the application) }
@@ -173,13 +173,13 @@ type
     Out        : tSendRecord; { that request, for repetitions }
     OutLen     : Word;
     Fcb        : Boolean;     { FCB of the next new FCV = 1 transmission }
-    Tries      : Integer;     { transmissions of Out so far }
+    Tries      : SmallInt;    { transmissions of Out so far }
     SentAt     : QWord;       { when Out went out the last time }
     LastRequest: QWord;       { when a request of ours last went out }
     HoldUntil  : QWord;       { no new request before (NACK, DFC) }
     PeerDfc    : Boolean;     { DFC of the peer's last answer }
     Queue      : array[0..FT12BalQueueLen - 1] of tFT12BalUserData;
-    QHead, QCount: Integer;
+    QHead, QCount: SmallInt;
     { secondary }
     HasReply   : Boolean;     { an FCV = 1 frame was accepted since the reset }
     LastFcb    : Boolean;     { its FCB }
@@ -216,7 +216,7 @@ function FT12BalancedSend(var B: tFT12Balanced; Buf: PByte; Len: Word;
 function FT12BalancedStep(var B: tFT12Balanced): Boolean;
 { Nothing queued and no request outstanding. }
 function FT12BalancedQuiet(const B: tFT12Balanced): Boolean;
-function FT12BalStateName(S: tFT12BalState): string;
+function FT12BalStateName(S: tFT12BalState): ShortString;
 
 implementation
 
@@ -599,7 +599,7 @@ end;
 
 { ------------------------------------------------------------ balanced }
 
-function FT12BalStateName(S: tFT12BalState): string;
+function FT12BalStateName(S: tFT12BalState): ShortString;
 begin
   case S of
     bsIdle:          Result := 'IDLE';
