@@ -13,6 +13,7 @@ FPC=${FPC:-fpc}
 FILTER=${T:-}
 passed=0
 failed=0
+skipped=0
 pass() { passed=$((passed + 1)); echo "ok    $1"; }
 fail() { failed=$((failed + 1)); echo "FAIL  $1"; }
 
@@ -26,8 +27,8 @@ res=$(grep '^RESULT ' "$out" | tail -n 1)
 if [ -z "$res" ]; then
   fail "runtests crashed (exit $rc) before it finished"
 else
-  read -r _ p f <<<"$res"
-  passed=$((passed + p)); failed=$((failed + f))
+  read -r _ p f s <<<"$res"
+  passed=$((passed + p)); failed=$((failed + f)); skipped=$((skipped + ${s:-0}))
   [ "$rc" = 0 ] || [ "$f" -gt 0 ] || fail "runtests exit code $rc"
 fi
 
@@ -71,9 +72,12 @@ done
 
 # a T= filter that selects nothing is a mistake, not a pass (the heap
 # check always runs, so it alone means nothing was selected)
-if [ -n "$FILTER" ] && [ "$passed" -le 1 ] && [ "$failed" = 0 ]; then
+if [ -n "$FILTER" ] && [ "$passed" -le 1 ] && [ "$failed" = 0 ] && [ "$skipped" = 0 ]; then
   fail "T=$FILTER selects no test"
 fi
 
+# skipped tests (an optional program missing) are listed with their reason
+# by runtests ("skip  Test: why"); the count comes before the last line
+[ "$skipped" = 0 ] || echo "$skipped skipped (an optional program is missing: see the skip lines)"
 echo "$passed passed, $failed failed"
 [ "$failed" = 0 ]
