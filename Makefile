@@ -1,29 +1,42 @@
-# Chn unit library - build, test, demo.
-#   make            all units, examples and tools into $(BUILD)
-#   make test       the regression suite (FPCUnit + heap check + legacy modes)
-#   make test T=DF1 only tests whose name contains DF1
-#   make demo       a DF1 exchange on this machine, no hardware needed
-#   make bench      codec and channel benchmarks
-#   make fuzz       random-mutation fuzzing of the codecs (SECONDS=10)
-#   make wintest    the suite as win64 programs under Wine (docs/Windows.md)
+# Chn unit library - build, test, install, demo.
+#   make              the library units, examples and tools into $(BUILD)
+#                     (incremental: only what changed is rebuilt)
+#   make test         the regression suite (FPCUnit + heap check + legacy modes)
+#   make test T=DF1   only tests whose name contains DF1
+#   make install      units (and sources) where Debian's fpc finds them;
+#                     PREFIX=/usr (default), DESTDIR=, or PREFIX=$HOME/.fppkg
+#   make uninstall    removes what install put there
+#   make demo         a DF1 exchange on this machine, no hardware needed
+#   make bench        codec and channel benchmarks
+#   make fuzz         random-mutation fuzzing of the codecs (SECONDS=10)
+#   make wintest      the suite as win64 programs under Wine (docs/Windows.md)
 #   make clean
 # Optional: SYNAPSE_DIR=/path/to/synapse builds the Synapse serial backend.
+#
+# Layout: src/ is the library and nothing else; tools/lib/ holds units that
+# only tools use (the simulator's table, the frame decoder); tests/support/
+# only tests. Release units never see tests/.
 
 FPC      ?= fpc
 BUILD    ?= build
 UNITDIR  := $(BUILD)/units
+TOOLUNITDIR := $(BUILD)/tool-units
 BINDIR   := $(BUILD)/bin
 TUNITDIR := $(BUILD)/test-units
 TBINDIR  := $(BUILD)/test-bin
 DEB_PACKAGES := fp-compiler fp-units-rtl fp-units-base fp-units-fcl
 
 SYNAPSE_FLAGS := $(if $(SYNAPSE_DIR),-Fu$(SYNAPSE_DIR) -Fi$(SYNAPSE_DIR) -dCHN_SYNAPSE)
-COMMON   := -Fusrc -Fisrc -Futests/support $(SYNAPSE_FLAGS) -v0ew -l-
-# units: warnings are errors; release code is optimised
-UNITFLAGS := $(COMMON) -O2 -Sew -FU$(UNITDIR) -FE$(BINDIR)
+COMMON   := -Fisrc $(SYNAPSE_FLAGS) -v0ew -l-
+# library units: warnings are errors; release code is optimised
+UNITFLAGS := $(COMMON) -Fusrc -O2 -Sew -FU$(UNITDIR) -FE$(BINDIR)
+# examples, tools, benchmarks: the compiled library (as an installed one
+# would be used), plus tools/lib
+PROGFLAGS := $(COMMON) -Fu$(UNITDIR) -Futools/lib -O2 -Sew -FU$(TOOLUNITDIR) -FE$(BINDIR)
 # tests: range, overflow and stack checks, heaptrc, line info; -B rebuilds
 # everything, as FPC's one-second timestamps can miss a quick edit
-TESTFLAGS := $(COMMON) -B -Cr -Co -Ct -gh -gl -FU$(TUNITDIR) -FE$(TBINDIR) -Fi$(BUILD)
+TESTFLAGS := $(COMMON) -Fusrc -Futools/lib -Futests/support -B -Cr -Co -Ct -gh -gl \
+             -FU$(TUNITDIR) -FE$(TBINDIR) -Fi$(BUILD)
 
 # Units that only build on another OS or with an optional library.
 ifeq ($(OS),Windows_NT)
@@ -32,15 +45,23 @@ else
 OS_UNITS := src/ChnPortWin.pas
 endif
 OPTIONAL_UNITS := $(if $(SYNAPSE_DIR),,src/ChnPortSynapse.pas) $(OS_UNITS)
+LIBSRC   := $(wildcard src/*.pas) src/chn.inc
 UNITS    := $(filter-out $(OPTIONAL_UNITS),$(wildcard src/*.pas))
+TOOLLIB  := $(wildcard tools/lib/*.pas)
 EXAMPLES := $(wildcard examples/*.pas)
 TOOLS    := $(wildcard tools/*.pas)
 BENCHES  := $(wildcard bench/*.pas)
 TESTUNITS := $(wildcard tests/Test*.pas)
+PROGRAMS := $(EXAMPLES) $(TOOLS)
+PROGBINS := $(addprefix $(BINDIR)/,$(basename $(notdir $(PROGRAMS))))
+BENCHBINS := $(addprefix $(BINDIR)/,$(basename $(notdir $(BENCHES))))
 
-.PHONY: all units examples tools test demo bench fuzz wintest clean check-fpc dirs
+.PHONY: all units examples tools test demo bench fuzz wintest clean check-fpc \
+        install uninstall
 
-all: units examples tools
+all: units $(PROGBINS)
+examples: $(addprefix $(BINDIR)/,$(basename $(notdir $(EXAMPLES))))
+tools: $(addprefix $(BINDIR)/,$(basename $(notdir $(TOOLS))))
 
 check-fpc:
 	@command -v $(FPC) >/dev/null 2>&1 || { \
@@ -52,20 +73,29 @@ check-fpc:
 	    echo "  sudo apt-get install -y $(DEB_PACKAGES)"; exit 1; \
 	  fi; }
 
-dirs:
-	@mkdir -p $(UNITDIR) $(BINDIR) $(TUNITDIR) $(TBINDIR)
+# Every library unit, compiled once by one fpc call on a generated unit
+# that uses them all; fpc itself recompiles only what changed.
+units: $(BUILD)/units.stamp
+$(BUILD)/units.stamp: $(LIBSRC) | check-fpc
+	@mkdir -p $(UNITDIR) $(BINDIR)
+	@$(if $(SYNAPSE_DIR),$(FPC) $(COMMON) -O2 -FU$(UNITDIR) -FE$(BINDIR) $(SYNAPSE_DIR)/synaser.pas >/dev/null;) true
+	@{ echo 'unit chnall; interface uses'; \
+	   echo '$(basename $(notdir $(UNITS)))' | sed 's/ /, /g'; \
+	   echo '; implementation end.'; } > $(BUILD)/chnall.pas
+	$(FPC) $(UNITFLAGS) $(BUILD)/chnall.pas
+	@touch $@
 
-# Synapse is third-party code with warnings of its own: build it first
-# without -Sew, so our units (built with -Sew) find its compiled units.
-units: check-fpc dirs
-	@set -e; $(if $(SYNAPSE_DIR),$(FPC) $(COMMON) -O2 -FU$(UNITDIR) -FE$(BINDIR) $(SYNAPSE_DIR)/synaser.pas >/dev/null;) \
-	for u in $(UNITS); do $(FPC) $(UNITFLAGS) $$u; done
+# Which sources each program depends on (from the uses clauses).
+$(BUILD)/deps.mk: $(LIBSRC) $(TOOLLIB) $(PROGRAMS) $(BENCHES) tools/mkdeps.sh
+	@mkdir -p $(BUILD)
+	@bash tools/mkdeps.sh $(BINDIR) src tools/lib -- $(PROGRAMS) $(BENCHES) > $@.tmp && mv $@.tmp $@
+-include $(BUILD)/deps.mk
 
-examples: units
-	@set -e; for p in $(EXAMPLES); do $(FPC) $(UNITFLAGS) $$p; done
-
-tools: units
-	@set -e; for p in $(TOOLS); do $(FPC) $(UNITFLAGS) $$p; done
+# One program: its units are current (units.stamp), so fpc compiles the
+# program (and any tools/lib unit it uses) and links.
+$(PROGBINS) $(BENCHBINS): $(BUILD)/units.stamp src/chn.inc
+	@mkdir -p $(TOOLUNITDIR)
+	$(FPC) $(PROGFLAGS) $(filter %/$(notdir $@).pas,$(PROGRAMS) $(BENCHES))
 
 # The runner's uses clause is generated from tests/Test*.pas, so adding a
 # test unit needs no edit anywhere else. Units that need Unix as a whole
@@ -74,30 +104,57 @@ tools: units
 UNIX_TESTS := TestChnPty
 comma := ,
 uses_entry = $(if $(filter $(1),$(UNIX_TESTS)),'{$$IFDEF UNIX}$(1)$(comma){$$ENDIF}','$(1)$(comma)')
-$(BUILD)/testunits.inc: $(TESTUNITS) | dirs
+$(BUILD)/testunits.inc: $(TESTUNITS)
+	@mkdir -p $(BUILD)
 	@printf '%s\n' $(foreach t,$(basename $(notdir $(TESTUNITS))),$(call uses_entry,$(t))) > $@.tmp
 	@cmp -s $@.tmp $@ 2>/dev/null && rm -f $@.tmp || mv $@.tmp $@
 
 test: all $(BUILD)/testunits.inc
+	@mkdir -p $(TUNITDIR) $(TBINDIR)
 	@$(FPC) $(TESTFLAGS) tests/runtests.pas >$(BUILD)/test-build.log 2>&1 || { cat $(BUILD)/test-build.log; echo "0 passed, 1 failed"; exit 1; }
 	@BUILD=$(BUILD) FPC=$(FPC) T="$(T)" bash tests/run.sh
 
 demo: all
 	@bash tools/demo.sh $(BUILD)
 
-bench: units
-	@set -e; for p in $(BENCHES); do $(FPC) $(UNITFLAGS) $$p; $(BINDIR)/$$(basename $$p .pas); done
+bench: $(BENCHBINS)
+	@set -e; for b in $(BENCHBINS); do $$b; done
 
 # Random-mutation fuzzing of the three codecs with run-time checks on;
 # SECONDS=n for longer runs, SEED=n to repeat one.
 SECONDS ?= 10
 fuzz: units
+	@mkdir -p $(TUNITDIR) $(TBINDIR)
 	@$(FPC) $(TESTFLAGS) tests/fuzz/fuzzcodecs.pas >$(BUILD)/fuzz-build.log 2>&1 || { cat $(BUILD)/fuzz-build.log; exit 1; }
 	@rm -f $(BUILD)/fuzz-heap.log; HEAPTRC="log=$(BUILD)/fuzz-heap.log" $(TBINDIR)/fuzzcodecs $(SECONDS) $(SEED)
 
 # Cross-built for win64 and run under Wine; not part of test (CI has no Wine).
 wintest: all $(BUILD)/testunits.inc
 	@BUILD=$(BUILD) FPC=$(FPC) T="$(T)" SYNAPSE_DIR="$(SYNAPSE_DIR)" bash tools/wintest.sh
+
+# ---------------------------------------------------------------- install
+# Debian's /etc/fpc.cfg searches /usr/lib/<multiarch>/fpc/<version>/units/
+# <target>/* and, per user, ~/.fppkg/lib/fpc/<version>/units/<target>/*:
+# the units go into a folder "chn" there, the sources (for debugging and
+# the Lazarus package) into $(PREFIX)/share/chn.
+PREFIX   ?= /usr
+FPCVER    = $(shell $(FPC) -iV)
+FPCTARGET = $(shell $(FPC) -iTP)-$(shell $(FPC) -iTO)
+MULTIARCH = $(shell gcc -print-multiarch 2>/dev/null || dpkg-architecture -qDEB_HOST_MULTIARCH 2>/dev/null)
+FPCLIBDIR = $(if $(filter /usr,$(PREFIX)),$(PREFIX)/lib/$(MULTIARCH)/fpc,$(PREFIX)/lib/fpc)
+INSTALL_UNITDIR ?= $(FPCLIBDIR)/$(FPCVER)/units/$(FPCTARGET)/chn
+INSTALL_SRCDIR  ?= $(PREFIX)/share/chn
+
+install: units
+	@set -e; d='$(DESTDIR)$(INSTALL_UNITDIR)'; s='$(DESTDIR)$(INSTALL_SRCDIR)'; \
+	mkdir -p "$$d" "$$s/src"; \
+	for u in $(basename $(notdir $(UNITS))); do l=$$(echo $$u | tr A-Z a-z); \
+	  install -m 644 $(UNITDIR)/$$l.ppu $(UNITDIR)/$$l.o "$$d/"; done; \
+	install -m 644 $(LIBSRC) "$$s/src/"; install -m 644 chn.lpk "$$s/"; \
+	echo "installed units in $$d, sources in $$s"
+
+uninstall:
+	rm -rf '$(DESTDIR)$(INSTALL_UNITDIR)' '$(DESTDIR)$(INSTALL_SRCDIR)'
 
 clean:
 	rm -rf $(BUILD)

@@ -59,7 +59,7 @@ begin
   S := Open(SlaveParams);
   WriteLn('master: ', M^.ChGetParam(''));
   WriteLn('slave : ', S^.ChGetParam(''));
-  DF1StationInit(Slave, S, @Table);
+  SlcStationInit(Slave, S, @Table);
   Slave.Log := @SlaveLog;
   Slave.LogWire := True;
   { the Echo command of manual section 6.3.1 }

@@ -16,7 +16,7 @@ program df1read;
 uses
   {$IFDEF UNIX}cthreads,{$ENDIF}
   SysUtils, uString, ChnTypes, ChnVirt, ChnLoop, ChnCom, ChnTrc, ChnDF1,
-  ChnSlc, ChnDF1Link;
+  ChnSlc, ChnDF1Link, ChnPcccNames;
 
 var
   Chn: pChnVirt;
@@ -113,9 +113,9 @@ begin
   WriteLn('df1read: ', DF1Describe(Rep, RepLen));
   if Rep.Sts <> 0 then
   begin
-    Arg := SlcStsText(Rep.Sts);
+    Arg := PcccStsText(Rep.Sts);
     if (Rep.Sts = sts_ExtSts) and (RepLen > 8) then
-      Arg := Arg + ': ' + SlcExtStsText(Rep.Data[0]);
+      Arg := Arg + ': ' + PcccExtStsText(Rep.Data[0]);
     Fail(Format('error reply STS $%.2x (%s)', [Rep.Sts, Arg]), 3);
   end;
   if RepLen - 8 <> Count * ES then

@@ -72,7 +72,7 @@ begin
     WriteLn('df1slave: note: MAS=MASTER given; answering anyway');
   WriteLn('df1slave: ', Chn^.ChGetParam(''));
   SlcLoadDefault(Table);
-  DF1StationInit(Slave, Chn, @Table);
+  SlcStationInit(Slave, Chn, @Table);
   Slave.Log := @SlaveLog;
   Slave.LogWire := True;
   LastMsg := ChMsTick;

@@ -7,7 +7,9 @@
     again on a NAK of it; half duplex - ACK, keep the reply for the
     master's poll, EOT when there is nothing to send, and stay silent on a
     broken frame (a half-duplex slave never NAKs). Commands are answered by
-    ChnSlc.SlcHandle from a tSlcTable.
+    a handler the application gives (tools/df1sim plugs in its data table);
+    link events (frames in and out, NAKs, ENQs) can be counted through an
+    optional callback.
   * DF1Transact, a master: send a command, up to three tries (NAK or
     no answer -> again; full duplex asks with ENQ first), then wait for the
     reply (half duplex: poll for it), ACK it.
@@ -23,12 +25,11 @@
 unit ChnDF1Link;
 
 {$I chn.inc}
-{$H+}
 
 interface
 
 uses
-  ChnTypes, ChnVirt, ChnDF1, ChnSlc;
+  ChnTypes, ChnVirt, ChnDF1, ChnPcccNames;
 
 const
   DF1LinkTimeoutMs = 1000;   { the RACOM note's link timeout }
@@ -36,12 +37,23 @@ const
 
 type
   tDF1Idle = procedure(Data: Pointer);
-  tDF1LogProc = procedure(const Line: string);
+  tDF1LogProc = procedure(const Line: AnsiString);
+
+  { Answer one command (Cmd/CmdLen as received, Len = 8 + data bytes):
+    fill Reply/ReplyLen and return True, or False to send no reply. }
+  tDF1Handler = function(Data: Pointer; constref Cmd: tRecRecord; CmdLen: Word;
+    var Reply: tSendRecord; var ReplyLen: Word): Boolean;
+  { What a station counts: a good frame in, a frame out, a broken frame
+    NAKed, an ENQ in, a NAK in. }
+  tDF1LinkEvent = (leFrameIn, leFrameOut, leNakOut, leEnqIn, leNakIn);
+  tDF1EventProc = procedure(Data: Pointer; Event: tDF1LinkEvent);
 
   pDF1Station = ^tDF1Station;
   tDF1Station = record
     Chn      : pChnVirt;
-    Table    : pSlcTable;
+    Handler  : tDF1Handler;
+    Data     : Pointer;       { given to Handler and OnEvent }
+    OnEvent  : tDF1EventProc; { nil: nothing counted }
     FullDup  : Boolean;
     RMess    : tRecRecord;
     Reply    : tSendRecord;
@@ -55,40 +67,94 @@ type
     LogWire  : Boolean;       { lines of sent frames end with the wire bytes }
   end;
 
-procedure DF1StationInit(var S: tDF1Station; Chn: pChnVirt; Table: pSlcTable);
-{ Take at most one message and act on it; False when none was waiting. }
+{ Set S up on Chn (a tChnDF1 stack) with the command handler and its data.
+  res_WrongLayer (and a station that reads nothing) when Chn is not DF1. }
+function DF1StationInit(var S: tDF1Station; Chn: pChnVirt; Handler: tDF1Handler;
+  Data: Pointer): tChResult;
+{ Take at most one message and act on it; False when none was waiting (or
+  the station has no DF1 channel). }
 function DF1StationStep(var S: tDF1Station): Boolean;
 
 { One command/reply exchange as a master. Req/ReqLen the command; the reply
   goes to Rep (RepLen); the channel's receive buffer is the caller's again
   afterwards (ChReceiveBuffer before the call stays in force). Results:
   res_Ok; res_Timeout (no ACK after the tries, or no reply); res_BadMessage
-  (a reply with another TNS or command); a send error of the channel, or
+  (a reply with another TNS or command); res_WrongLayer (Chn is not a
+  tChnDF1 stack: nothing is sent); a send error of the channel, or
   its ChResult when the line fails (res_DeviceLost ...) while waiting for
   the reply. Idle and Log may be nil; LogWire as in tDF1Station. }
 function DF1Transact(Chn: pChnVirt; constref Req: tSendRecord; ReqLen: Word;
   var Rep: tRecRecord; var RepLen: Word; Idle: tDF1Idle; IdleData: Pointer;
   TimeoutMs: LongInt; Log: tDF1LogProc = nil; LogWire: Boolean = False): tChResult;
 
+{ The same exchange stepped by the caller's poll loop (a program that must
+  keep serving other lines): DF1MasterStart sends the command, then each
+  DF1MasterStep looks at the channel once, without waiting, and returns
+  True when the exchange is over; M.Result is then what DF1Transact would
+  return, M.Rep/M.RepLen the reply, M.Naks the NAKs the command got. M
+  must stay where it is until then (the channel receives into M.Rep); the
+  channel's receive buffer is given back at the end. }
+type
+  tDF1MasterState = (dmWaitAck, dmWaitReply, dmDone);
+  tDF1Master = record
+    Chn      : pChnVirt;
+    Req      : tSendRecord;
+    ReqLen   : Word;
+    Rep      : tRecRecord;
+    RepLen   : Word;
+    State    : tDF1MasterState;
+    Result   : tChResult;
+    Tries    : LongInt;
+    Naks     : LongInt;
+    EnqSent  : Boolean;
+    FullDup  : Boolean;
+    TimeoutMs: LongInt;
+    Until_   : QWord;          { end of the current wait }
+    Deadline : QWord;          { end of the wait for the reply }
+    OldBuf   : Pointer;
+    OldSize  : Word;
+    Log      : tDF1LogProc;
+    LogWire  : Boolean;
+  end;
+
+{ Start an exchange; False (M.Result says why, M.State = dmDone) when
+  nothing could be sent. }
+function DF1MasterStart(var M: tDF1Master; Chn: pChnVirt; constref Req: tSendRecord;
+  ReqLen: Word; TimeoutMs: LongInt; Log: tDF1LogProc = nil; LogWire: Boolean = False): Boolean;
+{ One look at the channel; True when the exchange is over (M.State = dmDone). }
+function DF1MasterStep(var M: tDF1Master): Boolean;
+
+{ True when Chn is the top of a tChnDF1 stack. }
+
+function IsDF1Channel(Chn: pChnVirt): Boolean;
 { One line describing a record, for logs. }
-function DF1Describe(const R: tRecRecord; Len: Word): string;
+function DF1Describe(const R: tRecRecord; Len: Word): AnsiString;
 { The wire bytes of the frame Chn (a tChnDF1) sent last, as hex
-  ('10 02 ... 10 03 E3 88'): framing, DLE doubling and checksum included. }
-function DF1WireText(Chn: pChnVirt): string;
+  ('10 02 ... 10 03 E3 88'): framing, DLE doubling and checksum included;
+  '' for a channel that is no tChnDF1. }
+function DF1WireText(Chn: pChnVirt): AnsiString;
 
 { A new tChnDF1 stack (its lower layers' units must be linked in) with
   Params set, opened and connected, waiting at most TimeoutMs for each
   state. nil on failure, with Err saying which step failed and why. }
-function DF1OpenStack(const Params: string; TimeoutMs: LongInt; out Err: string): pChnVirt;
+function DF1OpenStack(const Params: AnsiString; TimeoutMs: LongInt; out Err: AnsiString): pChnVirt;
 
 implementation
 
 uses
   SysUtils, uString;
 
-function DF1WireText(Chn: pChnVirt): string;
+function IsDF1Channel(Chn: pChnVirt): Boolean;
 begin
-  Result := HexBytes(pChnDF1(Chn)^.CH_SBuff, pChnDF1(Chn)^.CH_SLen);
+  Result := (Chn <> nil) and (Chn^.CH_Type = ChnDF1.cName);
+end;
+
+function DF1WireText(Chn: pChnVirt): AnsiString;
+begin
+  if IsDF1Channel(Chn) then
+    Result := HexBytes(pChnDF1(Chn)^.CH_SBuff, pChnDF1(Chn)^.CH_SLen)
+  else
+    Result := '';
 end;
 
 { Wait until Chn reaches Want, an error result or the deadline. }
@@ -99,9 +165,9 @@ begin
   Result := Chn^.ChReady = Want;
 end;
 
-function DF1OpenStack(const Params: string; TimeoutMs: LongInt; out Err: string): pChnVirt;
+function DF1OpenStack(const Params: AnsiString; TimeoutMs: LongInt; out Err: AnsiString): pChnVirt;
 var
-  Step: string;
+  Step: AnsiString;
   R: tChResult;
 begin
   Err := '';
@@ -136,16 +202,16 @@ begin
 end;
 
 { '-> ' + the record [+ its wire bytes] }
-function SentLine(Chn: pChnVirt; constref R: tSendRecord; Len: Word; Wire: Boolean): string;
+function SentLine(Chn: pChnVirt; constref R: tSendRecord; Len: Word; Wire: Boolean): AnsiString;
 begin
   Result := '-> ' + DF1Describe(R, Len);
   if Wire then
     Result := Result + '   [' + DF1WireText(Chn) + ']';
 end;
 
-function DF1Describe(const R: tRecRecord; Len: Word): string;
+function DF1Describe(const R: tRecRecord; Len: Word): AnsiString;
 var
-  Name: string;
+  Name: AnsiString;
 begin
   case R.MessType of
     tpAckNak:
@@ -162,7 +228,7 @@ begin
           Name := 'reply CMD=$' + IntToHex(Hi(R.CF), 2)   { replies carry no FNC }
         else
         begin
-          Name := SlcCommandName(Hi(R.CF), Lo(R.CF));
+          Name := PcccCommandName(Hi(R.CF), Lo(R.CF));
           if Name = '' then
             Name := 'CF=$' + IntToHex(R.CF, 4);
         end;
@@ -183,21 +249,32 @@ end;
 
 { ------------------------------------------------------------- station }
 
-procedure DF1StationInit(var S: tDF1Station; Chn: pChnVirt; Table: pSlcTable);
+function DF1StationInit(var S: tDF1Station; Chn: pChnVirt; Handler: tDF1Handler;
+  Data: Pointer): tChResult;
 begin
   FillChar(S, SizeOf(S), 0);
-  S.Chn := Chn;
-  S.Table := Table;
-  S.FullDup := pChnDF1(Chn)^.CH_FullDup;
   S.LastLink.MessType := tpAckNak;
   S.LastLink.FlAck := False;    { ENQ before anything: NAK }
+  if not IsDF1Channel(Chn) then
+    Exit(res_WrongLayer);       { S.Chn stays nil: the station reads nothing }
+  S.Chn := Chn;
+  S.Handler := Handler;
+  S.Data := Data;
+  S.FullDup := pChnDF1(Chn)^.CH_FullDup;
   Chn^.ChReceiveBuffer(@S.RMess, SizeOf(S.RMess));
+  Result := res_Ok;
 end;
 
-procedure Say(var S: tDF1Station; const Line: string);
+procedure Say(var S: tDF1Station; const Line: AnsiString);
 begin
   if Assigned(S.Log) then
     S.Log(Line);
+end;
+
+procedure Count(var S: tDF1Station; Event: tDF1LinkEvent);
+begin
+  if Assigned(S.OnEvent) then
+    S.OnEvent(S.Data, Event);
 end;
 
 procedure StationSend(var S: tDF1Station; constref R: tSendRecord; Len: Word);
@@ -207,7 +284,7 @@ begin
   Res := SendNow(S.Chn, R, Len);
   if Res = res_Ok then
   begin
-    SlcCount(S.Table^, dgFramesOut);
+    Count(S, leFrameOut);
     if Assigned(S.Log) then
       S.Log(SentLine(S.Chn, R, Len, S.LogWire));
   end
@@ -230,7 +307,7 @@ var
   Eot: tSendRecord;
 begin
   Result := False;
-  if S.Chn^.ChReceiveReady <> CHS_ReceiveReady then
+  if (S.Chn = nil) or (S.Chn^.ChReceiveReady <> CHS_ReceiveReady) then
     Exit;
   Result := True;
   Inc(S.Messages);
@@ -242,7 +319,7 @@ begin
     Say(S, '<- broken frame: ' + S.Chn^.ChResultStr(R));
     if S.FullDup then
     begin
-      SlcCount(S.Table^, dgNaksOut);
+      Count(S, leNakOut);
       SendLink(S, False);
     end;
     Exit;
@@ -252,7 +329,7 @@ begin
     tpAckNak:
       begin
         if not S.RMess.FlAck then
-          SlcCount(S.Table^, dgNaksIn);
+          Count(S, leNakIn);
         if S.HasReply and (S.FullDup or S.AwaitAck) then
           if S.RMess.FlAck then
             S.HasReply := False            { the master has the reply }
@@ -263,7 +340,7 @@ begin
       end;
     tpEnq:
       begin
-        SlcCount(S.Table^, dgEnqsIn);
+        Count(S, leEnqIn);
         StationSend(S, S.LastLink, 2);
       end;
     tpPoll:
@@ -280,9 +357,9 @@ begin
       end;
     tpDataMess:
       begin
-        SlcCount(S.Table^, dgFramesIn);
+        Count(S, leFrameIn);
         SendLink(S, True);
-        if SlcHandle(S.Table^, S.RMess, Len, S.Reply, S.ReplyLen) then
+        if Assigned(S.Handler) and S.Handler(S.Data, S.RMess, Len, S.Reply, S.ReplyLen) then
         begin
           Inc(S.Requests);
           S.HasReply := True;
@@ -296,141 +373,203 @@ end;
 
 { -------------------------------------------------------------- master }
 
-function Transact(Chn: pChnVirt; constref Req: tSendRecord; ReqLen: Word;
-  var Rep: tRecRecord; var RepLen: Word; Idle: tDF1Idle; IdleData: Pointer;
-  TimeoutMs: LongInt; Log: tDF1LogProc; LogWire: Boolean): tChResult;
+procedure MasterSay(var M: tDF1Master; const Line: AnsiString);
+begin
+  if Assigned(M.Log) then
+    M.Log(Line);
+end;
+
+procedure MasterFinish(var M: tDF1Master; R: tChResult);
+begin
+  M.Result := R;
+  M.State := dmDone;
+  M.Chn^.CH_RBuff := M.OldBuf;
+  M.Chn^.CH_RSize := M.OldSize;
+end;
+
+function MasterSend(var M: tDF1Master; constref R: tSendRecord; Len: Word): Boolean;
+var
+  Res: tChResult;
+begin
+  Res := SendNow(M.Chn, R, Len);
+  Result := Res = res_Ok;
+  if not Result then
+  begin
+    MasterSay(M, '-> send failed: ' + M.Chn^.ChResultStr(Res));
+    MasterFinish(M, Res);
+  end
+  else if Assigned(M.Log) then
+    M.Log(SentLine(M.Chn, R, Len, M.LogWire));
+end;
+
+function MasterLink(var M: tDF1Master; T: tMessType; Ack: Boolean): Boolean;
 var
   Link: tSendRecord;
-  Tries: Integer;
-  FullDup, Acked, Got: Boolean;
-  Deadline: QWord;
-
-  procedure Say(const Line: string);
-  begin
-    if Assigned(Log) then
-      Log(Line);
-  end;
-
-  function Send(constref R: tSendRecord; Len: Word): tChResult;
-  begin
-    Result := SendNow(Chn, R, Len);
-    if Result <> res_Ok then
-      Say('-> send failed: ' + Chn^.ChResultStr(Result))
-    else if Assigned(Log) then
-      Log(SentLine(Chn, R, Len, LogWire));
-  end;
-
-  { wait up to Ms for a message; Got = a good one is in Rep }
-  function Next(Ms: LongInt): Boolean;
-  var
-    Until_: QWord;
-  begin
-    Got := False;
-    Result := False;
-    Until_ := ChMsTick + QWord(Ms);
-    repeat
-      if Assigned(Idle) then
-        Idle(IdleData);
-      if Chn^.ChReceiveReady = CHS_ReceiveReady then
-      begin
-        RepLen := 0;
-        Chn^.ChReceive(RepLen);
-        Got := Chn^.ChReceiveResult = res_Ok;
-        if Got then
-          Say('<- ' + DF1Describe(Rep, RepLen))
-        else
-          Say('<- broken frame: ' + Chn^.ChResultStr(Chn^.ChReceiveResult));
-        Exit(True);
-      end;
-      if Chn^.ChResult <> res_Ok then
-        Exit;
-      if not Assigned(Idle) then
-        Sleep(1);
-    until ChMsTick > Until_;
-  end;
-
+  Len: Word;
 begin
-  FullDup := pChnDF1(Chn)^.CH_FullDup;
-  Chn^.ChReceiveBuffer(@Rep, SizeOf(Rep));
   FillChar(Link, SizeOf(Link), 0);
-  Acked := False;
-  Got := False;
-  Tries := 0;
-  while not Acked and (Tries < DF1LinkTries) do
+  Link.MessType := T;
+  Len := 1;
+  if T = tpAckNak then
   begin
-    Inc(Tries);
-    Result := Send(Req, ReqLen);
-    if Result <> res_Ok then
-      Exit;
-    if not Next(TimeoutMs) and FullDup then
-    begin
-      Link.MessType := tpEnq;
-      Result := Send(Link, 1);
-      if Result <> res_Ok then
-        Exit;
-      Next(TimeoutMs);
-    end;
-    if Got and (Rep.MessType = tpAckNak) then
-      Acked := Rep.FlAck
-    else if Got and (Rep.MessType = tpDataMess) then
-      Acked := True;               { the reply overtook the ACK }
+    Link.FlAck := Ack;
+    Len := 2;
   end;
-  if not Acked then
+  Result := MasterSend(M, Link, Len);
+end;
+
+{ (Re)send the command: the next try, or a timeout after the last. }
+procedure MasterTry(var M: tDF1Master);
+begin
+  if M.Tries >= DF1LinkTries then
   begin
-    Say('-- no ACK after ' + IntToStr(Tries) + ' tries');
-    Exit(res_Timeout);
-  end;
-  Deadline := ChMsTick + QWord(3 * TimeoutMs);
-  while not (Got and (Rep.MessType = tpDataMess)) do
-  begin
-    if Chn^.ChResult <> res_Ok then
-    begin
-      Say('-- line lost: ' + Chn^.ChResultStr(Chn^.ChResult));
-      Exit(Chn^.ChResult);          { no reply can come any more }
-    end;
-    if ChMsTick > Deadline then
-    begin
-      Say('-- no reply');
-      Exit(res_Timeout);
-    end;
-    if FullDup then
-      Next(TimeoutMs)
-    else
-    begin
-      Link.MessType := tpPoll;     { half duplex: the slave speaks when polled }
-      Result := Send(Link, 1);
-      if Result <> res_Ok then
-        Exit;
-      Next(TimeoutMs);
-    end;
-  end;
-  Link.MessType := tpAckNak;
-  Link.FlAck := True;
-  Result := Send(Link, 2);
-  if Result <> res_Ok then
+    MasterSay(M, '-- no ACK after ' + IntToStr(M.Tries) + ' tries');
+    MasterFinish(M, res_Timeout);
     Exit;
-  if (Rep.CF and $FF00 <> (Req.CF and $FF00) or MskCF_Reply) or (Rep.Tns <> Req.Tns) then
-  begin
-    Say('-- the reply is not the one to this command');
-    Result := res_BadMessage;
   end;
+  Inc(M.Tries);
+  M.EnqSent := False;
+  M.State := dmWaitAck;
+  M.Until_ := ChMsTick + QWord(M.TimeoutMs);
+  MasterSend(M, M.Req, M.ReqLen);
+end;
+
+{ Half duplex: ask the slave for the reply. }
+procedure MasterPoll(var M: tDF1Master);
+begin
+  M.Until_ := ChMsTick + QWord(M.TimeoutMs);
+  MasterLink(M, tpPoll, False);
+end;
+
+procedure MasterAcked(var M: tDF1Master);
+begin
+  M.State := dmWaitReply;
+  M.Deadline := ChMsTick + QWord(3 * M.TimeoutMs);
+  if M.FullDup then
+    M.Until_ := ChMsTick + QWord(M.TimeoutMs)
+  else
+    MasterPoll(M);     { half duplex: the slave speaks when polled }
+end;
+
+{ The reply is in M.Rep: ACK it and check it answers the command. }
+procedure MasterReply(var M: tDF1Master);
+begin
+  if not MasterLink(M, tpAckNak, True) then
+    Exit;
+  if (M.Rep.CF and $FF00 <> (M.Req.CF and $FF00) or MskCF_Reply) or (M.Rep.Tns <> M.Req.Tns) then
+  begin
+    MasterSay(M, '-- the reply is not the one to this command');
+    MasterFinish(M, res_BadMessage);
+  end
+  else
+    MasterFinish(M, res_Ok);
+end;
+
+function DF1MasterStart(var M: tDF1Master; Chn: pChnVirt; constref Req: tSendRecord;
+  ReqLen: Word; TimeoutMs: LongInt; Log: tDF1LogProc; LogWire: Boolean): Boolean;
+begin
+  FillChar(M, SizeOf(M), 0);
+  M.State := dmDone;
+  M.Log := Log;
+  M.LogWire := LogWire;
+  if not IsDF1Channel(Chn) then
+  begin
+    M.Result := res_WrongLayer;
+    Exit(False);
+  end;
+  M.Chn := Chn;
+  M.Req := Req;
+  M.ReqLen := ReqLen;
+  M.TimeoutMs := TimeoutMs;
+  M.FullDup := pChnDF1(Chn)^.CH_FullDup;
+  { the caller's receive buffer comes back at the end: M.Rep is often a
+    local of the caller, the channel must not keep pointing at it }
+  M.OldBuf := Chn^.CH_RBuff;
+  M.OldSize := Chn^.CH_RSize;
+  Chn^.ChReceiveBuffer(@M.Rep, SizeOf(M.Rep));
+  MasterTry(M);
+  Result := M.State <> dmDone;
+end;
+
+function DF1MasterStep(var M: tDF1Master): Boolean;
+var
+  Got: Boolean;
+begin
+  Result := True;
+  if M.State = dmDone then
+    Exit;
+  if M.Chn^.ChReceiveReady = CHS_ReceiveReady then
+  begin
+    M.RepLen := 0;
+    M.Chn^.ChReceive(M.RepLen);
+    Got := M.Chn^.ChReceiveResult = res_Ok;
+    if Got then
+      MasterSay(M, '<- ' + DF1Describe(M.Rep, M.RepLen))
+    else
+      MasterSay(M, '<- broken frame: ' + M.Chn^.ChResultStr(M.Chn^.ChReceiveResult));
+    if Got and (M.Rep.MessType = tpDataMess) then
+      MasterReply(M)                   { in dmWaitAck: the reply overtook the ACK }
+    else if M.State = dmWaitAck then
+    begin
+      if Got and (M.Rep.MessType = tpAckNak) and M.Rep.FlAck then
+        MasterAcked(M)
+      else
+      begin
+        if Got and (M.Rep.MessType = tpAckNak) then
+          Inc(M.Naks);
+        MasterTry(M);                  { NAK, or anything else: again }
+      end;
+    end
+    else if not M.FullDup then
+      MasterPoll(M);                   { half duplex: EOT, a stray ACK ... }
+  end
+  else if M.Chn^.ChResult <> res_Ok then
+  begin
+    MasterSay(M, '-- line lost: ' + M.Chn^.ChResultStr(M.Chn^.ChResult));
+    MasterFinish(M, M.Chn^.ChResult);  { no answer can come any more }
+  end
+  else if (M.State = dmWaitReply) and (ChMsTick > M.Deadline) then
+  begin
+    MasterSay(M, '-- no reply');
+    MasterFinish(M, res_Timeout);
+  end
+  else if ChMsTick > M.Until_ then
+    if M.State = dmWaitAck then
+    begin
+      if M.FullDup and not M.EnqSent then
+      begin
+        M.EnqSent := True;             { full duplex: ask for the lost ACK }
+        M.Until_ := ChMsTick + QWord(M.TimeoutMs);
+        MasterLink(M, tpEnq, False);
+      end
+      else
+        MasterTry(M);
+    end
+    else if M.FullDup then
+      M.Until_ := ChMsTick + QWord(M.TimeoutMs)
+    else
+      MasterPoll(M);
+  Result := M.State = dmDone;
 end;
 
 function DF1Transact(Chn: pChnVirt; constref Req: tSendRecord; ReqLen: Word;
   var Rep: tRecRecord; var RepLen: Word; Idle: tDF1Idle; IdleData: Pointer;
   TimeoutMs: LongInt; Log: tDF1LogProc; LogWire: Boolean): tChResult;
 var
-  OldBuf: Pointer;
-  OldSize: Word;
+  M: tDF1Master;
 begin
-  { Rep is often a local of the caller: the channel must not keep pointing
-    at it afterwards, so the caller's own receive buffer comes back }
-  OldBuf := Chn^.CH_RBuff;
-  OldSize := Chn^.CH_RSize;
-  Result := Transact(Chn, Req, ReqLen, Rep, RepLen, Idle, IdleData, TimeoutMs,
-    Log, LogWire);
-  Chn^.CH_RBuff := OldBuf;
-  Chn^.CH_RSize := OldSize;
+  if not IsDF1Channel(Chn) then
+    Exit(res_WrongLayer);
+  if DF1MasterStart(M, Chn, Req, ReqLen, TimeoutMs, Log, LogWire) then
+    repeat
+      if Assigned(Idle) then
+        Idle(IdleData)
+      else
+        Sleep(1);
+    until DF1MasterStep(M);
+  Rep := M.Rep;
+  RepLen := M.RepLen;
+  Result := M.Result;
 end;
 
 end.

@@ -28,6 +28,7 @@ type
     procedure TestIec101GeneralInterrogationVariableFrame;
     procedure TestTwoOctetAddressLittleEndian;
     procedure TestBalancedDirBit;
+    procedure TestBalancedReceiveBothPrmAndDirCheck;
     procedure TestUnbalancedSendsResAsZero;
     procedure TestFixedFrameOfManualDefaultLen4;
     procedure TestSingleCharacters;
@@ -208,6 +209,37 @@ begin
   AssertEquals('10 00 01 01 16', Enc(C, MakeRec(tpShortM, False, False, 0), 4, 1));
 end;
 
+procedure TTestChnFT12Codec.TestBalancedReceiveBothPrmAndDirCheck;
+var
+  S: tFT12Rx;
+  C: tFT12Config;
+begin
+  { station B (DIR = 0), own address 2, as the channel sets it up }
+  C := Cfg(False, 1, 0);
+  C.Balanced := True;
+  C.CheckPrm := False;
+  C.CheckDir := True;
+  C.Filter := True;
+  C.OwnAddr := 2;
+  S := NewRx(C);
+  { A's request to 2 (C9 + 02 = CB) and A's ACK from 1 (80 + 01 = 81) }
+  AssertEquals('....F', FeedAll(S, '10 C9 02 CB 16'));
+  AssertEquals('....F', FeedAll(S, '10 80 01 81 16'));
+  AssertEquals('F', FeedAll(S, 'E5'));
+  { a request for 3 is ignored; an answer from 3 is not (the peer's) }
+  AssertEquals('.....', FeedAll(S, '10 C9 03 CC 16'));
+  AssertEquals(1, S.Ignored);
+  AssertEquals('....F', FeedAll(S, '10 80 03 83 16'));
+  { DIR = 0 is B's own side, in either direction }
+  AssertEquals('....E', FeedAll(S, '10 49 02 4B 16'));
+  AssertEquals(res_ErrDir, S.Err);
+  AssertEquals('....E', FeedAll(S, '10 00 01 01 16'));
+  AssertEquals(res_ErrDir, S.Err);
+  { without CheckDir (a line monitor) both pass }
+  S.Cfg.CheckDir := False;
+  AssertEquals('....F', FeedAll(S, '10 49 02 4B 16'));
+end;
+
 procedure TTestChnFT12Codec.TestUnbalancedSendsResAsZero;
 var
   C: tFT12Config;
@@ -246,10 +278,10 @@ begin
   N := 99;
   AssertEquals(res_BadMessage, FT12Encode(Cfg(True, 1, 0), R, 1, 1, @B, 4, N));
   AssertEquals(0, N);
-  { Len 0 is refused for them too; no room for the one byte is res_TooLong }
-  N := 99;
-  AssertEquals('Len 0', res_BadLen, FT12Encode(Cfg(False, 1, 0), R, 0, 1, @B, 4, N));
-  AssertEquals(0, N);
+  { Len 0 is fine for them too (the manual: Len is ignored); no room for
+    the one byte is res_TooLong }
+  AssertEquals('E5', Enc(Cfg(False, 1, 0), MakeRec(tpSACK, False, False, 0), 0, 1));
+  AssertEquals('A2', Enc(Cfg(False, 1, 0), MakeRec(tpSNAK, False, False, 0), 0, 1));
   B[0] := $CC;
   N := 99;
   AssertEquals('DestSize 0', res_TooLong, FT12Encode(Cfg(False, 1, 0), R, 1, 1, @B, 0, N));

@@ -566,6 +566,10 @@ begin
     AssertTrue(Err, (L1 <> nil) and (L2 <> nil));
     B[0] := $E5;
     L2^.ChSend(@B, 1);
+    AssertEquals('a primary on a LOOP stack refuses it', res_WrongLayer,
+      FT12Transact(L1, FLink, Req, 4, Rep, Len, TimeoutMs, 1));
+    AssertEquals('so does a class request', res_WrongLayer,
+      FT12RequestClass(L1, FLink, 1, Rep, Len, TimeoutMs, 1));
     FT12StationInit(St, L1);
     AssertFalse(FT12StationStep(St));
     AssertEquals(0, St.Frames);

@@ -339,7 +339,7 @@ begin
     M := OpenStack('DF1', 'NAM=DF1 NOD=0 DNO=1 CRC=ON NAM=TRC FILE=' + Log +
       ' NAM=LOOP PAIR=DECTRC END=1', Err);
     AssertTrue(Err, M <> nil);
-    DF1StationInit(Station, S, @Table);
+    SlcStationInit(Station, S, @Table);
     FillChar(Req, SizeOf(Req), 0);
     Req.MessType := tpDataMess;
     Req.CF := CF_ProtectRead3Addr;

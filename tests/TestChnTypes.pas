@@ -140,7 +140,7 @@ begin
   for R := res_Ok to res_Proto - 1 do
   begin
     T := ChResultText(R);
-    if R <= res_Timeout then
+    if R <= res_LastGeneral then
       AssertFalse('text of ' + IntToStr(R), Pos('unknown result', T) > 0)
     else
       AssertTrue('unused code ' + IntToStr(R) + ' says unknown', Pos('unknown result', T) > 0);

@@ -52,6 +52,7 @@ type
     procedure TestTransactReportsLostLine;   { a pty that is hung up }
     {$ENDIF}
     procedure TestTransactChecksTheReply;
+    procedure TestHelpersRefuseAnotherLayer;
   end;
 
 implementation
@@ -130,7 +131,7 @@ begin
     [FHD[Full], CRCS[Crc], Pair]));
   Master := Open(Format('NAM=DF1 NOD=0 DNO=1 MAS=MASTER FHD=%s CRC=%s NAM=LOOP PAIR=%s END=1',
     [FHD[Full], CRCS[Crc], Pair]));
-  DF1StationInit(Station, Slave, @Table);
+  SlcStationInit(Station, Slave, @Table);
 end;
 
 function TTestDf1Sim.Ask(CF: Word; const DataHex: string; Tns: Word): string;
@@ -151,7 +152,7 @@ begin
   RepLen := 0;
   R := DF1Transact(Master, Req, 8 + Length(D), Rep, RepLen, @StepStation, @Station, 500);
   AssertEquals('transaction result', res_Ok, R);
-  AssertEquals('reply CF', (CF and $FF00) or $4000, Rep.CF);
+  AssertEquals('reply CF: the command''s, FNC included', CF or $4000, Rep.CF);
   AssertEquals('reply TNS', Tns, Rep.Tns);
   Result := Format('STS=%.2x', [Rep.Sts]);
   if RepLen > 8 then
@@ -250,7 +251,7 @@ begin
   Slave := Open('NAM=DF1 NOD=1 DNO=0 MAS=SLAVE FHD=FULL CRC=ON NAM=LOOP PAIR=SIMLF END=2');
   Raw := OpenStack('LOOP', 'NAM=LOOP PAIR=SIMLF END=1', Err);
   AssertTrue(Err, Raw <> nil);
-  DF1StationInit(Station, Slave, @Table);
+  SlcStationInit(Station, Slave, @Table);
   AssertEquals('ENQ before anything: NAK', '10 15', RawSay('10 05', 50));
   { echo 'A', TNS 5, CRC $C1D7 by hand; one wrong CRC byte -> NAK }
   AssertEquals('bad CRC: NAK', '10 15', RawSay('10 02 01 00 06 00 05 00 00 41 10 03 D7 C2', 50));
@@ -272,7 +273,7 @@ begin
   Slave := Open('NAM=DF1 NOD=1 DNO=0 MAS=SLAVE FHD=HALF CRC=OFF NAM=LOOP PAIR=SIMLH END=2');
   Raw := OpenStack('LOOP', 'NAM=LOOP PAIR=SIMLH END=1', Err);
   AssertTrue(Err, Raw <> nil);
-  DF1StationInit(Station, Slave, @Table);
+  SlcStationInit(Station, Slave, @Table);
   AssertEquals('poll, nothing to send: EOT', '10 04', RawSay('10 05 01 FF', 50));
   AssertEquals('poll for station 2: silence', '', RawSay('10 05 02 FE', 50));
   { master frame: DLE SOH STN DLE STX body DLE ETX BCC over STN+body = $B2 }
@@ -294,7 +295,7 @@ begin
   Slave := Open('NAM=DF1 NOD=1 DNO=0 MAS=SLAVE FHD=FULL CRC=OFF NAM=LOOP PAIR=SIMLN END=2');
   Raw := OpenStack('LOOP', 'NAM=LOOP PAIR=SIMLN END=1', Err);
   AssertTrue(Err, Raw <> nil);
-  DF1StationInit(Station, Slave, @Table);
+  SlcStationInit(Station, Slave, @Table);
   AssertEquals('ACK + reply', '10 06 10 02 00 01 46 00 05 00 41 10 03 73',
     RawSay('10 02 01 00 06 00 05 00 00 41 10 03 B3', 50));
   AssertEquals('NAK of the reply: sent again', '10 02 00 01 46 00 05 00 41 10 03 73',
@@ -538,6 +539,35 @@ begin
     Master := nil;
     Dispose(Raw, Done);
     Raw := nil;
+  end;
+end;
+
+{ The link helpers on a stack whose top is no tChnDF1 (here a bare LOOP):
+  res_WrongLayer, and not one byte reaches the line (they once cast the
+  channel and sent the raw record three times). }
+procedure TTestDf1Sim.TestHelpersRefuseAnotherLayer;
+var
+  Req: tSendRecord;
+  Rep: tRecRecord;
+  RepLen: Word;
+  Err: string;
+  Peer: pChnVirt;
+begin
+  Raw := OpenStack('LOOP', 'NAM=LOOP PAIR=SIMWL END=1', Err);
+  AssertTrue(Err, Raw <> nil);
+  Peer := OpenStack('LOOP', 'NAM=LOOP PAIR=SIMWL END=2', Err);
+  AssertTrue(Err, Peer <> nil);
+  try
+    EchoA(Req, 5);
+    RepLen := 0;
+    AssertEquals('DF1Transact', res_WrongLayer,
+      DF1Transact(Raw, Req, 9, Rep, RepLen, nil, nil, 20));
+    AssertEquals('nothing was sent', CHS_Receiving, Peer^.ChReceiveReady);
+    AssertEquals('DF1StationInit', res_WrongLayer, SlcStationInit(Station, Raw, @Table));
+    AssertFalse('the station reads nothing', DF1StationStep(Station));
+    AssertEquals('DF1WireText', '', DF1WireText(Raw));
+  finally
+    Dispose(Peer, Done);
   end;
 end;
 

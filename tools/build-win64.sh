@@ -46,7 +46,7 @@ if [ ! -f "$RTLU/fpcunit.ppu" ] || [ ! -f "$RTLU/process.ppu" ] || [ ! -f "$RTLU
     || { tail -n 20 "$LOG"; echo "win64 FCL build failed, see $LOG"; exit 1; }
 fi
 mkdir -p "$OUT/units" "$OUT/bin"
-FLAGS="-Twin64 -Px86_64 -n -v0ew -Sew -O2 -Fu$RTLU -Fusrc -Fisrc -FU$OUT/units -FE$OUT/bin"
+FLAGS="-Twin64 -Px86_64 -n -v0ew -Sew -O2 -Fu$RTLU -Fusrc -Futools/lib -Fisrc -FU$OUT/units -FE$OUT/bin"
 if [ -n "${SYNAPSE_DIR:-}" ]; then
   # synaser needs registry and winver from the FPC packages; its own
   # warnings are not ours, so no -Sew for it

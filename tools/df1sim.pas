@@ -194,7 +194,7 @@ begin
   {$ENDIF}
   LogLine('df1sim: ' + Chn^.ChGetParam(''));
 
-  DF1StationInit(Station, Chn, @Table);
+  SlcStationInit(Station, Chn, @Table);
   Station.Log := @LogLine;
   LastMsg := ChMsTick;
   CountReached := 0;

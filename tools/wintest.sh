@@ -107,7 +107,7 @@ done
 # in it are in {$IFDEF UNIX}
 if [ ! -f "$BUILD/testunits.inc" ]; then
   fail "no $BUILD/testunits.inc: run make wintest"
-elif "$PPC" -Twin64 -Px86_64 -n -v0ew -Fu"$RTLU" -Fusrc -Fisrc -Futests/support \
+elif "$PPC" -Twin64 -Px86_64 -n -v0ew -Fu"$RTLU" -Fusrc -Fisrc -Futools/lib -Futests/support \
      -B -Cr -Co -Ct -gh -gl -FU"$OUT/test-units" -FE"$OUT/test-bin" -Fi"$BUILD" \
      tests/runtests.pas >"$LOG/runtests-build.log" 2>&1; then
   heaplog="$OUT/heaptrc.log"

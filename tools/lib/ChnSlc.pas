@@ -53,12 +53,11 @@
 unit ChnSlc;
 
 {$I chn.inc}
-{$H+}   { AnsiString for configuration text; no legacy records here }
 
 interface
 
 uses
-  ChnTypes, ChnDF1Codec;
+  ChnTypes, ChnVirt, ChnDF1Codec, ChnPcccNames, ChnDF1Link;
 
 const
   { PCCC file type codes }
@@ -78,15 +77,6 @@ const
     'N7 50'#10'N7:0 = 0 10 20 30 40 50 60 70 80 90'#10 +
     'F8 10'#10'F8:0 = 1.5 -2.25 3.14159 1000000'#10 +
     'N9 64'#10'CIF 9'#10;
-
-  { STS / EXT STS }
-  sts_Ok         = $00;
-  sts_IllegalCmd = $10;
-  sts_Address    = $50;
-  sts_ExtSts     = $F0;
-  ext_IllegalVal = $01;
-  ext_NotUsable  = $06;
-  ext_WrongSize  = $07;
 
   { diagnostic counters: indexes of tSlcTable.Diag (16-bit, sent low first) }
   dgFramesIn   = 0;   { good frames received }
@@ -112,7 +102,7 @@ type
     Name  : string[15];    { in the diagnostic status block }
   end;
 
-function SlcElemSize(Kind: Char): Integer;
+function SlcElemSize(Kind: Char): LongInt;
 function SlcTypeCode(Kind: Char): Byte;
 
 procedure SlcClear(var T: tSlcTable);
@@ -121,7 +111,7 @@ function SlcAddFile(var T: tSlcTable; Kind: Char; Num: Byte; Elems: LongInt): Bo
 { Load a configuration text (see the header) into a cleared table. On
   failure ErrLine/Err tell where and why; the table is then undefined. }
 function SlcLoadConfig(var T: tSlcTable; const Text: AnsiString;
-  out ErrLine: Integer; out Err: string): Boolean;
+  out ErrLine: LongInt; out Err: AnsiString): Boolean;
 { Load SlcDefaultConfig (it is valid: a test loads it). }
 procedure SlcLoadDefault(var T: tSlcTable);
 
@@ -136,15 +126,13 @@ function SlcGetFloat(const T: tSlcTable; Num: Byte; Elem: LongInt): Single;
 function SlcHandle(var T: tSlcTable; constref Req: tRecRecord; ReqLen: Word;
   var Rep: tSendRecord; var RepLen: Word): Boolean;
 
-{ Names for decoders: 'Echo', 'Protected Typed Logical Read (3 addr)' ...;
-  '' when unknown. Cmd is the command byte (reply bit ignored). }
-function SlcCommandName(Cmd, Fnc: Byte): string;
-function SlcStsText(Sts: Byte): string;
-function SlcExtStsText(Ext: Byte): string;
-
 { Count one event in a diagnostic counter; it wraps at 65535 like the
   PLC's 16-bit counters (and never trips an overflow check). }
-procedure SlcCount(var T: tSlcTable; Index: Integer);
+procedure SlcCount(var T: tSlcTable; Index: LongInt);
+
+{ A link station (unit ChnDF1Link) on the DF1 channel Chn that answers
+  from table T and counts its link events in T's diagnostic counters. }
+function SlcStationInit(var S: tDF1Station; Chn: pChnVirt; T: pSlcTable): tChResult;
 
 implementation
 
@@ -160,7 +148,7 @@ const
   FncEcho = $00; FncReadDiag = $01; FncDiagSts = $03; FncResetDiag = $07;
   FncTRead3 = $A2; FncTWrite3 = $AA;
 
-function SlcElemSize(Kind: Char): Integer;
+function SlcElemSize(Kind: Char): LongInt;
 begin
   case Kind of
     'N', 'B', 'S': Result := 2;
@@ -244,7 +232,7 @@ end;
 { ------------------------------------------------------------ config text }
 
 { 'N7' -> Kind, Num }
-function ParseFileName(const S: string; out Kind: Char; out Num: Byte): Boolean;
+function ParseFileName(const S: AnsiString; out Kind: Char; out Num: Byte): Boolean;
 var
   N: LongInt;
 begin
@@ -263,7 +251,7 @@ begin
   Result := True;
 end;
 
-function ParseFloat(const S: string; out F: Single): Boolean;
+function ParseFloat(const S: AnsiString; out F: Single): Boolean;
 var
   D: Double;
   Code: Integer;
@@ -277,7 +265,7 @@ begin
 end;
 
 function SlcLoadConfig(var T: tSlcTable; const Text: AnsiString;
-  out ErrLine: Integer; out Err: string): Boolean;
+  out ErrLine: LongInt; out Err: AnsiString): Boolean;
 var
   Lines: array of AnsiString;
   Line, Tok, Head: AnsiString;
@@ -319,7 +307,7 @@ var
     Result := W <> '';
   end;
 
-  function Bad(const Why: string): Boolean;
+  function Bad(const Why: AnsiString): Boolean;
   begin
     ErrLine := I + 1;
     Err := Why;
@@ -402,7 +390,7 @@ end;
 procedure SlcLoadDefault(var T: tSlcTable);
 var
   ErrLine: Integer;
-  Err: string;
+  Err: AnsiString;
 begin
   if not SlcLoadConfig(T, SlcDefaultConfig, ErrLine, Err) then
     SlcClear(T);   { not reached; TestChnSlc.TestDefaultTable checks it }
@@ -556,7 +544,7 @@ begin
   end;
 end;
 
-procedure SlcCount(var T: tSlcTable; Index: Integer);
+procedure SlcCount(var T: tSlcTable; Index: LongInt);
 begin
   T.Diag[Index] := Word(T.Diag[Index] + 1);
 end;
@@ -579,6 +567,26 @@ begin
     Rep.Data[N] := Ord(T.Name[I]);
     Inc(N);
   end;
+end;
+
+function SlcStationHandler(Data: Pointer; constref Cmd: tRecRecord; CmdLen: Word;
+  var Reply: tSendRecord; var ReplyLen: Word): Boolean;
+begin
+  Result := SlcHandle(pSlcTable(Data)^, Cmd, CmdLen, Reply, ReplyLen);
+end;
+
+procedure SlcStationEvent(Data: Pointer; Event: tDF1LinkEvent);
+const
+  Counter: array[tDF1LinkEvent] of Integer =
+    (dgFramesIn, dgFramesOut, dgNaksOut, dgEnqsIn, dgNaksIn);
+begin
+  SlcCount(pSlcTable(Data)^, Counter[Event]);
+end;
+
+function SlcStationInit(var S: tDF1Station; Chn: pChnVirt; T: pSlcTable): tChResult;
+begin
+  Result := DF1StationInit(S, Chn, @SlcStationHandler, T);
+  S.OnEvent := @SlcStationEvent;
 end;
 
 function SlcHandle(var T: tSlcTable; constref Req: tRecRecord; ReqLen: Word;
@@ -648,75 +656,6 @@ begin
   if Rep.Sts <> sts_Ok then
     SlcCount(T, dgErrReplies);
   RepLen := cSizeHead + N;
-end;
-
-{ --------------------------------------------------------------- names }
-
-function SlcCommandName(Cmd, Fnc: Byte): string;
-begin
-  Result := '';
-  case Cmd and not $40 of
-    $01: Result := 'Unprotected Read';
-    $08: Result := 'Unprotected Write';
-    $06:
-      case Fnc of
-        $00: Result := 'Echo';
-        $01: Result := 'Read Diagnostic Counters';
-        $03: Result := 'Diagnostic Status';
-        $07: Result := 'Reset Diagnostic Counters';
-      end;
-    $0F:
-      case Fnc of
-        $A2: Result := 'Protected Typed Logical Read (3 addr)';
-        $AA: Result := 'Protected Typed Logical Write (3 addr)';
-        $A1: Result := 'Protected Typed Logical Read (2 addr)';
-        $A9: Result := 'Protected Typed Logical Write (2 addr)';
-        $67: Result := 'Typed Write';
-        $68: Result := 'Typed Read';
-      end;
-  end;
-end;
-
-function SlcStsText(Sts: Byte): string;
-begin
-  case Sts and $F0 of
-    $00: Result := 'success';
-    $10: Result := 'illegal command or format';
-    $20: Result := 'host has a problem and will not communicate';
-    $30: Result := 'remote node host is missing, disconnected or shut down';
-    $40: Result := 'host could not complete function due to hardware fault';
-    $50: Result := 'addressing problem or memory protect rungs';
-    $60: Result := 'function not allowed due to command protection selection';
-    $70: Result := 'processor is in Program mode';
-    $80: Result := 'compatibility mode file missing or communication zone problem';
-    $90: Result := 'remote node cannot buffer command';
-    $B0: Result := 'remote node problem due to download';
-    $F0: Result := 'error code in the EXT STS byte';
-  else
-    Result := 'unknown STS';
-  end;
-end;
-
-function SlcExtStsText(Ext: Byte): string;
-begin
-  case Ext of
-    $01: Result := 'a field has an illegal value';
-    $02: Result := 'fewer levels specified in address than minimum for any address';
-    $03: Result := 'more levels specified in address than system supports';
-    $04: Result := 'symbol not found';
-    $05: Result := 'symbol is of improper format';
-    $06: Result := 'address doesn''t point to something usable';
-    $07: Result := 'file is wrong size';
-    $08: Result := 'cannot complete request, situation has changed';
-    $09: Result := 'data or file is too large';
-    $0A: Result := 'transaction size plus word address is too large';
-    $0B: Result := 'access denied, improper privilege';
-    $10: Result := 'no access';
-    $11: Result := 'illegal data type';
-    $12: Result := 'invalid parameter or invalid data';
-  else
-    Result := 'EXT STS $' + IntToHex(Ext, 2);
-  end;
 end;
 
 end.
