@@ -3,7 +3,9 @@
 #  1. the FPCUnit suite (runtests, built with -Cr -Co -Ct and heaptrc);
 #  2. a heap check: heaptrc must report 0 unfreed blocks;
 #  3. legacy programs in tests/legacy compiled in -Mtp -Mfpc -Mobjfpc
-#     -Mdelphi and run (each asserts record sizes and offsets itself).
+#     -Mdelphi and run (each asserts record sizes and offsets itself);
+#  4. tests/packaging.sh: make install, fpmake, chn.lpk and the README's
+#     programs built outside the tree.
 # Ends with "N passed, N failed" alone on the last line; exit 1 on failure.
 set -u
 BUILD=${BUILD:-build}
@@ -11,21 +13,25 @@ FPC=${FPC:-fpc}
 FILTER=${T:-}
 passed=0
 failed=0
+skipped=0
 pass() { passed=$((passed + 1)); echo "ok    $1"; }
 fail() { failed=$((failed + 1)); echo "FAIL  $1"; }
+# a check that cannot run here: counted, and it says why
+skip() { skipped=$((skipped + 1)); echo "skip  $1"; }
 
 heaplog="$BUILD/heaptrc.log"
 rm -f "$heaplog"
 out="$BUILD/runtests.out"
 # a hung test must not hang CI: 30 minutes is far beyond the ~10 s it takes
-HEAPTRC="log=$heaplog" timeout 1800 "$BUILD/test-bin/runtests" "$FILTER" 2>&1 | tee "$out" | grep -v '^RESULT '
+# XML=file.xml (make test XML=...) also writes JUnit XML for CI systems
+HEAPTRC="log=$heaplog" timeout 1800 "$BUILD/test-bin/runtests" "$FILTER" ${XML:+--xml="$XML"} 2>&1 | tee "$out" | grep -v '^RESULT '
 rc=${PIPESTATUS[0]}
 res=$(grep '^RESULT ' "$out" | tail -n 1)
 if [ -z "$res" ]; then
   fail "runtests crashed (exit $rc) before it finished"
 else
-  read -r _ p f <<<"$res"
-  passed=$((passed + p)); failed=$((failed + f))
+  read -r _ p f s <<<"$res"
+  passed=$((passed + p)); failed=$((failed + f)); skipped=$((skipped + ${s:-0}))
   [ "$rc" = 0 ] || [ "$f" -gt 0 ] || fail "runtests exit code $rc"
 fi
 
@@ -36,25 +42,35 @@ else
   [ -f "$heaplog" ] && sed -n 1,40p "$heaplog"
 fi
 
-if true; then
-  for prog in tests/legacy/*.pas; do
-    [ -e "$prog" ] || continue
-    name=$(basename "$prog" .pas)
-    # with T=xyz only legacy programs whose name contains xyz
-    if [ -n "$FILTER" ] && [[ "${name,,}" != *"${FILTER,,}"* ]]; then continue; fi
-    for mode in tp fpc objfpc delphi; do
-      dir="$BUILD/legacy-$mode"
-      mkdir -p "$dir"
-      if ! "$FPC" -M$mode -Fusrc -Fisrc -FU"$dir" -FE"$dir" -B -Cr -Co -Ct "$prog" >"$dir/$name.log" 2>&1; then
-        fail "legacy $name -M$mode: does not compile"; tail -n 15 "$dir/$name.log"; continue
-      fi
-      if timeout 120 "$dir/$name" >"$dir/$name.run" 2>&1; then
-        pass "legacy $name -M$mode"
-      else
-        fail "legacy $name -M$mode: run failed"; tail -n 15 "$dir/$name.run"
-      fi
-    done
+for prog in tests/legacy/*.pas; do
+  [ -e "$prog" ] || continue
+  name=$(basename "$prog" .pas)
+  # with T=xyz only legacy programs whose name contains xyz
+  if [ -n "$FILTER" ] && [[ "${name,,}" != *"${FILTER,,}"* ]]; then continue; fi
+  for mode in tp fpc objfpc delphi; do
+    dir="$BUILD/legacy-$mode"
+    mkdir -p "$dir"
+    if ! "$FPC" -M$mode -Fusrc -Fisrc -FU"$dir" -FE"$dir" -B -Cr -Co -Ct "$prog" >"$dir/$name.log" 2>&1; then
+      fail "legacy $name -M$mode: does not compile"; tail -n 15 "$dir/$name.log"; continue
+    fi
+    if timeout 120 "$dir/$name" >"$dir/$name.run" 2>&1; then
+      pass "legacy $name -M$mode"
+    else
+      fail "legacy $name -M$mode: run failed"; tail -n 15 "$dir/$name.run"
+    fi
   done
+done
+
+# the library as users get it: make install, fpmake, chn.lpk, README programs
+if [ -z "$FILTER" ] || [[ "packaging" == *"${FILTER,,}"* ]]; then
+  while IFS= read -r line; do
+    case $line in
+      "ok    "*) pass "${line#ok    }" ;;
+      "FAIL  "*) fail "${line#FAIL  }" ;;
+      "skip  "*) skip "${line#skip  }" ;;
+      *) echo "$line" ;;
+    esac
+  done < <(BUILD=$BUILD FPC=$FPC bash tests/packaging.sh 2>&1)
 fi
 
 # a T= filter that selects nothing is a mistake, not a pass (the heap
@@ -63,5 +79,6 @@ if [ -n "$FILTER" ] && [ "$passed" -le 1 ] && [ "$failed" = 0 ]; then
   fail "T=$FILTER selects no test"
 fi
 
+[ "$skipped" = 0 ] || echo "$skipped skipped (each says why above; not counted as passed)"
 echo "$passed passed, $failed failed"
 [ "$failed" = 0 ]
