@@ -59,7 +59,7 @@ BENCHBINS := $(addprefix $(BINDIR)/,$(basename $(notdir $(BENCHES))))
 .PHONY: all units examples tools test demo bench fuzz wintest clean check-fpc \
         install uninstall
 
-all: units $(PROGBINS)
+all: units $(PROGBINS) chn.lpk
 examples: $(addprefix $(BINDIR)/,$(basename $(notdir $(EXAMPLES))))
 tools: $(addprefix $(BINDIR)/,$(basename $(notdir $(TOOLS))))
 
@@ -85,6 +85,10 @@ $(BUILD)/units.stamp: $(LIBSRC) | check-fpc
 	@echo "fpc src/*.pas"
 	@$(FPC) $(UNITFLAGS) $(BUILD)/chnall.pas
 	@touch $@
+
+# The Lazarus package lists every unit of src/.
+chn.lpk: $(wildcard src/*.pas) tools/mklpk.sh
+	@bash tools/mklpk.sh
 
 # Which sources each program depends on (from the uses clauses).
 $(BUILD)/deps.mk: $(LIBSRC) $(TOOLLIB) $(PROGRAMS) $(BENCHES) tools/mkdeps.sh

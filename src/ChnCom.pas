@@ -107,7 +107,7 @@ type
     procedure ChReceiveFlush; virtual;
     { --- additions of the port --- }
     { The device path COM=/DEV= stand for now. }
-    function  ChDevicePath: string;
+    function  ChDevicePath: ShortString;
     { Modem lines, for applications that drive them by hand. }
     function  ChSetRts(On: Boolean): tChResult;
     function  ChSetDtr(On: Boolean): tChResult;
@@ -302,7 +302,7 @@ begin
   Result := R;
 end;
 
-function tChnCom.ChDevicePath: string;
+function tChnCom.ChDevicePath: ShortString;
 begin
   if CH_Dev <> '' then
     Result := CH_Dev

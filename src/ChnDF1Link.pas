@@ -25,7 +25,6 @@
 unit ChnDF1Link;
 
 {$I chn.inc}
-{$H+}
 
 interface
 

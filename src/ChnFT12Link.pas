@@ -112,17 +112,17 @@ procedure FT12LinkInit(var Link: tFT12Link; Addr: Word);
   Any result but res_Ok for an FCV = 1 or reset service clears Link.Reset. }
 function FT12Transact(Chn: pChnVirt; var Link: tFT12Link; constref Req: tSendRecord;
   ReqLen: Word; var Rep: tRecRecord; var RepLen: Word; TimeoutMs: LongInt;
-  Retries: Integer; Idle: tFT12Idle = nil; IdleData: Pointer = nil): tChResult;
+  Retries: LongInt; Idle: tFT12Idle = nil; IdleData: Pointer = nil): tChResult;
 
 { Reset of remote link (FC 0) as a fixed frame. }
 function FT12ResetLink(Chn: pChnVirt; var Link: tFT12Link; TimeoutMs: LongInt;
-  Retries: Integer; Idle: tFT12Idle = nil; IdleData: Pointer = nil): tChResult;
+  Retries: LongInt; Idle: tFT12Idle = nil; IdleData: Pointer = nil): tChResult;
 
 { Request user data of class 1 (FC 10) or 2 (FC 11) as a fixed frame;
   res_BadParam for another ClassNo. Rep.FC tells FCS_UserData or
   FCS_DataNotAcces (E5 arrives as tpSACK). }
 function FT12RequestClass(Chn: pChnVirt; var Link: tFT12Link; ClassNo: Byte;
-  var Rep: tRecRecord; var RepLen: Word; TimeoutMs: LongInt; Retries: Integer;
+  var Rep: tRecRecord; var RepLen: Word; TimeoutMs: LongInt; Retries: LongInt;
   Idle: tFT12Idle = nil; IdleData: Pointer = nil): tChResult;
 
 { FCV the standard gives a primary function code. }
@@ -187,7 +187,7 @@ end;
 
 function Exchange(Chn: pChnVirt; var Link: tFT12Link; constref Req: tSendRecord;
   ReqLen: Word; var Rep: tRecRecord; var RepLen: Word; TimeoutMs: LongInt;
-  Retries: Integer; Idle: tFT12Idle; IdleData: Pointer): tChResult;
+  Retries: LongInt; Idle: tFT12Idle; IdleData: Pointer): tChResult;
 var
   F: pChnFT1_2;
   Out: tSendRecord;
@@ -309,7 +309,7 @@ end;
 
 function FT12Transact(Chn: pChnVirt; var Link: tFT12Link; constref Req: tSendRecord;
   ReqLen: Word; var Rep: tRecRecord; var RepLen: Word; TimeoutMs: LongInt;
-  Retries: Integer; Idle: tFT12Idle; IdleData: Pointer): tChResult;
+  Retries: LongInt; Idle: tFT12Idle; IdleData: Pointer): tChResult;
 var
   OldBuf: Pointer;
   OldSize: Word;
@@ -339,7 +339,7 @@ end;
 
 { A fixed frame with function FC and the channel's LEN= zero octets. }
 function FixedService(Chn: pChnVirt; var Link: tFT12Link; FC: Byte;
-  var Rep: tRecRecord; var RepLen: Word; TimeoutMs: LongInt; Retries: Integer;
+  var Rep: tRecRecord; var RepLen: Word; TimeoutMs: LongInt; Retries: LongInt;
   Idle: tFT12Idle; IdleData: Pointer): tChResult;
 var
   Req: tSendRecord;
@@ -355,7 +355,7 @@ begin
 end;
 
 function FT12ResetLink(Chn: pChnVirt; var Link: tFT12Link; TimeoutMs: LongInt;
-  Retries: Integer; Idle: tFT12Idle; IdleData: Pointer): tChResult;
+  Retries: LongInt; Idle: tFT12Idle; IdleData: Pointer): tChResult;
 var
   Rep: tRecRecord;
   Len: Word;
@@ -365,7 +365,7 @@ begin
 end;
 
 function FT12RequestClass(Chn: pChnVirt; var Link: tFT12Link; ClassNo: Byte;
-  var Rep: tRecRecord; var RepLen: Word; TimeoutMs: LongInt; Retries: Integer;
+  var Rep: tRecRecord; var RepLen: Word; TimeoutMs: LongInt; Retries: LongInt;
   Idle: tFT12Idle; IdleData: Pointer): tChResult;
 begin
   RepLen := 0;

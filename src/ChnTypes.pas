@@ -83,10 +83,10 @@ type
 
 { Readable English text for a result code. Codes from res_Proto upward are
   per protocol: give the layer type (cName, e.g. 'DF1') to pick its text. }
-function ChResultText(R: tChResult; const Layer: string): string;
-function ChResultText(R: tChResult): string;
+function ChResultText(R: tChResult; const Layer: ShortString): ShortString;
+function ChResultText(R: tChResult): ShortString;
 { Protocol units call this from their initialization section. }
-procedure ChRegisterResultText(const Layer: string; R: tChResult; const Text: string);
+procedure ChRegisterResultText(const Layer: ShortString; R: tChResult; const Text: ShortString);
 
 { Checksums. The *Add functions fold one byte into a running value that
   starts at 0; the *Block functions do a whole buffer. }
@@ -119,7 +119,7 @@ var
   ResultTextCount: Integer = 0;
   Crc16Table: array[Byte] of tCrc16;
 
-function GeneralText(R: tChResult): string;
+function GeneralText(R: tChResult): ShortString;
 begin
   case R of
     res_Ok:           Result := 'ok';
@@ -149,7 +149,7 @@ begin
   end;
 end;
 
-procedure ChRegisterResultText(const Layer: string; R: tChResult; const Text: string);
+procedure ChRegisterResultText(const Layer: ShortString; R: tChResult; const Text: ShortString);
 var
   I: Integer;
 begin
@@ -167,7 +167,7 @@ begin
   ResultTexts[ResultTextCount].Text := Text;
 end;
 
-function ChResultText(R: tChResult; const Layer: string): string;
+function ChResultText(R: tChResult; const Layer: ShortString): ShortString;
 var
   I: Integer;
 begin
@@ -184,7 +184,7 @@ begin
   Result := 'unknown result code ' + IntToStr(R);
 end;
 
-function ChResultText(R: tChResult): string;
+function ChResultText(R: tChResult): ShortString;
 begin
   Result := ChResultText(R, '');
 end;

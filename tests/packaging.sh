@@ -31,7 +31,7 @@ for f in src/*.pas src/chn.inc; do
   grep -q "<Filename Value=\"$f\"/>" chn.lpk || missing="$missing $f"
 done
 if [ -z "$missing" ]; then ok "package: chn.lpk lists every unit of src/"
-else bad "package: chn.lpk misses$missing"; fi
+else bad "package: chn.lpk misses$missing (make writes it: commit it)"; fi
 
 # 2. README programs, each in its own folder outside the tree
 mkdir -p "$TMP/readme"

@@ -2,9 +2,11 @@
 # tests/run.sh - the whole regression suite, called by "make test".
 #  1. the FPCUnit suite (runtests, built with -Cr -Co -Ct and heaptrc);
 #  2. a heap check: heaptrc must report 0 unfreed blocks;
-#  3. legacy programs in tests/legacy compiled in -Mtp -Mfpc -Mobjfpc
+#  3. the type rule of docs/LAYERS.md over the library's interfaces
+#     (tests/apicheck.pl; selected by T=api too);
+#  4. legacy programs in tests/legacy compiled in -Mtp -Mfpc -Mobjfpc
 #     -Mdelphi and run (each asserts record sizes and offsets itself);
-#  4. tests/packaging.sh: make install, fpmake, chn.lpk and the README's
+#  5. tests/packaging.sh: make install, fpmake, chn.lpk and the README's
 #     programs built outside the tree.
 # Ends with "N passed, N failed" alone on the last line; exit 1 on failure.
 set -u
@@ -42,6 +44,18 @@ else
   [ -f "$heaplog" ] && sed -n 1,40p "$heaplog"
 fi
 
+if [ -z "$FILTER" ] || [[ "api" == *"${FILTER,,}"* ]]; then
+  if command -v perl >/dev/null; then
+    if perl tests/apicheck.pl src/*.pas $(ls tools/lib/*.pas 2>/dev/null); then
+      pass "api: no Integer, Cardinal, plain string or {\$H+} in library interfaces"
+    else
+      fail "api: mode-dependent types in library interfaces (docs/LAYERS.md)"
+    fi
+  else
+    fail "api: perl is missing (it is part of every Debian system)"
+  fi
+fi
+
 for prog in tests/legacy/*.pas; do
   [ -e "$prog" ] || continue
   name=$(basename "$prog" .pas)
@@ -75,10 +89,12 @@ fi
 
 # a T= filter that selects nothing is a mistake, not a pass (the heap
 # check always runs, so it alone means nothing was selected)
-if [ -n "$FILTER" ] && [ "$passed" -le 1 ] && [ "$failed" = 0 ]; then
+if [ -n "$FILTER" ] && [ "$passed" -le 1 ] && [ "$failed" = 0 ] && [ "$skipped" = 0 ]; then
   fail "T=$FILTER selects no test"
 fi
 
-[ "$skipped" = 0 ] || echo "$skipped skipped (each says why above; not counted as passed)"
+# skipped tests (an optional program missing) are listed with their reason
+# by runtests ("skip  Test: why"); the count comes before the last line
+[ "$skipped" = 0 ] || echo "$skipped skipped (an optional program is missing: see the skip lines)"
 echo "$passed passed, $failed failed"
 [ "$failed" = 0 ]
