@@ -15,8 +15,10 @@
   tpPoll, tpNoPollRep records with ChSend like any other message.
 
   Differences from the manual, all deliberate (see docs/ChnDF1.md):
-  NAK = $15 (the manual prints $0F); replies never carry FNC, so a received
-  reply has CF low byte 0; a broken frame is reported by ChReceiveReady =
+  NAK = $15 (the manual prints $0F); replies never carry FNC on the wire, so
+  a received reply gets its FNC back from the command this layer sent
+  (same TNS and command; the last DF1SentMemory commands are remembered),
+  and a reply matching none has CF low byte 0; a broken frame is reported by ChReceiveReady =
   CHS_ReceiveReady and ChReceive giving Len = 0 with ChReceiveResult =
   res_ErrSum / res_ErrFrame / res_ErrLen. }
 unit ChnDF1;
@@ -163,6 +165,7 @@ type
     CH_SLen    : Word;        { wire bytes of the last frame in CH_SBuff (tracing) }
     CH_Dec     : tDF1Decoder; { receive automaton }
     CH_Event   : tDF1Event;   { what is waiting while CH_RCtrl = CHS_ReceiveReady }
+    CH_Sent    : tDF1SentLog; { last commands sent, to restore a reply's CF }
 
     constructor Init;
     constructor ChInitParam(const S: tParamStr);
@@ -212,6 +215,7 @@ begin
   CH_RSumCrc := 0;
   CH_SSumCrc := 0;
   CH_Event   := dfNone;
+  DF1SentInit(CH_Sent);
   DF1DecoderInit(CH_Dec, ChDF1Config);
 end;
 
@@ -356,6 +360,8 @@ begin
       CH_SSumBcc := P[N - 1];
   CH_SLen := N;
   ChLowSend(CH_SBuff, N);
+  if CH_SResult = res_Ok then
+    DF1SentNote(CH_Sent, Byte(CH_DNode), pSendRecord(Buff)^);
 end;
 
 procedure tChnDF1.ChReceiveTick;
@@ -412,6 +418,8 @@ begin
       CH_RSNode := CH_Dec.Src;
       CH_RDNode := CH_Dec.Dst;
     end;
+    if CH_Dec.Msg.MessType = tpDataMess then   { a reply gets its FNC back }
+      pRecRecord(CH_RBuff)^.CF := DF1ReplyCF(CH_Sent, CH_Dec.Src, CH_Dec.Msg);
     CH_RResult := res_Ok;
   end;
   CH_LRMess := Len;
