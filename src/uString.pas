@@ -32,6 +32,9 @@ function StrToNum(const S: string; Min, Max: LongInt; var N: LongInt): Boolean;
 
 { Position (0-based) of upper-cased S in a '|' separated list of choices
   such as 'FULL|HALF'; -1 when not found. }
+{ Strict decimal real ('0.01', '1E-5', no blanks), Min..Max; False
+  (D unchanged) for anything else. }
+function StrToReal(const S: string; Min, Max: Double; var D: Double): Boolean;
 function ChoiceIndex(const S, Choices: string): Integer;
 
 { The word at Index (0-based) of a '|' separated list; '' if none. }
@@ -140,6 +143,26 @@ begin
   if (V < Min) or (V > Max) then
     Exit;
   N := V;
+  Result := True;
+end;
+
+function StrToReal(const S: string; Min, Max: Double; var D: Double): Boolean;
+var
+  V: Double;
+  Code, I: Integer;
+begin
+  Result := False;
+  if S = '' then
+    Exit;
+  for I := 1 to Length(S) do
+    if not (S[I] in ['0'..'9', '.', 'e', 'E', '+', '-']) then
+      Exit;                     { Val would take blanks, '$' and 'Inf' }
+  V := 0;
+  Code := 0;
+  Val(S, V, Code);
+  if (Code <> 0) or not (V >= Min) or not (V <= Max) then
+    Exit;
+  D := V;
   Result := True;
 end;
 
