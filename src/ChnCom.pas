@@ -107,24 +107,32 @@ type
     procedure ChReceiveFlush; virtual;
     { --- additions of the port --- }
     { The device path COM=/DEV= stand for now. }
-    function  ChDevicePath: string;
+    function  ChDevicePath: ShortString;
     { Modem lines, for applications that drive them by hand. }
     function  ChSetRts(On: Boolean): tChResult;
     function  ChSetDtr(On: Boolean): tChResult;
     function  ChModemLines(var Lines: tPortLines): tChResult;
     { Bytes lost on receive since ChOpen (ring full or OS overrun). }
     function  ChLostBytes: LongWord;
-  private
+  protected
+    { Create, open and configure the port this layer drives (COM: the DRV=
+      backend on COM=/DEV=; NAM=TCP overrides it). On failure Port is nil. }
+    function  ComOpenPort(out Port: TChnPort): tChResult; virtual;
     procedure ComFault(R: tChResult);
     procedure ComPull;
     procedure ComPumpTx;
     procedure ComFreeBuffers;
+    { ' LRB=.. LSB=.. IDL=..' for ChOwnParams }
+    function  ComBufferText: ShortString;
   end;
 
   pAddChnCom = ^tAddChnCom;
   tAddChnCom = object(tAddChnVirt)
     function ChInit: pChnVirt; virtual;
   end;
+
+{ ' BD=.. BIT=.. STOP=.. PAR=.. FLW=..' as ChGetParam reports them. }
+function ComLineText(const S: tPortSettings): ShortString;
 
 implementation
 
@@ -291,10 +299,8 @@ begin
     R := R + ' DEV=' + CH_Dev
   else
     R := R + ParamText('COM', CH_Com);
-  R := R + ParamText('BD', CH_Set.Baud) + ParamText('BIT', CH_Set.DataBits) +
-    ParamText('STOP', CH_Set.StopBits) + ' PAR=' + ParityLetters[CH_Set.Parity] +
-    ' FLW=' + FlowNames[CH_Set.Flow] + ' RS485=' + Rs485Names[CH_Rs485] +
-    ParamText('LRB', CH_LRB) + ParamText('LSB', CH_LSB) + ParamText('IDL', CH_Idle);
+  R := R + ComLineText(CH_Set) + ' RS485=' + Rs485Names[CH_Rs485] +
+    ComBufferText;
   if CH_Irq <> '' then
     R := R + ' IRQ=' + CH_Irq;
   if CH_DosKey <> '' then
@@ -302,7 +308,19 @@ begin
   Result := R;
 end;
 
-function tChnCom.ChDevicePath: string;
+function ComLineText(const S: tPortSettings): ShortString;
+begin
+  Result := ParamText('BD', S.Baud) + ParamText('BIT', S.DataBits) +
+    ParamText('STOP', S.StopBits) + ' PAR=' + ParityLetters[S.Parity] +
+    ' FLW=' + FlowNames[S.Flow];
+end;
+
+function tChnCom.ComBufferText: ShortString;
+begin
+  Result := ParamText('LRB', CH_LRB) + ParamText('LSB', CH_LSB) + ParamText('IDL', CH_Idle);
+end;
+
+function tChnCom.ChDevicePath: ShortString;
 begin
   if CH_Dev <> '' then
     Result := CH_Dev
@@ -310,29 +328,19 @@ begin
     Result := ComDevicePath(CH_Com);
 end;
 
-procedure tChnCom.ChOpen;
+function tChnCom.ComOpenPort(out Port: TChnPort): tChResult;
 var
   Cls: TChnPortClass;
-  Port: TChnPort;
   R: tChResult;
 begin
-  if CH_State <> CHS_Close then
-  begin
-    CH_Result := res_WrongState;
-    Exit;
-  end;
+  Port := nil;
   Cls := FindPortDriver(CH_Drv);
   if Cls = nil then
-  begin
-    CH_Result := res_BadParam;
-    Exit;
-  end;
+    Exit(res_BadParam);
   Port := Cls.Create;
-  CH_Set.InQueue := CH_LRB;
   R := Port.Open(ChDevicePath);
   if R = res_Ok then
     R := Port.Configure(CH_Set);
-  CH_RtsToggle := False;
   if (R = res_Ok) and (CH_Rs485 <> rs485Off) and (CH_Set.Flow = flowRtsCts) then
     R := res_BadSetting;            { RTS cannot be handshake and direction }
   if R = res_Ok then
@@ -355,6 +363,27 @@ begin
   if R <> res_Ok then
   begin
     Port.Free;                      { closes it }
+    Port := nil;
+  end;
+  Result := R;
+end;
+
+procedure tChnCom.ChOpen;
+var
+  Port: TChnPort;
+  R: tChResult;
+begin
+  if CH_State <> CHS_Close then
+  begin
+    CH_Result := res_WrongState;
+    Exit;
+  end;
+  CH_Set.InQueue := CH_LRB;
+  CH_RtsToggle := False;
+  CH_ParamErr := '';
+  R := ComOpenPort(Port);
+  if R <> res_Ok then
+  begin
     CH_Result := R;
     Exit;
   end;

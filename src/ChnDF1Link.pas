@@ -28,7 +28,6 @@
 unit ChnDF1Link;
 
 {$I chn.inc}
-{$H+}
 
 interface
 

@@ -49,6 +49,7 @@ const
   res_ErrLen   = res_Proto + 1;   { $21 bad length (L bytes, L range, buffer) }
   res_ErrCode  = res_Proto + 2;   { $22 PRM bit does not fit this station }
   res_ErrFrame = res_Proto + 3;   { $23 wrong second start byte, missing ED }
+  res_ErrDir   = res_Proto + 4;   { $24 balanced: DIR bit of this station's own side }
 
   cSizeHeadSndMsg = 1 + 1 + 1 + 1;   { MessType, FCB_ACD, FCV_DFC, FC }
   cSizeHeadRecMsg = cSizeHeadSndMsg;
@@ -79,9 +80,13 @@ type
     Dir      : Boolean;  { DIR bit this station sends in balanced mode }
     Primary  : Boolean;  { PRM bit this station sends }
     CheckPrm : Boolean;  { receive: PRM must be the opposite of Primary }
-    Filter   : Boolean;  { receive: only frames for OwnAddr or broadcast }
+    Filter   : Boolean;  { receive: only frames for OwnAddr or broadcast;
+                           balanced: only PRM = 1 frames are filtered }
     OwnAddr  : Word;
     GapMs    : LongWord; { receive: idle gap that discards a frame, 0 = off }
+    CheckDir : Boolean;  { receive, balanced: a frame with DIR = Dir came from
+                           this station's own side (an echo, or both stations
+                           configured alike): res_ErrDir }
   end;
 
   tFT12Event = (fe_None,    { byte consumed, nothing complete }
@@ -290,19 +295,30 @@ end;
 { A whole, well-formed frame: apply the station's address filter and role. }
 function Complete(var S: tFT12Rx): tFT12Event;
 var
-  Prm: Boolean;
+  Prm, Single, Foreign: Boolean;
 begin
   S.Phase := rxHunt;
   Prm := FT12FramePrm(S);
-  if S.Cfg.Filter then
-    { single characters carry no address: on a shared line they are the
-      answers of other secondaries, never meant for a secondary }
-    if (S.Kind in [tpSACK, tpSNAK]) or
-       ((S.Addr <> S.Cfg.OwnAddr) and (S.Addr <> FT12Broadcast(S.Cfg.AddrLen))) then
-    begin
-      Inc(S.Ignored);
-      Exit(fe_None);
-    end;
+  Single := S.Kind in [tpSACK, tpSNAK];
+  Foreign := (S.Addr <> S.Cfg.OwnAddr) and (S.Addr <> FT12Broadcast(S.Cfg.AddrLen));
+  { unbalanced: single characters carry no address; on a shared line they
+    are the answers of other secondaries, never meant for a secondary.
+    Balanced: answers (PRM = 0, single characters) come from the one peer
+    and carry its address; only requests are for this station or not }
+  if S.Cfg.Filter and
+     ((not S.Cfg.Balanced and (Single or Foreign)) or
+      (S.Cfg.Balanced and Prm and Foreign)) then
+  begin
+    Inc(S.Ignored);
+    Exit(fe_None);
+  end;
+  if S.Cfg.Balanced and S.Cfg.CheckDir and not Single and
+     ((S.Code and cBitDirRes <> 0) = S.Cfg.Dir) then
+  begin
+    S.Err := res_ErrDir;
+    Inc(S.Errors);
+    Exit(fe_Error);
+  end;
   if S.Cfg.CheckPrm and (Prm = S.Cfg.Primary) then
   begin
     S.Err := res_ErrCode;

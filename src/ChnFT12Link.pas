@@ -112,17 +112,17 @@ procedure FT12LinkInit(var Link: tFT12Link; Addr: Word);
   Any result but res_Ok for an FCV = 1 or reset service clears Link.Reset. }
 function FT12Transact(Chn: pChnVirt; var Link: tFT12Link; constref Req: tSendRecord;
   ReqLen: Word; var Rep: tRecRecord; var RepLen: Word; TimeoutMs: LongInt;
-  Retries: Integer; Idle: tFT12Idle = nil; IdleData: Pointer = nil): tChResult;
+  Retries: LongInt; Idle: tFT12Idle = nil; IdleData: Pointer = nil): tChResult;
 
 { Reset of remote link (FC 0) as a fixed frame. }
 function FT12ResetLink(Chn: pChnVirt; var Link: tFT12Link; TimeoutMs: LongInt;
-  Retries: Integer; Idle: tFT12Idle = nil; IdleData: Pointer = nil): tChResult;
+  Retries: LongInt; Idle: tFT12Idle = nil; IdleData: Pointer = nil): tChResult;
 
 { Request user data of class 1 (FC 10) or 2 (FC 11) as a fixed frame;
   res_BadParam for another ClassNo. Rep.FC tells FCS_UserData or
   FCS_DataNotAcces (E5 arrives as tpSACK). }
 function FT12RequestClass(Chn: pChnVirt; var Link: tFT12Link; ClassNo: Byte;
-  var Rep: tRecRecord; var RepLen: Word; TimeoutMs: LongInt; Retries: Integer;
+  var Rep: tRecRecord; var RepLen: Word; TimeoutMs: LongInt; Retries: LongInt;
   Idle: tFT12Idle = nil; IdleData: Pointer = nil): tChResult;
 
 { FCV the standard gives a primary function code. }
@@ -132,6 +132,91 @@ procedure FT12StationInit(var S: tFT12Station; Chn: pChnVirt);
 { Take at most one frame and act on it; False when none was waiting, or
   when S.Chn is not a tChnFT1_2 (then nothing is read). }
 function FT12StationStep(var S: tFT12Station): Boolean;
+
+{ ------------------------------------------------------------ balanced }
+
+const
+  FT12BalQueueLen = 8;        { user data frames waiting to be sent }
+  FT12BalTestMs   = 5000;     { default: test function after 5 s of quiet }
+
+type
+  { What the primary half of a balanced link is doing. }
+  tFT12BalState = (
+    bsIdle,           { link not established: request status of link next }
+    bsRequestStatus,  { FC 9 sent, waiting for status of link (FC 11) }
+    bsResetting,      { FC 0 sent, waiting for ACK }
+    bsAvailable);     { reset acknowledged: user data and test functions }
+
+  tFT12BalUserData = record
+    Len    : Word;
+    Confirm: Boolean;         { FC 3 (SEND/CONFIRM) or FC 4 (SEND/NO REPLY) }
+    Data   : tData;
+  end;
+
+  { One balanced link (IEC 60870-5-2 balanced transmission): both
+    procedures of this station on one tChnFT1_2 with MS=OFF. Init with
+    FT12BalancedInit, then call FT12BalancedStep often; it never blocks
+    longer than one bounded send. The record must not move after Init
+    (the channel writes into RMess). }
+  tFT12Balanced = record
+    Chn        : pChnVirt;
+    RMess      : tRecRecord;
+    { settings (FT12BalancedInit gives the defaults) }
+    TimeoutMs  : LongInt;     { wait for an answer (FT12LinkTimeoutMs) }
+    Retries    : SmallInt;    { repetitions before the link counts as lost }
+    TestMs     : LongInt;     { test function after this long without a
+                                request of ours; 0 = never }
+    Dfc        : Boolean;     { DFC sent in every answer (set by the application) }
+    { primary }
+    State      : tFT12BalState;
+    Pending    : Boolean;     { a request is out and its answer awaited }
+    Out        : tSendRecord; { that request, for repetitions }
+    OutLen     : Word;
+    Fcb        : Boolean;     { FCB of the next new FCV = 1 transmission }
+    Tries      : SmallInt;    { transmissions of Out so far }
+    SentAt     : QWord;       { when Out went out the last time }
+    LastRequest: QWord;       { when a request of ours last went out }
+    HoldUntil  : QWord;       { no new request before (NACK, DFC) }
+    PeerDfc    : Boolean;     { DFC of the peer's last answer }
+    Queue      : array[0..FT12BalQueueLen - 1] of tFT12BalUserData;
+    QHead, QCount: SmallInt;
+    { secondary }
+    HasReply   : Boolean;     { an FCV = 1 frame was accepted since the reset }
+    LastFcb    : Boolean;     { its FCB }
+    Reply      : tSendRecord; { the answer it got, sent again on a repetition }
+    ReplyLen   : Word;
+    PeerReset  : Boolean;     { the peer reset this station's secondary }
+    OnUserData : tFT12UserDataFunc;   { FC 3 (Confirm) / FC 4 user data }
+    Data       : Pointer;
+    { counters }
+    Frames     : LongInt;     { frames taken, good or broken }
+    Executed   : LongInt;     { FC 3/4 frames handed to OnUserData }
+    Repeats    : LongInt;     { repetitions answered from memory }
+    Retransmits: LongInt;     { our requests sent again after a timeout }
+    Confirmed  : LongInt;     { our user data confirmed (or sent, FC 4) }
+    Tests      : LongInt;     { test functions of ours confirmed }
+    LinkLost   : LongInt;     { times the link had to be established anew }
+    Unexpected : LongInt;     { answers with no request of ours outstanding }
+    Ignored    : LongInt;     { answers that do not fit, or from another address }
+    BadDir     : LongInt;     { frames with the DIR of this station's side }
+    Broken     : LongInt;     { other broken frames (checksum, length, ...) }
+  end;
+
+{ Bind B to a balanced tChnFT1_2 and set the defaults; the channel's
+  receive buffer becomes B.RMess. Results: res_Ok, res_WrongLayer (no
+  tChnFT1_2), res_BadMessage (MS=ON). }
+function FT12BalancedInit(var B: tFT12Balanced; Chn: pChnVirt): tChResult;
+{ Queue Len octets of user data for SEND/CONFIRM (Confirm) or SEND/NO
+  REPLY; sent in order once the link is available. res_Busy when the queue
+  is full, res_TooLong above MaxDataLen, res_BadLen for 0. }
+function FT12BalancedSend(var B: tFT12Balanced; Buf: PByte; Len: Word;
+  Confirm: Boolean): tChResult;
+{ Take at most one frame and act on it, then run the primary's timers.
+  True when a frame was taken. }
+function FT12BalancedStep(var B: tFT12Balanced): Boolean;
+{ Nothing queued and no request outstanding. }
+function FT12BalancedQuiet(const B: tFT12Balanced): Boolean;
+function FT12BalStateName(S: tFT12BalState): ShortString;
 
 implementation
 
@@ -187,7 +272,7 @@ end;
 
 function Exchange(Chn: pChnVirt; var Link: tFT12Link; constref Req: tSendRecord;
   ReqLen: Word; var Rep: tRecRecord; var RepLen: Word; TimeoutMs: LongInt;
-  Retries: Integer; Idle: tFT12Idle; IdleData: Pointer): tChResult;
+  Retries: LongInt; Idle: tFT12Idle; IdleData: Pointer): tChResult;
 var
   F: pChnFT1_2;
   Out: tSendRecord;
@@ -309,7 +394,7 @@ end;
 
 function FT12Transact(Chn: pChnVirt; var Link: tFT12Link; constref Req: tSendRecord;
   ReqLen: Word; var Rep: tRecRecord; var RepLen: Word; TimeoutMs: LongInt;
-  Retries: Integer; Idle: tFT12Idle; IdleData: Pointer): tChResult;
+  Retries: LongInt; Idle: tFT12Idle; IdleData: Pointer): tChResult;
 var
   OldBuf: Pointer;
   OldSize: Word;
@@ -339,7 +424,7 @@ end;
 
 { A fixed frame with function FC and the channel's LEN= zero octets. }
 function FixedService(Chn: pChnVirt; var Link: tFT12Link; FC: Byte;
-  var Rep: tRecRecord; var RepLen: Word; TimeoutMs: LongInt; Retries: Integer;
+  var Rep: tRecRecord; var RepLen: Word; TimeoutMs: LongInt; Retries: LongInt;
   Idle: tFT12Idle; IdleData: Pointer): tChResult;
 var
   Req: tSendRecord;
@@ -355,7 +440,7 @@ begin
 end;
 
 function FT12ResetLink(Chn: pChnVirt; var Link: tFT12Link; TimeoutMs: LongInt;
-  Retries: Integer; Idle: tFT12Idle; IdleData: Pointer): tChResult;
+  Retries: LongInt; Idle: tFT12Idle; IdleData: Pointer): tChResult;
 var
   Rep: tRecRecord;
   Len: Word;
@@ -365,7 +450,7 @@ begin
 end;
 
 function FT12RequestClass(Chn: pChnVirt; var Link: tFT12Link; ClassNo: Byte;
-  var Rep: tRecRecord; var RepLen: Word; TimeoutMs: LongInt; Retries: Integer;
+  var Rep: tRecRecord; var RepLen: Word; TimeoutMs: LongInt; Retries: LongInt;
   Idle: tFT12Idle; IdleData: Pointer): tChResult;
 begin
   RepLen := 0;
@@ -510,6 +595,310 @@ begin
   { the reply to a reset or an FCV = 1 frame is what a repetition gets }
   S.HasReply := Fcv or (S.RMess.FC = FCM_1stSetTransmit);
   SendNow(S.Chn, S.Reply, S.ReplyLen);
+end;
+
+{ ------------------------------------------------------------ balanced }
+
+function FT12BalStateName(S: tFT12BalState): ShortString;
+begin
+  case S of
+    bsIdle:          Result := 'IDLE';
+    bsRequestStatus: Result := 'REQUEST STATUS';
+    bsResetting:     Result := 'RESETTING';
+  else
+    Result := 'AVAILABLE';
+  end;
+end;
+
+function FT12BalancedInit(var B: tFT12Balanced; Chn: pChnVirt): tChResult;
+begin
+  FillChar(B, SizeOf(B), 0);
+  if (Chn = nil) or (Chn^.CH_Type <> ChnFT1_2.cName) then
+    Exit(res_WrongLayer);
+  if pChnFT1_2(Chn)^.CH_MaSl then
+    Exit(res_BadMessage);
+  B.Chn := Chn;
+  B.TimeoutMs := FT12LinkTimeoutMs;
+  B.Retries := FT12LinkRetries;
+  B.TestMs := FT12BalTestMs;
+  B.State := bsIdle;
+  Chn^.ChReceiveBuffer(@B.RMess, SizeOf(B.RMess));
+  Result := res_Ok;
+end;
+
+function FT12BalancedSend(var B: tFT12Balanced; Buf: PByte; Len: Word;
+  Confirm: Boolean): tChResult;
+var
+  Slot: Integer;
+begin
+  if Len = 0 then
+    Exit(res_BadLen);
+  if Len > MaxDataLen then
+    Exit(res_TooLong);
+  if B.QCount >= FT12BalQueueLen then
+    Exit(res_Busy);
+  Slot := (B.QHead + B.QCount) mod FT12BalQueueLen;
+  B.Queue[Slot].Len := Len;
+  B.Queue[Slot].Confirm := Confirm;
+  Move(Buf^, B.Queue[Slot].Data[1], Len);
+  Inc(B.QCount);
+  Result := res_Ok;
+end;
+
+function FT12BalancedQuiet(const B: tFT12Balanced): Boolean;
+begin
+  Result := (B.QCount = 0) and not B.Pending;
+end;
+
+{ Send R in the given direction once the transmitter is free (bounded). }
+function SendDir(var B: tFT12Balanced; Primary: Boolean; constref R: tSendRecord;
+  Len: Word): tChResult;
+var
+  Deadline: QWord;
+begin
+  Deadline := ChMsTick + QWord(FT12LinkTimeoutMs);
+  while (B.Chn^.ChSendReady <> CHS_SendReady) and (ChMsTick <= Deadline) do
+    Sleep(1);
+  pChnFT1_2(B.Chn)^.ChSendAs(Primary, @R, Len);
+  Result := B.Chn^.ChSendResult;
+end;
+
+{ Start a request: FCV from the function, FCB alternating for FCV = 1. }
+procedure StartRequest(var B: tFT12Balanced; T: tMessType; FC: Byte;
+  Buf: PByte; Len: Word);
+var
+  Fcv: Boolean;
+begin
+  Fcv := FT12FcvOf(FC);
+  FillChar(B.Out, SizeOf(B.Out), 0);
+  B.Out.MessType := T;
+  B.Out.FC := FC;
+  B.Out.FCV_DFC := Fcv;
+  B.Out.FCB_ACD := Fcv and B.Fcb;
+  if T = tpShortM then
+    B.OutLen := FixedLen(B.Chn)
+  else
+  begin
+    Move(Buf^, B.Out.Data[1], Len);
+    B.OutLen := cSizeHeadSndMsg + Len;
+  end;
+  B.Tries := 1;
+  B.SentAt := ChMsTick;
+  B.LastRequest := B.SentAt;
+  B.Pending := FC <> FCM_UserDataNoRep;
+  SendDir(B, True, B.Out, B.OutLen);
+end;
+
+procedure LinkLost(var B: tFT12Balanced);
+begin
+  Inc(B.LinkLost);
+  B.State := bsIdle;
+  B.Pending := False;
+end;
+
+procedure Dequeue(var B: tFT12Balanced);
+begin
+  B.QHead := (B.QHead + 1) mod FT12BalQueueLen;
+  Dec(B.QCount);
+end;
+
+{ The primary's side of the peer's answer (PRM = 0, or E5). }
+procedure TakeAnswer(var B: tFT12Balanced);
+var
+  F: pChnFT1_2;
+  Nack: Boolean;
+begin
+  F := pChnFT1_2(B.Chn);
+  if not B.Pending then
+  begin
+    Inc(B.Unexpected);            { nothing of ours is waiting for it }
+    Exit;
+  end;
+  if ((B.RMess.MessType in [tpShortM, tpLongM]) and (F^.CH_AdrLen > 0) and
+      (B.Chn^.CH_RSNode <> B.Chn^.CH_DNode)) or
+     not ReplyFits(B.Out.FC, B.RMess.MessType, B.RMess.FC) then
+  begin
+    Inc(B.Ignored);
+    Exit;
+  end;
+  B.Pending := False;
+  B.PeerDfc := (B.RMess.MessType in [tpShortM, tpLongM]) and B.RMess.FCV_DFC;
+  Nack := (B.RMess.MessType in [tpShortM, tpLongM]) and (B.RMess.FC = FCS_NackBusy);
+  if B.Out.FCV_DFC then
+    B.Fcb := not B.Fcb;           { the service is complete, whatever its outcome }
+  { the peer cannot take more now: wait a timeout before the next request }
+  if B.PeerDfc or Nack then
+    B.HoldUntil := ChMsTick + QWord(B.TimeoutMs);
+  case B.Out.FC of
+    FCM_ReqLinkState:
+      begin
+        { status of link: reset the peer's secondary }
+        B.State := bsResetting;
+        StartRequest(B, tpShortM, FCM_1stSetTransmit, nil, 0);
+      end;
+    FCM_1stSetTransmit:
+      if Nack then
+        LinkLost(B)
+      else
+      begin
+        B.State := bsAvailable;
+        B.Fcb := True;            { the first FCV = 1 frame after a reset }
+      end;
+    FCM_CheckLink:
+      Inc(B.Tests);
+    FCM_UserDataReply:
+      if not Nack then
+      begin
+        Inc(B.Confirmed);
+        Dequeue(B);               { a NACK keeps it queued for later }
+      end;
+  end;
+end;
+
+{ Fill B.Reply as a fixed answer with function FC. }
+procedure BalReply(var B: tFT12Balanced; FC: Byte);
+begin
+  FillChar(B.Reply, SizeOf(B.Reply), 0);
+  B.Reply.MessType := tpShortM;
+  B.Reply.FCV_DFC := B.Dfc;
+  B.Reply.FC := FC;
+  B.ReplyLen := FixedLen(B.Chn);
+end;
+
+{ The secondary's side of the peer's request (PRM = 1). }
+procedure TakeRequest(var B: tFT12Balanced; Len: Word);
+var
+  Fcv: Boolean;
+begin
+  Fcv := B.RMess.FCV_DFC;
+  if B.RMess.FC = FCM_UserDataNoRep then
+  begin
+    Inc(B.Executed);
+    if Assigned(B.OnUserData) then
+      B.OnUserData(B.Data, @B.RMess.Data[1], Len - cSizeHeadRecMsg, False);
+    Exit;                         { SEND/NO REPLY: never answered }
+  end;
+  if Fcv and B.HasReply and (B.RMess.FCB_ACD = B.LastFcb) then
+  begin
+    { the same FCB as the last accepted frame: the peer lost our answer }
+    Inc(B.Repeats);
+    SendDir(B, False, B.Reply, B.ReplyLen);
+    Exit;
+  end;
+  case B.RMess.FC of
+    FCM_1stSetTransmit:
+      begin
+        B.PeerReset := True;
+        BalReply(B, FCS_Ack);
+      end;
+    FCM_1stSetUserFun, FCM_CheckLink:
+      BalReply(B, FCS_Ack);
+    FCM_UserDataReply:
+      begin
+        Inc(B.Executed);
+        if Assigned(B.OnUserData) and
+           B.OnUserData(B.Data, @B.RMess.Data[1], Len - cSizeHeadRecMsg, True) then
+          BalReply(B, FCS_Ack)
+        else
+          BalReply(B, FCS_NackBusy);
+      end;
+    FCM_ReqLinkState:
+      BalReply(B, FCS_LinkSAccesReq);
+  else
+    BalReply(B, FCS_NotImplemented);   { FC 8, 10, 11 are unbalanced only }
+  end;
+  { after a reset no FCV = 1 frame was accepted yet, so the next one is new
+    whatever its FCB; after that a repeated FCB is a repetition }
+  if B.RMess.FC = FCM_1stSetTransmit then
+    B.HasReply := False
+  else if Fcv then
+  begin
+    B.HasReply := True;
+    B.LastFcb := B.RMess.FCB_ACD;
+  end;
+  SendDir(B, False, B.Reply, B.ReplyLen);
+end;
+
+{ The primary's timers: repetitions, establishing the link, user data and
+  test functions. }
+procedure RunPrimary(var B: tFT12Balanced);
+var
+  Now, Wait: QWord;
+  Q: ^tFT12BalUserData;
+begin
+  Now := ChMsTick;
+  if B.Pending then
+  begin
+    { collision rule: station B (DIR = 0) waits half a timeout more than
+      station A before each repetition, so the two repeat at different
+      times }
+    Wait := QWord(B.TimeoutMs);
+    if not pChnFT1_2(B.Chn)^.CH_Dir then
+      Inc(Wait, QWord(B.TimeoutMs) div 2);
+    if Now - B.SentAt <= Wait then
+      Exit;
+    if B.Tries > B.Retries then
+    begin
+      LinkLost(B);                { the queued data waits for the new link }
+      Exit;
+    end;
+    Inc(B.Tries);
+    Inc(B.Retransmits);
+    B.SentAt := Now;
+    SendDir(B, True, B.Out, B.OutLen);   { a repetition: the same FCB }
+    Exit;
+  end;
+  if Now < B.HoldUntil then
+    Exit;
+  case B.State of
+    bsIdle, bsRequestStatus, bsResetting:
+      begin
+        B.State := bsRequestStatus;
+        StartRequest(B, tpShortM, FCM_ReqLinkState, nil, 0);
+      end;
+    bsAvailable:
+      if B.QCount > 0 then
+      begin
+        Q := @B.Queue[B.QHead];
+        if Q^.Confirm then
+          StartRequest(B, tpLongM, FCM_UserDataReply, @Q^.Data[1], Q^.Len)
+        else
+        begin
+          StartRequest(B, tpLongM, FCM_UserDataNoRep, @Q^.Data[1], Q^.Len);
+          Inc(B.Confirmed);
+          Dequeue(B);
+        end;
+      end
+      else if (B.TestMs > 0) and (Now - B.LastRequest >= QWord(B.TestMs)) then
+        StartRequest(B, tpShortM, FCM_CheckLink, nil, 0);
+  end;
+end;
+
+function FT12BalancedStep(var B: tFT12Balanced): Boolean;
+var
+  Len: Word;
+  R: tChResult;
+begin
+  Result := False;
+  if (B.Chn = nil) or (B.Chn^.CH_State <> CHS_Connect) then
+    Exit;
+  if B.Chn^.ChReceiveReady = CHS_ReceiveReady then
+  begin
+    Result := True;
+    Inc(B.Frames);
+    Len := 0;
+    B.Chn^.ChReceive(Len);
+    R := B.Chn^.ChReceiveResult;
+    if R = res_ErrDir then
+      Inc(B.BadDir)               { an echo or a twin: never answered }
+    else if R <> res_Ok then
+      Inc(B.Broken)               { garbled: the peer repeats }
+    else if pChnFT1_2(B.Chn)^.CH_RPrm then
+      TakeRequest(B, Len)
+    else
+      TakeAnswer(B);
+  end;
+  RunPrimary(B);
 end;
 
 end.

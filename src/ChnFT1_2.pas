@@ -64,6 +64,7 @@ const
   res_ErrLen   = ChnFT12Codec.res_ErrLen;     { $21 }
   res_ErrCode  = ChnFT12Codec.res_ErrCode;    { $22 }
   res_ErrFrame = ChnFT12Codec.res_ErrFrame;   { $23 }
+  res_ErrDir   = ChnFT12Codec.res_ErrDir;     { $24 port: balanced, DIR of the own side }
 
   { message types (manual 4) }
   tpSACK   = ChnFT12Codec.tpSACK;
@@ -120,6 +121,11 @@ type
       DNO= are checked against the ADR= in force after it, in any order }
     CH_AdrNext  : Byte;
     CH_NodGiven, CH_DnoGiven: Boolean;
+    { direction of the frame the last ChReceive gave (False after a broken
+      frame): PRM (True = a request from the peer's primary; single
+      characters count as secondary) and the DIR bit it carried }
+    CH_RPrm     : Boolean;
+    CH_RDir     : Boolean;
 
     constructor Init;
     constructor ChInitParam(const S: tParamStr);
@@ -131,10 +137,16 @@ type
     procedure ChConnect; virtual;
     procedure ChDisConnect; virtual;
     procedure ChSend(Buff: Pointer; Len: Word); virtual;
+    { ChSend with the PRM bit chosen per frame: Primary = True sends a
+      request (address DNO), False an answer (address NOD). Balanced mode
+      only; unbalanced, a direction other than the role is res_BadMessage.
+      ChSend = ChSendAs(CH_Master, ...). }
+    procedure ChSendAs(Primary: Boolean; Buff: Pointer; Len: Word);
     procedure ChReceive(var Len: Word); virtual;
     procedure ChReceiveFlush; virtual;
     procedure ChReceiveTick; virtual;
-    { codec settings from the parameters now in force }
+    { codec settings from the parameters now in force (Primary = the role,
+      CH_Master) }
     function  ChCodecConfig: tFT12Config;
     { GAP= in milliseconds (0 = off) }
     function  ChGapMs: LongWord;
@@ -179,6 +191,8 @@ begin
   CH_AdrNext := CH_AdrLen;
   CH_NodGiven := False;
   CH_DnoGiven := False;
+  CH_RPrm := False;
+  CH_RDir := False;
   FillChar(CH_Rx, SizeOf(CH_Rx), 0);
   CH_Rx.Cfg := ChCodecConfig;
   FT12RxReset(CH_Rx);
@@ -228,9 +242,13 @@ begin
   Result.Balanced := not CH_MaSl;
   Result.Dir := CH_Dir;
   Result.Primary := CH_Master;
-  Result.CheckPrm := True;
-  { a slave/secondary takes only its own and broadcast frames }
-  Result.Filter := (not CH_Master) and (CH_AdrLen > 0);
+  { balanced: primary and secondary at once, frames of both PRM values come
+    in; a DIR of the own side is reported. Unbalanced: the role is fixed }
+  Result.CheckPrm := CH_MaSl;
+  Result.CheckDir := not CH_MaSl;
+  { a slave/secondary takes only its own and broadcast frames; balanced,
+    requests (PRM = 1) only }
+  Result.Filter := (CH_AdrLen > 0) and (not CH_Master or not CH_MaSl);
   Result.OwnAddr := CH_Node;
   Result.GapMs := ChGapMs;
 end;
@@ -368,13 +386,24 @@ begin
 end;
 
 procedure tChnFT1_2.ChSend(Buff: Pointer; Len: Word);
+begin
+  ChSendAs(CH_Master, Buff, Len);
+end;
+
+procedure tChnFT1_2.ChSendAs(Primary: Boolean; Buff: Pointer; Len: Word);
 var
   Addr: tNode;
   N: Word;
   R: tChResult;
+  Cfg: tFT12Config;
 begin
   if not ChSendAllowed(Buff, Len, True) then
     Exit;
+  if CH_MaSl and (Primary <> CH_Master) then
+  begin
+    CH_SResult := res_BadMessage;   { unbalanced: the role is fixed }
+    Exit;
+  end;
   if CH_SBuff = nil then
   begin
     GetMem(CH_SBuff, cFT12MaxFrame);   { no LSB= given: room for any frame }
@@ -382,13 +411,14 @@ begin
   end;
   { one address field: the destination from a master/primary, the own
     address (SNO) from a slave/secondary }
-  if CH_Master then
+  if Primary then
     Addr := CH_DNode
   else
     Addr := CH_Node;
+  Cfg := ChCodecConfig;
+  Cfg.Primary := Primary;
   N := 0;
-  R := FT12Encode(ChCodecConfig, pSendRecord(Buff)^, Len, Addr, CH_SBuff,
-    CH_MSBuff, N);
+  R := FT12Encode(Cfg, pSendRecord(Buff)^, Len, Addr, CH_SBuff, CH_MSBuff, N);
   if R <> res_Ok then
   begin
     CH_SResult := R;
@@ -444,6 +474,8 @@ begin
     Exit;
   end;
   CH_RCtrl := CHS_Receiving;
+  CH_RPrm := False;
+  CH_RDir := False;
   if CH_RErr <> res_Ok then
   begin
     CH_RResult := CH_RErr;     { broken frame: the application answers }
@@ -455,6 +487,8 @@ begin
   CH_LRMess := Len;
   if CH_RResult <> res_Ok then
     Exit;
+  CH_RPrm := FT12FramePrm(CH_Rx);
+  CH_RDir := (CH_Rx.Kind in [tpShortM, tpLongM]) and (CH_Rx.Code and cBitDirRes <> 0);
   { one address on the line: report it on the side it belongs to; with no
     address field (ADR=0, single characters) the configured peer }
   if FT12FramePrm(CH_Rx) then
@@ -495,4 +529,5 @@ initialization
   ChRegisterResultText(cName, res_ErrLen, 'bad frame length');
   ChRegisterResultText(cName, res_ErrCode, 'PRM bit does not fit this station''s role');
   ChRegisterResultText(cName, res_ErrFrame, 'frame error (start or end character)');
+  ChRegisterResultText(cName, res_ErrDir, 'DIR bit says the frame came from this station''s own side');
 end.

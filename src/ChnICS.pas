@@ -81,8 +81,8 @@ type
     CH_RSum   : tXor8;       { receiver's running checksum }
     CH_SSum   : tXor8;       { checksum of the last frame sent }
     CH_Master : Boolean;     { MAS=MASTER }
-    CH_DataI  : Integer;     { numbers received so far in the current frame }
-    CH_PomS   : string;      { the number being received (text) }
+    CH_DataI  : SmallInt;    { numbers received so far in the current frame }
+    CH_PomS   : ShortString;      { the number being received (text) }
     CH_Codec  : tICSState;   { the receive automaton }
     CH_Event  : tICSEvent;   { what the automaton last reported }
     constructor Init;

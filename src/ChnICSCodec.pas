@@ -86,7 +86,7 @@ type
     RecvSum: tXor8;          { SUM byte of the frame }
     DNode  : tNode;          { addresses of the frame being received }
     SNode  : tNode;
-    Count  : Integer;        { numbers stored in Rec.Data so far }
+    Count  : SmallInt;       { numbers stored in Rec.Data so far }
     NumText: string[ICSMaxNumText];   { the number being received }
     Delim  : Char;           { text delimiter }
     Rec    : tICSRecord;     { the decoded frame }
@@ -95,8 +95,8 @@ type
 
 { Number count of a record Len (ICSHeadLen + 2 * count), or -1 when Len is
   impossible (below 4, odd data part, more than 32 numbers). }
-function ICSCountOfLen(Len: Word): Integer;
-function ICSLenOfCount(Count: Integer): Word;
+function ICSCountOfLen(Len: Word): SmallInt;
+function ICSLenOfCount(Count: SmallInt): Word;
 
 { True for a character allowed as text delimiter / inside a text. }
 function ICSIsDelimiter(C: Char): Boolean;
@@ -128,7 +128,7 @@ implementation
 uses
   uString;
 
-function ICSCountOfLen(Len: Word): Integer;
+function ICSCountOfLen(Len: Word): SmallInt;
 begin
   if (Len < ICSHeadLen) or Odd(Len - ICSHeadLen) or
      ((Len - ICSHeadLen) div SizeOf(tICSData) > ICSMaxDataLen) then
@@ -137,7 +137,7 @@ begin
     Result := (Len - ICSHeadLen) div SizeOf(tICSData);
 end;
 
-function ICSLenOfCount(Count: Integer): Word;
+function ICSLenOfCount(Count: SmallInt): Word;
 begin
   Result := ICSHeadLen + Count * SizeOf(tICSData);
 end;
@@ -154,7 +154,7 @@ end;
 
 { '' is valid (no text); otherwise D...D with D a delimiter and neither a
   control character nor D inside. }
-function TextValid(const T: string): Boolean;
+function TextValid(const T: ShortString): Boolean;
 var
   I: Integer;
 begin

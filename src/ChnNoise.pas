@@ -75,10 +75,10 @@ type
     procedure ChReceiveTick; virtual;
     procedure ChDestNode(DNode: tNode); virtual;
     procedure ChGetNode(var SNode, DNode: tNode); virtual;
-    function  ChResultStr(R: tChResult): string; virtual;
+    function  ChResultStr(R: tChResult): ShortString; virtual;
     { What the line makes of byte B at the next position of direction Dir:
       0, 1 or 2 bytes in Out (garbage first). }
-    function  ChDamage(Dir: tNoiseDir; B: Byte; var Out: array of Byte): Integer;
+    function  ChDamage(Dir: tNoiseDir; B: Byte; var Out: array of Byte): LongInt;
   end;
 
   pAddChnNoise = ^tAddChnNoise;
@@ -283,7 +283,7 @@ begin
   end;
 end;
 
-function tChnNoise.ChDamage(Dir: tNoiseDir; B: Byte; var Out: array of Byte): Integer;
+function tChnNoise.ChDamage(Dir: tNoiseDir; B: Byte; var Out: array of Byte): LongInt;
 var
   H: QWord;
   K: Byte;
@@ -467,7 +467,7 @@ begin
     inherited ChGetNode(SNode, DNode);
 end;
 
-function tChnNoise.ChResultStr(R: tChResult): string;
+function tChnNoise.ChResultStr(R: tChResult): ShortString;
 begin
   if (R >= res_Proto) and (CH_Low <> nil) then
     Result := CH_Low^.ChResultStr(R)

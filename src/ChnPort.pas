@@ -53,7 +53,7 @@ type
     method; all of them return at once unless the text says otherwise. }
   TChnPort = class
   protected
-    FDevice: string;
+    FDevice: ShortString;
     FOpen: Boolean;
     FOSError: LongInt;   { OS error code of the last failure, 0 if none }
   public
@@ -100,7 +100,7 @@ type
     { Close; safe to call when not open. }
     procedure Close; virtual; abstract;
 
-    property Device: string read FDevice;
+    property Device: ShortString read FDevice;
     property IsOpen: Boolean read FOpen;
     property OSError: LongInt read FOSError;
   end;
@@ -112,17 +112,17 @@ const
     InQueue: 4096);
 
 { Device of COM=n: /dev/ttyS<n-1> on Unix, \\.\COMn on Windows. }
-function ComDevicePath(N: LongInt): string;
+function ComDevicePath(N: LongInt): ShortString;
 
 { Backend registry. Names are upper case ('RTL', 'SYNAPSE'); registering a
   name again replaces the class. }
-procedure RegisterPortDriver(const Name: string; Cls: TChnPortClass);
-function FindPortDriver(const Name: string): TChnPortClass;
+procedure RegisterPortDriver(const Name: ShortString; Cls: TChnPortClass);
+function FindPortDriver(const Name: ShortString): TChnPortClass;
 { 'RTL|SYNAPSE|...' in registration order, for ParamChoice and messages. }
-function PortDriverNames: string;
+function PortDriverNames: ShortString;
 { The driver tChnCom uses without DRV=: 'SYNAPSE' when built with
   -dCHN_SYNAPSE, otherwise 'RTL'. }
-function DefaultPortDriver: string;
+function DefaultPortDriver: ShortString;
 
 implementation
 
@@ -152,7 +152,7 @@ begin
   inherited Destroy;
 end;
 
-procedure RegisterPortDriver(const Name: string; Cls: TChnPortClass);
+procedure RegisterPortDriver(const Name: ShortString; Cls: TChnPortClass);
 var
   I: Integer;
   U: string;
@@ -171,7 +171,7 @@ begin
   DriverClasses[DriverCount] := Cls;
 end;
 
-function FindPortDriver(const Name: string): TChnPortClass;
+function FindPortDriver(const Name: ShortString): TChnPortClass;
 var
   I: Integer;
   U: string;
@@ -183,7 +183,7 @@ begin
   Result := nil;
 end;
 
-function PortDriverNames: string;
+function PortDriverNames: ShortString;
 var
   I: Integer;
 begin
@@ -196,7 +196,7 @@ begin
   end;
 end;
 
-function ComDevicePath(N: LongInt): string;
+function ComDevicePath(N: LongInt): ShortString;
 begin
   {$IFDEF WINDOWS}
   Result := '\\.\COM' + NumStr(N);
@@ -205,7 +205,7 @@ begin
   {$ENDIF}
 end;
 
-function DefaultPortDriver: string;
+function DefaultPortDriver: ShortString;
 begin
   {$IFDEF CHN_SYNAPSE}
   Result := 'SYNAPSE';

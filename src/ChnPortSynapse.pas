@@ -40,7 +40,7 @@ type
   private
     FSer: TBlockSerial;
     function Check: tChResult;
-    function MapError(E: Integer): tChResult;
+    function MapError(E: LongInt): tChResult;
   public
     function Open(const Path: tWordString): tChResult; override;
     function Configure(const S: tPortSettings): tChResult; override;
@@ -90,7 +90,7 @@ const
     19200, 38400, 57600, 115200, 230400, 460800, 500000, 576000, 921600,
     1000000, 1152000, 1500000, 2000000, 2500000, 3000000, 3500000, 4000000);
 
-function TChnPortSynapse.MapError(E: Integer): tChResult;
+function TChnPortSynapse.MapError(E: LongInt): tChResult;
 begin
   FOSError := E;
   if E = 0 then

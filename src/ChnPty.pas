@@ -17,7 +17,6 @@
 unit ChnPty;
 
 {$I chn.inc}
-{$H+}
 
 interface
 
@@ -30,7 +29,7 @@ const
 type
   TChnPortPty = class(TChnPortUnix)
   private
-    FSlavePath: string;
+    FSlavePath: AnsiString;
   public
     { Creates a new pair; Path is ignored. }
     function Open(const Path: tWordString): tChResult; override;
@@ -41,19 +40,19 @@ type
     { Without a client poll(2) answers POLLHUP at once, every time; that
       is no input, so wait the Ms as on an idle line (no busy loop). }
     function WaitInput(Ms: LongInt): Boolean; override;
-    property SlavePath: string read FSlavePath;
+    property SlavePath: AnsiString read FSlavePath;
   end;
 
 { Make the master side Fd (already open on /dev/ptmx) usable: unlock the
   slave and return its path. 0 or the errno of the failing call. }
-function PtyUnlock(Fd: cint; out SlavePath: string): cint;
+function PtyUnlock(Fd: cint; out SlavePath: AnsiString): cint;
 
 { A new pair: master opened read/write, non-blocking, raw; 0 or an errno
   (then Fd = -1). }
-function PtyCreate(out Fd: cint; out SlavePath: string): cint;
+function PtyCreate(out Fd: cint; out SlavePath: AnsiString): cint;
 
 var
-  PtyLastSlave: string = '';   { slave path of the last TChnPortPty opened }
+  PtyLastSlave: AnsiString = '';   { slave path of the last TChnPortPty opened }
 
 implementation
 
@@ -64,7 +63,7 @@ const
   TIOCSPTLCK = $40045431;   { _IOW('T', 0x31, int) }
   TIOCGPTN   = $80045430;   { _IOR('T', 0x30, unsigned int) }
 
-function PtyUnlock(Fd: cint; out SlavePath: string): cint;
+function PtyUnlock(Fd: cint; out SlavePath: AnsiString): cint;
 var
   Unlock: cint;
   N: cuint;
@@ -79,7 +78,7 @@ begin
   Result := 0;
 end;
 
-function PtyCreate(out Fd: cint; out SlavePath: string): cint;
+function PtyCreate(out Fd: cint; out SlavePath: AnsiString): cint;
 var
   T: Termios;
 begin

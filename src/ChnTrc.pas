@@ -25,8 +25,15 @@
              closed by ChClose; if it cannot be opened, ChOpen gives
              res_CannotOpen and the stack stays closed. FILE= cannot name
              another file while the layer is open (res_WrongState).
-    MOD=HEX|DEC  bytes in hex groups as in the capture (default) or as
-             3-digit decimal numbers.
+    MOD=HEX|DEC|PCAP  bytes in hex groups as in the capture (default), as
+             3-digit decimal numbers, or a binary pcap file of link type
+             250 (RTAC serial, unit ChnPcap) that Wireshark opens: one
+             record per chunk with its time (UTC, microseconds) and
+             direction. Switching between PCAP and a text mode is refused
+             while open (res_WrongState): the file would mix both. A pcap
+             FILE= that is not empty must be a pcap this layer appends to
+             (little-endian, link type 250), else ChOpen gives
+             res_CannotOpen.
   A failed write to the log is counted in CH_LogErrors and never affects
   the data passing through. }
 unit ChnTrc;
@@ -36,7 +43,7 @@ unit ChnTrc;
 interface
 
 uses
-  ChnTypes, ChnVirt, ChnTrcFormat;
+  ChnTypes, ChnVirt, ChnTrcFormat, ChnPcap;
 
 const
   cName = 'TRC';
@@ -47,7 +54,8 @@ type
   pChnTrc = ^tChnTrc;
   tChnTrc = object(tChnVirt)
     CH_File     : tWordString;  { FILE=: a path, STDERR or STDOUT }
-    CH_Mode     : tTrcMode;     { MOD=HEX|DEC }
+    CH_Mode     : tTrcMode;     { MOD=HEX|DEC: the text format }
+    CH_Pcap     : Boolean;      { MOD=PCAP: binary pcap instead of text }
     CH_Handle   : THandle;      { the log while open }
     CH_LogOpen  : Boolean;      { CH_Handle is valid }
     CH_OwnHandle: Boolean;      { CH_Handle is a file this layer opened }
@@ -67,9 +75,11 @@ type
     procedure ChReceiveTick; virtual;
     procedure ChDestNode(DNode: tNode); virtual;
     procedure ChGetNode(var SNode, DNode: tNode); virtual;
-    function  ChResultStr(R: tChResult): string; virtual;
+    function  ChResultStr(R: tChResult): ShortString; virtual;
     { Write one entry to the log (also usable by tools for their own notes). }
     procedure ChTrcLog(Dir: tTrcDir; Buff: Pointer; Len: Word);
+    function  PcapStart: Boolean;
+    function  LogWrite(const Text: AnsiString): Boolean;
   end;
 
   pAddChnTrc = ^tAddChnTrc;
@@ -80,11 +90,11 @@ type
 implementation
 
 uses
-  {$IFDEF UNIX}BaseUnix,{$ENDIF}
-  SysUtils, uString;
+  {$IFDEF UNIX}BaseUnix, Unix,{$ENDIF}
+  SysUtils, DateUtils, uString;
 
 const
-  ModeNames = 'HEX|DEC';
+  ModeNames = 'HEX|DEC|PCAP';
   ModeText: array[tTrcMode] of string[3] = ('HEX', 'DEC');
 
 { Milliseconds since local midnight. }
@@ -96,6 +106,26 @@ begin
   Result := ((LongInt(H) * 60 + M) * 60 + S) * 1000 + Ms;
 end;
 
+{ UTC seconds since 1970 and microseconds, for a pcap record. }
+procedure UtcNow(out Sec, USec: LongWord);
+{$IFDEF UNIX}
+var
+  T: TTimeVal;
+begin
+  fpgettimeofday(@T, nil);
+  Sec := T.tv_sec;
+  USec := T.tv_usec;
+end;
+{$ELSE}
+var
+  N: TDateTime;
+begin
+  N := LocalTimeToUniversal(Now);
+  Sec := DateTimeToUnix(N);
+  USec := MilliSecondOf(N) * 1000;
+end;
+{$ENDIF}
+
 constructor tChnTrc.Init;
 begin
   inherited Init;
@@ -104,6 +134,7 @@ begin
   CH_NumName := ChNumName(CH_Type);
   CH_File := TrcStdErr;
   CH_Mode := trcHex;
+  CH_Pcap := False;
   CH_Handle := 0;
   CH_LogOpen := False;
   CH_OwnHandle := False;
@@ -142,8 +173,15 @@ begin
   else if Key = 'MOD' then
   begin
     Result := ParamChoice(S, ModeNames, I);
+    { an open file stays text or pcap: mixing both would spoil it }
+    if (Result = res_Ok) and (CH_State <> CHS_Close) and ((I = 2) <> CH_Pcap) then
+      Result := res_WrongState;
     if (Result = res_Ok) and (CmdL = cmd_Set) then
-      CH_Mode := tTrcMode(I);
+    begin
+      CH_Pcap := I = 2;
+      if not CH_Pcap then
+        CH_Mode := tTrcMode(I);
+    end;
   end
   else
     Result := inherited ChSetOneParam(S, CmdL);
@@ -151,7 +189,10 @@ end;
 
 function tChnTrc.ChOwnParams: tParamStr;
 begin
-  Result := inherited ChOwnParams + ' FILE=' + CH_File + ' MOD=' + ModeText[CH_Mode];
+  if CH_Pcap then
+    Result := inherited ChOwnParams + ' FILE=' + CH_File + ' MOD=PCAP'
+  else
+    Result := inherited ChOwnParams + ' FILE=' + CH_File + ' MOD=' + ModeText[CH_Mode];
 end;
 
 procedure tChnTrc.ChOpen;
@@ -188,6 +229,15 @@ begin
     CH_OwnHandle := True;
   end;
   CH_LogOpen := True;
+  if CH_Pcap and not PcapStart then
+  begin
+    if CH_OwnHandle then
+      FileClose(CH_Handle);
+    CH_LogOpen := False;
+    CH_OwnHandle := False;
+    CH_Result := res_CannotOpen;
+    Exit;
+  end;
   inherited ChOpen;
   if CH_Result <> res_Ok then
   begin
@@ -196,6 +246,54 @@ begin
     CH_LogOpen := False;
     CH_OwnHandle := False;
   end;
+end;
+
+{ MOD=PCAP at ChOpen: a new or empty file (or a pipe) gets the file header;
+  a file with content must be a pcap of ours, which is appended to. }
+function tChnTrc.PcapStart: Boolean;
+var
+  Size: Int64;
+  Head: AnsiString;
+  Fd: THandle;
+begin
+  Size := 0;
+  if CH_OwnHandle then
+    Size := FileSeek(CH_Handle, Int64(0), fsFromEnd);
+  if Size <= 0 then
+  begin
+    Head := PcapFileHeaderBytes;
+    Result := LogWrite(Head);
+    Exit;
+  end;
+  { read the header through a second descriptor: ours is write-only }
+  Result := False;
+  Head := '';
+  SetLength(Head, SizeOf(tPcapFileHeader));
+  Fd := FileOpen(CH_File, fmOpenRead or fmShareDenyNone);
+  if Fd = THandle(-1) then
+    Exit;
+  if FileRead(Fd, Head[1], Length(Head)) = Length(Head) then
+    Result := PcapIsOwnHeader(Head);
+  FileClose(Fd);
+end;
+
+function tChnTrc.LogWrite(const Text: AnsiString): Boolean;
+var
+  Written, N: LongInt;
+begin
+  {$IFNDEF UNIX}
+  if CH_OwnHandle then
+    FileSeek(CH_Handle, 0, fsFromEnd);
+  {$ENDIF}
+  Written := 0;
+  while Written < Length(Text) do        { a pipe may take it in pieces }
+  begin
+    N := FileWrite(CH_Handle, Text[Written + 1], Length(Text) - Written);
+    if N <= 0 then
+      Exit(False);
+    Inc(Written, N);
+  end;
+  Result := True;
 end;
 
 procedure tChnTrc.ChClose;
@@ -218,26 +316,20 @@ end;
 procedure tChnTrc.ChTrcLog(Dir: tTrcDir; Buff: Pointer; Len: Word);
 var
   Text: AnsiString;
-  Written, N: LongInt;
+  Sec, USec: LongWord;
 begin
   if not CH_LogOpen then
     Exit;
-  Text := TrcFormat(MsOfDay, Dir, Buff^, Len, CH_Mode, CH_Name);
-  {$IFNDEF UNIX}
-  if CH_OwnHandle then
-    FileSeek(CH_Handle, 0, fsFromEnd);
-  {$ENDIF}
-  Written := 0;
-  while Written < Length(Text) do        { a pipe may take it in pieces }
+  if CH_Pcap then
   begin
-    N := FileWrite(CH_Handle, Text[Written + 1], Length(Text) - Written);
-    if N <= 0 then
-    begin
-      Inc(CH_LogErrors);
-      Exit;
-    end;
-    Inc(Written, N);
-  end;
+    UtcNow(Sec, USec);
+    Text := PcapRecordBytes(Sec, USec, Dir, Buff^, Len);
+  end
+  else
+    Text := TrcFormat(MsOfDay, Dir, Buff^, Len, CH_Mode, CH_Name);
+  { one write per entry: layers sharing a file (O_APPEND) do not interleave }
+  if not LogWrite(Text) then
+    Inc(CH_LogErrors);
 end;
 
 procedure tChnTrc.ChSend(Buff: Pointer; Len: Word);
@@ -302,7 +394,7 @@ begin
     inherited ChGetNode(SNode, DNode);
 end;
 
-function tChnTrc.ChResultStr(R: tChResult): string;
+function tChnTrc.ChResultStr(R: tChResult): ShortString;
 begin
   { results from res_Proto up come from the layer below (TRC's own codes
     of that range belong to the log reader, never to the layer) }

@@ -82,14 +82,14 @@ type
   end;
 
 { Writer. MsOfDay is taken modulo one day. }
-function TrcTimeText(MsOfDay: LongInt): string;
-function TrcHeader(MsOfDay: LongInt; Dir: tTrcDir; Len: LongInt; const Tag: string): string;
+function TrcTimeText(MsOfDay: LongInt): ShortString;
+function TrcHeader(MsOfDay: LongInt; Dir: tTrcDir; Len: LongInt; const Tag: ShortString): ShortString;
 function TrcLineCount(Len: LongInt; Mode: tTrcMode): LongInt;
 { Data line Index (0-based) of a chunk of Len bytes at Buf. }
-function TrcDataLine(const Buf; Len, Index: LongInt; Mode: tTrcMode): string;
+function TrcDataLine(const Buf; Len, Index: LongInt; Mode: tTrcMode): ShortString;
 { A whole entry: header and data lines, each ended by LineEnding. }
 function TrcFormat(MsOfDay: LongInt; Dir: tTrcDir; const Buf; Len: LongInt;
-  Mode: tTrcMode; const Tag: string): AnsiString;
+  Mode: tTrcMode; const Tag: ShortString): AnsiString;
 
 { Reader. }
 procedure TrcReaderInit(var R: tTrcReader);
@@ -113,12 +113,12 @@ const
 
 { ------------------------------------------------------------------ writer }
 
-function Dec2(N: LongInt): string;
+function Dec2(N: LongInt): ShortString;
 begin
   Result := Chr(Ord('0') + N div 10) + Chr(Ord('0') + N mod 10);
 end;
 
-function TrcTimeText(MsOfDay: LongInt): string;
+function TrcTimeText(MsOfDay: LongInt): ShortString;
 var
   Ms: LongInt;
 begin
@@ -130,7 +130,7 @@ begin
     Dec2(Ms mod 100);
 end;
 
-function TrcHeader(MsOfDay: LongInt; Dir: tTrcDir; Len: LongInt; const Tag: string): string;
+function TrcHeader(MsOfDay: LongInt; Dir: tTrcDir; Len: LongInt; const Tag: ShortString): ShortString;
 begin
   { 'tx' padded to three plus two blanks: the capture's 'tx   2' }
   Result := TrcTimeText(MsOfDay) + ' ' + DirName[Dir] + '   ' + NumStr(Len) + ' |';
@@ -154,7 +154,7 @@ begin
     Result := (Len + PerLine(Mode) - 1) div PerLine(Mode);
 end;
 
-function TrcDataLine(const Buf; Len, Index: LongInt; Mode: tTrcMode): string;
+function TrcDataLine(const Buf; Len, Index: LongInt; Mode: tTrcMode): ShortString;
 var
   P: PByte;
   I, First, Last: LongInt;
@@ -190,7 +190,7 @@ var
   Pos, I, Lines: LongInt;
   Text: AnsiString;
 
-  procedure Put(const S: string);
+  procedure Put(const S: ShortString);
   var
     T: string;
   begin

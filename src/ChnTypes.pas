@@ -72,7 +72,10 @@ const
   res_NoMessage    = 19;   { ChReceive with no message waiting }
   res_Timeout      = 20;   { no answer in time (helpers, tools) }
   res_WrongLayer   = 21;   { a helper got a channel of another layer type }
-  res_LastGeneral  = res_WrongLayer;   { the highest general code in use }
+  res_HostUnknown  = 22;   { network: host name not resolved }
+  res_Refused      = 23;   { network: connection refused }
+  res_Reconnecting = 24;   { network: connection lost, reconnecting by itself }
+  res_LastGeneral  = res_Reconnecting;   { the highest general code in use }
   res_Proto        = $20;  { first code a protocol unit may use }
 
 type
@@ -83,10 +86,10 @@ type
 
 { Readable English text for a result code. Codes from res_Proto upward are
   per protocol: give the layer type (cName, e.g. 'DF1') to pick its text. }
-function ChResultText(R: tChResult; const Layer: string): string;
-function ChResultText(R: tChResult): string;
+function ChResultText(R: tChResult; const Layer: ShortString): ShortString;
+function ChResultText(R: tChResult): ShortString;
 { Protocol units call this from their initialization section. }
-procedure ChRegisterResultText(const Layer: string; R: tChResult; const Text: string);
+procedure ChRegisterResultText(const Layer: ShortString; R: tChResult; const Text: ShortString);
 
 { Checksums. The *Add functions fold one byte into a running value that
   starts at 0; the *Block functions do a whole buffer. }
@@ -119,7 +122,7 @@ var
   ResultTextCount: Integer = 0;
   Crc16Table: array[Byte] of tCrc16;
 
-function GeneralText(R: tChResult): string;
+function GeneralText(R: tChResult): ShortString;
 begin
   case R of
     res_Ok:           Result := 'ok';
@@ -144,12 +147,15 @@ begin
     res_NoMessage:    Result := 'no message waiting';
     res_Timeout:      Result := 'timeout';
     res_WrongLayer:   Result := 'the channel is not of the layer type this helper needs';
+    res_HostUnknown:  Result := 'host name not resolved';
+    res_Refused:      Result := 'connection refused';
+    res_Reconnecting: Result := 'connection lost, reconnecting';
   else
     Result := '';
   end;
 end;
 
-procedure ChRegisterResultText(const Layer: string; R: tChResult; const Text: string);
+procedure ChRegisterResultText(const Layer: ShortString; R: tChResult; const Text: ShortString);
 var
   I: Integer;
 begin
@@ -167,7 +173,7 @@ begin
   ResultTexts[ResultTextCount].Text := Text;
 end;
 
-function ChResultText(R: tChResult; const Layer: string): string;
+function ChResultText(R: tChResult; const Layer: ShortString): ShortString;
 var
   I: Integer;
 begin
@@ -184,7 +190,7 @@ begin
   Result := 'unknown result code ' + IntToStr(R);
 end;
 
-function ChResultText(R: tChResult): string;
+function ChResultText(R: tChResult): ShortString;
 begin
   Result := ChResultText(R, '');
 end;

@@ -76,6 +76,9 @@ const
   res_NoMessage    = ChnTypes.res_NoMessage;
   res_Timeout      = ChnTypes.res_Timeout;
   res_WrongLayer   = ChnTypes.res_WrongLayer;
+  res_HostUnknown  = ChnTypes.res_HostUnknown;
+  res_Refused      = ChnTypes.res_Refused;
+  res_Reconnecting = ChnTypes.res_Reconnecting;
   res_Proto        = ChnTypes.res_Proto;
 
 const
@@ -144,7 +147,7 @@ type
     { The token that made the last ChSetParam fail ('' after success). }
     function  ChParamError: tWordString; virtual;
     { Readable text of a result code of this layer (protocol codes included). }
-    function  ChResultStr(R: tChResult): string; virtual;
+    function  ChResultStr(R: tChResult): ShortString; virtual;
     { Own parameters as ' KEY=VALUE' tokens, for ChGetParam; descendants
       append theirs to inherited ChOwnParams. }
     function  ChOwnParams: tParamStr; virtual;
@@ -177,27 +180,27 @@ type
     registered in ChnCollection from the unit's initialization. }
   tAddChnVirt = object
     Name: string[15];
-    constructor Init(const AName: string);
+    constructor Init(const AName: ShortString);
     destructor  Done; virtual;
     function    ChInit: pChnVirt; virtual;
   end;
 
   pChnCollection = ^tChnCollection;
   tChnCollection = object
-    Count: Integer;
+    Count: SmallInt;
     Items: array[1..MaxChnManagers] of pAddChnVirt;
     constructor Init;
     destructor  Done; virtual;
     { Register a manager; a manager of the same name is replaced. }
     procedure Insert(Item: pAddChnVirt);
-    function  Search(const Name: string): pAddChnVirt;
+    function  Search(const Name: ShortString): pAddChnVirt;
     { A new, initialised layer of that type, or nil for an unknown name. }
-    function  ChNewInit(const Name: string): pChnVirt;
+    function  ChNewInit(const Name: ShortString): pChnVirt;
   end;
 
 { Numeric identifier of a layer name: CRC-16 of the upper-cased name, the
   same in every program; registration refuses a clash. }
-function ChNumName(const Name: string): Word;
+function ChNumName(const Name: ShortString): Word;
 
 { Milliseconds from a monotonic clock, for timeouts and line-idle gaps. }
 function ChMsTick: QWord;
@@ -210,21 +213,27 @@ function ChSendWhenFree(Chn: pChnVirt; Buff: Pointer; Len: Word;
 
 { Helpers for ChSetOneParam/ChOwnParams of every layer, so that number
   parsing, range checks and ON/OFF live in one place. }
-function ParamKey(const S: tWordString): string;
-function ParamValue(const S: tWordString): string;
-function ParamNum(const S: tWordString; Min, Max: LongInt; var N: LongInt): tChResult;
-function ParamChoice(const S: tWordString; const Choices: string; var Index: Integer): tChResult;
-function ParamText(const Key: string; N: LongInt): string;
+{ A routine that returns a number by reference comes for LongInt and SmallInt
+  (a caller's plain "Integer" in any compiler mode). }
+function ParamKey(const S: tWordString): ShortString;
+function ParamValue(const S: tWordString): ShortString;
+function ParamNum(const S: tWordString; Min, Max: LongInt; var N: LongInt): tChResult; overload;
+function ParamNum(const S: tWordString; Min, Max: LongInt; var N: SmallInt): tChResult; overload;
+function ParamChoice(const S: tWordString; const Choices: ShortString; var Index: LongInt): tChResult; overload;
+function ParamChoice(const S: tWordString; const Choices: ShortString; var Index: SmallInt): tChResult; overload;
+function ParamText(const Key: ShortString; N: LongInt): ShortString;
 { A two-way choice kept in a Boolean. Choices lists the False word first
   ('OFF|ON', 'SLAVE|MASTER'); Flag is set only when CmdL = cmd_Set. }
-function ParamFlag(const S: tWordString; const Choices: string; CmdL: tCmd;
+function ParamFlag(const S: tWordString; const Choices: ShortString; CmdL: tCmd;
   var Flag: Boolean): tChResult;
 { A number kept in a LongInt field: checked as ParamNum, Field set only
   when CmdL = cmd_Set. }
 function ParamSetNum(const S: tWordString; Min, Max: LongInt; CmdL: tCmd;
-  var Field: LongInt): tChResult;
+  var Field: LongInt): tChResult; overload;
+function ParamSetNum(const S: tWordString; Min, Max: LongInt; CmdL: tCmd;
+  var Field: SmallInt): tChResult; overload;
 { ' KEY=WORD' for a Boolean kept as in ParamFlag. }
-function FlagText(const Key, Choices: string; Flag: Boolean): string;
+function FlagText(const Key, Choices: ShortString; Flag: Boolean): ShortString;
 
 const
   OnOffChoice  = 'OFF|ON';
@@ -238,9 +247,9 @@ implementation
 uses
   SysUtils;
 
-function ChNumName(const Name: string): Word;
+function ChNumName(const Name: ShortString): Word;
 var
-  U: string;
+  U: ShortString;
 begin
   U := UpStr(Name);
   Result := Crc16Block(U[1], Length(U), $FFFF);
@@ -268,9 +277,9 @@ begin
   Result := Chn^.ChSendResult;
 end;
 
-function ParamKey(const S: tWordString): string;
+function ParamKey(const S: tWordString): ShortString;
 var
-  K, V: string;
+  K, V: ShortString;
 begin
   if SplitKeyValue(S, K, V) then
     Result := K
@@ -278,9 +287,9 @@ begin
     Result := '';
 end;
 
-function ParamValue(const S: tWordString): string;
+function ParamValue(const S: tWordString): ShortString;
 var
-  K, V: string;
+  K, V: ShortString;
 begin
   if SplitKeyValue(S, K, V) then
     Result := V
@@ -296,9 +305,17 @@ begin
     Result := res_BadParam;
 end;
 
-function ParamChoice(const S: tWordString; const Choices: string; var Index: Integer): tChResult;
+function ParamNum(const S: tWordString; Min, Max: LongInt; var N: SmallInt): tChResult;
+begin
+  if StrToNum(ParamValue(S), Min, Max, N) then
+    Result := res_Ok
+  else
+    Result := res_BadParam;
+end;
+
+function ParamChoice(const S: tWordString; const Choices: ShortString; var Index: LongInt): tChResult;
 var
-  I: Integer;
+  I: LongInt;
 begin
   I := ChoiceIndex(ParamValue(S), Choices);
   if I < 0 then
@@ -307,15 +324,25 @@ begin
   Result := res_Ok;
 end;
 
-function ParamText(const Key: string; N: LongInt): string;
+function ParamChoice(const S: tWordString; const Choices: ShortString; var Index: SmallInt): tChResult;
+var
+  I: LongInt;
+begin
+  I := 0;
+  Result := ParamChoice(S, Choices, I);
+  if Result = res_Ok then
+    Index := I;
+end;
+
+function ParamText(const Key: ShortString; N: LongInt): ShortString;
 begin
   Result := ' ' + Key + '=' + NumStr(N);
 end;
 
-function ParamFlag(const S: tWordString; const Choices: string; CmdL: tCmd;
+function ParamFlag(const S: tWordString; const Choices: ShortString; CmdL: tCmd;
   var Flag: Boolean): tChResult;
 var
-  I: Integer;
+  I: LongInt;
 begin
   I := 0;
   Result := ParamChoice(S, Choices, I);
@@ -334,7 +361,18 @@ begin
     Field := N;
 end;
 
-function FlagText(const Key, Choices: string; Flag: Boolean): string;
+function ParamSetNum(const S: tWordString; Min, Max: LongInt; CmdL: tCmd;
+  var Field: SmallInt): tChResult;
+var
+  N: SmallInt;
+begin
+  N := 0;
+  Result := ParamNum(S, Min, Max, N);
+  if (Result = res_Ok) and (CmdL = cmd_Set) then
+    Field := N;
+end;
+
+function FlagText(const Key, Choices: ShortString; Flag: Boolean): ShortString;
 begin
   Result := ' ' + Key + '=' + ChoiceWord(Choices, Ord(Flag));
 end;
@@ -576,7 +614,7 @@ begin
   Result := CH_ParamErr;
 end;
 
-function tChnVirt.ChResultStr(R: tChResult): string;
+function tChnVirt.ChResultStr(R: tChResult): ShortString;
 begin
   Result := ChResultText(R, CH_Type);
 end;
@@ -611,7 +649,10 @@ begin
     CH_Low^.ChOpen;
     CH_Result := CH_Low^.ChResult;
     if CH_Result <> res_Ok then
+    begin
+      CH_ParamErr := CH_Low^.ChParamError;  { the setting a device refused }
       Exit;
+    end;
   end;
   ChOpened;
 end;
@@ -860,7 +901,7 @@ end;
 
 { ------------------------------------------------------------- tAddChnVirt }
 
-constructor tAddChnVirt.Init(const AName: string);
+constructor tAddChnVirt.Init(const AName: ShortString);
 begin
   Name := UpStr(AName);
 end;
@@ -912,7 +953,7 @@ begin
   Items[Count] := Item;
 end;
 
-function tChnCollection.Search(const Name: string): pAddChnVirt;
+function tChnCollection.Search(const Name: ShortString): pAddChnVirt;
 var
   I: Integer;
   U: string;
@@ -924,7 +965,7 @@ begin
   Result := nil;
 end;
 
-function tChnCollection.ChNewInit(const Name: string): pChnVirt;
+function tChnCollection.ChNewInit(const Name: ShortString): pChnVirt;
 var
   M: pAddChnVirt;
 begin

@@ -11,50 +11,67 @@ unit uString;
 interface
 
 { Upper-case ASCII letters only (parameter keys and values are ASCII). }
-function UpStr(const S: string): string;
+function UpStr(const S: ShortString): ShortString;
 
 { Next whitespace-separated token of S starting at Pos (1-based). Skips
   spaces, tabs and line breaks; returns False at the end. Pos is advanced
-  past the token; TokStart receives where the token began. }
-function NextToken(const S: string; var Pos: Integer; var Tok: string): Boolean;
-function NextTokenAt(const S: string; var Pos: Integer; var Tok: string;
-  var TokStart: Integer): Boolean;
+  past the token; TokStart receives where the token began.
+  Pos and Tok are var parameters, so each routine taking a number or a text
+  by reference comes in the sizes a caller's plain "Integer" and "string"
+  have in any compiler mode (SmallInt or LongInt, ShortString or
+  AnsiString); see docs/LAYERS.md, "Types in public signatures". }
+function NextToken(const S: ShortString; var Pos: LongInt; var Tok: ShortString): Boolean; overload;
+function NextToken(const S: ShortString; var Pos: SmallInt; var Tok: ShortString): Boolean; overload;
+function NextToken(const S: ShortString; var Pos: LongInt; var Tok: AnsiString): Boolean; overload;
+function NextToken(const S: ShortString; var Pos: SmallInt; var Tok: AnsiString): Boolean; overload;
+function NextTokenAt(const S: ShortString; var Pos: LongInt; var Tok: ShortString;
+  var TokStart: LongInt): Boolean; overload;
+function NextTokenAt(const S: ShortString; var Pos: SmallInt; var Tok: ShortString;
+  var TokStart: SmallInt): Boolean; overload;
+function NextTokenAt(const S: ShortString; var Pos: LongInt; var Tok: AnsiString;
+  var TokStart: LongInt): Boolean; overload;
+function NextTokenAt(const S: ShortString; var Pos: SmallInt; var Tok: AnsiString;
+  var TokStart: SmallInt): Boolean; overload;
 
 { Split 'KEY=VALUE'. Fails when there is no '=', the key is empty, or the
   value holds another '=' (a fused token such as 'CRC=ONNAM=COM'). Key is
   returned upper-cased, Value as written. }
-function SplitKeyValue(const Tok: string; var Key, Value: string): Boolean;
+function SplitKeyValue(const Tok: ShortString; var Key, Value: ShortString): Boolean; overload;
+function SplitKeyValue(const Tok: ShortString; var Key, Value: AnsiString): Boolean; overload;
 
 { Strict integer parsing: optional sign, decimal digits, or '$' followed by
   hex digits; nothing else, no blanks. False on any other text or when the
-  number lies outside Min..Max (then N is left unchanged). }
-function StrToNum(const S: string; Min, Max: LongInt; var N: LongInt): Boolean;
+  number lies outside Min..Max (or outside the range of N's type; then N is
+  left unchanged). }
+function StrToNum(const S: ShortString; Min, Max: LongInt; var N: LongInt): Boolean; overload;
+function StrToNum(const S: ShortString; Min, Max: LongInt; var N: SmallInt): Boolean; overload;
+
+{ Strict decimal real ('0.01', '1E-5', no blanks), Min..Max; False
+  (D unchanged) for anything else. }
+function StrToReal(const S: ShortString; Min, Max: Double; var D: Double): Boolean;
 
 { Position (0-based) of upper-cased S in a '|' separated list of choices
   such as 'FULL|HALF'; -1 when not found. }
-{ Strict decimal real ('0.01', '1E-5', no blanks), Min..Max; False
-  (D unchanged) for anything else. }
-function StrToReal(const S: string; Min, Max: Double; var D: Double): Boolean;
-function ChoiceIndex(const S, Choices: string): Integer;
+function ChoiceIndex(const S, Choices: ShortString): LongInt;
 
 { The word at Index (0-based) of a '|' separated list; '' if none. }
-function ChoiceWord(const Choices: string; Index: Integer): string;
+function ChoiceWord(const Choices: ShortString; Index: LongInt): ShortString;
 
 { Value of a hexadecimal digit, -1 for any other character. }
-function HexDigit(C: Char): Integer;
+function HexDigit(C: Char): SmallInt;
 
 { 'XX XX ...': Len bytes at P in hex, blank-separated. An AnsiString:
   a frame's bytes pass 255 characters. }
-function HexBytes(P: PByte; Len: Integer): AnsiString;
+function HexBytes(P: PByte; Len: LongInt): AnsiString;
 
 { Decimal text of N. }
-function NumStr(N: LongInt): string;
+function NumStr(N: LongInt): ShortString;
 
 implementation
 
-function UpStr(const S: string): string;
+function UpStr(const S: ShortString): ShortString;
 var
-  I: Integer;
+  I: LongInt;
 begin
   Result := S;
   for I := 1 to Length(Result) do
@@ -67,10 +84,10 @@ begin
   Result := C in [#9, #10, #13, ' '];
 end;
 
-function NextTokenAt(const S: string; var Pos: Integer; var Tok: string;
-  var TokStart: Integer): Boolean;
+function NextTokenAt(const S: ShortString; var Pos: LongInt; var Tok: ShortString;
+  var TokStart: LongInt): Boolean;
 var
-  L: Integer;
+  L: LongInt;
 begin
   L := Length(S);
   while (Pos <= L) and IsBlank(S[Pos]) do
@@ -82,16 +99,71 @@ begin
   Result := Tok <> '';
 end;
 
-function NextToken(const S: string; var Pos: Integer; var Tok: string): Boolean;
+{ The other sizes go through the LongInt/ShortString version. }
+function NextTokenAt(const S: ShortString; var Pos: SmallInt; var Tok: ShortString;
+  var TokStart: SmallInt): Boolean;
 var
-  Start: Integer;
+  P, T: LongInt;
+begin
+  P := Pos;
+  Result := NextTokenAt(S, P, Tok, T);
+  Pos := P;
+  TokStart := T;
+end;
+
+function NextTokenAt(const S: ShortString; var Pos: LongInt; var Tok: AnsiString;
+  var TokStart: LongInt): Boolean;
+var
+  T: ShortString;
+begin
+  Result := NextTokenAt(S, Pos, T, TokStart);
+  Tok := T;
+end;
+
+function NextTokenAt(const S: ShortString; var Pos: SmallInt; var Tok: AnsiString;
+  var TokStart: SmallInt): Boolean;
+var
+  P, Start: LongInt;
+  T: ShortString;
+begin
+  P := Pos;
+  Result := NextTokenAt(S, P, T, Start);
+  Pos := P;
+  TokStart := Start;
+  Tok := T;
+end;
+
+function NextToken(const S: ShortString; var Pos: LongInt; var Tok: ShortString): Boolean;
+var
+  Start: LongInt;
 begin
   Result := NextTokenAt(S, Pos, Tok, Start);
 end;
 
-function SplitKeyValue(const Tok: string; var Key, Value: string): Boolean;
+function NextToken(const S: ShortString; var Pos: SmallInt; var Tok: ShortString): Boolean;
 var
-  P: Integer;
+  Start: SmallInt;
+begin
+  Result := NextTokenAt(S, Pos, Tok, Start);
+end;
+
+function NextToken(const S: ShortString; var Pos: LongInt; var Tok: AnsiString): Boolean;
+var
+  Start: LongInt;
+begin
+  Result := NextTokenAt(S, Pos, Tok, Start);
+end;
+
+function NextToken(const S: ShortString; var Pos: SmallInt; var Tok: AnsiString): Boolean;
+var
+  Start: SmallInt;
+begin
+  Result := NextTokenAt(S, Pos, Tok, Start);
+end;
+
+function SplitKeyValue(const Tok: ShortString; var Key, Value: ShortString): Boolean;
+var
+  P: LongInt;
 begin
   P := Pos('=', Tok);
   Result := False;
@@ -102,9 +174,21 @@ begin
   Result := Pos('=', Value) = 0;
 end;
 
-function StrToNum(const S: string; Min, Max: LongInt; var N: LongInt): Boolean;
+function SplitKeyValue(const Tok: ShortString; var Key, Value: AnsiString): Boolean;
 var
-  I, D: Integer;
+  K, V: ShortString;
+begin
+  Result := SplitKeyValue(Tok, K, V);
+  if Pos('=', Tok) > 1 then   { as the ShortString version: set once '=' is found }
+  begin
+    Key := K;
+    Value := V;
+  end;
+end;
+
+function StrToNum(const S: ShortString; Min, Max: LongInt; var N: LongInt): Boolean;
+var
+  I, D: LongInt;
   Neg, Hex: Boolean;
   V: Int64;
 begin
@@ -146,10 +230,24 @@ begin
   Result := True;
 end;
 
-function StrToReal(const S: string; Min, Max: Double; var D: Double): Boolean;
+function StrToNum(const S: ShortString; Min, Max: LongInt; var N: SmallInt): Boolean;
+var
+  V: LongInt;
+begin
+  if Min < Low(SmallInt) then
+    Min := Low(SmallInt);
+  if Max > High(SmallInt) then
+    Max := High(SmallInt);
+  V := 0;
+  Result := StrToNum(S, Min, Max, V);
+  if Result then
+    N := V;
+end;
+
+function StrToReal(const S: ShortString; Min, Max: Double; var D: Double): Boolean;
 var
   V: Double;
-  Code, I: Integer;
+  Code, I: LongInt;
 begin
   Result := False;
   if S = '' then
@@ -166,10 +264,10 @@ begin
   Result := True;
 end;
 
-function ChoiceIndex(const S, Choices: string): Integer;
+function ChoiceIndex(const S, Choices: ShortString): LongInt;
 var
-  U, Item: string;
-  I, Start, Index: Integer;
+  U, Item: ShortString;
+  I, Start, Index: LongInt;
 begin
   U := UpStr(S);
   Index := 0;
@@ -186,9 +284,9 @@ begin
   Result := -1;
 end;
 
-function ChoiceWord(const Choices: string; Index: Integer): string;
+function ChoiceWord(const Choices: ShortString; Index: LongInt): ShortString;
 var
-  I, Start: Integer;
+  I, Start: LongInt;
 begin
   Start := 1;
   for I := 1 to Length(Choices) + 1 do
@@ -202,7 +300,7 @@ begin
   Result := '';
 end;
 
-function HexDigit(C: Char): Integer;
+function HexDigit(C: Char): SmallInt;
 begin
   case C of
     '0'..'9': Result := Ord(C) - Ord('0');
@@ -213,11 +311,11 @@ begin
   end;
 end;
 
-function HexBytes(P: PByte; Len: Integer): AnsiString;
+function HexBytes(P: PByte; Len: LongInt): AnsiString;
 const
   Digits: array[0..15] of Char = '0123456789ABCDEF';
 var
-  I: Integer;
+  I: LongInt;
 begin
   if Len <= 0 then
     Exit('');
@@ -231,7 +329,7 @@ begin
   end;
 end;
 
-function NumStr(N: LongInt): string;
+function NumStr(N: LongInt): ShortString;
 begin
   Str(N, Result);
 end;

@@ -28,6 +28,7 @@ type
     procedure TestIec101GeneralInterrogationVariableFrame;
     procedure TestTwoOctetAddressLittleEndian;
     procedure TestBalancedDirBit;
+    procedure TestBalancedReceiveBothPrmAndDirCheck;
     procedure TestUnbalancedSendsResAsZero;
     procedure TestFixedFrameOfManualDefaultLen4;
     procedure TestSingleCharacters;
@@ -206,6 +207,37 @@ begin
   C := Cfg(False, 1, 0);
   C.Balanced := True;
   AssertEquals('10 00 01 01 16', Enc(C, MakeRec(tpShortM, False, False, 0), 4, 1));
+end;
+
+procedure TTestChnFT12Codec.TestBalancedReceiveBothPrmAndDirCheck;
+var
+  S: tFT12Rx;
+  C: tFT12Config;
+begin
+  { station B (DIR = 0), own address 2, as the channel sets it up }
+  C := Cfg(False, 1, 0);
+  C.Balanced := True;
+  C.CheckPrm := False;
+  C.CheckDir := True;
+  C.Filter := True;
+  C.OwnAddr := 2;
+  S := NewRx(C);
+  { A's request to 2 (C9 + 02 = CB) and A's ACK from 1 (80 + 01 = 81) }
+  AssertEquals('....F', FeedAll(S, '10 C9 02 CB 16'));
+  AssertEquals('....F', FeedAll(S, '10 80 01 81 16'));
+  AssertEquals('F', FeedAll(S, 'E5'));
+  { a request for 3 is ignored; an answer from 3 is not (the peer's) }
+  AssertEquals('.....', FeedAll(S, '10 C9 03 CC 16'));
+  AssertEquals(1, S.Ignored);
+  AssertEquals('....F', FeedAll(S, '10 80 03 83 16'));
+  { DIR = 0 is B's own side, in either direction }
+  AssertEquals('....E', FeedAll(S, '10 49 02 4B 16'));
+  AssertEquals(res_ErrDir, S.Err);
+  AssertEquals('....E', FeedAll(S, '10 00 01 01 16'));
+  AssertEquals(res_ErrDir, S.Err);
+  { without CheckDir (a line monitor) both pass }
+  S.Cfg.CheckDir := False;
+  AssertEquals('....F', FeedAll(S, '10 49 02 4B 16'));
 end;
 
 procedure TTestChnFT12Codec.TestUnbalancedSendsResAsZero;

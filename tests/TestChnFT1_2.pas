@@ -39,6 +39,9 @@ type
     procedure TestSlaveAddressFilterAndBroadcast;
     procedure TestUnbalancedMasterPollsTwoSlaves;
     procedure TestBalancedExchange;
+    procedure TestBalancedBothDirectionsOnOneChannel;
+    procedure TestBalancedBadInputIsReported;
+    procedure TestUnbalancedSendAsKeepsTheRole;
     procedure TestGapDiscardsHalfFrame;
     procedure TestGapUsesBaudRateBelow;
     procedure TestSetParamKeepsWaitingFrame;
@@ -411,6 +414,8 @@ const
   Modes: array[1..2] of string = ('MS=ON MAS=', 'MS=OFF PRI=');
   PrimaryWord: array[1..2] of string = ('MASTER', 'ON');
   SecondaryWord: array[1..2] of string = ('SLAVE', 'OFF');
+  { balanced: the two stations are A (DIR = 1) and B }
+  PrimaryDir: array[1..2] of string = ('', ' DIR=1');
 var
   Mode, I, N: Integer;
   M, S: pChnVirt;
@@ -423,7 +428,7 @@ begin
   begin
     Pair := 'FTRT' + IntToStr(Mode);
     { manual defaults: LEN=4, ADR=1 }
-    M := Open(1, 'NAM=FT1_2 ' + Modes[Mode] + PrimaryWord[Mode] +
+    M := Open(1, 'NAM=FT1_2 ' + Modes[Mode] + PrimaryWord[Mode] + PrimaryDir[Mode] +
       ' NOD=10 DNO=20 NAM=LOOP PAIR=' + Pair + ' END=1');
     S := Open(2, 'NAM=FT1_2 ' + Modes[Mode] + SecondaryWord[Mode] +
       ' NOD=20 DNO=10 NAM=LOOP PAIR=' + Pair + ' END=2');
@@ -793,6 +798,141 @@ begin
   SendRec(B, MakeRec(tpShortM, False, False, FCS_Ack), 4);
   Len := Recv(A, B, Got);
   AssertEquals(FCS_Ack, Got.FC);
+end;
+
+{ Station B (DIR = 0, NOD = 2, DNO = 1) against a raw peer playing
+  station A. Codes: DIR $80, PRM $40, FCB/ACD $20, FCV/DFC $10, FC. }
+procedure TTestChnFT1_2.TestBalancedBothDirectionsOnOneChannel;
+var
+  B, Raw: pChnVirt;
+  F: pChnFT1_2;
+  Got: tRecRecord;
+  Len: Word;
+  SNode, DNode: tNode;
+  R: tSendRecord;
+begin
+  { PRI=OFF: the default direction of ChSend is secondary }
+  B := Open(1, 'NAM=FT1_2 MS=OFF PRI=OFF LEN=0 NOD=2 DNO=1 NAM=LOOP PAIR=FTBD END=1');
+  Raw := OpenRaw(2, 'FTBD');
+  F := pChnFT1_2(B);
+  B^.ChReceiveBuffer(@Got, SizeOf(Got));
+  { A's request status of link to 2: C9 + 02 = CB }
+  RawSend(Raw, '10 C9 02 CB 16');
+  AssertTrue(WaitReceive(B, 1000));
+  B^.ChReceive(Len);
+  AssertEquals(res_Ok, B^.ChReceiveResult);
+  AssertEquals(FCM_ReqLinkState, Got.FC);
+  AssertTrue('a request (PRM = 1)', F^.CH_RPrm);
+  AssertTrue('DIR = 1: from station A', F^.CH_RDir);
+  B^.ChGetNode(SNode, DNode);
+  AssertEquals(2, DNode);
+  AssertEquals(1, SNode);
+  { A's ACK to B's request carries A's address 1: 80 + 01 = 81; a
+    PRI=OFF channel takes it (it used to be res_ErrCode) }
+  RawSend(Raw, '10 80 01 81 16');
+  AssertTrue(WaitReceive(B, 1000));
+  B^.ChReceive(Len);
+  AssertEquals(res_Ok, B^.ChReceiveResult);
+  AssertEquals(FCS_Ack, Got.FC);
+  AssertFalse('an answer (PRM = 0)', F^.CH_RPrm);
+  AssertTrue(F^.CH_RDir);
+  B^.ChGetNode(SNode, DNode);
+  AssertEquals(1, SNode);
+  AssertEquals(2, DNode);
+  { E5 from A is an answer as well }
+  RawSend(Raw, 'E5');
+  AssertTrue(WaitReceive(B, 1000));
+  B^.ChReceive(Len);
+  AssertEquals(1, Len);
+  AssertTrue(Got.MessType = tpSACK);
+  AssertFalse(F^.CH_RPrm);
+  AssertFalse(F^.CH_RDir);
+  { both directions sent without reconfiguring: B's answer (ChSend,
+    address NOD = 2, DIR 0) and B's own request (address DNO = 1) }
+  R := MakeRec(tpShortM, False, False, FCS_LinkSAccesReq);
+  SendRec(B, R, 4);
+  AssertEquals('status of link: 0B + 02', '10 0B 02 0D 16', RawRead(Raw));
+  R := MakeRec(tpShortM, True, True, FCM_CheckLink);
+  F^.ChSendAs(True, @R, 4);
+  AssertEquals(res_Ok, B^.ChSendResult);
+  AssertEquals('test function for link: 40+20+10+2 = 72, + 01', '10 72 01 73 16', RawRead(Raw));
+  R := MakeRec(tpSACK, False, False, 0);
+  F^.ChSendAs(False, @R, 1);
+  AssertEquals(res_Ok, B^.ChSendResult);
+  AssertEquals('E5', RawRead(Raw));
+  { a primary sends no single character, in balanced mode too }
+  F^.ChSendAs(True, @R, 1);
+  AssertEquals(res_BadMessage, B^.ChSendResult);
+  AssertEquals('', RawRead(Raw));
+  AssertFalse('PRI= is unchanged', F^.CH_Master);
+  { DIR=1 (station A) sends $80 on both directions }
+  B^.ChSetParam('DIR=1');
+  R := MakeRec(tpShortM, False, False, FCS_Ack);
+  SendRec(B, R, 4);
+  AssertEquals('10 80 02 82 16', RawRead(Raw));
+  R := MakeRec(tpShortM, False, False, FCM_1stSetTransmit);
+  F^.ChSendAs(True, @R, 4);
+  AssertEquals('10 C0 01 C1 16', RawRead(Raw));
+end;
+
+procedure TTestChnFT1_2.TestBalancedBadInputIsReported;
+var
+  B, Raw: pChnVirt;
+  F: pChnFT1_2;
+  Got: tRecRecord;
+  Len: Word;
+begin
+  B := Open(1, 'NAM=FT1_2 MS=OFF PRI=ON DIR=0 LEN=0 NOD=2 DNO=1 NAM=LOOP PAIR=FTBX END=1');
+  Raw := OpenRaw(2, 'FTBX');
+  F := pChnFT1_2(B);
+  B^.ChReceiveBuffer(@Got, SizeOf(Got));
+  { a request with DIR = 0, B's own side (an echo of B's line, or A
+    configured as B): reported, not taken as the peer's }
+  RawSend(Raw, '10 49 02 4B 16');
+  AssertTrue(WaitReceive(B, 1000));
+  B^.ChReceive(Len);
+  AssertEquals(res_ErrDir, B^.ChReceiveResult);
+  AssertEquals(0, Len);
+  AssertFalse(F^.CH_RPrm);
+  AssertEquals('FT1_2: DIR bit says the frame came from this station''s own side',
+    B^.ChResultStr(res_ErrDir));
+  { an answer with DIR = 0 as well }
+  RawSend(Raw, '10 00 01 01 16');
+  AssertTrue(WaitReceive(B, 1000));
+  B^.ChReceive(Len);
+  AssertEquals(res_ErrDir, B^.ChReceiveResult);
+  { a request for another station (3) is ignored; garbage between frames
+    is skipped; the next good frame comes through }
+  RawSend(Raw, '10 C9 03 CC 16 00 FF 16 10 C9 02 CB 16');
+  AssertTrue(WaitReceive(B, 1000));
+  B^.ChReceive(Len);
+  AssertEquals(res_Ok, B^.ChReceiveResult);
+  AssertEquals(FCM_ReqLinkState, Got.FC);
+  AssertTrue(F^.CH_RPrm);
+  AssertEquals(1, F^.CH_Rx.Ignored);
+  { an answer from any address is taken and reported with it }
+  RawSend(Raw, '10 80 07 87 16');
+  AssertTrue(WaitReceive(B, 1000));
+  B^.ChReceive(Len);
+  AssertEquals(res_Ok, B^.ChReceiveResult);
+  AssertFalse(F^.CH_RPrm);
+  AssertEquals(7, B^.CH_RSNode);
+end;
+
+procedure TTestChnFT1_2.TestUnbalancedSendAsKeepsTheRole;
+var
+  M, Raw: pChnVirt;
+  R: tSendRecord;
+begin
+  M := Open(1, 'NAM=FT1_2 MS=ON MAS=MASTER LEN=0 NOD=0 DNO=1 NAM=LOOP PAIR=FTUS END=1');
+  Raw := OpenRaw(2, 'FTUS');
+  R := MakeRec(tpShortM, False, False, FCS_Ack);
+  pChnFT1_2(M)^.ChSendAs(False, @R, 4);
+  AssertEquals(res_BadMessage, M^.ChSendResult);
+  AssertEquals('nothing sent', '', RawRead(Raw));
+  pChnFT1_2(M)^.ChSendAs(True, @R, 4);
+  AssertEquals(res_Ok, M^.ChSendResult);
+  AssertEquals('RES stays 0: 40 + 01 = 41', '10 40 01 41 16', RawRead(Raw));
 end;
 
 procedure TTestChnFT1_2.TestGapDiscardsHalfFrame;

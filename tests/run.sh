@@ -2,7 +2,9 @@
 # tests/run.sh - the whole regression suite, called by "make test".
 #  1. the FPCUnit suite (runtests, built with -Cr -Co -Ct and heaptrc);
 #  2. a heap check: heaptrc must report 0 unfreed blocks;
-#  3. legacy programs in tests/legacy compiled in -Mtp -Mfpc -Mobjfpc
+#  3. the type rule of docs/LAYERS.md over the library's interfaces
+#     (tests/apicheck.pl; selected by T=api too);
+#  4. legacy programs in tests/legacy compiled in -Mtp -Mfpc -Mobjfpc
 #     -Mdelphi and run (each asserts record sizes and offsets itself).
 # Ends with "N passed, N failed" alone on the last line; exit 1 on failure.
 set -u
@@ -11,6 +13,7 @@ FPC=${FPC:-fpc}
 FILTER=${T:-}
 passed=0
 failed=0
+skipped=0
 pass() { passed=$((passed + 1)); echo "ok    $1"; }
 fail() { failed=$((failed + 1)); echo "FAIL  $1"; }
 
@@ -24,8 +27,8 @@ res=$(grep '^RESULT ' "$out" | tail -n 1)
 if [ -z "$res" ]; then
   fail "runtests crashed (exit $rc) before it finished"
 else
-  read -r _ p f <<<"$res"
-  passed=$((passed + p)); failed=$((failed + f))
+  read -r _ p f s <<<"$res"
+  passed=$((passed + p)); failed=$((failed + f)); skipped=$((skipped + ${s:-0}))
   [ "$rc" = 0 ] || [ "$f" -gt 0 ] || fail "runtests exit code $rc"
 fi
 
@@ -36,32 +39,45 @@ else
   [ -f "$heaplog" ] && sed -n 1,40p "$heaplog"
 fi
 
-if true; then
-  for prog in tests/legacy/*.pas; do
-    [ -e "$prog" ] || continue
-    name=$(basename "$prog" .pas)
-    # with T=xyz only legacy programs whose name contains xyz
-    if [ -n "$FILTER" ] && [[ "${name,,}" != *"${FILTER,,}"* ]]; then continue; fi
-    for mode in tp fpc objfpc delphi; do
-      dir="$BUILD/legacy-$mode"
-      mkdir -p "$dir"
-      if ! "$FPC" -M$mode -Fusrc -Fisrc -FU"$dir" -FE"$dir" -B -Cr -Co -Ct "$prog" >"$dir/$name.log" 2>&1; then
-        fail "legacy $name -M$mode: does not compile"; tail -n 15 "$dir/$name.log"; continue
-      fi
-      if timeout 120 "$dir/$name" >"$dir/$name.run" 2>&1; then
-        pass "legacy $name -M$mode"
-      else
-        fail "legacy $name -M$mode: run failed"; tail -n 15 "$dir/$name.run"
-      fi
-    done
-  done
+if [ -z "$FILTER" ] || [[ "api" == *"${FILTER,,}"* ]]; then
+  if command -v perl >/dev/null; then
+    if perl tests/apicheck.pl src/*.pas $(ls tools/lib/*.pas 2>/dev/null); then
+      pass "api: no Integer, Cardinal, plain string or {\$H+} in library interfaces"
+    else
+      fail "api: mode-dependent types in library interfaces (docs/LAYERS.md)"
+    fi
+  else
+    fail "api: perl is missing (it is part of every Debian system)"
+  fi
 fi
+
+for prog in tests/legacy/*.pas; do
+  [ -e "$prog" ] || continue
+  name=$(basename "$prog" .pas)
+  # with T=xyz only legacy programs whose name contains xyz
+  if [ -n "$FILTER" ] && [[ "${name,,}" != *"${FILTER,,}"* ]]; then continue; fi
+  for mode in tp fpc objfpc delphi; do
+    dir="$BUILD/legacy-$mode"
+    mkdir -p "$dir"
+    if ! "$FPC" -M$mode -Fusrc -Fisrc -FU"$dir" -FE"$dir" -B -Cr -Co -Ct "$prog" >"$dir/$name.log" 2>&1; then
+      fail "legacy $name -M$mode: does not compile"; tail -n 15 "$dir/$name.log"; continue
+    fi
+    if timeout 120 "$dir/$name" >"$dir/$name.run" 2>&1; then
+      pass "legacy $name -M$mode"
+    else
+      fail "legacy $name -M$mode: run failed"; tail -n 15 "$dir/$name.run"
+    fi
+  done
+done
 
 # a T= filter that selects nothing is a mistake, not a pass (the heap
 # check always runs, so it alone means nothing was selected)
-if [ -n "$FILTER" ] && [ "$passed" -le 1 ] && [ "$failed" = 0 ]; then
+if [ -n "$FILTER" ] && [ "$passed" -le 1 ] && [ "$failed" = 0 ] && [ "$skipped" = 0 ]; then
   fail "T=$FILTER selects no test"
 fi
 
+# skipped tests (an optional program missing) are listed with their reason
+# by runtests ("skip  Test: why"); the count comes before the last line
+[ "$skipped" = 0 ] || echo "$skipped skipped (an optional program is missing: see the skip lines)"
 echo "$passed passed, $failed failed"
 [ "$failed" = 0 ]

@@ -2,9 +2,12 @@
 
   Runs every registered test (or those whose path contains the first
   command-line argument), prints one line per test and, last, a line
-  "RESULT <passed> <failed>" that tests/run.sh folds into the suite's
-  final "N passed, N failed" line. Exit code 1 on any failure or error.
-  A test that calls no Assert counts as failed. }
+  "RESULT <passed> <failed> <skipped>" that tests/run.sh folds into the
+  suite's final "N passed, N failed" line. Exit code 1 on any failure or
+  error. A test that calls no Assert counts as failed. A test that needs
+  an optional program (tshark, xmllint ...) and finds it missing calls
+  Ignore('why'): it is printed as "skip" with the reason and counted as
+  skipped, neither passed nor failed. }
 program runtests;
 
 {$MODE OBJFPC}{$H+}
@@ -16,8 +19,8 @@ uses
 
 type
   TLineListener = class(TInterfacedObject, ITestListener)
-    Passed, Failed: Integer;
-    CurrentFailed: Boolean;
+    Passed, Failed, Skipped: Integer;
+    CurrentFailed, CurrentSkipped: Boolean;
     procedure AddFailure(ATest: TTest; AFailure: TTestFailure);
     procedure AddError(ATest: TTest; AError: TTestFailure);
     procedure StartTest(ATest: TTest);
@@ -28,6 +31,12 @@ type
 
 procedure TLineListener.AddFailure(ATest: TTest; AFailure: TTestFailure);
 begin
+  if AFailure.IsIgnoredTest then
+  begin
+    CurrentSkipped := True;
+    WriteLn('skip  ', ATest.TestSuiteName, '.', ATest.TestName, ': ', AFailure.ExceptionMessage);
+    Exit;
+  end;
   CurrentFailed := True;
   WriteLn('FAIL  ', ATest.TestSuiteName, '.', ATest.TestName, ': ', AFailure.ExceptionMessage);
 end;
@@ -43,12 +52,15 @@ end;
 procedure TLineListener.StartTest(ATest: TTest);
 begin
   CurrentFailed := False;
+  CurrentSkipped := False;
 end;
 
 procedure TLineListener.EndTest(ATest: TTest);
 begin
   if CurrentFailed then
     Inc(Failed)
+  else if CurrentSkipped then
+    Inc(Skipped)
   else
   begin
     Inc(Passed);
@@ -103,7 +115,7 @@ begin
     CollectTests(GetTestRegistry, Filter, List);
     for I := 0 to List.Count - 1 do
       TTest(List[I]).Run(Res);
-    WriteLn('RESULT ', Listener.Passed, ' ', Listener.Failed);
+    WriteLn('RESULT ', Listener.Passed, ' ', Listener.Failed, ' ', Listener.Skipped);
     if Listener.Failed > 0 then
       ExitCode := 1;
   finally

@@ -21,14 +21,7 @@ var
   I: Integer;
   Tries: LongInt;
 
-procedure Check(Ok: Boolean; const What: string);
-begin
-  if not Ok then
-  begin
-    WriteLn('FAIL: ', What);
-    Halt(1);
-  end;
-end;
+{$I check.inc}
 
 begin
   Check(SizeOf(tNode) = 2, 'SizeOf(tNode)');

@@ -29,14 +29,7 @@ var
   Back: array[0..2] of Byte;
   {$ENDIF}
 
-procedure Check(Ok: Boolean; const What: string);
-begin
-  if not Ok then
-  begin
-    WriteLn('FAIL: ', What);
-    Halt(1);
-  end;
-end;
+{$I check.inc}
 
 begin
   Chn := ChnCollection^.ChNewInit(ChnCom.cName);

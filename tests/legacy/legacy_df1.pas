@@ -36,14 +36,7 @@ var
   SNode, DNode: tNode;
   Tries : LongInt;
 
-procedure Check(Ok: Boolean; const What: string);
-begin
-  if not Ok then
-  begin
-    WriteLn('FAIL: ', What);
-    Halt(1);
-  end;
-end;
+{$I check.inc}
 
 function Offset(P: Pointer): LongInt;
 begin

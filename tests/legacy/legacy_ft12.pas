@@ -33,14 +33,7 @@ var
   Tries : LongInt;
   Base  : PtrUInt;
 
-procedure Check(Ok: Boolean; const What: string);
-begin
-  if not Ok then
-  begin
-    WriteLn('FAIL: ', What);
-    Halt(1);
-  end;
-end;
+{$I check.inc}
 
 procedure Connect(C: pChnVirt; const P: tParamStr; Buf: Pointer; Size: Word);
 begin

@@ -30,14 +30,7 @@ var
   Tries : LongInt;
   R     : tSendRecord;
 
-procedure Check(Ok: Boolean; const What: string);
-begin
-  if not Ok then
-  begin
-    WriteLn('FAIL: ', What);
-    Halt(1);
-  end;
-end;
+{$I check.inc}
 
 procedure CheckOffset(Field, Rec: Pointer; Expected: LongInt; const What: string);
 begin
@@ -60,6 +53,8 @@ begin
         (res_ErrVal = $23) and (res_ErrETX = $24) and (res_ErrEOT = $25), 'result codes');
   Check((OPM_ReadData = OCM_ReadData) and (OCS_WriteData = 'OK'), 'op codes');
   Check(cName = 'ICS', 'cName');
+  { the object's fields keep their size in every mode (a Borland integer) }
+  Check(SizeOf(tChnICS(nil^).CH_DataI) = 2, 'SizeOf(CH_DataI)');
 
   New(SMess);
   New(RMess);

@@ -31,14 +31,7 @@ type
 var
   Ok: Boolean;
 
-procedure Check(Cond: Boolean; const What: string);
-begin
-  if not Cond then
-  begin
-    WriteLn('FAIL: ', What);
-    Halt(1);
-  end;
-end;
+{$I check.inc}
 
 constructor tChnMy.Init;
 begin

@@ -20,7 +20,6 @@
 unit ChnFrameDecode;
 
 {$I chn.inc}
-{$H+}
 
 interface
 
@@ -55,7 +54,7 @@ procedure DecodeDefaults(var Opt: tDecOptions);
 { Hex text ('10 02 0300', '1002,0E0D', '0x10 0x02'): pairs of hex digits,
   separated by anything that is not a hex digit; a '0x' prefix is skipped.
   False (with Err) for an odd run of digits. }
-function DecodeHexText(const Text: AnsiString; var Data: tTrcBytes; out Err: string): Boolean;
+function DecodeHexText(const Text: AnsiString; var Data: tTrcBytes; out Err: AnsiString): Boolean;
 
 { Raw bytes as one received chunk (line 0). }
 procedure DecodeBytesAsChunk(const Data: tTrcBytes; var Frames: tTrcFrames);
@@ -78,7 +77,7 @@ type
   end;
 
   tDirState = record
-    Name : string;
+    Name : AnsiString;
     DF1  : tDF1Decoder;
     FT   : tFT12Rx;
     ICS  : tICSState;
@@ -95,7 +94,7 @@ begin
 end;
 
 
-function DecodeHexText(const Text: AnsiString; var Data: tTrcBytes; out Err: string): Boolean;
+function DecodeHexText(const Text: AnsiString; var Data: tTrcBytes; out Err: AnsiString): Boolean;
 var
   I, J, N: Integer;
 begin
@@ -148,7 +147,7 @@ end;
 
 { ----------------------------------------------------------------- DF1 }
 
-function DF1SumText(const D: tDF1Decoder): string;
+function DF1SumText(const D: tDF1Decoder): AnsiString;
 begin
   if D.Cfg.Crc then
     Result := Format('CRC $%.4x', [D.RxSum])
@@ -156,11 +155,11 @@ begin
     Result := Format('BCC $%.2x', [D.RxSum]);
 end;
 
-function DF1Message(const D: tDF1Decoder; var Seen: tTnsTable): string;
+function DF1Message(const D: tDF1Decoder; var Seen: tTnsTable): AnsiString;
 var
   M: ChnDF1Codec.tRecRecord;
   Cmd, Fnc: Byte;
-  Name: string;
+  Name: AnsiString;
   N: Integer;
 begin
   M := D.Msg;
@@ -221,7 +220,7 @@ begin
   end;
 end;
 
-function DF1Error(const D: tDF1Decoder; AfterSum: Boolean): string;
+function DF1Error(const D: tDF1Decoder; AfterSum: Boolean): AnsiString;
 var
   Calc: Word;
 begin
@@ -302,7 +301,7 @@ end;
 
 procedure FTByte(var S: tDirState; B: Byte; Lines: TStrings; var Stats: tDecStats);
 var
-  T: string;
+  T: AnsiString;
 begin
   case FT12Feed(S.FT, B, 0) of
     fe_Frame:
@@ -343,7 +342,7 @@ end;
 
 procedure ICSByte(var S: tDirState; B: Byte; Lines: TStrings; var Stats: tDecStats);
 var
-  T: string;
+  T: AnsiString;
   I: Integer;
 begin
   case ICSFeed(S.ICS, B) of
@@ -392,7 +391,7 @@ var
   Seen: tTnsTable;
   D: tTrcDir;
   I, K: LongInt;
-  Head: string;
+  Head: AnsiString;
 begin
   FillChar(Stats, SizeOf(Stats), 0);
   FillChar(Seen, SizeOf(Seen), 0);

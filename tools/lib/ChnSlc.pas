@@ -53,7 +53,6 @@
 unit ChnSlc;
 
 {$I chn.inc}
-{$H+}   { AnsiString for configuration text; no legacy records here }
 
 interface
 
@@ -105,7 +104,7 @@ type
     Name  : string[15];    { in the diagnostic status block }
   end;
 
-function SlcElemSize(Kind: Char): Integer;
+function SlcElemSize(Kind: Char): LongInt;
 function SlcTypeCode(Kind: Char): Byte;
 
 procedure SlcClear(var T: tSlcTable);
@@ -114,7 +113,7 @@ function SlcAddFile(var T: tSlcTable; Kind: Char; Num: Byte; Elems: LongInt): Bo
 { Load a configuration text (see the header) into a cleared table. On
   failure ErrLine/Err tell where and why; the table is then undefined. }
 function SlcLoadConfig(var T: tSlcTable; const Text: AnsiString;
-  out ErrLine: Integer; out Err: string): Boolean;
+  out ErrLine: LongInt; out Err: AnsiString): Boolean;
 { Load SlcDefaultConfig (it is valid: a test loads it). }
 procedure SlcLoadDefault(var T: tSlcTable);
 
@@ -131,7 +130,7 @@ function SlcHandle(var T: tSlcTable; constref Req: tRecRecord; ReqLen: Word;
 
 { Count one event in a diagnostic counter; it wraps at 65535 like the
   PLC's 16-bit counters (and never trips an overflow check). }
-procedure SlcCount(var T: tSlcTable; Index: Integer);
+procedure SlcCount(var T: tSlcTable; Index: LongInt);
 
 { A link station (unit ChnDF1Link) on the DF1 channel Chn that answers
   from table T and counts its link events in T's diagnostic counters. }
@@ -151,7 +150,7 @@ const
   FncEcho = $00; FncReadDiag = $01; FncDiagSts = $03; FncResetDiag = $07;
   FncTRead3 = $A2; FncTWrite3 = $AA;
 
-function SlcElemSize(Kind: Char): Integer;
+function SlcElemSize(Kind: Char): LongInt;
 begin
   case Kind of
     'N', 'B', 'S': Result := 2;
@@ -235,7 +234,7 @@ end;
 { ------------------------------------------------------------ config text }
 
 { 'N7' -> Kind, Num }
-function ParseFileName(const S: string; out Kind: Char; out Num: Byte): Boolean;
+function ParseFileName(const S: AnsiString; out Kind: Char; out Num: Byte): Boolean;
 var
   N: LongInt;
 begin
@@ -254,7 +253,7 @@ begin
   Result := True;
 end;
 
-function ParseFloat(const S: string; out F: Single): Boolean;
+function ParseFloat(const S: AnsiString; out F: Single): Boolean;
 var
   D: Double;
   Code: Integer;
@@ -268,7 +267,7 @@ begin
 end;
 
 function SlcLoadConfig(var T: tSlcTable; const Text: AnsiString;
-  out ErrLine: Integer; out Err: string): Boolean;
+  out ErrLine: LongInt; out Err: AnsiString): Boolean;
 var
   Lines: array of AnsiString;
   Line, Tok, Head: AnsiString;
@@ -310,7 +309,7 @@ var
     Result := W <> '';
   end;
 
-  function Bad(const Why: string): Boolean;
+  function Bad(const Why: AnsiString): Boolean;
   begin
     ErrLine := I + 1;
     Err := Why;
@@ -393,7 +392,7 @@ end;
 procedure SlcLoadDefault(var T: tSlcTable);
 var
   ErrLine: Integer;
-  Err: string;
+  Err: AnsiString;
 begin
   if not SlcLoadConfig(T, SlcDefaultConfig, ErrLine, Err) then
     SlcClear(T);   { not reached; TestChnSlc.TestDefaultTable checks it }
@@ -547,7 +546,7 @@ begin
   end;
 end;
 
-procedure SlcCount(var T: tSlcTable; Index: Integer);
+procedure SlcCount(var T: tSlcTable; Index: LongInt);
 begin
   T.Diag[Index] := Word(T.Diag[Index] + 1);
 end;

@@ -1,0 +1,361 @@
+{ ChnPcap - serial traffic as a pcap file of link type 250 (RTAC serial),
+  the binary trace format of NAM=TRC MOD=PCAP, which Wireshark and tshark
+  open directly. Pure: builds and parses bytes, no I/O, no clock.
+
+  File (classic libpcap, written little-endian, version 2.4):
+    file header   24 bytes  tPcapFileHeader, link type 250
+    per chunk     16 bytes  tPcapRecHeader (seconds, microseconds, lengths)
+                  12 bytes  tRtacHeader, big-endian (Wireshark's rtacser
+                            dissector):
+                              0  seconds since 1970 (UTC)
+                              4  microseconds
+                              8  event type: 3 DATA_TX_END, 4 DATA_RX_END
+                                 (1 TX_START / 2 RX_START are read too)
+                              9  control lines: CTS 1, DCD 2, DSR 4, RTS 8,
+                                 DTR 16, RING 32, MBOK 64 (written 0:
+                                 the layer does not know them)
+                             10  footer, 2 bytes (written 0)
+                  the bytes of the chunk as they passed the line
+  A chunk is one record: the unit of ChSend / ChReceive, as in the text log.
+
+  The reader takes files of either byte order and the nanosecond variant
+  (magic A1B23C4D), as other RTAC-serial captures come; records of other
+  event types (status change, errors, capture lost) are counted in Skipped.
+  Times: the pcap holds UTC seconds; the text log local time of day. The
+  caller passes the offset (PcapReadBytes) or the epoch of the local
+  midnight a time of day belongs to (PcapFromTrc), so this unit needs no
+  clock or time zone. }
+unit ChnPcap;
+
+{$I chn.inc}
+
+interface
+
+uses
+  ChnTypes, ChnTrcFormat;
+
+const
+  PcapMagic      = $A1B2C3D4;   { microsecond timestamps }
+  PcapMagicNano  = $A1B23C4D;   { nanosecond timestamps }
+  PcapLinkRtac   = 250;         { LINKTYPE_RTAC_SERIAL }
+  PcapSnapLen    = 65547;       { longest record: 12 + 65535 chunk bytes }
+  RtacHeaderLen  = 12;
+
+  { RTAC serial event types }
+  RtacStatusChange = 0;
+  RtacTxStart      = 1;
+  RtacRxStart      = 2;
+  RtacTxEnd        = 3;
+  RtacRxEnd        = 4;
+
+  { results of the reader (texts registered for layer 'TRC', after the
+    text reader's res_TrcShort / res_TrcLong) }
+  res_PcapNotPcap  = res_Proto + 2;   { no pcap magic, or a file header cut short }
+  res_PcapLinkType = res_Proto + 3;   { a pcap of another link type }
+  res_PcapCut      = res_Proto + 4;   { ends inside a record header, or a bad length }
+
+type
+  tPcapFileHeader = packed record
+    Magic   : LongWord;
+    VerMajor: Word;                { 2 }
+    VerMinor: Word;                { 4 }
+    ThisZone: LongInt;             { 0: times are UTC }
+    SigFigs : LongWord;
+    SnapLen : LongWord;
+    LinkType: LongWord;
+  end;
+
+  tPcapRecHeader = packed record
+    TsSec  : LongWord;
+    TsFrac : LongWord;             { microseconds (nanoseconds: PcapMagicNano) }
+    InclLen: LongWord;             { bytes in the file }
+    OrigLen: LongWord;             { bytes on the wire }
+  end;
+
+  tRtacHeader = packed record      { big-endian on the wire }
+    TsSec : LongWord;
+    TsUSec: LongWord;
+    Event : Byte;
+    Lines : Byte;
+    Footer: Word;
+  end;
+
+  tPcapInfo = record
+    Records : LongInt;             { records read }
+    Skipped : LongInt;             { records of other event types or < 12 bytes }
+    Swapped : Boolean;             { the file is big-endian }
+    LinkType: LongWord;
+    ErrPos  : LongInt;             { byte offset of the culprit (result <> res_Ok) }
+    ErrText : ShortString;         { what is wrong there }
+  end;
+
+{ The 24-byte file header (little-endian, link type 250). }
+function PcapFileHeaderBytes: AnsiString;
+{ One record: pcap record header, RTAC header and Len bytes of Buf. }
+function PcapRecordBytes(Sec, USec: LongWord; Dir: tTrcDir; const Buf;
+  Len: LongInt): AnsiString;
+{ True when Head (at least 24 bytes) is a header this unit appends to:
+  little-endian microsecond pcap of link type 250. }
+function PcapIsOwnHeader(const Head: AnsiString): Boolean;
+
+{ Read a whole pcap file. Frames get one entry per TX/RX record: Line =
+  record number (1-based), TimeMs = local time of day (UTC + UtcOffsetSec),
+  Dir, DirText 'tx'/'rx', Tag 'pcap', the bytes; Status res_TrcShort when
+  the record holds fewer bytes than were on the line. Returns res_Ok or a
+  res_Pcap* code (Info.ErrPos/ErrText say where and why); the frames read
+  before the fault are kept. }
+function PcapReadBytes(const Data: AnsiString; UtcOffsetSec: LongInt;
+  var Frames: tTrcFrames; var Info: tPcapInfo): tChResult;
+
+{ A text trace as pcap: each frame's time of day (local) is placed on the
+  day whose local midnight is MidnightUtc (seconds since 1970); a time
+  earlier than the one before is taken as the next day. }
+function PcapFromTrc(const Frames: tTrcFrames; Count: LongInt;
+  MidnightUtc: Int64): AnsiString;
+
+implementation
+
+uses
+  uString;
+
+function Swap32(V: LongWord): LongWord; inline;
+begin
+  Result := (V shr 24) or ((V shr 8) and $FF00) or ((V shl 8) and $FF0000) or (V shl 24);
+end;
+
+function PcapFileHeaderBytes: AnsiString;
+var
+  H: tPcapFileHeader;
+begin
+  H.Magic := NtoLE(LongWord(PcapMagic));
+  H.VerMajor := NtoLE(Word(2));
+  H.VerMinor := NtoLE(Word(4));
+  H.ThisZone := 0;
+  H.SigFigs := 0;
+  H.SnapLen := NtoLE(LongWord(PcapSnapLen));
+  H.LinkType := NtoLE(LongWord(PcapLinkRtac));
+  SetLength(Result, SizeOf(H));
+  Move(H, Result[1], SizeOf(H));
+end;
+
+function PcapRecordBytes(Sec, USec: LongWord; Dir: tTrcDir; const Buf;
+  Len: LongInt): AnsiString;
+var
+  R: tPcapRecHeader;
+  T: tRtacHeader;
+begin
+  if Len < 0 then
+    Len := 0;
+  R.TsSec := NtoLE(Sec);
+  R.TsFrac := NtoLE(USec);
+  R.InclLen := NtoLE(LongWord(Len + RtacHeaderLen));
+  R.OrigLen := R.InclLen;
+  T.TsSec := NtoBE(Sec);
+  T.TsUSec := NtoBE(USec);
+  if Dir = trcTx then
+    T.Event := RtacTxEnd
+  else
+    T.Event := RtacRxEnd;
+  T.Lines := 0;
+  T.Footer := 0;
+  SetLength(Result, SizeOf(R) + SizeOf(T) + Len);
+  Move(R, Result[1], SizeOf(R));
+  Move(T, Result[1 + SizeOf(R)], SizeOf(T));
+  if Len > 0 then
+    Move(Buf, Result[1 + SizeOf(R) + SizeOf(T)], Len);
+end;
+
+function PcapIsOwnHeader(const Head: AnsiString): Boolean;
+var
+  H: tPcapFileHeader;
+begin
+  Result := False;
+  if Length(Head) < SizeOf(H) then
+    Exit;
+  Move(Head[1], H, SizeOf(H));
+  Result := (LEtoN(H.Magic) = PcapMagic) and (LEtoN(H.LinkType) = PcapLinkRtac);
+end;
+
+function PcapReadBytes(const Data: AnsiString; UtcOffsetSec: LongInt;
+  var Frames: tTrcFrames; var Info: tPcapInfo): tChResult;
+var
+  H: tPcapFileHeader;
+  R: tPcapRecHeader;
+  T: tRtacHeader;
+  Pos, Count, N, Payload: LongInt;
+  Nano: Boolean;
+  Local: Int64;
+
+  function Fix(V: LongWord): LongWord;
+  begin
+    { the file's own byte order, whatever the machine's }
+    if Info.Swapped then
+      Result := Swap32(LEtoN(V))
+    else
+      Result := LEtoN(V);
+  end;
+
+  function Fail(Code: tChResult; At: LongInt; const Why: string): tChResult;
+  begin
+    Info.ErrPos := At;
+    Info.ErrText := Why;
+    Result := Code;
+  end;
+
+begin
+  FillChar(Info, SizeOf(Info), 0);
+  Info.ErrText := '';
+  Count := 0;
+  SetLength(Frames, 0);
+  Result := res_Ok;
+  if Length(Data) < SizeOf(H) then
+  begin
+    Result := Fail(res_PcapNotPcap, 0, NumStr(Length(Data)) +
+      ' bytes, a pcap file header has 24');
+    Exit;
+  end;
+  Move(Data[1], H, SizeOf(H));
+  Nano := False;
+  case LEtoN(H.Magic) of
+    PcapMagic: ;
+    PcapMagicNano: Nano := True;
+  else
+    if Swap32(LEtoN(H.Magic)) = PcapMagic then
+      Info.Swapped := True
+    else if Swap32(LEtoN(H.Magic)) = PcapMagicNano then
+    begin
+      Info.Swapped := True;
+      Nano := True;
+    end
+    else
+    begin
+      if LEtoN(H.Magic) = $0A0D0D0A then
+        Result := Fail(res_PcapNotPcap, 0, 'a pcapng file: save it as "Wireshark/tcpdump - pcap"')
+      else
+        Result := Fail(res_PcapNotPcap, 0, 'magic $' + HexBytes(@Data[1], 4) +
+          ' is no pcap magic');
+      Exit;
+    end;
+  end;
+  Info.LinkType := Fix(H.LinkType);
+  if Info.LinkType <> PcapLinkRtac then
+  begin
+    Result := Fail(res_PcapLinkType, 20, 'link type ' + NumStr(Info.LinkType) +
+      ', RTAC serial is 250');
+    Exit;
+  end;
+  Pos := SizeOf(H);                          { 0-based offset of the next record }
+  while Pos < Length(Data) do
+  begin
+    if Pos + SizeOf(R) > Length(Data) then
+    begin
+      Result := Fail(res_PcapCut, Pos, 'record ' + NumStr(Info.Records + 1) +
+        ': the file ends inside its header');
+      Break;
+    end;
+    Move(Data[Pos + 1], R, SizeOf(R));
+    R.TsSec := Fix(R.TsSec);
+    R.TsFrac := Fix(R.TsFrac);
+    R.InclLen := Fix(R.InclLen);
+    R.OrigLen := Fix(R.OrigLen);
+    if (R.InclLen > PcapSnapLen) or (R.InclLen > R.OrigLen) then
+    begin
+      Result := Fail(res_PcapCut, Pos, 'record ' + NumStr(Info.Records + 1) +
+        ': impossible length ' + NumStr(LongInt(R.InclLen and $7FFFFFFF)));
+      Break;
+    end;
+    Inc(Info.Records);
+    Inc(Pos, SizeOf(R));
+    N := R.InclLen;
+    if Pos + N > Length(Data) then
+      N := Length(Data) - Pos;              { the last record, cut off }
+    if N < RtacHeaderLen then
+    begin
+      Inc(Info.Skipped);
+      Inc(Pos, N);
+      Continue;
+    end;
+    Move(Data[Pos + 1], T, SizeOf(T));
+    if not (T.Event in [RtacTxStart, RtacRxStart, RtacTxEnd, RtacRxEnd]) then
+    begin
+      Inc(Info.Skipped);
+      Inc(Pos, N);
+      Continue;
+    end;
+    Payload := N - RtacHeaderLen;
+    if Count >= Length(Frames) then
+      SetLength(Frames, 2 * Count + 16);
+    FillChar(Frames[Count], SizeOf(Frames[Count]) - SizeOf(Frames[Count].Data), 0);
+    { the record header's time: the one tshark shows }
+    Local := Int64(R.TsSec) + UtcOffsetSec;
+    Local := Local mod 86400;
+    if Local < 0 then
+      Inc(Local, 86400);
+    if Nano then
+      Frames[Count].TimeMs := Local * 1000 + R.TsFrac div 1000000
+    else
+      Frames[Count].TimeMs := Local * 1000 + R.TsFrac div 1000;
+    Frames[Count].Line := Info.Records;
+    if T.Event in [RtacTxStart, RtacTxEnd] then
+      Frames[Count].Dir := trcTx
+    else
+      Frames[Count].Dir := trcRx;
+    if Frames[Count].Dir = trcTx then
+      Frames[Count].DirText := 'tx'
+    else
+      Frames[Count].DirText := 'rx';
+    Frames[Count].Tag := 'pcap';
+    Frames[Count].Len := LongInt(R.OrigLen) - RtacHeaderLen;
+    SetLength(Frames[Count].Data, Payload);
+    if Payload > 0 then
+      Move(Data[Pos + 1 + RtacHeaderLen], Frames[Count].Data[0], Payload);
+    if Payload < Frames[Count].Len then
+      Frames[Count].Status := res_TrcShort
+    else
+      Frames[Count].Status := res_Ok;
+    Inc(Count);
+    Inc(Pos, N);
+  end;
+  SetLength(Frames, Count);
+end;
+
+function PcapFromTrc(const Frames: tTrcFrames; Count: LongInt;
+  MidnightUtc: Int64): AnsiString;
+var
+  I, Size, Pos: LongInt;
+  Day: Int64;
+  Last: LongInt;
+  Sec: Int64;
+  Rec: AnsiString;
+begin
+  Size := 24;
+  for I := 0 to Count - 1 do
+    Inc(Size, 28 + Length(Frames[I].Data));
+  SetLength(Result, Size);
+  Rec := PcapFileHeaderBytes;
+  Move(Rec[1], Result[1], Length(Rec));
+  Pos := 1 + Length(Rec);
+  Day := 0;
+  Last := 0;
+  for I := 0 to Count - 1 do
+  begin
+    if Frames[I].TimeMs < Last then
+      Inc(Day);                             { past midnight }
+    Last := Frames[I].TimeMs;
+    Sec := MidnightUtc + Day * 86400 + Frames[I].TimeMs div 1000;
+    if Length(Frames[I].Data) > 0 then
+      Rec := PcapRecordBytes(LongWord(Sec), (Frames[I].TimeMs mod 1000) * 1000,
+        Frames[I].Dir, Frames[I].Data[0], Length(Frames[I].Data))
+    else
+      Rec := PcapRecordBytes(LongWord(Sec), (Frames[I].TimeMs mod 1000) * 1000,
+        Frames[I].Dir, Pos, 0);
+    Move(Rec[1], Result[Pos], Length(Rec));
+    Inc(Pos, Length(Rec));
+  end;
+end;
+
+initialization
+  ChRegisterResultText('TRC', res_PcapNotPcap, 'not a pcap file');
+  ChRegisterResultText('TRC', res_PcapLinkType, 'pcap file of another link type than RTAC serial (250)');
+  ChRegisterResultText('TRC', res_PcapCut, 'pcap file cut off or damaged inside a record');
+end.

@@ -1,0 +1,446 @@
+{ Tests of the balanced link helper of ChnFT12Link (tFT12Balanced): two
+  stations on NAM=LOOP joined by a LoopTap, each primary and secondary at
+  once. Station A: DIR=1 NOD=1 DNO=2; station B: DIR=0 NOD=2 DNO=1;
+  ADR=1, LEN=0. Expected wire bytes are worked out by hand: CODE = DIR
+  ($80) + PRM ($40) + FCB/ACD ($20) + FCV/DFC ($10) + FC, SUM = CODE +
+  ADDR + DATA mod 256; a request carries the address of the station it
+  goes to, an answer the address of the station that answers. }
+unit TestChnFT12LinkBalanced;
+
+{$MODE OBJFPC}{$H+}
+
+interface
+
+uses
+  SysUtils, fpcunit, testregistry, ChnTypes, ChnVirt, ChnLoop, ChnFT1_2,
+  ChnFT12Link, TestSupport, LoopTap;
+
+type
+  TTestChnFT12LinkBalanced = class(TTestCase)
+  private
+    FA, FB: pChnVirt;
+    FTap: TLoopTap;
+    FLa, FLb: tFT12Balanced;
+    FDataA, FDataB: string;     { user data each station's secondary took }
+    FAccept: Boolean;
+    procedure SetUpPair(TimeoutMs: LongInt = 1000; TestMs: LongInt = 0);
+    { step A, pump, step B, pump; Rounds times }
+    procedure Run(Rounds: Integer);
+    { run until both links are available (bounded) }
+    procedure BringUp;
+    procedure RunFor(Ms: LongInt);
+    procedure Queue(var L: tFT12Balanced; const Hex: string);
+  protected
+    procedure SetUp; override;
+    procedure TearDown; override;
+  published
+    procedure TestInitRefusesOtherChannels;
+    procedure TestLinkComesUpInBothDirections;
+    procedure TestUserDataCollisionBothConfirmed;
+    procedure TestLostAckRepeatedWithSameFcbExecutedOnce;
+    procedure TestTestFunctionWhenIdle;
+    procedure TestBadInputNeverStopsTheLink;
+    procedure TestLinkLostIsEstablishedAgain;
+    procedure TestStationBRepeatsLater;
+    procedure TestNackKeepsDataQueued;
+    procedure TestSendNoReplyAndQueueLimits;
+  end;
+
+implementation
+
+function OnUserA(Data: Pointer; Buf: PByte; Len: Word; Confirm: Boolean): Boolean;
+var
+  T: TTestChnFT12LinkBalanced;
+begin
+  T := TTestChnFT12LinkBalanced(Data);
+  if T.FDataA <> '' then
+    T.FDataA := T.FDataA + ' | ';
+  if not Confirm then
+    T.FDataA := T.FDataA + 'noreply ';
+  T.FDataA := T.FDataA + BytesToHex(Buf[0], Len);
+  Result := True;
+end;
+
+function OnUserB(Data: Pointer; Buf: PByte; Len: Word; Confirm: Boolean): Boolean;
+var
+  T: TTestChnFT12LinkBalanced;
+begin
+  T := TTestChnFT12LinkBalanced(Data);
+  if T.FDataB <> '' then
+    T.FDataB := T.FDataB + ' | ';
+  if not Confirm then
+    T.FDataB := T.FDataB + 'noreply ';
+  T.FDataB := T.FDataB + BytesToHex(Buf[0], Len);
+  Result := T.FAccept;
+end;
+
+procedure TTestChnFT12LinkBalanced.SetUp;
+begin
+  FA := nil;
+  FB := nil;
+  FTap := nil;
+  FDataA := '';
+  FDataB := '';
+  FAccept := True;
+end;
+
+procedure TTestChnFT12LinkBalanced.TearDown;
+begin
+  if FA <> nil then
+    Dispose(FA, Done);
+  if FB <> nil then
+    Dispose(FB, Done);
+  FreeAndNil(FTap);
+end;
+
+procedure TTestChnFT12LinkBalanced.SetUpPair(TimeoutMs: LongInt; TestMs: LongInt);
+var
+  Err: string;
+begin
+  FA := OpenStack(ChnFT1_2.cName,
+    'NAM=FT1_2 MS=OFF PRI=ON DIR=1 LEN=0 NOD=1 DNO=2 NAM=LOOP PAIR=BLA END=1', Err);
+  AssertTrue(Err, FA <> nil);
+  FB := OpenStack(ChnFT1_2.cName,
+    'NAM=FT1_2 MS=OFF PRI=OFF DIR=0 LEN=0 NOD=2 DNO=1 NAM=LOOP PAIR=BLB END=1', Err);
+  AssertTrue(Err, FB <> nil);
+  FTap := TLoopTap.Create('BLA', 'BLB');
+  AssertTrue('tap open', FTap.Ok);
+  AssertEquals(res_Ok, FT12BalancedInit(FLa, FA));
+  AssertEquals(res_Ok, FT12BalancedInit(FLb, FB));
+  FLa.TimeoutMs := TimeoutMs;
+  FLb.TimeoutMs := TimeoutMs;
+  FLa.TestMs := TestMs;
+  FLb.TestMs := TestMs;
+  FLa.OnUserData := @OnUserA;
+  FLb.OnUserData := @OnUserB;
+  FLa.Data := Self;
+  FLb.Data := Self;
+end;
+
+procedure TTestChnFT12LinkBalanced.Run(Rounds: Integer);
+var
+  I: Integer;
+begin
+  for I := 1 to Rounds do
+  begin
+    FT12BalancedStep(FLa);
+    FTap.Pump;
+    FT12BalancedStep(FLb);
+    FTap.Pump;
+  end;
+end;
+
+procedure TTestChnFT12LinkBalanced.BringUp;
+var
+  I: Integer;
+begin
+  for I := 1 to 50 do
+  begin
+    Run(1);
+    if (FLa.State = bsAvailable) and (FLb.State = bsAvailable) and
+       FT12BalancedQuiet(FLa) and FT12BalancedQuiet(FLb) then
+      Break;
+  end;
+  AssertTrue('A available', FLa.State = bsAvailable);
+  AssertTrue('B available', FLb.State = bsAvailable);
+  Run(3);     { answers still on the line }
+end;
+
+procedure TTestChnFT12LinkBalanced.RunFor(Ms: LongInt);
+var
+  Until_: QWord;
+begin
+  Until_ := GetTickCount64 + QWord(Ms);
+  repeat
+    Run(1);
+    Sleep(1);
+  until GetTickCount64 > Until_;
+end;
+
+procedure TTestChnFT12LinkBalanced.Queue(var L: tFT12Balanced; const Hex: string);
+var
+  B: TBytes;
+begin
+  B := HexToBytes(Hex);
+  AssertEquals('queued', res_Ok, FT12BalancedSend(L, @B[0], Length(B), True));
+end;
+
+procedure TTestChnFT12LinkBalanced.TestInitRefusesOtherChannels;
+var
+  L: tFT12Balanced;
+  C, Loop: pChnVirt;
+  Err: string;
+begin
+  Loop := OpenStack(ChnLoop.cName, 'PAIR=BLX END=1', Err);
+  try
+    AssertEquals(res_WrongLayer, FT12BalancedInit(L, Loop));
+    AssertFalse('a bound-less record does nothing', FT12BalancedStep(L));
+  finally
+    Dispose(Loop, Done);
+  end;
+  AssertEquals(res_WrongLayer, FT12BalancedInit(L, nil));
+  C := OpenStack(ChnFT1_2.cName, 'NAM=FT1_2 MS=ON LEN=0 NAM=LOOP PAIR=BLY END=1', Err);
+  try
+    AssertEquals('unbalanced channel', res_BadMessage, FT12BalancedInit(L, C));
+  finally
+    Dispose(C, Done);
+  end;
+end;
+
+procedure TTestChnFT12LinkBalanced.TestLinkComesUpInBothDirections;
+begin
+  SetUpPair;
+  BringUp;
+  { A: request status of link to 2 (C9+02 = CB); reset of remote link to 2
+    (C0+02 = C2); status of link from 1 to B's request (80+0B = 8B, +01 =
+    8C); ACK from 1 to B's reset (80+01 = 81) }
+  AssertEquals('10 C9 02 CB 16 | 10 C0 02 C2 16 | 10 8B 01 8C 16 | 10 80 01 81 16',
+    FTap.Lines('A'));
+  { B: status of link from 2 (0B+02 = 0D) answering A first, then its own
+    request status (49+01 = 4A) in the same step (one chunk for the tap),
+    ACK from 2 (00+02), reset to 1 (40+01) }
+  AssertEquals('10 0B 02 0D 16 10 49 01 4A 16 | 10 00 02 02 16 | 10 40 01 41 16',
+    FTap.Lines('B'));
+  AssertTrue(FLa.PeerReset and FLb.PeerReset);
+  AssertTrue('first FCB after a reset is 1', FLa.Fcb and FLb.Fcb);
+  AssertEquals(0, FLa.Unexpected + FLa.Ignored + FLa.Broken + FLa.BadDir);
+  AssertEquals(0, FLb.Unexpected + FLb.Ignored + FLb.Broken + FLb.BadDir);
+  AssertEquals('REQUEST STATUS', FT12BalStateName(bsRequestStatus));
+  AssertEquals('AVAILABLE', FT12BalStateName(FLa.State));
+end;
+
+procedure TTestChnFT12LinkBalanced.TestUserDataCollisionBothConfirmed;
+begin
+  SetUpPair;
+  BringUp;
+  FTap.Log.Clear;
+  { both send at once: each takes the other's request while its own waits }
+  Queue(FLa, '01 02');
+  Queue(FLb, '03 04');
+  FT12BalancedStep(FLa);
+  FT12BalancedStep(FLb);
+  FTap.Pump;
+  Run(4);
+  { A: F3 = 80+40+20+10+3, sum F3+02+01+02 = F8; ACK from 1 }
+  AssertEquals('68 04 04 68 F3 02 01 02 F8 16 | 10 80 01 81 16', FTap.Lines('A'));
+  { B: 73 = 40+20+10+3, sum 73+01+03+04 = 7B; ACK from 2 }
+  AssertEquals('68 04 04 68 73 01 03 04 7B 16 | 10 00 02 02 16', FTap.Lines('B'));
+  AssertEquals('03 04', FDataA);
+  AssertEquals('01 02', FDataB);
+  AssertEquals(1, FLa.Confirmed);
+  AssertEquals(1, FLb.Confirmed);
+  AssertTrue(FT12BalancedQuiet(FLa) and FT12BalancedQuiet(FLb));
+  AssertFalse('next FCB 0', FLa.Fcb);
+  { the next ones carry FCB 0: D3 (sum D3+02+05 = DA) }
+  FTap.Log.Clear;
+  Queue(FLa, '05');
+  Run(3);
+  AssertEquals('68 03 03 68 D3 02 05 DA 16', FTap.Lines('A'));
+  AssertEquals('01 02 | 05', FDataB);
+end;
+
+procedure TTestChnFT12LinkBalanced.TestLostAckRepeatedWithSameFcbExecutedOnce;
+var
+  I: Integer;
+begin
+  SetUpPair(40);
+  BringUp;
+  FTap.Log.Clear;
+  Queue(FLa, 'AA');
+  FTap.DropB := 1;              { B's ACK is lost }
+  for I := 1 to 200 do
+  begin
+    Run(1);
+    Sleep(1);
+    if FLa.Confirmed = 1 then
+      Break;
+  end;
+  Run(2);
+  { F3 02 AA: sum F3+02+AA = 9F, sent twice with the same FCB }
+  AssertEquals('68 03 03 68 F3 02 AA 9F 16 | 68 03 03 68 F3 02 AA 9F 16', FTap.Lines('A'));
+  AssertEquals('10 00 02 02 16 lost | 10 00 02 02 16', FTap.Lines('B'));
+  AssertEquals('executed once', 'AA', FDataB);
+  AssertEquals(1, FLb.Repeats);
+  AssertEquals(1, FLa.Retransmits);
+  AssertEquals(1, FLa.Confirmed);
+end;
+
+procedure TTestChnFT12LinkBalanced.TestTestFunctionWhenIdle;
+begin
+  SetUpPair(1000, 60);
+  BringUp;
+  FTap.Log.Clear;
+  RunFor(100);
+  { A: test function F2 = 80+40+20+10+2 to 2, sum F4; B: 72 to 1, sum 73 }
+  AssertTrue(FTap.Lines('A'), Pos('10 F2 02 F4 16', FTap.Lines('A')) = 1);
+  AssertTrue(FTap.Lines('B'), Pos('10 72 01 73 16', FTap.Lines('B')) > 0);
+  { and each ACKs the other's: 80+01 = 81 from A, 00+02 from B }
+  AssertTrue(Pos('10 80 01 81 16', FTap.Lines('A')) > 0);
+  AssertTrue(Pos('10 00 02 02 16', FTap.Lines('B')) > 0);
+  AssertTrue('A tested', FLa.Tests >= 1);
+  AssertTrue('B tested', FLb.Tests >= 1);
+  AssertTrue(FLa.State = bsAvailable);
+  AssertEquals(0, FLa.Retransmits + FLb.Retransmits);
+end;
+
+procedure TTestChnFT12LinkBalanced.TestBadInputNeverStopsTheLink;
+begin
+  SetUpPair;
+  BringUp;
+  FTap.Log.Clear;
+  { to B: a request with B's own DIR (0): 49+02 = 4B -> BadDir, no answer }
+  FTap.InjectToB('10 49 02 4B 16');
+  { an ACK with nothing of B's outstanding (80+01 = 81) -> Unexpected }
+  FTap.InjectToB('10 80 01 81 16');
+  { garbage, then a broken checksum -> Broken, skipped }
+  FTap.InjectToB('00 FF 13 10 C9 02 00 16');
+  Run(6);
+  AssertEquals(1, FLb.BadDir);
+  AssertEquals(1, FLb.Unexpected);
+  AssertEquals(1, FLb.Broken);
+  AssertEquals('nothing answered', '', FTap.Lines('B'));
+  { a test function with FCB 1 twice: the second is a repetition and gets
+    the ACK from memory (F2 02 F4) }
+  FTap.InjectToB('10 F2 02 F4 16');
+  Run(2);
+  FTap.InjectToB('10 F2 02 F4 16');
+  Run(2);
+  AssertEquals(1, FLb.Repeats);
+  AssertEquals('10 00 02 02 16 | 10 00 02 02 16', FTap.Lines('B'));
+  { user data with a repeated FCB is not handed over twice:
+    F3 02 07, sum FC (FCB 0 -> D3 02 07 = DC is new, then again) }
+  FTap.InjectToB('68 03 03 68 D3 02 07 DC 16');
+  Run(2);
+  FTap.InjectToB('68 03 03 68 D3 02 07 DC 16');
+  Run(2);
+  AssertEquals('07', FDataB);
+  AssertEquals(2, FLb.Repeats);
+  { the link still works both ways }
+  Queue(FLb, '11');
+  Queue(FLa, '22');
+  Run(6);
+  AssertEquals('22', Copy(FDataB, Length(FDataB) - 1, 2));
+  AssertEquals('11', FDataA);
+  AssertTrue(FLa.State = bsAvailable);
+  AssertTrue(FLb.State = bsAvailable);
+end;
+
+procedure TTestChnFT12LinkBalanced.TestLinkLostIsEstablishedAgain;
+var
+  I: Integer;
+begin
+  SetUpPair(20);
+  FLa.Retries := 1;
+  BringUp;
+  FTap.Log.Clear;
+  Queue(FLa, '33');
+  FTap.DropB := 2;              { B's ACK is lost twice: A gives up }
+  for I := 1 to 300 do
+  begin
+    Run(1);
+    Sleep(1);
+    if FLa.LinkLost > 0 then
+      Break;
+  end;
+  AssertEquals(1, FLa.LinkLost);
+  AssertEquals(1, FLa.Retransmits);
+  { A establishes the link again (C9, C0) and sends the data once more }
+  for I := 1 to 300 do
+  begin
+    Run(1);
+    Sleep(1);
+    if FLa.Confirmed = 1 then
+      Break;
+  end;
+  AssertEquals(1, FLa.Confirmed);
+  AssertTrue(FLa.State = bsAvailable);
+  AssertEquals('68 03 03 68 F3 02 33 28 16 | 68 03 03 68 F3 02 33 28 16 | ' +
+    '10 C9 02 CB 16 | 10 C0 02 C2 16 | 68 03 03 68 F3 02 33 28 16', FTap.Lines('A'));
+  { B took it twice: once before and once after the reset (the standard's
+    known window: a reset forgets the FCB) }
+  AssertEquals('33 | 33', FDataB);
+end;
+
+procedure TTestChnFT12LinkBalanced.TestStationBRepeatsLater;
+var
+  I: Integer;
+  A0, B0: QWord;
+begin
+  SetUpPair(300);
+  FTap.DropA := 1000;           { nothing gets through: both repeat }
+  FTap.DropB := 1000;
+  Run(1);
+  A0 := FLa.SentAt;
+  B0 := FLb.SentAt;
+  for I := 1 to 2000 do
+  begin
+    FT12BalancedStep(FLa);
+    FT12BalancedStep(FLb);
+    FTap.Pump;
+    Sleep(1);
+    if FLb.Retransmits = 1 then
+      Break;
+  end;
+  AssertEquals(1, FLa.Retransmits);
+  AssertEquals(1, FLb.Retransmits);
+  { A repeats after its timeout, B (DIR = 0) after one and a half }
+  AssertTrue('A waited the timeout', FLa.SentAt - A0 > 300);
+  AssertTrue('B waited half a timeout more', FLb.SentAt - B0 > 450);
+end;
+
+procedure TTestChnFT12LinkBalanced.TestNackKeepsDataQueued;
+var
+  I: Integer;
+begin
+  SetUpPair(30);
+  BringUp;
+  FTap.Log.Clear;
+  FAccept := False;
+  Queue(FLa, '44');
+  Run(3);
+  { B refuses: NACK from 2 (01+02 = 03); the data stays queued }
+  AssertEquals('10 01 02 03 16', FTap.Lines('B'));
+  AssertEquals(0, FLa.Confirmed);
+  AssertEquals(1, FLa.QCount);
+  FAccept := True;
+  for I := 1 to 300 do
+  begin
+    Run(1);
+    Sleep(1);
+    if FLa.Confirmed = 1 then
+      Break;
+  end;
+  { sent again after the hold, as a new frame: FCB 0 (D3 02 44, sum 19) }
+  AssertEquals('68 03 03 68 F3 02 44 39 16 | 68 03 03 68 D3 02 44 19 16', FTap.Lines('A'));
+  AssertEquals('44 | 44', FDataB);
+  AssertEquals(0, FLa.QCount);
+end;
+
+procedure TTestChnFT12LinkBalanced.TestSendNoReplyAndQueueLimits;
+var
+  I: Integer;
+  Big: array[0..MaxDataLen] of Byte;
+begin
+  SetUpPair;
+  BringUp;
+  FillChar(Big, SizeOf(Big), 0);
+  AssertEquals(res_BadLen, FT12BalancedSend(FLa, @Big, 0, True));
+  AssertEquals(res_TooLong, FT12BalancedSend(FLa, @Big, MaxDataLen + 1, True));
+  Big[0] := $55;
+  AssertEquals(res_Ok, FT12BalancedSend(FLa, @Big, 1, False));
+  for I := 2 to FT12BalQueueLen do
+    AssertEquals(res_Ok, FT12BalancedSend(FLa, @Big, 1, True));
+  AssertEquals('queue full', res_Busy, FT12BalancedSend(FLa, @Big, 1, True));
+  FTap.Log.Clear;
+  Run(3);
+  { SEND/NO REPLY: C4 = 80+40+4 to 2, sum C4+02+55 = 1B; no answer }
+  AssertEquals('68 03 03 68 C4 02 55 1B 16', Copy(FTap.Lines('A'), 1, 26));
+  AssertEquals('noreply 55', Copy(FDataB, 1, 10));
+  Run(30);
+  AssertEquals(FT12BalQueueLen, FLa.Confirmed);
+  AssertTrue(FT12BalancedQuiet(FLa));
+end;
+
+initialization
+  RegisterTest(TTestChnFT12LinkBalanced);
+end.
