@@ -22,8 +22,10 @@
   tpPoll, tpNoPollRep records with ChSend like any other message.
 
   Differences from the manual, all deliberate (see docs/ChnDF1.md):
-  NAK = $15 (the manual prints $0F); replies never carry FNC, so a received
-  reply has CF low byte 0; a broken frame is reported by ChReceiveReady =
+  NAK = $15 (the manual prints $0F); replies never carry FNC on the wire, so
+  a received reply gets its FNC back from the command this layer sent
+  (same TNS and command; the last DF1SentMemory commands are remembered),
+  and a reply matching none has CF low byte 0; a broken frame is reported by ChReceiveReady =
   CHS_ReceiveReady and ChReceive giving Len = 0 with ChReceiveResult =
   res_ErrSum / res_ErrFrame / res_ErrLen. }
 unit ChnDF1;
@@ -185,6 +187,7 @@ type
     CH_DupSrc  : Byte;        { SRC and TNS of the last of them }
     CH_DupTns  : Word;
     CH_DupAck  : Boolean;     { its ACK still waits for the layer below }
+    CH_Sent    : tDF1SentLog; { last commands sent, to restore a reply's CF }
 
     constructor Init;
     constructor ChInitParam(const S: tParamStr);
@@ -244,6 +247,7 @@ begin
   CH_DupSrc := 0;
   CH_DupTns := 0;
   CH_DupAck := False;
+  DF1SentInit(CH_Sent);
   DF1DecoderInit(CH_Dec, ChDF1Config);
 end;
 
@@ -397,6 +401,8 @@ begin
       CH_SSumBcc := P[N - 1];
   CH_SLen := N;
   ChLowSend(CH_SBuff, N);
+  if CH_SResult = res_Ok then
+    DF1SentNote(CH_Sent, Byte(CH_DNode), pSendRecord(Buff)^);
 end;
 
 const
@@ -501,6 +507,8 @@ begin
       CH_RSNode := CH_Dec.Src;
       CH_RDNode := CH_Dec.Dst;
     end;
+    if CH_Dec.Msg.MessType = tpDataMess then   { a reply gets its FNC back }
+      pRecRecord(CH_RBuff)^.CF := DF1ReplyCF(CH_Sent, CH_Dec.Src, CH_Dec.Msg);
     CH_RResult := res_Ok;
   end;
   CH_LRMess := Len;

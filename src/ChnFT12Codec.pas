@@ -202,13 +202,12 @@ var
   Frame: array[0..cFT12MaxFrame - 1] of Byte;
 begin
   DestLen := 0;
-  if Len = 0 then
-    Exit(res_BadLen);
   if PByte(@Rec)^ > Ord(High(tMessType)) then   { a byte from the caller }
     Exit(res_BadMessage);
   if Rec.MessType in [tpSACK, tpSNAK] then
   begin
-    { single characters answer a primary; a primary never sends them }
+    { the manual: Len is ignored for single characters (0 is fine).
+      They answer a primary; a primary never sends them. }
     if Cfg.Primary then
       Exit(res_BadMessage);
     if DestSize < 1 then

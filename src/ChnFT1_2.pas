@@ -397,7 +397,9 @@ var
   R: tChResult;
   Cfg: tFT12Config;
 begin
-  if not ChSendAllowed(Buff, Len, True) then
+  { Len is ignored for single characters (the manual), so 0 is fine there }
+  if not ChSendAllowed(Buff, Len, not ((Buff <> nil) and
+    (PByte(Buff)^ in [Ord(tpSACK), Ord(tpSNAK)]))) then
     Exit;
   if CH_MaSl and (Primary <> CH_Master) then
   begin

@@ -155,7 +155,7 @@ begin
   RepLen := 0;
   R := DF1Transact(Master, Req, 8 + Length(D), Rep, RepLen, @StepStation, @Station, 500);
   AssertEquals('transaction result', res_Ok, R);
-  AssertEquals('reply CF', (CF and $FF00) or $4000, Rep.CF);
+  AssertEquals('reply CF: the command''s, FNC included', CF or $4000, Rep.CF);
   AssertEquals('reply TNS', Tns, Rep.Tns);
   Result := Format('STS=%.2x', [Rep.Sts]);
   if RepLen > 8 then
