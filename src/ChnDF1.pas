@@ -1,8 +1,8 @@
 { ChnDF1 - Allen-Bradley DF1 protocol layer (NAM=DF1), full and half duplex,
   master and slave, BCC or CRC-16.
 
-  Implements the SofCon manual "ChnDF1" v1.20 (seed 000) with the decisions
-  of SPEC.md section 6. The frame work is done by the I/O-free codec
+  Implements the SofCon manual "ChnDF1" v1.20 with the decisions of
+  docs/PROTOCOLS.md section 4. The frame work is done by the I/O-free codec
   ChnDF1Codec; tChnDF1 only glues it to the layer below (ChLowSend /
   ChLowGetByte) and to the ChnVirt polling API.
 

@@ -239,7 +239,7 @@ var
 begin
   New(C, Init);
   try
-    { the seed example's MASTER=ON is not a parameter (SPEC section 9) }
+    { the manual example's MASTER=ON is not a parameter (docs/PROTOCOLS.md section 7) }
     C^.ChSetParam('MS=ON MASTER=ON LSB=500');
     AssertEquals(res_UnknownParam, C^.ChResult);
     AssertEquals('MASTER=ON', C^.ChParamError);
