@@ -61,7 +61,7 @@ BENCHBINS := $(addprefix $(BINDIR)/,$(basename $(notdir $(BENCHES))))
 .PHONY: all units examples tools test demo bench fuzz wintest clean check-fpc \
         install uninstall
 
-all: units $(PROGBINS)
+all: units $(PROGBINS) chn.lpk
 examples: $(addprefix $(BINDIR)/,$(basename $(notdir $(EXAMPLES))))
 tools: $(addprefix $(BINDIR)/,$(basename $(notdir $(TOOLS))))
 
@@ -84,8 +84,13 @@ $(BUILD)/units.stamp: $(LIBSRC) | check-fpc
 	@{ echo 'unit chnall; interface uses'; \
 	   echo '$(basename $(notdir $(UNITS)))' | sed 's/ /, /g'; \
 	   echo '; implementation end.'; } > $(BUILD)/chnall.pas
-	$(FPC) $(UNITFLAGS) $(BUILD)/chnall.pas
+	@echo "fpc src/*.pas"
+	@$(FPC) $(UNITFLAGS) $(BUILD)/chnall.pas
 	@touch $@
+
+# The Lazarus package lists every unit of src/.
+chn.lpk: $(wildcard src/*.pas) tools/mklpk.sh
+	@bash tools/mklpk.sh
 
 # Which sources each program depends on (from the uses clauses).
 $(BUILD)/deps.mk: $(LIBSRC) $(TOOLLIB) $(PROGRAMS) $(BENCHES) tools/mkdeps.sh
@@ -93,11 +98,13 @@ $(BUILD)/deps.mk: $(LIBSRC) $(TOOLLIB) $(PROGRAMS) $(BENCHES) tools/mkdeps.sh
 	@bash tools/mkdeps.sh $(BINDIR) src tools/lib -- $(PROGRAMS) $(BENCHES) > $@.tmp && mv $@.tmp $@
 -include $(BUILD)/deps.mk
 
-# One program: its units are current (units.stamp), so fpc compiles the
-# program (and any tools/lib unit it uses) and links.
-$(PROGBINS) $(BENCHBINS): $(BUILD)/units.stamp src/chn.inc
+# One program: its units are current (units.stamp, order only: a program
+# is rebuilt when a source it uses changed, see deps.mk), so fpc compiles
+# the program (and any tools/lib unit it uses) and links.
+$(PROGBINS) $(BENCHBINS): src/chn.inc | $(BUILD)/units.stamp
 	@mkdir -p $(TOOLUNITDIR)
-	$(FPC) $(PROGFLAGS) $(filter %/$(notdir $@).pas,$(PROGRAMS) $(BENCHES))
+	@echo "fpc $(filter %/$(notdir $@).pas,$(PROGRAMS) $(BENCHES))"
+	@$(FPC) $(PROGFLAGS) $(filter %/$(notdir $@).pas,$(PROGRAMS) $(BENCHES))
 
 # The runner's uses clause is generated from tests/Test*.pas, so adding a
 # test unit needs no edit anywhere else. Units that need Unix as a whole
@@ -137,8 +144,9 @@ wintest: all $(BUILD)/testunits.inc
 # ---------------------------------------------------------------- install
 # Debian's /etc/fpc.cfg searches /usr/lib/<multiarch>/fpc/<version>/units/
 # <target>/* and, per user, ~/.fppkg/lib/fpc/<version>/units/<target>/*:
-# the units go into a folder "chn" there, the sources (for debugging and
-# the Lazarus package) into $(PREFIX)/share/chn.
+# the units go into a folder "chn" there, in lower case as fpc looks for
+# them whatever case a program's uses clause has; the sources (for
+# debugging and the Lazarus package) into $(PREFIX)/share/chn.
 PREFIX   ?= /usr
 FPCVER    = $(shell $(FPC) -iV)
 FPCTARGET = $(shell $(FPC) -iTP)-$(shell $(FPC) -iTO)
@@ -151,7 +159,8 @@ install: units
 	@set -e; d='$(DESTDIR)$(INSTALL_UNITDIR)'; s='$(DESTDIR)$(INSTALL_SRCDIR)'; \
 	mkdir -p "$$d" "$$s/src"; \
 	for u in $(basename $(notdir $(UNITS))); do l=$$(echo $$u | tr A-Z a-z); \
-	  install -m 644 $(UNITDIR)/$$l.ppu $(UNITDIR)/$$l.o "$$d/"; done; \
+	  install -m 644 $(UNITDIR)/$$u.ppu "$$d/$$l.ppu"; \
+	  install -m 644 $(UNITDIR)/$$u.o "$$d/$$l.o"; done; \
 	install -m 644 $(LIBSRC) "$$s/src/"; install -m 644 chn.lpk "$$s/"; \
 	echo "installed units in $$d, sources in $$s"
 

@@ -1,4 +1,4 @@
-{ ChnCom - the serial physical layer (NAM=COM), SPEC.md sections 4 and 5.
+{ ChnCom - the serial physical layer (NAM=COM), docs/PROTOCOLS.md sections 2 and 3.
 
   tChnCom is the bottom of a channel stack: its "message" is a chunk of raw
   bytes. It drives a TChnPort (unit ChnPort) chosen by DRV=, so no OS code

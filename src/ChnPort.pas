@@ -1,4 +1,4 @@
-{ ChnPort - the small serial-port interface under tChnCom (SPEC.md section 5).
+{ ChnPort - the small serial-port interface under tChnCom (docs/PROTOCOLS.md section 3).
 
   One abstract class, TChnPort, in the spirit of Synapse's TBlockSerial: open
   a device, configure it, move bytes without blocking, wait for input for a
