@@ -27,16 +27,18 @@ TBINDIR  := $(BUILD)/test-bin
 DEB_PACKAGES := fp-compiler fp-units-rtl fp-units-base fp-units-fcl
 
 SYNAPSE_FLAGS := $(if $(SYNAPSE_DIR),-Fu$(SYNAPSE_DIR) -Fi$(SYNAPSE_DIR) -dCHN_SYNAPSE)
-COMMON   := -Fisrc $(SYNAPSE_FLAGS) -v0ew -l-
+COMMON   := -Fisrc -v0ew -l-
 # library units: warnings are errors; release code is optimised
-UNITFLAGS := $(COMMON) -Fusrc -O2 -Sew -FU$(UNITDIR) -FE$(BINDIR)
+UNITFLAGS := $(COMMON) $(SYNAPSE_FLAGS) -Fusrc -O2 -Sew -FU$(UNITDIR) -FE$(BINDIR)
 # examples, tools, benchmarks: the compiled library (as an installed one
-# would be used), plus tools/lib
-PROGFLAGS := $(COMMON) -Fu$(UNITDIR) -Futools/lib -O2 -Sew -FU$(TOOLUNITDIR) -FE$(BINDIR)
+# would be used; Synapse's units too, so they are not rebuilt with -Sew),
+# plus tools/lib
+PROGFLAGS := $(COMMON) $(if $(SYNAPSE_DIR),-dCHN_SYNAPSE) -Fu$(UNITDIR) -Futools/lib -O2 -Sew \
+             -FU$(TOOLUNITDIR) -FE$(BINDIR)
 # tests: range, overflow and stack checks, heaptrc, line info (and -Xs-:
-# Debian's fpc.cfg strips it otherwise, and failures could not say where); -B rebuilds
-# everything, as FPC's one-second timestamps can miss a quick edit
-TESTFLAGS := $(COMMON) -Fusrc -Futools/lib -Futests/support -B -Cr -Co -Ct -gh -gl -Xs- \
+# Debian's fpc.cfg strips it otherwise, and failures could not say where);
+# -B rebuilds everything, as FPC's one-second timestamps can miss a quick edit
+TESTFLAGS := $(COMMON) $(SYNAPSE_FLAGS) -Fusrc -Futools/lib -Futests/support -B -Cr -Co -Ct -gh -gl -Xs- \
              -Fu$(BUILD)/fpcunit -FU$(TUNITDIR) -FE$(TBINDIR) -Fi$(BUILD)
 # FPCUnit rebuilt from Debian's fpc-source without optimisation, so that a
 # failing assert's location names the test's own line (the prebuilt one
@@ -83,7 +85,7 @@ check-fpc:
 units: $(BUILD)/units.stamp
 $(BUILD)/units.stamp: $(LIBSRC) | check-fpc
 	@mkdir -p $(UNITDIR) $(BINDIR)
-	@$(if $(SYNAPSE_DIR),$(FPC) $(COMMON) -O2 -FU$(UNITDIR) -FE$(BINDIR) $(SYNAPSE_DIR)/synaser.pas >/dev/null;) true
+	@$(if $(SYNAPSE_DIR),$(FPC) $(COMMON) $(SYNAPSE_FLAGS) -O2 -FU$(UNITDIR) -FE$(BINDIR) $(SYNAPSE_DIR)/synaser.pas >/dev/null;) true
 	@{ echo 'unit chnall; interface uses'; \
 	   echo '$(basename $(notdir $(UNITS)))' | sed 's/ /, /g'; \
 	   echo '; implementation end.'; } > $(BUILD)/chnall.pas

@@ -10,7 +10,7 @@ interface
 
 uses
   SysUtils, fpcunit, testregistry, ChnTypes, ChnVirt, ChnLoop, ChnFT1_2,
-  TestSupport, LoopHub, ChnBaudTestLayer, ChnNoiseLayer;
+  TestSupport, LoopHub, ChnBaudTestLayer;
 
 type
   TTestChnFT1_2 = class(TTestCase)

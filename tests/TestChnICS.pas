@@ -9,7 +9,7 @@ unit TestChnICS;
 interface
 
 uses
-  SysUtils, fpcunit, testregistry, ChnTypes, ChnVirt, ChnLoop, ChnICS, TestSupport, ChnNoiseLayer;
+  SysUtils, fpcunit, testregistry, ChnTypes, ChnVirt, ChnLoop, ChnICS, TestSupport;
 
 type
   TTestChnICS = class(TTestCase)
