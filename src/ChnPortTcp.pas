@@ -63,8 +63,7 @@ type
     Port       : Word;
     ConnectMs  : LongInt;
     Rfc2217    : Boolean;
-    { after a failure: the parameter key at fault ('HOST', 'BD', ...) }
-    FailKey    : ShortString;
+    { FailKey (TChnPort) after a failure: 'HOST', 'BD', ... }
     { Open ignores Path: Connect, or Listen when IsServer }
     IsServer   : Boolean;
     constructor Create; override;

@@ -15,6 +15,9 @@
       --bd=N            baud rate (default 19200), --par=N|E|O (default N)
       --half            half duplex (default full duplex)
       --bcc | --crc     checksum (default CRC)
+      --dup=on|off      duplicate packet detect (DUP= of NAM=DF1; default on,
+                        as a PLC channel: a repeated command is ACKed and
+                        answered with the cached reply, not executed again)
       --node=N          station address (default 1); --dno=N peer (default 0)
       --config=FILE     data table (tools/df1sim.conf); default: built in
       --count=N         exit after answering N commands
@@ -104,7 +107,7 @@ var
   Station: tDF1Station;
   Chn: pChnVirt;
   Params, Arg, Key, Value, Dev, Par, ConfigName, Err, Listen: string;
-  UsePty, Half, Crc: Boolean;
+  UsePty, Half, Crc, Dup: Boolean;
   Node, DNo, Bd, Count, TimeoutS, I, ErrLine: LongInt;
   LastMsg, CountReached: QWord;
 
@@ -117,6 +120,7 @@ begin
   UsePty := False;
   Half := False;
   Crc := True;
+  Dup := True;
   Node := 1;
   DNo := 0;
   Bd := 19200;
@@ -141,8 +145,8 @@ begin
     end
     else if ((Key = '--count') or (Key = '--timeout') or (Key = '--config') or
              (Key = '--dev') or (Key = '--node') or (Key = '--dno') or
-             (Key = '--bd') or (Key = '--par') or (Key = '--listen')) and
-            (I <= ParamCount) then
+             (Key = '--bd') or (Key = '--par') or (Key = '--dup') or
+             (Key = '--listen')) and (I <= ParamCount) then
     begin
       Value := ParamStr(I);         { "--count 3" as well as "--count=3" }
       Inc(I);
@@ -153,6 +157,13 @@ begin
     else if Key = '--bcc' then Crc := False
     else if Key = '--crc' then Crc := True
     else if Key = '--quiet' then Quiet := True
+    else if Key = '--dup' then
+      case ChoiceIndex(Value, 'OFF|ON') of
+        0: Dup := False;
+        1: Dup := True;
+      else
+        Die('--dup wants on or off');
+      end
     else if Key = '--dev' then Dev := Value
     else if Key = '--listen' then Listen := Value
     else if Key = '--par' then Par := Value
@@ -182,6 +193,10 @@ begin
       Params := Params + ' CRC=ON'
     else
       Params := Params + ' CRC=OFF';
+    if Dup then
+      Params := Params + ' DUP=ON'
+    else
+      Params := Params + ' DUP=OFF';
     if UsePty and (Listen <> '') then
       Die('--pty or --listen, not both')
     else if UsePty then
