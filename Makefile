@@ -124,7 +124,7 @@ test: all $(BUILD)/testunits.inc
 demo: all
 	@bash tools/demo.sh $(BUILD)
 
-bench: $(BENCHBINS)
+bench: $(BENCHBINS) $(BINDIR)/chntap
 	@set -e; for b in $(BENCHBINS); do $$b; done
 
 # Random-mutation fuzzing of the three codecs with run-time checks on;
