@@ -27,16 +27,23 @@ TBINDIR  := $(BUILD)/test-bin
 DEB_PACKAGES := fp-compiler fp-units-rtl fp-units-base fp-units-fcl
 
 SYNAPSE_FLAGS := $(if $(SYNAPSE_DIR),-Fu$(SYNAPSE_DIR) -Fi$(SYNAPSE_DIR) -dCHN_SYNAPSE)
-COMMON   := -Fisrc $(SYNAPSE_FLAGS) -v0ew -l-
+COMMON   := -Fisrc -v0ew -l-
 # library units: warnings are errors; release code is optimised
-UNITFLAGS := $(COMMON) -Fusrc -O2 -Sew -FU$(UNITDIR) -FE$(BINDIR)
+UNITFLAGS := $(COMMON) $(SYNAPSE_FLAGS) -Fusrc -O2 -Sew -FU$(UNITDIR) -FE$(BINDIR)
 # examples, tools, benchmarks: the compiled library (as an installed one
-# would be used), plus tools/lib
-PROGFLAGS := $(COMMON) -Fu$(UNITDIR) -Futools/lib -O2 -Sew -FU$(TOOLUNITDIR) -FE$(BINDIR)
-# tests: range, overflow and stack checks, heaptrc, line info; -B rebuilds
-# everything, as FPC's one-second timestamps can miss a quick edit
-TESTFLAGS := $(COMMON) -Fusrc -Futools/lib -Futests/support -B -Cr -Co -Ct -gh -gl \
-             -FU$(TUNITDIR) -FE$(TBINDIR) -Fi$(BUILD)
+# would be used; Synapse's units too, so they are not rebuilt with -Sew),
+# plus tools/lib
+PROGFLAGS := $(COMMON) $(if $(SYNAPSE_DIR),-dCHN_SYNAPSE) -Fu$(UNITDIR) -Futools/lib -O2 -Sew \
+             -FU$(TOOLUNITDIR) -FE$(BINDIR)
+# tests: range, overflow and stack checks, heaptrc, line info (and -Xs-:
+# Debian's fpc.cfg strips it otherwise, and failures could not say where);
+# -B rebuilds everything, as FPC's one-second timestamps can miss a quick edit
+TESTFLAGS := $(COMMON) $(SYNAPSE_FLAGS) -Fusrc -Futools/lib -Futests/support -B -Cr -Co -Ct -gh -gl -Xs- \
+             -Fu$(BUILD)/fpcunit -FU$(TUNITDIR) -FE$(TBINDIR) -Fi$(BUILD)
+# FPCUnit rebuilt from Debian's fpc-source without optimisation, so that a
+# failing assert's location names the test's own line (the prebuilt one
+# loses the caller's frame); without fpc-source the prebuilt one is used.
+FPCUNIT_SRC = /usr/share/fpcsrc/$(shell $(FPC) -iV)/packages/fcl-fpcunit/src
 
 # Units that only build on another OS or with an optional library.
 ifeq ($(OS),Windows_NT)
@@ -78,7 +85,7 @@ check-fpc:
 units: $(BUILD)/units.stamp
 $(BUILD)/units.stamp: $(LIBSRC) | check-fpc
 	@mkdir -p $(UNITDIR) $(BINDIR)
-	@$(if $(SYNAPSE_DIR),$(FPC) $(COMMON) -O2 -FU$(UNITDIR) -FE$(BINDIR) $(SYNAPSE_DIR)/synaser.pas >/dev/null;) true
+	@$(if $(SYNAPSE_DIR),$(FPC) $(COMMON) $(SYNAPSE_FLAGS) -O2 -FU$(UNITDIR) -FE$(BINDIR) $(SYNAPSE_DIR)/synaser.pas >/dev/null;) true
 	@{ echo 'unit chnall; interface uses'; \
 	   echo '$(basename $(notdir $(UNITS)))' | sed 's/ /, /g'; \
 	   echo '; implementation end.'; } > $(BUILD)/chnall.pas
@@ -108,7 +115,7 @@ $(PROGBINS) $(BENCHBINS): src/chn.inc | $(BUILD)/units.stamp
 # test unit needs no edit anywhere else. Units that need Unix as a whole
 # (ptys) are listed here and built only there; single Unix-only tests are
 # {$IFDEF UNIX} in their unit.
-UNIX_TESTS := TestChnPty
+UNIX_TESTS := TestChnPty TestChnTcpSer2net
 comma := ,
 uses_entry = $(if $(filter $(1),$(UNIX_TESTS)),'{$$IFDEF UNIX}$(1)$(comma){$$ENDIF}','$(1)$(comma)')
 $(BUILD)/testunits.inc: $(TESTUNITS)
@@ -116,7 +123,13 @@ $(BUILD)/testunits.inc: $(TESTUNITS)
 	@printf '%s\n' $(foreach t,$(basename $(notdir $(TESTUNITS))),$(call uses_entry,$(t))) > $@.tmp
 	@cmp -s $@.tmp $@ 2>/dev/null && rm -f $@.tmp || mv $@.tmp $@
 
-test: all $(BUILD)/testunits.inc
+$(BUILD)/fpcunit/stamp:
+	@mkdir -p $(BUILD)/fpcunit
+	@if [ -d $(FPCUNIT_SRC) ]; then for u in fpcunit testregistry; do \
+	  $(FPC) -v0 -O- -gl -Xs- -FU$(BUILD)/fpcunit -Fu$(FPCUNIT_SRC) $(FPCUNIT_SRC)/$$u.pp >/dev/null || exit 1; done; \
+	else echo "note: no fpc-source: failing asserts are located by address only"; fi; touch $@
+
+test: all $(BUILD)/testunits.inc $(BUILD)/fpcunit/stamp
 	@mkdir -p $(TUNITDIR) $(TBINDIR)
 	@$(FPC) $(TESTFLAGS) tests/runtests.pas >$(BUILD)/test-build.log 2>&1 || { cat $(BUILD)/test-build.log; echo "0 passed, 1 failed"; exit 1; }
 	@BUILD=$(BUILD) FPC=$(FPC) T="$(T)" bash tests/run.sh

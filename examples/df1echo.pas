@@ -1,5 +1,5 @@
 { df1echo - the echo test of the SofCon ChnDF1 manual, section 7, corrected
-  (SPEC.md section 9): sends CF_Echo with 'Ahoj' to a DF1 slave and checks
+  (docs/PROTOCOLS.md section 7): sends CF_Echo with 'Ahoj' to a DF1 slave and checks
   the reply.
 
     df1echo [parameter string]
@@ -23,7 +23,7 @@ program df1echo;
 
 uses
   {$IFDEF UNIX}cthreads,{$ENDIF}
-  SysUtils, uString, ChnTypes, ChnVirt, ChnLoop, ChnCom, ChnTrc, ChnDF1,
+  SysUtils, uString, ChnTypes, ChnVirt, ChnLoop, ChnCom, ChnTcp, ChnTrc, ChnDF1,
   ChnDF1Link;
   { units register their layer names when they are linked in: LOOP, COM,
     TRC and DF1 can be named in the parameter string }

@@ -3,7 +3,7 @@
   byte at a time. No I/O, no objects: tChnDF1 (unit ChnDF1) glues it to a
   channel; tools, the fuzzer and the benchmark call it directly.
 
-  Frame formats (SofCon manual ChnDF1 section 6, SPEC.md section 6):
+  Frame formats (SofCon manual ChnDF1 section 6, docs/PROTOCOLS.md section 4):
     full duplex, both directions  DLE STX DST SRC CMD STS TNSlo TNShi [FNC] DATA DLE ETX BCC|CRClo CRChi
                   link symbols    DLE ACK, DLE NAK, DLE ENQ
     half duplex, master           DLE SOH STN DLE STX DST SRC ... DLE ETX BCC|CRC

@@ -8,8 +8,11 @@
     master's poll, EOT when there is nothing to send, and stay silent on a
     broken frame (a half-duplex slave never NAKs). Commands are answered by
     a handler the application gives (tools/df1sim plugs in its data table);
-    link events (frames in and out, NAKs, ENQs) can be counted through an
-    optional callback.
+    link events (frames in and out, NAKs, ENQs, repeated commands) can be
+    counted through an optional callback. The last reply stays cached: on
+    a channel with DUP=ON a repeated command (the master missed our ACK or
+    the reply) never reaches the handler again, and the master gets the
+    cached reply again instead (half duplex: at its next poll).
   * DF1Transact, a master: send a command, up to three tries (NAK or
     no answer -> again; full duplex asks with ENQ first), then wait for the
     reply (half duplex: poll for it), ACK it.
@@ -44,8 +47,9 @@ type
   tDF1Handler = function(Data: Pointer; constref Cmd: tRecRecord; CmdLen: Word;
     var Reply: tSendRecord; var ReplyLen: Word): Boolean;
   { What a station counts: a good frame in, a frame out, a broken frame
-    NAKed, an ENQ in, a NAK in. }
-  tDF1LinkEvent = (leFrameIn, leFrameOut, leNakOut, leEnqIn, leNakIn);
+    NAKed, an ENQ in, a NAK in, a repeated command the DF1 layer ACKed
+    and did not deliver (DUP=ON). }
+  tDF1LinkEvent = (leFrameIn, leFrameOut, leNakOut, leEnqIn, leNakIn, leDupIn);
   tDF1EventProc = procedure(Data: Pointer; Event: tDF1LinkEvent);
 
   pDF1Station = ^tDF1Station;
@@ -56,13 +60,15 @@ type
     OnEvent  : tDF1EventProc; { nil: nothing counted }
     FullDup  : Boolean;
     RMess    : tRecRecord;
-    Reply    : tSendRecord;
-    ReplyLen : Word;
+    Reply    : tSendRecord;   { the last reply, kept for a repeated command }
+    ReplyLen : Word;          { 0: no reply yet }
     HasReply : Boolean;       { a reply not yet ACKed by the master }
     AwaitAck : Boolean;       { half duplex: the reply just went out }
     LastLink : tSendRecord;   { last ACK/NAK sent, repeated on ENQ }
     Requests : LongInt;       { commands answered }
     Messages : LongInt;       { messages taken, good or broken }
+    Repeats  : LongInt;       { repeated commands answered from the cache }
+    DupSeen  : LongInt;       { the DF1 layer's CH_DupCount already acted on }
     Log      : tDF1LogProc;   { nil: quiet }
     LogWire  : Boolean;       { lines of sent frames end with the wire bytes }
   end;
@@ -106,6 +112,7 @@ type
     Result   : tChResult;
     Tries    : LongInt;
     Naks     : LongInt;
+    Acked    : Boolean;        { the command was ACKed (or answered) }
     EnqSent  : Boolean;
     FullDup  : Boolean;
     TimeoutMs: LongInt;
@@ -261,6 +268,7 @@ begin
   S.Handler := Handler;
   S.Data := Data;
   S.FullDup := pChnDF1(Chn)^.CH_FullDup;
+  S.DupSeen := pChnDF1(Chn)^.CH_DupCount;
   Chn^.ChReceiveBuffer(@S.RMess, SizeOf(S.RMess));
   Result := res_Ok;
 end;
@@ -300,14 +308,40 @@ begin
   StationSend(S, S.LastLink, 2);
 end;
 
+{ DUP=ON: the layer ACKed a repeated command and kept it from us. If it
+  repeats the command our cached reply answers, that reply goes again. }
+procedure AnswerRepeats(var S: tDF1Station);
+var
+  D: pChnDF1;
+begin
+  D := pChnDF1(S.Chn);
+  if D^.CH_DupCount = S.DupSeen then
+    Exit;
+  S.DupSeen := D^.CH_DupCount;
+  Count(S, leDupIn);
+  Say(S, '<- repeated command TNS=' + IntToStr(D^.CH_DupTns) + ' (ACKed by the layer)');
+  if (S.ReplyLen = 0) or (S.Reply.Tns <> D^.CH_DupTns) then
+    Exit;
+  Inc(S.Repeats);
+  S.HasReply := True;
+  S.AwaitAck := False;
+  if S.FullDup then
+    StationSend(S, S.Reply, S.ReplyLen);   { half duplex: at the next poll }
+end;
+
 function DF1StationStep(var S: tDF1Station): Boolean;
 var
   Len: Word;
   R: tChResult;
   Eot: tSendRecord;
+  Ready: Boolean;
 begin
   Result := False;
-  if (S.Chn = nil) or (S.Chn^.ChReceiveReady <> CHS_ReceiveReady) then
+  if S.Chn = nil then
+    Exit;
+  Ready := S.Chn^.ChReceiveReady = CHS_ReceiveReady;
+  AnswerRepeats(S);
+  if not Ready then
     Exit;
   Result := True;
   Inc(S.Messages);
@@ -443,6 +477,7 @@ end;
 
 procedure MasterAcked(var M: tDF1Master);
 begin
+  M.Acked := True;
   M.State := dmWaitReply;
   M.Deadline := ChMsTick + QWord(3 * M.TimeoutMs);
   if M.FullDup then
@@ -454,6 +489,7 @@ end;
 { The reply is in M.Rep: ACK it and check it answers the command. }
 procedure MasterReply(var M: tDF1Master);
 begin
+  M.Acked := True;
   if not MasterLink(M, tpAckNak, True) then
     Exit;
   if (M.Rep.CF and $FF00 <> (M.Req.CF and $FF00) or MskCF_Reply) or (M.Rep.Tns <> M.Req.Tns) then

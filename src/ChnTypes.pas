@@ -2,7 +2,7 @@
   of the Chn library.
 
   The SofCon manual of this unit was lost; the interface is reconstructed
-  from how the ChnDF1, ChnFT1_2 and ChnICS manuals use it (SPEC.md section 3).
+  from how the ChnDF1, ChnFT1_2 and ChnICS manuals use it (docs/PROTOCOLS.md section 2).
   Names are binding for legacy code, numeric values of general results and
   states are this port's choice except res_Ok = 0. Protocol units number
   their own result codes from res_Proto ($20) and register readable texts

@@ -1,6 +1,6 @@
 { ChnVirt - tChnVirt, the ancestor of every layer, and the layer registry.
 
-  Reconstructed from the ChnDF1, ChnFT1_2 and ChnICS manuals (SPEC.md
+  Reconstructed from the ChnDF1, ChnFT1_2 and ChnICS manuals (docs/PROTOCOLS.md
   section 4); identifiers legacy code uses are binding.
 
   A channel is a stack of layers built from one parameter string:

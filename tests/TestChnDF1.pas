@@ -10,7 +10,7 @@ unit TestChnDF1;
 interface
 
 uses
-  SysUtils, fpcunit, testregistry, ChnTypes, ChnVirt, ChnLoop, ChnDF1, TestSupport, ChnNoiseLayer;
+  SysUtils, fpcunit, testregistry, ChnTypes, ChnVirt, ChnLoop, ChnDF1, TestSupport;
 
 type
   { the test's DF1 slave: answers commands like a small PLC }
@@ -361,7 +361,7 @@ begin
   AssertEquals(0, D^.CH_MSBuff);
   AssertEquals(0, D^.CH_LRMess);
   AssertEquals(0, C^.IData);
-  AssertEquals('NAM=DF1 NOD=0 DNO=0 MAS=MASTER FHD=FULL CRC=ON NAK=15', C^.ChGetParam(''));
+  AssertEquals('NAM=DF1 NOD=0 DNO=0 MAS=MASTER FHD=FULL CRC=ON NAK=15 DUP=OFF', C^.ChGetParam(''));
   AssertEquals('DF1: checksum (BCC/CRC) error', C^.ChResultStr(res_ErrSum));
   AssertEquals('DF1: malformed frame', C^.ChResultStr(res_ErrFrame));
   AssertTrue(Pos('too long', C^.ChResultStr(res_ErrLen)) > 0);
@@ -390,7 +390,7 @@ begin
   AssertEquals(500, D^.CH_MSBuff);
   AssertTrue(D^.CH_SBuff <> nil);
   P := C^.ChGetParam('');
-  AssertEquals('NAM=DF1 NOD=3 DNO=16 MAS=SLAVE FHD=HALF CRC=OFF NAK=0F LSB=500 ' +
+  AssertEquals('NAM=DF1 NOD=3 DNO=16 MAS=SLAVE FHD=HALF CRC=OFF NAK=0F DUP=OFF LSB=500 ' +
     'NAM=LOOP PAIR=DF1P END=2 LRB=4096 IDL=0', P);
   C2^.ChSetParam(P);
   AssertEquals(res_Ok, C2^.ChResult);
@@ -413,7 +413,7 @@ var
     AssertEquals(S, Code, C^.ChResult);
     AssertTrue(S + ' names the token', C^.ChParamError <> '');
     AssertEquals(S + ' changed nothing',
-      'NAM=DF1 NOD=1 DNO=2 MAS=MASTER FHD=FULL CRC=ON NAK=15', C^.ChGetParam(''));
+      'NAM=DF1 NOD=1 DNO=2 MAS=MASTER FHD=FULL CRC=ON NAK=15 DUP=OFF', C^.ChGetParam(''));
   end;
 
 begin

@@ -10,7 +10,7 @@ interface
 
 uses
   SysUtils, fpcunit, testregistry, ChnTypes, ChnVirt, ChnLoop, ChnFT1_2,
-  TestSupport, LoopHub, ChnBaudTestLayer, ChnNoiseLayer;
+  TestSupport, LoopHub, ChnBaudTestLayer;
 
 type
   TTestChnFT1_2 = class(TTestCase)
@@ -239,7 +239,7 @@ var
 begin
   New(C, Init);
   try
-    { the seed example's MASTER=ON is not a parameter (SPEC section 9) }
+    { the manual example's MASTER=ON is not a parameter (docs/PROTOCOLS.md section 7) }
     C^.ChSetParam('MS=ON MASTER=ON LSB=500');
     AssertEquals(res_UnknownParam, C^.ChResult);
     AssertEquals('MASTER=ON', C^.ChParamError);

@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
 # tests/packaging.sh - the library as users get it (called by tests/run.sh):
+#  0. no file points outside the repository;
 #  1. chn.lpk lists every unit of src/;
 #  2. every complete program in README.md ("program ...;" in a ```pascal
 #     block) is built outside the tree the three ways the README gives -
@@ -24,6 +25,15 @@ trap cleanup EXIT
 ok() { echo "ok    $1"; }
 bad() { echo "FAIL  $1"; [ -n "${2:-}" ] && [ -f "$2" ] && tail -n 15 "$2"; }
 skip() { echo "skip  $1"; }
+
+# 0. the repository stands alone: no file cites the project's outside
+# inputs (the specification, the seed copies of the manuals) or a path
+# beside the checkout; docs/PROTOCOLS.md and docs/REFERENCES.md say it
+pat='SPEC\.md|SPEC section|seed [0-9]{3}|seeds/|\.\./shared'
+hits=$(git ls-files 2>/dev/null | grep -v '^tests/packaging.sh$' |
+       xargs grep -lE "$pat" 2>/dev/null || true)
+if [ -z "$hits" ]; then ok "package: no file points outside the repository"
+else bad "package: files citing SPEC/seeds/../shared: $(echo $hits)"; fi
 
 # 1. chn.lpk
 missing=""

@@ -8,9 +8,16 @@
       --pty             create a pty pair; the first line on standard output
                         is "PTY /dev/pts/N", the device to connect to
       --dev=PATH        serial device (NAM=COM DEV=PATH), default /dev/ttyS0
+      --listen=[ADDR:]PORT  serve over TCP instead (NAM=TCP LISTEN=..., raw),
+                        one client at a time, on the loopback interface
+                        unless ADDR is given; the first line on standard
+                        output is "LISTEN <port>" (PORT 0: a free one)
       --bd=N            baud rate (default 19200), --par=N|E|O (default N)
       --half            half duplex (default full duplex)
       --bcc | --crc     checksum (default CRC)
+      --dup=on|off      duplicate packet detect (DUP= of NAM=DF1; default on,
+                        as a PLC channel: a repeated command is ACKed and
+                        answered with the cached reply, not executed again)
       --node=N          station address (default 1); --dno=N peer (default 0)
       --config=FILE     data table (tools/df1sim.conf); default: built in
       --count=N         exit after answering N commands
@@ -27,7 +34,7 @@ program df1sim;
 
 uses
   {$IFDEF UNIX}BaseUnix, ChnPty,{$ENDIF}
-  SysUtils, Classes, uString, ChnTypes, ChnVirt, ChnCom, ChnTrc, ChnDF1,
+  SysUtils, Classes, uString, ChnTypes, ChnVirt, ChnCom, ChnTcp, ChnTrc, ChnDF1,
   ChnSlc, ChnDF1Link;
 
 const
@@ -99,8 +106,8 @@ var
   Table: tSlcTable;
   Station: tDF1Station;
   Chn: pChnVirt;
-  Params, Arg, Key, Value, Dev, Par, ConfigName, Err: string;
-  UsePty, Half, Crc: Boolean;
+  Params, Arg, Key, Value, Dev, Par, ConfigName, Err, Listen: string;
+  UsePty, Half, Crc, Dup: Boolean;
   Node, DNo, Bd, Count, TimeoutS, I, ErrLine: LongInt;
   LastMsg, CountReached: QWord;
 
@@ -109,9 +116,11 @@ begin
   Dev := '/dev/ttyS0';
   Par := 'N';
   ConfigName := '';
+  Listen := '';
   UsePty := False;
   Half := False;
   Crc := True;
+  Dup := True;
   Node := 1;
   DNo := 0;
   Bd := 19200;
@@ -136,7 +145,8 @@ begin
     end
     else if ((Key = '--count') or (Key = '--timeout') or (Key = '--config') or
              (Key = '--dev') or (Key = '--node') or (Key = '--dno') or
-             (Key = '--bd') or (Key = '--par')) and (I <= ParamCount) then
+             (Key = '--bd') or (Key = '--par') or (Key = '--dup') or
+             (Key = '--listen')) and (I <= ParamCount) then
     begin
       Value := ParamStr(I);         { "--count 3" as well as "--count=3" }
       Inc(I);
@@ -147,7 +157,15 @@ begin
     else if Key = '--bcc' then Crc := False
     else if Key = '--crc' then Crc := True
     else if Key = '--quiet' then Quiet := True
+    else if Key = '--dup' then
+      case ChoiceIndex(Value, 'OFF|ON') of
+        0: Dup := False;
+        1: Dup := True;
+      else
+        Die('--dup wants on or off');
+      end
     else if Key = '--dev' then Dev := Value
+    else if Key = '--listen' then Listen := Value
     else if Key = '--par' then Par := Value
     else if Key = '--bd' then Bd := NumArg(Key, Value, 50, 4000000)
     else if Key = '--node' then Node := NumArg(Key, Value, 0, 254)
@@ -175,8 +193,16 @@ begin
       Params := Params + ' CRC=ON'
     else
       Params := Params + ' CRC=OFF';
-    if UsePty then
+    if Dup then
+      Params := Params + ' DUP=ON'
+    else
+      Params := Params + ' DUP=OFF';
+    if UsePty and (Listen <> '') then
+      Die('--pty or --listen, not both')
+    else if UsePty then
       Params := Params + ' NAM=COM DRV=PTY'
+    else if Listen <> '' then
+      Params := Params + ' NAM=TCP LISTEN=' + Listen
     else
       Params := Params + Format(' NAM=COM DEV=%s BD=%d PAR=%s', [Dev, Bd, Par]);
   end
@@ -189,7 +215,11 @@ begin
   {$IFDEF UNIX}
   if UsePty then
     WriteLn('PTY ', PtyLastSlave);
+  {$ENDIF}
+  if Listen <> '' then
+    WriteLn('LISTEN ', pChnTcp(Chn^.CH_Low)^.ChLocalPort);
   Flush(Output);
+  {$IFDEF UNIX}
   CatchSignals;
   {$ENDIF}
   LogLine('df1sim: ' + Chn^.ChGetParam(''));
