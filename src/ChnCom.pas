@@ -145,7 +145,6 @@ const
   FlowNames: array[tPortFlow] of string[7] = ('NONE', 'RTSCTS', 'XONXOFF');
   Rs485Names: array[0..3] of string[6] = ('OFF', 'RTS', 'KERNEL', 'AUTO');
   MaxDrainPerPoll = 65536;   { bytes discarded per poll when the ring is full }
-  SmallChunk = 1024;         { a read this short emptied the driver, see ComPull }
 
 constructor tChnCom.Init;
 begin
@@ -494,13 +493,13 @@ begin
       ComFault(R);
       Exit;
     end;
-    RingCommit(CH_Ring, Got);
-    { a small chunk (a request, a reply) was all the driver had: asking
-      again would only get EAGAIN, one futile call per message. A bigger
-      one may hide more - Linux hands out at most 4 KiB of its line buffer
-      per read - so bulk input is read until the driver is empty. }
-    if (Got < Room) and (Got < SmallChunk) then
+    if Got = 0 then
       Break;
+    { read again until the driver says empty: a short read does not prove
+      it (a tty hands out its line buffer in pieces, a socket a segment),
+      and input left behind would wait for the next poll - or, without
+      flow control, overrun the ring under a burst }
+    RingCommit(CH_Ring, Got);
   end;
   if (RingRoom(CH_Ring) = 0) and (CH_Set.Flow = flowNone) then
   begin
