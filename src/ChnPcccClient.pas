@@ -124,8 +124,9 @@ begin
   C.TimeoutMs := DF1LinkTimeoutMs;
   C.MaxBytes := MaxDataLen;
   { a PLC that detects duplicates drops a command with the TNS of the last
-    one: a program started again must not begin where it began before }
-  C.Tns := Word(ChMsTick);
+    one: a program started again must not begin where it began before (the
+    clock, and the process id for two programs started in one millisecond) }
+  C.Tns := Word(ChMsTick xor (QWord(GetProcessID) * 40503));
 end;
 
 function PcccOpen(var C: tPcccClient; const Params: ShortString): tChResult;
