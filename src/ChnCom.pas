@@ -653,14 +653,26 @@ begin
 end;
 
 function tChnCom.ChReceiveReady: tChState;
+var
+  Waited: Boolean;
 begin
   if CH_State <> CHS_Connect then
     Exit(CHS_RecInactive);
   if CH_RCtrl <> CHS_ReceiveReady then
   begin
     ComPumpTx;                    { a long message keeps moving meanwhile }
-    ComPull;
-    if (CH_Ring.Count = 0) and (CH_Idle > 0) then
+    Waited := (CH_Idle > 0) and (CH_Ring.Count = 0) and ChnWaitWatching(CH_Wait);
+    if Waited then
+    begin
+      { the shared wait watches this port: input that came would end the
+        wait at once, so read only when it says so (no read that finds
+        nothing, once per idle poll) }
+      if ChnWaitIdle(CH_Wait, CH_Idle) then
+        ComPull;
+    end
+    else
+      ComPull;
+    if (CH_Ring.Count = 0) and (CH_Idle > 0) and not Waited then
     begin
       if CH_Wait <> nil then
       begin
