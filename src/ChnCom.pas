@@ -145,6 +145,7 @@ const
   FlowNames: array[tPortFlow] of string[7] = ('NONE', 'RTSCTS', 'XONXOFF');
   Rs485Names: array[0..3] of string[6] = ('OFF', 'RTS', 'KERNEL', 'AUTO');
   MaxDrainPerPoll = 65536;   { bytes discarded per poll when the ring is full }
+  SmallChunk = 1024;         { a message rather than bulk input, see ComPull }
 
 constructor tChnCom.Init;
 begin
@@ -475,6 +476,7 @@ end;
 { Move what the OS holds into the ring; see the unit header for a full ring. }
 procedure tChnCom.ComPull;
 var
+  ShortDrains: Boolean;
   Room, Got, Dropped: LongInt;
   Tail: PByte;
   Scratch: array[0..1023] of Byte;
@@ -484,6 +486,7 @@ begin
   if (CH_Port = nil) or (CH_Fault <> res_Ok) then
     Exit;
   Got := 0;
+  ShortDrains := CH_Port.ShortReadDrains and ChnWaitArmed(CH_Wait);
   while RingRoom(CH_Ring) > 0 do
   begin
     Room := RingTailSpan(CH_Ring, Tail);
@@ -495,11 +498,16 @@ begin
     end;
     if Got = 0 then
       Break;
-    { read again until the driver says empty: a short read does not prove
-      it (a tty hands out its line buffer in pieces, a socket a segment),
-      and input left behind would wait for the next poll - or, without
-      flow control, overrun the ring under a burst }
     RingCommit(CH_Ring, Got);
+    { Read again until the driver says empty - except after a small chunk
+      (a request, a reply) from a port whose short read proves it empty,
+      while the shared wait watches it: anything that came meanwhile ends
+      the next wait at once, so the read that would find nothing (one per
+      message) is saved. Bulk input keeps being read at once: left behind,
+      it would pile up in the OS and, without flow control, overrun the
+      ring under a burst. }
+    if (Got < Room) and (Got < SmallChunk) and ShortDrains then
+      Break;
   end;
   if (RingRoom(CH_Ring) = 0) and (CH_Set.Flow = flowNone) then
   begin

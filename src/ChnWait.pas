@@ -99,6 +99,9 @@ function  ChnWaitAny(TimeoutMs: LongInt): Boolean;
   poll about to wait may skip reading first and read only when
   ChnWaitIdle says Src fired - one call less per idle poll. }
 function  ChnWaitWatching(Src: pChnWaitSource): Boolean;
+{ True while Src's device is in the OS wait, fired or not: what comes next
+  will end a wait (ComPull then need not read until EAGAIN). }
+function  ChnWaitArmed(Src: pChnWaitSource): Boolean;
 { True where ChnWaitIdle really waits on the whole set (Linux, Windows). }
 function  ChnWaitShared: Boolean;
 { Number of sources in the set now (open physical layers). }
@@ -438,6 +441,11 @@ function ChnWaitWatching(Src: pChnWaitSource): Boolean;
 begin
   Result := (Src <> nil) and ChnWaitShared and (Src^.Kind <> wkSignal) and
     Src^.Armed and not Src^.Fired;
+end;
+
+function ChnWaitArmed(Src: pChnWaitSource): Boolean;
+begin
+  Result := (Src <> nil) and ChnWaitShared and (Src^.Kind <> wkSignal) and Src^.Armed;
 end;
 
 function ChnWaitCount: LongInt;
