@@ -8,7 +8,8 @@
       --pty             create a pty pair; the first line on standard output
                         is "PTY /dev/pts/N", the device to connect to
       --dev=PATH        serial device (NAM=COM DEV=PATH), default /dev/ttyS0
-      --bd=N            baud rate (default 19200), --par=N|E|O (default N)
+      --bd=N            baud rate (default 19200), --par=N|E|O (default N);
+                        with --pty the pty takes them as given
       --half            half duplex (default full duplex)
       --bcc | --crc     checksum (default CRC)
       --node=N          station address (default 1); --dno=N peer (default 0)
@@ -100,7 +101,7 @@ var
   Station: tDF1Station;
   Chn: pChnVirt;
   Params, Arg, Key, Value, Dev, Par, ConfigName, Err: string;
-  UsePty, Half, Crc: Boolean;
+  UsePty, Half, Crc, LineGiven: Boolean;
   Node, DNo, Bd, Count, TimeoutS, I, ErrLine: LongInt;
   LastMsg, CountReached: QWord;
 
@@ -110,6 +111,7 @@ begin
   Par := 'N';
   ConfigName := '';
   UsePty := False;
+  LineGiven := False;
   Half := False;
   Crc := True;
   Node := 1;
@@ -148,8 +150,8 @@ begin
     else if Key = '--crc' then Crc := True
     else if Key = '--quiet' then Quiet := True
     else if Key = '--dev' then Dev := Value
-    else if Key = '--par' then Par := Value
-    else if Key = '--bd' then Bd := NumArg(Key, Value, 50, 4000000)
+    else if Key = '--par' then begin Par := Value; LineGiven := True; end
+    else if Key = '--bd' then begin Bd := NumArg(Key, Value, 50, 4000000); LineGiven := True; end
     else if Key = '--node' then Node := NumArg(Key, Value, 0, 254)
     else if Key = '--dno' then DNo := NumArg(Key, Value, 0, 254)
     else if Key = '--count' then Count := NumArg(Key, Value, 1, MaxLongInt)
@@ -175,13 +177,16 @@ begin
       Params := Params + ' CRC=ON'
     else
       Params := Params + ' CRC=OFF';
+    { a pty takes BD=/PAR= as given and reports them (a virtual line) }
     if UsePty then
-      Params := Params + ' NAM=COM DRV=PTY'
+      Params := Params + Format(' NAM=COM DRV=PTY BD=%d PAR=%s', [Bd, Par])
     else
       Params := Params + Format(' NAM=COM DEV=%s BD=%d PAR=%s', [Dev, Bd, Par]);
   end
   else if UsePty and (Pos('DRV=PTY', UpperCase(Params)) = 0) then
-    Die('--pty with a parameter string: put NAM=COM DRV=PTY in it');
+    Die('--pty with a parameter string: put NAM=COM DRV=PTY in it')
+  else if LineGiven then
+    Die('--bd/--par with a parameter string: put BD=/PAR= in its NAM=COM part');
 
   Chn := DF1OpenStack(Params, 3000, Err);
   if Chn = nil then
