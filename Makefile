@@ -27,15 +27,17 @@ TBINDIR  := $(BUILD)/test-bin
 DEB_PACKAGES := fp-compiler fp-units-rtl fp-units-base fp-units-fcl
 
 SYNAPSE_FLAGS := $(if $(SYNAPSE_DIR),-Fu$(SYNAPSE_DIR) -Fi$(SYNAPSE_DIR) -dCHN_SYNAPSE)
-COMMON   := -Fisrc $(SYNAPSE_FLAGS) -v0ew -l-
+COMMON   := -Fisrc -v0ew -l-
 # library units: warnings are errors; release code is optimised
-UNITFLAGS := $(COMMON) -Fusrc -O2 -Sew -FU$(UNITDIR) -FE$(BINDIR)
+UNITFLAGS := $(COMMON) $(SYNAPSE_FLAGS) -Fusrc -O2 -Sew -FU$(UNITDIR) -FE$(BINDIR)
 # examples, tools, benchmarks: the compiled library (as an installed one
-# would be used), plus tools/lib
-PROGFLAGS := $(COMMON) -Fu$(UNITDIR) -Futools/lib -O2 -Sew -FU$(TOOLUNITDIR) -FE$(BINDIR)
+# would be used; Synapse's units too, so they are not rebuilt with -Sew),
+# plus tools/lib
+PROGFLAGS := $(COMMON) $(if $(SYNAPSE_DIR),-dCHN_SYNAPSE) -Fu$(UNITDIR) -Futools/lib -O2 -Sew \
+             -FU$(TOOLUNITDIR) -FE$(BINDIR)
 # tests: range, overflow and stack checks, heaptrc, line info; -B rebuilds
 # everything, as FPC's one-second timestamps can miss a quick edit
-TESTFLAGS := $(COMMON) -Fusrc -Futools/lib -Futests/support -B -Cr -Co -Ct -gh -gl \
+TESTFLAGS := $(COMMON) $(SYNAPSE_FLAGS) -Fusrc -Futools/lib -Futests/support -B -Cr -Co -Ct -gh -gl \
              -FU$(TUNITDIR) -FE$(TBINDIR) -Fi$(BUILD)
 
 # Units that only build on another OS or with an optional library.
@@ -59,7 +61,7 @@ BENCHBINS := $(addprefix $(BINDIR)/,$(basename $(notdir $(BENCHES))))
 .PHONY: all units examples tools test demo bench fuzz wintest clean check-fpc \
         install uninstall
 
-all: units $(PROGBINS)
+all: units $(PROGBINS) chn.lpk
 examples: $(addprefix $(BINDIR)/,$(basename $(notdir $(EXAMPLES))))
 tools: $(addprefix $(BINDIR)/,$(basename $(notdir $(TOOLS))))
 
@@ -78,12 +80,17 @@ check-fpc:
 units: $(BUILD)/units.stamp
 $(BUILD)/units.stamp: $(LIBSRC) | check-fpc
 	@mkdir -p $(UNITDIR) $(BINDIR)
-	@$(if $(SYNAPSE_DIR),$(FPC) $(COMMON) -O2 -FU$(UNITDIR) -FE$(BINDIR) $(SYNAPSE_DIR)/synaser.pas >/dev/null;) true
+	@$(if $(SYNAPSE_DIR),$(FPC) $(COMMON) $(SYNAPSE_FLAGS) -O2 -FU$(UNITDIR) -FE$(BINDIR) $(SYNAPSE_DIR)/synaser.pas >/dev/null;) true
 	@{ echo 'unit chnall; interface uses'; \
 	   echo '$(basename $(notdir $(UNITS)))' | sed 's/ /, /g'; \
 	   echo '; implementation end.'; } > $(BUILD)/chnall.pas
-	$(FPC) $(UNITFLAGS) $(BUILD)/chnall.pas
+	@echo "fpc src/*.pas"
+	@$(FPC) $(UNITFLAGS) $(BUILD)/chnall.pas
 	@touch $@
+
+# The Lazarus package lists every unit of src/.
+chn.lpk: $(wildcard src/*.pas) tools/mklpk.sh
+	@bash tools/mklpk.sh
 
 # Which sources each program depends on (from the uses clauses).
 $(BUILD)/deps.mk: $(LIBSRC) $(TOOLLIB) $(PROGRAMS) $(BENCHES) tools/mkdeps.sh
@@ -91,11 +98,13 @@ $(BUILD)/deps.mk: $(LIBSRC) $(TOOLLIB) $(PROGRAMS) $(BENCHES) tools/mkdeps.sh
 	@bash tools/mkdeps.sh $(BINDIR) src tools/lib -- $(PROGRAMS) $(BENCHES) > $@.tmp && mv $@.tmp $@
 -include $(BUILD)/deps.mk
 
-# One program: its units are current (units.stamp), so fpc compiles the
-# program (and any tools/lib unit it uses) and links.
-$(PROGBINS) $(BENCHBINS): $(BUILD)/units.stamp src/chn.inc
+# One program: its units are current (units.stamp, order only: a program
+# is rebuilt when a source it uses changed, see deps.mk), so fpc compiles
+# the program (and any tools/lib unit it uses) and links.
+$(PROGBINS) $(BENCHBINS): src/chn.inc | $(BUILD)/units.stamp
 	@mkdir -p $(TOOLUNITDIR)
-	$(FPC) $(PROGFLAGS) $(filter %/$(notdir $@).pas,$(PROGRAMS) $(BENCHES))
+	@echo "fpc $(filter %/$(notdir $@).pas,$(PROGRAMS) $(BENCHES))"
+	@$(FPC) $(PROGFLAGS) $(filter %/$(notdir $@).pas,$(PROGRAMS) $(BENCHES))
 
 # The runner's uses clause is generated from tests/Test*.pas, so adding a
 # test unit needs no edit anywhere else. Units that need Unix as a whole
@@ -135,8 +144,9 @@ wintest: all $(BUILD)/testunits.inc
 # ---------------------------------------------------------------- install
 # Debian's /etc/fpc.cfg searches /usr/lib/<multiarch>/fpc/<version>/units/
 # <target>/* and, per user, ~/.fppkg/lib/fpc/<version>/units/<target>/*:
-# the units go into a folder "chn" there, the sources (for debugging and
-# the Lazarus package) into $(PREFIX)/share/chn.
+# the units go into a folder "chn" there, in lower case as fpc looks for
+# them whatever case a program's uses clause has; the sources (for
+# debugging and the Lazarus package) into $(PREFIX)/share/chn.
 PREFIX   ?= /usr
 FPCVER    = $(shell $(FPC) -iV)
 FPCTARGET = $(shell $(FPC) -iTP)-$(shell $(FPC) -iTO)
@@ -149,7 +159,8 @@ install: units
 	@set -e; d='$(DESTDIR)$(INSTALL_UNITDIR)'; s='$(DESTDIR)$(INSTALL_SRCDIR)'; \
 	mkdir -p "$$d" "$$s/src"; \
 	for u in $(basename $(notdir $(UNITS))); do l=$$(echo $$u | tr A-Z a-z); \
-	  install -m 644 $(UNITDIR)/$$l.ppu $(UNITDIR)/$$l.o "$$d/"; done; \
+	  install -m 644 $(UNITDIR)/$$u.ppu "$$d/$$l.ppu"; \
+	  install -m 644 $(UNITDIR)/$$u.o "$$d/$$l.o"; done; \
 	install -m 644 $(LIBSRC) "$$s/src/"; install -m 644 chn.lpk "$$s/"; \
 	echo "installed units in $$d, sources in $$s"
 

@@ -1,5 +1,5 @@
 { df1echo - the echo test of the SofCon ChnDF1 manual, section 7, corrected
-  (SPEC.md section 9): sends CF_Echo with 'Ahoj' to a DF1 slave and checks
+  (docs/PROTOCOLS.md section 7): sends CF_Echo with 'Ahoj' to a DF1 slave and checks
   the reply.
 
     df1echo [parameter string]

@@ -1,7 +1,7 @@
 { ft12master - the example of the ChnFT1_2 manual (chapter 7), corrected.
 
   Sends one variable-length message from a master to a slave and decodes
-  the answer. Corrections to the printed example (SPEC section 9):
+  the answer. Corrections to the printed example (docs/PROTOCOLS.md section 7):
   MAS=MASTER instead of MASTER=ON, a blank between the concatenated
   parameter strings, "while not (ChReceiveReady = CHS_ReceiveReady)",
   missing semicolons; and FCM_UserDataReply with FCV = True instead of

@@ -10,7 +10,7 @@
   answer, 1 usage, 2 channel error, 3 no answer in time, 4 broken or
   unexpected answer.
 
-  Corrections to the manual's text (SPEC section 9): the constant is not
+  Corrections to the manual's text (docs/PROTOCOLS.md section 7): the constant is not
   called ParamStr (that hides System.ParamStr), "while not ChReceiveReady =
   CHS_ReceiveReady" became a bounded wait, the typographic quotes around
   the text became '"' (a delimiter must be one identical byte on both

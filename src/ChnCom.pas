@@ -1,4 +1,4 @@
-{ ChnCom - the serial physical layer (NAM=COM), SPEC.md sections 4 and 5.
+{ ChnCom - the serial physical layer (NAM=COM), docs/PROTOCOLS.md sections 2 and 3.
 
   tChnCom is the bottom of a channel stack: its "message" is a chunk of raw
   bytes. It drives a TChnPort (unit ChnPort) chosen by DRV=, so no OS code
@@ -114,17 +114,25 @@ type
     function  ChModemLines(var Lines: tPortLines): tChResult;
     { Bytes lost on receive since ChOpen (ring full or OS overrun). }
     function  ChLostBytes: LongWord;
-  private
+  protected
+    { Create, open and configure the port this layer drives (COM: the DRV=
+      backend on COM=/DEV=; NAM=TCP overrides it). On failure Port is nil. }
+    function  ComOpenPort(out Port: TChnPort): tChResult; virtual;
     procedure ComFault(R: tChResult);
     procedure ComPull;
     procedure ComPumpTx;
     procedure ComFreeBuffers;
+    { ' LRB=.. LSB=.. IDL=..' for ChOwnParams }
+    function  ComBufferText: ShortString;
   end;
 
   pAddChnCom = ^tAddChnCom;
   tAddChnCom = object(tAddChnVirt)
     function ChInit: pChnVirt; virtual;
   end;
+
+{ ' BD=.. BIT=.. STOP=.. PAR=.. FLW=..' as ChGetParam reports them. }
+function ComLineText(const S: tPortSettings): ShortString;
 
 implementation
 
@@ -291,15 +299,25 @@ begin
     R := R + ' DEV=' + CH_Dev
   else
     R := R + ParamText('COM', CH_Com);
-  R := R + ParamText('BD', CH_Set.Baud) + ParamText('BIT', CH_Set.DataBits) +
-    ParamText('STOP', CH_Set.StopBits) + ' PAR=' + ParityLetters[CH_Set.Parity] +
-    ' FLW=' + FlowNames[CH_Set.Flow] + ' RS485=' + Rs485Names[CH_Rs485] +
-    ParamText('LRB', CH_LRB) + ParamText('LSB', CH_LSB) + ParamText('IDL', CH_Idle);
+  R := R + ComLineText(CH_Set) + ' RS485=' + Rs485Names[CH_Rs485] +
+    ComBufferText;
   if CH_Irq <> '' then
     R := R + ' IRQ=' + CH_Irq;
   if CH_DosKey <> '' then
     R := R + ' ' + CH_DosKey;
   Result := R;
+end;
+
+function ComLineText(const S: tPortSettings): ShortString;
+begin
+  Result := ParamText('BD', S.Baud) + ParamText('BIT', S.DataBits) +
+    ParamText('STOP', S.StopBits) + ' PAR=' + ParityLetters[S.Parity] +
+    ' FLW=' + FlowNames[S.Flow];
+end;
+
+function tChnCom.ComBufferText: ShortString;
+begin
+  Result := ParamText('LRB', CH_LRB) + ParamText('LSB', CH_LSB) + ParamText('IDL', CH_Idle);
 end;
 
 function tChnCom.ChDevicePath: ShortString;
@@ -310,29 +328,37 @@ begin
     Result := ComDevicePath(CH_Com);
 end;
 
-procedure tChnCom.ChOpen;
+function tChnCom.ComOpenPort(out Port: TChnPort): tChResult;
 var
   Cls: TChnPortClass;
-  Port: TChnPort;
   R: tChResult;
+  Key: ShortString;
 begin
-  if CH_State <> CHS_Close then
-  begin
-    CH_Result := res_WrongState;
-    Exit;
-  end;
+  Port := nil;
   Cls := FindPortDriver(CH_Drv);
   if Cls = nil then
   begin
-    CH_Result := res_BadParam;
-    Exit;
+    CH_ParamErr := ChGetParam('DRV');
+    Exit(res_BadParam);
   end;
   Port := Cls.Create;
-  CH_Set.InQueue := CH_LRB;
+  { the token to name if this fails: the device, then the setting the port
+    refused, then RS485= }
+  if CH_Drv = 'PTY' then
+    Key := 'DRV'
+  else if CH_Dev <> '' then
+    Key := 'DEV'
+  else
+    Key := 'COM';
   R := Port.Open(ChDevicePath);
   if R = res_Ok then
+  begin
     R := Port.Configure(CH_Set);
-  CH_RtsToggle := False;
+    if Port.FailKey <> '' then
+      Key := Port.FailKey;
+  end;
+  if R = res_Ok then
+    Key := 'RS485';
   if (R = res_Ok) and (CH_Rs485 <> rs485Off) and (CH_Set.Flow = flowRtsCts) then
     R := res_BadSetting;            { RTS cannot be handshake and direction }
   if R = res_Ok then
@@ -354,7 +380,29 @@ begin
     end;
   if R <> res_Ok then
   begin
+    CH_ParamErr := ChGetParam(Key);
     Port.Free;                      { closes it }
+    Port := nil;
+  end;
+  Result := R;
+end;
+
+procedure tChnCom.ChOpen;
+var
+  Port: TChnPort;
+  R: tChResult;
+begin
+  if CH_State <> CHS_Close then
+  begin
+    CH_Result := res_WrongState;
+    Exit;
+  end;
+  CH_Set.InQueue := CH_LRB;
+  CH_RtsToggle := False;
+  CH_ParamErr := '';
+  R := ComOpenPort(Port);
+  if R <> res_Ok then
+  begin
     CH_Result := R;
     Exit;
   end;

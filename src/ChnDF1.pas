@@ -1,22 +1,31 @@
 { ChnDF1 - Allen-Bradley DF1 protocol layer (NAM=DF1), full and half duplex,
   master and slave, BCC or CRC-16.
 
-  Implements the SofCon manual "ChnDF1" v1.20 (seed 000) with the decisions
-  of SPEC.md section 6. The frame work is done by the I/O-free codec
+  Implements the SofCon manual "ChnDF1" v1.20 with the decisions of
+  docs/PROTOCOLS.md section 4. The frame work is done by the I/O-free codec
   ChnDF1Codec; tChnDF1 only glues it to the layer below (ChLowSend /
   ChLowGetByte) and to the ChnVirt polling API.
 
   Parameters: MAS=MASTER|SLAVE, FHD=FULL|HALF, CRC=ON|OFF, LSB=size,
   NOD=n, DNO=n (0..255) and, added by the port, NAK=15|0F (the byte sent as
-  NAK; both are accepted on receive).
+  NAK; both are accepted on receive) and DUP=ON|OFF (duplicate detection,
+  default OFF).
+
+  DUP=ON is the "duplicate packet detect" of a PLC channel: a command with
+  the same SRC, CMD, FNC and TNS as the last command from that SRC is a
+  repetition by a master that missed our ACK. The layer ACKs it itself and
+  does not deliver it again; CH_DupCount/CH_DupSrc/CH_DupTns tell a link
+  helper (ChnDF1Link's station) so it can send its cached reply again.
 
   As in the SofCon design the link dialogue (ACK after a good frame,
   NAK/ENQ/retries, polling) is the application's: it sends tpAckNak, tpEnq,
   tpPoll, tpNoPollRep records with ChSend like any other message.
 
   Differences from the manual, all deliberate (see docs/ChnDF1.md):
-  NAK = $15 (the manual prints $0F); replies never carry FNC, so a received
-  reply has CF low byte 0; a broken frame is reported by ChReceiveReady =
+  NAK = $15 (the manual prints $0F); replies never carry FNC on the wire, so
+  a received reply gets its FNC back from the command this layer sent
+  (same TNS and command; the last DF1SentMemory commands are remembered),
+  and a reply matching none has CF low byte 0; a broken frame is reported by ChReceiveReady =
   CHS_ReceiveReady and ChReceive giving Len = 0 with ChReceiveResult =
   res_ErrSum / res_ErrFrame / res_ErrLen. }
 unit ChnDF1;
@@ -134,6 +143,15 @@ const
   DF1DefaultSBuff = DF1MaxWire;   { send buffer when LSB= is not given }
 
 type
+  { the last command seen from one source station (DUP=ON) }
+  tDF1LastCmd = record
+    Cf   : Word;
+    Tns  : Word;
+    Valid: Boolean;
+  end;
+  pDF1LastCmds = ^tDF1LastCmds;
+  tDF1LastCmds = array[0..255] of tDF1LastCmd;
+
   tMessType   = ChnDF1Codec.tMessType;
   tSendRecord = ChnDF1Codec.tSendRecord;
   pSendRecord = ChnDF1Codec.pSendRecord;
@@ -163,6 +181,13 @@ type
     CH_SLen    : Word;        { wire bytes of the last frame in CH_SBuff (tracing) }
     CH_Dec     : tDF1Decoder; { receive automaton }
     CH_Event   : tDF1Event;   { what is waiting while CH_RCtrl = CHS_ReceiveReady }
+    CH_DupDetect: Boolean;    { DUP=ON }
+    CH_LastCmds: pDF1LastCmds; { per SRC, while DUP=ON (allocated on demand) }
+    CH_DupCount: LongInt;     { repeated commands ACKed and not delivered }
+    CH_DupSrc  : Byte;        { SRC and TNS of the last of them }
+    CH_DupTns  : Word;
+    CH_DupAck  : Boolean;     { its ACK still waits for the layer below }
+    CH_Sent    : tDF1SentLog; { last commands sent, to restore a reply's CF }
 
     constructor Init;
     constructor ChInitParam(const S: tParamStr);
@@ -178,6 +203,10 @@ type
     procedure ChReceiveTick; virtual;
     { the codec's view of the current settings }
     function  ChDF1Config: tDF1Config;
+    { DUP=ON: True (and the ACK sent) when the message just decoded repeats
+      the last command from its source }
+    function  ChDuplicate: Boolean;
+    procedure ChSendDupAck;
   end;
 
   pAddChnDF1 = ^tAddChnDF1;
@@ -212,6 +241,13 @@ begin
   CH_RSumCrc := 0;
   CH_SSumCrc := 0;
   CH_Event   := dfNone;
+  CH_DupDetect := False;
+  CH_LastCmds := nil;
+  CH_DupCount := 0;
+  CH_DupSrc := 0;
+  CH_DupTns := 0;
+  CH_DupAck := False;
+  DF1SentInit(CH_Sent);
   DF1DecoderInit(CH_Dec, ChDF1Config);
 end;
 
@@ -228,6 +264,9 @@ begin
     FreeMem(CH_SBuff, CH_MSBuff);
   CH_SBuff := nil;
   CH_MSBuff := 0;
+  if CH_LastCmds <> nil then
+    Dispose(CH_LastCmds);
+  CH_LastCmds := nil;
 end;
 
 function tChnDF1.ChMaxNode: tNode;
@@ -260,6 +299,8 @@ begin
     Result := ParamFlag(S, DuplexChoice, CmdL, CH_FullDup)
   else if Key = 'CRC' then
     Result := ParamFlag(S, OnOffChoice, CmdL, CH_FlCrc)
+  else if Key = 'DUP' then
+    Result := ParamFlag(S, OnOffChoice, CmdL, CH_DupDetect)
   else if Key = 'NAK' then
   begin
     Result := ParamChoice(S, '15|0F', I);
@@ -297,7 +338,7 @@ begin
     NakText := '15';
   Result := inherited ChOwnParams + FlagText('MAS', MasterChoice, CH_Master) +
     FlagText('FHD', DuplexChoice, CH_FullDup) + FlagText('CRC', OnOffChoice, CH_FlCrc) +
-    ' NAK=' + NakText;
+    ' NAK=' + NakText + FlagText('DUP', OnOffChoice, CH_DupDetect);
   if CH_MSBuff > 0 then
     Result := Result + ParamText('LSB', CH_MSBuff);
 end;
@@ -310,6 +351,10 @@ begin
     DF1DecoderInit(CH_Dec, ChDF1Config);
     CH_Event := dfNone;
     CH_DLE := False;
+    { a new session: no command seen yet from anybody }
+    if CH_LastCmds <> nil then
+      FillChar(CH_LastCmds^, SizeOf(CH_LastCmds^), 0);
+    CH_DupAck := False;
   end;
 end;
 
@@ -356,6 +401,52 @@ begin
       CH_SSumBcc := P[N - 1];
   CH_SLen := N;
   ChLowSend(CH_SBuff, N);
+  if CH_SResult = res_Ok then
+    DF1SentNote(CH_Sent, Byte(CH_DNode), pSendRecord(Buff)^);
+end;
+
+const
+  DupAckBytes: array[0..1] of Byte = (DLE, ACK);
+
+procedure tChnDF1.ChSendDupAck;
+begin
+  { never into CH_SBuff: the layer below may still be sending from it }
+  CH_DupAck := True;
+  if (CH_Low <> nil) and (CH_Low^.ChSendReady = CHS_SendReady) then
+  begin
+    CH_Low^.ChSend(@DupAckBytes, SizeOf(DupAckBytes));
+    CH_DupAck := CH_Low^.ChSendResult = res_Busy;
+  end;
+end;
+
+function tChnDF1.ChDuplicate: Boolean;
+var
+  L: ^tDF1LastCmd;
+begin
+  Result := False;
+  if not CH_DupDetect or (CH_Dec.Msg.MessType <> tpDataMess) or
+     (CH_Dec.Msg.CF and MskCF_Reply <> 0) then
+    Exit;
+  if CH_LastCmds = nil then
+  begin
+    New(CH_LastCmds);
+    FillChar(CH_LastCmds^, SizeOf(CH_LastCmds^), 0);
+  end;
+  L := @CH_LastCmds^[CH_Dec.Src];
+  Result := L^.Valid and (L^.Cf = CH_Dec.Msg.CF) and (L^.Tns = CH_Dec.Msg.Tns);
+  if Result then
+  begin
+    Inc(CH_DupCount);
+    CH_DupSrc := CH_Dec.Src;
+    CH_DupTns := CH_Dec.Msg.Tns;
+    ChSendDupAck;
+  end
+  else
+  begin
+    L^.Valid := True;
+    L^.Cf := CH_Dec.Msg.CF;
+    L^.Tns := CH_Dec.Msg.Tns;
+  end;
 end;
 
 procedure tChnDF1.ChReceiveTick;
@@ -366,6 +457,8 @@ begin
   if (CH_State <> CHS_Connect) or (CH_RCtrl = CHS_ReceiveReady) then
     Exit;
   CH_RTick := True;
+  if CH_DupAck then
+    ChSendDupAck;              { the layer below was busy last time }
   { settings may have changed (ChSetParam, or fields set directly) }
   CH_Dec.Cfg := ChDF1Config;
   Count := 0;
@@ -373,6 +466,8 @@ begin
   begin
     Inc(Count);
     CH_Event := DF1Feed(CH_Dec, B);
+    if (CH_Event = dfMessage) and ChDuplicate then
+      CH_Event := dfNone;      { ACKed, not delivered again }
     if CH_Event <> dfNone then
       Break;
   end;
@@ -412,6 +507,8 @@ begin
       CH_RSNode := CH_Dec.Src;
       CH_RDNode := CH_Dec.Dst;
     end;
+    if CH_Dec.Msg.MessType = tpDataMess then   { a reply gets its FNC back }
+      pRecRecord(CH_RBuff)^.CF := DF1ReplyCF(CH_Sent, CH_Dec.Src, CH_Dec.Msg);
     CH_RResult := res_Ok;
   end;
   CH_LRMess := Len;

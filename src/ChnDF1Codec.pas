@@ -3,7 +3,7 @@
   byte at a time. No I/O, no objects: tChnDF1 (unit ChnDF1) glues it to a
   channel; tools, the fuzzer and the benchmark call it directly.
 
-  Frame formats (SofCon manual ChnDF1 section 6, SPEC.md section 6):
+  Frame formats (SofCon manual ChnDF1 section 6, docs/PROTOCOLS.md section 4):
     full duplex, both directions  DLE STX DST SRC CMD STS TNSlo TNShi [FNC] DATA DLE ETX BCC|CRClo CRChi
                   link symbols    DLE ACK, DLE NAK, DLE ENQ
     half duplex, master           DLE SOH STN DLE STX DST SRC ... DLE ETX BCC|CRC
@@ -165,6 +165,36 @@ procedure DF1DecoderReset(var D: tDF1Decoder);
 function DF1Feed(var D: tDF1Decoder; B: Byte): tDF1Event;
 { Feed bytes from Buf until an event or the end; Used = bytes consumed. }
 function DF1FeedBlock(var D: tDF1Decoder; const Buf; Len: Word; var Used: Word): tDF1Event;
+
+{ Reply CF. A reply carries no FNC on the wire, but the manuals' programs
+  test a reply as CF_xxx or MskCF_Reply. So a station remembers the last
+  commands it sent, and a reply that matches one (same TNS, reply command
+  byte = the sent command byte or $40) is reported with that command's CF
+  or $4000, FNC included. A log of DF1SentMemory entries lets a master keep
+  that many commands outstanding; the oldest entry is dropped first. }
+const
+  DF1SentMemory = 16;
+
+type
+  tDF1Sent = record
+    Dst: Byte;    { DST the command went to }
+    CF : Word;    { CF as the application gave it }
+    Tns: Word;
+  end;
+  tDF1SentLog = record
+    Count: Byte;                                     { entries in use }
+    Next : Byte;                                     { slot of the next note }
+    Items: array[0..DF1SentMemory - 1] of tDF1Sent;
+  end;
+
+procedure DF1SentInit(var L: tDF1SentLog);
+{ Note a message just sent to Dst; only commands (tpDataMess, reply bit
+  clear) are noted. }
+procedure DF1SentNote(var L: tDF1SentLog; Dst: Byte; constref Rec: tSendRecord);
+{ The CF to report for a message received from Src: for a reply matching a
+  noted command that command's CF or $4000 (the newest match, one sent to
+  Src preferred), else Rec.CF unchanged. }
+function DF1ReplyCF(const L: tDF1SentLog; Src: Byte; constref Rec: tRecRecord): Word;
 
 implementation
 
@@ -660,6 +690,53 @@ begin
     Result := DF1Feed(D, P[Used]);
     Inc(Used);
   end;
+end;
+
+{ --------------------------------------------------------------- reply CF }
+
+procedure DF1SentInit(var L: tDF1SentLog);
+begin
+  FillChar(L, SizeOf(L), 0);
+end;
+
+procedure DF1SentNote(var L: tDF1SentLog; Dst: Byte; constref Rec: tSendRecord);
+begin
+  if (Rec.MessType <> tpDataMess) or (Hi(Rec.CF) and $40 <> 0) then
+    Exit;
+  L.Items[L.Next].Dst := Dst;
+  L.Items[L.Next].CF := Rec.CF;
+  L.Items[L.Next].Tns := Rec.Tns;
+  L.Next := (L.Next + 1) mod DF1SentMemory;
+  if L.Count < DF1SentMemory then
+    Inc(L.Count);
+end;
+
+function DF1ReplyCF(const L: tDF1SentLog; Src: Byte; constref Rec: tRecRecord): Word;
+var
+  I, Slot, Found: LongInt;
+  Cmd: Byte;
+begin
+  Result := Rec.CF;
+  Cmd := Hi(Rec.CF);
+  if (Rec.MessType <> tpDataMess) or (Cmd and $40 = 0) then
+    Exit;
+  Found := -1;
+  for I := 1 to L.Count do   { newest first }
+  begin
+    Slot := (L.Next + DF1SentMemory - I) mod DF1SentMemory;
+    if (L.Items[Slot].Tns = Rec.Tns) and (Hi(L.Items[Slot].CF) or $40 = Cmd) then
+    begin
+      if L.Items[Slot].Dst = Src then
+      begin
+        Found := Slot;
+        Break;
+      end;
+      if Found < 0 then
+        Found := Slot;
+    end;
+  end;
+  if Found >= 0 then
+    Result := L.Items[Found].CF or $4000;
 end;
 
 end.

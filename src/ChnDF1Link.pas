@@ -8,8 +8,11 @@
     master's poll, EOT when there is nothing to send, and stay silent on a
     broken frame (a half-duplex slave never NAKs). Commands are answered by
     a handler the application gives (tools/df1sim plugs in its data table);
-    link events (frames in and out, NAKs, ENQs) can be counted through an
-    optional callback.
+    link events (frames in and out, NAKs, ENQs, repeated commands) can be
+    counted through an optional callback. The last reply stays cached: on
+    a channel with DUP=ON a repeated command (the master missed our ACK or
+    the reply) never reaches the handler again, and the master gets the
+    cached reply again instead (half duplex: at its next poll).
   * DF1Transact, a master: send a command, up to three tries (NAK or
     no answer -> again; full duplex asks with ENQ first), then wait for the
     reply (half duplex: poll for it), ACK it.
@@ -44,8 +47,9 @@ type
   tDF1Handler = function(Data: Pointer; constref Cmd: tRecRecord; CmdLen: Word;
     var Reply: tSendRecord; var ReplyLen: Word): Boolean;
   { What a station counts: a good frame in, a frame out, a broken frame
-    NAKed, an ENQ in, a NAK in. }
-  tDF1LinkEvent = (leFrameIn, leFrameOut, leNakOut, leEnqIn, leNakIn);
+    NAKed, an ENQ in, a NAK in, a repeated command the DF1 layer ACKed
+    and did not deliver (DUP=ON). }
+  tDF1LinkEvent = (leFrameIn, leFrameOut, leNakOut, leEnqIn, leNakIn, leDupIn);
   tDF1EventProc = procedure(Data: Pointer; Event: tDF1LinkEvent);
 
   pDF1Station = ^tDF1Station;
@@ -56,13 +60,15 @@ type
     OnEvent  : tDF1EventProc; { nil: nothing counted }
     FullDup  : Boolean;
     RMess    : tRecRecord;
-    Reply    : tSendRecord;
-    ReplyLen : Word;
+    Reply    : tSendRecord;   { the last reply, kept for a repeated command }
+    ReplyLen : Word;          { 0: no reply yet }
     HasReply : Boolean;       { a reply not yet ACKed by the master }
     AwaitAck : Boolean;       { half duplex: the reply just went out }
     LastLink : tSendRecord;   { last ACK/NAK sent, repeated on ENQ }
     Requests : LongInt;       { commands answered }
     Messages : LongInt;       { messages taken, good or broken }
+    Repeats  : LongInt;       { repeated commands answered from the cache }
+    DupSeen  : LongInt;       { the DF1 layer's CH_DupCount already acted on }
     Log      : tDF1LogProc;   { nil: quiet }
     LogWire  : Boolean;       { lines of sent frames end with the wire bytes }
   end;
@@ -87,7 +93,45 @@ function DF1Transact(Chn: pChnVirt; constref Req: tSendRecord; ReqLen: Word;
   var Rep: tRecRecord; var RepLen: Word; Idle: tDF1Idle; IdleData: Pointer;
   TimeoutMs: LongInt; Log: tDF1LogProc = nil; LogWire: Boolean = False): tChResult;
 
+{ The same exchange stepped by the caller's poll loop (a program that must
+  keep serving other lines): DF1MasterStart sends the command, then each
+  DF1MasterStep looks at the channel once, without waiting, and returns
+  True when the exchange is over; M.Result is then what DF1Transact would
+  return, M.Rep/M.RepLen the reply, M.Naks the NAKs the command got. M
+  must stay where it is until then (the channel receives into M.Rep); the
+  channel's receive buffer is given back at the end. }
+type
+  tDF1MasterState = (dmWaitAck, dmWaitReply, dmDone);
+  tDF1Master = record
+    Chn      : pChnVirt;
+    Req      : tSendRecord;
+    ReqLen   : Word;
+    Rep      : tRecRecord;
+    RepLen   : Word;
+    State    : tDF1MasterState;
+    Result   : tChResult;
+    Tries    : LongInt;
+    Naks     : LongInt;
+    EnqSent  : Boolean;
+    FullDup  : Boolean;
+    TimeoutMs: LongInt;
+    Until_   : QWord;          { end of the current wait }
+    Deadline : QWord;          { end of the wait for the reply }
+    OldBuf   : Pointer;
+    OldSize  : Word;
+    Log      : tDF1LogProc;
+    LogWire  : Boolean;
+  end;
+
+{ Start an exchange; False (M.Result says why, M.State = dmDone) when
+  nothing could be sent. }
+function DF1MasterStart(var M: tDF1Master; Chn: pChnVirt; constref Req: tSendRecord;
+  ReqLen: Word; TimeoutMs: LongInt; Log: tDF1LogProc = nil; LogWire: Boolean = False): Boolean;
+{ One look at the channel; True when the exchange is over (M.State = dmDone). }
+function DF1MasterStep(var M: tDF1Master): Boolean;
+
 { True when Chn is the top of a tChnDF1 stack. }
+
 function IsDF1Channel(Chn: pChnVirt): Boolean;
 { One line describing a record, for logs. }
 function DF1Describe(const R: tRecRecord; Len: Word): AnsiString;
@@ -223,6 +267,7 @@ begin
   S.Handler := Handler;
   S.Data := Data;
   S.FullDup := pChnDF1(Chn)^.CH_FullDup;
+  S.DupSeen := pChnDF1(Chn)^.CH_DupCount;
   Chn^.ChReceiveBuffer(@S.RMess, SizeOf(S.RMess));
   Result := res_Ok;
 end;
@@ -262,14 +307,40 @@ begin
   StationSend(S, S.LastLink, 2);
 end;
 
+{ DUP=ON: the layer ACKed a repeated command and kept it from us. If it
+  repeats the command our cached reply answers, that reply goes again. }
+procedure AnswerRepeats(var S: tDF1Station);
+var
+  D: pChnDF1;
+begin
+  D := pChnDF1(S.Chn);
+  if D^.CH_DupCount = S.DupSeen then
+    Exit;
+  S.DupSeen := D^.CH_DupCount;
+  Count(S, leDupIn);
+  Say(S, '<- repeated command TNS=' + IntToStr(D^.CH_DupTns) + ' (ACKed by the layer)');
+  if (S.ReplyLen = 0) or (S.Reply.Tns <> D^.CH_DupTns) then
+    Exit;
+  Inc(S.Repeats);
+  S.HasReply := True;
+  S.AwaitAck := False;
+  if S.FullDup then
+    StationSend(S, S.Reply, S.ReplyLen);   { half duplex: at the next poll }
+end;
+
 function DF1StationStep(var S: tDF1Station): Boolean;
 var
   Len: Word;
   R: tChResult;
   Eot: tSendRecord;
+  Ready: Boolean;
 begin
   Result := False;
-  if (S.Chn = nil) or (S.Chn^.ChReceiveReady <> CHS_ReceiveReady) then
+  if S.Chn = nil then
+    Exit;
+  Ready := S.Chn^.ChReceiveReady = CHS_ReceiveReady;
+  AnswerRepeats(S);
+  if not Ready then
     Exit;
   Result := True;
   Inc(S.Messages);
@@ -335,143 +406,203 @@ end;
 
 { -------------------------------------------------------------- master }
 
-function Transact(Chn: pChnVirt; constref Req: tSendRecord; ReqLen: Word;
-  var Rep: tRecRecord; var RepLen: Word; Idle: tDF1Idle; IdleData: Pointer;
-  TimeoutMs: LongInt; Log: tDF1LogProc; LogWire: Boolean): tChResult;
+procedure MasterSay(var M: tDF1Master; const Line: AnsiString);
+begin
+  if Assigned(M.Log) then
+    M.Log(Line);
+end;
+
+procedure MasterFinish(var M: tDF1Master; R: tChResult);
+begin
+  M.Result := R;
+  M.State := dmDone;
+  M.Chn^.CH_RBuff := M.OldBuf;
+  M.Chn^.CH_RSize := M.OldSize;
+end;
+
+function MasterSend(var M: tDF1Master; constref R: tSendRecord; Len: Word): Boolean;
+var
+  Res: tChResult;
+begin
+  Res := SendNow(M.Chn, R, Len);
+  Result := Res = res_Ok;
+  if not Result then
+  begin
+    MasterSay(M, '-> send failed: ' + M.Chn^.ChResultStr(Res));
+    MasterFinish(M, Res);
+  end
+  else if Assigned(M.Log) then
+    M.Log(SentLine(M.Chn, R, Len, M.LogWire));
+end;
+
+function MasterLink(var M: tDF1Master; T: tMessType; Ack: Boolean): Boolean;
 var
   Link: tSendRecord;
-  Tries: Integer;
-  FullDup, Acked, Got: Boolean;
-  Deadline: QWord;
-
-  procedure Say(const Line: AnsiString);
-  begin
-    if Assigned(Log) then
-      Log(Line);
-  end;
-
-  function Send(constref R: tSendRecord; Len: Word): tChResult;
-  begin
-    Result := SendNow(Chn, R, Len);
-    if Result <> res_Ok then
-      Say('-> send failed: ' + Chn^.ChResultStr(Result))
-    else if Assigned(Log) then
-      Log(SentLine(Chn, R, Len, LogWire));
-  end;
-
-  { wait up to Ms for a message; Got = a good one is in Rep }
-  function Next(Ms: LongInt): Boolean;
-  var
-    Until_: QWord;
-  begin
-    Got := False;
-    Result := False;
-    Until_ := ChMsTick + QWord(Ms);
-    repeat
-      if Assigned(Idle) then
-        Idle(IdleData);
-      if Chn^.ChReceiveReady = CHS_ReceiveReady then
-      begin
-        RepLen := 0;
-        Chn^.ChReceive(RepLen);
-        Got := Chn^.ChReceiveResult = res_Ok;
-        if Got then
-          Say('<- ' + DF1Describe(Rep, RepLen))
-        else
-          Say('<- broken frame: ' + Chn^.ChResultStr(Chn^.ChReceiveResult));
-        Exit(True);
-      end;
-      if Chn^.ChResult <> res_Ok then
-        Exit;
-      if not Assigned(Idle) then
-        Sleep(1);
-    until ChMsTick > Until_;
-  end;
-
+  Len: Word;
 begin
-  FullDup := pChnDF1(Chn)^.CH_FullDup;
-  Chn^.ChReceiveBuffer(@Rep, SizeOf(Rep));
   FillChar(Link, SizeOf(Link), 0);
-  Acked := False;
-  Got := False;
-  Tries := 0;
-  while not Acked and (Tries < DF1LinkTries) do
+  Link.MessType := T;
+  Len := 1;
+  if T = tpAckNak then
   begin
-    Inc(Tries);
-    Result := Send(Req, ReqLen);
-    if Result <> res_Ok then
-      Exit;
-    if not Next(TimeoutMs) and FullDup then
-    begin
-      Link.MessType := tpEnq;
-      Result := Send(Link, 1);
-      if Result <> res_Ok then
-        Exit;
-      Next(TimeoutMs);
-    end;
-    if Got and (Rep.MessType = tpAckNak) then
-      Acked := Rep.FlAck
-    else if Got and (Rep.MessType = tpDataMess) then
-      Acked := True;               { the reply overtook the ACK }
+    Link.FlAck := Ack;
+    Len := 2;
   end;
-  if not Acked then
+  Result := MasterSend(M, Link, Len);
+end;
+
+{ (Re)send the command: the next try, or a timeout after the last. }
+procedure MasterTry(var M: tDF1Master);
+begin
+  if M.Tries >= DF1LinkTries then
   begin
-    Say('-- no ACK after ' + IntToStr(Tries) + ' tries');
-    Exit(res_Timeout);
-  end;
-  Deadline := ChMsTick + QWord(3 * TimeoutMs);
-  while not (Got and (Rep.MessType = tpDataMess)) do
-  begin
-    if Chn^.ChResult <> res_Ok then
-    begin
-      Say('-- line lost: ' + Chn^.ChResultStr(Chn^.ChResult));
-      Exit(Chn^.ChResult);          { no reply can come any more }
-    end;
-    if ChMsTick > Deadline then
-    begin
-      Say('-- no reply');
-      Exit(res_Timeout);
-    end;
-    if FullDup then
-      Next(TimeoutMs)
-    else
-    begin
-      Link.MessType := tpPoll;     { half duplex: the slave speaks when polled }
-      Result := Send(Link, 1);
-      if Result <> res_Ok then
-        Exit;
-      Next(TimeoutMs);
-    end;
-  end;
-  Link.MessType := tpAckNak;
-  Link.FlAck := True;
-  Result := Send(Link, 2);
-  if Result <> res_Ok then
+    MasterSay(M, '-- no ACK after ' + IntToStr(M.Tries) + ' tries');
+    MasterFinish(M, res_Timeout);
     Exit;
-  if (Rep.CF and $FF00 <> (Req.CF and $FF00) or MskCF_Reply) or (Rep.Tns <> Req.Tns) then
-  begin
-    Say('-- the reply is not the one to this command');
-    Result := res_BadMessage;
   end;
+  Inc(M.Tries);
+  M.EnqSent := False;
+  M.State := dmWaitAck;
+  M.Until_ := ChMsTick + QWord(M.TimeoutMs);
+  MasterSend(M, M.Req, M.ReqLen);
+end;
+
+{ Half duplex: ask the slave for the reply. }
+procedure MasterPoll(var M: tDF1Master);
+begin
+  M.Until_ := ChMsTick + QWord(M.TimeoutMs);
+  MasterLink(M, tpPoll, False);
+end;
+
+procedure MasterAcked(var M: tDF1Master);
+begin
+  M.State := dmWaitReply;
+  M.Deadline := ChMsTick + QWord(3 * M.TimeoutMs);
+  if M.FullDup then
+    M.Until_ := ChMsTick + QWord(M.TimeoutMs)
+  else
+    MasterPoll(M);     { half duplex: the slave speaks when polled }
+end;
+
+{ The reply is in M.Rep: ACK it and check it answers the command. }
+procedure MasterReply(var M: tDF1Master);
+begin
+  if not MasterLink(M, tpAckNak, True) then
+    Exit;
+  if (M.Rep.CF and $FF00 <> (M.Req.CF and $FF00) or MskCF_Reply) or (M.Rep.Tns <> M.Req.Tns) then
+  begin
+    MasterSay(M, '-- the reply is not the one to this command');
+    MasterFinish(M, res_BadMessage);
+  end
+  else
+    MasterFinish(M, res_Ok);
+end;
+
+function DF1MasterStart(var M: tDF1Master; Chn: pChnVirt; constref Req: tSendRecord;
+  ReqLen: Word; TimeoutMs: LongInt; Log: tDF1LogProc; LogWire: Boolean): Boolean;
+begin
+  FillChar(M, SizeOf(M), 0);
+  M.State := dmDone;
+  M.Log := Log;
+  M.LogWire := LogWire;
+  if not IsDF1Channel(Chn) then
+  begin
+    M.Result := res_WrongLayer;
+    Exit(False);
+  end;
+  M.Chn := Chn;
+  M.Req := Req;
+  M.ReqLen := ReqLen;
+  M.TimeoutMs := TimeoutMs;
+  M.FullDup := pChnDF1(Chn)^.CH_FullDup;
+  { the caller's receive buffer comes back at the end: M.Rep is often a
+    local of the caller, the channel must not keep pointing at it }
+  M.OldBuf := Chn^.CH_RBuff;
+  M.OldSize := Chn^.CH_RSize;
+  Chn^.ChReceiveBuffer(@M.Rep, SizeOf(M.Rep));
+  MasterTry(M);
+  Result := M.State <> dmDone;
+end;
+
+function DF1MasterStep(var M: tDF1Master): Boolean;
+var
+  Got: Boolean;
+begin
+  Result := True;
+  if M.State = dmDone then
+    Exit;
+  if M.Chn^.ChReceiveReady = CHS_ReceiveReady then
+  begin
+    M.RepLen := 0;
+    M.Chn^.ChReceive(M.RepLen);
+    Got := M.Chn^.ChReceiveResult = res_Ok;
+    if Got then
+      MasterSay(M, '<- ' + DF1Describe(M.Rep, M.RepLen))
+    else
+      MasterSay(M, '<- broken frame: ' + M.Chn^.ChResultStr(M.Chn^.ChReceiveResult));
+    if Got and (M.Rep.MessType = tpDataMess) then
+      MasterReply(M)                   { in dmWaitAck: the reply overtook the ACK }
+    else if M.State = dmWaitAck then
+    begin
+      if Got and (M.Rep.MessType = tpAckNak) and M.Rep.FlAck then
+        MasterAcked(M)
+      else
+      begin
+        if Got and (M.Rep.MessType = tpAckNak) then
+          Inc(M.Naks);
+        MasterTry(M);                  { NAK, or anything else: again }
+      end;
+    end
+    else if not M.FullDup then
+      MasterPoll(M);                   { half duplex: EOT, a stray ACK ... }
+  end
+  else if M.Chn^.ChResult <> res_Ok then
+  begin
+    MasterSay(M, '-- line lost: ' + M.Chn^.ChResultStr(M.Chn^.ChResult));
+    MasterFinish(M, M.Chn^.ChResult);  { no answer can come any more }
+  end
+  else if (M.State = dmWaitReply) and (ChMsTick > M.Deadline) then
+  begin
+    MasterSay(M, '-- no reply');
+    MasterFinish(M, res_Timeout);
+  end
+  else if ChMsTick > M.Until_ then
+    if M.State = dmWaitAck then
+    begin
+      if M.FullDup and not M.EnqSent then
+      begin
+        M.EnqSent := True;             { full duplex: ask for the lost ACK }
+        M.Until_ := ChMsTick + QWord(M.TimeoutMs);
+        MasterLink(M, tpEnq, False);
+      end
+      else
+        MasterTry(M);
+    end
+    else if M.FullDup then
+      M.Until_ := ChMsTick + QWord(M.TimeoutMs)
+    else
+      MasterPoll(M);
+  Result := M.State = dmDone;
 end;
 
 function DF1Transact(Chn: pChnVirt; constref Req: tSendRecord; ReqLen: Word;
   var Rep: tRecRecord; var RepLen: Word; Idle: tDF1Idle; IdleData: Pointer;
   TimeoutMs: LongInt; Log: tDF1LogProc; LogWire: Boolean): tChResult;
 var
-  OldBuf: Pointer;
-  OldSize: Word;
+  M: tDF1Master;
 begin
   if not IsDF1Channel(Chn) then
     Exit(res_WrongLayer);
-  { Rep is often a local of the caller: the channel must not keep pointing
-    at it afterwards, so the caller's own receive buffer comes back }
-  OldBuf := Chn^.CH_RBuff;
-  OldSize := Chn^.CH_RSize;
-  Result := Transact(Chn, Req, ReqLen, Rep, RepLen, Idle, IdleData, TimeoutMs,
-    Log, LogWire);
-  Chn^.CH_RBuff := OldBuf;
-  Chn^.CH_RSize := OldSize;
+  if DF1MasterStart(M, Chn, Req, ReqLen, TimeoutMs, Log, LogWire) then
+    repeat
+      if Assigned(Idle) then
+        Idle(IdleData)
+      else
+        Sleep(1);
+    until DF1MasterStep(M);
+  Rep := M.Rep;
+  RepLen := M.RepLen;
+  Result := M.Result;
 end;
 
 end.

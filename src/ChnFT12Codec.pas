@@ -1,7 +1,7 @@
 { ChnFT12Codec - the IEC 60870-5-2 FT 1.2 frame codec, free of I/O.
 
-  Implements the frame formats of the SofCon ChnFT1_2 manual (seed 001,
-  chapter 6) and SPEC.md section 7:
+  Implements the frame formats of the SofCon ChnFT1_2 manual (chapter 6)
+  and docs/PROTOCOLS.md section 5:
     fixed length     SD1($10) CODE ADDR DATA[LEN] SUM ED($16)
     variable length  SD2($68) L L SD2 CODE ADDR DATA SUM ED
     single character SACK($E5), SNAK($A2)
@@ -202,13 +202,12 @@ var
   Frame: array[0..cFT12MaxFrame - 1] of Byte;
 begin
   DestLen := 0;
-  if Len = 0 then
-    Exit(res_BadLen);
   if PByte(@Rec)^ > Ord(High(tMessType)) then   { a byte from the caller }
     Exit(res_BadMessage);
   if Rec.MessType in [tpSACK, tpSNAK] then
   begin
-    { single characters answer a primary; a primary never sends them }
+    { the manual: Len is ignored for single characters (0 is fine).
+      They answer a primary; a primary never sends them. }
     if Cfg.Primary then
       Exit(res_BadMessage);
     if DestSize < 1 then

@@ -1,7 +1,7 @@
 { ChnFT12Link - the IEC 60870-5-2 unbalanced link procedures that SofCon's
   ChnFT1_2 leaves to the application (manual 4.4: "evaluating FCB and
   repeating a message with unchanged FCB is the job of the application";
-  SPEC.md section 7: "or optional helpers"), for both ends, on top of a
+  docs/PROTOCOLS.md section 5: "or the optional helpers"), for both ends, on top of a
   tChnFT1_2 channel with MS=ON:
 
   * FT12Transact, the primary (master): one SEND/CONFIRM, REQUEST/RESPOND

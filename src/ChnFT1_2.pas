@@ -1,5 +1,5 @@
 { ChnFT1_2 - IEC 60870-5-2 frame format FT 1.2, balanced and unbalanced
-  (SofCon manual ChnFT1_2, seed 001; SPEC.md section 7).
+  (SofCon manual ChnFT1_2; docs/PROTOCOLS.md section 5).
 
   tChnFT1_2 is a protocol layer: it encodes tSendRecord into FT 1.2 frames
   and decodes received frames into tRecRecord through ChnFT12Codec, and
@@ -397,7 +397,9 @@ var
   R: tChResult;
   Cfg: tFT12Config;
 begin
-  if not ChSendAllowed(Buff, Len, True) then
+  { Len is ignored for single characters (the manual), so 0 is fine there }
+  if not ChSendAllowed(Buff, Len, not ((Buff <> nil) and
+    (PByte(Buff)^ in [Ord(tpSACK), Ord(tpSNAK)]))) then
     Exit;
   if CH_MaSl and (Primary <> CH_Master) then
   begin

@@ -1,7 +1,7 @@
 { ChnICS - tChnICS, the DACS ICSlink protocol layer (NAM=ICS), and its
   manager tAddChnICS.
 
-  Implements the SofCon manual ChnICS v1.20 (seed 003) and SPEC.md
+  Implements the SofCon manual ChnICS v1.20 and docs/PROTOCOLS.md
   section 8. The frame format lives in the I/O-free unit ChnICSCodec; this
   unit declares the manual's constants and types and glues the codec to
   ChnVirt (docs/LAYERS.md).

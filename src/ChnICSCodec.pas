@@ -2,8 +2,8 @@
   receive automaton. No objects, no I/O; tChnICS (unit ChnICS) glues it to
   ChnVirt, and tools or benchmarks can call it directly.
 
-  Implements section 6 of the SofCon manual ChnICS v1.20 (seed 003) and
-  SPEC.md section 8:
+  Implements section 6 of the SofCon manual ChnICS v1.20 and
+  docs/PROTOCOLS.md section 6:
 
     SOH [SOH ...] DNO STX SNO OP1 OP2 CBN ',' DATA TEXT ETX SUM EOT
 

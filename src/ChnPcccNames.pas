@@ -29,6 +29,10 @@ function PcccCommandName(Cmd, Fnc: Byte): ShortString;
 function PcccStsText(Sts: Byte): ShortString;
 { The meaning of an EXT STS byte; 'EXT STS $xx' when unknown. }
 function PcccExtStsText(Ext: Byte): ShortString;
+{ An error reply's status in one line: 'STS $10: illegal command or
+  format', or with STS $F0 and HasExt 'STS $F0, EXT STS $06: address
+  doesn't point to something usable'. }
+function PcccStatusText(Sts, Ext: Byte; HasExt: Boolean): ShortString;
 
 implementation
 
@@ -101,6 +105,15 @@ begin
   else
     Result := 'EXT STS $' + IntToHex(Ext, 2);
   end;
+end;
+
+function PcccStatusText(Sts, Ext: Byte; HasExt: Boolean): ShortString;
+begin
+  if (Sts and $F0 = sts_ExtSts) and HasExt then
+    Result := 'STS $' + IntToHex(Sts, 2) + ', EXT STS $' + IntToHex(Ext, 2) + ': ' +
+      PcccExtStsText(Ext)
+  else
+    Result := 'STS $' + IntToHex(Sts, 2) + ': ' + PcccStsText(Sts);
 end;
 
 end.

@@ -5,7 +5,7 @@
 
   Not in the SofCon manuals; an addition of the port (issue 6). Each chunk
   handed down by ChSend is logged as 'tx', each chunk taken up by ChReceive
-  as 'rx', in the RACOM capture format of seed 002 (see ChnTrcFormat, which
+  as 'rx', in the RACOM capture format of the RACOM note (see ChnTrcFormat, which
   also reads the log back):
 
     13:33:33.065 tx   2 | TRC

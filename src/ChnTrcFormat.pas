@@ -3,7 +3,7 @@
   so a decoder tool can use it without the channel machinery.
 
   The format is the one of the RACOM line captures in the DF1 note
-  (seed 002, chapter 3):
+  (RACOM note, chapter 3; docs/REFERENCES.md):
 
     13:33:33.058 rx;i  60 | S00
     1002 0300 0B00 7E00 0000 5402 2006 2401 07E9 0000 0380 827F 0080 E943 0100

@@ -2,7 +2,7 @@
   of the Chn library.
 
   The SofCon manual of this unit was lost; the interface is reconstructed
-  from how the ChnDF1, ChnFT1_2 and ChnICS manuals use it (SPEC.md section 3).
+  from how the ChnDF1, ChnFT1_2 and ChnICS manuals use it (docs/PROTOCOLS.md section 2).
   Names are binding for legacy code, numeric values of general results and
   states are this port's choice except res_Ok = 0. Protocol units number
   their own result codes from res_Proto ($20) and register readable texts
@@ -72,7 +72,10 @@ const
   res_NoMessage    = 19;   { ChReceive with no message waiting }
   res_Timeout      = 20;   { no answer in time (helpers, tools) }
   res_WrongLayer   = 21;   { a helper got a channel of another layer type }
-  res_LastGeneral  = res_WrongLayer;   { the highest general code in use }
+  res_HostUnknown  = 22;   { network: host name not resolved }
+  res_Refused      = 23;   { network: connection refused }
+  res_Reconnecting = 24;   { network: connection lost, reconnecting by itself }
+  res_LastGeneral  = res_Reconnecting;   { the highest general code in use }
   res_Proto        = $20;  { first code a protocol unit may use }
 
 type
@@ -144,6 +147,9 @@ begin
     res_NoMessage:    Result := 'no message waiting';
     res_Timeout:      Result := 'timeout';
     res_WrongLayer:   Result := 'the channel is not of the layer type this helper needs';
+    res_HostUnknown:  Result := 'host name not resolved';
+    res_Refused:      Result := 'connection refused';
+    res_Reconnecting: Result := 'connection lost, reconnecting';
   else
     Result := '';
   end;

@@ -1,6 +1,6 @@
 { ChnVirt - tChnVirt, the ancestor of every layer, and the layer registry.
 
-  Reconstructed from the ChnDF1, ChnFT1_2 and ChnICS manuals (SPEC.md
+  Reconstructed from the ChnDF1, ChnFT1_2 and ChnICS manuals (docs/PROTOCOLS.md
   section 4); identifiers legacy code uses are binding.
 
   A channel is a stack of layers built from one parameter string:
@@ -76,6 +76,9 @@ const
   res_NoMessage    = ChnTypes.res_NoMessage;
   res_Timeout      = ChnTypes.res_Timeout;
   res_WrongLayer   = ChnTypes.res_WrongLayer;
+  res_HostUnknown  = ChnTypes.res_HostUnknown;
+  res_Refused      = ChnTypes.res_Refused;
+  res_Reconnecting = ChnTypes.res_Reconnecting;
   res_Proto        = ChnTypes.res_Proto;
 
 const
@@ -646,7 +649,10 @@ begin
     CH_Low^.ChOpen;
     CH_Result := CH_Low^.ChResult;
     if CH_Result <> res_Ok then
+    begin
+      CH_ParamErr := CH_Low^.ChParamError;  { the setting a device refused }
       Exit;
+    end;
   end;
   ChOpened;
 end;

@@ -46,6 +46,10 @@ function SplitKeyValue(const Tok: ShortString; var Key, Value: AnsiString): Bool
 function StrToNum(const S: ShortString; Min, Max: LongInt; var N: LongInt): Boolean; overload;
 function StrToNum(const S: ShortString; Min, Max: LongInt; var N: SmallInt): Boolean; overload;
 
+{ Strict decimal real ('0.01', '1E-5', no blanks), Min..Max; False
+  (D unchanged) for anything else. }
+function StrToReal(const S: ShortString; Min, Max: Double; var D: Double): Boolean;
+
 { Position (0-based) of upper-cased S in a '|' separated list of choices
   such as 'FULL|HALF'; -1 when not found. }
 function ChoiceIndex(const S, Choices: ShortString): LongInt;
@@ -238,6 +242,26 @@ begin
   Result := StrToNum(S, Min, Max, V);
   if Result then
     N := V;
+end;
+
+function StrToReal(const S: ShortString; Min, Max: Double; var D: Double): Boolean;
+var
+  V: Double;
+  Code, I: LongInt;
+begin
+  Result := False;
+  if S = '' then
+    Exit;
+  for I := 1 to Length(S) do
+    if not (S[I] in ['0'..'9', '.', 'e', 'E', '+', '-']) then
+      Exit;                     { Val would take blanks, '$' and 'Inf' }
+  V := 0;
+  Code := 0;
+  Val(S, V, Code);
+  if (Code <> 0) or not (V >= Min) or not (V <= Max) then
+    Exit;
+  D := V;
+  Result := True;
 end;
 
 function ChoiceIndex(const S, Choices: ShortString): LongInt;

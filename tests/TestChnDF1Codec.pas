@@ -1,6 +1,6 @@
 { Tests of ChnDF1Codec: record layout, encoding against frames worked out
   by hand (BCC) or by an independent reference (CRC: the RACOM captures of
-  seed 002 and values from a separate bit-by-bit implementation), decoding of
+  the RACOM note and values from a separate bit-by-bit implementation), decoding of
   the real line captures, every error path of the receive automaton, and a
   property test encode -> decode = identity over thousands of random
   records. }
@@ -53,7 +53,7 @@ type
 implementation
 
 const
-  { the six full-duplex frames of the RACOM capture (seed 002), CRC }
+  { the six full-duplex frames of the RACOM capture (RACOM note), CRC }
   RacomFrames: array[1..6] of string = (
     '1002 0300 0B00 7E00 0000 5402 2006 2401 07E9 0000 0380 827F 0080 E943 0100 8D91 1300 0000 0000 E070 7200 F643 E070 7200 F643 A302 2002 2401 1003 15C6',
     '1002 0003 4B00 7E00 0000 D400 0000 3D7F 0080 827F 0080 E943 0100 8D91 1300 E070 7200 E070 7200 0000 1003 0FC9',
@@ -344,7 +344,7 @@ procedure TTestChnDF1Codec.TestRacomBccFrameNakEnq;
 var
   D: tDF1Decoder;
 begin
-  { seed 002, failed exchange: the radio modem sent 10 02 0E 0D AA AA 10 03 91
+  { RACOM note, failed exchange: the radio modem sent 10 02 0E 0D AA AA 10 03 91
     (the PLC payload replaced by AA AA), the PLC answered 10 15 (NAK); later
     10 05 (ENQ). The BCC is right, so the automaton gets past the checksum:
     the frame is too short to hold TNS, hence res_ErrFrame (the PLC NAKed). }

@@ -278,10 +278,10 @@ begin
   N := 99;
   AssertEquals(res_BadMessage, FT12Encode(Cfg(True, 1, 0), R, 1, 1, @B, 4, N));
   AssertEquals(0, N);
-  { Len 0 is refused for them too; no room for the one byte is res_TooLong }
-  N := 99;
-  AssertEquals('Len 0', res_BadLen, FT12Encode(Cfg(False, 1, 0), R, 0, 1, @B, 4, N));
-  AssertEquals(0, N);
+  { Len 0 is fine for them too (the manual: Len is ignored); no room for
+    the one byte is res_TooLong }
+  AssertEquals('E5', Enc(Cfg(False, 1, 0), MakeRec(tpSACK, False, False, 0), 0, 1));
+  AssertEquals('A2', Enc(Cfg(False, 1, 0), MakeRec(tpSNAK, False, False, 0), 0, 1));
   B[0] := $CC;
   N := 99;
   AssertEquals('DestSize 0', res_TooLong, FT12Encode(Cfg(False, 1, 0), R, 1, 1, @B, 0, N));

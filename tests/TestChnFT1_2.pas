@@ -10,7 +10,7 @@ interface
 
 uses
   SysUtils, fpcunit, testregistry, ChnTypes, ChnVirt, ChnLoop, ChnFT1_2,
-  TestSupport, LoopHub, ChnBaudTestLayer, ChnNoiseLayer;
+  TestSupport, LoopHub, ChnBaudTestLayer;
 
 type
   TTestChnFT1_2 = class(TTestCase)
@@ -239,7 +239,7 @@ var
 begin
   New(C, Init);
   try
-    { the seed example's MASTER=ON is not a parameter (SPEC section 9) }
+    { the manual example's MASTER=ON is not a parameter (docs/PROTOCOLS.md section 7) }
     C^.ChSetParam('MS=ON MASTER=ON LSB=500');
     AssertEquals(res_UnknownParam, C^.ChResult);
     AssertEquals('MASTER=ON', C^.ChParamError);
@@ -333,6 +333,11 @@ begin
   AssertEquals('10 0B 01 0C 16', RawRead(Raw));
   SendRec(S, MakeRec(tpSACK, False, False, 0), 1);
   AssertEquals('E5', RawRead(Raw));
+  { the manual: Len is ignored for single characters, 0 included }
+  SendRec(S, MakeRec(tpSACK, False, False, 0), 0);
+  AssertEquals('SACK with Len 0', 'E5', RawRead(Raw));
+  SendRec(S, MakeRec(tpSNAK, False, False, 0), 0);
+  AssertEquals('SNAK with Len 0', 'A2', RawRead(Raw));
   R := MakeRec(tpLongM, False, False, FCS_UserData);
   R.Data[1] := $AA;
   { L = 1 + 1 + 1 = 3; CS = $08 + $01 + $AA = $B3 }

@@ -1,5 +1,5 @@
 { Tests of ChnFrameDecode, the logic of tools/chndecode: the RACOM captures
-  of seed 002 (chapter 3, copied below as they are printed), frames that
+  of the RACOM note (chapter 3, copied below as they are printed), frames that
   span chunks, checksum verdicts, half-duplex DF1, FT1.2 and ICS frames
   worked out by hand, hex text input, and a log written by the trace layer
   during a real exchange with the df1sim station, read back. }
@@ -43,7 +43,7 @@ implementation
 
 const
   NL = #10;
-  { seed 002, chapter 3: full duplex, CRC, PLC 00 and 03 }
+  { RACOM note, chapter 3: full duplex, CRC, PLC 00 and 03 }
   SeedCrc =
     'Příklad komunikace protokolem DF1 v režimu FULL DUPLEX' + NL +
     '13:33:33.058 rx;i  60 | S00' + NL +
@@ -75,7 +75,7 @@ const
     '1002 0003 4B00 8F00 0000 CE00 0000 E943 0100 8D91 1300 0000 1003 B56A' + NL +
     '13:33:33.731 rx;i  2 | S00' + NL +
     '1006' + NL;
-  { seed 002: the unsuccessful exchanges (BCC), with the prose around them }
+  { RACOM note: the unsuccessful exchanges (BCC), with the prose around them }
   SeedBcc =
     'V následujícím příkladu neúspěšné komunikace je sekvence dodávaná z' + NL +
     'PLC nahrazena znaky AAAA.' + NL + NL +

@@ -1,7 +1,7 @@
 { Tests of ChnICS: the manual's constants and Init defaults, parameters,
   the bytes on the line, broken frames through ChReceive, refused records,
   small receive buffers, and master/slave dialogues RD/DB, RL/LB, WD/OK
-  over NAM=LOOP (manual ChnICS sections 4-6, SPEC section 8). }
+  over NAM=LOOP (manual ChnICS sections 4-6, docs/PROTOCOLS.md section 6). }
 unit TestChnICS;
 
 {$MODE OBJFPC}{$H+}
@@ -9,7 +9,7 @@ unit TestChnICS;
 interface
 
 uses
-  SysUtils, fpcunit, testregistry, ChnTypes, ChnVirt, ChnLoop, ChnICS, TestSupport, ChnNoiseLayer;
+  SysUtils, fpcunit, testregistry, ChnTypes, ChnVirt, ChnLoop, ChnICS, TestSupport;
 
 type
   TTestChnICS = class(TTestCase)

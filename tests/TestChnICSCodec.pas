@@ -1,6 +1,6 @@
 { Tests of ChnICSCodec: record layout, frames worked out by hand, every
   delimiter class, every receive error and every refused record, and a
-  random round-trip property (manual ChnICS section 6, SPEC section 8). }
+  random round-trip property (manual ChnICS section 6, docs/PROTOCOLS.md section 6). }
 unit TestChnICSCodec;
 
 {$MODE OBJFPC}{$H+}

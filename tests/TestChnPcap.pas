@@ -33,6 +33,8 @@ type
     procedure TestReadOtherEventsAndShortRecords;
     procedure TestReadDamagedFiles;
     procedure TestDf1TextTraceRoundTrip;
+    procedure TestChndecodeTextToPcapToText;
+    procedure TestChndecodeBadPcap;
     procedure TestTrcParams;
     procedure TestTrcWritesPcap;
     procedure TestTrcAppendsOnlyToOwnPcap;
@@ -265,6 +267,67 @@ begin
   AssertEquals(Df1Trace, StringReplace(Back, LineEnding, #10, [rfReplaceAll]));
   { the record after midnight is on the next day }
   AssertEquals(1796079600 + 86400 + 0, LEtoN(PLongWord(@P[24 + 6 * 28 + 17 + 18 + 2 + 18 + 34 + 2 + 1])^));
+end;
+
+{ S with every 'Prefix<digits>)' made '()'. }
+function ChunkNumbersOut(const S, Prefix: string): string;
+var
+  P, Q: Integer;
+begin
+  Result := S;
+  P := Pos(Prefix, Result);
+  while P > 0 do
+  begin
+    Q := P + Length(Prefix);
+    while (Q <= Length(Result)) and (Result[Q] in ['0'..'9']) do
+      Inc(Q);
+    Delete(Result, P + 1, Q - P - 1);
+    P := Pos(Prefix, Result);
+  end;
+end;
+
+procedure TTestChnPcap.TestChndecodeTextToPcapToText;
+var
+  Output, FromText, FromPcap: string;
+  P: AnsiString;
+  F: tTrcFrames;
+  Info: tPcapInfo;
+begin
+  WriteFileText(Dir + 'df1.log', Df1Trace);
+  AssertEquals(Output, 0, RunBin('chndecode', ['--to-pcap=' + Dir + 'df1.pcap',
+    '--date=2026-12-01', Dir + 'df1.log'], 30000, Output));
+  AssertTrue(Output, Pos('7 chunks written', Output) > 0);
+  P := ReadFileText(Dir + 'df1.pcap');
+  AssertEquals(res_Ok, PcapReadBytes(P, 0, F, Info));
+  AssertEquals(7, Length(F));
+  { 23:53:29 local time on 2026-12-01 }
+  AssertEquals(DateTimeToUnix(LocalTimeToUniversal(EncodeDateTime(2026, 12, 1, 23, 53, 29, 0))),
+    LEtoN(PLongWord(@P[25])^));
+  AssertEquals(Output, 0, RunBin('chndecode', ['--to-text', Dir + 'df1.pcap'], 30000, Output));
+  AssertEquals('text -> pcap -> text unchanged', Df1Trace, Output);
+  { the decoded frames are the same from either file }
+  AssertEquals(0, RunBin('chndecode', ['--df1', Dir + 'df1.log'], 30000, FromText));
+  AssertEquals(0, RunBin('chndecode', ['--df1', Dir + 'df1.pcap'], 30000, FromPcap));
+  AssertTrue(FromPcap, Pos('(record 7)', FromPcap) > 0);
+  AssertTrue(FromPcap, Pos('7 chunks, 93 bytes: 9 frames, 0 errors, 0 incomplete', FromPcap) > 0);
+  { the same lines, but for the chunk numbers: header lines 1 3 5 ... of
+    the text, records 1 2 3 ... of the pcap }
+  AssertEquals(ChunkNumbersOut(FromText, '(line '), ChunkNumbersOut(FromPcap, '(record '));
+end;
+
+procedure TTestChnPcap.TestChndecodeBadPcap;
+var
+  Output: string;
+begin
+  WriteFileText(Dir + 'eth.pcap', Bytes('D4C3B2A1 0200 0400 00000000 00000000 FFFF0000 01000000'));
+  AssertEquals(2, RunBin('chndecode', ['--pcap', Dir + 'eth.pcap'], 30000, Output));
+  AssertTrue(Output, Pos('link type 1, RTAC serial is 250', Output) > 0);
+  WriteFileText(Dir + 'text.log', Df1Trace);
+  AssertEquals(2, RunBin('chndecode', ['--pcap', Dir + 'text.log'], 30000, Output));
+  AssertTrue(Output, Pos('not a pcap file', Output) > 0);
+  AssertEquals(2, RunBin('chndecode', ['--to-pcap=' + Dir + 'x.pcap', '--date=2026-02-30',
+    Dir + 'text.log'], 30000, Output));
+  AssertTrue(Output, Pos('--date wants YYYY-MM-DD', Output) > 0);
 end;
 
 procedure TTestChnPcap.TestTrcParams;

@@ -1,5 +1,5 @@
 { Tests of ChnTrcFormat, the trace text format: the writer reproduces the
-  RACOM capture of seed 002 line for line, the reader reads that capture
+  RACOM capture (docs/REFERENCES.md) line for line, the reader reads that capture
   (copied below verbatim, with the prose around it) and every malformed
   input gives its documented result. }
 unit TestChnTrcFormat;
@@ -42,7 +42,7 @@ type
 implementation
 
 const
-  { seed 002 (RACOM, DF1 for MORSE), chapter 3, from the first capture
+  { RACOM note (DF1 for MORSE), chapter 3, from the first capture
     line on: the capture lines verbatim, the Czech prose between them with
     its diacritics dropped, the '>>' prompts as they are }
   Seed: array[0..58] of string = (

@@ -1,5 +1,5 @@
 { Tests of ChnTypes: checksums against known values and real DF1 line
-  captures (SPEC section 6, seed 002), result texts. }
+  captures (docs/PROTOCOLS.md section 4, RACOM note), result texts. }
 unit TestChnTypes;
 
 {$MODE OBJFPC}{$H+}
@@ -26,7 +26,7 @@ type
 implementation
 
 const
-  { the six full-duplex frames of the RACOM capture (seed 002), all CRC }
+  { the six full-duplex frames of the RACOM capture (RACOM note), all CRC }
   RacomFrames: array[1..6] of string = (
     '1002 0300 0B00 7E00 0000 5402 2006 2401 07E9 0000 0380 827F 0080 E943 0100 8D91 1300 0000 0000 E070 7200 F643 E070 7200 F643 A302 2002 2401 1003 15C6',
     '1002 0003 4B00 7E00 0000 D400 0000 3D7F 0080 827F 0080 E943 0100 8D91 1300 E070 7200 E070 7200 0000 1003 0FC9',
@@ -82,7 +82,7 @@ begin
     AssertEquals('frame ' + IntToStr(I),
       F[Length(F) - 2] or (F[Length(F) - 1] shl 8), Crc);
   end;
-  { frame 3 is the one SPEC section 6 spells out: CRC $99B6 }
+  { frame 3 is the one docs/PROTOCOLS.md quotes: CRC $99B6 }
   D := Unstuff(HexToBytes(RacomFrames[3]));
   AssertEquals('frame 3 unstuffed length', 32, Length(D));
   AssertEquals($99B6, Crc16Add(Crc16Block(D[0], Length(D), 0), 3));
@@ -92,7 +92,7 @@ procedure TTestChnTypes.TestBcc8OfRacomNakFrame;
 var
   D: TBytes;
 begin
-  { '10 02 0E 0D AA AA 10 03 91' from the failed exchange in seed 002 }
+  { '10 02 0E 0D AA AA 10 03 91' from the failed exchange in the RACOM note }
   D := HexToBytes('0E 0D AA AA');
   AssertEquals($91, Bcc8Block(D[0], 4));
 end;

@@ -225,7 +225,7 @@ end;
 
 procedure TTestChnVirt.TestFusedTokenIsAnError;
 begin
-  { SPEC section 9: 'CRC=ON' + 'NAM=COM' glued together by the seed example }
+  { docs/PROTOCOLS.md section 7: 'CRC=ON' + 'NAM=COM' glued together by the manual's example }
   SetParamExpect('NOD=1 FLG=ONNAM=LOOP PAIR=X', res_BadParam, 'FLG=ONNAM=LOOP');
   AssertNull('no layer created', Chn^.CH_Low);
   AssertEquals(0, Chn^.CH_Node);

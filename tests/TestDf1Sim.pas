@@ -41,6 +41,9 @@ type
     procedure TestFullDuplexLinkBytes;
     procedure TestHalfDuplexLinkBytes;
     procedure TestNakOfReplySendsItAgain;
+    procedure TestRepeatedCommandFullDuplex;
+    procedure TestRepeatedCommandHalfDuplex;
+    procedure TestRepeatedCommandWithoutDup;
     {$IFDEF UNIX}
     procedure TestBinaryOverPty;   { df1sim --pty: a Unix pty }
     procedure TestPtyTakesBdAndPar;
@@ -153,7 +156,7 @@ begin
   RepLen := 0;
   R := DF1Transact(Master, Req, 8 + Length(D), Rep, RepLen, @StepStation, @Station, 500);
   AssertEquals('transaction result', res_Ok, R);
-  AssertEquals('reply CF', (CF and $FF00) or $4000, Rep.CF);
+  AssertEquals('reply CF: the command''s, FNC included', CF or $4000, Rep.CF);
   AssertEquals('reply TNS', Tns, Rep.Tns);
   Result := Format('STS=%.2x', [Rep.Sts]);
   if RepLen > 8 then
@@ -304,6 +307,82 @@ begin
   AssertEquals('ACK: done', '', RawSay('10 06', 50));
   AssertEquals('a late NAK: nothing to repeat', '', RawSay('10 15', 50));
   AssertEquals('executed once', 1, Station.Requests);
+end;
+
+{ DUP=ON: a master that missed the ACK repeats the command (same SRC, CMD,
+  FNC, TNS). The layer ACKs it, the table never sees it, and the master
+  gets the reply the first execution made. BCC frames by hand: echo 'A'
+  from SRC 0, TNS 5 = sum $4D -> BCC $B3; from SRC 2 = $4F -> $B1. }
+procedure TTestDf1Sim.TestRepeatedCommandFullDuplex;
+const
+  Reply = '10 06 10 02 00 01 46 00 05 00 41 10 03 73';
+var
+  Err: string;
+begin
+  Slave := Open('NAM=DF1 NOD=1 DNO=0 MAS=SLAVE FHD=FULL CRC=OFF DUP=ON NAM=LOOP PAIR=SIMDF END=2');
+  AssertEquals('DUP reported', 'DUP=ON', Slave^.ChGetParam('DUP'));
+  Raw := OpenStack('LOOP', 'NAM=LOOP PAIR=SIMDF END=1', Err);
+  AssertTrue(Err, Raw <> nil);
+  SlcStationInit(Station, Slave, @Table);
+  AssertEquals('ACK + reply', Reply, RawSay('10 02 01 00 06 00 05 00 00 41 10 03 B3', 50));
+  AssertEquals('repeated before our ACK: ACK + the same reply', Reply,
+    RawSay('10 02 01 00 06 00 05 00 00 41 10 03 B3', 50));
+  AssertEquals('ACK: done', '', RawSay('10 06', 50));
+  AssertEquals('repeated after our ACK: ACK + the same reply', Reply,
+    RawSay('10 02 01 00 06 00 05 00 00 41 10 03 B3', 50));
+  AssertEquals('ACK', '', RawSay('10 06', 50));
+  AssertEquals('executed once', 1, Station.Requests);
+  AssertEquals('commands counted by the table', 1, Table.Diag[dgCommands]);
+  AssertEquals('repetitions counted', 2, Table.Diag[dgDupsIn]);
+  AssertEquals('answered from the cache', 2, Station.Repeats);
+  AssertEquals('the layer counted them', 2, pChnDF1(Slave)^.CH_DupCount);
+  { the same TNS from another station is a new command }
+  AssertEquals('other SRC: executed', '10 06 10 02 00 01 46 00 05 00 41 10 03 73',
+    RawSay('10 02 01 02 06 00 05 00 00 41 10 03 B1', 50));
+  AssertEquals('ACK', '', RawSay('10 06', 50));
+  AssertEquals('executed twice now', 2, Station.Requests);
+  { a new TNS from SRC 0: executed }
+  AssertEquals('next TNS: executed', '10 06 10 02 00 01 46 00 06 00 41 10 03 72',
+    RawSay('10 02 01 00 06 00 06 00 00 41 10 03 B2', 50));
+  AssertEquals('executed three times now', 3, Station.Requests);
+end;
+
+procedure TTestDf1Sim.TestRepeatedCommandHalfDuplex;
+const
+  Cmd = '10 01 01 10 02 01 00 06 00 05 00 00 41 10 03 B2';
+  Reply = '10 02 00 01 46 00 05 00 41 10 03 73';
+var
+  Err: string;
+begin
+  Slave := Open('NAM=DF1 NOD=1 DNO=0 MAS=SLAVE FHD=HALF CRC=OFF DUP=ON NAM=LOOP PAIR=SIMDH END=2');
+  Raw := OpenStack('LOOP', 'NAM=LOOP PAIR=SIMDH END=1', Err);
+  AssertTrue(Err, Raw <> nil);
+  SlcStationInit(Station, Slave, @Table);
+  AssertEquals('good frame: ACK only', '10 06', RawSay(Cmd, 50));
+  AssertEquals('poll: the reply', Reply, RawSay('10 05 01 FF', 50));
+  AssertEquals('ACK: silence', '', RawSay('10 06', 50));
+  AssertEquals('repeated: ACK only', '10 06', RawSay(Cmd, 50));
+  AssertEquals('poll: the cached reply', Reply, RawSay('10 05 01 FF', 50));
+  AssertEquals('ACK: silence', '', RawSay('10 06', 50));
+  AssertEquals('poll: EOT', '10 04', RawSay('10 05 01 FF', 50));
+  AssertEquals('executed once', 1, Station.Requests);
+end;
+
+{ DUP=OFF (the default, the manual's behaviour): a repeated command is
+  delivered and executed again. }
+procedure TTestDf1Sim.TestRepeatedCommandWithoutDup;
+var
+  Err: string;
+begin
+  Slave := Open('NAM=DF1 NOD=1 DNO=0 MAS=SLAVE FHD=FULL CRC=OFF NAM=LOOP PAIR=SIMDO END=2');
+  AssertEquals('DUP off by default', 'DUP=OFF', Slave^.ChGetParam('DUP'));
+  Raw := OpenStack('LOOP', 'NAM=LOOP PAIR=SIMDO END=1', Err);
+  AssertTrue(Err, Raw <> nil);
+  SlcStationInit(Station, Slave, @Table);
+  RawSay('10 02 01 00 06 00 05 00 00 41 10 03 B3', 50);
+  RawSay('10 02 01 00 06 00 05 00 00 41 10 03 B3', 50);
+  AssertEquals('executed twice', 2, Station.Requests);
+  AssertEquals('no repetition seen', 0, Table.Diag[dgDupsIn]);
 end;
 
 {$IFDEF UNIX}

@@ -5,7 +5,9 @@
 #  3. the type rule of docs/LAYERS.md over the library's interfaces
 #     (tests/apicheck.pl; selected by T=api too);
 #  4. legacy programs in tests/legacy compiled in -Mtp -Mfpc -Mobjfpc
-#     -Mdelphi and run (each asserts record sizes and offsets itself).
+#     -Mdelphi and run (each asserts record sizes and offsets itself);
+#  5. tests/packaging.sh: make install, fpmake, chn.lpk and the README's
+#     programs built outside the tree.
 # Ends with "N passed, N failed" alone on the last line; exit 1 on failure.
 set -u
 BUILD=${BUILD:-build}
@@ -16,12 +18,15 @@ failed=0
 skipped=0
 pass() { passed=$((passed + 1)); echo "ok    $1"; }
 fail() { failed=$((failed + 1)); echo "FAIL  $1"; }
+# a check that cannot run here: counted, and it says why
+skip() { skipped=$((skipped + 1)); echo "skip  $1"; }
 
 heaplog="$BUILD/heaptrc.log"
 rm -f "$heaplog"
 out="$BUILD/runtests.out"
 # a hung test must not hang CI: 30 minutes is far beyond the ~10 s it takes
-HEAPTRC="log=$heaplog" timeout 1800 "$BUILD/test-bin/runtests" "$FILTER" 2>&1 | tee "$out" | grep -v '^RESULT '
+# XML=file.xml (make test XML=...) also writes JUnit XML for CI systems
+HEAPTRC="log=$heaplog" timeout 1800 "$BUILD/test-bin/runtests" "$FILTER" ${XML:+--xml="$XML"} 2>&1 | tee "$out" | grep -v '^RESULT '
 rc=${PIPESTATUS[0]}
 res=$(grep '^RESULT ' "$out" | tail -n 1)
 if [ -z "$res" ]; then
@@ -69,6 +74,18 @@ for prog in tests/legacy/*.pas; do
     fi
   done
 done
+
+# the library as users get it: make install, fpmake, chn.lpk, README programs
+if [ -z "$FILTER" ] || [[ "packaging" == *"${FILTER,,}"* ]]; then
+  while IFS= read -r line; do
+    case $line in
+      "ok    "*) pass "${line#ok    }" ;;
+      "FAIL  "*) fail "${line#FAIL  }" ;;
+      "skip  "*) skip "${line#skip  }" ;;
+      *) echo "$line" ;;
+    esac
+  done < <(BUILD=$BUILD FPC=$FPC bash tests/packaging.sh 2>&1)
+fi
 
 # a T= filter that selects nothing is a mistake, not a pass (the heap
 # check always runs, so it alone means nothing was selected)

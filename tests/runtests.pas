@@ -1,13 +1,18 @@
 { runtests - console runner of the FPCUnit suite.
 
-  Runs every registered test (or those whose path contains the first
-  command-line argument), prints one line per test and, last, a line
-  "RESULT <passed> <failed> <skipped>" that tests/run.sh folds into the
-  suite's final "N passed, N failed" line. Exit code 1 on any failure or
-  error. A test that calls no Assert counts as failed. A test that needs
-  an optional program (tshark, xmllint ...) and finds it missing calls
-  Ignore('why'): it is printed as "skip" with the reason and counted as
-  skipped, neither passed nor failed. }
+    runtests [FILTER] [--list] [--xml=FILE]
+
+  Runs every registered test (or those whose path contains FILTER), prints
+  one line per test - a failure with the file and line of the failing
+  assert (FPCUnit's LocationInfo; the suite is built with -gl) - and, last,
+  a line "RESULT <passed> <failed> <skipped>" that tests/run.sh folds into
+  the suite's final "N passed, N failed" line. A test that cannot run here
+  (a Debian package missing ...) calls Ignore('why'): it is printed as
+  "skip  Suite.Test: why" and counted as skipped, neither passed nor
+  failed. --list prints the selected tests'
+  names and runs nothing; --xml=FILE also writes the results as JUnit XML
+  (testsuite/testcase/failure), which CI systems read. Exit code 1 on any
+  failure or error. A test that calls no Assert counts as failed. }
 program runtests;
 
 {$MODE OBJFPC}{$H+}
@@ -15,12 +20,15 @@ program runtests;
 uses
   {$IFDEF UNIX}cthreads,{$ENDIF}
   {$I testunits.inc}
-  Classes, SysUtils, fpcunit, testregistry;
+  Classes, SysUtils, DateUtils, fpcunit, testregistry;
 
 type
   TLineListener = class(TInterfacedObject, ITestListener)
     Passed, Failed, Skipped: Integer;
     CurrentFailed, CurrentSkipped: Boolean;
+    Started: TDateTime;
+    Xml: TStringList;        { <testcase> elements; nil: no XML wanted }
+    Failure: string;         { the current test's <failure>, if any }
     procedure AddFailure(ATest: TTest; AFailure: TTestFailure);
     procedure AddError(ATest: TTest; AError: TTestFailure);
     procedure StartTest(ATest: TTest);
@@ -29,16 +37,29 @@ type
     procedure EndTestSuite(ATestSuite: TTestSuite);
   end;
 
+function XmlText(const S: string): string;
+begin
+  Result := StringReplace(S, '&', '&amp;', [rfReplaceAll]);
+  Result := StringReplace(Result, '<', '&lt;', [rfReplaceAll]);
+  Result := StringReplace(Result, '>', '&gt;', [rfReplaceAll]);
+  Result := StringReplace(Result, '"', '&quot;', [rfReplaceAll]);
+end;
+
 procedure TLineListener.AddFailure(ATest: TTest; AFailure: TTestFailure);
 begin
   if AFailure.IsIgnoredTest then
   begin
     CurrentSkipped := True;
-    WriteLn('skip  ', ATest.TestSuiteName, '.', ATest.TestName, ': ', AFailure.ExceptionMessage);
+    WriteLn('skip  ', ATest.TestSuiteName, '.', ATest.TestName, ': ',
+      AFailure.ExceptionMessage);
+    Failure := Format('<skipped message="%s"/>', [XmlText(AFailure.ExceptionMessage)]);
     Exit;
   end;
   CurrentFailed := True;
-  WriteLn('FAIL  ', ATest.TestSuiteName, '.', ATest.TestName, ': ', AFailure.ExceptionMessage);
+  WriteLn('FAIL  ', ATest.TestSuiteName, '.', ATest.TestName, ': ',
+    AFailure.ExceptionMessage, ' at ', AFailure.LocationInfo);
+  Failure := Format('<failure message="%s">at %s</failure>',
+    [XmlText(AFailure.ExceptionMessage), XmlText(AFailure.LocationInfo)]);
 end;
 
 procedure TLineListener.AddError(ATest: TTest; AError: TTestFailure);
@@ -46,13 +67,18 @@ begin
   CurrentFailed := True;
   WriteLn('ERROR ', ATest.TestSuiteName, '.', ATest.TestName, ': ',
     AError.ExceptionClassName, ': ', AError.ExceptionMessage,
-    ' at ', AError.SourceUnitName, ':', AError.LineNumber);
+    ' at ', AError.LocationInfo);
+  Failure := Format('<error type="%s" message="%s">at %s</error>',
+    [XmlText(AError.ExceptionClassName), XmlText(AError.ExceptionMessage),
+     XmlText(AError.LocationInfo)]);
 end;
 
 procedure TLineListener.StartTest(ATest: TTest);
 begin
   CurrentFailed := False;
   CurrentSkipped := False;
+  Failure := '';
+  Started := Now;
 end;
 
 procedure TLineListener.EndTest(ATest: TTest);
@@ -66,6 +92,10 @@ begin
     Inc(Passed);
     WriteLn('ok    ', ATest.TestSuiteName, '.', ATest.TestName);
   end;
+  if Xml <> nil then
+    Xml.Add(Format('  <testcase classname="%s" name="%s" time="%.3f">%s</testcase>',
+      [XmlText(ATest.TestSuiteName), XmlText(ATest.TestName),
+       MilliSecondsBetween(Now, Started) / 1000, Failure]));
   Flush(Output);
 end;
 
@@ -93,32 +123,69 @@ begin
   end;
 end;
 
+procedure WriteXml(const FileName: string; L: TLineListener);
+begin
+  L.Xml.Insert(0, '<?xml version="1.0" encoding="UTF-8"?>');
+  L.Xml.Insert(1, Format('<testsuite name="chn" tests="%d" failures="%d" skipped="%d">',
+    [L.Passed + L.Failed + L.Skipped, L.Failed, L.Skipped]));
+  L.Xml.Add('</testsuite>');
+  L.Xml.SaveToFile(FileName);
+end;
+
 var
   Listener: TLineListener;
   Keep: ITestListener;
   Res: TTestResult;
   List: TFPList;
   I: Integer;
-  Filter: string;
+  Filter, XmlFile, Arg: string;
+  ListOnly: Boolean;
 begin
   { a test that asserts nothing fails: it could not have failed otherwise }
   TTestCase.CheckAssertCalled := True;
   Filter := '';
-  if ParamCount > 0 then
-    Filter := ParamStr(1);
+  XmlFile := '';
+  ListOnly := False;
+  for I := 1 to ParamCount do
+  begin
+    Arg := ParamStr(I);
+    if Arg = '--list' then
+      ListOnly := True
+    else if Copy(Arg, 1, 6) = '--xml=' then
+      XmlFile := Copy(Arg, 7, MaxInt)
+    else if Copy(Arg, 1, 2) = '--' then
+    begin
+      WriteLn(StdErr, 'runtests: unknown option ', Arg,
+        ' (usage: runtests [FILTER] [--list] [--xml=FILE])');
+      Halt(2);
+    end
+    else
+      Filter := Arg;
+  end;
   Listener := TLineListener.Create;
   Keep := Listener;
+  if XmlFile <> '' then
+    Listener.Xml := TStringList.Create;
   Res := TTestResult.Create;
   List := TFPList.Create;
   try
-    Res.AddListener(Listener);
     CollectTests(GetTestRegistry, Filter, List);
+    if ListOnly then
+    begin
+      for I := 0 to List.Count - 1 do
+        WriteLn(TTest(List[I]).TestSuiteName, '.', TTest(List[I]).TestName);
+      Exit;
+    end;
+    Res.AddListener(Listener);
     for I := 0 to List.Count - 1 do
       TTest(List[I]).Run(Res);
     WriteLn('RESULT ', Listener.Passed, ' ', Listener.Failed, ' ', Listener.Skipped);
+    if XmlFile <> '' then
+      WriteXml(XmlFile, Listener);
     if Listener.Failed > 0 then
       ExitCode := 1;
   finally
+    Listener.Xml.Free;
     List.Free;
     Res.Free;
   end;

@@ -12,6 +12,9 @@
                         with --pty the pty takes them as given
       --half            half duplex (default full duplex)
       --bcc | --crc     checksum (default CRC)
+      --dup=on|off      duplicate packet detect (DUP= of NAM=DF1; default on,
+                        as a PLC channel: a repeated command is ACKed and
+                        answered with the cached reply, not executed again)
       --node=N          station address (default 1); --dno=N peer (default 0)
       --config=FILE     data table (tools/df1sim.conf); default: built in
       --count=N         exit after answering N commands
@@ -101,7 +104,7 @@ var
   Station: tDF1Station;
   Chn: pChnVirt;
   Params, Arg, Key, Value, Dev, Par, ConfigName, Err: string;
-  UsePty, Half, Crc, LineGiven: Boolean;
+  UsePty, Half, Crc, Dup, LineGiven: Boolean;
   Node, DNo, Bd, Count, TimeoutS, I, ErrLine: LongInt;
   LastMsg, CountReached: QWord;
 
@@ -114,6 +117,7 @@ begin
   LineGiven := False;
   Half := False;
   Crc := True;
+  Dup := True;
   Node := 1;
   DNo := 0;
   Bd := 19200;
@@ -138,7 +142,7 @@ begin
     end
     else if ((Key = '--count') or (Key = '--timeout') or (Key = '--config') or
              (Key = '--dev') or (Key = '--node') or (Key = '--dno') or
-             (Key = '--bd') or (Key = '--par')) and (I <= ParamCount) then
+             (Key = '--bd') or (Key = '--par') or (Key = '--dup')) and (I <= ParamCount) then
     begin
       Value := ParamStr(I);         { "--count 3" as well as "--count=3" }
       Inc(I);
@@ -149,6 +153,13 @@ begin
     else if Key = '--bcc' then Crc := False
     else if Key = '--crc' then Crc := True
     else if Key = '--quiet' then Quiet := True
+    else if Key = '--dup' then
+      case ChoiceIndex(Value, 'OFF|ON') of
+        0: Dup := False;
+        1: Dup := True;
+      else
+        Die('--dup wants on or off');
+      end
     else if Key = '--dev' then Dev := Value
     else if Key = '--par' then begin Par := Value; LineGiven := True; end
     else if Key = '--bd' then begin Bd := NumArg(Key, Value, 50, 4000000); LineGiven := True; end
@@ -177,6 +188,10 @@ begin
       Params := Params + ' CRC=ON'
     else
       Params := Params + ' CRC=OFF';
+    if Dup then
+      Params := Params + ' DUP=ON'
+    else
+      Params := Params + ' DUP=OFF';
     { a pty takes BD=/PAR= as given and reports them (a virtual line) }
     if UsePty then
       Params := Params + Format(' NAM=COM DRV=PTY BD=%d PAR=%s', [Bd, Par])

@@ -121,7 +121,7 @@ elif "$PPC" -Twin64 -Px86_64 -n -v0ew -Fu"$RTLU" -Fusrc -Fisrc -Futools/lib -Fut
   if [ -z "$res" ]; then
     fail "win64 runtests crashed (exit $rc) before it finished"
   else
-    read -r _ p f <<<"$res"
+    read -r _ p f _ <<<"$res"
     passed=$((passed + p)); failed=$((failed + f))
     [ "$rc" = 0 ] || [ "$f" -gt 0 ] || fail "win64 runtests exit code $rc"
   fi
@@ -170,7 +170,7 @@ serial_tests() {
     if [ -z "$res" ]; then
       fail "$tag wincom crashed (exit $rc)"
     else
-      read -r _ p f <<<"$res"
+      read -r _ p f _ <<<"$res"
       passed=$((passed + p)); failed=$((failed + f))
       [ "$rc" = 0 ] || [ "$f" -gt 0 ] || fail "$tag wincom exit code $rc"
     fi

@@ -1,6 +1,6 @@
 { legacy_df1 - the example of the SofCon ChnDF1 manual, section 7, as a
   legacy program: compiled by tests/run.sh in -Mtp, -Mfpc, -Mobjfpc and
-  -Mdelphi. Corrected per SPEC section 9 (space before NAM=, Data[0..3],
+  -Mdelphi. Corrected per docs/PROTOCOLS.md section 7 (space before NAM=, Data[0..3],
   "not (...)", reply length 8+4 since replies carry no FNC). NAM=LOOP
   replaces NAM=COM and a second DF1 stack in this program plays the SLC.
   Also checks the record layout and the constants legacy code uses.

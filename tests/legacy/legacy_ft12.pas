@@ -1,5 +1,5 @@
 { legacy_ft12 - the ChnFT1_2 manual's example (chapter 7), corrected per
-  SPEC section 9 and run over an in-memory LOOP pair with a slave that
+  docs/PROTOCOLS.md section 7 and run over an in-memory LOOP pair with a slave that
   answers SACK. tests/run.sh compiles it in -Mtp, -Mfpc, -Mobjfpc and
   -Mdelphi; it checks record sizes and offsets itself and exits 1 on any
   mismatch or unexpected result. }

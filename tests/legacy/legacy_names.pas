@@ -1,5 +1,5 @@
 { legacy_names - the rest of the legacy contract: identifiers of the seed
-  manuals and SPEC.md section 4 that no other legacy program uses. A layer
+  manuals and docs/PROTOCOLS.md section 1 that no other legacy program uses. A layer
   of its own written the SofCon way (object of tChnVirt, ChSetOneParam with
   tWordString/tCmd, a tAddChnVirt manager), the fields every manual's Init
   sets, the checksum types, version constants and the protocol fields of
@@ -140,7 +140,7 @@ begin
   Check((SizeOf(tBcc8) = 1) and (SizeOf(tCrc16) = 2) and (SizeOf(tSum8) = 1) and
         (SizeOf(tXor8) = 1), 'checksum type sizes');
 
-  { DF1 (seed 000): fields of the manual's Init, version, v1.10 name }
+  { DF1 (manual ChnDF1): fields of the manual's Init, version, v1.10 name }
   DF1 := New(pChnDF1, Init);
   with DF1^ do
   begin
@@ -152,7 +152,7 @@ begin
   Check(ChnDF1.res_ErrMessFrame = ChnDF1.res_ErrFrame, 'res_ErrMessFrame');
   Check((ChnDF1.cVerNo > 0) and (ChnDF1.cVer <> ''), 'DF1 version');
 
-  { FT 1.2 (seed 001) }
+  { FT 1.2 (manual ChnFT1_2) }
   FT := New(pChnFT1_2, Init);
   with FT^ do
     Check(CH_MaSl and CH_Master and (CH_LenShortM = 4), 'FT1_2 Init');
@@ -162,7 +162,7 @@ begin
   Check(Ok, 'tRec');
   Check((ChnFT1_2.cVerNo > 0) and (ChnFT1_2.cVer <> ''), 'FT1_2 version');
 
-  { ICS (seed 003) }
+  { ICS (manual ChnICS) }
   ICS := New(pChnICS, Init);
   with ICS^ do
     Check((CH_DataI = 0) and (CH_PomS = '') and CH_Master, 'ICS Init');

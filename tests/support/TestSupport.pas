@@ -24,11 +24,51 @@ function WaitSent(Chn: pChnVirt; TimeoutMs: Integer; Other: pChnVirt = nil): Boo
 { Build a stack with ChNewInit + ChSetParam, open and connect it; nil and
   Err set when any step fails. }
 function OpenStack(const Name, Params: string; var Err: string): pChnVirt;
+{ Build Params ('NAM=ICS ... NAM=NOISE ...', a NOISE layer at the bottom:
+  a babbling line), open, connect, give a receive buffer and poll
+  ChReceiveReady once: how many bytes that one poll took from the line
+  (-1 if the stack did not open), and the state it answered. }
+function NoiseOnePoll(const Params: tParamStr; var State: tChState): LongInt;
 
 implementation
 
 uses
-  SysUtils, uString;
+  SysUtils, uString, ChnNoise;
+
+function NoiseOnePoll(const Params: tParamStr; var State: tChState): LongInt;
+var
+  C, L: pChnVirt;
+  Buf: array[0..511] of Byte;
+  Tok: ShortString;
+  P, Start: Integer;
+begin
+  Result := -1;
+  State := CHS_Close;
+  P := 1;
+  Start := 1;
+  if not NextTokenAt(Params, P, Tok, Start) then
+    Exit;
+  C := ChnCollection^.ChNewInit(ParamValue(Tok));
+  if C = nil then
+    Exit;
+  C^.ChSetParam(Params);
+  if C^.ChResult = res_Ok then
+  begin
+    C^.ChOpen;
+    C^.ChConnect;
+    C^.ChReceiveBuffer(@Buf, SizeOf(Buf));
+    if C^.ChResult = res_Ok then
+    begin
+      State := C^.ChReceiveReady;
+      L := C;
+      while L^.CH_Low <> nil do
+        L := L^.CH_Low;
+      if L^.CH_Type = ChnNoise.cName then
+        Result := pChnNoise(L)^.CH_Inserted;
+    end;
+  end;
+  Dispose(C, Done);
+end;
 
 function HexToBytes(const S: string): TBytes;
 var

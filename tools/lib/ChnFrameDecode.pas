@@ -49,7 +49,60 @@ type
     BadChunks : LongInt;  { chunks the reader found short or long }
   end;
 
+  { commands seen, by TNS: names the replies (which carry no FNC) }
+  tTnsTable = array[Byte] of record
+    Used: Boolean;
+    Tns : Word;
+    Cmd, Fnc: Byte;
+  end;
+
+  tDirState = record
+    Name : ShortString;
+    DF1  : tDF1Decoder;
+    FT   : tFT12Rx;
+    ICS  : tICSState;
+    Monitor: Boolean;    { DF1 half duplex: decode master frames for every station }
+  end;
+
+  { One decoded frame (or link symbol, or broken frame), for programs that
+    draw or print frames their own way (chndecode --svg, chntap). }
+  tDecEvent = record
+    TimeMs : LongInt;     { of the chunk in which the frame ended }
+    Dir    : tTrcDir;
+    Line   : LongInt;     { the chunk's header line / pcap record }
+    Proto  : string[5];   { DF1, FT1.2, ICS }
+    Text   : AnsiString;  { the description chndecode prints after the protocol }
+    IsError: Boolean;     { a broken frame }
+    Refused: Boolean;     { a good frame that reports a failure: a DF1 reply
+                            with STS <> 0, a DF1 NAK, an FT 1.2 NACK ($A2) }
+  end;
+  tDecEvents = array of tDecEvent;
+
+  { The decoder for one run: DecodeBegin, DecodeChunk per chunk in order,
+    DecodeEnd. Lines (may be nil) gets the printed lines; Events[0..
+    EventCount-1] every frame when KeepEvents (a caller may take them and
+    set EventCount := 0 between chunks). }
+  tDecoder = record
+    Opt       : tDecOptions;
+    Dirs      : array[tTrcDir] of tDirState;
+    Seen      : tTnsTable;
+    Stats     : tDecStats;
+    Lines     : TStrings;
+    KeepEvents: Boolean;
+    Events    : tDecEvents;
+    EventCount: LongInt;
+    CurTime   : LongInt;
+    CurLine   : LongInt;
+  end;
+
 procedure DecodeDefaults(var Opt: tDecOptions);
+
+procedure DecodeBegin(var D: tDecoder; const Opt: tDecOptions; Lines: TStrings);
+{ One chunk (a header line goes to Lines, then its frames); chunks outside
+  Opt.FirstLine..LastLine are passed over. }
+procedure DecodeChunk(var D: tDecoder; const F: tTrcFrame);
+{ Directions that end inside a frame, and the summary line. }
+procedure DecodeEnd(var D: tDecoder; out Stats: tDecStats);
 
 { Hex text ('10 02 0300', '1002,0E0D', '0x10 0x02'): pairs of hex digits,
   separated by anything that is not a hex digit; a '0x' prefix is skipped.
@@ -67,22 +120,6 @@ implementation
 
 uses
   SysUtils, uString, ChnDF1, ChnFT1_2, ChnICS, ChnPcccNames;
-
-type
-  { commands seen, by TNS: names the replies (which carry no FNC) }
-  tTnsTable = array[Byte] of record
-    Used: Boolean;
-    Tns : Word;
-    Cmd, Fnc: Byte;
-  end;
-
-  tDirState = record
-    Name : AnsiString;
-    DF1  : tDF1Decoder;
-    FT   : tFT12Rx;
-    ICS  : tICSState;
-    Monitor: Boolean;    { DF1 half duplex: decode master frames for every station }
-  end;
 
 procedure DecodeDefaults(var Opt: tDecOptions);
 begin
@@ -144,6 +181,29 @@ begin
   Frames[0].Status := res_Ok;
 end;
 
+
+{ A frame was decoded: print it and keep it as an event. }
+procedure Emit(var D: tDecoder; Dir: tTrcDir; const Proto, Text: AnsiString; IsError: Boolean);
+begin
+  if IsError then
+    Inc(D.Stats.Errors)
+  else
+    Inc(D.Stats.Frames);
+  if D.Lines <> nil then
+    D.Lines.Add('  ' + D.Dirs[Dir].Name + ' ' + Proto + ' ' + Text);
+  if not D.KeepEvents then
+    Exit;
+  if D.EventCount >= Length(D.Events) then
+    SetLength(D.Events, 2 * D.EventCount + 16);
+  D.Events[D.EventCount].TimeMs := D.CurTime;
+  D.Events[D.EventCount].Dir := Dir;
+  D.Events[D.EventCount].Line := D.CurLine;
+  D.Events[D.EventCount].Proto := Proto;
+  D.Events[D.EventCount].Text := Text;
+  D.Events[D.EventCount].IsError := IsError;
+  D.Events[D.EventCount].Refused := False;
+  Inc(D.EventCount);
+end;
 
 { ----------------------------------------------------------------- DF1 }
 
@@ -262,29 +322,30 @@ begin
   DF1DecoderInit(S.DF1, Cfg);
 end;
 
-procedure DF1Byte(var S: tDirState; B: Byte; Lines: TStrings; var Stats: tDecStats;
-  var Seen: tTnsTable);
+procedure DF1Byte(var Dec: tDecoder; Dir: tTrcDir; B: Byte);
 var
   Before: Byte;
   Ev: tDF1Event;
 begin
-  Before := S.DF1.State;
+  Before := Dec.Dirs[Dir].DF1.State;
   { a monitor hears every station: take the poll's / frame's STN as ours }
-  if S.Monitor and (Before = dsPollBcc) then
-    S.DF1.Cfg.Node := S.DF1.Stn;
-  Ev := DF1Feed(S.DF1, B);
-  if S.Monitor and (Before in [dsStn, dsStnDle]) and (S.DF1.State = dsSohDle) then
-    S.DF1.Ignore := False;
+  if Dec.Dirs[Dir].Monitor and (Before = dsPollBcc) then
+    Dec.Dirs[Dir].DF1.Cfg.Node := Dec.Dirs[Dir].DF1.Stn;
+  Ev := DF1Feed(Dec.Dirs[Dir].DF1, B);
+  if Dec.Dirs[Dir].Monitor and (Before in [dsStn, dsStnDle]) and (Dec.Dirs[Dir].DF1.State = dsSohDle) then
+    Dec.Dirs[Dir].DF1.Ignore := False;
   case Ev of
     dfMessage:
       begin
-        Inc(Stats.Frames);
-        Lines.Add('  ' + S.Name + ' DF1 ' + DF1Message(S.DF1, Seen));
+        Emit(Dec, Dir, 'DF1', DF1Message(Dec.Dirs[Dir].DF1, Dec.Seen), False);
+        with Dec.Dirs[Dir].DF1.Msg do
+          if Dec.KeepEvents and (((MessType = tpAckNak) and not FlAck) or
+             ((MessType = tpDataMess) and (Hi(CF) and $40 <> 0) and (Sts <> 0))) then
+            Dec.Events[Dec.EventCount - 1].Refused := True;
       end;
     dfError:
       begin
-        Inc(Stats.Errors);
-        Lines.Add('  ' + S.Name + ' DF1 ' + DF1Error(S.DF1, Before = dsSum));
+        Emit(Dec, Dir, 'DF1', DF1Error(Dec.Dirs[Dir].DF1, Before = dsSum), True);
       end;
   end;
 end;
@@ -299,74 +360,72 @@ begin
   FT12RxReset(S.FT);
 end;
 
-procedure FTByte(var S: tDirState; B: Byte; Lines: TStrings; var Stats: tDecStats);
+procedure FTByte(var Dec: tDecoder; Dir: tTrcDir; B: Byte);
 var
   T: AnsiString;
 begin
-  case FT12Feed(S.FT, B, 0) of
+  case FT12Feed(Dec.Dirs[Dir].FT, B, 0) of
     fe_Frame:
       begin
-        Inc(Stats.Frames);
-        case S.FT.Kind of
+        case Dec.Dirs[Dir].FT.Kind of
           tpSACK: T := 'single character ACK ($E5)';
           tpSNAK: T := 'single character NAK ($A2)';
         else
           begin
-            if S.FT.Kind = tpShortM then
+            if Dec.Dirs[Dir].FT.Kind = tpShortM then
               T := 'fixed frame'
             else
-              T := Format('variable frame L=%d', [S.FT.L]);
+              T := Format('variable frame L=%d', [Dec.Dirs[Dir].FT.L]);
             T := T + Format(' CODE=$%.2x (PRM=%d FCB/ACD=%d FCV/DFC=%d FC=%d)',
-              [S.FT.Code, Ord(S.FT.Code and cBitPrm <> 0), Ord(S.FT.Code and cBitFcbAcd <> 0),
-               Ord(S.FT.Code and cBitFcvDfc <> 0), S.FT.Code and cMaskFC]);
-            if S.FT.Cfg.AddrLen > 0 then
-              T := T + Format(' ADDR=%d', [S.FT.Addr]);
-            T := T + Format(', %d data bytes', [S.FT.DataLen]);
-            if S.FT.DataLen > 0 then
-              T := T + ': ' + HexBytes(@S.FT.Data[0], S.FT.DataLen);
+              [Dec.Dirs[Dir].FT.Code, Ord(Dec.Dirs[Dir].FT.Code and cBitPrm <> 0), Ord(Dec.Dirs[Dir].FT.Code and cBitFcbAcd <> 0),
+               Ord(Dec.Dirs[Dir].FT.Code and cBitFcvDfc <> 0), Dec.Dirs[Dir].FT.Code and cMaskFC]);
+            if Dec.Dirs[Dir].FT.Cfg.AddrLen > 0 then
+              T := T + Format(' ADDR=%d', [Dec.Dirs[Dir].FT.Addr]);
+            T := T + Format(', %d data bytes', [Dec.Dirs[Dir].FT.DataLen]);
+            if Dec.Dirs[Dir].FT.DataLen > 0 then
+              T := T + ': ' + HexBytes(@Dec.Dirs[Dir].FT.Data[0], Dec.Dirs[Dir].FT.DataLen);
             T := T + ', checksum ok';
           end;
         end;
-        Lines.Add('  ' + S.Name + ' FT1.2 ' + T);
+        Emit(Dec, Dir, 'FT1.2', T, False);
+        if Dec.KeepEvents and (Dec.Dirs[Dir].FT.Kind = tpSNAK) then
+          Dec.Events[Dec.EventCount - 1].Refused := True;
       end;
     fe_Error:
       begin
-        Inc(Stats.Errors);
-        Lines.Add(Format('  %s FT1.2 ERROR $%.2x %s', [S.Name, S.FT.Err,
-          ChResultText(S.FT.Err, ChnFT1_2.cName)]));
+        Emit(Dec, Dir, 'FT1.2', Format('ERROR $%.2x %s', [Dec.Dirs[Dir].FT.Err,
+          ChResultText(Dec.Dirs[Dir].FT.Err, ChnFT1_2.cName)]), True);
       end;
   end;
 end;
 
 { ------------------------------------------------------------------- ICS }
 
-procedure ICSByte(var S: tDirState; B: Byte; Lines: TStrings; var Stats: tDecStats);
+procedure ICSByte(var Dec: tDecoder; Dir: tTrcDir; B: Byte);
 var
   T: AnsiString;
   I: Integer;
 begin
-  case ICSFeed(S.ICS, B) of
+  case ICSFeed(Dec.Dirs[Dir].ICS, B) of
     icsFrame:
       begin
-        Inc(Stats.Frames);
-        T := Format('DNO=%d SNO=%d OP=%s BLOCK=%d, %d numbers', [S.ICS.DNode,
-          S.ICS.SNode, S.ICS.Rec.OpCode, S.ICS.Rec.BlockNum, S.ICS.Count]);
-        if S.ICS.Count > 0 then
+        T := Format('DNO=%d SNO=%d OP=%s BLOCK=%d, %d numbers', [Dec.Dirs[Dir].ICS.DNode,
+          Dec.Dirs[Dir].ICS.SNode, Dec.Dirs[Dir].ICS.Rec.OpCode, Dec.Dirs[Dir].ICS.Rec.BlockNum, Dec.Dirs[Dir].ICS.Count]);
+        if Dec.Dirs[Dir].ICS.Count > 0 then
         begin
           T := T + ':';
-          for I := 0 to S.ICS.Count - 1 do
-            T := T + ' ' + IntToStr(S.ICS.Rec.Data[I]);
+          for I := 0 to Dec.Dirs[Dir].ICS.Count - 1 do
+            T := T + ' ' + IntToStr(Dec.Dirs[Dir].ICS.Rec.Data[I]);
         end;
-        if S.ICS.Rec.Text <> '' then
-          T := T + ', text ' + S.ICS.Rec.Text;
-        T := T + Format(', SUM $%.2x ok', [S.ICS.RecvSum]);
-        Lines.Add('  ' + S.Name + ' ICS ' + T);
+        if Dec.Dirs[Dir].ICS.Rec.Text <> '' then
+          T := T + ', text ' + Dec.Dirs[Dir].ICS.Rec.Text;
+        T := T + Format(', SUM $%.2x ok', [Dec.Dirs[Dir].ICS.RecvSum]);
+        Emit(Dec, Dir, 'ICS', T, False);
       end;
     icsError:
       begin
-        Inc(Stats.Errors);
-        Lines.Add(Format('  %s ICS ERROR $%.2x %s', [S.Name, S.ICS.Error,
-          ChResultText(S.ICS.Error, ChnICS.cName)]));
+        Emit(Dec, Dir, 'ICS', Format('ERROR $%.2x %s', [Dec.Dirs[Dir].ICS.Error,
+          ChResultText(Dec.Dirs[Dir].ICS.Error, ChnICS.cName)]), True);
       end;
   end;
 end;
@@ -384,65 +443,101 @@ begin
   end;
 end;
 
+procedure DecodeBegin(var D: tDecoder; const Opt: tDecOptions; Lines: TStrings);
+var
+  Dir: tTrcDir;
+begin
+  FillChar(D.Stats, SizeOf(D.Stats), 0);
+  FillChar(D.Seen, SizeOf(D.Seen), 0);
+  D.Opt := Opt;
+  D.Lines := Lines;
+  D.KeepEvents := False;
+  SetLength(D.Events, 0);
+  D.EventCount := 0;
+  D.CurTime := 0;
+  D.CurLine := 0;
+  for Dir := Low(Dir) to High(Dir) do
+  begin
+    if Dir = trcTx then
+      D.Dirs[Dir].Name := 'tx'
+    else
+      D.Dirs[Dir].Name := 'rx';
+    D.Dirs[Dir].Monitor := False;
+    case Opt.Proto of
+      dpDF1: DF1Init(D.Dirs[Dir], Opt, Dir);
+      dpFT12: FTInit(D.Dirs[Dir], Opt);
+      dpICS: ICSReset(D.Dirs[Dir].ICS);
+    end;
+  end;
+end;
+
+procedure DecodeChunk(var D: tDecoder; const F: tTrcFrame);
+var
+  K: LongInt;
+  Head: AnsiString;
+begin
+  if (D.Opt.FirstLine > 0) and (F.Line < D.Opt.FirstLine) then
+    Exit;
+  if (D.Opt.LastLine > 0) and (F.Line > D.Opt.LastLine) then
+    Exit;
+  Inc(D.Stats.Chunks);
+  Inc(D.Stats.Bytes, Length(F.Data));
+  D.CurTime := F.TimeMs;
+  D.CurLine := F.Line;
+  if F.Line > 0 then
+  begin
+    { a pcap's chunks are records, a text capture's are header lines }
+    if F.Tag = 'pcap' then
+      Head := Format('%s %s %d bytes (record %d)', [TrcTimeText(F.TimeMs), F.DirText, F.Len, F.Line])
+    else
+      Head := Format('%s %s %d bytes (line %d)', [TrcTimeText(F.TimeMs), F.DirText, F.Len, F.Line]);
+  end
+  else
+    Head := Format('%s %d bytes', [F.DirText, Length(F.Data)]);
+  if F.Status <> res_Ok then
+  begin
+    Inc(D.Stats.BadChunks);
+    Head := Head + Format(' - the capture holds %d bytes: %s', [Length(F.Data),
+      ChResultText(F.Status, 'TRC')]);
+  end;
+  if D.Lines <> nil then
+    D.Lines.Add(Head);
+  for K := 0 to High(F.Data) do
+    case D.Opt.Proto of
+      dpDF1: DF1Byte(D, F.Dir, F.Data[K]);
+      dpFT12: FTByte(D, F.Dir, F.Data[K]);
+      dpICS: ICSByte(D, F.Dir, F.Data[K]);
+    end;
+end;
+
+procedure DecodeEnd(var D: tDecoder; out Stats: tDecStats);
+var
+  Dir: tTrcDir;
+begin
+  for Dir := Low(Dir) to High(Dir) do
+    if InFrame(D.Opt, D.Dirs[Dir]) then
+    begin
+      Inc(D.Stats.Incomplete);
+      if D.Lines <> nil then
+        D.Lines.Add(Format('%s: input ends inside a frame', [D.Dirs[Dir].Name]));
+    end;
+  if D.Lines <> nil then
+    D.Lines.Add(Format('%d chunks, %d bytes: %d frames, %d errors, %d incomplete',
+      [D.Stats.Chunks, D.Stats.Bytes, D.Stats.Frames, D.Stats.Errors, D.Stats.Incomplete]));
+  SetLength(D.Events, D.EventCount);
+  Stats := D.Stats;
+end;
+
 procedure DecodeRun(const Opt: tDecOptions; const Frames: tTrcFrames; Count: LongInt;
   Lines: TStrings; out Stats: tDecStats);
 var
-  Dirs: array[tTrcDir] of tDirState;
-  Seen: tTnsTable;
-  D: tTrcDir;
-  I, K: LongInt;
-  Head: AnsiString;
+  D: tDecoder;
+  I: LongInt;
 begin
-  FillChar(Stats, SizeOf(Stats), 0);
-  FillChar(Seen, SizeOf(Seen), 0);
-  for D := Low(D) to High(D) do
-  begin
-    if D = trcTx then
-      Dirs[D].Name := 'tx'
-    else
-      Dirs[D].Name := 'rx';
-    Dirs[D].Monitor := False;
-    case Opt.Proto of
-      dpDF1: DF1Init(Dirs[D], Opt, D);
-      dpFT12: FTInit(Dirs[D], Opt);
-      dpICS: ICSReset(Dirs[D].ICS);
-    end;
-  end;
+  DecodeBegin(D, Opt, Lines);
   for I := 0 to Count - 1 do
-    with Frames[I] do
-    begin
-      if (Opt.FirstLine > 0) and (Line < Opt.FirstLine) then
-        Continue;
-      if (Opt.LastLine > 0) and (Line > Opt.LastLine) then
-        Continue;
-      Inc(Stats.Chunks);
-      Inc(Stats.Bytes, Length(Data));
-      if Line > 0 then
-        Head := Format('%s %s %d bytes (line %d)', [TrcTimeText(TimeMs), DirText, Len, Line])
-      else
-        Head := Format('%s %d bytes', [DirText, Length(Data)]);
-      if Status <> res_Ok then
-      begin
-        Inc(Stats.BadChunks);
-        Head := Head + Format(' - the capture holds %d bytes: %s', [Length(Data),
-          ChResultText(Status, 'TRC')]);
-      end;
-      Lines.Add(Head);
-      for K := 0 to High(Data) do
-        case Opt.Proto of
-          dpDF1: DF1Byte(Dirs[Dir], Data[K], Lines, Stats, Seen);
-          dpFT12: FTByte(Dirs[Dir], Data[K], Lines, Stats);
-          dpICS: ICSByte(Dirs[Dir], Data[K], Lines, Stats);
-        end;
-    end;
-  for D := Low(D) to High(D) do
-    if InFrame(Opt, Dirs[D]) then
-    begin
-      Inc(Stats.Incomplete);
-      Lines.Add(Format('%s: input ends inside a frame', [Dirs[D].Name]));
-    end;
-  Lines.Add(Format('%d chunks, %d bytes: %d frames, %d errors, %d incomplete',
-    [Stats.Chunks, Stats.Bytes, Stats.Frames, Stats.Errors, Stats.Incomplete]));
+    DecodeChunk(D, Frames[I]);
+  DecodeEnd(D, Stats);
 end;
 
 end.

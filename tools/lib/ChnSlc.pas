@@ -85,6 +85,8 @@ const
   dgEnqsIn     = 3;   { ENQs received }
   dgNaksIn     = 4;   { NAKs received }
   dgErrReplies = 5;   { replies with STS <> 0 }
+  dgDupsIn     = 6;   { repeated commands ACKed and not executed (DUP=ON) }
+  dgCommands   = 7;   { commands executed (answered by SlcHandle) }
   dgCount      = 8;
 
 type
@@ -578,7 +580,7 @@ end;
 procedure SlcStationEvent(Data: Pointer; Event: tDF1LinkEvent);
 const
   Counter: array[tDF1LinkEvent] of Integer =
-    (dgFramesIn, dgFramesOut, dgNaksOut, dgEnqsIn, dgNaksIn);
+    (dgFramesIn, dgFramesOut, dgNaksOut, dgEnqsIn, dgNaksIn, dgDupsIn);
 begin
   SlcCount(pSlcTable(Data)^, Counter[Event]);
 end;
@@ -655,6 +657,7 @@ begin
   end;
   if Rep.Sts <> sts_Ok then
     SlcCount(T, dgErrReplies);
+  SlcCount(T, dgCommands);
   RepLen := cSizeHead + N;
 end;
 

@@ -1,0 +1,932 @@
+{ ChnPccc - SLC 500 / MicroLogix data table addresses and the PCCC
+  requests that read and write them, without I/O: parse an address such as
+  'N7:0', 'F8:2', 'B3:1/4', 'B3/20', 'T4:0.ACC', 'C5:0.DN', 'ST9:0', 'L10:3';
+  plan a read or write of COUNT items as one or more requests; build each
+  request record (tSendRecord of ChnDF1Codec) and decode its reply.
+
+  Commands (Rockwell publication 1770-6.5.16, "DF1 Protocol and Command Set
+  Reference Manual", chapter 7; docs/PROTOCOLS.md):
+    CMD 0F FNC A2  protected typed logical read, three address fields
+                   SIZE FILE TYPE ELEMENT SUBELEMENT
+    CMD 0F FNC AA  protected typed logical write, three address fields
+                   SIZE FILE TYPE ELEMENT SUBELEMENT data
+    CMD 0F FNC AB  protected typed logical masked write, three address fields
+                   SIZE FILE TYPE ELEMENT SUBELEMENT MASK(2) data(2)
+  FILE, ELEMENT and SUBELEMENT are one byte, or $FF and a word low first
+  for values of 255 and above. Data travel little-endian; a string (ST) is
+  LEN(2) and 82 characters with the two characters of each word swapped, as
+  SLC processors store them.
+
+  Every refusal is a result code (res_Pccc*, texts registered for the layer
+  name PcccLayer) and a text that names the culprit. Nothing here reads or
+  writes past the arrays it is given. }
+unit ChnPccc;
+
+{$I chn.inc}
+
+interface
+
+uses
+  ChnTypes, ChnDF1Codec;
+
+const
+  PcccLayer = 'PCCC';   { ChResultText(R, PcccLayer) }
+
+  res_PcccAddress = res_Proto;       { malformed or impossible address }
+  res_PcccCount   = res_Proto + 1;   { count does not fit (file, array, frame) }
+  res_PcccValue   = res_Proto + 2;   { value out of range for the element }
+  res_PcccReply   = res_Proto + 3;   { reply length or content does not match }
+  res_PcccStatus  = res_Proto + 4;   { the PLC answered with STS <> 0 }
+  res_PcccNak     = res_Proto + 5;   { the command was NAKed on every try }
+  res_PcccUsage   = res_Proto + 6;   { the address holds another kind of value }
+
+  { PCCC file type codes (1770-6.5.16, protected typed logical read) }
+  pft_Status  = $84;
+  pft_Bit     = $85;
+  pft_Timer   = $86;
+  pft_Counter = $87;
+  pft_Control = $88;
+  pft_Integer = $89;
+  pft_Float   = $8A;
+  pft_Output  = $8B;
+  pft_Input   = $8C;
+  pft_String  = $8D;
+  pft_Ascii   = $8E;
+  pft_Long    = $91;
+
+  CF_PcccRead3      = $0FA2;   { = ChnDF1.CF_ProtectRead3Addr }
+  CF_PcccWrite3     = $0FAA;   { = ChnDF1.CF_ProtectWrite3Addr }
+  CF_PcccMaskWrite3 = $0FAB;
+
+  PcccStringChars = 82;        { characters of an ST element }
+  PcccMaxItems    = 4096;      { items of one read or write }
+
+type
+  { A parsed address. Sub is the word of a timer, counter or control element
+    (0 control bits, 1 PRE/LEN, 2 ACC/POS) when HasSub; Bit -1 when none. }
+  tPcccAddr = packed record
+    FileType: Byte;      { pft_* }
+    FileNo  : Word;
+    Elem    : Word;
+    Sub     : Byte;
+    HasSub  : Boolean;
+    Bit     : ShortInt;
+  end;
+
+  tPcccValueKind = (pvInt, pvFloat, pvString);
+
+  { How a read or write of Count items at Addr travels: requests of
+    PerReq units (elements, or words for bits) each. }
+  tPcccMode = (pmElems, pmSubs, pmBits);
+  tPcccPlan = packed record
+    Addr     : tPcccAddr;
+    Count    : LongInt;    { items }
+    Mode     : tPcccMode;
+    UnitBytes: Word;       { bytes of one unit on the wire }
+    Units    : LongInt;    { units in all }
+    PerReq   : LongInt;    { units per request }
+    PerItem  : Byte;       { LongInt values per item (3 for a whole T/C/R) }
+    Write    : Boolean;
+  end;
+
+{ Parse an address (case and surrounding blanks ignored). res_Ok, or
+  res_PcccAddress with Err naming the part that is wrong. }
+function PcccParseAddress(const S: ShortString; out A: tPcccAddr; out Err: ShortString): tChResult;
+{ The canonical text of an address ('T4:0.ACC', 'B3:1/4'). }
+function PcccAddressText(const A: tPcccAddr): ShortString;
+{ The file letter(s) of a type code ('N', 'ST'); '' when unknown. }
+function PcccFileLetter(FileType: Byte): ShortString;
+{ Bytes of one element of a file type; 0 when unknown. }
+function PcccElemSize(FileType: Byte): Word;
+{ What kind of value an address reads and writes. }
+function PcccValueKind(const A: tPcccAddr): tPcccValueKind;
+
+{ Plan a read (Write False) or write of Count items at A, at most MaxBytes
+  data bytes per request (1..244). An item is an element; a word for
+  .PRE/.ACC/.LEN/.POS; a bit for '/n' and .DN-like addresses (consecutive
+  bits from there on a word file, the same bit of consecutive elements for
+  timers, counters and controls); a whole T, C or R element is three ints
+  (control word, PRE or LEN, ACC or POS). res_PcccCount when Count is 0,
+  above PcccMaxItems, runs past element 65535 or an element does not fit
+  in MaxBytes. }
+function PcccPlan(const A: tPcccAddr; Count: LongInt; Write: Boolean; MaxBytes: Word;
+  out P: tPcccPlan; out Err: ShortString): tChResult;
+{ Number of requests of a plan. }
+function PcccPlanRequests(const P: tPcccPlan): LongInt;
+{ The values (LongInt) the items of a plan fill: Count * PerItem. }
+function PcccPlanValues(const P: tPcccPlan): LongInt;
+
+{ Request Index (0-based) of a read plan: Req/ReqLen to send, Expect the
+  reply's data bytes. }
+function PcccBuildPlanRead(const P: tPcccPlan; Index: LongInt; Tns: Word;
+  var Req: tSendRecord; out ReqLen: Word; out Expect: Word): tChResult;
+{ Decode the reply data of read request Index into Values (as many as
+  PcccPlanValues, ints: 16-bit signed for N/T/C/R words, unsigned for
+  B/O/I/S/A, 32-bit for L, 0/1 for bits; floats for F). res_PcccReply when
+  DataLen is not what the request asked for, res_PcccCount when Values is
+  too short. Strings: PcccDecodeString. }
+function PcccDecodePlanInts(const P: tPcccPlan; Index: LongInt; const Data: array of Byte;
+  DataLen: Word; var Values: array of LongInt): tChResult;
+function PcccDecodePlanFloats(const P: tPcccPlan; Index: LongInt; const Data: array of Byte;
+  DataLen: Word; var Values: array of Single): tChResult;
+
+{ Request Index of a write plan with the values given (ints for word, long
+  and bit addresses, floats for F). res_PcccValue with Err naming the
+  value and its range when one does not fit the element. Bits become
+  masked writes (0F AB), one per word. }
+function PcccBuildPlanWriteInts(const P: tPcccPlan; Index: LongInt; const Values: array of LongInt;
+  Tns: Word; var Req: tSendRecord; out ReqLen: Word; out Err: ShortString): tChResult;
+function PcccBuildPlanWriteFloats(const P: tPcccPlan; Index: LongInt; const Values: array of Single;
+  Tns: Word; var Req: tSendRecord; out ReqLen: Word; out Err: ShortString): tChResult;
+
+{ The single requests. Bytes 1..244 (a write: as many as fit after the
+  address fields, else res_PcccCount). }
+function PcccBuildRead(const A: tPcccAddr; Bytes: Word; Tns: Word;
+  var Req: tSendRecord; out ReqLen: Word): tChResult;
+function PcccBuildWrite(const A: tPcccAddr; const Data: array of Byte; Bytes: Word; Tns: Word;
+  var Req: tSendRecord; out ReqLen: Word): tChResult;
+function PcccBuildMaskedWrite(const A: tPcccAddr; Mask, Value: Word; Tns: Word;
+  var Req: tSendRecord; out ReqLen: Word): tChResult;
+
+{ The data bytes of an ST element (84) for S; res_PcccValue when S is
+  longer than 82 characters. }
+function PcccEncodeString(const S: ShortString; var Data: array of Byte; out Err: ShortString): tChResult;
+{ An ST element from Data[Offset..Offset+83]; res_PcccReply when it does
+  not fit in Data or its LEN is above 82. }
+function PcccDecodeString(const Data: array of Byte; Offset: LongInt; out S: ShortString): tChResult;
+
+{ res_Ok for a reply with STS 0 and DataLen = Expect data bytes; else
+  res_PcccStatus (Err: STS and EXT STS with their meanings) or
+  res_PcccReply (Err: the lengths). }
+function PcccCheckReply(const Rep: tRecRecord; RepLen: Word; Expect: Word; out Err: ShortString): tChResult;
+
+implementation
+
+uses
+  SysUtils, uString, ChnPcccNames;
+
+type
+  tFileInfo = record
+    Letter: string[2];
+    FType : Byte;
+    Size  : Word;
+    Fixed : SmallInt;   { the only file number allowed, -1: 3..255 }
+  end;
+
+const
+  Files: array[0..11] of tFileInfo = (
+    (Letter: 'O';  FType: pft_Output;  Size: 2;  Fixed: 0),
+    (Letter: 'I';  FType: pft_Input;   Size: 2;  Fixed: 1),
+    (Letter: 'S';  FType: pft_Status;  Size: 2;  Fixed: 2),
+    (Letter: 'B';  FType: pft_Bit;     Size: 2;  Fixed: -1),
+    (Letter: 'T';  FType: pft_Timer;   Size: 6;  Fixed: -1),
+    (Letter: 'C';  FType: pft_Counter; Size: 6;  Fixed: -1),
+    (Letter: 'R';  FType: pft_Control; Size: 6;  Fixed: -1),
+    (Letter: 'N';  FType: pft_Integer; Size: 2;  Fixed: -1),
+    (Letter: 'F';  FType: pft_Float;   Size: 4;  Fixed: -1),
+    (Letter: 'ST'; FType: pft_String;  Size: 84; Fixed: -1),
+    (Letter: 'A';  FType: pft_Ascii;   Size: 2;  Fixed: -1),
+    (Letter: 'L';  FType: pft_Long;    Size: 4;  Fixed: -1));
+
+type
+  tSubInfo = record
+    Name : string[3];
+    FType: Byte;
+    Sub  : Byte;
+    Bit  : ShortInt;
+  end;
+
+const
+  { sub-elements: the word, and the bit of the control word }
+  SubTable: array[0..20] of tSubInfo = (
+    (Name: 'PRE'; FType: pft_Timer;   Sub: 1; Bit: -1),
+    (Name: 'ACC'; FType: pft_Timer;   Sub: 2; Bit: -1),
+    (Name: 'EN';  FType: pft_Timer;   Sub: 0; Bit: 15),
+    (Name: 'TT';  FType: pft_Timer;   Sub: 0; Bit: 14),
+    (Name: 'DN';  FType: pft_Timer;   Sub: 0; Bit: 13),
+    (Name: 'PRE'; FType: pft_Counter; Sub: 1; Bit: -1),
+    (Name: 'ACC'; FType: pft_Counter; Sub: 2; Bit: -1),
+    (Name: 'CU';  FType: pft_Counter; Sub: 0; Bit: 15),
+    (Name: 'CD';  FType: pft_Counter; Sub: 0; Bit: 14),
+    (Name: 'DN';  FType: pft_Counter; Sub: 0; Bit: 13),
+    (Name: 'OV';  FType: pft_Counter; Sub: 0; Bit: 12),
+    (Name: 'UN';  FType: pft_Counter; Sub: 0; Bit: 11),
+    (Name: 'LEN'; FType: pft_Control; Sub: 1; Bit: -1),
+    (Name: 'POS'; FType: pft_Control; Sub: 2; Bit: -1),
+    (Name: 'EN';  FType: pft_Control; Sub: 0; Bit: 15),
+    (Name: 'EU';  FType: pft_Control; Sub: 0; Bit: 14),
+    (Name: 'DN';  FType: pft_Control; Sub: 0; Bit: 13),
+    (Name: 'EM';  FType: pft_Control; Sub: 0; Bit: 12),
+    (Name: 'ER';  FType: pft_Control; Sub: 0; Bit: 11),
+    (Name: 'UL';  FType: pft_Control; Sub: 0; Bit: 10),
+    (Name: 'IN';  FType: pft_Control; Sub: 0; Bit: 9));
+
+function FileIndex(FileType: Byte): Integer;
+var
+  I: Integer;
+begin
+  for I := Low(Files) to High(Files) do
+    if Files[I].FType = FileType then
+      Exit(I);
+  Result := -1;
+end;
+
+function PcccFileLetter(FileType: Byte): ShortString;
+var
+  I: Integer;
+begin
+  I := FileIndex(FileType);
+  if I < 0 then
+    Result := ''
+  else
+    Result := Files[I].Letter;
+end;
+
+function PcccElemSize(FileType: Byte): Word;
+var
+  I: Integer;
+begin
+  I := FileIndex(FileType);
+  if I < 0 then
+    Result := 0
+  else
+    Result := Files[I].Size;
+end;
+
+function IsWordFile(FileType: Byte): Boolean;
+begin
+  Result := PcccElemSize(FileType) = 2;
+end;
+
+function IsTcr(FileType: Byte): Boolean;
+begin
+  Result := FileType in [pft_Timer, pft_Counter, pft_Control];
+end;
+
+function PcccValueKind(const A: tPcccAddr): tPcccValueKind;
+begin
+  if A.HasSub or (A.Bit >= 0) then
+    Result := pvInt
+  else if A.FileType = pft_Float then
+    Result := pvFloat
+  else if A.FileType = pft_String then
+    Result := pvString
+  else
+    Result := pvInt;
+end;
+
+function SubName(const A: tPcccAddr): ShortString;
+var
+  I: Integer;
+begin
+  Result := '';
+  for I := Low(SubTable) to High(SubTable) do
+    if (SubTable[I].FType = A.FileType) and (SubTable[I].Sub = A.Sub) and
+       ((SubTable[I].Bit = -1) or (SubTable[I].Bit = A.Bit)) then
+      Exit(SubTable[I].Name);
+end;
+
+function PcccAddressText(const A: tPcccAddr): ShortString;
+var
+  Name: ShortString;
+begin
+  Result := PcccFileLetter(A.FileType) + IntToStr(A.FileNo) + ':' + IntToStr(A.Elem);
+  if A.HasSub then
+  begin
+    Name := SubName(A);
+    if Name = '' then
+      Name := IntToStr(A.Sub);
+    Result := Result + '.' + Name;
+    if (A.Sub <> 0) and (A.Bit >= 0) then
+      Result := Result + '/' + IntToStr(A.Bit);
+  end
+  else if A.Bit >= 0 then
+    Result := Result + '/' + IntToStr(A.Bit);
+end;
+
+function PcccParseAddress(const S: ShortString; out A: tPcccAddr; out Err: ShortString): tChResult;
+var
+  T, Letters, Num, SubS: ShortString;
+  P, Q, I, FI: Integer;
+  V: LongInt;
+  HaveFile: Boolean;
+
+  function Bad(const Why: ShortString): tChResult;
+  begin
+    Err := 'address "' + T + '": ' + Why;
+    Result := res_PcccAddress;
+  end;
+
+begin
+  FillChar(A, SizeOf(A), 0);
+  A.Bit := -1;
+  Err := '';
+  T := UpperCase(Trim(S));
+  if T = '' then
+    Exit(Bad('empty'));
+  { the file letters }
+  P := 1;
+  while (P <= Length(T)) and (T[P] in ['A'..'Z']) do
+    Inc(P);
+  Letters := Copy(T, 1, P - 1);
+  FI := -1;
+  for I := Low(Files) to High(Files) do
+    if Files[I].Letter = Letters then
+      FI := I;
+  if FI < 0 then
+    Exit(Bad('file type "' + Letters + '" is none of O I S B T C R N F ST A L'));
+  A.FileType := Files[FI].FType;
+  { the file number (may be left out for O, I and S) }
+  Q := P;
+  while (P <= Length(T)) and (T[P] in ['0'..'9']) do
+    Inc(P);
+  Num := Copy(T, Q, P - Q);
+  HaveFile := Num <> '';
+  V := 0;
+  if HaveFile and not StrToNum(Num, 0, 255, V) then
+    Exit(Bad('file number "' + Num + '" is not 0..255'));
+  if Files[FI].Fixed >= 0 then
+  begin
+    if HaveFile and (V <> Files[FI].Fixed) then
+      Exit(Bad(Letters + ' is file ' + IntToStr(Files[FI].Fixed) + ', not ' + Num));
+    V := Files[FI].Fixed;
+  end
+  else if not HaveFile then
+    Exit(Bad('file number missing after ' + Letters))
+  else if V < 3 then
+    Exit(Bad('file number ' + Num + ' is not 3..255 (0, 1, 2 are O, I, S)'));
+  A.FileNo := V;
+  if P > Length(T) then
+    Exit(Bad('":element" missing'));
+  { B3/20: bit number counted from the start of the file }
+  if T[P] = '/' then
+  begin
+    if A.FileType <> pft_Bit then
+      Exit(Bad('a bit number without an element ("/n") is only for B files'));
+    Num := Copy(T, P + 1, 255);
+    if not StrToNum(Num, 0, 65535, V) then
+      Exit(Bad('bit number "' + Num + '" is not 0..65535'));
+    A.Elem := V div 16;
+    A.Bit := V mod 16;
+    Exit(res_Ok);
+  end;
+  if T[P] <> ':' then
+    Exit(Bad('":" expected after ' + Copy(T, 1, P - 1) + ', found "' + T[P] + '"'));
+  Inc(P);
+  Q := P;
+  while (P <= Length(T)) and (T[P] in ['0'..'9']) do
+    Inc(P);
+  Num := Copy(T, Q, P - Q);
+  if not StrToNum(Num, 0, 65535, V) then
+    Exit(Bad('element "' + Num + '" is not 0..65535'));
+  A.Elem := V;
+  { .sub-element }
+  if (P <= Length(T)) and (T[P] = '.') then
+  begin
+    Inc(P);
+    Q := P;
+    while (P <= Length(T)) and (T[P] in ['A'..'Z']) do
+      Inc(P);
+    SubS := Copy(T, Q, P - Q);
+    if not IsTcr(A.FileType) then
+      Exit(Bad('".' + SubS + '": ' + Letters + ' elements have no sub-elements'));
+    for I := Low(SubTable) to High(SubTable) do
+      if (SubTable[I].FType = A.FileType) and (SubTable[I].Name = SubS) then
+      begin
+        A.HasSub := True;
+        A.Sub := SubTable[I].Sub;
+        A.Bit := SubTable[I].Bit;
+      end;
+    if not A.HasSub then
+      Exit(Bad('sub-element ".' + SubS + '" is not one of a ' + Letters + ' element'));
+  end;
+  { /bit }
+  if (P <= Length(T)) and (T[P] = '/') then
+  begin
+    Num := Copy(T, P + 1, 255);
+    if A.Bit >= 0 then
+      Exit(Bad('"/' + Num + '" after a bit sub-element'));
+    if IsTcr(A.FileType) and not A.HasSub then
+      Exit(Bad('"/' + Num + '" on a whole ' + Letters + ' element: name a word (.PRE, .ACC) or a bit (.DN)'));
+    if not IsWordFile(A.FileType) and not IsTcr(A.FileType) then
+      Exit(Bad('"/' + Num + '": ' + Letters + ' elements have no addressable bits'));
+    if not StrToNum(Num, 0, 15, V) then
+      Exit(Bad('bit "' + Num + '" is not 0..15'));
+    A.Bit := V;
+    P := Length(T) + 1;
+  end;
+  if P <= Length(T) then
+    Exit(Bad('"' + Copy(T, P, 255) + '" after the element'));
+  Result := res_Ok;
+end;
+
+{ ------------------------------------------------------------- requests }
+
+{ A three-address field: one byte, or $FF and a word low first. }
+procedure PutField(var Req: tSendRecord; var N: Integer; V: Word);
+begin
+  if V < 255 then
+  begin
+    Req.Data[N] := V;
+    Inc(N);
+  end
+  else
+  begin
+    Req.Data[N] := $FF;
+    Req.Data[N + 1] := Lo(V);
+    Req.Data[N + 2] := Hi(V);
+    Inc(N, 3);
+  end;
+end;
+
+{ Header and SIZE FILE TYPE ELEMENT SUBELEMENT; N = data bytes so far. }
+procedure PutHead(const A: tPcccAddr; CF: Word; Size: Byte; Tns: Word;
+  var Req: tSendRecord; out N: Integer);
+begin
+  FillChar(Req, cSizeHead, 0);
+  Req.MessType := tpDataMess;
+  Req.CF := CF;
+  Req.Tns := Tns;
+  N := 0;
+  Req.Data[N] := Size;
+  Inc(N);
+  PutField(Req, N, A.FileNo);
+  Req.Data[N] := A.FileType;
+  Inc(N);
+  PutField(Req, N, A.Elem);
+  if A.HasSub then
+    PutField(Req, N, A.Sub)
+  else
+    PutField(Req, N, 0);
+end;
+
+function HeadBytes(const A: tPcccAddr): Integer;
+var
+  Req: tSendRecord;
+begin
+  PutHead(A, 0, 0, 0, Req, Result);
+end;
+
+function PcccBuildRead(const A: tPcccAddr; Bytes: Word; Tns: Word;
+  var Req: tSendRecord; out ReqLen: Word): tChResult;
+var
+  N: Integer;
+begin
+  ReqLen := 0;
+  if (Bytes < 1) or (Bytes > MaxDataLen) then
+    Exit(res_PcccCount);
+  PutHead(A, CF_PcccRead3, Bytes, Tns, Req, N);
+  ReqLen := cSizeHead + N;
+  Result := res_Ok;
+end;
+
+function PcccBuildWrite(const A: tPcccAddr; const Data: array of Byte; Bytes: Word; Tns: Word;
+  var Req: tSendRecord; out ReqLen: Word): tChResult;
+var
+  N: Integer;
+begin
+  ReqLen := 0;
+  if (Bytes < 1) or (Bytes > Length(Data)) or (HeadBytes(A) + Bytes > MaxDataLen) then
+    Exit(res_PcccCount);
+  PutHead(A, CF_PcccWrite3, Bytes, Tns, Req, N);
+  Move(Data[0], Req.Data[N], Bytes);
+  ReqLen := cSizeHead + N + Bytes;
+  Result := res_Ok;
+end;
+
+function PcccBuildMaskedWrite(const A: tPcccAddr; Mask, Value: Word; Tns: Word;
+  var Req: tSendRecord; out ReqLen: Word): tChResult;
+var
+  N: Integer;
+begin
+  PutHead(A, CF_PcccMaskWrite3, 2, Tns, Req, N);
+  Req.Data[N] := Lo(Mask);
+  Req.Data[N + 1] := Hi(Mask);
+  Req.Data[N + 2] := Lo(Value);
+  Req.Data[N + 3] := Hi(Value);
+  ReqLen := cSizeHead + N + 4;
+  Result := res_Ok;
+end;
+
+{ ---------------------------------------------------------------- plans }
+
+function PcccPlan(const A: tPcccAddr; Count: LongInt; Write: Boolean; MaxBytes: Word;
+  out P: tPcccPlan; out Err: ShortString): tChResult;
+var
+  Room: LongInt;
+begin
+  FillChar(P, SizeOf(P), 0);
+  Err := '';
+  P.Addr := A;
+  P.Count := Count;
+  P.Write := Write;
+  P.PerItem := 1;
+  if (Count < 1) or (Count > PcccMaxItems) then
+  begin
+    Err := 'count ' + IntToStr(Count) + ' is not 1..' + IntToStr(PcccMaxItems);
+    Exit(res_PcccCount);
+  end;
+  if (MaxBytes < 2) or (MaxBytes > MaxDataLen) then
+  begin
+    Err := 'bytes per request ' + IntToStr(MaxBytes) + ' is not 2..' + IntToStr(MaxDataLen);
+    Exit(res_PcccCount);
+  end;
+  if PcccElemSize(A.FileType) = 0 then
+  begin
+    Err := 'file type $' + IntToHex(A.FileType, 2) + ' is unknown';
+    Exit(res_PcccAddress);
+  end;
+  { room for data: a write also carries the address fields (at most 9) }
+  Room := MaxBytes;
+  if Write and (Room > MaxDataLen - 9) then
+    Room := MaxDataLen - 9;
+  if IsTcr(A.FileType) and A.HasSub then
+  begin
+    P.Mode := pmSubs;         { one word of each element, one request each }
+    P.UnitBytes := 2;
+    P.Units := Count;
+    P.PerReq := 1;
+  end
+  else if A.Bit >= 0 then
+  begin
+    P.Mode := pmBits;         { consecutive bits of a word file }
+    P.UnitBytes := 2;
+    P.Units := (A.Bit + Count + 15) div 16;
+    P.PerReq := Room div 2;
+    if Write then
+      P.PerReq := 1;          { a masked write per word }
+  end
+  else
+  begin
+    P.Mode := pmElems;
+    P.UnitBytes := PcccElemSize(A.FileType);
+    P.Units := Count;
+    P.PerReq := Room div P.UnitBytes;
+    if IsTcr(A.FileType) then
+      P.PerItem := 3;
+    if P.PerReq = 0 then
+    begin
+      Err := Format('a %s element (%d bytes) does not fit in %d bytes per request',
+        [PcccFileLetter(A.FileType), P.UnitBytes, MaxBytes]);
+      Exit(res_PcccCount);
+    end;
+  end;
+  if LongInt(A.Elem) + P.Units - 1 > 65535 then
+  begin
+    Err := Format('%d items from %s run past element 65535', [Count, PcccAddressText(A)]);
+    Exit(res_PcccCount);
+  end;
+  Result := res_Ok;
+end;
+
+function PcccPlanRequests(const P: tPcccPlan): LongInt;
+begin
+  if P.PerReq <= 0 then
+    Result := 0
+  else
+    Result := (P.Units + P.PerReq - 1) div P.PerReq;
+end;
+
+function PcccPlanValues(const P: tPcccPlan): LongInt;
+begin
+  Result := P.Count * P.PerItem;
+end;
+
+{ First unit and number of units of request Index; False when out of range. }
+function Chunk(const P: tPcccPlan; Index: LongInt; out First, N: LongInt): Boolean;
+begin
+  First := 0;
+  N := 0;
+  Result := (Index >= 0) and (Index < PcccPlanRequests(P));
+  if not Result then
+    Exit;
+  First := Index * P.PerReq;
+  N := P.Units - First;
+  if N > P.PerReq then
+    N := P.PerReq;
+end;
+
+{ The address where request Index starts. }
+function ChunkAddr(const P: tPcccPlan; First: LongInt): tPcccAddr;
+begin
+  Result := P.Addr;
+  Result.Elem := P.Addr.Elem + First;
+  if P.Mode = pmBits then
+    Result.HasSub := False;
+  if P.Mode <> pmSubs then
+    Result.Sub := 0;
+end;
+
+function PcccBuildPlanRead(const P: tPcccPlan; Index: LongInt; Tns: Word;
+  var Req: tSendRecord; out ReqLen: Word; out Expect: Word): tChResult;
+var
+  First, N: LongInt;
+begin
+  ReqLen := 0;
+  Expect := 0;
+  if P.Write or not Chunk(P, Index, First, N) then
+    Exit(res_PcccCount);
+  Expect := N * P.UnitBytes;
+  Result := PcccBuildRead(ChunkAddr(P, First), Expect, Tns, Req, ReqLen);
+end;
+
+function GetWord(const Data: array of Byte; At: LongInt): Word; inline;
+begin
+  Result := Data[At] or (Word(Data[At + 1]) shl 8);
+end;
+
+{ A 16-bit word as the address's type reads: signed for N, T, C, R (and
+  their words), unsigned bit patterns for B, O, I, S, A. }
+function WordValue(FileType: Byte; W: Word): LongInt;
+begin
+  if FileType in [pft_Integer, pft_Timer, pft_Counter, pft_Control] then
+    Result := SmallInt(W)
+  else
+    Result := W;
+end;
+
+function PcccDecodePlanInts(const P: tPcccPlan; Index: LongInt; const Data: array of Byte;
+  DataLen: Word; var Values: array of LongInt): tChResult;
+var
+  First, N, I, K, Item, At: LongInt;
+  W: Word;
+begin
+  if P.Write or not Chunk(P, Index, First, N) or (PcccValueKind(P.Addr) <> pvInt) then
+    Exit(res_PcccUsage);
+  if (DataLen <> N * P.UnitBytes) or (DataLen > Length(Data)) then
+    Exit(res_PcccReply);
+  if Length(Values) < PcccPlanValues(P) then
+    Exit(res_PcccCount);
+  for I := 0 to N - 1 do
+  begin
+    At := I * P.UnitBytes;
+    case P.Mode of
+      pmSubs:
+        begin
+          W := GetWord(Data, At);
+          if P.Addr.Bit >= 0 then
+            Values[First + I] := (W shr P.Addr.Bit) and 1
+          else
+            Values[First + I] := WordValue(P.Addr.FileType, W);
+        end;
+      pmBits:
+        begin
+          W := GetWord(Data, At);
+          for K := 0 to 15 do
+          begin
+            Item := (First + I) * 16 + K - P.Addr.Bit;
+            if (Item >= 0) and (Item < P.Count) then
+              Values[Item] := (W shr K) and 1;
+          end;
+        end;
+      pmElems:
+        if P.Addr.FileType = pft_Long then
+          Values[First + I] := LongInt(LongWord(GetWord(Data, At)) or
+            (LongWord(GetWord(Data, At + 2)) shl 16))
+        else
+          for K := 0 to P.PerItem - 1 do
+            Values[(First + I) * P.PerItem + K] :=
+              WordValue(P.Addr.FileType, GetWord(Data, At + 2 * K));
+    end;
+  end;
+  Result := res_Ok;
+end;
+
+function PcccDecodePlanFloats(const P: tPcccPlan; Index: LongInt; const Data: array of Byte;
+  DataLen: Word; var Values: array of Single): tChResult;
+var
+  First, N, I: LongInt;
+  L: LongWord;
+begin
+  if P.Write or not Chunk(P, Index, First, N) or (PcccValueKind(P.Addr) <> pvFloat) then
+    Exit(res_PcccUsage);
+  if (DataLen <> N * 4) or (DataLen > Length(Data)) then
+    Exit(res_PcccReply);
+  if Length(Values) < P.Count then
+    Exit(res_PcccCount);
+  for I := 0 to N - 1 do
+  begin
+    L := LongWord(GetWord(Data, I * 4)) or (LongWord(GetWord(Data, I * 4 + 2)) shl 16);
+    Move(L, Values[First + I], 4);
+  end;
+  Result := res_Ok;
+end;
+
+{ The range of an int written to an address. }
+procedure IntRange(const A: tPcccAddr; out Lo, Hi: LongInt);
+begin
+  if (A.Bit >= 0) then
+  begin
+    Lo := 0;
+    Hi := 1;
+  end
+  else if A.FileType = pft_Long then
+  begin
+    Lo := Low(LongInt);
+    Hi := High(LongInt);
+  end
+  else if A.FileType in [pft_Integer, pft_Timer, pft_Counter, pft_Control] then
+  begin
+    Lo := -32768;
+    Hi := 32767;
+  end
+  else
+  begin
+    Lo := 0;
+    Hi := 65535;
+  end;
+end;
+
+function PcccBuildPlanWriteInts(const P: tPcccPlan; Index: LongInt; const Values: array of LongInt;
+  Tns: Word; var Req: tSendRecord; out ReqLen: Word; out Err: ShortString): tChResult;
+var
+  First, N, I, K, Item, Lo, Hi: LongInt;
+  Buf: array[0..MaxDataLen - 1] of Byte;
+  Mask, Bits: Word;
+  V: LongInt;
+begin
+  ReqLen := 0;
+  Err := '';
+  if not P.Write or not Chunk(P, Index, First, N) or (PcccValueKind(P.Addr) <> pvInt) then
+  begin
+    Err := PcccAddressText(P.Addr) + ' does not take integer values';
+    Exit(res_PcccUsage);
+  end;
+  if Length(Values) < PcccPlanValues(P) then
+  begin
+    Err := Format('%d values given, %d needed', [Length(Values), PcccPlanValues(P)]);
+    Exit(res_PcccCount);
+  end;
+  IntRange(P.Addr, Lo, Hi);
+  if P.Mode = pmBits then
+  begin
+    Mask := 0;
+    Bits := 0;
+    for K := 0 to 15 do
+    begin
+      Item := First * 16 + K - P.Addr.Bit;
+      if (Item >= 0) and (Item < P.Count) then
+      begin
+        V := Values[Item];
+        if (V < 0) or (V > 1) then
+        begin
+          Err := Format('value %d for a bit is not 0 or 1', [V]);
+          Exit(res_PcccValue);
+        end;
+        Mask := Mask or Word(1 shl K);
+        if V = 1 then
+          Bits := Bits or Word(1 shl K);
+      end;
+    end;
+    Exit(PcccBuildMaskedWrite(ChunkAddr(P, First), Mask, Bits, Tns, Req, ReqLen));
+  end;
+  if (P.Mode = pmSubs) and (P.Addr.Bit >= 0) then
+  begin
+    V := Values[First];
+    if (V < 0) or (V > 1) then
+    begin
+      Err := Format('value %d for a bit is not 0 or 1', [V]);
+      Exit(res_PcccValue);
+    end;
+    Exit(PcccBuildMaskedWrite(ChunkAddr(P, First), Word(1 shl P.Addr.Bit),
+      Word(V shl P.Addr.Bit), Tns, Req, ReqLen));
+  end;
+  for I := 0 to N * P.PerItem - 1 do
+  begin
+    V := Values[First * P.PerItem + I];
+    if (V < Lo) or (V > Hi) then
+    begin
+      Err := Format('value %d is not %d..%d for %s', [V, Lo, Hi, PcccAddressText(P.Addr)]);
+      Exit(res_PcccValue);
+    end;
+    if P.Addr.FileType = pft_Long then
+    begin
+      Buf[I * 4] := LongWord(V) and $FF;
+      Buf[I * 4 + 1] := (LongWord(V) shr 8) and $FF;
+      Buf[I * 4 + 2] := (LongWord(V) shr 16) and $FF;
+      Buf[I * 4 + 3] := LongWord(V) shr 24;
+    end
+    else
+    begin
+      Buf[I * 2] := V and $FF;
+      Buf[I * 2 + 1] := (V shr 8) and $FF;
+    end;
+  end;
+  Result := PcccBuildWrite(ChunkAddr(P, First), Buf, N * P.UnitBytes, Tns, Req, ReqLen);
+end;
+
+function PcccBuildPlanWriteFloats(const P: tPcccPlan; Index: LongInt; const Values: array of Single;
+  Tns: Word; var Req: tSendRecord; out ReqLen: Word; out Err: ShortString): tChResult;
+var
+  First, N, I: LongInt;
+  Buf: array[0..MaxDataLen - 1] of Byte;
+  L: LongWord;
+begin
+  ReqLen := 0;
+  Err := '';
+  if not P.Write or not Chunk(P, Index, First, N) or (PcccValueKind(P.Addr) <> pvFloat) then
+  begin
+    Err := PcccAddressText(P.Addr) + ' does not take float values';
+    Exit(res_PcccUsage);
+  end;
+  if Length(Values) < P.Count then
+  begin
+    Err := Format('%d values given, %d needed', [Length(Values), P.Count]);
+    Exit(res_PcccCount);
+  end;
+  for I := 0 to N - 1 do
+  begin
+    Move(Values[First + I], L, 4);
+    if (L and $7F800000) = $7F800000 then
+    begin
+      Err := 'value ' + IntToStr(First + I) + ' is not a finite number';
+      Exit(res_PcccValue);
+    end;
+    Buf[I * 4] := L and $FF;
+    Buf[I * 4 + 1] := (L shr 8) and $FF;
+    Buf[I * 4 + 2] := (L shr 16) and $FF;
+    Buf[I * 4 + 3] := L shr 24;
+  end;
+  Result := PcccBuildWrite(ChunkAddr(P, First), Buf, N * 4, Tns, Req, ReqLen);
+end;
+
+{ -------------------------------------------------------------- strings }
+
+function PcccEncodeString(const S: ShortString; var Data: array of Byte; out Err: ShortString): tChResult;
+var
+  I: Integer;
+  Ch: array[0..PcccStringChars - 1] of Byte;
+begin
+  Err := '';
+  if Length(S) > PcccStringChars then
+  begin
+    Err := Format('string of %d characters is longer than %d', [Length(S), PcccStringChars]);
+    Exit(res_PcccValue);
+  end;
+  if Length(Data) < 2 + PcccStringChars then
+  begin
+    Err := 'buffer smaller than an ST element';
+    Exit(res_PcccCount);
+  end;
+  FillChar(Ch, SizeOf(Ch), 0);
+  for I := 1 to Length(S) do
+    Ch[I - 1] := Ord(S[I]);
+  Data[0] := Length(S);
+  Data[1] := 0;
+  for I := 0 to PcccStringChars div 2 - 1 do
+  begin
+    { each word holds its first character in the high byte }
+    Data[2 + 2 * I] := Ch[2 * I + 1];
+    Data[3 + 2 * I] := Ch[2 * I];
+  end;
+  Result := res_Ok;
+end;
+
+function PcccDecodeString(const Data: array of Byte; Offset: LongInt; out S: ShortString): tChResult;
+var
+  Len, I: Integer;
+begin
+  S := '';
+  if (Offset < 0) or (LongInt(Length(Data)) - Offset < 2 + PcccStringChars) then
+    Exit(res_PcccReply);
+  Len := GetWord(Data, Offset);
+  if Len > PcccStringChars then
+    Exit(res_PcccReply);
+  SetLength(S, Len);
+  for I := 0 to Len - 1 do
+    S[I + 1] := Chr(Data[Offset + 2 + (I xor 1)]);
+  Result := res_Ok;
+end;
+
+{ ---------------------------------------------------------------- reply }
+
+function PcccCheckReply(const Rep: tRecRecord; RepLen: Word; Expect: Word; out Err: ShortString): tChResult;
+begin
+  Err := '';
+  if RepLen < cSizeHead then
+  begin
+    Err := 'reply shorter than its header';
+    Exit(res_PcccReply);
+  end;
+  if Rep.Sts <> sts_Ok then
+  begin
+    Err := PcccStatusText(Rep.Sts, Rep.Data[0], RepLen > cSizeHead);
+    Exit(res_PcccStatus);
+  end;
+  if RepLen - cSizeHead <> Expect then
+  begin
+    Err := Format('reply has %d data bytes, %d expected', [RepLen - cSizeHead, Expect]);
+    Exit(res_PcccReply);
+  end;
+  Result := res_Ok;
+end;
+
+initialization
+  ChRegisterResultText(PcccLayer, res_PcccAddress, 'bad PLC address');
+  ChRegisterResultText(PcccLayer, res_PcccCount, 'count does not fit');
+  ChRegisterResultText(PcccLayer, res_PcccValue, 'value out of range for the element');
+  ChRegisterResultText(PcccLayer, res_PcccReply, 'reply does not match the request');
+  ChRegisterResultText(PcccLayer, res_PcccStatus, 'error reply from the PLC');
+  ChRegisterResultText(PcccLayer, res_PcccNak, 'command refused (NAK) on every try');
+  ChRegisterResultText(PcccLayer, res_PcccUsage, 'wrong kind of value for the address');
+end.

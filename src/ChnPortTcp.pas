@@ -1,0 +1,710 @@
+{ ChnPortTcp - a TChnPort on a TCP connection, the port under NAM=TCP
+  (docs/ChnTcp.md). The socket calls are in ChnSock, the Telnet and RFC 2217
+  codec in ChnTelnet; this unit glues them to the port interface tChnCom
+  drives, so ring, send pump, overrun and idle wait are COM's own.
+
+  Client: Connect (bounded by a timeout) or StartConnect + ConnectPoll (for
+  reconnecting without blocking a poll). Server: Listen; one client at a
+  time - a further connection is accepted and closed at once; a client that
+  leaves is an idle line, not a fault, and the next one is taken.
+
+  With Rfc2217 the stream is Telnet: BINARY both ways, COM-PORT-OPTION
+  used by us. Configure sends the line settings and waits for the server's
+  answers; an answer that differs from the request (or none in time) is
+  res_BadSetting with FailKey naming the setting ('BD', 'BIT', 'PAR',
+  'STOP', 'FLW', or 'RFC2217' when the server does not do the option).
+  Answers arriving later (after a reconnect) are checked the same way and
+  turn the next Read into res_BadSetting. NOTIFY-MODEMSTATE gives GetLines,
+  NOTIFY-LINESTATE overrun bits count in OsOverruns; data bytes are never
+  disturbed by either. }
+unit ChnPortTcp;
+
+{$I chn.inc}
+
+interface
+
+uses
+  ChnTypes, ChnPort, ChnSock, ChnTelnet;
+
+type
+  TChnPortTcp = class(TChnPort)
+  private
+    FSock, FListen: tSock;
+    FAddrs: tSockAddrs;
+    FAddrCount, FAddrNext: LongInt;
+    FDec: tTelnetDecoder;
+    FNeg: tTelnetNeg;
+    FOut: array of Byte;            { Telnet: encoded bytes not yet sent }
+    FOutLen: LongInt;
+    FEarly: array of Byte;          { data that arrived while negotiating }
+    FEarlyLen, FEarlyPos: LongInt;
+    FWant: tPortSettings;           { what Configure asked for }
+    FAsked: array[CPO_SETBAUDRATE..CPO_SETCONTROL] of Boolean;  { answer due }
+    FBad: ShortString;                  { a setting the server answered otherwise }
+    FModem: Byte;                   { last NOTIFY-MODEMSTATE }
+    FLineOverruns: LongWord;
+    FConnecting: Boolean;
+    FSettingsDue: Boolean;          { SendSettings before the server's DO }
+    function SockResult(E: tSockErr): tChResult;
+    function TryNextAddr: tSockErr;
+    procedure Started;
+    procedure Queue(const Buf; Len: LongInt);
+    function FlushOut: tChResult;
+    procedure SendSetting(Code: Byte; const Value; Len: LongInt);
+    function Take(var Buf; Size: LongInt; out Got: LongInt; Keep: Boolean): tChResult;
+    procedure OnSub;
+    function Answered: Boolean;
+    procedure TakeClient;
+  public
+    { set before Open/Connect/Listen }
+    Host       : ShortString;
+    Port       : Word;
+    ConnectMs  : LongInt;
+    Rfc2217    : Boolean;
+    { FailKey (TChnPort) after a failure: 'HOST', 'BD', ... }
+    { Open ignores Path: Connect, or Listen when IsServer }
+    IsServer   : Boolean;
+    constructor Create; override;
+    function Open(const Path: tWordString): tChResult; override;
+    function Connect: tChResult;
+    function Listen: tChResult;
+    { Non-blocking connect for reconnecting: StartConnect, then ConnectPoll
+      answers res_Busy while in progress, res_Ok when up. }
+    function StartConnect: tChResult;
+    function ConnectPoll: tChResult;
+    function Configure(const S: tPortSettings): tChResult; override;
+    { Configure without waiting for the answers (after a reconnect) }
+    procedure SendSettings(const S: tPortSettings);
+    function Read(var Buf; Size: LongInt; out Got: LongInt): tChResult; override;
+    function WaitInput(Ms: LongInt): Boolean; override;
+    function WaitOutput(Ms: LongInt): Boolean; override;
+    function Write(const Buf; Len: LongInt; out Done: LongInt): tChResult; override;
+    function OutQueue(out N: LongInt): tChResult; override;
+    function Drain: tChResult; override;
+    function Flush(Input, Output: Boolean): tChResult; override;
+    function SetRts(On: Boolean): tChResult; override;
+    function SetDtr(On: Boolean): tChResult; override;
+    function GetLines(out Lines: tPortLines): tChResult; override;
+    function SetKernelRs485(On: Boolean): tChResult; override;
+    function OsOverruns(out N: LongWord): tChResult; override;
+    function OsHandle: PtrInt; override;
+    { the local port (a server on port 0 gets a free one) }
+    function LocalPort: Word;
+    function HasClient: Boolean;
+    function ListenHandle: tSock;
+    procedure Close; override;
+  end;
+
+implementation
+
+uses
+  SysUtils;
+
+const
+  OutCap = 8192;           { encoded bytes held before Write says "full" }
+  CtlReserve = 256;        { room kept for control commands }
+
+constructor TChnPortTcp.Create;
+begin
+  inherited Create;
+  FSock := NoSock;
+  FListen := NoSock;
+  ConnectMs := 3000;
+  SetLength(FOut, OutCap + CtlReserve);
+end;
+
+function TChnPortTcp.SockResult(E: tSockErr): tChResult;
+begin
+  FOSError := SockLastOsError;
+  case E of
+    seOk: Result := res_Ok;
+    seNoHost: begin Result := res_HostUnknown; FailKey := 'HOST'; end;
+    seRefused: Result := res_Refused;
+    seTimeout: Result := res_Timeout;
+    seLost: Result := res_DeviceLost;
+    seInUse: Result := res_CannotOpen;
+    seAccess: Result := res_NoPermission;
+  else
+    Result := res_IOError;
+  end;
+end;
+
+function TChnPortTcp.Open(const Path: tWordString): tChResult;
+begin
+  if IsServer then
+    Result := Listen
+  else
+    Result := Connect;
+end;
+
+procedure TChnPortTcp.Started;
+begin
+  FOpen := True;
+  FOutLen := 0;
+  FEarlyLen := 0;
+  FEarlyPos := 0;
+  FBad := '';
+  FModem := 0;
+  FLineOverruns := 0;
+  FillChar(FAsked, SizeOf(FAsked), 0);
+  FSettingsDue := False;
+  TelnetInit(FDec);
+  TelnetNegInit(FNeg);
+end;
+
+function TChnPortTcp.TryNextAddr: tSockErr;
+begin
+  Result := seNoHost;
+  while FAddrNext < FAddrCount do
+  begin
+    Result := SockConnectStart(FAddrs[FAddrNext], FSock);
+    Inc(FAddrNext);
+    if Result in [seOk, seWouldBlock] then
+      Exit;
+  end;
+end;
+
+function TChnPortTcp.StartConnect: tChResult;
+var
+  E: tSockErr;
+begin
+  Close;
+  FailKey := '';
+  FDevice := Host + ':' + IntToStr(Port);
+  E := SockResolve(Host, Port, False, FAddrs, FAddrCount);
+  if E <> seOk then
+    Exit(SockResult(E));
+  FAddrNext := 0;
+  E := TryNextAddr;
+  if not (E in [seOk, seWouldBlock]) then
+    Exit(SockResult(E));
+  FConnecting := True;
+  Result := res_Busy;
+end;
+
+{ A connected client in Telnet mode asks for what it wants at once. }
+function TChnPortTcp.ConnectPoll: tChResult;
+var
+  E: tSockErr;
+  B: array[0..8] of Byte;
+begin
+  if not FConnecting then
+    Exit(res_WrongState);
+  E := SockConnectDone(FSock, 0);
+  while not (E in [seOk, seWouldBlock]) do
+  begin
+    { this address failed: the next one (IPv6 and IPv4 of one name) }
+    SockClose(FSock);
+    if FAddrNext >= FAddrCount then
+    begin
+      FConnecting := False;
+      Exit(SockResult(E));          { the last address's reason }
+    end;
+    E := TryNextAddr;
+    if E = seOk then
+      E := SockConnectDone(FSock, 0)
+    else if E = seWouldBlock then
+      E := SockConnectDone(FSock, 0);
+  end;
+  if E = seWouldBlock then
+    Exit(res_Busy);
+  FConnecting := False;
+  Started;
+  if Rfc2217 then
+  begin
+    TelnetCmd(B[0], TN_WILL, TNO_COMPORT);
+    TelnetCmd(B[3], TN_WILL, TNO_BINARY);
+    TelnetCmd(B[6], TN_DO, TNO_BINARY);
+    TelnetAsked(FNeg, TN_WILL, TNO_COMPORT);
+    TelnetAsked(FNeg, TN_WILL, TNO_BINARY);
+    TelnetAsked(FNeg, TN_DO, TNO_BINARY);
+    Queue(B, 9);
+    FlushOut;
+  end;
+  Result := res_Ok;
+end;
+
+function TChnPortTcp.Connect: tChResult;
+var
+  Deadline: QWord;
+begin
+  Result := StartConnect;
+  Deadline := GetTickCount64 + QWord(ConnectMs);
+  while Result = res_Busy do
+  begin
+    if GetTickCount64 >= Deadline then
+    begin
+      Close;
+      Exit(res_Timeout);
+    end;
+    SockWait([FSock], True, 10);
+    Result := ConnectPoll;
+  end;
+  if Result <> res_Ok then
+    Close;
+end;
+
+function TChnPortTcp.Listen: tChResult;
+var
+  E: tSockErr;
+begin
+  Close;
+  FailKey := '';
+  FDevice := Host + ':' + IntToStr(Port);
+  E := SockResolve(Host, Port, True, FAddrs, FAddrCount);
+  if E = seOk then
+    E := SockListen(FAddrs[0], FListen);
+  if E <> seOk then
+  begin
+    Result := SockResult(E);
+    if E = seNoHost then
+      FailKey := 'LISTEN';
+    Exit;
+  end;
+  Started;
+  Result := res_Ok;
+end;
+
+procedure TChnPortTcp.TakeClient;
+var
+  S: tSock;
+begin
+  if FListen = NoSock then
+    Exit;
+  while SockAccept(FListen, S) = seOk do
+    if FSock = NoSock then
+    begin
+      FSock := S;
+      FOutLen := 0;
+      TelnetInit(FDec);
+    end
+    else
+      SockClose(S);                 { one client at a time }
+end;
+
+function TChnPortTcp.ListenHandle: tSock;
+begin
+  Result := FListen;
+end;
+
+function TChnPortTcp.HasClient: Boolean;
+begin
+  Result := FSock <> NoSock;
+end;
+
+procedure TChnPortTcp.Queue(const Buf; Len: LongInt);
+begin
+  if FOutLen + Len > Length(FOut) then
+    Exit;                           { a peer that reads nothing: dropped }
+  Move(Buf, FOut[FOutLen], Len);
+  Inc(FOutLen, Len);
+end;
+
+function TChnPortTcp.FlushOut: tChResult;
+var
+  Done: LongInt;
+  E: tSockErr;
+begin
+  Result := res_Ok;
+  if (FOutLen = 0) or (FSock = NoSock) then
+    Exit;
+  E := SockSend(FSock, FOut[0], FOutLen, Done);
+  if E <> seOk then
+    Exit(SockResult(E));
+  if Done > 0 then
+  begin
+    Move(FOut[Done], FOut[0], FOutLen - Done);
+    Dec(FOutLen, Done);
+  end;
+end;
+
+procedure TChnPortTcp.SendSetting(Code: Byte; const Value; Len: LongInt);
+var
+  B: array[0..15] of Byte;
+begin
+  Queue(B, ComPortCmd(B, Code, Value, Len));
+  if Code in [CPO_SETBAUDRATE..CPO_SETCONTROL] then
+    FAsked[Code] := True;
+end;
+
+procedure TChnPortTcp.SendSettings(const S: tPortSettings);
+const
+  ParCodes: array[tPortParity] of Byte = (CPP_NONE, CPP_EVEN, CPP_ODD, CPP_MARK, CPP_SPACE);
+  FlowCodes: array[tPortFlow] of Byte = (CPC_FLOWNONE, CPC_FLOWHW, CPC_FLOWXON);
+var
+  V: array[0..3] of Byte;
+begin
+  FWant := S;
+  FBad := '';
+  if not Rfc2217 then
+    Exit;
+  FSettingsDue := not FNeg[TNO_COMPORT].Us;
+  if FSettingsDue then
+    Exit;                           { no subnegotiation before the option is on }
+  BaudToBytes(S.Baud, V);
+  SendSetting(CPO_SETBAUDRATE, V, 4);
+  V[0] := S.DataBits;
+  SendSetting(CPO_SETDATASIZE, V, 1);
+  V[0] := ParCodes[S.Parity];
+  SendSetting(CPO_SETPARITY, V, 1);
+  V[0] := S.StopBits;
+  SendSetting(CPO_SETSTOPSIZE, V, 1);
+  V[0] := FlowCodes[S.Flow];
+  SendSetting(CPO_SETCONTROL, V, 1);
+  FlushOut;
+end;
+
+{ A COM-PORT-OPTION message from the server. }
+procedure TChnPortTcp.OnSub;
+const
+  ParCodes: array[tPortParity] of Byte = (CPP_NONE, CPP_EVEN, CPP_ODD, CPP_MARK, CPP_SPACE);
+  FlowCodes: array[tPortFlow] of Byte = (CPC_FLOWNONE, CPC_FLOWHW, CPC_FLOWXON);
+
+  procedure Check(Code: Byte; Ok: Boolean; const Key: string);
+  begin
+    if not FAsked[Code] then
+      Exit;                         { not ours to check (an unsolicited report) }
+    FAsked[Code] := False;
+    if (not Ok) and (FBad = '') then
+      FBad := Key;
+  end;
+
+var
+  Code: Byte;
+begin
+  if (FDec.Opt <> TNO_COMPORT) or (FDec.SubLen < 1) or (FDec.Sub[0] < CPO_SERVER) then
+    Exit;
+  Code := FDec.Sub[0] - CPO_SERVER;
+  with FDec do
+    case Code of
+      CPO_SETBAUDRATE:
+        if SubLen >= 5 then
+          Check(Code, BytesToBaud(Sub, 1) = LongWord(FWant.Baud), 'BD');
+      CPO_SETDATASIZE:
+        if SubLen >= 2 then
+          Check(Code, Sub[1] = FWant.DataBits, 'BIT');
+      CPO_SETPARITY:
+        if SubLen >= 2 then
+          Check(Code, Sub[1] = ParCodes[FWant.Parity], 'PAR');
+      CPO_SETSTOPSIZE:
+        if SubLen >= 2 then
+          Check(Code, Sub[1] = FWant.StopBits, 'STOP');
+      CPO_SETCONTROL:
+        { the flow answer; DTR/RTS answers come unasked and pass }
+        if (SubLen >= 2) and (Sub[1] <= CPC_FLOWHW) then
+          Check(Code, Sub[1] = FlowCodes[FWant.Flow], 'FLW');
+      CPO_NOTIFYLINE:
+        if (SubLen >= 2) and (Sub[1] and CPL_OVERRUN <> 0) then
+          Inc(FLineOverruns);
+      CPO_NOTIFYMODEM:
+        if SubLen >= 2 then
+          FModem := Sub[1];
+    end;
+end;
+
+function TChnPortTcp.Answered: Boolean;
+var
+  C: Byte;
+begin
+  Result := True;
+  for C := Low(FAsked) to High(FAsked) do
+    if FAsked[C] then
+      Exit(False);
+end;
+
+{ Receive and decode: data into Buf (or, with Keep, into FEarly), Telnet
+  commands handled on the way. }
+function TChnPortTcp.Take(var Buf; Size: LongInt; out Got: LongInt; Keep: Boolean): tChResult;
+var
+  Raw: array[0..4095] of Byte;
+  N, I: LongInt;
+  E: tSockErr;
+  Ans: Byte;
+  R: array[0..2] of Byte;
+  D: PByte;
+begin
+  Got := 0;
+  D := @Buf;
+  if Keep or (Size > SizeOf(Raw)) then
+    Size := SizeOf(Raw);            { decoded data is never longer than raw }
+  E := SockRecv(FSock, Raw, Size, N);
+  if E <> seOk then
+    Exit(SockResult(E));
+  if not Rfc2217 then
+  begin
+    Move(Raw, Buf, N);
+    Got := N;
+    Exit(res_Ok);
+  end;
+  for I := 0 to N - 1 do
+    case TelnetFeed(FDec, Raw[I]) of
+      teData:
+        if Keep then
+        begin
+          if FEarlyLen >= Length(FEarly) then
+            SetLength(FEarly, FEarlyLen + 4096);
+          FEarly[FEarlyLen] := Raw[I];
+          Inc(FEarlyLen);
+        end
+        else
+        begin
+          D[Got] := Raw[I];
+          Inc(Got);
+        end;
+      teOption:
+        begin
+          Ans := TelnetAnswer(FNeg, FDec.Cmd, FDec.Opt);
+          if Ans <> 0 then
+            Queue(R, TelnetCmd(R, Ans, FDec.Opt));
+          if FSettingsDue and FNeg[TNO_COMPORT].Us then
+            SendSettings(FWant);
+        end;
+      teSub:
+        OnSub;
+    end;
+  Result := FlushOut;
+end;
+
+function TChnPortTcp.Configure(const S: tPortSettings): tChResult;
+var
+  Deadline: QWord;
+  Got: LongInt;
+  Dummy: Byte;
+begin
+  FWant := S;
+  if not Rfc2217 then
+    Exit(res_Ok);                   { the server's own settings apply }
+  Deadline := GetTickCount64 + QWord(ConnectMs);
+  { first the server's consent to COM-PORT-OPTION }
+  while not FNeg[TNO_COMPORT].Us do
+  begin
+    if (GetTickCount64 >= Deadline) or not FNeg[TNO_COMPORT].UsAsked then
+    begin
+      FailKey := 'RFC2217';
+      Exit(res_BadSetting);
+    end;
+    SockWait([FSock], False, 10);
+    Result := Take(Dummy, 1, Got, True);
+    if Result <> res_Ok then
+      Exit;
+  end;
+  SendSettings(S);
+  while not Answered do
+  begin
+    if GetTickCount64 >= Deadline then
+      Break;
+    SockWait([FSock], False, 10);
+    Result := Take(Dummy, 1, Got, True);
+    if Result <> res_Ok then
+      Exit;
+  end;
+  if FBad = '' then
+    if FAsked[CPO_SETBAUDRATE] then FBad := 'BD'
+    else if FAsked[CPO_SETDATASIZE] then FBad := 'BIT'
+    else if FAsked[CPO_SETPARITY] then FBad := 'PAR'
+    else if FAsked[CPO_SETSTOPSIZE] then FBad := 'STOP'
+    else if FAsked[CPO_SETCONTROL] then FBad := 'FLW';
+  if FBad <> '' then
+  begin
+    FailKey := FBad;
+    Exit(res_BadSetting);
+  end;
+  Result := res_Ok;
+end;
+
+function TChnPortTcp.Read(var Buf; Size: LongInt; out Got: LongInt): tChResult;
+var
+  N: LongInt;
+begin
+  Got := 0;
+  if not FOpen then
+    Exit(res_WrongState);
+  if FEarlyPos < FEarlyLen then
+  begin
+    N := FEarlyLen - FEarlyPos;
+    if N > Size then
+      N := Size;
+    Move(FEarly[FEarlyPos], Buf, N);
+    Inc(FEarlyPos, N);
+    Got := N;
+    Exit(res_Ok);
+  end;
+  TakeClient;
+  if FSock = NoSock then
+    Exit(res_Ok);
+  Result := Take(Buf, Size, Got, False);
+  if (Result = res_DeviceLost) and (FListen <> NoSock) then
+  begin
+    SockClose(FSock);               { the client left: wait for the next }
+    Result := res_Ok;
+  end;
+  if (Result = res_Ok) and (FBad <> '') then
+  begin
+    FailKey := FBad;
+    Result := res_BadSetting;
+  end;
+end;
+
+function TChnPortTcp.WaitInput(Ms: LongInt): Boolean;
+begin
+  if FEarlyPos < FEarlyLen then
+    Exit(True);
+  Result := SockWait([FSock, FListen], False, Ms);
+end;
+
+function TChnPortTcp.WaitOutput(Ms: LongInt): Boolean;
+begin
+  Result := SockWait([FSock], True, Ms);
+end;
+
+function TChnPortTcp.Write(const Buf; Len: LongInt; out Done: LongInt): tChResult;
+var
+  E: tSockErr;
+begin
+  Done := 0;
+  if not FOpen then
+    Exit(res_WrongState);
+  TakeClient;
+  if FSock = NoSock then
+  begin
+    Done := Len;                    { no client: as a line with no cable }
+    Exit(res_Ok);
+  end;
+  Result := FlushOut;
+  if Result = res_Ok then
+    if not Rfc2217 then
+    begin
+      if FOutLen = 0 then
+      begin
+        E := SockSend(FSock, Buf, Len, Done);
+        Result := SockResult(E);
+      end;
+    end
+    else if FOutLen < OutCap then
+    begin
+      Inc(FOutLen, TelnetEscape(Buf, Len, FOut[FOutLen], OutCap - FOutLen, Done));
+      Result := FlushOut;
+    end;
+  if (Result = res_DeviceLost) and (FListen <> NoSock) then
+  begin
+    SockClose(FSock);
+    Done := Len;
+    Result := res_Ok;
+  end;
+end;
+
+function TChnPortTcp.OutQueue(out N: LongInt): tChResult;
+begin
+  N := FOutLen + SockOutQueue(FSock);
+  Result := res_Ok;
+end;
+
+function TChnPortTcp.Drain: tChResult;
+begin
+  Result := FlushOut;
+end;
+
+function TChnPortTcp.Flush(Input, Output: Boolean): tChResult;
+var
+  Scratch: array[0..4095] of Byte;
+  Got, Rounds: LongInt;
+  V: Byte;
+begin
+  Result := res_Ok;
+  if FSock = NoSock then
+    Exit;
+  if Output then
+    FOutLen := 0;                   { may cut a command; only on close }
+  if Input then
+  begin
+    FEarlyLen := 0;
+    FEarlyPos := 0;
+    Rounds := 0;
+    repeat
+      Result := Take(Scratch, SizeOf(Scratch), Got, False);
+      Inc(Rounds);
+    until (Result <> res_Ok) or (Got = 0) or (Rounds >= 64);
+  end;
+  if Rfc2217 and (Result = res_Ok) and (Input or Output) then
+  begin
+    if Input and Output then V := CPU_BOTH
+    else if Input then V := CPU_RX
+    else V := CPU_TX;
+    SendSetting(CPO_PURGEDATA, V, 1);
+    Result := FlushOut;
+  end;
+end;
+
+function TChnPortTcp.SetRts(On: Boolean): tChResult;
+var
+  V: Byte;
+begin
+  if not Rfc2217 then
+    Exit(res_BadSetting);           { raw TCP carries no modem lines }
+  if On then V := CPC_RTSON else V := CPC_RTSOFF;
+  SendSetting(CPO_SETCONTROL, V, 1);
+  FAsked[CPO_SETCONTROL] := False;
+  Result := FlushOut;
+end;
+
+function TChnPortTcp.SetDtr(On: Boolean): tChResult;
+var
+  V: Byte;
+begin
+  if not Rfc2217 then
+    Exit(res_BadSetting);
+  if On then V := CPC_DTRON else V := CPC_DTROFF;
+  SendSetting(CPO_SETCONTROL, V, 1);
+  FAsked[CPO_SETCONTROL] := False;
+  Result := FlushOut;
+end;
+
+function TChnPortTcp.GetLines(out Lines: tPortLines): tChResult;
+begin
+  Lines := [];
+  if not Rfc2217 then
+    Exit(res_BadSetting);
+  if FModem and CPM_CTS <> 0 then Include(Lines, plCts);
+  if FModem and CPM_DSR <> 0 then Include(Lines, plDsr);
+  if FModem and CPM_RI <> 0 then Include(Lines, plRing);
+  if FModem and CPM_CD <> 0 then Include(Lines, plCarrier);
+  Result := res_Ok;
+end;
+
+function TChnPortTcp.SetKernelRs485(On: Boolean): tChResult;
+begin
+  Result := res_BadSetting;
+end;
+
+function TChnPortTcp.OsOverruns(out N: LongWord): tChResult;
+begin
+  N := FLineOverruns;
+  Result := res_Ok;
+end;
+
+function TChnPortTcp.OsHandle: PtrInt;
+begin
+  Result := FSock;
+end;
+
+function TChnPortTcp.LocalPort: Word;
+begin
+  if FListen <> NoSock then
+    Result := SockLocalPort(FListen)
+  else if FSock <> NoSock then
+    Result := SockLocalPort(FSock)
+  else
+    Result := 0;
+end;
+
+procedure TChnPortTcp.Close;
+begin
+  if FOutLen > 0 then
+    FlushOut;                       { a last command (purge ...) still leaves }
+  SockClose(FSock);
+  SockClose(FListen);
+  FConnecting := False;
+  FOpen := False;
+end;
+
+end.

@@ -1,0 +1,385 @@
+{ ChnTcp - NAM=TCP, a serial line at a TCP port (docs/ChnTcp.md).
+
+  The physical layer of a serial device server (Moxa NPort, Lantronix,
+  Digi, ser2net): the same contract as NAM=COM - a message is a chunk of raw
+  bytes, polled with ChReceiveReady/ChReceive/ChSend/ChSendReady, IDL=, LRB=,
+  LSB= - because it is a tChnCom whose port is a TCP connection
+  (ChnPortTcp). Parameters (ChGetParam reports them all):
+
+    HOST=name   server name or IPv4/IPv6 address (client)
+    PORT=n      its TCP port, 1..65535
+    LISTEN=[addr:]port   serve instead: one client at a time; without addr
+                the loopback interface only ([::1]:port for IPv6; 0.0.0.0
+                or [::] for every interface must be written out)
+    CTO=ms      bound of a connect and of the RFC 2217 answers, default 3000
+    RECON=ms    0 (default): a lost connection stays lost until ChClose +
+                ChOpen; n: try again every n ms by itself, results say
+                res_Reconnecting meanwhile
+    RFC2217=OFF|ON  Telnet COM Port Control: BD BIT PAR STOP FLW set the
+                server's serial port, checked against its answers
+    BD BIT STOP PAR FLW LRB LSB IDL   as NAM=COM (BD.. FLW only with RFC2217;
+                raw, they are reported back and the server's own settings
+                apply)
+
+  Faults: name not resolved res_HostUnknown, connection refused
+  res_Refused, no connection within CTO res_Timeout, address in use
+  res_CannotOpen, a setting refused or changed by the server res_BadSetting
+  - all leave the layer closed and ChParamError names the token at fault;
+  peer closed or reset mid-session res_DeviceLost (or res_Reconnecting with
+  RECON=) from the next poll on, as COM's lost device. }
+unit ChnTcp;
+
+{$I chn.inc}
+
+interface
+
+uses
+  ChnTypes, ChnVirt, ChnPort, ChnCom, ChnPortTcp;
+
+const
+  cName = 'TCP';
+  TcpDefaultCto = 3000;
+
+type
+  pChnTcp = ^tChnTcp;
+  tChnTcp = object(tChnCom)
+    CH_Host    : tWordString;      { HOST= }
+    CH_TcpPort : LongInt;          { PORT=, 0 = not given }
+    CH_Listen  : tWordString;      { LISTEN= as given, '' = client }
+    CH_Cto     : LongInt;          { CTO= }
+    CH_Recon   : LongInt;          { RECON=, 0 = off }
+    CH_Rfc     : Boolean;          { RFC2217= }
+    CH_Retry   : TChnPortTcp;      { a reconnect in progress }
+    CH_RetryAt : QWord;            { next reconnect attempt (GetTickCount64) }
+    CH_RetryEnd: QWord;            { the one in progress gives up then }
+    constructor Init;
+    constructor ChInitParam(const S: tParamStr);
+    function  ChSetOneParam(const S: tWordString; var CmdL: tCmd): tChResult; virtual;
+    function  ChOwnParams: tParamStr; virtual;
+    procedure ChClose; virtual;
+    procedure ChSend(Buff: Pointer; Len: Word); virtual;
+    function  ChSendReady: tChState; virtual;
+    function  ChReceiveReady: tChState; virtual;
+    procedure ChReceive(var Len: Word); virtual;
+    { --- additions --- }
+    { The local TCP port: with LISTEN=...:0 the one the OS picked. }
+    function  ChLocalPort: Word;
+    { A server (LISTEN=) has a client now. }
+    function  ChHasClient: Boolean;
+    { The listening socket (tests ask the OS what it is bound to). }
+    function  ChListenHandle: PtrInt;
+  protected
+    function  ComOpenPort(out Port: TChnPort): tChResult; virtual;
+  private
+    function  TcpNewPort: TChnPortTcp;
+    procedure TcpTick;
+  end;
+
+  pAddChnTcp = ^tAddChnTcp;
+  tAddChnTcp = object(tAddChnVirt)
+    function ChInit: pChnVirt; virtual;
+  end;
+
+{ Split 'addr:port', 'port' or '[v6addr]:port'; False when malformed. }
+function SplitHostPort(const S: ShortString; out Host: ShortString; out Port: LongInt): Boolean;
+
+implementation
+
+uses
+  SysUtils, uString;
+
+function SplitHostPort(const S: ShortString; out Host: ShortString; out Port: LongInt): Boolean;
+var
+  P: Integer;
+  PortText: string;
+begin
+  Host := '';
+  Port := 0;
+  if (S <> '') and (S[1] = '[') then
+  begin
+    P := Pos(']:', S);
+    if P < 3 then
+      Exit(False);
+    Host := Copy(S, 2, P - 2);
+    PortText := Copy(S, P + 2, 255);
+  end
+  else
+  begin
+    P := Length(S);
+    while (P > 0) and (S[P] <> ':') do
+      Dec(P);
+    Host := Copy(S, 1, P - 1);
+    PortText := Copy(S, P + 1, 255);
+    if (P > 0) and ((Host = '') or (Pos(':', Host) > 0)) then
+      Exit(False);                  { ':5000', or IPv6 without brackets }
+  end;
+  Result := StrToNum(PortText, 0, 65535, Port);
+end;
+
+constructor tChnTcp.Init;
+begin
+  inherited Init;
+  CH_Type := cName;
+  CH_Name := CH_Type;
+  CH_NumName := ChNumName(CH_Type);
+  CH_Host := '';
+  CH_TcpPort := 0;
+  CH_Listen := '';
+  CH_Cto := TcpDefaultCto;
+  CH_Recon := 0;
+  CH_Rfc := False;
+  CH_Retry := nil;
+  CH_RetryAt := 0;
+  CH_RetryEnd := 0;
+end;
+
+constructor tChnTcp.ChInitParam(const S: tParamStr);
+begin
+  Init;
+  ChSetParam(S);
+end;
+
+function tChnTcp.ChSetOneParam(const S: tWordString; var CmdL: tCmd): tChResult;
+var
+  Key: string;
+  H: ShortString;
+  N: LongInt;
+begin
+  Key := ParamKey(S);
+  if Key = 'HOST' then
+  begin
+    Result := res_Ok;
+    if ParamValue(S) = '' then
+      Result := res_BadParam;
+    if (Result = res_Ok) and (CmdL = cmd_Set) then
+      CH_Host := ParamValue(S);
+  end
+  else if Key = 'PORT' then
+    Result := ParamSetNum(S, 1, 65535, CmdL, CH_TcpPort)
+  else if Key = 'LISTEN' then
+  begin
+    if SplitHostPort(ParamValue(S), H, N) then
+      Result := res_Ok
+    else
+      Result := res_BadParam;
+    if (Result = res_Ok) and (CmdL = cmd_Set) then
+      CH_Listen := ParamValue(S);
+  end
+  else if Key = 'CTO' then
+    Result := ParamSetNum(S, 1, 600000, CmdL, CH_Cto)
+  else if Key = 'RECON' then
+    Result := ParamSetNum(S, 0, 3600000, CmdL, CH_Recon)
+  else if Key = 'RFC2217' then
+    Result := ParamFlag(S, 'OFF|ON', CmdL, CH_Rfc)
+  else if (Key = 'BD') or (Key = 'BIT') or (Key = 'STOP') or (Key = 'PAR') or
+    (Key = 'FLW') or (Key = 'LRB') or (Key = 'LSB') or (Key = 'IDL') then
+    Result := inherited ChSetOneParam(S, CmdL)
+  else
+    { COM's device keys (COM DEV DRV RS485 IRQ ...) mean nothing here }
+    Result := tChnVirt.ChSetOneParam(S, CmdL);
+end;
+
+function tChnTcp.ChOwnParams: tParamStr;
+var
+  R: string;
+begin
+  R := tChnVirt.ChOwnParams;
+  if CH_Listen <> '' then
+    R := R + ' LISTEN=' + CH_Listen
+  else
+  begin
+    if CH_Host <> '' then
+      R := R + ' HOST=' + CH_Host;
+    if CH_TcpPort <> 0 then
+      R := R + ParamText('PORT', CH_TcpPort);
+  end;
+  Result := R + ParamText('CTO', CH_Cto) + ParamText('RECON', CH_Recon) +
+    FlagText('RFC2217', 'OFF|ON', CH_Rfc) + ComLineText(CH_Set) + ComBufferText;
+end;
+
+function tChnTcp.TcpNewPort: TChnPortTcp;
+var
+  H: ShortString;
+  N: LongInt;
+begin
+  Result := TChnPortTcp.Create;
+  Result.ConnectMs := CH_Cto;
+  Result.Rfc2217 := CH_Rfc;
+  if CH_Listen <> '' then
+  begin
+    SplitHostPort(CH_Listen, H, N);
+    if H = '' then
+      H := '127.0.0.1';             { never every interface by default }
+    Result.IsServer := True;
+    Result.Host := H;
+    Result.Port := N;
+  end
+  else
+  begin
+    Result.Host := CH_Host;
+    Result.Port := CH_TcpPort;
+  end;
+end;
+
+function tChnTcp.ComOpenPort(out Port: TChnPort): tChResult;
+var
+  P: TChnPortTcp;
+  Key: string;
+begin
+  Port := nil;
+  Key := '';
+  if CH_Listen <> '' then
+  begin
+    if CH_Host <> '' then
+      Key := 'HOST'                 { a server has no peer to name }
+    else if CH_Rfc then
+      Key := 'RFC2217';             { the server side of RFC 2217 is not ours }
+  end
+  else if CH_Host = '' then
+    Key := 'HOST'
+  else if CH_TcpPort = 0 then
+    Key := 'PORT';
+  if Key <> '' then
+  begin
+    CH_ParamErr := Key + '=';
+    if Key = 'HOST' then
+      CH_ParamErr := ChGetParam(Key);
+    if CH_ParamErr = '' then
+      CH_ParamErr := Key + '=';
+    Exit(res_BadSetting);
+  end;
+  P := TcpNewPort;
+  Result := P.Open('');
+  if Result = res_Ok then
+    Result := P.Configure(CH_Set);
+  if Result <> res_Ok then
+  begin
+    Key := P.FailKey;
+    if Key = '' then
+      if CH_Listen <> '' then
+        Key := 'LISTEN'
+      else if Result = res_Refused then
+        Key := 'PORT'
+      else
+        Key := 'HOST';
+    CH_ParamErr := ChGetParam(Key);
+    P.Free;
+    Exit;
+  end;
+  Port := P;
+  CH_RetryAt := 0;
+end;
+
+procedure tChnTcp.ChClose;
+begin
+  FreeAndNil(CH_Retry);
+  inherited ChClose;
+end;
+
+{ RECON=: turn a lost connection into res_Reconnecting and try again every
+  RECON ms without blocking the poll; a new connection replaces the port. }
+procedure tChnTcp.TcpTick;
+var
+  R: tChResult;
+  Now: QWord;
+begin
+  if (CH_Recon = 0) or (CH_Listen <> '') or (CH_Port = nil) or
+    (CH_Fault = res_Ok) or (CH_Fault = res_BadSetting) then
+    Exit;
+  if CH_Fault <> res_Reconnecting then
+  begin
+    CH_Fault := res_Reconnecting;
+    CH_Result := res_Reconnecting;
+    CH_RResult := res_Reconnecting;
+    CH_SResult := res_Reconnecting;
+  end;
+  Now := GetTickCount64;
+  if (CH_Retry = nil) and (Now >= CH_RetryAt) then
+  begin
+    CH_Retry := TcpNewPort;
+    CH_RetryEnd := Now + QWord(CH_Cto);
+    if CH_Retry.StartConnect <> res_Busy then
+    begin
+      FreeAndNil(CH_Retry);
+      CH_RetryAt := Now + QWord(CH_Recon);
+    end;
+  end;
+  if CH_Retry = nil then
+    Exit;
+  R := CH_Retry.ConnectPoll;
+  if R = res_Ok then
+  begin
+    CH_Retry.SendSettings(CH_Set);  { answers are checked as they come }
+    CH_Port.Free;
+    CH_Port := CH_Retry;
+    CH_Retry := nil;
+    CH_TxLen := 0;
+    CH_TxPos := 0;
+    CH_Fault := res_Ok;
+    CH_Result := res_Ok;
+    CH_RResult := res_Ok;
+    CH_SResult := res_Ok;
+  end
+  else if (R <> res_Busy) or (Now >= CH_RetryEnd) then
+  begin
+    FreeAndNil(CH_Retry);
+    CH_RetryAt := Now + QWord(CH_Recon);
+  end;
+end;
+
+procedure tChnTcp.ChSend(Buff: Pointer; Len: Word);
+begin
+  TcpTick;
+  inherited ChSend(Buff, Len);
+  TcpTick;
+end;
+
+function tChnTcp.ChSendReady: tChState;
+begin
+  TcpTick;
+  Result := inherited ChSendReady;
+  TcpTick;
+end;
+
+function tChnTcp.ChReceiveReady: tChState;
+begin
+  TcpTick;
+  Result := inherited ChReceiveReady;
+  TcpTick;
+end;
+
+procedure tChnTcp.ChReceive(var Len: Word);
+begin
+  inherited ChReceive(Len);
+  TcpTick;
+end;
+
+function tChnTcp.ChLocalPort: Word;
+begin
+  if CH_Port = nil then
+    Result := 0
+  else
+    Result := TChnPortTcp(CH_Port).LocalPort;
+end;
+
+function tChnTcp.ChHasClient: Boolean;
+begin
+  Result := (CH_Port <> nil) and TChnPortTcp(CH_Port).HasClient;
+end;
+
+function tChnTcp.ChListenHandle: PtrInt;
+begin
+  if CH_Port = nil then
+    Result := -1
+  else
+    Result := TChnPortTcp(CH_Port).ListenHandle;
+end;
+
+function tAddChnTcp.ChInit: pChnVirt;
+begin
+  Result := New(pChnTcp, Init);
+end;
+
+initialization
+  ChnCollection^.Insert(New(pAddChnTcp, Init(cName)));
+end.

@@ -1,0 +1,140 @@
+#!/usr/bin/env bash
+# tests/packaging.sh - the library as users get it (called by tests/run.sh):
+#  0. no file points outside the repository;
+#  1. chn.lpk lists every unit of src/;
+#  2. every complete program in README.md ("program ...;" in a ```pascal
+#     block) is built outside the tree the three ways the README gives -
+#     -Fu to this checkout, "make install" (per user, found by plain fpc),
+#     the Lazarus package (lazbuild) - and run against tools/df1sim on a
+#     pty: each must print "Ok";
+#  3. make install DESTDIR=... PREFIX=/usr puts the units where Debian's
+#     fpc looks, a program builds against them, make uninstall removes them;
+#  4. fpmake.pp builds and installs the package.
+# Prints "ok|FAIL|skip  name" lines; tests/run.sh counts them.
+set -u
+BUILD=${BUILD:-build}
+FPC=${FPC:-fpc}
+REPO=$(pwd)
+TMP=$(mktemp -d "${TMPDIR:-/tmp}/chn-pkg.XXXXXX")
+SIMPID=
+cleanup() {
+  [ -n "$SIMPID" ] && { kill "$SIMPID" 2>/dev/null; wait "$SIMPID" 2>/dev/null; }
+  rm -rf "$TMP"
+}
+trap cleanup EXIT
+ok() { echo "ok    $1"; }
+bad() { echo "FAIL  $1"; [ -n "${2:-}" ] && [ -f "$2" ] && tail -n 15 "$2"; }
+skip() { echo "skip  $1"; }
+
+# 0. the repository stands alone: no file cites the project's outside
+# inputs (the specification, the seed copies of the manuals) or a path
+# beside the checkout; docs/PROTOCOLS.md and docs/REFERENCES.md say it
+pat='SPEC\.md|SPEC section|seed [0-9]{3}|seeds/|\.\./shared'
+hits=$(git ls-files 2>/dev/null | grep -v '^tests/packaging.sh$' |
+       xargs grep -lE "$pat" 2>/dev/null || true)
+if [ -z "$hits" ]; then ok "package: no file points outside the repository"
+else bad "package: files citing SPEC/seeds/../shared: $(echo $hits)"; fi
+
+# 1. chn.lpk
+missing=""
+for f in src/*.pas src/chn.inc; do
+  grep -q "<Filename Value=\"$f\"/>" chn.lpk || missing="$missing $f"
+done
+if [ -z "$missing" ]; then ok "package: chn.lpk lists every unit of src/"
+else bad "package: chn.lpk misses$missing (make writes it: commit it)"; fi
+
+# 2. README programs, each in its own folder outside the tree
+mkdir -p "$TMP/readme"
+awk -v dir="$TMP/readme" '
+  /^```pascal/ { inblk = 1; text = ""; name = ""; next }
+  /^```/ && inblk { inblk = 0; if (name != "") { f = dir "/" name ".pas"; printf "%s", text > f; close(f) } next }
+  inblk { text = text $0 "\n"; if (name == "" && match($0, /^program [A-Za-z0-9_]+;/)) { name = substr($0, 9, RLENGTH - 9) } }
+' README.md
+progs=$(cd "$TMP/readme" && ls *.pas 2>/dev/null | sed 's/\.pas$//')
+if [ -z "$progs" ]; then bad "package: README.md has no complete program"; fi
+
+"$BUILD/bin/df1sim" --pty --timeout=60 >"$TMP/sim.log" 2>&1 &
+SIMPID=$!
+for _ in $(seq 50); do [ -s "$TMP/sim.log" ] && break; sleep 0.1; done
+read -r tag PTY <"$TMP/sim.log" || true
+[ "${tag:-}" = PTY ] || { bad "package: df1sim did not start" "$TMP/sim.log"; PTY=/dev/null; }
+PARAMS="NAM=DF1 NOD=0 DNO=1 FHD=FULL CRC=ON NAM=COM DEV=$PTY BD=9600"
+
+# build_run WAY DIR PROG BUILD-COMMAND...: build in DIR, run, expect "Ok"
+build_run() {
+  local way=$1 dir=$2 p=$3; shift 3
+  if ! (cd "$dir" && "$@") >"$dir/$p.build" 2>&1; then
+    bad "package: README program $p ($way) does not build" "$dir/$p.build"; return
+  fi
+  if timeout 20 "$dir/$p" "$PARAMS" >"$dir/$p.run" 2>&1 && grep -q '^Ok' "$dir/$p.run"; then
+    ok "package: README program $p built and run ($way)"
+  else
+    bad "package: README program $p ($way) did not print Ok" "$dir/$p.run"
+  fi
+}
+
+# way 1: -Fu to the checkout
+for p in $progs; do
+  d="$TMP/checkout-$p"; mkdir -p "$d"; cp "$TMP/readme/$p.pas" "$d/"
+  build_run "-Fu to the checkout" "$d" "$p" "$FPC" -v0 -Fu"$REPO/src" -Fi"$REPO/src" "$p.pas"
+done
+
+# way 2: make install as a user (PREFIX=$HOME/.fppkg), then plain fpc
+H="$TMP/home"; mkdir -p "$H"
+if make -s install BUILD="$BUILD" PREFIX="$H/.fppkg" >"$TMP/install.log" 2>&1; then
+  for p in $progs; do
+    d="$TMP/installed-$p"; mkdir -p "$d"; cp "$TMP/readme/$p.pas" "$d/"
+    build_run "make install PREFIX=~/.fppkg, plain fpc" "$d" "$p" env HOME="$H" "$FPC" -v0 "$p.pas"
+  done
+else
+  bad "package: make install PREFIX=\$HOME/.fppkg" "$TMP/install.log"
+fi
+
+# way 3: the Lazarus package
+if ! command -v lazbuild >/dev/null 2>&1; then
+  skip "package: README programs with the Lazarus package: lazbuild missing (apt-get install lcl-utils-2.2)"
+else
+  L="$TMP/laz"; mkdir -p "$L/pkg"; cp -r chn.lpk src "$L/pkg/"
+  if lazbuild --pcp="$L/cfg" --add-package-link "$L/pkg/chn.lpk" >"$L/link.log" 2>&1 &&
+     lazbuild --pcp="$L/cfg" "$L/pkg/chn.lpk" >"$L/pkg.log" 2>&1; then
+    ok "package: lazbuild chn.lpk"
+    for p in $progs; do
+      d="$L/$p"; mkdir -p "$d"; cp "$TMP/readme/$p.pas" "$d/$p.lpr"
+      sed "s/@NAME@/$p/g" tests/data/project.lpi.in > "$d/$p.lpi"
+      build_run "Lazarus project requiring chn.lpk" "$d" "$p" lazbuild --pcp="$L/cfg" "$p.lpi"
+    done
+  else
+    bad "package: lazbuild chn.lpk" "$L/pkg.log"
+  fi
+fi
+
+# 3. root layout under DESTDIR, and uninstall
+D="$TMP/dest"
+MA=$(gcc -print-multiarch 2>/dev/null || dpkg-architecture -qDEB_HOST_MULTIARCH)
+U="$D/usr/lib/$MA/fpc/$($FPC -iV)/units/$($FPC -iTP)-$($FPC -iTO)/chn"
+if make -s install BUILD="$BUILD" DESTDIR="$D" >"$TMP/dinstall.log" 2>&1 && [ -f "$U/chnvirt.ppu" ] &&
+   [ -f "$D/usr/share/chn/src/ChnVirt.pas" ] && [ -f "$D/usr/share/chn/chn.lpk" ]; then
+  p=$(echo $progs | cut -d' ' -f1)
+  d="$TMP/destdir"; mkdir -p "$d"; cp "$TMP/readme/$p.pas" "$d/"
+  build_run "make install DESTDIR= PREFIX=/usr" "$d" "$p" "$FPC" -v0 -Fu"$U" "$p.pas"
+  make -s uninstall BUILD="$BUILD" DESTDIR="$D" >/dev/null 2>&1
+  if [ -e "$U" ] || [ -e "$D/usr/share/chn" ]; then bad "package: make uninstall left files"
+  else ok "package: make uninstall removes the units and sources"; fi
+else
+  bad "package: make install DESTDIR=... PREFIX=/usr (units in $U)" "$TMP/dinstall.log"
+fi
+
+# 4. fpmake
+F="$TMP/fpmake"; mkdir -p "$F"; cp -r fpmake.pp src "$F/"
+# fpmake looks for the RTL's package files under its prefix unless told
+# where the compiler's own units are: the folder above units/<target>/rtl
+echo 'program probe; begin end.' >"$F/probe.pas"
+G=$(cd "$F" && "$FPC" -va probe.pas 2>/dev/null | sed -n 's|.*PPU Loading \(.*\)/units/[^/]*/rtl/system.ppu|\1|p' | head -n 1)
+if (cd "$F" && "$FPC" -v0 fpmake.pp && ./fpmake build && \
+    ./fpmake install --prefix="$F/home/.fppkg" ${G:+--globalunitdir="$G"}) >"$F/log" 2>&1; then
+  p=$(echo $progs | cut -d' ' -f1)
+  d="$F/prog"; mkdir -p "$d"; cp "$TMP/readme/$p.pas" "$d/"
+  build_run "fpmake install, plain fpc" "$d" "$p" env HOME="$F/home" "$FPC" -v0 "$p.pas"
+else
+  bad "package: fpc fpmake.pp && ./fpmake build && ./fpmake install" "$F/log"
+fi
