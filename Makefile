@@ -35,10 +35,15 @@ UNITFLAGS := $(COMMON) $(SYNAPSE_FLAGS) -Fusrc -O2 -Sew -FU$(UNITDIR) -FE$(BINDI
 # plus tools/lib
 PROGFLAGS := $(COMMON) $(if $(SYNAPSE_DIR),-dCHN_SYNAPSE) -Fu$(UNITDIR) -Futools/lib -O2 -Sew \
              -FU$(TOOLUNITDIR) -FE$(BINDIR)
-# tests: range, overflow and stack checks, heaptrc, line info; -B rebuilds
-# everything, as FPC's one-second timestamps can miss a quick edit
-TESTFLAGS := $(COMMON) $(SYNAPSE_FLAGS) -Fusrc -Futools/lib -Futests/support -B -Cr -Co -Ct -gh -gl \
-             -FU$(TUNITDIR) -FE$(TBINDIR) -Fi$(BUILD)
+# tests: range, overflow and stack checks, heaptrc, line info (and -Xs-:
+# Debian's fpc.cfg strips it otherwise, and failures could not say where);
+# -B rebuilds everything, as FPC's one-second timestamps can miss a quick edit
+TESTFLAGS := $(COMMON) $(SYNAPSE_FLAGS) -Fusrc -Futools/lib -Futests/support -B -Cr -Co -Ct -gh -gl -Xs- \
+             -Fu$(BUILD)/fpcunit -FU$(TUNITDIR) -FE$(TBINDIR) -Fi$(BUILD)
+# FPCUnit rebuilt from Debian's fpc-source without optimisation, so that a
+# failing assert's location names the test's own line (the prebuilt one
+# loses the caller's frame); without fpc-source the prebuilt one is used.
+FPCUNIT_SRC = /usr/share/fpcsrc/$(shell $(FPC) -iV)/packages/fcl-fpcunit/src
 
 # Units that only build on another OS or with an optional library.
 ifeq ($(OS),Windows_NT)
@@ -118,7 +123,13 @@ $(BUILD)/testunits.inc: $(TESTUNITS)
 	@printf '%s\n' $(foreach t,$(basename $(notdir $(TESTUNITS))),$(call uses_entry,$(t))) > $@.tmp
 	@cmp -s $@.tmp $@ 2>/dev/null && rm -f $@.tmp || mv $@.tmp $@
 
-test: all $(BUILD)/testunits.inc
+$(BUILD)/fpcunit/stamp:
+	@mkdir -p $(BUILD)/fpcunit
+	@if [ -d $(FPCUNIT_SRC) ]; then for u in fpcunit testregistry; do \
+	  $(FPC) -v0 -O- -gl -Xs- -FU$(BUILD)/fpcunit -Fu$(FPCUNIT_SRC) $(FPCUNIT_SRC)/$$u.pp >/dev/null || exit 1; done; \
+	else echo "note: no fpc-source: failing asserts are located by address only"; fi; touch $@
+
+test: all $(BUILD)/testunits.inc $(BUILD)/fpcunit/stamp
 	@mkdir -p $(TUNITDIR) $(TBINDIR)
 	@$(FPC) $(TESTFLAGS) tests/runtests.pas >$(BUILD)/test-build.log 2>&1 || { cat $(BUILD)/test-build.log; echo "0 passed, 1 failed"; exit 1; }
 	@BUILD=$(BUILD) FPC=$(FPC) T="$(T)" bash tests/run.sh

@@ -112,6 +112,7 @@ type
     Result   : tChResult;
     Tries    : LongInt;
     Naks     : LongInt;
+    Acked    : Boolean;        { the command was ACKed (or answered) }
     EnqSent  : Boolean;
     FullDup  : Boolean;
     TimeoutMs: LongInt;
@@ -476,6 +477,7 @@ end;
 
 procedure MasterAcked(var M: tDF1Master);
 begin
+  M.Acked := True;
   M.State := dmWaitReply;
   M.Deadline := ChMsTick + QWord(3 * M.TimeoutMs);
   if M.FullDup then
@@ -487,6 +489,7 @@ end;
 { The reply is in M.Rep: ACK it and check it answers the command. }
 procedure MasterReply(var M: tDF1Master);
 begin
+  M.Acked := True;
   if not MasterLink(M, tpAckNak, True) then
     Exit;
   if (M.Rep.CF and $FF00 <> (M.Req.CF and $FF00) or MskCF_Reply) or (M.Rep.Tns <> M.Req.Tns) then
