@@ -16,7 +16,7 @@ program df1read;
 
 uses
   {$IFDEF UNIX}cthreads,{$ENDIF}
-  SysUtils, uString, ChnTypes, ChnLoop, ChnCom, ChnTrc, ChnDF1, ChnPccc, ChnPcccClient;
+  SysUtils, uString, ChnTypes, ChnLoop, ChnCom, ChnTcp, ChnTrc, ChnDF1, ChnPccc, ChnPcccClient;
 
 var
   C: tPcccClient;

@@ -17,7 +17,7 @@ program df1write;
 
 uses
   {$IFDEF UNIX}cthreads,{$ENDIF}
-  SysUtils, ChnTypes, ChnLoop, ChnCom, ChnTrc, ChnDF1, ChnPccc, ChnPcccClient;
+  SysUtils, ChnTypes, ChnLoop, ChnCom, ChnTcp, ChnTrc, ChnDF1, ChnPccc, ChnPcccClient;
 
 var
   C: tPcccClient;

@@ -28,7 +28,7 @@ uses
   ChnTypes,
   ChnVirt,
   ChnLoop,
-  ChnCom,
+  ChnCom, ChnTcp,
   ChnFT12Codec,
   ChnFT1_2,
   Iec101Asdu;
