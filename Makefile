@@ -8,7 +8,7 @@
 #   make uninstall    removes what install put there
 #   make demo         a DF1 exchange on this machine, no hardware needed
 #   make bench        codec and channel benchmarks
-#   make fuzz         random-mutation fuzzing of the codecs (SECONDS=10)
+#   make fuzz         random-mutation fuzzing of the codecs and ChnPccc (SECONDS=10)
 #   make wintest      the suite as win64 programs under Wine (docs/Windows.md)
 #   make clean
 # Optional: SYNAPSE_DIR=/path/to/synapse builds the Synapse serial backend.
@@ -140,13 +140,16 @@ demo: all
 bench: $(BENCHBINS)
 	@set -e; for b in $(BENCHBINS); do $$b; done
 
-# Random-mutation fuzzing of the three codecs with run-time checks on;
+# Random-mutation fuzzing of the three codecs and of ChnPccc (addresses,
+# plans, requests, reply decoding) with run-time checks on;
 # SECONDS=n for longer runs, SEED=n to repeat one.
 SECONDS ?= 10
 fuzz: units
 	@mkdir -p $(TUNITDIR) $(TBINDIR)
 	@$(FPC) $(TESTFLAGS) tests/fuzz/fuzzcodecs.pas >$(BUILD)/fuzz-build.log 2>&1 || { cat $(BUILD)/fuzz-build.log; exit 1; }
+	@$(FPC) $(TESTFLAGS) tests/fuzz/fuzzpccc.pas >>$(BUILD)/fuzz-build.log 2>&1 || { cat $(BUILD)/fuzz-build.log; exit 1; }
 	@rm -f $(BUILD)/fuzz-heap.log; HEAPTRC="log=$(BUILD)/fuzz-heap.log" $(TBINDIR)/fuzzcodecs $(SECONDS) $(SEED)
+	@rm -f $(BUILD)/fuzz-heap.log; HEAPTRC="log=$(BUILD)/fuzz-heap.log" $(TBINDIR)/fuzzpccc $(SECONDS) $(SEED)
 
 # Cross-built for win64 and run under Wine; not part of test (CI has no Wine).
 wintest: all $(BUILD)/testunits.inc

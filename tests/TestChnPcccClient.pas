@@ -119,7 +119,10 @@ begin
   Raw := nil;
   Proc := nil;
   PcccClientInit(C, nil);
-  AssertTrue('config: ' + Err, SlcLoadConfig(Table, Config, Line, Err));
+  Err := '';
+  Line := 0;
+  if not SlcLoadConfig(Table, Config, Line, Err) then
+    Fail('config line ' + IntToStr(Line) + ': ' + Err);
 end;
 
 procedure TTestChnPcccClient.TearDown;
@@ -311,7 +314,7 @@ var
   Done1, Done2: Boolean;
 begin
   StartPair(False, False, 'PCSTEP');
-  AssertTrue('start read: ' + R1.Err, PcccStartRead(R1, C, 'N7:0', 200));
+  AssertTrue('start read', PcccStartRead(R1, C, 'N7:0', 200));
   Steps := 0;
   Longest := 0;
   Done1 := False;

@@ -26,6 +26,7 @@ type
     procedure TestConfigValues;
     procedure TestConfigErrors;
     procedure TestDefaultTable;
+    procedure TestExampleConfigLoads;
     procedure TestEchoAndTns;
     procedure TestTypedReadIntegerAndFloat;
     procedure TestTypedReadExtendedFields;
@@ -149,6 +150,32 @@ begin
   AssertEquals('ST10:0 LEN', 5, SlcGetWord(T, 10, 0));
   AssertEquals('L11 type', pft_Long, T.Files[11].FType);
   AssertEquals('nothing else: N12', 0, T.Files[12].FType);
+end;
+
+procedure TTestChnSlc.TestExampleConfigLoads;
+var
+  Text: AnsiString;
+  F: TextFile;
+  Line: AnsiString;
+  ErrLine: LongInt;
+  Err: AnsiString;
+begin
+  { tools/df1sim.conf, the example the docs point to, is valid }
+  Text := '';
+  AssignFile(F, 'tools/df1sim.conf');
+  Reset(F);
+  while not Eof(F) do
+  begin
+    ReadLn(F, Line);
+    Text := Text + Line + #10;
+  end;
+  CloseFile(F);
+  ErrLine := 0;
+  Err := '';
+  if not SlcLoadConfig(T, Text, ErrLine, Err) then
+    Fail('tools/df1sim.conf line ' + IntToStr(ErrLine) + ': ' + Err);
+  AssertEquals('T4:0.PRE', 100, SlcGetWord(T, 4, 0, 1));
+  AssertEquals('ST10:0 LEN', 5, SlcGetWord(T, 10, 0));
 end;
 
 procedure TTestChnSlc.TestConfigValues;
