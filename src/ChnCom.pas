@@ -29,7 +29,9 @@
     IRQ=, ADR=, BASE=, PORT=                  DOS hardware keys: accepted,
               reported back, ignored
 
-  Receive buffer: every poll moves what the OS holds into the LRB ring. When
+  Receive buffer: every poll moves what the OS holds into the LRB ring (at
+  most MaxPullPerPoll bytes, so a sender that never pauses cannot keep one
+  poll reading until the ring overflows). When
   the ring is full, with FLW=NONE further bytes are lost as on the original
   interrupt-driven UART, counted, and the next ChReceive answers
   res_Overrun (the kept bytes are delivered); with flow control reading
@@ -120,6 +122,7 @@ type
       backend on COM=/DEV=; NAM=TCP overrides it). On failure Port is nil. }
     function  ComOpenPort(out Port: TChnPort): tChResult; virtual;
     procedure ComFault(R: tChResult);
+    procedure ComJoinWait;
     procedure ComPull;
     procedure ComPumpTx;
     procedure ComFreeBuffers;
@@ -145,6 +148,7 @@ const
   FlowNames: array[tPortFlow] of string[7] = ('NONE', 'RTSCTS', 'XONXOFF');
   Rs485Names: array[0..3] of string[6] = ('OFF', 'RTS', 'KERNEL', 'AUTO');
   MaxDrainPerPoll = 65536;   { bytes discarded per poll when the ring is full }
+  MaxPullPerPoll  = 65536;   { bytes one poll moves into the ring, see ComPull }
   SmallChunk = 1024;         { a message rather than bulk input, see ComPull }
 
 constructor tChnCom.Init;
@@ -390,14 +394,23 @@ begin
   Result := R;
 end;
 
-procedure tChnCom.ChOpen;
+{ Put CH_Port into the program-wide wait, where the port offers a source. }
+procedure tChnCom.ComJoinWait;
 var
-  Port: TChnPort;
-  R: tChResult;
   WaitKind: tChnWaitKind;
   WaitOs: PtrInt;
   WaitRearm: tChnWaitRearm;
   WaitData: Pointer;
+begin
+  CH_Wait := nil;
+  if ChnWaitShared and CH_Port.WaitSource(WaitKind, WaitOs, WaitRearm, WaitData) then
+    CH_Wait := ChnWaitJoin(WaitKind, WaitOs, WaitRearm, WaitData);
+end;
+
+procedure tChnCom.ChOpen;
+var
+  Port: TChnPort;
+  R: tChResult;
 begin
   if CH_State <> CHS_Close then
   begin
@@ -414,9 +427,7 @@ begin
     Exit;
   end;
   CH_Port := Port;
-  CH_Wait := nil;
-  if ChnWaitShared and Port.WaitSource(WaitKind, WaitOs, WaitRearm, WaitData) then
-    CH_Wait := ChnWaitJoin(WaitKind, WaitOs, WaitRearm, WaitData);
+  ComJoinWait;
   RingAlloc(CH_Ring, CH_LRB);
   CH_Lost := 0;
   CH_LostShown := 0;
@@ -477,7 +488,7 @@ end;
 procedure tChnCom.ComPull;
 var
   ShortDrains: Boolean;
-  Room, Got, Dropped: LongInt;
+  Room, Got, Dropped, Pulled: LongInt;
   Tail: PByte;
   Scratch: array[0..1023] of Byte;
   R: tChResult;
@@ -487,7 +498,13 @@ begin
     Exit;
   Got := 0;
   ShortDrains := CH_Port.ShortReadDrains and ChnWaitArmed(CH_Wait);
-  while RingRoom(CH_Ring) > 0 do
+  Pulled := 0;
+  { until the driver is empty, but at most MaxPullPerPoll bytes: input that
+    never pauses (a fast sender, a tap forwarding a stream) would keep one
+    poll reading until the ring is full and the next bytes were lost before
+    the caller could take any; the rest waits in the driver for the next
+    poll }
+  while (RingRoom(CH_Ring) > 0) and (Pulled < MaxPullPerPoll) do
   begin
     Room := RingTailSpan(CH_Ring, Tail);
     R := CH_Port.Read(Tail^, Room, Got);
@@ -499,6 +516,7 @@ begin
     if Got = 0 then
       Break;
     RingCommit(CH_Ring, Got);
+    Inc(Pulled, Got);
     { Read again until the driver says empty - except after a small chunk
       (a request, a reply) from a port whose short read proves it empty,
       while the shared wait watches it: anything that came meanwhile ends

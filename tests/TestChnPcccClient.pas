@@ -14,25 +14,20 @@ unit TestChnPcccClient;
 interface
 
 uses
-  {$IFDEF UNIX}BaseUnix,{$ENDIF}
+  {$IFDEF UNIX}BaseUnix, PtyPair,{$ENDIF}
   SysUtils, Classes, Process, fpcunit, testregistry, ChnTypes, ChnVirt, ChnLoop,
   ChnCom, ChnDF1Codec, ChnDF1, ChnDF1Link, ChnSlc, ChnPccc, ChnPcccClient,
   TestSupport, BinSupport, Df1Pair;
 
 type
-  TTestChnPcccClient = class(TTestCase)
+  TTestChnPcccClient = class(TDf1PairCase)
   private
-    Table: tSlcTable;
-    Station: tDF1Station;
-    Master, Slave, Raw: pChnVirt;
     C: tPcccClient;
-    Proc: TProcess;
-    function Open(const Params: string): pChnVirt;
-    procedure StartPair(Full, Crc: Boolean; const Pair: string);
+    { StartPair, and C a client on Master that steps the station }
+    procedure StartClient(Full, Crc: Boolean; const Pair: string);
     procedure EveryAddressForm(const What: string);
   protected
     procedure SetUp; override;
-    procedure TearDown; override;
   published
     procedure TestFullDuplexCrc;
     procedure TestFullDuplexBcc;
@@ -48,11 +43,13 @@ type
     procedure TestNoReply;
     procedure TestErrorReply;
     procedure TestReplyOfWrongLength;
+    procedure TestReplyToAnotherCommand;
     procedure TestRefusedBeforeSending;
     procedure TestNoDF1Channel;
     {$IFDEF UNIX}
     procedure TestAgainstDf1SimFullDuplex;
     procedure TestAgainstDf1SimHalfDuplex;
+    procedure TestLineLost;
     {$ENDIF}
   end;
 
@@ -111,48 +108,54 @@ begin
   end;
 end;
 
+{ a slave answered by hand: ACK, then a reply with the next TNS }
+procedure WrongTnsSlave(Data: Pointer);
+var
+  Chn: pChnVirt;
+  Rec, Ans: tRecRecord;
+  Len: Word;
+begin
+  Chn := pChnVirt(Data);
+  Chn^.ChReceiveBuffer(@Rec, SizeOf(Rec));
+  if Chn^.ChReceiveReady <> CHS_ReceiveReady then
+    Exit;
+  Len := 0;
+  Chn^.ChReceive(Len);
+  if (Chn^.ChReceiveResult <> res_Ok) or (Rec.MessType <> tpDataMess) then
+    Exit;
+  FillChar(Ans, SizeOf(Ans), 0);
+  Ans.MessType := tpAckNak;
+  Ans.FlAck := True;
+  ChSendWhenFree(Chn, @Ans, 2, 100);
+  Ans.MessType := tpDataMess;
+  Ans.CF := $4F00;
+  Ans.Tns := Word(Rec.Tns + 1);
+  ChSendWhenFree(Chn, @Ans, cSizeHead + 2, 100);
+end;
+
+{$IFDEF UNIX}
+{ the USB adapter is pulled as the first frame arrives }
+procedure PullOnFirstFrame(Data: Pointer);
+var
+  P: TPtyPair;
+  B: array[0..63] of Byte;
+begin
+  P := TPtyPair(Data);
+  if (P.Master >= 0) and (P.MasterRead(B, SizeOf(B)) > 0) then
+    P.CloseMaster;
+end;
+{$ENDIF}
+
 procedure TTestChnPcccClient.SetUp;
-var
-  Line: LongInt;
-  Err: AnsiString;
 begin
-  Master := nil;
-  Slave := nil;
-  Raw := nil;
-  Proc := nil;
+  inherited SetUp;
   PcccClientInit(C, nil);
-  Err := '';
-  Line := 0;
-  if not SlcLoadConfig(Table, Config, Line, Err) then
-    Fail('config line ' + IntToStr(Line) + ': ' + Err);
+  LoadTable(Config);
 end;
 
-procedure TTestChnPcccClient.TearDown;
+procedure TTestChnPcccClient.StartClient(Full, Crc: Boolean; const Pair: string);
 begin
-  if Master <> nil then Dispose(Master, Done);
-  if Slave <> nil then Dispose(Slave, Done);
-  if Raw <> nil then Dispose(Raw, Done);
-  if Proc <> nil then
-  begin
-    if Proc.Running then
-      Proc.Terminate(1);
-    Proc.Free;
-  end;
-end;
-
-function TTestChnPcccClient.Open(const Params: string): pChnVirt;
-var
-  Err: string;
-begin
-  Result := OpenStack('DF1', Params, Err);
-  AssertTrue('open ' + Err, Result <> nil);
-end;
-
-procedure TTestChnPcccClient.StartPair(Full, Crc: Boolean; const Pair: string);
-begin
-  Slave := Open(Df1PairParams(False, Full, Crc, Pair));
-  Master := Open(Df1PairParams(True, Full, Crc, Pair));
-  SlcStationInit(Station, Slave, @Table);
+  StartPair(Full, Crc, Pair);
   PcccClientInit(C, Master);
   C.Idle := @StepStation;
   C.IdleData := @Station;
@@ -239,25 +242,25 @@ end;
 
 procedure TTestChnPcccClient.TestFullDuplexCrc;
 begin
-  StartPair(True, True, 'PCFC');
+  StartClient(True, True, 'PCFC');
   EveryAddressForm('full CRC');
 end;
 
 procedure TTestChnPcccClient.TestFullDuplexBcc;
 begin
-  StartPair(True, False, 'PCFB');
+  StartClient(True, False, 'PCFB');
   EveryAddressForm('full BCC');
 end;
 
 procedure TTestChnPcccClient.TestHalfDuplexCrc;
 begin
-  StartPair(False, True, 'PCHC');
+  StartClient(False, True, 'PCHC');
   EveryAddressForm('half CRC');
 end;
 
 procedure TTestChnPcccClient.TestHalfDuplexBcc;
 begin
-  StartPair(False, False, 'PCHB');
+  StartClient(False, False, 'PCHB');
   EveryAddressForm('half BCC');
 end;
 
@@ -267,7 +270,7 @@ var
   F: array[0..99] of Single;
   I, N: LongInt;
 begin
-  StartPair(True, True, 'PCLONG');
+  StartClient(True, True, 'PCLONG');
   for I := 0 to 299 do
     W[I] := I * 100 - 15000;
   N := C.Requests;
@@ -295,7 +298,7 @@ var
   V: array[0..9] of LongInt;
   N: LongInt;
 begin
-  StartPair(False, True, 'PCSMALL');
+  StartClient(False, True, 'PCSMALL');
   C.MaxBytes := 4;                     { two words a request }
   N := C.Requests;
   AssertEquals(res_Ok, PcccReadInts(C, 'N7:0', 5, V));
@@ -310,7 +313,7 @@ var
   T0, Longest: QWord;
   Done1, Done2: Boolean;
 begin
-  StartPair(False, False, 'PCSTEP');
+  StartClient(False, False, 'PCSTEP');
   AssertTrue('start read', PcccStartRead(R1, C, 'N7:0', 200));
   Steps := 0;
   Longest := 0;
@@ -362,7 +365,7 @@ var
   V: array[0..0] of LongInt;
   I: LongInt;
 begin
-  StartPair(True, True, 'PCONE');
+  StartClient(True, True, 'PCONE');
   AssertTrue('first', PcccStartRead(R1, C, 'N7:1', 1));
   AssertFalse('second while the first runs', PcccStartRead(R2, C, 'N7:2', 1));
   AssertEquals(res_WrongState, R2.Result);
@@ -414,7 +417,7 @@ var
   V: array[0..0] of LongInt;
   T0: QWord;
 begin
-  StartPair(True, True, 'PCNOACK');
+  StartClient(True, True, 'PCNOACK');
   C.Idle := nil;                      { the station is never stepped }
   C.TimeoutMs := 50;
   V[0] := 12345;
@@ -446,7 +449,7 @@ procedure TTestChnPcccClient.TestNoReply;
 var
   V: array[0..0] of LongInt;
 begin
-  StartPair(True, False, 'PCMUTE');
+  StartClient(True, False, 'PCMUTE');
   Station.Handler := @MuteHandler;
   C.TimeoutMs := 50;
   AssertEquals(res_Timeout, PcccReadInts(C, 'N7:0', 1, V));
@@ -458,7 +461,7 @@ var
   V: array[0..3] of LongInt;
   F: array[0..0] of Single;
 begin
-  StartPair(False, True, 'PCERR');
+  StartClient(False, True, 'PCERR');
   AssertEquals(res_PcccStatus, PcccReadInts(C, 'N99:0', 1, V));
   AssertEquals('N99:0: error reply STS $F0, EXT STS $06: address doesn''t point to something usable', C.Err);
   AssertEquals(res_PcccStatus, PcccReadInts(C, 'N7:299', 2, V));
@@ -472,7 +475,7 @@ var
   V: array[0..4] of LongInt;
   I: LongInt;
 begin
-  StartPair(True, True, 'PCSHORT');
+  StartClient(True, True, 'PCSHORT');
   Station.Handler := @ShortHandler;
   for I := 0 to 4 do
     V[I] := 777;
@@ -482,6 +485,21 @@ begin
     AssertEquals('V[' + IntToStr(I) + '] untouched', 777, V[I]);
 end;
 
+procedure TTestChnPcccClient.TestReplyToAnotherCommand;
+var
+  V: array[0..0] of LongInt;
+begin
+  Slave := Open(Df1PairParams(False, True, True, 'PCTNS'));
+  Master := Open(Df1PairParams(True, True, True, 'PCTNS'));
+  PcccClientInit(C, Master);
+  C.Idle := @WrongTnsSlave;
+  C.IdleData := Slave;
+  V[0] := 5;
+  AssertEquals(res_BadMessage, PcccReadInts(C, 'N7:0', 1, V));
+  AssertEquals('N7:0: the reply is not the one to this command', C.Err);
+  AssertEquals('untouched', 5, V[0]);
+end;
+
 procedure TTestChnPcccClient.TestRefusedBeforeSending;
 var
   V: array[0..1] of LongInt;
@@ -489,7 +507,7 @@ var
   S: ShortString;
   N: LongInt;
 begin
-  StartPair(True, True, 'PCREF');
+  StartClient(True, True, 'PCREF');
   N := C.Requests;
   AssertEquals(res_PcccAddress, PcccReadInts(C, 'X7:0', 1, V));
   AssertTrue(C.Err, Pos('"X7:0"', C.Err) > 0);
@@ -507,6 +525,10 @@ begin
   AssertEquals(res_PcccUsage, PcccWriteString(C, 'F8:0', 'x'));
   AssertEquals(res_PcccValue, PcccWriteString(C, 'ST10:0', StringOfChar('x', 83)));
   AssertEquals(res_PcccCount, PcccWriteInts(C, 'R6:0', [1, 2]));
+  AssertEquals('R6:0: 2 values given for whole elements of 3', C.Err);
+  AssertEquals(res_PcccCount, PcccWriteInts(C, 'N7:0', []));
+  AssertEquals('N7:0: no values given', C.Err);
+  AssertEquals(res_PcccCount, PcccWriteFloats(C, 'F8:0', []));
   AssertEquals(res_PcccCount, PcccWriteInts(C, 'N7:65535', [1, 2]));
   AssertEquals('nothing was sent', N, C.Requests);
   AssertEquals('nothing written', 1, SlcGetWord(Table, 7, 0));
@@ -530,7 +552,21 @@ end;
 {$IFDEF UNIX}
 { df1sim's built-in table (docs/df1sim.md) over a pty, each address form }
 procedure SimRoundTrip(T: TTestChnPcccClient; var C: tPcccClient; const What: string);
+type
+  tBitCase = record
+    Addr: string[8];
+    Want: LongInt;
+  end;
+const
+  Bits: array[0..15] of tBitCase = (
+    (Addr: 'T4:0.EN'; Want: 0), (Addr: 'T4:0.TT'; Want: 0), (Addr: 'T4:0.DN'; Want: 1),
+    (Addr: 'C5:0.CU'; Want: 1), (Addr: 'C5:0.CD'; Want: 0), (Addr: 'C5:0.DN'; Want: 0),
+    (Addr: 'C5:0.OV'; Want: 0), (Addr: 'C5:0.UN'; Want: 0), (Addr: 'R6:0.EN'; Want: 0),
+    (Addr: 'R6:0.EU'; Want: 0), (Addr: 'R6:0.DN'; Want: 0), (Addr: 'R6:0.EM'; Want: 0),
+    (Addr: 'R6:0.ER'; Want: 0), (Addr: 'R6:0.UL'; Want: 0), (Addr: 'R6:0.IN'; Want: 0),
+    (Addr: 'R6:0.FD'; Want: 0));
 var
+  K: LongInt;
   V: array[0..5] of LongInt;
   F: array[0..1] of Single;
   S: ShortString;
@@ -583,6 +619,18 @@ begin
   Ok(PcccWriteInts(C, 'L11:3', [-2000000000]), 'write L11:3');
   Ok(PcccReadInts(C, 'L11:3', 1, V), 'L11:3');
   T.AssertEquals(-2000000000, V[0]);
+  { every bit sub-element: T4:0 control word $2000, C5:0 $8000, R6:0 0 }
+  for K := 0 to High(Bits) do
+  begin
+    Ok(PcccReadInts(C, Bits[K].Addr, 1, V), Bits[K].Addr);
+    T.AssertEquals(What + ' ' + Bits[K].Addr, Bits[K].Want, V[0]);
+  end;
+  Ok(PcccWriteInts(C, 'C5:3.UN', [1]), 'set C5:3.UN');
+  Ok(PcccReadInts(C, 'C5:3', 1, V), 'C5:3');
+  T.AssertEquals('C5:3 control word', $0800, V[0]);
+  Ok(PcccReadInts(C, 'B3/16', 1, V), 'B3/16');
+  T.AssertEquals('B3/16 = B3:1/0', 0, V[0]);
+  Ok(PcccReadInts(C, 'S:0', 1, V), 'S:0');
   T.AssertEquals(res_PcccStatus, PcccReadInts(C, 'N7:50', 1, V));
 end;
 
@@ -615,6 +663,29 @@ begin
     SimRoundTrip(Self, C, 'df1sim half duplex');
   finally
     PcccClose(C);
+  end;
+end;
+
+procedure TTestChnPcccClient.TestLineLost;
+var
+  P: TPtyPair;
+  V: array[0..0] of LongInt;
+  T0: QWord;
+begin
+  P := TPtyPair.Create;
+  try
+    Master := Open('NAM=DF1 NOD=0 DNO=1 NAM=COM DEV=' + P.SlavePath);
+    PcccClientInit(C, Master);
+    C.Idle := @PullOnFirstFrame;
+    C.IdleData := P;
+    C.TimeoutMs := 300;
+    T0 := ChMsTick;
+    AssertEquals(res_DeviceLost, PcccReadInts(C, 'N7:0', 1, V));
+    AssertEquals('N7:0: ' + Master^.ChResultStr(res_DeviceLost), C.Err);
+    AssertTrue('at once, not after the tries: ' + IntToStr(ChMsTick - T0) + ' ms',
+      ChMsTick - T0 < 800);
+  finally
+    P.Free;
   end;
 end;
 {$ENDIF}
