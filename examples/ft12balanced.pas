@@ -26,7 +26,7 @@ program ft12balanced;
 {$MODE OBJFPC}{$H-}
 
 uses
-  SysUtils, ChnTypes, ChnVirt, ChnLoop, ChnCom, ChnTrc, ChnFT1_2,
+  SysUtils, uString, ChnTypes, ChnVirt, ChnLoop, ChnCom, ChnTrc, ChnFT1_2,
   ChnFT12Link, Iec101Asdu;
 
 var
@@ -76,10 +76,20 @@ begin
   end;
 end;
 
+{ Argument I as a number of seconds, 1 or more; exit code 2 if not. }
+function PositiveArg(I: Integer; const What: string): LongInt;
+begin
+  Result := 0;
+  if not StrToNum(ParamStr(I), 1, MaxLongInt, Result) then
+  begin
+    WriteLn('Error: the ', What, ' must be a positive number of seconds');
+    Halt(2);
+  end;
+end;
+
 var
   Params: tParamStr;
   Seconds, Period: LongInt;
-  Code: Integer;
   EndTime, NextValue: QWord;
   Shown: tFT12BalState;
   Asked: Boolean = False;
@@ -92,22 +102,10 @@ begin
     Halt(2);
   end;
   Params := ParamStr(1);
-  Val(ParamStr(2), Seconds, Code);
-  if (Code <> 0) or (Seconds <= 0) then
-  begin
-    WriteLn('Error: run time must be a positive number of seconds');
-    Halt(2);
-  end;
+  Seconds := PositiveArg(2, 'run time');
   Period := 1;
   if ParamCount >= 3 then
-  begin
-    Val(ParamStr(3), Period, Code);
-    if (Code <> 0) or (Period <= 0) then
-    begin
-      WriteLn('Error: the period must be a positive number of seconds');
-      Halt(2);
-    end;
-  end;
+    Period := PositiveArg(3, 'period');
   Chn := ChnCollection^.ChNewInit(ChnFT1_2.cName);
   Chn^.ChSetParam(Params);
   if Chn^.ChResult <> res_Ok then Fail('ChSetParam', Chn^.ChResult);
