@@ -46,7 +46,7 @@ type
 implementation
 
 uses
-  {$IFDEF UNIX}BaseUnix, ChnCom, ChnPty, ChnFT1_2, ChnFT12Link, BinSupport,{$ENDIF}
+  {$IFDEF UNIX}BaseUnix, ChnCom, ChnPty, ChnFT1_2, ChnFT12Link,{$ENDIF} BinSupport,
   DateUtils, uString;
 
 const
