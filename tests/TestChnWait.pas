@@ -303,6 +303,12 @@ begin
   AssertTrue(Format('still no busy loop: %.1f %% of a core', [Cpu]), Cpu < 15);
   { and its input is all still there for it }
   AssertEquals('kept for its channel', CHS_ReceiveReady, FChn[0]^.ChReceiveReady);
+  { now its ring holds input: polled with the others but never read, while
+    more arrives }
+  FPty[0].MasterWrite(B, SizeOf(B));
+  Cpu := PollFor(FChn, 0, 7, 1000);
+  WriteLn(Format('info  wait: 8 lines polled, one whose ring holds input nobody reads: %.2f %% of a core', [Cpu]));
+  AssertTrue(Format('no busy loop with a ring nobody reads: %.1f %% of a core', [Cpu]), Cpu < 15);
 end;
 
 procedure TTestChnWait.TestFullRingDoesNotSpin;
