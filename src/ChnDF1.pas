@@ -222,9 +222,7 @@ const
 constructor tChnDF1.Init;
 begin
   inherited Init;
-  CH_Type    := cName;
-  CH_Name    := CH_Type;
-  CH_NumName := ChNumName(CH_Type);
+  ChSetType(cName);
   CH_RTick   := False;
   CH_SBuff   := nil;
   CH_MSBuff  := 0;

@@ -173,9 +173,7 @@ const
 constructor tChnFT1_2.Init;
 begin
   inherited Init;
-  CH_Type := cName;
-  CH_Name := CH_Type;
-  CH_NumName := ChNumName(CH_Type);
+  ChSetType(cName);
   CH_RTick := False;
   CH_SBuff := nil;
   CH_MSBuff := 0;

@@ -109,9 +109,7 @@ implementation
 constructor tChnICS.Init;
 begin
   inherited Init;
-  CH_Type := cName;
-  CH_Name := CH_Type;
-  CH_NumName := ChNumName(CH_Type);
+  ChSetType(cName);
   CH_RTick := False;
   CH_SBuff := nil;
   CH_MSBuff := 0;

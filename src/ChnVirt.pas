@@ -173,6 +173,9 @@ type
     { The end of every successful ChOpen: state CHS_Open, receiver off until
       ChConnect, every result Ok, nothing pulled from below. }
     procedure ChOpened;
+    { For a descendant's Init: CH_Type and CH_Name := AType, CH_NumName
+      its ChNumName. }
+    procedure ChSetType(const AType: ShortString);
   end;
 
   pAddChnVirt = ^tAddChnVirt;
@@ -655,6 +658,13 @@ begin
     end;
   end;
   ChOpened;
+end;
+
+procedure tChnVirt.ChSetType(const AType: ShortString);
+begin
+  CH_Type := AType;
+  CH_Name := CH_Type;
+  CH_NumName := ChNumName(CH_Type);
 end;
 
 procedure tChnVirt.ChOpened;

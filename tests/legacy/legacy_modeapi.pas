@@ -171,6 +171,12 @@ begin
   Check(Peer^.ChReceiveAllowed(W), 'ChReceiveAllowed');
   Dispose(Chn, Done);
   Dispose(Peer, Done);
+  New(Chn, Init);
+  S := 'Mine';
+  Chn^.ChSetType(S);
+  Check((Chn^.CH_Type = 'Mine') and (Chn^.CH_Name = 'Mine') and
+    (Chn^.CH_NumName = ChNumName('MINE')), 'ChSetType');
+  Dispose(Chn, Done);
   WriteLn('legacy_modeapi ok (Integer ', SizeOf(Integer), ' bytes, string ',
     SizeOf(string), ' bytes)');
 end.
