@@ -209,10 +209,7 @@ end;
 destructor tChnFT1_2.Done;
 begin
   inherited Done;
-  if CH_SBuff <> nil then
-    FreeMem(CH_SBuff);
-  CH_SBuff := nil;
-  CH_MSBuff := 0;
+  ChFreeSendBuffer(CH_SBuff, CH_MSBuff);
 end;
 
 function tChnFT1_2.ChGapMs: LongWord;
@@ -282,11 +279,9 @@ function tChnFT1_2.ChSetOneParam(const S: tWordString; var CmdL: tCmd): tChResul
 var
   Key: string;
   N: LongInt;
-  I: Integer;
 begin
   Key := ParamKey(S);
   N := 0;
-  I := 0;
   if CmdL = cmd_Peek then
   begin
     { note what the checks of NOD=/DNO=/ADR= in this string depend on }
@@ -305,19 +300,7 @@ begin
   else if Key = 'PRI' then
     Result := ParamFlag(S, OnOffChoice, CmdL, CH_PriParam)
   else if Key = 'LSB' then
-  begin
-    Result := ParamNum(S, 1, MaxTBuf, N);
-    { the layer below may still be sending from the old buffer }
-    if (Result = res_Ok) and (CH_State <> CHS_Close) and (N <> CH_MSBuff) then
-      Result := res_WrongState;
-    if (Result = res_Ok) and (CmdL = cmd_Set) and (N <> CH_MSBuff) then
-    begin
-      if CH_SBuff <> nil then
-        FreeMem(CH_SBuff);
-      GetMem(CH_SBuff, N);
-      CH_MSBuff := N;
-    end;
-  end
+    Result := ChParamSendBuffer(S, 1, MaxTBuf, CmdL, CH_SBuff, CH_MSBuff)
   else if Key = 'LEN' then
   begin
     Result := ParamNum(S, 0, MaxDataLen, N);
@@ -408,11 +391,7 @@ begin
     CH_SResult := res_BadMessage;   { unbalanced: the role is fixed }
     Exit;
   end;
-  if CH_SBuff = nil then
-  begin
-    GetMem(CH_SBuff, cFT12MaxFrame);   { no LSB= given: room for any frame }
-    CH_MSBuff := cFT12MaxFrame;
-  end;
+  ChSendBuffer(CH_SBuff, CH_MSBuff, cFT12MaxFrame);   { no LSB=: room for any frame }
   { one address field: the destination from a master/primary, the own
     address (SNO) from a slave/secondary }
   if Primary then
