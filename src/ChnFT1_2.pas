@@ -130,6 +130,9 @@ type
       characters count as secondary) and the DIR bit it carried }
     CH_RPrm     : Boolean;
     CH_RDir     : Boolean;
+    { BD= of the stack below for GAP= (9600 if none), taken when the stack
+      is built (ChSetParam) and at ChConnect, not on every send }
+    CH_LowBaud  : LongInt;
 
     constructor Init;
     constructor ChInitParam(const S: tParamStr);
@@ -154,6 +157,8 @@ type
     function  ChCodecConfig: tFT12Config;
     { GAP= in milliseconds (0 = off) }
     function  ChGapMs: LongWord;
+    { CH_LowBaud := the BD= of the stack below, 9600 if none }
+    procedure ChTakeLowBaud;
   end;
 
   pAddChnFT1_2 = ^tAddChnFT1_2;
@@ -195,6 +200,7 @@ begin
   CH_DnoGiven := False;
   CH_RPrm := False;
   CH_RDir := False;
+  CH_LowBaud := cDefaultBaud;
   FillChar(CH_Rx, SizeOf(CH_Rx), 0);
   CH_Rx.Cfg := ChCodecConfig;
   FT12RxReset(CH_Rx);
@@ -212,23 +218,27 @@ begin
   ChFreeSendBuffer(CH_SBuff, CH_MSBuff);
 end;
 
-function tChnFT1_2.ChGapMs: LongWord;
+procedure tChnFT1_2.ChTakeLowBaud;
 var
-  Baud: LongInt;
   Tok: string;
   P: Integer;
 begin
-  if CH_Gap = 0 then
-    Exit(0);
-  Baud := cDefaultBaud;
+  CH_LowBaud := cDefaultBaud;
   if CH_Low <> nil then
   begin
     P := 1;
     if NextToken(CH_Low^.ChGetParam('BD'), P, Tok) then
-      StrToNum(ParamValue(Tok), 1, 10000000, Baud);
+      StrToNum(ParamValue(Tok), 1, 10000000, CH_LowBaud);
   end;
+end;
+
+function tChnFT1_2.ChGapMs: LongWord;
+begin
+  if CH_Gap = 0 then
+    Exit(0);
   { round up: a gap shorter than one tick cannot be measured }
-  Result := (QWord(CH_Gap) * cBitsPerChar * 1000 + LongWord(Baud) - 1) div LongWord(Baud);
+  Result := (QWord(CH_Gap) * cBitsPerChar * 1000 + LongWord(CH_LowBaud) - 1) div
+    LongWord(CH_LowBaud);
   if Result = 0 then
     Result := 1;
 end;
@@ -260,6 +270,7 @@ begin
   CH_NodGiven := False;
   CH_DnoGiven := False;
   inherited ChSetParam(S);
+  ChTakeLowBaud;                  { the stack below may be new }
   CH_AdrNext := CH_AdrLen;
   CH_NodGiven := False;
   CH_DnoGiven := False;
@@ -357,7 +368,8 @@ begin
   inherited ChConnect;
   if CH_Result = res_Ok then
   begin
-    CH_Rx.Cfg := ChCodecConfig;   { GAP= needs the BD= of the stack below }
+    ChTakeLowBaud;                { BD= may have changed below since }
+    CH_Rx.Cfg := ChCodecConfig;
     FT12RxReset(CH_Rx);
     CH_RErr := res_Ok;
   end;
