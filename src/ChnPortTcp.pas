@@ -45,9 +45,11 @@ type
     FLineOverruns: LongWord;
     FConnecting: Boolean;
     FSettingsDue: Boolean;          { SendSettings before the server's DO }
+    FEvent: PtrInt;                 { Windows: the client socket's wait event }
     FDueUntil: QWord;               { ... which must come by then }
     function SockResult(E: tSockErr): tChResult;
     function TryNextAddr: tSockErr;
+    function Resolve(Passive: Boolean): tSockErr;
     procedure Started;
     procedure Queue(const Buf; Len: LongInt);
     function FlushOut: tChResult;
@@ -169,14 +171,20 @@ begin
   end;
 end;
 
-function TChnPortTcp.StartConnect: tChResult;
-var
-  E: tSockErr;
+{ A fresh start: closed, no fault named, Host:Port resolved. }
+function TChnPortTcp.Resolve(Passive: Boolean): tSockErr;
 begin
   Close;
   FailKey := '';
   FDevice := Host + ':' + IntToStr(Port);
-  E := SockResolve(Host, Port, False, FAddrs, FAddrCount);
+  Result := SockResolve(Host, Port, Passive, FAddrs, FAddrCount);
+end;
+
+function TChnPortTcp.StartConnect: tChResult;
+var
+  E: tSockErr;
+begin
+  E := Resolve(False);
   if E <> seOk then
     Exit(SockResult(E));
   FAddrNext := 0;
@@ -215,6 +223,7 @@ begin
     Exit(res_Busy);
   FConnecting := False;
   Started;
+  FEvent := SockEventCreate(FSock);
   if Rfc2217 then
   begin
     TelnetCmd(B[0], TN_WILL, TNO_COMPORT);
@@ -253,10 +262,7 @@ function TChnPortTcp.Listen: tChResult;
 var
   E: tSockErr;
 begin
-  Close;
-  FailKey := '';
-  FDevice := Host + ':' + IntToStr(Port);
-  E := SockResolve(Host, Port, True, FAddrs, FAddrCount);
+  E := Resolve(True);
   if E = seOk then
     E := SockListen(FAddrs[0], FListen);
   if E <> seOk then
@@ -717,20 +723,31 @@ begin
 end;
 
 { A client's socket is fixed for the port's life (a reconnect makes a new
-  port), so it joins the shared wait on Unix. A server's descriptors change
-  with each client, and Windows would need WSAEventSelect: both wait on
-  their own sockets (WaitInput), bounded by IDL like any layer. }
+  port), so it joins the shared wait: its descriptor on Unix, an event of
+  WSAEventSelect on Windows (re-armed after each read, set again while
+  input waits). A server's sockets change with each client: it waits on
+  them itself (WaitInput), bounded by IDL like any layer. }
+procedure TcpRearm(Data: Pointer);
+begin
+  with TChnPortTcp(Data) do
+    SockEventRearm(FSock, FEvent);
+end;
+
 function TChnPortTcp.WaitSource(out Kind: tChnWaitKind; out Os: PtrInt;
   out Rearm: tChnWaitRearm; out Data: Pointer): Boolean;
 begin
+  {$IFDEF WINDOWS}
+  Kind := wkHandle;
+  Os := FEvent;
+  Rearm := @TcpRearm;
+  Data := Self;
+  Result := FOpen and (FListen = NoSock) and (FSock <> NoSock) and (FEvent <> 0);
+  {$ELSE}
   Kind := wkDescriptor;
   Os := FSock;
   Rearm := nil;
   Data := nil;
-  {$IFDEF UNIX}
   Result := FOpen and (FListen = NoSock) and (FSock <> NoSock);
-  {$ELSE}
-  Result := False;
   {$ENDIF}
 end;
 
@@ -755,6 +772,7 @@ begin
     FlushOut;                       { a last command (purge ...) still leaves }
   SockClose(FSock);
   SockClose(FListen);
+  SockEventFree(FEvent);
   FConnecting := False;
   FOpen := False;
 end;
