@@ -6,7 +6,9 @@
 #     (tests/apicheck.pl; selected by T=api too);
 #  4. legacy programs in tests/legacy compiled in -Mtp -Mfpc -Mobjfpc
 #     -Mdelphi and run (each asserts record sizes and offsets itself);
-#  5. tests/packaging.sh: make install, fpmake, chn.lpk and the README's
+#  5. the soak (tests/soak/soak.pas), every scenario for 3 s over ptys
+#     between two processes (selected by T=soak too);
+#  6. tests/packaging.sh: make install, fpmake, chn.lpk and the README's
 #     programs built outside the tree.
 # Ends with "N passed, N failed" alone on the last line; exit 1 on failure.
 set -u
@@ -74,6 +76,32 @@ for prog in tests/legacy/*.pas; do
     fi
   done
 done
+
+# the soak, short: every scenario a few seconds, the same assertions
+if [ -z "$FILTER" ] || [[ "soak" == *"${FILTER,,}"* ]]; then
+  if [ ! -e /dev/ptmx ]; then
+    skip "soak: no pseudo terminals (/dev/ptmx) on this machine"
+  else
+    soakheap="$BUILD/soak-heap.log"
+    rm -f "$soakheap"
+    finished=
+    while IFS= read -r line; do
+      case $line in
+        "ok    "*) pass "${line#ok    }" ;;
+        "FAIL  "*) fail "${line#FAIL  }" ;;
+        "soak: "*" scenarios run") finished=1 ;;
+        *) ;;
+      esac
+    done < <(HEAPTRC="log=$soakheap" timeout 600 "$BUILD/test-bin/soak" --seconds=3 --df1sim="$BUILD/bin/df1sim" 2>&1)
+    [ -n "$finished" ] || fail "soak: did not finish (crashed or timed out)"
+    # the peers share the log; the master, ending last, writes it last
+    if [ -f "$soakheap" ] && grep -q '^0 unfreed memory blocks' "$soakheap"; then
+      pass "soak: no leaks (heaptrc)"
+    else
+      fail "soak: leaks or no heaptrc report, see $soakheap"
+    fi
+  fi
+fi
 
 # the library as users get it: make install, fpmake, chn.lpk, README programs
 if [ -z "$FILTER" ] || [[ "packaging" == *"${FILTER,,}"* ]]; then
