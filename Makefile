@@ -8,7 +8,7 @@
 #   make uninstall    removes what install put there
 #   make demo         a DF1 exchange on this machine, no hardware needed
 #   make bench        codec and channel benchmarks
-#   make fuzz         random-mutation fuzzing of the codecs (SECONDS=10)
+#   make fuzz         random-mutation fuzzing of the codecs and ChnPccc (SECONDS=10)
 #   make soak         every protocol over a noisy pty line between two
 #                     processes (SECONDS=10 per scenario, or COUNT=messages;
 #                     SEED=, ONLY=name); docs/reliability.md
@@ -30,16 +30,23 @@ TBINDIR  := $(BUILD)/test-bin
 DEB_PACKAGES := fp-compiler fp-units-rtl fp-units-base fp-units-fcl
 
 SYNAPSE_FLAGS := $(if $(SYNAPSE_DIR),-Fu$(SYNAPSE_DIR) -Fi$(SYNAPSE_DIR) -dCHN_SYNAPSE)
-COMMON   := -Fisrc $(SYNAPSE_FLAGS) -v0ew -l-
+COMMON   := -Fisrc -v0ew -l-
 # library units: warnings are errors; release code is optimised
-UNITFLAGS := $(COMMON) -Fusrc -O2 -Sew -FU$(UNITDIR) -FE$(BINDIR)
+UNITFLAGS := $(COMMON) $(SYNAPSE_FLAGS) -Fusrc -O2 -Sew -FU$(UNITDIR) -FE$(BINDIR)
 # examples, tools, benchmarks: the compiled library (as an installed one
-# would be used), plus tools/lib
-PROGFLAGS := $(COMMON) -Fu$(UNITDIR) -Futools/lib -O2 -Sew -FU$(TOOLUNITDIR) -FE$(BINDIR)
-# tests: range, overflow and stack checks, heaptrc, line info; -B rebuilds
-# everything, as FPC's one-second timestamps can miss a quick edit
-TESTFLAGS := $(COMMON) -Fusrc -Futools/lib -Futests/support -B -Cr -Co -Ct -gh -gl \
-             -FU$(TUNITDIR) -FE$(TBINDIR) -Fi$(BUILD)
+# would be used; Synapse's units too, so they are not rebuilt with -Sew),
+# plus tools/lib
+PROGFLAGS := $(COMMON) $(if $(SYNAPSE_DIR),-dCHN_SYNAPSE) -Fu$(UNITDIR) -Futools/lib -O2 -Sew \
+             -FU$(TOOLUNITDIR) -FE$(BINDIR)
+# tests: range, overflow and stack checks, heaptrc, line info (and -Xs-:
+# Debian's fpc.cfg strips it otherwise, and failures could not say where);
+# -B rebuilds everything, as FPC's one-second timestamps can miss a quick edit
+TESTFLAGS := $(COMMON) $(SYNAPSE_FLAGS) -Fusrc -Futools/lib -Futests/support -B -Cr -Co -Ct -gh -gl -Xs- \
+             -Fu$(BUILD)/fpcunit -FU$(TUNITDIR) -FE$(TBINDIR) -Fi$(BUILD)
+# FPCUnit rebuilt from Debian's fpc-source without optimisation, so that a
+# failing assert's location names the test's own line (the prebuilt one
+# loses the caller's frame); without fpc-source the prebuilt one is used.
+FPCUNIT_SRC = /usr/share/fpcsrc/$(shell $(FPC) -iV)/packages/fcl-fpcunit/src
 
 # Units that only build on another OS or with an optional library.
 ifeq ($(OS),Windows_NT)
@@ -81,7 +88,7 @@ check-fpc:
 units: $(BUILD)/units.stamp
 $(BUILD)/units.stamp: $(LIBSRC) | check-fpc
 	@mkdir -p $(UNITDIR) $(BINDIR)
-	@$(if $(SYNAPSE_DIR),$(FPC) $(COMMON) -O2 -FU$(UNITDIR) -FE$(BINDIR) $(SYNAPSE_DIR)/synaser.pas >/dev/null;) true
+	@$(if $(SYNAPSE_DIR),$(FPC) $(COMMON) $(SYNAPSE_FLAGS) -O2 -FU$(UNITDIR) -FE$(BINDIR) $(SYNAPSE_DIR)/synaser.pas >/dev/null;) true
 	@{ echo 'unit chnall; interface uses'; \
 	   echo '$(basename $(notdir $(UNITS)))' | sed 's/ /, /g'; \
 	   echo '; implementation end.'; } > $(BUILD)/chnall.pas
@@ -111,7 +118,7 @@ $(PROGBINS) $(BENCHBINS): src/chn.inc | $(BUILD)/units.stamp
 # test unit needs no edit anywhere else. Units that need Unix as a whole
 # (ptys) are listed here and built only there; single Unix-only tests are
 # {$IFDEF UNIX} in their unit.
-UNIX_TESTS := TestChnPty
+UNIX_TESTS := TestChnPty TestChnTcpSer2net
 comma := ,
 uses_entry = $(if $(filter $(1),$(UNIX_TESTS)),'{$$IFDEF UNIX}$(1)$(comma){$$ENDIF}','$(1)$(comma)')
 $(BUILD)/testunits.inc: $(TESTUNITS)
@@ -119,7 +126,13 @@ $(BUILD)/testunits.inc: $(TESTUNITS)
 	@printf '%s\n' $(foreach t,$(basename $(notdir $(TESTUNITS))),$(call uses_entry,$(t))) > $@.tmp
 	@cmp -s $@.tmp $@ 2>/dev/null && rm -f $@.tmp || mv $@.tmp $@
 
-test: all $(BUILD)/testunits.inc
+$(BUILD)/fpcunit/stamp:
+	@mkdir -p $(BUILD)/fpcunit
+	@if [ -d $(FPCUNIT_SRC) ]; then for u in fpcunit testregistry; do \
+	  $(FPC) -v0 -O- -gl -Xs- -FU$(BUILD)/fpcunit -Fu$(FPCUNIT_SRC) $(FPCUNIT_SRC)/$$u.pp >/dev/null || exit 1; done; \
+	else echo "note: no fpc-source: failing asserts are located by address only"; fi; touch $@
+
+test: all $(BUILD)/testunits.inc $(BUILD)/fpcunit/stamp
 	@mkdir -p $(TUNITDIR) $(TBINDIR)
 	@$(FPC) $(TESTFLAGS) tests/runtests.pas >$(BUILD)/test-build.log 2>&1 || { cat $(BUILD)/test-build.log; echo "0 passed, 1 failed"; exit 1; }
 	@$(FPC) $(SOAKFLAGS) tests/soak/soak.pas >>$(BUILD)/test-build.log 2>&1 || { cat $(BUILD)/test-build.log; echo "0 passed, 1 failed"; exit 1; }
@@ -131,7 +144,8 @@ demo: all
 bench: $(BENCHBINS)
 	@set -e; for b in $(BENCHBINS); do $$b; done
 
-# Random-mutation fuzzing of the three codecs with run-time checks on;
+# Random-mutation fuzzing of the three codecs and of ChnPccc (addresses,
+# plans, requests, reply decoding) with run-time checks on;
 # SECONDS=n for longer runs, SEED=n to repeat one.
 SECONDS ?= 10
 # the soak program: test flags, on the units the test build just made
@@ -139,7 +153,9 @@ SOAKFLAGS = $(filter-out -B,$(TESTFLAGS))
 fuzz: units
 	@mkdir -p $(TUNITDIR) $(TBINDIR)
 	@$(FPC) $(TESTFLAGS) tests/fuzz/fuzzcodecs.pas >$(BUILD)/fuzz-build.log 2>&1 || { cat $(BUILD)/fuzz-build.log; exit 1; }
+	@$(FPC) $(TESTFLAGS) tests/fuzz/fuzzpccc.pas >>$(BUILD)/fuzz-build.log 2>&1 || { cat $(BUILD)/fuzz-build.log; exit 1; }
 	@rm -f $(BUILD)/fuzz-heap.log; HEAPTRC="log=$(BUILD)/fuzz-heap.log" $(TBINDIR)/fuzzcodecs $(SECONDS) $(SEED)
+	@rm -f $(BUILD)/fuzz-heap.log; HEAPTRC="log=$(BUILD)/fuzz-heap.log" $(TBINDIR)/fuzzpccc $(SECONDS) $(SEED)
 
 # The soak (docs/reliability.md): SECONDS per scenario or COUNT messages
 # per scenario; SEED= the first NOISE seed; ONLY= scenarios whose name

@@ -332,15 +332,33 @@ function tChnCom.ComOpenPort(out Port: TChnPort): tChResult;
 var
   Cls: TChnPortClass;
   R: tChResult;
+  Key: ShortString;
 begin
   Port := nil;
   Cls := FindPortDriver(CH_Drv);
   if Cls = nil then
+  begin
+    CH_ParamErr := ChGetParam('DRV');
     Exit(res_BadParam);
+  end;
   Port := Cls.Create;
+  { the token to name if this fails: the device, then the setting the port
+    refused, then RS485= }
+  if CH_Drv = 'PTY' then
+    Key := 'DRV'
+  else if CH_Dev <> '' then
+    Key := 'DEV'
+  else
+    Key := 'COM';
   R := Port.Open(ChDevicePath);
   if R = res_Ok then
+  begin
     R := Port.Configure(CH_Set);
+    if Port.FailKey <> '' then
+      Key := Port.FailKey;
+  end;
+  if R = res_Ok then
+    Key := 'RS485';
   if (R = res_Ok) and (CH_Rs485 <> rs485Off) and (CH_Set.Flow = flowRtsCts) then
     R := res_BadSetting;            { RTS cannot be handshake and direction }
   if R = res_Ok then
@@ -362,6 +380,7 @@ begin
     end;
   if R <> res_Ok then
   begin
+    CH_ParamErr := ChGetParam(Key);
     Port.Free;                      { closes it }
     Port := nil;
   end;

@@ -116,6 +116,7 @@ type
     Naks     : LongInt;
     NaksOut  : LongInt;        { broken replies NAKed (full duplex) }
     Stale    : LongInt;        { replies to other commands, ACKed and ignored }
+    Acked    : Boolean;        { the command was ACKed (or answered) }
     EnqSent  : Boolean;
     FullDup  : Boolean;
     TimeoutMs: LongInt;
@@ -489,6 +490,7 @@ end;
 
 procedure MasterAcked(var M: tDF1Master);
 begin
+  M.Acked := True;
   M.State := dmWaitReply;
   M.Deadline := ChMsTick + QWord(3 * M.TimeoutMs);
   if M.FullDup then
@@ -501,10 +503,15 @@ end;
   another (a late copy of an earlier reply: the slave sent it again after a
   repeated command or a NAK) is ignored, and the wait goes on. }
 procedure MasterReply(var M: tDF1Master);
+var
+  Ours: Boolean;
 begin
+  Ours := (M.Rep.CF and $FF00 = (M.Req.CF and $FF00) or MskCF_Reply) and (M.Rep.Tns = M.Req.Tns);
+  if Ours then
+    M.Acked := True;            { a late reply to another command is no ACK of ours }
   if not MasterLink(M, tpAckNak, True) then
     Exit;
-  if (M.Rep.CF and $FF00 <> (M.Req.CF and $FF00) or MskCF_Reply) or (M.Rep.Tns <> M.Req.Tns) then
+  if not Ours then
   begin
     MasterSay(M, '-- the reply is not the one to this command: ignored');
     Inc(M.Stale);

@@ -17,7 +17,8 @@
   Result codes used by every backend:
     res_CannotOpen    device missing, in use, or not a device at all
     res_NoPermission  the OS denied access
-    res_BadSetting    the device refuses a setting (rate, parity, RS-485 ...)
+    res_BadSetting    the device refuses a setting (rate, parity, RS-485 ...);
+                      FailKey then names the parameter key at fault
     res_DeviceLost    the device went away (USB adapter pulled, pty closed)
     res_IOError       any other failure of a read, write or control call
     res_WrongState    call on a port that is not open }
@@ -56,7 +57,12 @@ type
     FDevice: ShortString;
     FOpen: Boolean;
     FOSError: LongInt;   { OS error code of the last failure, 0 if none }
+    FVirtual: Boolean;   { no physical line behind the device (a pty) }
   public
+    { After a failed Open or Configure: the parameter key at fault ('BD',
+      'BIT', 'STOP', 'PAR', 'FLW', 'RS485', or '' for the device itself),
+      so the layer can name the token in ChParamError. }
+    FailKey: ShortString;
     constructor Create; virtual;
     destructor Destroy; override;
     { Open Path ('/dev/ttyUSB0', '\\.\COM3') for exclusive use, raw and
@@ -103,6 +109,11 @@ type
     property Device: ShortString read FDevice;
     property IsOpen: Boolean read FOpen;
     property OSError: LongInt read FOSError;
+    { A virtual line (a Linux pty slave or master, a socat link to one)
+      carries bytes only: Configure takes BD BIT STOP PAR FLW as given and
+      changes nothing on it. Known after Open; always False on Windows,
+      where a virtual port's driver answers for itself. }
+    property VirtualLine: Boolean read FVirtual;
   end;
 
 const
@@ -143,6 +154,8 @@ begin
   FDevice := '';
   FOpen := False;
   FOSError := 0;
+  FVirtual := False;
+  FailKey := '';
 end;
 
 destructor TChnPort.Destroy;

@@ -19,7 +19,9 @@
     WaitInput polls the input queue (synaser's WaitCommEvent wait ends at
     once under Wine).
   * After Config the settings are read back (GetCommState): what the driver
-    changed (a pty forces 8 bits without parity) is res_BadSetting.
+    changed is res_BadSetting, FailKey naming the setting.
+  * A pty (Unix, as in ChnPortUnix) is a virtual line: Config is given 8N1
+    without flow control and every setting is taken as asked.
   * Config takes only the rates of Synapse's own table (50..4000000 on
     Linux, up to 256000 on Windows) and cannot do mark/space parity on Unix:
     anything else is res_BadSetting here rather than Synapse's silent B0
@@ -41,6 +43,7 @@ type
     FSer: TBlockSerial;
     function Check: tChResult;
     function MapError(E: LongInt): tChResult;
+    function Refuse(const Key: ShortString): tChResult;
   public
     function Open(const Path: tWordString): tChResult; override;
     function Configure(const S: tPortSettings): tChResult; override;
@@ -65,7 +68,7 @@ implementation
 
 {$IFDEF UNIX}
 uses
-  BaseUnix, Unix, TermIO;
+  BaseUnix, Unix, TermIO, ChnPortUnix;
 
 const
   { c_cflag bits set by synaser's Config and read back }
@@ -142,6 +145,12 @@ begin
   {$ENDIF}
 end;
 
+function TChnPortSynapse.Refuse(const Key: ShortString): tChResult;
+begin
+  FailKey := Key;
+  Result := res_BadSetting;
+end;
+
 function TChnPortSynapse.Check: tChResult;
 begin
   Result := MapError(FSer.LastError);
@@ -153,6 +162,8 @@ begin
     Exit(res_WrongState);
   FDevice := Path;
   FOSError := 0;
+  FailKey := '';
+  FVirtual := False;
   FSer := TBlockSerial.Create;
   FSer.RaiseExcept := False;
   {$IFDEF UNIX}
@@ -167,8 +178,11 @@ begin
     Result := res_CannotOpen;     { in use by another program }
   end;
   if Result = res_Ok then
+  begin
     FpFcntl(cint(FSer.Handle), F_SETFL,
       FpFcntl(cint(FSer.Handle), F_GETFL) or O_NONBLOCK);
+    FVirtual := PortIsPty(cint(FSer.Handle), Path);
+  end;
   {$ENDIF}
   if Result <> res_Ok then
   begin
@@ -197,14 +211,23 @@ begin
   for I := Low(SynapseBauds) to High(SynapseBauds) do
     if SynapseBauds[I] = S.Baud then
       Known := True;
+  FailKey := '';
+  if not (S.DataBits in [5..8]) then
+    Exit(Refuse('BIT'));
+  if not (S.StopBits in [1, 2]) then
+    Exit(Refuse('STOP'));
+  if FVirtual then
+  begin
+    { bytes only: 8N1, no flow control, whatever was asked }
+    FSer.Config(9600, 8, 'N', SB1, False, False);
+    Exit(Check);
+  end;
   if not Known or (S.Baud > SynapseMaxBaud) then
-    Exit(res_BadSetting);
+    Exit(Refuse('BD'));
   {$IFDEF UNIX}
   if S.Parity in [ppMark, ppSpace] then
-    Exit(res_BadSetting);         { synaser sets no CMSPAR }
+    Exit(Refuse('PAR'));          { synaser sets no CMSPAR }
   {$ENDIF}
-  if not (S.DataBits in [5..8]) or not (S.StopBits in [1, 2]) then
-    Exit(res_BadSetting);
   {$IFDEF WINDOWS}
   FSer.SizeRecvBuffer := S.InQueue;
   {$ENDIF}
@@ -216,7 +239,11 @@ begin
     S.Flow = flowXonXoff, S.Flow = flowRtsCts);
   Result := Check;
   if Result <> res_Ok then
+  begin
+    if Result = res_BadSetting then
+      FailKey := 'BD';            { as in ChnPortUnix: EINVAL is the rate }
     Exit;
+  end;
   { synaser does not look at what the driver really took: read it back }
   {$IFDEF UNIX}
   Want := FSer.TermiosStruc.c_cflag;
@@ -224,15 +251,20 @@ begin
   Result := Check;
   if (Result = res_Ok) and ((FSer.TermiosStruc.c_cflag and CheckedCFlags) <>
      (Want and CheckedCFlags)) then
-    Result := res_BadSetting;
+    Result := Refuse(PortCFlagKey(FSer.TermiosStruc.c_cflag, Want, CheckedCFlags));
   {$ELSE}
   Want := FSer.DCB;
   FSer.GetCommState;
   Result := Check;
-  if (Result = res_Ok) and ((FSer.DCB.BaudRate <> Want.BaudRate) or
-     (FSer.DCB.ByteSize <> Want.ByteSize) or (FSer.DCB.Parity <> Want.Parity) or
-     (FSer.DCB.StopBits <> Want.StopBits)) then
-    Result := res_BadSetting;
+  if Result = res_Ok then
+    if FSer.DCB.BaudRate <> Want.BaudRate then
+      Result := Refuse('BD')
+    else if FSer.DCB.ByteSize <> Want.ByteSize then
+      Result := Refuse('BIT')
+    else if FSer.DCB.Parity <> Want.Parity then
+      Result := Refuse('PAR')
+    else if FSer.DCB.StopBits <> Want.StopBits then
+      Result := Refuse('STOP');
   {$ENDIF}
 end;
 

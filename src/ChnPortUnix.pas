@@ -10,8 +10,16 @@
 
   Every setting is read back after tcsetattr: the kernel writes back what the
   driver really took (an 8250 falls back to 9600 for a rate it cannot make,
-  a driver without CMSPAR clears it), and any difference is res_BadSetting.
-  Rates outside the termios table use termios2/BOTHER on Linux. }
+  a driver without CMSPAR clears it), and any difference is res_BadSetting
+  with FailKey naming the setting. Rates outside the termios table use
+  termios2/BOTHER on Linux.
+
+  A pseudo terminal (slave /dev/pts/N, master /dev/ptmx, also reached
+  through a symlink such as socat's link=) is a virtual line: it carries
+  bytes only, and Linux keeps no rate, parity or framing there that could
+  matter. Configure then takes every setting as given and leaves the pty
+  raw, 8 bits, no flow control (XON/XOFF would eat bytes). Recognised by
+  the device number, so a link to a pty is one too. }
 unit ChnPortUnix;
 
 {$I chn.inc}
@@ -28,6 +36,8 @@ type
     FOverrunBase: LongWord;
     function Fail(Err: cint): tChResult;
     function Counters(out N: LongWord): Boolean;
+    function Refuse(const Key: ShortString): tChResult;
+    function FailSet(Err: cint): tChResult;
   protected
     { Open takes no flock: for /dev/ptmx (ChnPty), where every open is a
       new pair but a lock would hold the one inode for the whole system }
@@ -51,6 +61,14 @@ type
     function OsHandle: PtrInt; override;
     procedure Close; override;
   end;
+
+{ True when Fd (opened on Path) is a pseudo terminal, slave or master: a
+  virtual line. Also used by the Synapse backend on Unix. }
+function PortIsPty(Fd: cint; const Path: tWordString): Boolean;
+
+{ The parameter key ('BIT', 'STOP', 'PAR', 'FLW', else 'BD') behind the
+  c_cflag bits (within Mask) a driver changed from Want to Got. }
+function PortCFlagKey(Got, Want, Mask: LongWord): ShortString;
 
 implementation
 
@@ -142,6 +160,65 @@ begin
   end;
 end;
 
+function TChnPortUnix.Refuse(const Key: ShortString): tChResult;
+begin
+  FailKey := Key;
+  Result := res_BadSetting;
+end;
+
+{ tcsetattr failed: EINVAL there is the rate (the tty layer takes every
+  other flag and the driver adjusts it, which the read-back catches). }
+function TChnPortUnix.FailSet(Err: cint): tChResult;
+begin
+  Result := Fail(Err);
+  if Result = res_BadSetting then
+    FailKey := 'BD';
+end;
+
+function PortCFlagKey(Got, Want, Mask: LongWord): ShortString;
+var
+  Diff: LongWord;
+begin
+  Diff := (Got xor Want) and Mask;
+  if Diff and CSIZE <> 0 then
+    Result := 'BIT'
+  else if Diff and CSTOPB <> 0 then
+    Result := 'STOP'
+  else if Diff and (PARENB or PARODD {$IFDEF LINUX}or CMSPAR{$ENDIF}) <> 0 then
+    Result := 'PAR'
+  else if Diff and CRTSCTS <> 0 then
+    Result := 'FLW'
+  else
+    Result := 'BD';
+end;
+
+{ A pseudo terminal, slave or master, by device number on Linux (Unix98
+  slaves: majors 136..143, /dev/ptmx: 5,2; BSD-style ptys: 2 and 3), by
+  path elsewhere. A symlink (socat link=) was resolved by open. }
+function PortIsPty(Fd: cint; const Path: tWordString): Boolean;
+{$IFDEF LINUX}
+var
+  St: Stat;
+  Major, Minor: QWord;
+begin
+  Result := False;
+  if FpFStat(Fd, St) <> 0 then
+    Exit;
+  if not FpS_ISCHR(St.st_mode) then
+    Exit;
+  Major := ((St.st_rdev shr 8) and $FFF) or ((St.st_rdev shr 32) and not QWord($FFF));
+  Minor := (St.st_rdev and $FF) or ((St.st_rdev shr 12) and not QWord($FF));
+  Result := ((Major >= 136) and (Major <= 143)) or ((Major = 5) and (Minor = 2)) or
+    (Major = 2) or (Major = 3);
+end;
+{$ELSE}
+begin
+  Result := (Copy(Path, 1, 9) = '/dev/pts/') or (Path = '/dev/ptmx') or
+    (Copy(Path, 1, 8) = '/dev/pty') or (Copy(Path, 1, 8) = '/dev/tty') and
+    (Length(Path) = 10) and (Path[9] in ['p'..'z']);
+end;
+{$ENDIF}
+
 function TChnPortUnix.Open(const Path: tWordString): tChResult;
 var
   NewFd: cint;
@@ -150,6 +227,8 @@ begin
   if FOpen then
     Exit(res_WrongState);
   FOSError := 0;
+  FailKey := '';
+  FVirtual := False;
   FDevice := Path;
   NewFd := FpOpen(Path, O_RDWR or O_NOCTTY or O_NONBLOCK);
   if NewFd < 0 then
@@ -169,6 +248,7 @@ begin
     Exit;
   end;
   FpIOCtl(NewFd, TIOCEXCL, nil);   { best effort: keeps other non-root users out }
+  FVirtual := PortIsPty(NewFd, Path);
   { raw at once, rate and framing as found; Configure sets them }
   CFMakeRaw(T);
   T.c_iflag := T.c_iflag and not (IXON or IXOFF or IXANY);
@@ -199,6 +279,7 @@ var
 begin
   if not FOpen then
     Exit(res_WrongState);
+  FailKey := '';
   if TCGetAttr(FFd, T) <> 0 then
     Exit(Fail(FpGetErrno));
   CFMakeRaw(T);
@@ -212,13 +293,31 @@ begin
     7: Flags := Flags or CS7;
     8: Flags := Flags or CS8;
   else
-    Exit(res_BadSetting);
+    Exit(Refuse('BIT'));
   end;
   case S.StopBits of
     1: ;
     2: Flags := Flags or CSTOPB;
   else
-    Exit(res_BadSetting);
+    Exit(Refuse('STOP'));
+  end;
+  if (S.Baud <= 0) or (Ord(S.Parity) > Ord(High(tPortParity))) or
+     (Ord(S.Flow) > Ord(High(tPortFlow))) then
+  begin
+    if S.Baud <= 0 then
+      Exit(Refuse('BD'));
+    if Ord(S.Parity) > Ord(High(tPortParity)) then
+      Exit(Refuse('PAR'));
+    Exit(Refuse('FLW'));
+  end;
+  if FVirtual then
+  begin
+    { bytes only: raw, 8 bits, no parity, no flow control; nothing to check }
+    T.c_cflag := (T.c_cflag and not (CheckedCFlags and not CBAUD) and not HUPCL) or
+      CS8 or CREAD or CLOCAL;
+    if TCSetAttr(FFd, TCSANOW, T) <> 0 then
+      Exit(Fail(FpGetErrno));
+    Exit(res_Ok);
   end;
   case S.Parity of
     ppNone: ;
@@ -228,7 +327,7 @@ begin
     ppMark: Flags := Flags or PARENB or PARODD or CMSPAR;
     ppSpace: Flags := Flags or PARENB or CMSPAR;
     {$ELSE}
-    ppMark, ppSpace: Exit(res_BadSetting);
+    ppMark, ppSpace: Exit(Refuse('PAR'));
     {$ENDIF}
   end;
   case S.Flow of
@@ -246,11 +345,11 @@ begin
     CFSetISpeed(T, Code);
     CFSetOSpeed(T, Code);
     if TCSetAttr(FFd, TCSANOW, T) <> 0 then
-      Exit(Fail(FpGetErrno));
+      Exit(FailSet(FpGetErrno));
     if TCGetAttr(FFd, Back) <> 0 then
       Exit(Fail(FpGetErrno));
     if (Back.c_cflag and CheckedCFlags) <> (T.c_cflag and CheckedCFlags) then
-      Exit(res_BadSetting);     { the driver changed something: no fallback }
+      Exit(Refuse(PortCFlagKey(Back.c_cflag, T.c_cflag, CheckedCFlags)));   { no fallback }
   end
   else
   begin
@@ -267,17 +366,18 @@ begin
     T2.c_ispeed := S.Baud;
     T2.c_ospeed := S.Baud;
     if FpIOCtl(FFd, TCSETS2, @T2) <> 0 then
-      Exit(Fail(FpGetErrno));
+      Exit(FailSet(FpGetErrno));
     FillChar(T2, SizeOf(T2), 0);
     if FpIOCtl(FFd, TCGETS2, @T2) <> 0 then
       Exit(Fail(FpGetErrno));
     { the kernel writes back the rate it set; allow 2 % as UARTs do }
-    if (Abs(Int64(T2.c_ospeed) - S.Baud) * 50 > S.Baud) or
-       ((T2.c_cflag and (CheckedCFlags and not CBAUD)) <>
-        (T.c_cflag and (CheckedCFlags and not CBAUD))) then
-      Exit(res_BadSetting);
+    if Abs(Int64(T2.c_ospeed) - S.Baud) * 50 > S.Baud then
+      Exit(Refuse('BD'));
+    if (T2.c_cflag and (CheckedCFlags and not CBAUD)) <>
+       (T.c_cflag and (CheckedCFlags and not CBAUD)) then
+      Exit(Refuse(PortCFlagKey(T2.c_cflag, T.c_cflag, CheckedCFlags)));
     {$ELSE}
-    Exit(res_BadSetting);
+    Exit(Refuse('BD'));
     {$ENDIF}
   end;
   Result := res_Ok;

@@ -15,7 +15,9 @@
   Result mapping: ERROR_FILE_NOT_FOUND/PATH_NOT_FOUND, and ACCESS_DENIED or
   SHARING_VIOLATION at open (Windows' answer for a port in use by another
   program) -> res_CannotOpen; a handle that takes no DCB (not a serial
-  device) or a DCB the driver rejects or changes -> res_BadSetting; the
+  device) or a DCB the driver rejects or changes -> res_BadSetting (FailKey
+  names the setting: for a rejected DCB the settings are tried one at a
+  time to find it); the
   errors a pulled USB adapter gives (ACCESS_DENIED, BAD_COMMAND,
   GEN_FAILURE, OPERATION_ABORTED, DEVICE_NOT_CONNECTED) and NOT_READY (what
   Wine makes of EIO from a hung-up tty) -> res_DeviceLost.
@@ -41,6 +43,8 @@ type
     function Fail(E: DWORD): tChResult;
     function Status(out InQue, OutQue: DWORD): tChResult;
     function ApplyDcb(var D: TDCB): tChResult;
+    function RejectedKey(const D: TDCB): ShortString;
+    function Refuse(const Key: ShortString): tChResult;
   public
     constructor Create; override;
     function Open(const Path: tWordString): tChResult; override;
@@ -150,6 +154,7 @@ begin
     Exit(res_WrongState);
   FDevice := Path;
   FOSError := 0;
+  FailKey := '';
   Name := Path;
   H := CreateFileA(PAnsiChar(Name), GENERIC_READ or GENERIC_WRITE, 0, nil,
     OPEN_EXISTING, FILE_ATTRIBUTE_NORMAL, 0);
@@ -178,13 +183,51 @@ begin
   Result := res_Ok;
 end;
 
+function TChnPortWin.Refuse(const Key: ShortString): tChResult;
+begin
+  FailKey := Key;
+  Result := res_BadSetting;
+end;
+
+{ SetCommState refused D as a whole: change the port's DCB towards D one
+  setting at a time; the first one refused is the one to name. }
+function TChnPortWin.RejectedKey(const D: TDCB): ShortString;
+var
+  C: TDCB;
+begin
+  FillChar(C, SizeOf(C), 0);
+  C.DCBlength := SizeOf(C);
+  Result := 'BD';
+  if not GetCommState(FH, C) then
+    Exit;
+  C.BaudRate := D.BaudRate;
+  if not SetCommState(FH, C) then
+    Exit('BD');
+  C.ByteSize := D.ByteSize;
+  if not SetCommState(FH, C) then
+    Exit('BIT');
+  C.StopBits := D.StopBits;
+  if not SetCommState(FH, C) then
+    Exit('STOP');
+  C.Parity := D.Parity;
+  C.flags := (C.flags and not fParity) or (D.flags and fParity);
+  if not SetCommState(FH, C) then
+    Exit('PAR');
+  Result := 'FLW';                  { what is left: handshake and RTS }
+end;
+
 function TChnPortWin.ApplyDcb(var D: TDCB): tChResult;
 var
   Back: TDCB;
   Rts, BackRts: DWORD;
 begin
   if not SetCommState(FH, D) then
-    Exit(Fail(GetLastError));
+  begin
+    Result := Fail(GetLastError);
+    if Result = res_BadSetting then
+      FailKey := RejectedKey(D);
+    Exit;
+  end;
   FillChar(Back, SizeOf(Back), 0);
   Back.DCBlength := SizeOf(Back);
   if not GetCommState(FH, Back) then
@@ -196,11 +239,17 @@ begin
   if (Rts = fRtsControlHandshake) and (BackRts = fRtsControlEnable) and
      (Back.flags and fOutxCtsFlow <> 0) then
     BackRts := fRtsControlHandshake;
-  if (Back.BaudRate <> D.BaudRate) or (Back.ByteSize <> D.ByteSize) or
-     (Back.Parity <> D.Parity) or (Back.StopBits <> D.StopBits) or
-     (BackRts <> Rts) or
-     ((Back.flags and fOutxCtsFlow) <> (D.flags and fOutxCtsFlow)) then
-    Exit(res_BadSetting);           { the driver changed it: no fallback }
+  { the driver changed it: no fallback }
+  if Back.BaudRate <> D.BaudRate then
+    Exit(Refuse('BD'));
+  if Back.ByteSize <> D.ByteSize then
+    Exit(Refuse('BIT'));
+  if Back.Parity <> D.Parity then
+    Exit(Refuse('PAR'));
+  if Back.StopBits <> D.StopBits then
+    Exit(Refuse('STOP'));
+  if (BackRts <> Rts) or ((Back.flags and fOutxCtsFlow) <> (D.flags and fOutxCtsFlow)) then
+    Exit(Refuse('FLW'));
   Result := res_Ok;
 end;
 
@@ -211,8 +260,11 @@ var
 begin
   if not FOpen then
     Exit(res_WrongState);
-  if not (S.DataBits in [5..8]) or not (S.StopBits in [1, 2]) then
-    Exit(res_BadSetting);
+  FailKey := '';
+  if not (S.DataBits in [5..8]) then
+    Exit(Refuse('BIT'));
+  if not (S.StopBits in [1, 2]) then
+    Exit(Refuse('STOP'));
   InSize := S.InQueue;
   if InSize < 16 then
     InSize := 16;

@@ -1,6 +1,11 @@
 { Tests of ChnCom over real pseudo-terminal pairs (no hardware): the pty
   tests run once per port backend built in (TTestChnComRtl always,
-  TTestChnComSynapse with make SYNAPSE_DIR=...). Settings are checked by
+  TTestChnComSynapse with make SYNAPSE_DIR=...). A pty is a virtual line,
+  which takes every setting as given; to test the strict path a real UART
+  takes (read-back, refusals naming the token), these tests open the pty
+  through a test driver (RTLSTRICT, SYNSTRICT) that is the backend with the
+  virtual-line detection switched off. TTestChnComVirtual checks the
+  virtual line itself, on the real drivers. Settings are checked by
   reading the kernel's termios of the open descriptor, not through the code
   under test. TTestChnComLogic covers parameters and the RS-485/overrun
   logic of tChnCom on a scripted fake port. On Windows only the logic
@@ -14,8 +19,9 @@ interface
 
 uses
   SysUtils, Classes, fpcunit, testregistry,
-  {$IFDEF UNIX}BaseUnix, Unix, TermIO, Linux, PtyPair,{$ENDIF}
-  ChnTypes, ChnVirt, ChnPort, ChnCom, TestSupport;
+  {$IFDEF UNIX}BaseUnix, Unix, TermIO, Linux, Process, PtyPair, ChnPortUnix, ChnPty, BinSupport,{$ENDIF}
+  {$IFDEF CHN_SYNAPSE}ChnPortSynapse,{$ENDIF}
+  ChnTypes, ChnVirt, ChnPort, ChnCom, ChnDF1, TestSupport;
 
 type
   {$IFDEF UNIX}
@@ -53,6 +59,7 @@ type
     procedure TestRs485RefusedOnPty;
     procedure TestIdleWaitReturnsOnFirstByte;
     procedure TestLegacyPollingLoopCpu;
+    procedure TestRefusalNamesTheToken;
   end;
 
   TTestChnComRtl = class(TTestChnComPty)
@@ -66,6 +73,27 @@ type
     function Drv: string; override;
   end;
   {$ENDIF}
+
+  { The virtual line: a pty slave, a socat link to one, DRV=PTY, on the
+    real drivers (RTL, and SYNAPSE when built in). }
+  TTestChnComVirtual = class(TTestCase)
+  private
+    FPty: TPtyPair;
+    FStacks: array of pChnVirt;
+    FBuf: array[0..1023] of Byte;
+    function Open(const Params: string): pChnVirt;
+    procedure Pass(A, B: pChnVirt; const What: string);
+    procedure TakesAsGiven(const Drv: string);
+  protected
+    procedure SetUp; override;
+    procedure TearDown; override;
+  published
+    procedure TestPtySlaveTakesSettingsAsGiven;
+    procedure TestDrvPtyTakesSettingsAsGiven;
+    procedure TestSocatLinkIsVirtual;
+    procedure TestManualStringOnPty;
+    procedure TestExamplesPrintTheToken;
+  end;
   {$ENDIF UNIX}
 
   TTestChnComLogic = class(TTestCase)
@@ -308,7 +336,7 @@ procedure TTestChnComPty.TestNonStandardBaud;
 var
   T: tTermios2;
 begin
-  if Drv = 'SYNAPSE' then
+  if Drv = 'SYNSTRICT' then
   begin
     AssertEquals('12345 Bd is not in synaser''s table', res_BadSetting, OpenCom('BD=12345'));
     AssertEquals('closed', CHS_Close, FChn^.ChReady);
@@ -756,13 +784,264 @@ end;
 
 function TTestChnComRtl.Drv: string;
 begin
-  Result := 'RTL';
+  Result := 'RTLSTRICT';
+end;
+
+{ The pty as a stand-in for a real UART: the backend with the virtual-line
+  detection off, so Configure checks what the kernel took. }
+type
+  TStrictRtlPort = class(TChnPortUnix)
+  public
+    function Open(const Path: tWordString): tChResult; override;
+  end;
+
+function TStrictRtlPort.Open(const Path: tWordString): tChResult;
+begin
+  Result := inherited Open(Path);
+  FVirtual := False;
+end;
+
+{$IFDEF CHN_SYNAPSE}
+type
+  TStrictSynapsePort = class(TChnPortSynapse)
+  public
+    function Open(const Path: tWordString): tChResult; override;
+  end;
+
+function TStrictSynapsePort.Open(const Path: tWordString): tChResult;
+begin
+  Result := inherited Open(Path);
+  FVirtual := False;
+end;
+{$ENDIF}
+
+{ Every refusal of ChOpen names its token in ChParamError, also through a
+  protocol layer above, and a later good open clears it. }
+procedure TTestChnComPty.TestRefusalNamesTheToken;
+var
+  D: pChnVirt;
+begin
+  AssertEquals('BIT=7 PAR=E', res_BadSetting, OpenCom('BIT=7 PAR=E'));
+  AssertEquals('the data bits go first', 'BIT=7', FChn^.ChParamError);
+  AssertEquals(res_BadSetting, OpenCom('PAR=O'));
+  AssertEquals('PAR=O', FChn^.ChParamError);
+  AssertEquals(res_BadSetting, OpenCom('PAR=M'));
+  AssertEquals('PAR=M', FChn^.ChParamError);
+  AssertEquals(res_BadSetting, OpenCom('RS485=KERNEL'));
+  AssertEquals('RS485=KERNEL', FChn^.ChParamError);
+  AssertEquals(res_Ok, OpenCom('PAR=N'));
+  AssertEquals('cleared by a good open', '', FChn^.ChParamError);
+  FChn^.ChClose;
+  FChn^.ChSetParam('DEV=/dev/null');
+  FChn^.ChOpen;
+  AssertEquals(res_BadSetting, FChn^.ChResult);
+  AssertEquals('not a terminal: the device', 'DEV=/dev/null', FChn^.ChParamError);
+  FChn^.ChSetParam('DEV=/dev/chn-no-such-tty');
+  FChn^.ChOpen;
+  AssertEquals(res_CannotOpen, FChn^.ChResult);
+  AssertEquals('DEV=/dev/chn-no-such-tty', FChn^.ChParamError);
+  { through a protocol layer: the top layer names it too }
+  D := ChnCollection^.ChNewInit('DF1');
+  AssertTrue('DF1 is linked in (TestChnDF1)', D <> nil);
+  try
+    D^.ChSetParam('NAM=DF1 NAM=COM DRV=' + Drv + ' DEV=' + FPty.SlavePath + ' PAR=O');
+    AssertEquals(res_Ok, D^.ChResult);
+    D^.ChOpen;
+    AssertEquals(res_BadSetting, D^.ChResult);
+    AssertEquals('the top layer', 'PAR=O', D^.ChParamError);
+  finally
+    Dispose(D, Done);
+  end;
+end;
+
+{ ------------------------------------------------------------ virtual line }
+
+procedure TTestChnComVirtual.SetUp;
+begin
+  FPty := TPtyPair.Create;
+  FStacks := nil;
+end;
+
+procedure TTestChnComVirtual.TearDown;
+var
+  I: Integer;
+begin
+  for I := High(FStacks) downto 0 do
+    Dispose(FStacks[I], Done);
+  FStacks := nil;
+  FPty.Free;
+end;
+
+function TTestChnComVirtual.Open(const Params: string): pChnVirt;
+var
+  Err: string;
+begin
+  Result := OpenStack('COM', Params, Err);
+  AssertTrue('open ' + Params + ': ' + Err, Result <> nil);
+  SetLength(FStacks, Length(FStacks) + 1);
+  FStacks[High(FStacks)] := Result;
+  Result^.ChReceiveBuffer(@FBuf, SizeOf(FBuf));
+end;
+
+{ All 256 byte values (XON, XOFF, DLE among them) from A to B, unchanged. }
+procedure TTestChnComVirtual.Pass(A, B: pChnVirt; const What: string);
+var
+  Msg: array[0..255] of Byte;
+  Got, I: LongInt;
+  Len: Word;
+  Deadline: QWord;
+begin
+  for I := 0 to 255 do
+    Msg[I] := I;
+  AssertTrue(What + ': idle', WaitSent(A, 2000));
+  A^.ChSend(@Msg, 256);
+  AssertEquals(What + ': send', res_Ok, A^.ChSendResult);
+  Got := 0;
+  Deadline := GetTickCount64 + 3000;
+  while (Got < 256) and (GetTickCount64 < Deadline) do
+  begin
+    A^.ChSendReady;
+    if B^.ChReceiveReady = CHS_ReceiveReady then
+    begin
+      Len := 0;
+      B^.ChReceiveBuffer(@FBuf[Got], SizeOf(FBuf) - Got);
+      B^.ChReceive(Len);
+      Inc(Got, Len);
+    end;
+  end;
+  AssertEquals(What + ': every byte arrives', 256, Got);
+  for I := 0 to 255 do
+    AssertEquals(What + ': byte ' + IntToStr(I), I, FBuf[I]);
+end;
+
+procedure TTestChnComVirtual.TakesAsGiven(const Drv: string);
+const
+  Cases: array[0..3] of string = (
+    'BD=19200 BIT=7 STOP=2 PAR=E FLW=NONE',
+    'BD=12345 BIT=5 STOP=1 PAR=M FLW=RTSCTS',
+    'BD=4000000 BIT=6 STOP=2 PAR=S FLW=XONXOFF',
+    'BD=50 BIT=8 STOP=1 PAR=O FLW=NONE');
+var
+  I: Integer;
+  C: pChnVirt;
+  T: Termios;
+  Line: string;
+begin
+  for I := Low(Cases) to High(Cases) do
+  begin
+    C := OpenStack('COM', 'NAM=COM DRV=' + Drv + ' DEV=' + FPty.SlavePath + ' ' + Cases[I], Line);
+    AssertTrue(Drv + ' ' + Cases[I] + ': ' + Line, C <> nil);
+    Line := C^.ChGetParam('BD') + ' ' + C^.ChGetParam('BIT') + ' ' +
+      C^.ChGetParam('STOP') + ' ' + C^.ChGetParam('PAR') + ' ' + C^.ChGetParam('FLW');
+    AssertEquals(Drv + ': reported as given', Cases[I], Line);
+    AssertTrue(Drv + ': virtual', pChnCom(C)^.CH_Port.VirtualLine);
+    { the pty itself is left raw, 8 bits, no parity, no flow control }
+    AssertEquals('tcgetattr', 0, TCGetAttr(pChnCom(C)^.CH_Port.OsHandle, T));
+    AssertEquals(Cases[I] + ': CS8, no PARENB/CSTOPB/CRTSCTS', KCS8,
+      T.c_cflag and (KCSIZE or KPARENB or KCSTOPB or KCRTSCTS or KCMSPAR));
+    AssertEquals(Cases[I] + ': no IXON/IXOFF', 0, T.c_iflag and (IXON or IXOFF));
+    Dispose(C, Done);
+  end;
+end;
+
+procedure TTestChnComVirtual.TestPtySlaveTakesSettingsAsGiven;
+begin
+  TakesAsGiven('RTL');
+  {$IFDEF CHN_SYNAPSE}
+  TakesAsGiven('SYNAPSE');
+  {$ENDIF}
+end;
+
+procedure TTestChnComVirtual.TestDrvPtyTakesSettingsAsGiven;
+var
+  Host, Client: pChnVirt;
+begin
+  Host := Open('NAM=COM DRV=PTY BD=9600 BIT=7 PAR=E STOP=2 FLW=XONXOFF');
+  AssertEquals('as given', 'PAR=E', Host^.ChGetParam('PAR'));
+  AssertEquals('FLW=XONXOFF', Host^.ChGetParam('FLW'));
+  Client := Open('NAM=COM DEV=' + PtyLastSlave + ' BD=9600 BIT=7 PAR=E STOP=2 FLW=XONXOFF');
+  Pass(Host, Client, 'host -> client');
+  Pass(Client, Host, 'client -> host');
+end;
+
+{ socat's pty link= is a symlink to /dev/pts/N: a virtual line as well }
+procedure TTestChnComVirtual.TestSocatLinkIsVirtual;
+var
+  P: TProcess;
+  Dir, A, B: string;
+  Deadline: QWord;
+  CA, CB: pChnVirt;
+begin
+  if FileSearch('socat', GetEnvironmentVariable('PATH')) = '' then
+    Ignore('socat is not installed (Debian package socat): the socat link is not checked');
+  Dir := GetTempDir(False) + 'chn-socat-' + IntToStr(FpGetPid);
+  CreateDir(Dir);
+  A := Dir + '/ttyA';
+  B := Dir + '/ttyB';
+  P := TProcess.Create(nil);
+  try
+    P.Executable := FileSearch('socat', GetEnvironmentVariable('PATH'));
+    P.Parameters.Add('pty,raw,echo=0,link=' + A);
+    P.Parameters.Add('pty,raw,echo=0,link=' + B);
+    P.Execute;
+    Deadline := GetTickCount64 + 5000;
+    while not (FileExists(A) and FileExists(B)) and (GetTickCount64 < Deadline) do
+      Sleep(10);
+    AssertTrue('socat made its links', FileExists(A) and FileExists(B));
+    { the manuals' line settings on both ends }
+    CA := Open('NAM=COM DEV=' + A + ' BD=9600 BIT=8 STOP=1 PAR=E IRQ=4 LRB=1000');
+    CB := Open('NAM=COM DEV=' + B + ' BD=9600 BIT=8 STOP=1 PAR=E IRQ=4 LRB=1000');
+    AssertEquals('PAR=E', CA^.ChGetParam('PAR'));
+    Pass(CA, CB, 'A -> B');
+    Pass(CB, CA, 'B -> A');
+  finally
+    P.Terminate(0);
+    P.WaitOnExit;
+    P.Free;
+    DeleteFile(A);
+    DeleteFile(B);
+    RemoveDir(Dir);
+  end;
+end;
+
+{ The manual's whole parameter string, pointed at a pty by DEV= }
+procedure TTestChnComVirtual.TestManualStringOnPty;
+var
+  Host, Client: pChnVirt;
+  Err: string;
+begin
+  Host := Open('NAM=COM DRV=PTY');
+  Client := OpenStack('DF1',
+    'NAM=DF1 LSB=500 NOD=1 DNO=2 FHD=FULL CRC=ON NAM=COM COM=1 IRQ=4 BD=9600 ' +
+    'BIT=8 STOP=1 PAR=E LRB=1000 DEV=' + PtyLastSlave, Err);
+  AssertTrue('opens: ' + Err, Client <> nil);
+  SetLength(FStacks, Length(FStacks) + 1);
+  FStacks[High(FStacks)] := Client;
+  AssertEquals('', Client^.ChParamError);
+end;
+
+{ What the example programs print when ChOpen refuses: the token, whichever
+  way they open (plain ChOpen, DF1OpenStack). Expected texts by hand. }
+procedure TTestChnComVirtual.TestExamplesPrintTheToken;
+var
+  Output: string;
+begin
+  AssertTrue(BinPath('comraw') + ' missing (make examples)', FileExists(BinPath('comraw')));
+  AssertEquals('comraw exit code', 1, RunBin('comraw', ['DEV=/dev/null BD=9600'], 10000, Output));
+  AssertTrue('comraw: ' + Output,
+    Pos('comraw: device refuses the setting DEV=/dev/null', Output) > 0);
+  { a pty has no RS-485: refused, and named, through DF1 on top }
+  RunBin('df1read', ['N7:0', '1', 'NAM=DF1 NOD=0 DNO=1 NAM=COM DEV=' + FPty.SlavePath +
+    ' RS485=KERNEL'], 10000, Output);
+  AssertTrue('df1read: ' + Output, Pos('device refuses the setting (RS485=KERNEL)', Output) > 0);
+  RunBin('ft12master', ['NAM=FT1_2 MAS=MASTER NAM=COM DEV=/dev/null', '100'], 10000, Output);
+  AssertTrue('ft12master: ' + Output, Pos('in parameter DEV=/dev/null', Output) > 0);
 end;
 
 {$IFDEF CHN_SYNAPSE}
 function TTestChnComSynapse.Drv: string;
 begin
-  Result := 'SYNAPSE';
+  Result := 'SYNSTRICT';
 end;
 {$ENDIF}
 {$ENDIF UNIX}
@@ -807,7 +1086,10 @@ end;
 function TFakePort.Configure(const S: tPortSettings): tChResult;
 begin
   if RefuseConfig then
+  begin
+    FailKey := 'PAR';
     Exit(res_BadSetting);
+  end;
   Log := Log + Format('cfg %d %d%s%d;', [S.Baud, S.DataBits, 'NEOMS'[Ord(S.Parity) + 1], S.StopBits]);
   Result := res_Ok;
 end;
@@ -1197,11 +1479,17 @@ begin
   TFakePort.RefuseConfig := True;
   C := ChnCollection^.ChNewInit('COM');
   try
-    C^.ChSetParam('DRV=FAKE DEV=/x');
+    C^.ChSetParam('DRV=FAKE DEV=/x PAR=M');
     C^.ChOpen;
     AssertEquals('refused', res_BadSetting, C^.ChResult);
+    AssertEquals('the port''s key, as a token', 'PAR=M', C^.ChParamError);
     AssertEquals('closed', CHS_Close, C^.ChReady);
     AssertEquals('port closed again', 'open /x;close;', TFakePort.Log);
+    TFakePort.RefuseConfig := False;
+    TFakePort.Log := '';
+    C^.ChOpen;
+    AssertEquals('opens', res_Ok, C^.ChResult);
+    AssertEquals('no token after success', '', C^.ChParamError);
   finally
     Dispose(C, Done);
   end;
@@ -1209,8 +1497,11 @@ end;
 
 initialization
   {$IFDEF UNIX}
+  RegisterPortDriver('RTLSTRICT', TStrictRtlPort);
   RegisterTest(TTestChnComRtl);
+  RegisterTest(TTestChnComVirtual);
   {$IFDEF CHN_SYNAPSE}
+  RegisterPortDriver('SYNSTRICT', TStrictSynapsePort);
   RegisterTest(TTestChnComSynapse);
   {$ENDIF}
   {$ENDIF}

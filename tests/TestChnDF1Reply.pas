@@ -289,10 +289,11 @@ procedure TTestChnDF1Reply.TestOutOfOrderBothDirectionsPty;
 var
   A, B: pChnVirt;
 begin
+  { the manuals' line settings on a virtual line: PAR=E and all }
   PtyLastSlave := '';
-  A := Open('NAM=DF1 NOD=1 DNO=2 NAM=COM DRV=PTY BD=19200');
+  A := Open('NAM=DF1 NOD=1 DNO=2 NAM=COM DRV=PTY BD=19200 PAR=E');
   AssertEquals('/dev/pts/', Copy(PtyLastSlave, 1, 9));
-  B := Open('NAM=DF1 NOD=2 DNO=1 NAM=COM DEV=' + PtyLastSlave + ' BD=19200');
+  B := Open('NAM=DF1 NOD=2 DNO=1 NAM=COM DEV=' + PtyLastSlave + ' BD=19200 PAR=E IRQ=4');
   OutOfOrder(A, B, 'pty');
 end;
 {$ENDIF}
