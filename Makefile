@@ -141,7 +141,7 @@ test: all $(BUILD)/testunits.inc $(BUILD)/fpcunit/stamp
 demo: all
 	@bash tools/demo.sh $(BUILD)
 
-bench: $(BENCHBINS)
+bench: $(BENCHBINS) $(BINDIR)/chntap
 	@set -e; for b in $(BENCHBINS); do $$b; done
 
 # Random-mutation fuzzing of the three codecs and of ChnPccc (addresses,

@@ -17,7 +17,7 @@ uses
   {$IFDEF UNIX}BaseUnix,{$ENDIF}
   SysUtils, Classes, Process, fpcunit, testregistry, ChnTypes, ChnVirt, ChnLoop,
   ChnCom, ChnDF1Codec, ChnDF1, ChnDF1Link, ChnSlc, ChnPccc, ChnPcccClient,
-  TestSupport, BinSupport;
+  TestSupport, BinSupport, Df1Pair;
 
 type
   TTestChnPcccClient = class(TTestCase)
@@ -147,14 +147,9 @@ begin
 end;
 
 procedure TTestChnPcccClient.StartPair(Full, Crc: Boolean; const Pair: string);
-const
-  FHD: array[Boolean] of string = ('HALF', 'FULL');
-  CRCS: array[Boolean] of string = ('OFF', 'ON');
 begin
-  Slave := Open(Format('NAM=DF1 NOD=1 DNO=0 MAS=SLAVE FHD=%s CRC=%s NAM=LOOP PAIR=%s END=2',
-    [FHD[Full], CRCS[Crc], Pair]));
-  Master := Open(Format('NAM=DF1 NOD=0 DNO=1 MAS=MASTER FHD=%s CRC=%s NAM=LOOP PAIR=%s END=1',
-    [FHD[Full], CRCS[Crc], Pair]));
+  Slave := Open(Df1PairParams(False, Full, Crc, Pair));
+  Master := Open(Df1PairParams(True, Full, Crc, Pair));
   SlcStationInit(Station, Slave, @Table);
   PcccClientInit(C, Master);
   C.Idle := @StepStation;
@@ -382,7 +377,7 @@ var
 begin
   Raw := OpenStack('LOOP', 'NAM=LOOP PAIR=PCNAK END=2', Err);
   AssertTrue(Err, Raw <> nil);
-  Master := Open('NAM=DF1 NOD=0 DNO=1 MAS=MASTER FHD=FULL CRC=ON NAM=LOOP PAIR=PCNAK END=1');
+  Master := Open(Df1PairParams(True, True, True, 'PCNAK'));
   PcccClientInit(C, Master);
   C.Idle := @NakEverything;
   C.IdleData := Raw;

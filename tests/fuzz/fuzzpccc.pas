@@ -17,7 +17,7 @@ program fuzzpccc;
 {$MODE OBJFPC}{$H+}
 
 uses
-  SysUtils, Math, ChnTypes, ChnDF1Codec, ChnPccc;
+  SysUtils, Math, ChnTypes, ChnDF1Codec, ChnPccc, FuzzRun;
 
 const
   Seeds: array[0..23] of string = (
@@ -193,19 +193,9 @@ begin
 end;
 
 var
-  Seconds: Integer;
   Deadline: QWord;
-  Seed: LongInt;
 begin
-  Seconds := 10;
-  if ParamCount >= 1 then
-    Seconds := StrToIntDef(ParamStr(1), 10);
-  Seed := LongInt(GetTickCount64 and $7FFFFFFF);
-  if ParamCount >= 2 then
-    Seed := StrToIntDef(ParamStr(2), Seed);
-  RandSeed := Seed;
-  WriteLn('fuzzpccc: ', Seconds, ' s, seed ', Seed);
-  Deadline := GetTickCount64 + QWord(Seconds) * 1000;
+  Deadline := FuzzDeadline('fuzzpccc');
   repeat
     FuzzOne;
   until GetTickCount64 >= Deadline;
