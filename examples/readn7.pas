@@ -1,5 +1,4 @@
-{ readn7 - read N7:0 of an SLC 500 / MicroLogix: readn7 /dev/ttyUSB0 }
-program readn7;
+program readn7;  { N7:0 of an SLC 500 / MicroLogix: readn7 /dev/ttyUSB0 }
 uses ChnCom, ChnDF1, ChnPcccClient;
 var
   C: tPcccClient;

@@ -134,6 +134,9 @@ function DF1MasterStart(var M: tDF1Master; Chn: pChnVirt; constref Req: tSendRec
   ReqLen: Word; TimeoutMs: LongInt; Log: tDF1LogProc = nil; LogWire: Boolean = False): Boolean;
 { One look at the channel; True when the exchange is over (M.State = dmDone). }
 function DF1MasterStep(var M: tDF1Master): Boolean;
+{ Abandon an exchange under way (M.Result res_Timeout): the channel's
+  receive buffer is given back; a reply that comes later is the caller's. }
+procedure DF1MasterCancel(var M: tDF1Master);
 
 { True when Chn is the top of a tChnDF1 stack. }
 
@@ -545,6 +548,15 @@ begin
   Chn^.ChReceiveBuffer(@M.Rep, SizeOf(M.Rep));
   MasterTry(M);
   Result := M.State <> dmDone;
+end;
+
+procedure DF1MasterCancel(var M: tDF1Master);
+begin
+  if M.State <> dmDone then
+  begin
+    MasterSay(M, '-- cancelled');
+    MasterFinish(M, res_Timeout);
+  end;
 end;
 
 function DF1MasterStep(var M: tDF1Master): Boolean;

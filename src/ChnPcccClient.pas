@@ -40,6 +40,7 @@ type
     Log      : tDF1LogProc;  { nil: quiet }
     LogWire  : Boolean;
     Requests : LongInt;      { exchanges made }
+    InUse    : Boolean;      { a request is under way: one at a time }
     Err      : ShortString;  { the text of the last failure }
   end;
   pPcccClient = ^tPcccClient;
@@ -102,6 +103,10 @@ function PcccStartWriteText(var R: tPcccRequest; var C: tPcccClient; const Addr:
   const Values: array of ShortString): Boolean;
 { Look at the line once; True when the request is done. }
 function PcccStep(var R: tPcccRequest): Boolean;
+{ Abandon a request under way (R.Result res_Timeout, 'cancelled'); the
+  client takes a new one at once. A client runs one request at a time: a
+  start while one is under way is refused with res_WrongState. }
+procedure PcccCancel(var R: tPcccRequest);
 { Drive a started request to its end (with C.Idle or sleeping). }
 function PcccFinish(var R: tPcccRequest): tChResult;
 { For tools: 0 res_Ok, 1 the request cannot be made (address, count,
@@ -124,8 +129,9 @@ begin
   C.TimeoutMs := DF1LinkTimeoutMs;
   C.MaxBytes := MaxDataLen;
   { a PLC that detects duplicates drops a command with the TNS of the last
-    one: a program started again must not begin where it began before }
-  C.Tns := Word(ChMsTick);
+    one: a program started again must not begin where it began before (the
+    clock, and the process id for two programs started in one millisecond) }
+  C.Tns := Word(ChMsTick xor (QWord(GetProcessID) * 40503));
 end;
 
 function PcccOpen(var C: tPcccClient; const Params: ShortString): tChResult;
@@ -158,9 +164,19 @@ end;
 
 { ------------------------------------------------------------- stepping }
 
+{ R is over: the client is free for the next one. }
+procedure Release(var R: tPcccRequest);
+begin
+  if R.Busy then
+  begin
+    R.Busy := False;
+    R.Client^.InUse := False;
+  end;
+end;
+
 function Fail(var R: tPcccRequest; Res: tChResult; const Why: ShortString): Boolean;
 begin
-  R.Busy := False;
+  Release(R);
   R.Result := Res;
   R.Err := PcccAddressText(R.Plan.Addr) + ': ' + Why;
   if R.Client <> nil then
@@ -177,6 +193,14 @@ var
   E: ShortString;
   Res: tChResult;
 begin
+  if C.InUse then
+  begin
+    { R itself may be the one under way: leave it running }
+    R.Result := res_WrongState;
+    R.Err := Addr + ': another request is under way on this client';
+    C.Err := R.Err;
+    Exit(False);
+  end;
   FillChar(R.Plan, SizeOf(R.Plan), 0);
   R.Client := @C;
   R.Op := Op;
@@ -243,6 +267,7 @@ begin
   end;
   C^.Tns := Word(C^.Tns + 1);
   R.Busy := True;
+  C^.InUse := True;
   if not DF1MasterStart(R.Master, C^.Chn, Req, Len, C^.TimeoutMs, C^.Log, C^.LogWire) then
     Exit(Fail(R, R.Master.Result, 'cannot send: ' + C^.Chn^.ChResultStr(R.Master.Result)));
   Result := True;
@@ -449,8 +474,17 @@ begin
     SendCurrent(R)
   else
   begin
-    R.Busy := False;
+    Release(R);
     R.Result := res_Ok;
+  end;
+end;
+
+procedure PcccCancel(var R: tPcccRequest);
+begin
+  if R.Busy then
+  begin
+    DF1MasterCancel(R.Master);
+    Fail(R, res_Timeout, 'cancelled');
   end;
 end;
 

@@ -41,6 +41,8 @@ type
     procedure TestLongReadAndWriteSplit;
     procedure TestSmallFramesSplitMore;
     procedure TestSteppedRequestDoesNotBlock;
+    procedure TestOneRequestAtATime;
+    procedure TestCancel;
     procedure TestNoAck;
     procedure TestNakOnEveryTry;
     procedure TestNoReply;
@@ -352,6 +354,59 @@ begin
   AssertTrue(R2.Err, Pos('"12x"', R2.Err) > 0);
   AssertFalse(PcccStartWriteText(R2, C, 'ST10:0', ['a', 'b']));
   AssertEquals(res_PcccCount, R2.Result);
+end;
+
+procedure TTestChnPcccClient.TestOneRequestAtATime;
+var
+  R1, R2: tPcccRequest;
+  V: array[0..0] of LongInt;
+  I: LongInt;
+begin
+  StartPair(True, True, 'PCONE');
+  AssertTrue('first', PcccStartRead(R1, C, 'N7:1', 1));
+  AssertFalse('second while the first runs', PcccStartRead(R2, C, 'N7:2', 1));
+  AssertEquals(res_WrongState, R2.Result);
+  AssertEquals('N7:2: another request is under way on this client', R2.Err);
+  AssertEquals('blocking call too', res_WrongState, PcccReadInts(C, 'N7:0', 1, V));
+  for I := 1 to 20000 do
+  begin
+    if PcccStep(R1) then
+      Break;
+    DF1StationStep(Station);
+  end;
+  AssertEquals('the first is unharmed: ' + R1.Err, res_Ok, R1.Result);
+  AssertEquals(-2, R1.Ints[0]);
+  AssertTrue('the client is free again', PcccStartRead(R2, C, 'N7:2', 1));
+  AssertEquals(res_Ok, PcccFinish(R2));
+  AssertEquals(3, R2.Ints[0]);
+  { a refused request (bad address) does not hold the client }
+  AssertFalse(PcccStartRead(R1, C, 'N7:x', 1));
+  AssertEquals(res_Ok, PcccReadInts(C, 'N7:0', 1, V));
+end;
+
+procedure TTestChnPcccClient.TestCancel;
+var
+  R: tPcccRequest;
+  Buf: array[0..15] of Byte;
+  Err: string;
+begin
+  Raw := OpenStack('LOOP', 'NAM=LOOP PAIR=PCCANCEL END=2', Err);
+  AssertTrue(Err, Raw <> nil);
+  Master := Open(Df1PairParams(True, True, True, 'PCCANCEL'));
+  PcccClientInit(C, Master);
+  Master^.ChReceiveBuffer(@Buf, SizeOf(Buf));
+  AssertTrue(PcccStartRead(R, C, 'N7:0', 1));
+  AssertTrue('the request receives into itself', Master^.CH_RBuff <> @Buf);
+  AssertFalse('nobody answers', PcccStep(R));
+  PcccCancel(R);
+  AssertTrue(PcccStep(R));
+  AssertEquals(res_Timeout, R.Result);
+  AssertEquals('N7:0: cancelled', R.Err);
+  AssertTrue('the program''s receive buffer is back', Master^.CH_RBuff = @Buf);
+  AssertTrue('the client takes the next one', PcccStartRead(R, C, 'N7:1', 1));
+  PcccCancel(R);
+  PcccCancel(R);                          { twice: nothing more happens }
+  AssertEquals('N7:1: cancelled', R.Err);
 end;
 
 procedure TTestChnPcccClient.TestNoAck;

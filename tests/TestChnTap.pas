@@ -138,17 +138,8 @@ begin
 end;
 
 procedure TTestChnTap.DrainTap;
-var
-  Buf: array[0..4095] of Char;
-  N: Integer;
 begin
-  while Tap.Output.NumBytesAvailable > 0 do
-  begin
-    N := Tap.Output.Read(Buf, SizeOf(Buf));
-    if N <= 0 then
-      Break;
-    Output := Output + Copy(Buf, 0, N);
-  end;
+  Drain(Tap, Output);
 end;
 
 function TTestChnTap.WaitOutput(const Sub: string; TimeoutMs: Integer): Boolean;

@@ -84,17 +84,9 @@ begin
   Halt(2);
 end;
 
-function MsOfDay: LongInt;
-var
-  H, M, S, Ms: Word;
-begin
-  DecodeTime(Now, H, M, S, Ms);
-  Result := ((LongInt(H) * 60 + M) * 60 + S) * 1000 + Ms;
-end;
-
 procedure Say(const S: string);
 begin
-  WriteLn(TrcTimeText(MsOfDay), ' ', S);
+  WriteLn(TrcTimeText(TrcMsOfDay), ' ', S);
   Flush(Output);
 end;
 
@@ -202,7 +194,7 @@ begin
     Exit;
   FillChar(F, SizeOf(F) - SizeOf(F.Data), 0);
   F.Line := 0;
-  F.TimeMs := MsOfDay;
+  F.TimeMs := TrcMsOfDay;
   if I = 0 then
     F.Dir := trcTx
   else
@@ -315,8 +307,9 @@ end;
 var
   Opt: tDecOptions;
   Stats: tDecStats;
-  PcapFile, TraceFile, Arg, Key, Value, Prefix: string;
-  NSides, I, N: Integer;
+  PcapFile, TraceFile, Prefix: string;
+  Arg, Key, Value, Err: AnsiString;
+  NSides, I: Integer;
   Full: AnsiString;
 begin
   DecodeDefaults(Opt);
@@ -338,43 +331,24 @@ begin
       Inc(NSides);
       Continue;
     end;
-    Key := Arg;
-    Value := '';
-    if Pos('=', Arg) > 0 then
-    begin
-      Key := Copy(Arg, 1, Pos('=', Arg) - 1);
-      Value := Copy(Arg, Pos('=', Arg) + 1, MaxInt);
-    end
-    else if ((Key = '--pcap') or (Key = '--trace')) and (I <= ParamCount) then
+    DecodeSplitArg(Arg, Key, Value);
+    if (Value = '') and (Pos('=', Arg) = 0) and
+       ((Key = '--pcap') or (Key = '--trace')) and (I <= ParamCount) then
     begin
       Value := ParamStr(I);
       Inc(I);
     end;
-    N := 0;
-    if Key = '--df1' then Opt.Proto := dpDF1
-    else if Key = '--crc' then Opt.Crc := True
-    else if Key = '--bcc' then Opt.Crc := False
-    else if Key = '--half' then Opt.Half := True
+    if DecodeOption(Key, Value, Opt, Err) then
+    begin
+      if Err <> '' then
+        Usage(Err);
+    end
     else if Key = '--master' then
     begin
       if UpperCase(Value) = 'A' then Opt.MasterDir := trcTx
       else if UpperCase(Value) = 'B' then Opt.MasterDir := trcRx
       else Usage('--master wants A or B');
     end
-    else if Key = '--ft12' then Opt.Proto := dpFT12
-    else if Key = '--adr' then
-    begin
-      if not StrToNum(Value, 0, 2, N) then
-        Usage('--adr wants 0, 1 or 2');
-      Opt.AddrLen := N;
-    end
-    else if Key = '--len' then
-    begin
-      if not StrToNum(Value, 0, 247, N) then
-        Usage('--len wants 0..247');
-      Opt.FixedLen := N;
-    end
-    else if Key = '--ics' then Opt.Proto := dpICS
     else if Key = '--raw' then Raw := True
     else if Key = '--quiet' then Quiet := True
     else if Key = '--pcap' then
