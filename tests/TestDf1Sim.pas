@@ -17,14 +17,8 @@ uses
   {$IFDEF UNIX}, PtyPair{$ENDIF};
 
 type
-  TTestDf1Sim = class(TTestCase)
+  TTestDf1Sim = class(TDf1PairCase)
   private
-    Table: tSlcTable;
-    Station: tDF1Station;
-    Master, Slave, Raw: pChnVirt;
-    Proc: TProcess;
-    function Open(const Params: string): pChnVirt;
-    procedure StartPair(Full, Crc: Boolean; const Pair: string);
     { one exchange through DF1Transact; 'STS=xx data...' }
     function Ask(CF: Word; const DataHex: string; Tns: Word): string;
     procedure AllCommands(Full, Crc: Boolean; const Pair: string);
@@ -33,7 +27,6 @@ type
     function Scripted(const Answer: string; TimeoutMs: LongInt; var Rep: tRecRecord): tChResult;
   protected
     procedure SetUp; override;
-    procedure TearDown; override;
   published
     procedure TestFullDuplexCrc;
     procedure TestFullDuplexBcc;
@@ -96,43 +89,9 @@ begin
 end;
 
 procedure TTestDf1Sim.SetUp;
-var
-  Line: Integer;
-  Err: string;
 begin
-  Master := nil;
-  Slave := nil;
-  Raw := nil;
-  Proc := nil;
-  AssertTrue('config', SlcLoadConfig(Table, Config, Line, Err));
-end;
-
-procedure TTestDf1Sim.TearDown;
-begin
-  if Master <> nil then Dispose(Master, Done);
-  if Slave <> nil then Dispose(Slave, Done);
-  if Raw <> nil then Dispose(Raw, Done);
-  if Proc <> nil then
-  begin
-    if Proc.Running then
-      Proc.Terminate(1);
-    Proc.Free;
-  end;
-end;
-
-function TTestDf1Sim.Open(const Params: string): pChnVirt;
-var
-  Err: string;
-begin
-  Result := OpenStack('DF1', Params, Err);
-  AssertTrue('open ' + Err, Result <> nil);
-end;
-
-procedure TTestDf1Sim.StartPair(Full, Crc: Boolean; const Pair: string);
-begin
-  Slave := Open(Df1PairParams(False, Full, Crc, Pair));
-  Master := Open(Df1PairParams(True, Full, Crc, Pair));
-  SlcStationInit(Station, Slave, @Table);
+  inherited SetUp;
+  LoadTable(Config);
 end;
 
 function TTestDf1Sim.Ask(CF: Word; const DataHex: string; Tns: Word): string;
