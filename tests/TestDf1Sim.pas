@@ -40,6 +40,7 @@ type
     procedure TestRepeatedCommandWithoutDup;
     {$IFDEF UNIX}
     procedure TestBinaryOverPty;   { df1sim --pty: a Unix pty }
+    procedure TestPtyTakesBdAndPar;
     {$ENDIF}
     procedure TestLogLines;
     procedure TestLogNoAck;
@@ -372,6 +373,32 @@ begin
     Sleep(5);
   AssertFalse('df1sim ended on SIGTERM', Proc.Running);
   AssertEquals('exit code', 0, Proc.ExitCode);
+end;
+{$ENDIF}
+
+{$IFDEF UNIX}
+procedure TTestDf1Sim.TestPtyTakesBdAndPar;
+var
+  Out: string;
+begin
+  AssertTrue(BinPath('df1sim') + ' missing (make tools)', FileExists(BinPath('df1sim')));
+  { --bd/--par reach the pty (a virtual line takes them as given) }
+  AssertEquals(0, RunBin('df1sim', ['--pty', '--bd=38400', '--par=N', '--timeout=1'], 5000, Out));
+  AssertTrue(Out, Pos('DRV=PTY', Out) > 0);
+  AssertTrue(Out, Pos(' BD=38400 ', Out) > 0);
+  { PAR=E: taken as given where the pty driver keeps it, else refused
+    with the COM layer's text; never dropped in silence }
+  if RunBin('df1sim', ['--pty', '--par=E', '--timeout=1'], 5000, Out) = 0 then
+    AssertTrue(Out, Pos(' PAR=E ', Out) > 0)
+  else
+    AssertTrue(Out, Pos('PAR=E": device refuses the setting', Out) > 0);
+  { a bad one is refused by the COM layer, naming the token }
+  AssertEquals(1, RunBin('df1sim', ['--pty', '--par=X', '--timeout=1'], 5000, Out));
+  AssertTrue(Out, Pos('PAR=X', Out) > 0);
+  { with a parameter string they would be lost: refused }
+  AssertEquals(1, RunBin('df1sim', ['--pty', '--bd=9600', 'NAM=DF1', 'MAS=SLAVE',
+    'NAM=COM', 'DRV=PTY'], 5000, Out));
+  AssertTrue(Out, Pos('--bd/--par with a parameter string', Out) > 0);
 end;
 {$ENDIF}
 
