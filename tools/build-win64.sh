@@ -58,6 +58,14 @@ if [ ! -f "$RTLU/sockets.ppu" ] || [ ! -f "$RTLU/winsock2.ppu" ] || [ ! -f "$RTL
       "$X/win/sockets.pp"; } >"$LOG" 2>&1 \
     || { tail -n 20 "$LOG"; echo "win64 sockets build failed, see $LOG"; exit 1; }
 fi
+# StrUtils (rtl-objpas), which tests use; built on its own so an existing
+# folder from before gets it too
+if [ ! -f "$RTLU/strutils.ppu" ]; then
+  P="$FPCSRC/packages/rtl-objpas/src/inc"
+  $PPC -Twin64 -Px86_64 -n -v0 -Fu"$RTLU" -FU"$RTLU" -Fi"$P" "$P/strutils.pp" \
+    >"$WORK/strutils-build.log" 2>&1 \
+    || { tail -n 20 "$WORK/strutils-build.log"; echo "win64 StrUtils build failed"; exit 1; }
+fi
 mkdir -p "$OUT/units" "$OUT/bin"
 FLAGS="-Twin64 -Px86_64 -n -v0ew -Sew -O2 -Fu$RTLU -Fusrc -Futools/lib -Fisrc -FU$OUT/units -FE$OUT/bin"
 if [ -n "${SYNAPSE_DIR:-}" ]; then
