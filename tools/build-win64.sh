@@ -47,12 +47,14 @@ if [ ! -f "$RTLU/fpcunit.ppu" ] || [ ! -f "$RTLU/process.ppu" ] || [ ! -f "$RTLU
     || { tail -n 20 "$LOG"; echo "win64 FCL build failed, see $LOG"; exit 1; }
 fi
 # Winsock and the sockets unit for NAM=TCP (ChnSock), from rtl-extra;
-# DateUtils (ChnTrc) from rtl-objpas
-if [ ! -f "$RTLU/sockets.ppu" ] || [ ! -f "$RTLU/winsock2.ppu" ] || [ ! -f "$RTLU/dateutils.ppu" ]; then
+# DateUtils (ChnTrc) and StrUtils (tests) from rtl-objpas
+if [ ! -f "$RTLU/sockets.ppu" ] || [ ! -f "$RTLU/winsock2.ppu" ] || [ ! -f "$RTLU/dateutils.ppu" ] ||
+   [ ! -f "$RTLU/strutils.ppu" ]; then
   X="$FPCSRC/packages/rtl-extra/src"
   O="$FPCSRC/packages/rtl-objpas/src/inc"
   LOG="$WORK/sockets-build.log"
   { $PPC -Twin64 -Px86_64 -n -v0 -Fu"$RTLU" -FU"$RTLU" -Fi"$O" "$O/dateutils.pp" &&
+    $PPC -Twin64 -Px86_64 -n -v0 -Fu"$RTLU" -FU"$RTLU" -Fi"$O" "$O/strutils.pp" &&
     $PPC -Twin64 -Px86_64 -n -v0 -Fu"$RTLU" -FU"$RTLU" "$X/win/winsock2.pp" &&
     $PPC -Twin64 -Px86_64 -n -v0 -Fu"$RTLU" -FU"$RTLU" -Fi"$X/inc" -Fi"$X/win" \
       "$X/win/sockets.pp"; } >"$LOG" 2>&1 \
