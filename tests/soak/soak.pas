@@ -60,6 +60,14 @@ const
     (Name: 'drop1%';   Params: 'DRP=0.01'));
 
 var
+  Parent: TPid;         { a peer ends when the master is gone }
+
+function Orphaned: Boolean;
+begin
+  Result := FpGetPPid <> Parent;
+end;
+
+var
   Seconds, Count, Seed: LongInt;
   Only, Df1SimPath: string;
   Stop: Boolean = False;
@@ -427,7 +435,7 @@ var
     Chn^.ChDestNode(Stn);
     for T := 1 to AppTries do
     begin
-      Inc(Tns);
+      Tns := Word(Tns + 1);      { wraps, as TNS does }
       R := ReadExecuted(Chn, Tns, St, Got);
       if R = rrLost then
         Exit(False);
@@ -475,7 +483,7 @@ begin
     S := 1 + (I div 2) mod Stations;
     Chn^.ChDestNode(S);
     Value := Word(I div 2);
-    Inc(Tns);
+    Tns := Word(Tns + 1);      { wraps, as TNS does }
     TypedReq(Req, Len, Tns, (I div 2) mod 50, not Odd(I), Value);
     if not DF1Do(Chn, Req, Len, Rep, RepLen, St) then
     begin
@@ -523,9 +531,9 @@ begin
   if Half then
     PeerStart(Peer, ParamStr(0), ['--serve=df1hd', '--crc=' + CrcText], Err)
   else if Crc then
-    PeerStart(Peer, Df1SimPath, ['--pty', '--quiet', '--crc'], Err)
+    PeerStart(Peer, Df1SimPath, ['--pty', '--quiet', '--crc', '--timeout=30'], Err)
   else
-    PeerStart(Peer, Df1SimPath, ['--pty', '--quiet', '--bcc'], Err);
+    PeerStart(Peer, Df1SimPath, ['--pty', '--quiet', '--bcc', '--timeout=30'], Err);
   if Peer.Pty = '' then
   begin
     St.Note := Err + ';';
@@ -599,7 +607,7 @@ begin
   WriteLn('PTY ', PtyLastSlave);
   Flush(Output);
   Com^.ChReceiveBuffer(@Buf, SizeOf(Buf));
-  while not Stop and (Com^.ChResult = res_Ok) do
+  while not Stop and not Orphaned and (Com^.ChResult = res_Ok) do
   begin
     Busy := False;
     if Com^.ChReceiveReady = CHS_ReceiveReady then
@@ -720,7 +728,7 @@ begin
   S.OnClassData := @FT12OnClassData;
   WriteLn('PTY ', PtyLastSlave);
   Flush(Output);
-  while not Stop and (Chn^.ChResult = res_Ok) do
+  while not Stop and not Orphaned and (Chn^.ChResult = res_Ok) do
     if not FT12StationStep(S) then
       Sleep(1);
   WriteLn(Format('STATS delivered=%d dups=%d gaps=%d repeats=%d', [P.Delivered, P.Dups, P.Gaps, S.Repeats]));
@@ -880,7 +888,7 @@ begin
   Chn^.ChReceiveBuffer(@Req, SizeOf(Req));
   WriteLn('PTY ', PtyLastSlave);
   Flush(Output);
-  while not Stop and (Chn^.ChResult = res_Ok) do
+  while not Stop and not Orphaned and (Chn^.ChResult = res_Ok) do
   begin
     if Chn^.ChReceiveReady <> CHS_ReceiveReady then
     begin
@@ -1044,6 +1052,7 @@ begin
     end;
   end;
   CatchSignals;
+  Parent := FpGetPPid;
   if Serve = 'df1hd' then
     ServeDF1HD(CrcArg)
   else if Serve = 'ft12' then
