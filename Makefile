@@ -159,7 +159,7 @@ fuzz: units
 
 # The soak (docs/reliability.md): SECONDS per scenario or COUNT messages
 # per scenario; SEED= the first NOISE seed; ONLY= scenarios whose name
-# contains it. make test runs every scenario for 3 s.
+# contains it. make test runs every scenario for 2 s.
 soak: all
 	@mkdir -p $(TUNITDIR) $(TBINDIR)
 	@$(FPC) $(TESTFLAGS) tests/soak/soak.pas >$(BUILD)/soak-build.log 2>&1 || { cat $(BUILD)/soak-build.log; exit 1; }
