@@ -42,9 +42,7 @@ type
     procedure TestRfc2217ServerRefusesTheOption;
     procedure TestRfc2217ServerSilent;
     procedure TestRfc2217DataNotifyAndPurgeOnTheWire;
-    {$IFDEF UNIX}
     procedure TestClientIsInTheSharedWait;
-    {$ENDIF}
     {$IFDEF LINUX}
     procedure TestIdlePollingLoopCpu;
     {$ENDIF}
@@ -783,7 +781,6 @@ begin
 end;
 {$ENDIF}
 
-{$IFDEF UNIX}
 { An idle TCP client's poll ends at input on another line (a LOOP pair), and
   a LOOP line's poll ends at input on the TCP client: both are in the
   program-wide wait (ChnWait), not each on its own device for IDL ms. }
@@ -836,7 +833,6 @@ begin
     Dispose(L2, Done);
   end;
 end;
-{$ENDIF}
 
 initialization
   RegisterTest(TTestChnTcp);
