@@ -61,6 +61,7 @@ type
     Src  : Byte;
     Tns  : Word;
     Len  : Word;
+    Stamp: LongInt;       { S.Requests when it was kept: the oldest goes }
     Rep  : tSendRecord;
   end;
 
@@ -86,7 +87,6 @@ type
     Repeats  : LongInt;       { repeated commands answered from the cache }
     DupSeen  : LongInt;       { the DF1 layer's CH_DupCount already acted on }
     Cache    : array[0..DF1ReplyCacheSize - 1] of tDF1CachedReply;
-    CacheNext: LongInt;       { the slot a new source takes next }
     Log      : tDF1LogProc;   { nil: quiet }
     LogWire  : Boolean;       { lines of sent frames end with the wire bytes }
   end;
@@ -362,7 +362,8 @@ begin
 end;
 
 { Keep the reply to a command from Src: in the slot of that source, else
-  in the next slot round. }
+  in the slot used longest ago (a real master, asking all the time, keeps
+  its slot against frames damaged into other sources). }
 procedure CacheReply(var S: tDF1Station; Src: Byte);
 var
   I, Slot: LongInt;
@@ -373,9 +374,19 @@ begin
       Slot := I;
   if Slot < 0 then
   begin
-    Slot := S.CacheNext;
-    S.CacheNext := (S.CacheNext + 1) mod DF1ReplyCacheSize;
+    Slot := 0;
+    for I := 0 to DF1ReplyCacheSize - 1 do
+    begin
+      if not S.Cache[I].Used then
+      begin
+        Slot := I;
+        Break;
+      end;
+      if S.Cache[I].Stamp < S.Cache[Slot].Stamp then
+        Slot := I;
+    end;
   end;
+  S.Cache[Slot].Stamp := S.Requests;
   S.Cache[Slot].Used := True;
   S.Cache[Slot].Src := Src;
   S.Cache[Slot].Tns := S.Reply.Tns;

@@ -349,6 +349,16 @@ begin
   AssertEquals('SRC 0 repeats TNS 5: ACK + its reply', Reply5,
     RawSay('10 02 01 00 06 00 05 00 00 41 10 03 B3', 50));
   AssertEquals('executed twice, once per command', 2, Station.Requests);
+  { four more sources (echo TNS 9 from SRC 3..6: BCC $AC..$A9): the real
+    master's reply, the most recent one, must not be the one pushed out }
+  AssertEquals('SRC 0, TNS 6', '10 06 10 02 00 01 46 00 06 00 41 10 03 72',
+    RawSay('10 02 01 00 06 00 06 00 00 41 10 03 B2', 50));
+  RawSay('10 02 01 03 06 00 09 00 00 41 10 03 AC', 50);
+  RawSay('10 02 01 04 06 00 09 00 00 41 10 03 AB', 50);
+  RawSay('10 02 01 05 06 00 09 00 00 41 10 03 AA', 50);
+  AssertEquals('SRC 0 repeats TNS 6 after three other sources', '10 06 10 02 00 01 46 00 06 00 41 10 03 72',
+    RawSay('10 02 01 00 06 00 06 00 00 41 10 03 B2', 50));
+  AssertEquals('executed six times', 6, Station.Requests);
 end;
 
 { DUP=OFF (the default, the manual's behaviour): a repeated command is
