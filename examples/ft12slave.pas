@@ -2,6 +2,7 @@
   the link services of IEC 60870-5-101 / -2:
     reset of remote link (FC 0)      -> ACK (FC 0), FCB expected next: 1
     reset of user process (FC 1)     -> ACK
+    test function of link (FC 2)     -> single character ACK ($E5)
     user data, confirm (FC 3)        -> single character ACK ($E5)
     user data, no reply (FC 4)       -> nothing
     request status of link (FC 9)    -> status of link (FC 11)
@@ -122,7 +123,7 @@ begin
             Answer(tpShortM, FCS_Ack, 0);
           end;
         FCM_1stSetUserFun: Answer(tpShortM, FCS_Ack, 0);
-        FCM_UserDataReply: Answer(tpSACK, 0, 0);
+        FCM_CheckLink, FCM_UserDataReply: Answer(tpSACK, 0, 0);
         FCM_UserDataNoRep: ;
         FCM_ReqLinkState: Answer(tpShortM, FCS_LinkSAccesReq, 0);
         FCM_ReqUserData1: Answer(tpShortM, FCS_DataNotAcces, 0);

@@ -5,7 +5,10 @@
 #  3. the type rule of docs/LAYERS.md over the library's interfaces
 #     (tests/apicheck.pl; selected by T=api too);
 #  4. legacy programs in tests/legacy compiled in -Mtp -Mfpc -Mobjfpc
-#     -Mdelphi and run (each asserts record sizes and offsets itself);
+#     -Mdelphi and run (each asserts record sizes and offsets itself); a
+#     program with a NAME.peer file runs against that peer on a socat
+#     null-modem (see run_with_peer) and must end with the peer file's
+#     expected line;
 #  5. tests/packaging.sh: make install, fpmake, chn.lpk and the README's
 #     programs built outside the tree.
 # Ends with "N passed, N failed" alone on the last line; exit 1 on failure.
@@ -18,6 +21,37 @@ failed=0
 skipped=0
 pass() { passed=$((passed + 1)); echo "ok    $1"; }
 fail() { failed=$((failed + 1)); echo "FAIL  $1"; }
+skipped=0
+skip() { skipped=$((skipped + 1)); echo "skip  $1"; }
+
+# run_with_peer PROGRAM PEERFILE: a socat null-modem of two ptys; the peer
+# the .peer file defines (function "peer DEVICE", variable "expect") on one
+# end, PROGRAM with the other end as its argument. Output (at most 100 kB:
+# a legacy loop printing 'Chyba' must not fill the disk) goes to stdout,
+# then the peer's log after a line "--- peer:".
+run_with_peer() {
+  local prog=$1 peerfile=$2 tmp sp pp i dev
+  tmp=$(mktemp -d)
+  socat pty,raw,echo=0,link="$tmp/a" pty,raw,echo=0,link="$tmp/b" 2>"$tmp/socat.log" &
+  sp=$!
+  for i in $(seq 100); do [ -e "$tmp/a" ] && [ -e "$tmp/b" ] && break; sleep 0.05; done
+  BIN="$BUILD/bin"
+  # shellcheck disable=SC1090
+  . "$peerfile"
+  peer "$tmp/b" >"$tmp/peer.log" 2>&1 &
+  pp=$!
+  # the program starts once the peer holds its end open
+  dev=$(readlink -f "$tmp/b")
+  for i in $(seq 200); do
+    ls -l /proc/$pp/fd 2>/dev/null | grep -q " $dev\$" && break
+    sleep 0.05
+  done
+  timeout 60 "$prog" "$tmp/a" 2>&1 | head -c 100000
+  kill $pp $sp 2>/dev/null; wait $pp $sp 2>/dev/null
+  echo "--- peer:"; cat "$tmp/peer.log"
+  rm -rf "$tmp"
+  return 0
+}
 # a check that cannot run here: counted, and it says why
 skip() { skipped=$((skipped + 1)); echo "skip  $1"; }
 
@@ -67,7 +101,20 @@ for prog in tests/legacy/*.pas; do
     if ! "$FPC" -M$mode -Fusrc -Fisrc -FU"$dir" -FE"$dir" -B -Cr -Co -Ct "$prog" >"$dir/$name.log" 2>&1; then
       fail "legacy $name -M$mode: does not compile"; tail -n 15 "$dir/$name.log"; continue
     fi
-    if timeout 120 "$dir/$name" >"$dir/$name.run" 2>&1; then
+    if [ -f "tests/legacy/$name.peer" ]; then
+      if ! command -v socat >/dev/null; then
+        skip "legacy $name -M$mode: socat is not installed (Debian package socat), no null-modem for its peer"
+        continue
+      fi
+      expect=''
+      run_with_peer "$dir/$name" "tests/legacy/$name.peer" >"$dir/$name.run"
+      last=$(sed -n '/^--- peer:$/q;p' "$dir/$name.run" | tail -n 1)
+      if [ -n "$expect" ] && [ "$last" = "$expect" ]; then
+        pass "legacy $name -M$mode (against its peer: $expect)"
+      else
+        fail "legacy $name -M$mode: last line '$last', expected '$expect'"; tail -n 15 "$dir/$name.run"
+      fi
+    elif timeout 120 "$dir/$name" >"$dir/$name.run" 2>&1; then
       pass "legacy $name -M$mode"
     else
       fail "legacy $name -M$mode: run failed"; tail -n 15 "$dir/$name.run"
@@ -96,5 +143,6 @@ fi
 # skipped tests (an optional program missing) are listed with their reason
 # by runtests ("skip  Test: why"); the count comes before the last line
 [ "$skipped" = 0 ] || echo "$skipped skipped (an optional program is missing: see the skip lines)"
+[ "$skipped" = 0 ] || echo "($skipped skipped, see the skip lines above)"
 echo "$passed passed, $failed failed"
 [ "$failed" = 0 ]
