@@ -8,7 +8,7 @@
 #   make uninstall    removes what install put there
 #   make demo         a DF1 exchange on this machine, no hardware needed
 #   make bench        codec and channel benchmarks
-#   make fuzz         random-mutation fuzzing of the codecs (SECONDS=10)
+#   make fuzz         random-mutation fuzzing of the codecs and ChnPccc (SECONDS=10)
 #   make wintest      the suite as win64 programs under Wine (docs/Windows.md)
 #   make clean
 # Optional: SYNAPSE_DIR=/path/to/synapse builds the Synapse serial backend.
@@ -35,10 +35,15 @@ UNITFLAGS := $(COMMON) $(SYNAPSE_FLAGS) -Fusrc -O2 -Sew -FU$(UNITDIR) -FE$(BINDI
 # plus tools/lib
 PROGFLAGS := $(COMMON) $(if $(SYNAPSE_DIR),-dCHN_SYNAPSE) -Fu$(UNITDIR) -Futools/lib -O2 -Sew \
              -FU$(TOOLUNITDIR) -FE$(BINDIR)
-# tests: range, overflow and stack checks, heaptrc, line info; -B rebuilds
-# everything, as FPC's one-second timestamps can miss a quick edit
-TESTFLAGS := $(COMMON) $(SYNAPSE_FLAGS) -Fusrc -Futools/lib -Futests/support -B -Cr -Co -Ct -gh -gl \
-             -FU$(TUNITDIR) -FE$(TBINDIR) -Fi$(BUILD)
+# tests: range, overflow and stack checks, heaptrc, line info (and -Xs-:
+# Debian's fpc.cfg strips it otherwise, and failures could not say where);
+# -B rebuilds everything, as FPC's one-second timestamps can miss a quick edit
+TESTFLAGS := $(COMMON) $(SYNAPSE_FLAGS) -Fusrc -Futools/lib -Futests/support -B -Cr -Co -Ct -gh -gl -Xs- \
+             -Fu$(BUILD)/fpcunit -FU$(TUNITDIR) -FE$(TBINDIR) -Fi$(BUILD)
+# FPCUnit rebuilt from Debian's fpc-source without optimisation, so that a
+# failing assert's location names the test's own line (the prebuilt one
+# loses the caller's frame); without fpc-source the prebuilt one is used.
+FPCUNIT_SRC = /usr/share/fpcsrc/$(shell $(FPC) -iV)/packages/fcl-fpcunit/src
 
 # Units that only build on another OS or with an optional library.
 ifeq ($(OS),Windows_NT)
@@ -110,7 +115,7 @@ $(PROGBINS) $(BENCHBINS): src/chn.inc | $(BUILD)/units.stamp
 # test unit needs no edit anywhere else. Units that need Unix as a whole
 # (ptys) are listed here and built only there; single Unix-only tests are
 # {$IFDEF UNIX} in their unit.
-UNIX_TESTS := TestChnPty
+UNIX_TESTS := TestChnPty TestChnTcpSer2net
 comma := ,
 uses_entry = $(if $(filter $(1),$(UNIX_TESTS)),'{$$IFDEF UNIX}$(1)$(comma){$$ENDIF}','$(1)$(comma)')
 $(BUILD)/testunits.inc: $(TESTUNITS)
@@ -118,7 +123,13 @@ $(BUILD)/testunits.inc: $(TESTUNITS)
 	@printf '%s\n' $(foreach t,$(basename $(notdir $(TESTUNITS))),$(call uses_entry,$(t))) > $@.tmp
 	@cmp -s $@.tmp $@ 2>/dev/null && rm -f $@.tmp || mv $@.tmp $@
 
-test: all $(BUILD)/testunits.inc
+$(BUILD)/fpcunit/stamp:
+	@mkdir -p $(BUILD)/fpcunit
+	@if [ -d $(FPCUNIT_SRC) ]; then for u in fpcunit testregistry; do \
+	  $(FPC) -v0 -O- -gl -Xs- -FU$(BUILD)/fpcunit -Fu$(FPCUNIT_SRC) $(FPCUNIT_SRC)/$$u.pp >/dev/null || exit 1; done; \
+	else echo "note: no fpc-source: failing asserts are located by address only"; fi; touch $@
+
+test: all $(BUILD)/testunits.inc $(BUILD)/fpcunit/stamp
 	@mkdir -p $(TUNITDIR) $(TBINDIR)
 	@$(FPC) $(TESTFLAGS) tests/runtests.pas >$(BUILD)/test-build.log 2>&1 || { cat $(BUILD)/test-build.log; echo "0 passed, 1 failed"; exit 1; }
 	@BUILD=$(BUILD) FPC=$(FPC) T="$(T)" bash tests/run.sh
@@ -126,16 +137,19 @@ test: all $(BUILD)/testunits.inc
 demo: all
 	@bash tools/demo.sh $(BUILD)
 
-bench: $(BENCHBINS)
+bench: $(BENCHBINS) $(BINDIR)/chntap
 	@set -e; for b in $(BENCHBINS); do $$b; done
 
-# Random-mutation fuzzing of the three codecs with run-time checks on;
+# Random-mutation fuzzing of the three codecs and of ChnPccc (addresses,
+# plans, requests, reply decoding) with run-time checks on;
 # SECONDS=n for longer runs, SEED=n to repeat one.
 SECONDS ?= 10
 fuzz: units
 	@mkdir -p $(TUNITDIR) $(TBINDIR)
 	@$(FPC) $(TESTFLAGS) tests/fuzz/fuzzcodecs.pas >$(BUILD)/fuzz-build.log 2>&1 || { cat $(BUILD)/fuzz-build.log; exit 1; }
+	@$(FPC) $(TESTFLAGS) tests/fuzz/fuzzpccc.pas >>$(BUILD)/fuzz-build.log 2>&1 || { cat $(BUILD)/fuzz-build.log; exit 1; }
 	@rm -f $(BUILD)/fuzz-heap.log; HEAPTRC="log=$(BUILD)/fuzz-heap.log" $(TBINDIR)/fuzzcodecs $(SECONDS) $(SEED)
+	@rm -f $(BUILD)/fuzz-heap.log; HEAPTRC="log=$(BUILD)/fuzz-heap.log" $(TBINDIR)/fuzzpccc $(SECONDS) $(SEED)
 
 # Cross-built for win64 and run under Wine; not part of test (CI has no Wine).
 wintest: all $(BUILD)/testunits.inc

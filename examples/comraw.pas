@@ -1,16 +1,18 @@
-{ comraw - raw use of the COM layer, no protocol: send some bytes, then show
-  what arrives, in hex, for a few seconds.
+{ comraw - raw use of a physical layer, no protocol: send some bytes, then
+  show what arrives, in hex, for a few seconds.
 
     comraw 'DEV=/dev/ttyUSB0 BD=9600' ['01 02 FF'] [seconds]
+    comraw 'NAM=TCP HOST=nport1 PORT=4001' ['01 02 FF'] [seconds]
 
-  The first argument is the COM layer's parameter string (docs/ChnCom.md);
-  the channel is opened exactly as a legacy program would open it. }
+  The first argument is the COM layer's parameter string (docs/ChnCom.md),
+  or another physical layer's after its NAM= (docs/ChnTcp.md); the channel
+  is opened exactly as a legacy program would open it. }
 program comraw;
 
 {$MODE OBJFPC}{$H+}
 
 uses
-  SysUtils, ChnTypes, ChnVirt, ChnCom;
+  SysUtils, uString, ChnTypes, ChnVirt, ChnCom, ChnTcp;
 
 var
   Chn: pChnVirt;
@@ -21,14 +23,28 @@ var
   Hex: string;
   Deadline: QWord;
   Seconds: LongInt;
+  Layer, Params: string;
 begin
   if ParamCount < 1 then
   begin
     WriteLn('usage: comraw ''DEV=/dev/ttyUSB0 BD=9600'' [''01 02 FF''] [seconds]');
     Halt(2);
   end;
-  Chn := ChnCollection^.ChNewInit(ChnCom.cName);
-  Chn^.ChSetParam(ParamStr(1));
+  Layer := ChnCom.cName;
+  Params := Trim(ParamStr(1));
+  if UpStr(Copy(Params, 1, 4)) = 'NAM=' then
+  begin
+    { 'NAM=TCP HOST=...': the first token names the layer }
+    Layer := Copy(Params, 5, Pos(' ', Params + ' ') - 5);
+    Params := Trim(Copy(Params, Length(Layer) + 5, MaxInt));
+  end;
+  Chn := ChnCollection^.ChNewInit(Layer);
+  if Chn = nil then
+  begin
+    WriteLn('comraw: unknown layer NAM=', Layer);
+    Halt(1);
+  end;
+  Chn^.ChSetParam(Params);
   if Chn^.ChResult = res_Ok then
     Chn^.ChOpen;
   if Chn^.ChResult <> res_Ok then

@@ -23,7 +23,7 @@ program df1echo;
 
 uses
   {$IFDEF UNIX}cthreads,{$ENDIF}
-  SysUtils, uString, ChnTypes, ChnVirt, ChnLoop, ChnCom, ChnTrc, ChnDF1,
+  SysUtils, uString, ChnTypes, ChnVirt, ChnLoop, ChnCom, ChnTcp, ChnTrc, ChnDF1,
   ChnDF1Link;
   { units register their layer names when they are linked in: LOOP, COM,
     TRC and DF1 can be named in the parameter string }

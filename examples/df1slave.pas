@@ -20,7 +20,7 @@ program df1slave;
 {$MODE OBJFPC}{$H+}
 
 uses
-  SysUtils, uString, ChnTypes, ChnVirt, ChnLoop, ChnCom, ChnTrc, ChnDF1,
+  SysUtils, uString, ChnTypes, ChnVirt, ChnLoop, ChnCom, ChnTcp, ChnTrc, ChnDF1,
   ChnSlc, ChnDF1Link;
 
 const

@@ -24,7 +24,7 @@ uses
   ChnTypes,
   ChnVirt,
   ChnLoop,
-  ChnCom,
+  ChnCom, ChnTcp,
   ChnFT1_2;
 
 const

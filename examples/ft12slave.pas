@@ -25,7 +25,7 @@ uses
   ChnTypes,
   ChnVirt,
   ChnLoop,
-  ChnCom,
+  ChnCom, ChnTcp,
   ChnFT12Codec,
   ChnFT1_2;
 

@@ -28,7 +28,7 @@ uses
   ChnTypes,
   ChnVirt,
   ChnLoop,
-  ChnCom,
+  ChnCom, ChnTcp,
   ChnICS;
 
 const

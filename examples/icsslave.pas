@@ -26,7 +26,7 @@ uses
   ChnTypes,
   ChnVirt,
   ChnLoop,
-  ChnCom,
+  ChnCom, ChnTcp,
   ChnICS;
 
 const

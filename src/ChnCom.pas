@@ -54,7 +54,7 @@ unit ChnCom;
 interface
 
 uses
-  ChnTypes, ChnVirt, ChnRing, ChnPort
+  ChnTypes, ChnVirt, ChnRing, ChnWait, ChnPort
   {$IFDEF WINDOWS}, ChnPortWin{$ELSE}, ChnPortUnix{$ENDIF}
   {$IFDEF CHN_SYNAPSE}, ChnPortSynapse{$ENDIF};
 
@@ -92,6 +92,7 @@ type
     CH_OsLost  : LongWord;         { OS overrun count last seen }
     CH_TxBuf   : PByte;            { copy of the message being sent }
     CH_TxCap, CH_TxLen, CH_TxPos: LongInt;
+    CH_Wait    : pChnWaitSource;   { this port in the program-wide wait; nil: none }
     constructor Init;
     constructor ChInitParam(const S: tParamStr);
     destructor  Done; virtual;
@@ -173,6 +174,7 @@ begin
   CH_TxCap := 0;
   CH_TxLen := 0;
   CH_TxPos := 0;
+  CH_Wait := nil;
 end;
 
 constructor tChnCom.ChInitParam(const S: tParamStr);
@@ -391,6 +393,10 @@ procedure tChnCom.ChOpen;
 var
   Port: TChnPort;
   R: tChResult;
+  WaitKind: tChnWaitKind;
+  WaitOs: PtrInt;
+  WaitRearm: tChnWaitRearm;
+  WaitData: Pointer;
 begin
   if CH_State <> CHS_Close then
   begin
@@ -407,6 +413,9 @@ begin
     Exit;
   end;
   CH_Port := Port;
+  CH_Wait := nil;
+  if ChnWaitShared and Port.WaitSource(WaitKind, WaitOs, WaitRearm, WaitData) then
+    CH_Wait := ChnWaitJoin(WaitKind, WaitOs, WaitRearm, WaitData);
   RingAlloc(CH_Ring, CH_LRB);
   CH_Lost := 0;
   CH_LostShown := 0;
@@ -425,6 +434,7 @@ begin
     CH_Result := res_WrongState;
     Exit;
   end;
+  ChnWaitLeave(CH_Wait);           { before the descriptor goes }
   if CH_Port <> nil then
   begin
     if CH_Fault = res_Ok then
@@ -459,6 +469,7 @@ begin
   CH_TxLen := 0;
   CH_TxPos := 0;
   CH_RtsUp := False;
+  ChnWaitServed(CH_Wait, False);  { nothing more to wait for on it }
 end;
 
 { Move what the OS holds into the ring; see the unit header for a full ring. }
@@ -484,6 +495,10 @@ begin
     end;
     if Got = 0 then
       Break;
+    { read again until the driver says empty: a short read does not prove
+      it (a tty hands out its line buffer in pieces, a socket a segment),
+      and input left behind would wait for the next poll - or, without
+      flow control, overrun the ring under a burst }
     RingCommit(CH_Ring, Got);
   end;
   if (RingRoom(CH_Ring) = 0) and (CH_Set.Flow = flowNone) then
@@ -508,6 +523,10 @@ begin
       Inc(CH_Lost, Os - CH_OsLost);
       CH_OsLost := Os;
     end;
+  { looked at the device: wake the program's waits for its next input,
+    unless the ring cannot take any (flow control holds the sender) }
+  ChnWaitServed(CH_Wait, ((RingRoom(CH_Ring) > 0) or (CH_Set.Flow = flowNone)) and
+    CH_Port.WaitUseful);
 end;
 
 { Hand as much of the pending message to the OS as it takes now; drop RTS
@@ -528,9 +547,13 @@ begin
       Exit;
     end;
     if Written = 0 then
+    begin
+      ChnWaitOutput(CH_Wait, True);  { ChnWaitAny wakes when it can go on }
       Exit;
+    end;
     Inc(CH_TxPos, Written);
   end;
+  ChnWaitOutput(CH_Wait, False);
   if CH_RtsUp then
   begin
     R := CH_Port.OutQueue(Queued);
@@ -639,7 +662,14 @@ begin
     ComPull;
     if (CH_Ring.Count = 0) and (CH_Idle > 0) then
     begin
-      if CH_Fault <> res_Ok then
+      if CH_Wait <> nil then
+      begin
+        { the program-wide wait: ends at the first input on any channel;
+          True only when it was this port's }
+        if ChnWaitIdle(CH_Wait, CH_Idle) then
+          ComPull;
+      end
+      else if CH_Fault <> res_Ok then
         Sleep(CH_Idle)            { nothing to wait on; still no busy loop }
       else if CH_Port.WaitInput(CH_Idle) then
         ComPull;

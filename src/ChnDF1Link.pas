@@ -112,6 +112,7 @@ type
     Result   : tChResult;
     Tries    : LongInt;
     Naks     : LongInt;
+    Acked    : Boolean;        { the command was ACKed (or answered) }
     EnqSent  : Boolean;
     FullDup  : Boolean;
     TimeoutMs: LongInt;
@@ -129,6 +130,9 @@ function DF1MasterStart(var M: tDF1Master; Chn: pChnVirt; constref Req: tSendRec
   ReqLen: Word; TimeoutMs: LongInt; Log: tDF1LogProc = nil; LogWire: Boolean = False): Boolean;
 { One look at the channel; True when the exchange is over (M.State = dmDone). }
 function DF1MasterStep(var M: tDF1Master): Boolean;
+{ Abandon an exchange under way (M.Result res_Timeout): the channel's
+  receive buffer is given back; a reply that comes later is the caller's. }
+procedure DF1MasterCancel(var M: tDF1Master);
 
 { True when Chn is the top of a tChnDF1 stack. }
 
@@ -476,6 +480,7 @@ end;
 
 procedure MasterAcked(var M: tDF1Master);
 begin
+  M.Acked := True;
   M.State := dmWaitReply;
   M.Deadline := ChMsTick + QWord(3 * M.TimeoutMs);
   if M.FullDup then
@@ -487,6 +492,7 @@ end;
 { The reply is in M.Rep: ACK it and check it answers the command. }
 procedure MasterReply(var M: tDF1Master);
 begin
+  M.Acked := True;
   if not MasterLink(M, tpAckNak, True) then
     Exit;
   if (M.Rep.CF and $FF00 <> (M.Req.CF and $FF00) or MskCF_Reply) or (M.Rep.Tns <> M.Req.Tns) then
@@ -522,6 +528,15 @@ begin
   Chn^.ChReceiveBuffer(@M.Rep, SizeOf(M.Rep));
   MasterTry(M);
   Result := M.State <> dmDone;
+end;
+
+procedure DF1MasterCancel(var M: tDF1Master);
+begin
+  if M.State <> dmDone then
+  begin
+    MasterSay(M, '-- cancelled');
+    MasterFinish(M, res_Timeout);
+  end;
 end;
 
 function DF1MasterStep(var M: tDF1Master): Boolean;

@@ -14,7 +14,9 @@
   size (default 4096, taken at the next ChOpen), IDL=ms to sleep in
   ChReceiveReady when nothing is waiting (default 0: the peer usually runs
   in the same thread, where waiting only adds latency; give IDL when the
-  peer runs in another thread).
+  peer runs in another thread). Each open end is a wkSignal source of the
+  program-wide wait (unit ChnWait): bytes put into its ring, or room made
+  for its pending send, wake the waits of the process.
   Safe for two threads when the program uses cthreads. }
 unit ChnLoop;
 
@@ -23,7 +25,7 @@ unit ChnLoop;
 interface
 
 uses
-  ChnTypes, ChnVirt, ChnRing;
+  ChnTypes, ChnVirt, ChnRing, ChnWait;
 
 const
   cName = 'LOOP';
@@ -54,6 +56,8 @@ type
     function  ChReceiveReady: tChState; virtual;
     procedure ChReceive(var Len: Word); virtual;
     procedure ChReceiveFlush; virtual;
+  private
+    function LoopAvail: LongInt;
   end;
 
   tLoopDir = record             { bytes flowing towards one end }
@@ -66,6 +70,7 @@ type
     Name: string[31];
     Dir : array[1..2] of tLoopDir;   { Dir[E]: data received by end E }
     Open: array[1..2] of Boolean;
+    Wait: array[1..2] of pChnWaitSource;   { each open end in the shared wait }
     Next: pLoopPair;
   end;
 
@@ -205,6 +210,7 @@ begin
     end;
     P^.Open[CH_End] := True;
     RingAlloc(P^.Dir[CH_End].Ring, CH_LRB);
+    P^.Wait[CH_End] := ChnWaitJoin(wkSignal, -1, nil, nil);
     CH_PairRef := P;
   finally
     LeaveCriticalSection(Lock);
@@ -226,6 +232,7 @@ begin
   try
     P := CH_PairRef;
     P^.Open[CH_End] := False;
+    ChnWaitLeave(P^.Wait[CH_End]);
     RingFree(P^.Dir[CH_End].Ring);
     with P^.Dir[OtherEnd(CH_End)] do
     begin
@@ -274,6 +281,7 @@ begin
       PendPos := 0;
     end;
     Pump(CH_PairRef^.Dir[OtherEnd(CH_End)]);
+    ChnWaitSignal(CH_PairRef^.Wait[OtherEnd(CH_End)]);
   finally
     LeaveCriticalSection(Lock);
   end;
@@ -298,31 +306,41 @@ begin
   end;
 end;
 
+function tChnLoop.LoopAvail: LongInt;
+begin
+  EnterCriticalSection(Lock);
+  try
+    { looking now: the next bytes for this end wake the program's waits }
+    ChnWaitServed(CH_PairRef^.Wait[CH_End], True);
+    Pump(CH_PairRef^.Dir[CH_End]);
+    Result := CH_PairRef^.Dir[CH_End].Ring.Count;
+  finally
+    LeaveCriticalSection(Lock);
+  end;
+end;
+
 function tChnLoop.ChReceiveReady: tChState;
 var
   Avail: LongInt;
-  Deadline: QWord;
+  Deadline, Now: QWord;
 begin
   if (CH_State <> CHS_Connect) or (CH_PairRef = nil) then
     Exit(CHS_RecInactive);
-  Deadline := 0;
-  repeat
-    EnterCriticalSection(Lock);
-    try
-      Pump(CH_PairRef^.Dir[CH_End]);
-      Avail := CH_PairRef^.Dir[CH_End].Ring.Count;
-    finally
-      LeaveCriticalSection(Lock);
-    end;
-    if (Avail > 0) or (CH_Idle = 0) then
-      Break;
-    { nothing yet: give the peer's thread up to IDL ms, in 1 ms slices }
-    if Deadline = 0 then
-      Deadline := ChMsTick + QWord(CH_Idle)
-    else if ChMsTick >= Deadline then
-      Break;
-    Sleep(1);
-  until False;
+  Avail := LoopAvail;
+  if (Avail = 0) and (CH_Idle > 0) then
+  begin
+    { nothing yet: wait up to IDL ms on the program-wide wait, which the
+      peer's ChSend ends at once (from any thread) }
+    Deadline := ChMsTick + QWord(CH_Idle);
+    repeat
+      Now := ChMsTick;
+      if Now >= Deadline then
+        Break;
+      if not ChnWaitIdle(CH_PairRef^.Wait[CH_End], Deadline - Now) then
+        Break;                    { timed out, or woke for another channel }
+      Avail := LoopAvail;
+    until Avail > 0;
+  end;
   if Avail > 0 then
     CH_RCtrl := CHS_ReceiveReady
   else
@@ -331,6 +349,8 @@ begin
 end;
 
 procedure tChnLoop.ChReceive(var Len: Word);
+var
+  Before: LongInt;
 begin
   if not ChReceiveAllowed(Len) then
     Exit;
@@ -340,7 +360,10 @@ begin
     begin
       Pump(CH_PairRef^.Dir[CH_End]);
       Len := RingGet(Ring, CH_RBuff, CH_RSize);
+      Before := PendPos;
       Pump(CH_PairRef^.Dir[CH_End]);   { room again for the sender }
+      if PendPos > Before then
+        ChnWaitSignal(CH_PairRef^.Wait[OtherEnd(CH_End)]);   { its send went on }
     end;
   finally
     LeaveCriticalSection(Lock);

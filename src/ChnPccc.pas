@@ -111,6 +111,9 @@ function PcccValueKind(const A: tPcccAddr): tPcccValueKind;
   in MaxBytes. }
 function PcccPlan(const A: tPcccAddr; Count: LongInt; Write: Boolean; MaxBytes: Word;
   out P: tPcccPlan; out Err: ShortString): tChResult;
+{ The address of item Item (0-based) of a plan: B3:1/15 is followed by
+  B3:2/0, T4:0.ACC by T4:1.ACC, N7:0 by N7:1. }
+function PcccItemAddress(const P: tPcccPlan; Item: LongInt): tPcccAddr;
 { Number of requests of a plan. }
 function PcccPlanRequests(const P: tPcccPlan): LongInt;
 { The values (LongInt) the items of a plan fill: Count * PerItem. }
@@ -579,6 +582,21 @@ begin
   Result := res_Ok;
 end;
 
+function PcccItemAddress(const P: tPcccPlan; Item: LongInt): tPcccAddr;
+var
+  Abs_: LongInt;
+begin
+  Result := P.Addr;
+  if P.Mode = pmBits then
+  begin
+    Abs_ := LongInt(P.Addr.Elem) * 16 + P.Addr.Bit + Item;
+    Result.Elem := Word(Abs_ div 16);
+    Result.Bit := Abs_ mod 16;
+  end
+  else
+    Result.Elem := Word(P.Addr.Elem + Item);
+end;
+
 function PcccPlanRequests(const P: tPcccPlan): LongInt;
 begin
   if P.PerReq <= 0 then
@@ -770,7 +788,8 @@ begin
         V := Values[Item];
         if (V < 0) or (V > 1) then
         begin
-          Err := Format('value %d for a bit is not 0 or 1', [V]);
+          Err := Format('value %d for %s is not 0 or 1',
+            [V, PcccAddressText(PcccItemAddress(P, Item))]);
           Exit(res_PcccValue);
         end;
         Mask := Mask or Word(1 shl K);
@@ -785,7 +804,8 @@ begin
     V := Values[First];
     if (V < 0) or (V > 1) then
     begin
-      Err := Format('value %d for a bit is not 0 or 1', [V]);
+      Err := Format('value %d for %s is not 0 or 1',
+        [V, PcccAddressText(PcccItemAddress(P, First))]);
       Exit(res_PcccValue);
     end;
     Exit(PcccBuildMaskedWrite(ChunkAddr(P, First), Word(1 shl P.Addr.Bit),
@@ -796,7 +816,8 @@ begin
     V := Values[First * P.PerItem + I];
     if (V < Lo) or (V > Hi) then
     begin
-      Err := Format('value %d is not %d..%d for %s', [V, Lo, Hi, PcccAddressText(P.Addr)]);
+      Err := Format('value %d for %s is not %d..%d',
+        [V, PcccAddressText(PcccItemAddress(P, First + I div P.PerItem)), Lo, Hi]);
       Exit(res_PcccValue);
     end;
     if P.Addr.FileType = pft_Long then
@@ -839,7 +860,7 @@ begin
     Move(Values[First + I], L, 4);
     if (L and $7F800000) = $7F800000 then
     begin
-      Err := 'value ' + IntToStr(First + I) + ' is not a finite number';
+      Err := 'value for ' + PcccAddressText(PcccItemAddress(P, First + I)) + ' is not a finite number';
       Exit(res_PcccValue);
     end;
     Buf[I * 4] := L and $FF;

@@ -29,7 +29,7 @@ unit ChnPort;
 interface
 
 uses
-  ChnTypes;
+  ChnTypes, ChnWait;
 
 type
   tPortParity = (ppNone, ppEven, ppOdd, ppMark, ppSpace);
@@ -100,6 +100,16 @@ type
     { Receive overruns the OS counted since Open (UART or driver buffer);
       0 where the OS does not count them. }
     function OsOverruns(out N: LongWord): tChResult; virtual; abstract;
+    { What the program-wide wait (unit ChnWait) can wait on for input of
+      this port: a descriptor or an event handle, and for a handle the
+      procedure that arms it again after it fired. False: nothing; tChnCom
+      then waits with WaitInput on this port alone. The default is False. }
+    function WaitSource(out Kind: tChnWaitKind; out Os: PtrInt;
+      out Rearm: tChnWaitRearm; out Data: Pointer): Boolean; virtual;
+    { False while waiting on WaitSource's object would only wake at once
+      for nothing (a pty master with no program on the slave side answers
+      poll with a hang-up every time); default True. }
+    function WaitUseful: Boolean; virtual;
     { The OS handle (file descriptor, HANDLE), for tests and special calls;
       -1 when closed. }
     function OsHandle: PtrInt; virtual; abstract;
@@ -163,6 +173,21 @@ begin
   if FOpen then
     Close;
   inherited Destroy;
+end;
+
+function TChnPort.WaitSource(out Kind: tChnWaitKind; out Os: PtrInt;
+  out Rearm: tChnWaitRearm; out Data: Pointer): Boolean;
+begin
+  Kind := wkSignal;
+  Os := -1;
+  Rearm := nil;
+  Data := nil;
+  Result := False;
+end;
+
+function TChnPort.WaitUseful: Boolean;
+begin
+  Result := True;
 end;
 
 procedure RegisterPortDriver(const Name: ShortString; Cls: TChnPortClass);

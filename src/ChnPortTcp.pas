@@ -45,6 +45,7 @@ type
     FLineOverruns: LongWord;
     FConnecting: Boolean;
     FSettingsDue: Boolean;          { SendSettings before the server's DO }
+    FDueUntil: QWord;               { ... which must come by then }
     function SockResult(E: tSockErr): tChResult;
     function TryNextAddr: tSockErr;
     procedure Started;
@@ -54,6 +55,7 @@ type
     function Take(var Buf; Size: LongInt; out Got: LongInt; Keep: Boolean): tChResult;
     procedure OnSub;
     function Answered: Boolean;
+    function SettingsOverdue: tChResult;
     procedure TakeClient;
   public
     { set before Open/Connect/Listen }
@@ -340,7 +342,12 @@ begin
     Exit;
   FSettingsDue := not FNeg[TNO_COMPORT].Us;
   if FSettingsDue then
-    Exit;                           { no subnegotiation before the option is on }
+  begin
+    { no subnegotiation before the option is on; data waits for it too,
+      so nothing leaves at the server's old settings }
+    FDueUntil := GetTickCount64 + QWord(ConnectMs);
+    Exit;
+  end;
   BaudToBytes(S.Baud, V);
   SendSetting(CPO_SETBAUDRATE, V, 4);
   V[0] := S.DataBits;
@@ -538,9 +545,21 @@ begin
     SockClose(FSock);               { the client left: wait for the next }
     Result := res_Ok;
   end;
+  if (Result = res_Ok) and FSettingsDue then
+    Result := SettingsOverdue;
   if (Result = res_Ok) and (FBad <> '') then
   begin
     FailKey := FBad;
+    Result := res_BadSetting;
+  end;
+end;
+
+function TChnPortTcp.SettingsOverdue: tChResult;
+begin
+  Result := res_Ok;
+  if FSettingsDue and (GetTickCount64 > FDueUntil) then
+  begin
+    FailKey := 'RFC2217';           { the server never agreed to the option }
     Result := res_BadSetting;
   end;
 end;
@@ -554,12 +573,17 @@ end;
 
 function TChnPortTcp.WaitOutput(Ms: LongInt): Boolean;
 begin
-  Result := SockWait([FSock], True, Ms);
+  if FSettingsDue then
+    Result := SockWait([FSock], False, Ms)   { data waits for the server's DO }
+  else
+    Result := SockWait([FSock], True, Ms);
 end;
 
 function TChnPortTcp.Write(const Buf; Len: LongInt; out Done: LongInt): tChResult;
 var
   E: tSockErr;
+  Dummy: Byte;
+  Got: LongInt;
 begin
   Done := 0;
   if not FOpen then
@@ -571,7 +595,11 @@ begin
     Exit(res_Ok);
   end;
   Result := FlushOut;
-  if Result = res_Ok then
+  if (Result = res_Ok) and FSettingsDue then
+    Result := Take(Dummy, 1, Got, True);   { the server's DO may be waiting }
+  if (Result = res_Ok) and FSettingsDue then
+    Result := SettingsOverdue
+  else if Result = res_Ok then
     if not Rfc2217 then
     begin
       if FOutLen = 0 then

@@ -27,13 +27,14 @@ unit ChnPortUnix;
 interface
 
 uses
-  BaseUnix, Unix, TermIO, ChnTypes, ChnPort;
+  BaseUnix, Unix, TermIO, ChnTypes, ChnWait, ChnPort;
 
 type
   TChnPortUnix = class(TChnPort)
   private
     FFd: cint;
     FOverrunBase: LongWord;
+    FNoCounters: Boolean;     { the driver refused TIOCGICOUNT once: never ask again }
     function Fail(Err: cint): tChResult;
     function Counters(out N: LongWord): Boolean;
     function Refuse(const Key: ShortString): tChResult;
@@ -58,6 +59,8 @@ type
     function GetLines(out Lines: tPortLines): tChResult; override;
     function SetKernelRs485(On: Boolean): tChResult; override;
     function OsOverruns(out N: LongWord): tChResult; override;
+    function WaitSource(out Kind: tChnWaitKind; out Os: PtrInt;
+      out Rearm: tChnWaitRearm; out Data: Pointer): Boolean; override;
     function OsHandle: PtrInt; override;
     procedure Close; override;
   end;
@@ -263,7 +266,10 @@ begin
   end;
   FFd := NewFd;
   FOpen := True;
-  Counters(FOverrunBase);
+  FNoCounters := False;
+  { a pty or a USB adapter without counters refuses this: remembered, so
+    polls do not repeat an ioctl that cannot succeed }
+  FNoCounters := not Counters(FOverrunBase);
   Result := res_Ok;
 end;
 
@@ -609,9 +615,22 @@ begin
   N := 0;
   if not FOpen then
     Exit(res_WrongState);
-  if Counters(N) then
-    N := N - FOverrunBase;
+  if not FNoCounters then
+    if Counters(N) then
+      N := N - FOverrunBase
+    else
+      FNoCounters := True;
   Result := res_Ok;
+end;
+
+function TChnPortUnix.WaitSource(out Kind: tChnWaitKind; out Os: PtrInt;
+  out Rearm: tChnWaitRearm; out Data: Pointer): Boolean;
+begin
+  Kind := wkDescriptor;
+  Os := FFd;
+  Rearm := nil;
+  Data := nil;
+  Result := FOpen;
 end;
 
 function TChnPortUnix.OsHandle: PtrInt;

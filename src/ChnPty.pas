@@ -30,6 +30,7 @@ type
   TChnPortPty = class(TChnPortUnix)
   private
     FSlavePath: AnsiString;
+    FNoClient: Boolean;
   public
     { Creates a new pair; Path is ignored. }
     function Open(const Path: tWordString): tChResult; override;
@@ -40,6 +41,9 @@ type
     { Without a client poll(2) answers POLLHUP at once, every time; that
       is no input, so wait the Ms as on an idle line (no busy loop). }
     function WaitInput(Ms: LongInt): Boolean; override;
+    { False while no program has the slave open (the last read saw the
+      hang-up): the shared wait would wake at once for nothing. }
+    function WaitUseful: Boolean; override;
     property SlavePath: AnsiString read FSlavePath;
   end;
 
@@ -124,12 +128,18 @@ end;
 function TChnPortPty.Read(var Buf; Size: LongInt; out Got: LongInt): tChResult;
 begin
   Result := inherited Read(Buf, Size, Got);
-  if (Result = res_DeviceLost) and (FOSError = ESysEIO) then
+  FNoClient := (Result = res_DeviceLost) and (FOSError = ESysEIO);
+  if FNoClient then
   begin
     FOSError := 0;
     Got := 0;
     Result := res_Ok;
   end;
+end;
+
+function TChnPortPty.WaitUseful: Boolean;
+begin
+  Result := not FNoClient;
 end;
 
 function TChnPortPty.Write(const Buf; Len: LongInt; out Done: LongInt): tChResult;

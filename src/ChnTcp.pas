@@ -252,6 +252,8 @@ begin
   Result := P.Open('');
   if Result = res_Ok then
     Result := P.Configure(CH_Set);
+  if Result = res_DeviceLost then
+    Result := res_CannotOpen;       { closed while opening: its port is busy }
   if Result <> res_Ok then
   begin
     Key := P.FailKey;

@@ -87,6 +87,9 @@ type
     function ChInit: pChnVirt; virtual;
   end;
 
+{ Milliseconds since local midnight: the time the text log writes. }
+function TrcMsOfDay: LongInt;
+
 implementation
 
 uses
@@ -97,8 +100,7 @@ const
   ModeNames = 'HEX|DEC|PCAP';
   ModeText: array[tTrcMode] of string[3] = ('HEX', 'DEC');
 
-{ Milliseconds since local midnight. }
-function MsOfDay: LongInt;
+function TrcMsOfDay: LongInt;
 var
   H, M, S, Ms: Word;
 begin
@@ -326,7 +328,7 @@ begin
     Text := PcapRecordBytes(Sec, USec, Dir, Buff^, Len);
   end
   else
-    Text := TrcFormat(MsOfDay, Dir, Buff^, Len, CH_Mode, CH_Name);
+    Text := TrcFormat(TrcMsOfDay, Dir, Buff^, Len, CH_Mode, CH_Name);
   { one write per entry: layers sharing a file (O_APPEND) do not interleave }
   if not LogWrite(Text) then
     Inc(CH_LogErrors);

@@ -1,4 +1,4 @@
-{ Tests of ChnSlc, the simulated SLC 5/0x data table and command handler
+{ Tests of ChnSlc, ChnPccc, the simulated SLC 5/0x data table and command handler
   behind tools/df1sim: the configuration text (values, every error with its
   line) and each command's reply bytes, worked out by hand from the
   request layouts of Rockwell 1770-6.5.16 (typed logical read/write with
@@ -11,7 +11,7 @@ unit TestChnSlc;
 interface
 
 uses
-  SysUtils, fpcunit, testregistry, ChnTypes, ChnDF1Codec, ChnSlc, TestSupport;
+  SysUtils, StrUtils, fpcunit, testregistry, ChnTypes, ChnDF1Codec, ChnSlc, ChnPccc, TestSupport;
 
 type
   TTestChnSlc = class(TTestCase)
@@ -26,12 +26,16 @@ type
     procedure TestConfigValues;
     procedure TestConfigErrors;
     procedure TestDefaultTable;
+    procedure TestExampleConfigLoads;
     procedure TestEchoAndTns;
     procedure TestTypedReadIntegerAndFloat;
     procedure TestTypedReadExtendedFields;
     procedure TestTypedWriteThenRead;
     procedure TestTypedErrors;
     procedure TestUnprotectedReadWrite;
+    procedure TestTimerCounterControl;
+    procedure TestLongAndString;
+    procedure TestMaskedWrite;
     procedure TestUnprotectedErrors;
     procedure TestDiagnostics;
     procedure TestCounterWrapsLikeThePlc;
@@ -52,7 +56,12 @@ const
     'N9:0 = $0102 $0304'#10 +
     'CIF 9'#10 +
     'N10 400'#10 +
-    'N10:300 = 77'#10;
+    'N10:300 = 77'#10 +
+    'T4 3'#10'T4:0 = $A000 100 42'#10'T4:1.PRE = 10 20'#10 +
+    'C5 2'#10'C5:1.ACC = 5'#10 +
+    'R6 2'#10'R6:0.POS = 3'#10 +
+    'ST12 2'#10'ST12:1 = "Hi there"'#10 +
+    'L13 2'#10'L13:0 = 100000 -2'#10;
 
 procedure TTestChnSlc.TestCounterWrapsLikeThePlc;
 begin
@@ -120,7 +129,7 @@ begin
   SlcLoadDefault(T);
   { the values docs/df1sim.md lists for the built-in table }
   AssertEquals('S2 elements', 32, T.Files[2].Elems);
-  AssertEquals('S2 kind', 'S', T.Files[2].Kind);
+  AssertEquals('S2 type', pft_Status, T.Files[2].FType);
   AssertEquals('B3 elements', 8, T.Files[3].Elems);
   AssertEquals('B3:1', $8000, SlcGetWord(T, 3, 1));
   AssertEquals('N7 elements', 50, T.Files[7].Elems);
@@ -132,7 +141,41 @@ begin
   AssertEquals('F8:3', 1000000, SlcGetFloat(T, 8, 3), 0);
   AssertEquals('N9 elements', 64, T.Files[9].Elems);
   AssertEquals('CIF', 9, T.Cif);
-  AssertEquals('nothing else: N10', #0, T.Files[10].Kind);
+  AssertEquals('T4:0 control word: DN', $2000, SlcGetWord(T, 4, 0, 0));
+  AssertEquals('T4:0.PRE', 100, SlcGetWord(T, 4, 0, 1));
+  AssertEquals('T4:1.PRE', 50, SlcGetWord(T, 4, 1, 1));
+  AssertEquals('T4:1.ACC', 7, SlcGetWord(T, 4, 1, 2));
+  AssertEquals('C5:0.ACC', 3, SlcGetWord(T, 5, 0, 2));
+  AssertEquals('R6:0.LEN', 8, SlcGetWord(T, 6, 0, 1));
+  AssertEquals('ST10:0 LEN', 5, SlcGetWord(T, 10, 0));
+  AssertEquals('L11 type', pft_Long, T.Files[11].FType);
+  AssertEquals('nothing else: N12', 0, T.Files[12].FType);
+end;
+
+procedure TTestChnSlc.TestExampleConfigLoads;
+var
+  Text: AnsiString;
+  F: TextFile;
+  Line: AnsiString;
+  ErrLine: LongInt;
+  Err: AnsiString;
+begin
+  { tools/df1sim.conf, the example the docs point to, is valid }
+  Text := '';
+  AssignFile(F, 'tools/df1sim.conf');
+  Reset(F);
+  while not Eof(F) do
+  begin
+    ReadLn(F, Line);
+    Text := Text + Line + #10;
+  end;
+  CloseFile(F);
+  ErrLine := 0;
+  Err := '';
+  if not SlcLoadConfig(T, Text, ErrLine, Err) then
+    Fail('tools/df1sim.conf line ' + IntToStr(ErrLine) + ': ' + Err);
+  AssertEquals('T4:0.PRE', 100, SlcGetWord(T, 4, 0, 1));
+  AssertEquals('ST10:0 LEN', 5, SlcGetWord(T, 10, 0));
 end;
 
 procedure TTestChnSlc.TestConfigValues;
@@ -144,8 +187,18 @@ begin
   AssertEquals('N10:300', 77, SlcGetWord(T, 10, 300));
   AssertEquals('F8:1', -2.25, SlcGetFloat(T, 8, 1), 0);
   AssertEquals('N7 elements', 20, T.Files[7].Elems);
-  AssertEquals('B3 kind', 'B', T.Files[3].Kind);
-  AssertEquals('no N11', #0, T.Files[11].Kind);
+  AssertEquals('B3 type', pft_Bit, T.Files[3].FType);
+  AssertEquals('no N11', 0, T.Files[11].FType);
+  { T4:0 = control word, PRE, ACC; T4:1.PRE = 10 20: the PRE of T4:1, T4:2 }
+  AssertEquals('T4:0 control', $A000, SlcGetWord(T, 4, 0, 0));
+  AssertEquals('T4:0.PRE', 100, SlcGetWord(T, 4, 0, 1));
+  AssertEquals('T4:0.ACC', 42, SlcGetWord(T, 4, 0, 2));
+  AssertEquals('T4:1.PRE', 10, SlcGetWord(T, 4, 1, 1));
+  AssertEquals('T4:2.PRE', 20, SlcGetWord(T, 4, 2, 1));
+  AssertEquals('T4:1.ACC untouched', 0, SlcGetWord(T, 4, 1, 2));
+  AssertEquals('no word 3 in a timer', 0, SlcGetWord(T, 4, 0, 3));
+  AssertEquals('C5:1.ACC', 5, SlcGetWord(T, 5, 1, 2));
+  AssertEquals('R6:0.POS', 3, SlcGetWord(T, 6, 0, 2));
   AssertEquals('CIF', 9, T.Cif);
 end;
 
@@ -172,6 +225,21 @@ begin
   AssertEquals('float out of range', '2', ConfigError('F8 2'#10'F8:0 = 1e39'));
   AssertEquals('float out of range, negative', '2', ConfigError('F8 2'#10'F8:0 = -1e39'));
   AssertEquals('good', 'ok', ConfigError('  # only a comment'#10#10'B3 1  '));
+  { the addresses of unit ChnPccc }
+  AssertEquals('N2 is no N file', '1', ConfigError('N2 5'));
+  AssertEquals('S3', '1', ConfigError('S3 5'));
+  AssertEquals('S means S2', 'ok', ConfigError('S2 4'#10'S:1 = 5'));
+  AssertEquals('a bit takes no start values', '2', ConfigError('B3 2'#10'B3:0/1 = 1'));
+  AssertEquals('PRE past the end', '2', ConfigError('T4 2'#10'T4:0.PRE = 1 2 3'));
+  AssertEquals('PRE of every timer', 'ok', ConfigError('T4 2'#10'T4:0.PRE = 1 2'));
+  AssertEquals('whole timers past the end', '2', ConfigError('T4 1'#10'T4:0 = 1 2 3 4'));
+  AssertEquals('element past the end', '2', ConfigError('T4 1'#10'T4:1.ACC = 1'));
+  AssertEquals('no such sub-element', '2', ConfigError('T4 1'#10'T4:0.LEN = 1'));
+  AssertEquals('32 bits', 'ok', ConfigError('L9 2'#10'L9:0 = 2147483647 -2147483648'));
+  AssertEquals('beyond 32 bits', '2', ConfigError('L9 2'#10'L9:0 = 2147483648'));
+  AssertEquals('string without quotes', '2', ConfigError('ST9 1'#10'ST9:0 = hello'));
+  AssertEquals('string of 82', 'ok', ConfigError('ST9 1'#10'ST9:0 = "' + StringOfChar('x', 82) + '"'));
+  AssertEquals('string of 83', '2', ConfigError('ST9 1'#10'ST9:0 = "' + StringOfChar('x', 83) + '"'));
 end;
 
 procedure TTestChnSlc.TestEchoAndTns;
@@ -226,6 +294,54 @@ begin
   AssertEquals('write to a missing file', 'STS=F0 06', Ask($0FAA, '02 0B 89 00 00 01 00'));
   AssertEquals('write past the end', 'STS=F0 07', Ask($0FAA, '04 07 89 13 00 01 00 02 00'));
   AssertEquals('nothing written by the refused write', 0, SlcGetWord(T, 7, 19));
+end;
+
+procedure TTestChnSlc.TestTimerCounterControl;
+begin
+  { sub-element 0 control word, 1 PRE, 2 ACC; a whole timer is 6 bytes }
+  AssertEquals('T4:0.ACC', 'STS=00 2A 00', Ask($0FA2, '02 04 86 00 02'));
+  AssertEquals('T4:0.PRE', 'STS=00 64 00', Ask($0FA2, '02 04 86 00 01'));
+  AssertEquals('T4:0', 'STS=00 00 A0 64 00 2A 00', Ask($0FA2, '06 04 86 00 00'));
+  AssertEquals('T4:0..1', 'STS=00 00 A0 64 00 2A 00 00 00 0A 00 00 00', Ask($0FA2, '0C 04 86 00 00'));
+  AssertEquals('sub-element 3', 'STS=F0 06', Ask($0FA2, '02 04 86 00 03'));
+  AssertEquals('timer file asked as counter', 'STS=F0 06', Ask($0FA2, '02 04 87 00 02'));
+  AssertEquals('T4:2.ACC + 2 bytes runs past', 'STS=F0 07', Ask($0FA2, '04 04 86 02 02'));
+  AssertEquals('write T4:1.ACC', 'STS=00', Ask($0FAA, '02 04 86 01 02 E8 03'));
+  AssertEquals('T4:1.ACC', 1000, SlcGetWord(T, 4, 1, 2));
+  AssertEquals('C5:1.ACC', 'STS=00 05 00', Ask($0FA2, '02 05 87 01 02'));
+  AssertEquals('R6:0.POS', 'STS=00 03 00', Ask($0FA2, '02 06 88 00 02'));
+  AssertEquals('write R6:1.LEN', 'STS=00', Ask($0FAA, '02 06 88 01 01 10 00'));
+  AssertEquals('R6:1.LEN', 16, SlcGetWord(T, 6, 1, 1));
+end;
+
+procedure TTestChnSlc.TestLongAndString;
+begin
+  { 100000 = $000186A0, -2 = $FFFFFFFE }
+  AssertEquals('L13:0..1', 'STS=00 A0 86 01 00 FE FF FF FF', Ask($0FA2, '08 0D 91 00 00'));
+  AssertEquals('half an L', 'STS=F0 01', Ask($0FA2, '02 0D 91 00 00'));
+  AssertEquals('write L13:1', 'STS=00', Ask($0FAA, '04 0D 91 01 00 01 02 03 04'));
+  AssertEquals('read back', 'STS=00 01 02 03 04', Ask($0FA2, '04 0D 91 01 00'));
+  { LEN 8, 'Hi there' with the characters of each word swapped }
+  AssertEquals('ST12:1', 'STS=00 08 00 69 48 74 20 65 68 65 72' + DupeString(' 00', 74),
+    Ask($0FA2, '54 0C 8D 01 00'));
+  AssertEquals('ST12:0 empty', 'STS=00' + DupeString(' 00', 84), Ask($0FA2, '54 0C 8D 00 00'));
+end;
+
+procedure TTestChnSlc.TestMaskedWrite;
+begin
+  { SIZE 2, B3:1, mask $0010, data $0010: bit 4 set, the others stay }
+  AssertEquals('write B3:1', 'STS=00', Ask($0FAA, '02 03 85 01 00 01 80'));
+  AssertEquals('set B3:1/4', 'STS=00', Ask($0FAB, '02 03 85 01 00 10 00 10 00'));
+  AssertEquals('B3:1', $8011, SlcGetWord(T, 3, 1));
+  AssertEquals('clear B3:1/15 and /0 at once', 'STS=00', Ask($0FAB, '02 03 85 01 00 01 80 00 00'));
+  AssertEquals('B3:1', $0010, SlcGetWord(T, 3, 1));
+  AssertEquals('data outside the mask is ignored', 'STS=00', Ask($0FAB, '02 03 85 01 00 00 01 FF FF'));
+  AssertEquals('B3:1', $0110, SlcGetWord(T, 3, 1));
+  AssertEquals('T4:0.DN through the control word', 'STS=00', Ask($0FAB, '02 04 86 00 00 00 20 00 00'));
+  AssertEquals('T4:0 control', $8000, SlcGetWord(T, 4, 0, 0));
+  AssertEquals('mask without data', 'STS=10', Ask($0FAB, '02 03 85 01 00 10 00'));
+  AssertEquals('masked write past the end', 'STS=F0 07', Ask($0FAB, '04 03 85 03 00 FF FF FF FF 00 00 00 00'));
+  AssertEquals('to a missing file', 'STS=F0 06', Ask($0FAB, '02 0B 85 00 00 01 00 01 00'));
 end;
 
 procedure TTestChnSlc.TestUnprotectedReadWrite;

@@ -10,7 +10,7 @@ unit TestChnTcp;
 interface
 
 uses
-  SysUtils, Classes, fpcunit, testregistry, ChnTypes, ChnVirt, ChnTcp, ChnSock, Sockets,
+  SysUtils, Classes, fpcunit, testregistry, ChnTypes, ChnVirt, ChnPort, ChnTcp, ChnSock, Sockets,
   TestSupport;
 
 type
@@ -33,9 +33,188 @@ type
     procedure TestPeerGoneIsDeviceLostNextTick;
     procedure TestReconnectsByItself;
     procedure TestSecondClientIsTurnedAway;
+    procedure TestRfc2217ServerChangesTheRate;
+    procedure TestRfc2217ServerRefusesTheOption;
+    procedure TestRfc2217ServerSilent;
+    procedure TestRfc2217DataNotifyAndPurgeOnTheWire;
+  end;
+
+  { A scripted RFC 2217 server on a thread: the bytes it expects and sends
+    are written here by hand from RFC 854 / RFC 2217, not produced by the
+    codec under test. }
+  TScriptMode = (smHonest, smChangeBaud, smRefuse, smSilent);
+  TScriptServer = class(TThread)
+  private
+    FListen, FConn: tSock;
+    FMode: TScriptMode;
+    FLock: TRTLCriticalSection;
+    FSeen: AnsiString;              { every byte the client sent }
+    FToSend: AnsiString;            { bytes the test wants sent now }
+    procedure Put(const S: AnsiString);
+  protected
+    procedure Execute; override;
+  public
+    Port: Word;
+    constructor Create(Mode: TScriptMode);
+    destructor Destroy; override;
+    function Seen: AnsiString;
+    procedure Send(const S: AnsiString);
   end;
 
 implementation
+
+function Hex(const S: AnsiString): string;
+var
+  I: Integer;
+begin
+  Result := '';
+  for I := 1 to Length(S) do
+  begin
+    if I > 1 then
+      Result := Result + ' ';
+    Result := Result + IntToHex(Ord(S[I]), 2);
+  end;
+end;
+
+{ What the script server saw after Mark, once N bytes came (3 s at most). }
+function SeenAfter(Srv: TScriptServer; Mark, N: Integer): AnsiString;
+var
+  Deadline: QWord;
+begin
+  Deadline := GetTickCount64 + 3000;
+  repeat
+    Result := Copy(Srv.Seen, Mark + 1, MaxInt);
+    if Length(Result) >= N then
+      Exit;
+    Sleep(5);
+  until GetTickCount64 > Deadline;
+end;
+
+function Bytes(const HexText: string): AnsiString;
+var
+  B: TBytes;
+begin
+  B := HexToBytes(HexText);
+  SetLength(Result, Length(B));
+  if Length(B) > 0 then
+    Move(B[0], Result[1], Length(B));
+end;
+
+constructor TScriptServer.Create(Mode: TScriptMode);
+var
+  A: tSockAddrs;
+  N: LongInt;
+begin
+  FMode := Mode;
+  InitCriticalSection(FLock);
+  SockResolve('127.0.0.1', 0, True, A, N);
+  if SockListen(A[0], FListen) <> seOk then
+    raise Exception.Create('script server: cannot listen');
+  Port := SockLocalPort(FListen);
+  FConn := NoSock;
+  inherited Create(False);
+end;
+
+destructor TScriptServer.Destroy;
+begin
+  Terminate;
+  WaitFor;
+  SockClose(FConn);
+  SockClose(FListen);
+  DoneCriticalSection(FLock);
+  inherited Destroy;
+end;
+
+function TScriptServer.Seen: AnsiString;
+begin
+  EnterCriticalSection(FLock);
+  Result := FSeen;
+  LeaveCriticalSection(FLock);
+end;
+
+procedure TScriptServer.Send(const S: AnsiString);
+begin
+  EnterCriticalSection(FLock);
+  FToSend := FToSend + S;
+  LeaveCriticalSection(FLock);
+end;
+
+procedure TScriptServer.Put(const S: AnsiString);
+var
+  Done, P: LongInt;
+begin
+  P := 1;
+  while (P <= Length(S)) and not Terminated do
+  begin
+    if SockSend(FConn, S[P], Length(S) - P + 1, Done) <> seOk then
+      Exit;
+    Inc(P, Done);
+    if Done = 0 then
+      SockWait([FConn], True, 10);
+  end;
+end;
+
+procedure TScriptServer.Execute;
+var
+  Buf: array[0..4095] of Byte;
+  Got: LongInt;
+  Pending, Out, Ans: AnsiString;
+  P, E: Integer;
+  Agreed: Boolean;
+begin
+  while (FConn = NoSock) and not Terminated do
+    if SockWait([FListen], False, 20) then
+      SockAccept(FListen, FConn);
+  Pending := '';
+  Agreed := False;
+  while not Terminated do
+  begin
+    SockWait([FConn], False, 10);
+    if SockRecv(FConn, Buf, SizeOf(Buf), Got) <> seOk then
+      Break;
+    if Got > 0 then
+    begin
+      SetLength(Out, Got);
+      Move(Buf, Out[1], Got);
+      EnterCriticalSection(FLock);
+      FSeen := FSeen + Out;
+      LeaveCriticalSection(FLock);
+      Pending := Pending + Out;
+    end;
+    if (FMode <> smSilent) and not Agreed and (Pos(#$FF#$FB#$2C, Pending) > 0) then
+    begin
+      Agreed := True;
+      if FMode = smRefuse then
+        Put(#$FF#$FE#$2C)                       { DONT COM-PORT-OPTION }
+      else
+        Put(#$FF#$FD#$2C#$FF#$FB#$00#$FF#$FD#$00);  { DO 44, WILL/DO BINARY }
+    end;
+    { answer each SET-xxx (codes 1..5) with code + 100 }
+    repeat
+      P := Pos(#$FF#$FA#$2C, Pending);
+      if P = 0 then
+        Break;
+      E := Pos(#$FF#$F0, Copy(Pending, P, MaxInt));
+      if E = 0 then
+        Break;
+      Ans := Copy(Pending, P + 3, E - 4);     { code and value }
+      Delete(Pending, 1, P + E);
+      if Agreed and (FMode <> smRefuse) and (Ans <> '') and (Ord(Ans[1]) in [1..5]) then
+      begin
+        if (FMode = smChangeBaud) and (Ans[1] = #1) then
+          Ans := #1#$00#$00#$25#$80;          { 9600 instead }
+        Ans[1] := Chr(Ord(Ans[1]) + 100);
+        Put(#$FF#$FA#$2C + Ans + #$FF#$F0);
+      end;
+    until False;
+    EnterCriticalSection(FLock);
+    Out := FToSend;
+    FToSend := '';
+    LeaveCriticalSection(FLock);
+    if Out <> '' then
+      Put(Out);
+  end;
+end;
 
 procedure TTestChnTcp.TearDown;
 begin
@@ -302,6 +481,96 @@ begin
   AssertEquals('the second is closed at once', res_DeviceLost, Cli2^.ChResult);
   SendText(Cli, 'two');
   AssertEquals('the first keeps its line', 'two', Receive(Srv, nil, 3, 3000));
+end;
+
+procedure TTestChnTcp.TestRfc2217ServerChangesTheRate;
+var
+  Srv2: TScriptServer;
+begin
+  Srv2 := TScriptServer.Create(smChangeBaud);
+  try
+    AssertEquals(res_BadSetting, OpenClient(Format(
+      'HOST=127.0.0.1 PORT=%d RFC2217=ON BD=19200 CTO=2000', [Srv2.Port])));
+    AssertEquals('names the token', 'BD=19200', Cli^.ChParamError);
+    AssertEquals(CHS_Close, Cli^.ChReady);
+    { what went out: WILL COM-PORT-OPTION, then SET-BAUDRATE 19200 }
+    AssertTrue(Hex(Srv2.Seen), Pos(#$FF#$FB#$2C, Srv2.Seen) > 0);
+    AssertTrue(Hex(Srv2.Seen), Pos(Bytes('FF FA 2C 01 00 00 4B 00 FF F0'), Srv2.Seen) > 0);
+  finally
+    Srv2.Free;
+  end;
+end;
+
+procedure TTestChnTcp.TestRfc2217ServerRefusesTheOption;
+var
+  Srv2: TScriptServer;
+begin
+  Srv2 := TScriptServer.Create(smRefuse);
+  try
+    AssertEquals(res_BadSetting, OpenClient(Format(
+      'HOST=127.0.0.1 PORT=%d RFC2217=ON CTO=2000', [Srv2.Port])));
+    AssertEquals('RFC2217=ON', Cli^.ChParamError);
+  finally
+    Srv2.Free;
+  end;
+end;
+
+procedure TTestChnTcp.TestRfc2217ServerSilent;
+var
+  Srv2: TScriptServer;
+  T0: QWord;
+begin
+  Srv2 := TScriptServer.Create(smSilent);
+  try
+    T0 := GetTickCount64;
+    AssertEquals(res_BadSetting, OpenClient(Format(
+      'HOST=127.0.0.1 PORT=%d RFC2217=ON CTO=300', [Srv2.Port])));
+    AssertEquals('RFC2217=ON', Cli^.ChParamError);
+    AssertTrue('bounded by CTO', GetTickCount64 - T0 < 3000);
+  finally
+    Srv2.Free;
+  end;
+end;
+
+procedure TTestChnTcp.TestRfc2217DataNotifyAndPurgeOnTheWire;
+var
+  Srv2: TScriptServer;
+  Lines: tPortLines;
+  Data: string;
+  Mark: Integer;
+begin
+  Srv2 := TScriptServer.Create(smHonest);
+  try
+    AssertEquals(res_Ok, OpenClient(Format(
+      'HOST=127.0.0.1 PORT=%d RFC2217=ON BD=57600 BIT=7 PAR=O STOP=2 FLW=RTSCTS', [Srv2.Port])));
+    { the settings as RFC 2217 spells them }
+    AssertTrue(Hex(Srv2.Seen), Pos(Bytes('FF FA 2C 01 00 00 E1 00 FF F0'), Srv2.Seen) > 0);
+    AssertTrue('7 bits', Pos(Bytes('FF FA 2C 02 07 FF F0'), Srv2.Seen) > 0);
+    AssertTrue('odd = 2', Pos(Bytes('FF FA 2C 03 02 FF F0'), Srv2.Seen) > 0);
+    AssertTrue('2 stop', Pos(Bytes('FF FA 2C 04 02 FF F0'), Srv2.Seen) > 0);
+    AssertTrue('hardware flow = 3', Pos(Bytes('FF FA 2C 05 03 FF F0'), Srv2.Seen) > 0);
+    { data with IAC doubled, a modem-state notification in the middle }
+    Srv2.Send(Bytes('01 FF FF 02 FF FA 2C 6B 30 FF F0 03 FF FA 2C 6A 02 FF F0 04'));
+    Data := Receive(Cli, nil, 5, 3000);
+    AssertEquals('data undisturbed', '01 FF 02 03 04', Hex(Data));
+    AssertEquals(res_Ok, pChnTcp(Cli)^.ChModemLines(Lines));
+    AssertTrue('CTS and DSR from NOTIFY-MODEMSTATE', Lines = [plCts, plDsr]);
+    AssertEquals('the line overrun counted', 1, pChnTcp(Cli)^.ChLostBytes);
+    { our IAC doubled on the wire }
+    Mark := Length(Srv2.Seen);
+    SendText(Cli, #$FF#$00#$FF);
+    AssertEquals('FF FF 00 FF FF', Hex(SeenAfter(Srv2, Mark, 5)));
+    Mark := Length(Srv2.Seen);
+    Cli^.ChReceiveFlush;
+    AssertEquals('PURGE-DATA 1', 'FF FA 2C 0C 01 FF F0', Hex(SeenAfter(Srv2, Mark, 7)));
+    Mark := Length(Srv2.Seen);
+    AssertEquals(res_Ok, pChnTcp(Cli)^.ChSetDtr(False));
+    AssertEquals(res_Ok, pChnTcp(Cli)^.ChSetRts(True));
+    AssertEquals('DTR off = 9, RTS on = 11', 'FF FA 2C 05 09 FF F0 FF FA 2C 05 0B FF F0',
+      Hex(SeenAfter(Srv2, Mark, 14)));
+  finally
+    Srv2.Free;
+  end;
 end;
 
 initialization

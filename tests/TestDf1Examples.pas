@@ -21,6 +21,8 @@ type
     {$IFDEF UNIX}
     { needs /bin/sh (an empty argument) and df1sim --pty }
     procedure TestDf1ReadAddresses;
+    { df1write, df1read and readn7 against df1sim --pty }
+    procedure TestDf1WriteThenRead;
     {$ENDIF}
   end;
 
@@ -119,6 +121,83 @@ begin
     AssertTrue('file 255 encoded as $FF $FF $00:'#10 + Output,
       Pos('data: 02 FF FF 00 89 00 00', Output) > 0);
     AssertTrue('no such file:'#10 + Output, Pos('EXT STS', Output) + Pos('usable', Output) > 0);
+  finally
+    if Sim.Running then
+      Sim.Terminate(0);
+    Sim.Free;
+  end;
+end;
+
+procedure TTestDf1Examples.TestDf1WriteThenRead;
+var
+  Sim: TProcess;
+  Pty, Output: string;
+  Code: Integer;
+
+  function Params: string;
+  begin
+    Result := 'NAM=DF1 NOD=0 DNO=1 NAM=COM BD=19200 DEV=' + Pty;
+  end;
+
+  procedure Run(const Prog: string; const Args: array of string; Want: Integer);
+  var
+    All: array of string;
+    I: Integer;
+  begin
+    SetLength(All, Length(Args) + 1);
+    for I := 0 to High(Args) do
+      All[I] := Args[I];
+    All[High(All)] := Params;
+    { the parameter string as one argument: the programs join them anyway }
+    Code := RunExe(BinPath(Prog), All, 10000, Output);
+    AssertEquals(Prog + ' ' + Args[0] + ': exit code'#10 + Output, Want, Code);
+  end;
+
+begin
+  AssertTrue(BinPath('df1write') + ' missing (make examples)', FileExists(BinPath('df1write')));
+  AssertTrue(BinPath('readn7') + ' missing (make examples)', FileExists(BinPath('readn7')));
+  Sim := StartSimPty(['--timeout=20', '--quiet'], Pty);
+  try
+    AssertTrue('df1sim printed its pty', Pty <> '');
+    { the README's program: N7:0 of the built-in table is 0 }
+    AssertEquals('readn7', 0, RunBin('readn7', [Pty], 10000, Output));
+    AssertEquals('readn7 output', 'N7:0 = 0', Trim(Output));
+    Run('df1write', ['N7:0', '-7', '8'], 0);
+    Run('df1read', ['N7:0', '2'], 0);
+    AssertTrue(Output, Pos('N7:0 = -7'#10'N7:1 = 8', Output) > 0);
+    AssertEquals('readn7 sees the write', 0, RunBin('readn7', [Pty], 10000, Output));
+    AssertEquals('N7:0 = -7', Trim(Output));
+    Run('df1write', ['B3:1/4', '1'], 0);
+    AssertTrue('a masked write went out:'#10 + Output,
+      Pos('Protected Typed Logical Masked Write (3 addr)', Output) > 0);
+    Run('df1read', ['B3:1', '1'], 0);
+    AssertTrue(Output, Pos('B3:1 = $8010', Output) > 0);
+    Run('df1write', ['F8:2', '0.25'], 0);
+    Run('df1read', ['F8:2', '1'], 0);
+    AssertTrue(Output, Pos('F8:2 = 0.25', Output) > 0);
+    Run('df1write', ['T4:2.PRE', '250'], 0);
+    Run('df1read', ['T4:2.PRE', '1'], 0);
+    AssertTrue(Output, Pos('T4:2.PRE = 250', Output) > 0);
+    Run('df1write', ['C5:1.ACC', '6'], 0);
+    Run('df1read', ['C5:1', '1'], 0);
+    AssertTrue(Output, Pos('C5:1 = $0000 0 6', Output) > 0);
+    Run('df1write', ['ST10:1', 'two words'], 0);
+    Run('df1read', ['ST10:1'], 0);
+    AssertTrue(Output, Pos('ST10:1 = "two words"', Output) > 0);
+    Run('df1write', ['L11:2', '-99999'], 0);
+    Run('df1read', ['L11:2', '1'], 0);
+    AssertTrue(Output, Pos('L11:2 = -99999', Output) > 0);
+    Run('df1read', ['R6:0.LEN', '1'], 0);
+    AssertTrue(Output, Pos('R6:0.LEN = 8', Output) > 0);
+    { refusals: a value out of range and a bad address before sending,
+      an address the PLC does not have after }
+    Run('df1write', ['N7:0', '40000'], 1);
+    AssertTrue(Output, Pos('value 40000 for N7:0 is not -32768..32767', Output) > 0);
+    Run('df1write', ['B3:1/4', '2'], 1);
+    Run('df1read', ['N7:0.ACC', '1'], 1);
+    AssertTrue(Output, Pos('".ACC"', Output) > 0);
+    Run('df1write', ['N99:0', '1'], 3);
+    AssertTrue(Output, Pos('EXT STS $06', Output) > 0);
   finally
     if Sim.Running then
       Sim.Terminate(0);

@@ -13,7 +13,7 @@ interface
 uses
   {$IFDEF UNIX}BaseUnix,{$ENDIF}
   SysUtils, Classes, Process, fpcunit, testregistry, ChnTypes, ChnVirt,
-  ChnLoop, ChnCom, ChnDF1, ChnSlc, ChnDF1Link, TestSupport, BinSupport
+  ChnLoop, ChnCom, ChnDF1, ChnSlc, ChnDF1Link, TestSupport, BinSupport, Df1Pair
   {$IFDEF UNIX}, PtyPair{$ENDIF};
 
 type
@@ -126,14 +126,9 @@ begin
 end;
 
 procedure TTestDf1Sim.StartPair(Full, Crc: Boolean; const Pair: string);
-const
-  FHD: array[Boolean] of string = ('HALF', 'FULL');
-  CRCS: array[Boolean] of string = ('OFF', 'ON');
 begin
-  Slave := Open(Format('NAM=DF1 NOD=1 DNO=0 MAS=SLAVE FHD=%s CRC=%s NAM=LOOP PAIR=%s END=2',
-    [FHD[Full], CRCS[Crc], Pair]));
-  Master := Open(Format('NAM=DF1 NOD=0 DNO=1 MAS=MASTER FHD=%s CRC=%s NAM=LOOP PAIR=%s END=1',
-    [FHD[Full], CRCS[Crc], Pair]));
+  Slave := Open(Df1PairParams(False, Full, Crc, Pair));
+  Master := Open(Df1PairParams(True, Full, Crc, Pair));
   SlcStationInit(Station, Slave, @Table);
 end;
 

@@ -3,8 +3,9 @@
     runtests [FILTER] [--list] [--xml=FILE]
 
   Runs every registered test (or those whose path contains FILTER), prints
-  one line per test - a failure with the file and line of the failing
-  assert (FPCUnit's LocationInfo; the suite is built with -gl) - and, last,
+  one line per test - a failure with the file, line and source text of the
+  failing assert (see Where), so even an assert without a message says
+  what it checked - and, last,
   a line "RESULT <passed> <failed> <skipped>" that tests/run.sh folds into
   the suite's final "N passed, N failed" line. A test that cannot run here
   (a Debian package missing ...) calls Ignore('why'): it is printed as
@@ -45,6 +46,42 @@ begin
   Result := StringReplace(Result, '"', '&quot;', [rfReplaceAll]);
 end;
 
+{ 'tests/TestChnCom.pas:123: AssertEquals(...)': where a failure was
+  raised (FPCUnit's LocationInfo, from the suite's line info: -gl -Xs-),
+  with the source line itself, so every assert reads as its own message.
+  The location is exact when the Makefile could build FPCUnit from
+  Debian's fpc-source without optimisation; Debian's prebuilt fpcunit
+  loses the caller's frame and the location is then only an address. }
+function Where(const Loc: string): string;
+const
+  Dirs: array[0..2] of string = ('', 'tests/', 'tests/support/');
+var
+  P, Q, LineNo, I: Integer;
+  FileName: string;
+  Src: TStringList;
+begin
+  Result := Trim(Loc);
+  P := Pos(' line ', Loc);
+  Q := Pos(' of ', Loc);
+  if (P = 0) or (Q <= P) or not TryStrToInt(Copy(Loc, P + 6, Q - P - 6), LineNo) then
+    Exit;
+  FileName := Trim(Copy(Loc, Q + 4, MaxInt));
+  Result := FileName + ':' + IntToStr(LineNo);
+  for I := Low(Dirs) to High(Dirs) do
+    if FileExists(Dirs[I] + FileName) then
+    begin
+      Src := TStringList.Create;
+      try
+        Src.LoadFromFile(Dirs[I] + FileName);
+        if (LineNo >= 1) and (LineNo <= Src.Count) then
+          Result := Result + ': ' + Trim(Src[LineNo - 1]);
+      finally
+        Src.Free;
+      end;
+      Exit;
+    end;
+end;
+
 procedure TLineListener.AddFailure(ATest: TTest; AFailure: TTestFailure);
 begin
   if AFailure.IsIgnoredTest then
@@ -57,9 +94,9 @@ begin
   end;
   CurrentFailed := True;
   WriteLn('FAIL  ', ATest.TestSuiteName, '.', ATest.TestName, ': ',
-    AFailure.ExceptionMessage, ' at ', AFailure.LocationInfo);
+    AFailure.ExceptionMessage, ' at ', Where(AFailure.LocationInfo));
   Failure := Format('<failure message="%s">at %s</failure>',
-    [XmlText(AFailure.ExceptionMessage), XmlText(AFailure.LocationInfo)]);
+    [XmlText(AFailure.ExceptionMessage), XmlText(Where(AFailure.LocationInfo))]);
 end;
 
 procedure TLineListener.AddError(ATest: TTest; AError: TTestFailure);
@@ -67,10 +104,10 @@ begin
   CurrentFailed := True;
   WriteLn('ERROR ', ATest.TestSuiteName, '.', ATest.TestName, ': ',
     AError.ExceptionClassName, ': ', AError.ExceptionMessage,
-    ' at ', AError.LocationInfo);
+    ' at ', Where(AError.LocationInfo));
   Failure := Format('<error type="%s" message="%s">at %s</error>',
     [XmlText(AError.ExceptionClassName), XmlText(AError.ExceptionMessage),
-     XmlText(AError.LocationInfo)]);
+     XmlText(Where(AError.LocationInfo))]);
 end;
 
 procedure TLineListener.StartTest(ATest: TTest);

@@ -156,42 +156,23 @@ begin
       FileName := Arg;
       Continue;
     end;
-    Key := Arg;
-    Value := '';
-    if Pos('=', Arg) > 0 then
-    begin
-      Key := Copy(Arg, 1, Pos('=', Arg) - 1);
-      Value := Copy(Arg, Pos('=', Arg) + 1, MaxInt);
-    end;
+    DecodeSplitArg(Arg, Key, Value);
     N := 0;
-    if Key = '--capture' then Input := 'c'
+    if DecodeOption(Key, Value, Opt, Err) then
+    begin
+      if Err <> '' then
+        Usage(Err);
+    end
+    else if Key = '--capture' then Input := 'c'
     else if Key = '--pcap' then Input := 'p'
     else if Key = '--hex' then Input := 'h'
     else if Key = '--bin' then Input := 'b'
-    else if Key = '--df1' then Opt.Proto := dpDF1
-    else if Key = '--crc' then Opt.Crc := True
-    else if Key = '--bcc' then Opt.Crc := False
-    else if Key = '--half' then Opt.Half := True
     else if Key = '--master' then
     begin
       if Value = 'tx' then Opt.MasterDir := trcTx
       else if Value = 'rx' then Opt.MasterDir := trcRx
       else Usage('--master wants tx or rx');
     end
-    else if Key = '--ft12' then Opt.Proto := dpFT12
-    else if Key = '--adr' then
-    begin
-      if not StrToNum(Value, 0, 2, N) then
-        Usage('--adr wants 0, 1 or 2');
-      Opt.AddrLen := N;
-    end
-    else if Key = '--len' then
-    begin
-      if not StrToNum(Value, 0, 247, N) then
-        Usage('--len wants 0..247');
-      Opt.FixedLen := N;
-    end
-    else if Key = '--ics' then Opt.Proto := dpICS
     else if Key = '--to-pcap' then
     begin
       if Value = '' then

@@ -8,6 +8,10 @@
       --pty             create a pty pair; the first line on standard output
                         is "PTY /dev/pts/N", the device to connect to
       --dev=PATH        serial device (NAM=COM DEV=PATH), default /dev/ttyS0
+      --listen=[ADDR:]PORT  serve over TCP instead (NAM=TCP LISTEN=..., raw),
+                        one client at a time, on the loopback interface
+                        unless ADDR is given; the first line on standard
+                        output is "LISTEN <port>" (PORT 0: a free one)
       --bd=N            baud rate (default 19200), --par=N|E|O (default N)
       --half            half duplex (default full duplex)
       --bcc | --crc     checksum (default CRC)
@@ -30,7 +34,7 @@ program df1sim;
 
 uses
   {$IFDEF UNIX}BaseUnix, ChnPty,{$ENDIF}
-  SysUtils, Classes, uString, ChnTypes, ChnVirt, ChnCom, ChnTrc, ChnDF1,
+  SysUtils, Classes, uString, ChnTypes, ChnVirt, ChnCom, ChnTcp, ChnTrc, ChnDF1,
   ChnSlc, ChnDF1Link;
 
 const
@@ -102,7 +106,7 @@ var
   Table: tSlcTable;
   Station: tDF1Station;
   Chn: pChnVirt;
-  Params, Arg, Key, Value, Dev, Par, ConfigName, Err: string;
+  Params, Arg, Key, Value, Dev, Par, ConfigName, Err, Listen: string;
   UsePty, Half, Crc, Dup: Boolean;
   Node, DNo, Bd, Count, TimeoutS, I, ErrLine: LongInt;
   LastMsg, CountReached: QWord;
@@ -112,6 +116,7 @@ begin
   Dev := '/dev/ttyS0';
   Par := 'N';
   ConfigName := '';
+  Listen := '';
   UsePty := False;
   Half := False;
   Crc := True;
@@ -140,7 +145,8 @@ begin
     end
     else if ((Key = '--count') or (Key = '--timeout') or (Key = '--config') or
              (Key = '--dev') or (Key = '--node') or (Key = '--dno') or
-             (Key = '--bd') or (Key = '--par') or (Key = '--dup')) and (I <= ParamCount) then
+             (Key = '--bd') or (Key = '--par') or (Key = '--dup') or
+             (Key = '--listen')) and (I <= ParamCount) then
     begin
       Value := ParamStr(I);         { "--count 3" as well as "--count=3" }
       Inc(I);
@@ -159,6 +165,7 @@ begin
         Die('--dup wants on or off');
       end
     else if Key = '--dev' then Dev := Value
+    else if Key = '--listen' then Listen := Value
     else if Key = '--par' then Par := Value
     else if Key = '--bd' then Bd := NumArg(Key, Value, 50, 4000000)
     else if Key = '--node' then Node := NumArg(Key, Value, 0, 254)
@@ -190,8 +197,12 @@ begin
       Params := Params + ' DUP=ON'
     else
       Params := Params + ' DUP=OFF';
-    if UsePty then
+    if UsePty and (Listen <> '') then
+      Die('--pty or --listen, not both')
+    else if UsePty then
       Params := Params + ' NAM=COM DRV=PTY'
+    else if Listen <> '' then
+      Params := Params + ' NAM=TCP LISTEN=' + Listen
     else
       Params := Params + Format(' NAM=COM DEV=%s BD=%d PAR=%s', [Dev, Bd, Par]);
   end
@@ -204,7 +215,11 @@ begin
   {$IFDEF UNIX}
   if UsePty then
     WriteLn('PTY ', PtyLastSlave);
+  {$ENDIF}
+  if Listen <> '' then
+    WriteLn('LISTEN ', pChnTcp(Chn^.CH_Low)^.ChLocalPort);
   Flush(Output);
+  {$IFDEF UNIX}
   CatchSignals;
   {$ENDIF}
   LogLine('df1sim: ' + Chn^.ChGetParam(''));

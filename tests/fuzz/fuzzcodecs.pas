@@ -13,7 +13,7 @@ program fuzzcodecs;
 {$MODE OBJFPC}{$H+}
 
 uses
-  SysUtils, ChnTypes, ChnVirt, ChnDF1Codec, ChnFT12Codec, ChnICSCodec;
+  SysUtils, ChnTypes, ChnVirt, ChnDF1Codec, ChnFT12Codec, ChnICSCodec, FuzzRun;
 
 type
   TWire = array of Byte;
@@ -305,20 +305,10 @@ begin
 end;
 
 var
-  Seconds: Integer;
   Deadline: QWord;
-  Seed: LongInt;
   Rounds: Int64;
 begin
-  Seconds := 10;
-  if ParamCount >= 1 then
-    Seconds := StrToIntDef(ParamStr(1), 10);
-  Seed := LongInt(GetTickCount64 and $7FFFFFFF);
-  if ParamCount >= 2 then
-    Seed := StrToIntDef(ParamStr(2), Seed);
-  RandSeed := Seed;
-  WriteLn('fuzzcodecs: ', Seconds, ' s, seed ', Seed);
-  Deadline := GetTickCount64 + QWord(Seconds) * 1000;
+  Deadline := FuzzDeadline('fuzzcodecs');
   Rounds := 0;
   FillChar(Checked, SizeOf(Checked), 0);
   repeat

@@ -21,6 +21,8 @@ function RunBin(const Name: string; const Args: array of string; TimeoutMs: Inte
   which TProcess drops). }
 function RunExe(const Exe: string; const Args: array of string; TimeoutMs: Integer;
   out Output: string): Integer;
+{ Move what P's output pipe holds to Output (never waits). }
+procedure Drain(P: TProcess; var Output: string);
 { Start tools/df1sim --pty with Args; Pty gets the device it printed on its
   first line ('' if none came within 3 s). The caller frees the process. }
 function StartSimPty(const Args: array of string; out Pty: string): TProcess;

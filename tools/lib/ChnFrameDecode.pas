@@ -97,6 +97,14 @@ type
 
 procedure DecodeDefaults(var Opt: tDecOptions);
 
+{ '--key=value' -> '--key', 'value'; without '=' Value is ''. }
+procedure DecodeSplitArg(const Arg: AnsiString; out Key, Value: AnsiString);
+{ The protocol options the programs share: --df1 --crc --bcc --half --ft12
+  --adr=0..2 --len=0..247 --ics. True when Key is one of them; Err is ''
+  or says what is wrong with Value. (--master differs per program.) }
+function DecodeOption(const Key, Value: AnsiString; var Opt: tDecOptions;
+  out Err: AnsiString): Boolean;
+
 procedure DecodeBegin(var D: tDecoder; const Opt: tDecOptions; Lines: TStrings);
 { One chunk (a header line goes to Lines, then its frames); chunks outside
   Opt.FirstLine..LastLine are passed over. }
@@ -120,6 +128,49 @@ implementation
 
 uses
   SysUtils, uString, ChnDF1, ChnFT1_2, ChnICS, ChnPcccNames;
+
+procedure DecodeSplitArg(const Arg: AnsiString; out Key, Value: AnsiString);
+begin
+  Key := Arg;
+  Value := '';
+  if Pos('=', Arg) > 0 then
+  begin
+    Key := Copy(Arg, 1, Pos('=', Arg) - 1);
+    Value := Copy(Arg, Pos('=', Arg) + 1, MaxInt);
+  end;
+end;
+
+function DecodeOption(const Key, Value: AnsiString; var Opt: tDecOptions;
+  out Err: AnsiString): Boolean;
+var
+  N: LongInt;
+begin
+  Err := '';
+  N := 0;
+  Result := True;
+  if Key = '--df1' then Opt.Proto := dpDF1
+  else if Key = '--crc' then Opt.Crc := True
+  else if Key = '--bcc' then Opt.Crc := False
+  else if Key = '--half' then Opt.Half := True
+  else if Key = '--ft12' then Opt.Proto := dpFT12
+  else if Key = '--ics' then Opt.Proto := dpICS
+  else if Key = '--adr' then
+  begin
+    if StrToNum(Value, 0, 2, N) then
+      Opt.AddrLen := N
+    else
+      Err := '--adr wants 0, 1 or 2';
+  end
+  else if Key = '--len' then
+  begin
+    if StrToNum(Value, 0, 247, N) then
+      Opt.FixedLen := N
+    else
+      Err := '--len wants 0..247';
+  end
+  else
+    Result := False;
+end;
 
 procedure DecodeDefaults(var Opt: tDecOptions);
 begin

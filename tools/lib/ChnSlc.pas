@@ -15,6 +15,10 @@
                    SIZE(1) FILE TYPE(1) ELEMENT SUBELEMENT [data]; FILE,
                    ELEMENT and SUBELEMENT are one byte, or $FF and two bytes
                    low first for values above 254
+    CMD 0F FNC AB  Protected Typed Logical Masked Write, three address
+                   fields: SIZE FILE TYPE ELEMENT SUBELEMENT, then SIZE
+                   bytes of mask and SIZE bytes of data; the bits set in the
+                   mask take the data's, the others stay
     CMD 01         Unprotected Read  (PLC-2 style) ADDR(2) SIZE(1)
     CMD 08         Unprotected Write (PLC-2 style) ADDR(2) data
                    ADDR is a byte offset into the common interface file
@@ -23,29 +27,39 @@
   Replies: CMD or $40, the request's TNS, STS; a reply to CMD 0F with
   STS $F0 carries EXT STS as its first data byte (1770-6.5.16 p. 8-4):
     STS $10          illegal command or format: unknown command, a request
-                     too short for its fields, write data not matching SIZE,
-                     CMD 01/08 with an odd address, SIZE 0, odd or > 244
+                     too short for its fields, write data not matching SIZE
+                     (masked write: not 2 * SIZE), CMD 01/08 with an odd
+                     address, SIZE 0, odd or > 244
     STS $50          CMD 01/08: the CIF is missing or the address lies
                      outside it (1770-6.5.16 p. 8-7, "DST file does not
                      exist / too small")
     STS $F0 EXT $01  a field has an illegal value: SIZE 0, above 244 or not
-                     a whole number of elements
+                     a whole number of units (4 bytes for F and L, else 2)
     STS $F0 EXT $06  address does not point to something usable: no such
                      file, a file type other than the file's, an element
-                     past the end, a sub-element other than 0
+                     past the end, a sub-element other than 0 (0..2 in T, C
+                     and R files: control word, PRE or LEN, ACC or POS)
     STS $F0 EXT $07  file is wrong size: the transfer runs past the end
   What a real SLC answers may differ in detail for the corner cases; the
   codes above are the documented meanings and are covered by tests.
 
-  Data files: N (integer, PCCC type $89), B (bit, $85), S (status, $84),
-  each element a 16-bit word; F (float, $8A), each element an IEEE single.
-  All stored little-endian, as they travel. File numbers 0..255.
+  Data files, with the PCCC type codes and element sizes of unit ChnPccc
+  (which also parses the addresses of the configuration): O, I, S, B, N, A
+  (a 16-bit word each), T, C, R (three words: control bits, PRE or LEN,
+  ACC or POS), F (IEEE single), L (32-bit), ST (LEN word and 82 characters,
+  each word's two characters swapped). All stored as they travel. File
+  numbers as the addresses allow: O0, I1, S2, the others 3..255.
 
   Configuration text (tools/df1sim.conf; '#' starts a comment):
     N7 100              file N7 with 100 elements, all 0
     N7:0 = 1 2 3 $FF    start values from element 0 (decimal or $hex)
     F8 10
     F8:2 = 1.5 -2.25
+    T4 5
+    T4:0 = $2000 100 42 a whole timer: control word, PRE, ACC
+    T4:1.PRE = 10 20    one word each of T4:1, T4:2
+    L11:0 = 100000      32-bit values
+    ST10:0 = "hello"    one string (no '#' in it)
     CIF 9               the file CMD 01/08 address (an N file)
   A file is declared before values are given for it; values past its end,
   a number out of range, an unknown line: SlcLoadConfig fails with the line
@@ -57,26 +71,27 @@ unit ChnSlc;
 interface
 
 uses
-  ChnTypes, ChnVirt, ChnDF1Codec, ChnPcccNames, ChnDF1Link;
+  ChnTypes, ChnVirt, ChnDF1Codec, ChnPcccNames, ChnPccc, ChnDF1Link;
 
 const
-  { PCCC file type codes }
-  SlcTypeStatus  = $84;
-  SlcTypeBit     = $85;
-  SlcTypeInteger = $89;
-  SlcTypeFloat   = $8A;
-
   SlcMaxElements = 4096;   { per file }
   SlcDefaultCif  = 9;
 
   { The table tools/df1sim, examples/df1slave and examples/df1demo answer
-    from when given no configuration (docs/df1sim.md). }
-  SlcDefaultConfig =
+    from when given no configuration (docs/df1sim.md), in two parts: a
+    constant is at most 255 characters. }
+  SlcDefaultConfig1 =
     'S2 32'#10 +
     'B3 8'#10'B3:0 = $0001 $8000 $00FF'#10 +
     'N7 50'#10'N7:0 = 0 10 20 30 40 50 60 70 80 90'#10 +
     'F8 10'#10'F8:0 = 1.5 -2.25 3.14159 1000000'#10 +
     'N9 64'#10'CIF 9'#10;
+  SlcDefaultConfig2 =
+    'T4 4'#10'T4:0 = $2000 100 100'#10'T4:1.PRE = 50'#10'T4:1.ACC = 7'#10 +
+    'C5 4'#10'C5:0 = $8000 10 3'#10 +
+    'R6 2'#10'R6:0.LEN = 8'#10'R6:0.POS = 2'#10 +
+    'ST10 2'#10'ST10:0 = "hello"'#10 +
+    'L11 4'#10'L11:0 = 100000 -2'#10;
 
   { diagnostic counters: indexes of tSlcTable.Diag (16-bit, sent low first) }
   dgFramesIn   = 0;   { good frames received }
@@ -91,7 +106,7 @@ const
 
 type
   tSlcFile = record
-    Kind : Char;           { 'N', 'B', 'S', 'F'; #0 = no such file }
+    FType: Byte;           { pft_* of unit ChnPccc; 0 = no such file }
     Elems: LongInt;
     Data : array of Byte;  { Elems * element size bytes }
   end;
@@ -104,21 +119,22 @@ type
     Name  : string[15];    { in the diagnostic status block }
   end;
 
-function SlcElemSize(Kind: Char): LongInt;
-function SlcTypeCode(Kind: Char): Byte;
-
 procedure SlcClear(var T: tSlcTable);
-{ Add (or replace) a file; False for a bad kind or size. }
-function SlcAddFile(var T: tSlcTable; Kind: Char; Num: Byte; Elems: LongInt): Boolean;
+{ Add (or replace) a file of type FType (pft_*); False for an unknown
+  type or a bad size. }
+function SlcAddFile(var T: tSlcTable; FType: Byte; Num: Byte; Elems: LongInt): Boolean;
 { Load a configuration text (see the header) into a cleared table. On
   failure ErrLine/Err tell where and why; the table is then undefined. }
 function SlcLoadConfig(var T: tSlcTable; const Text: AnsiString;
   out ErrLine: LongInt; out Err: AnsiString): Boolean;
+{ SlcDefaultConfig1 and SlcDefaultConfig2, the built-in table. }
+function SlcDefaultConfig: AnsiString;
 { Load SlcDefaultConfig (it is valid: a test loads it). }
 procedure SlcLoadDefault(var T: tSlcTable);
 
-{ Element access for tools and tests (word files / float files). }
-function SlcGetWord(const T: tSlcTable; Num: Byte; Elem: LongInt): Word;
+{ Element access for tools and tests: a word of a word-based element (Sub
+  0..2 in T, C, R; 0 elsewhere), an F element; 0 when there is none. }
+function SlcGetWord(const T: tSlcTable; Num: Byte; Elem: LongInt; Sub: LongInt = 0): Word;
 procedure SlcSetWord(var T: tSlcTable; Num: Byte; Elem: LongInt; V: Word);
 function SlcGetFloat(const T: tSlcTable; Num: Byte; Elem: LongInt): Single;
 
@@ -148,28 +164,17 @@ const
   CmdURead  = $01;
   CmdUWrite = $08;
   FncEcho = $00; FncReadDiag = $01; FncDiagSts = $03; FncResetDiag = $07;
-  FncTRead3 = $A2; FncTWrite3 = $AA;
+  FncTRead3 = $A2; FncTWrite3 = $AA; FncTMaskWrite3 = $AB;
 
-function SlcElemSize(Kind: Char): LongInt;
+{ Files whose elements are 16-bit words (T, C, R: three of them). }
+function WordBased(FType: Byte): Boolean;
 begin
-  case Kind of
-    'N', 'B', 'S': Result := 2;
-    'F': Result := 4;
-  else
-    Result := 0;
-  end;
+  Result := not (FType in [0, pft_Float, pft_Long]);
 end;
 
-function SlcTypeCode(Kind: Char): Byte;
+function IsTcr(FType: Byte): Boolean;
 begin
-  case Kind of
-    'N': Result := SlcTypeInteger;
-    'B': Result := SlcTypeBit;
-    'S': Result := SlcTypeStatus;
-    'F': Result := SlcTypeFloat;
-  else
-    Result := 0;
-  end;
+  Result := FType in [pft_Timer, pft_Counter, pft_Control];
 end;
 
 procedure SlcClear(var T: tSlcTable);
@@ -178,7 +183,7 @@ var
 begin
   for I := 0 to 255 do
   begin
-    T.Files[I].Kind := #0;
+    T.Files[I].FType := 0;
     T.Files[I].Elems := 0;
     SetLength(T.Files[I].Data, 0);
   end;
@@ -187,34 +192,50 @@ begin
   T.Name := 'df1sim';
 end;
 
-function SlcAddFile(var T: tSlcTable; Kind: Char; Num: Byte; Elems: LongInt): Boolean;
+function SlcAddFile(var T: tSlcTable; FType: Byte; Num: Byte; Elems: LongInt): Boolean;
 begin
-  Result := (SlcElemSize(Kind) > 0) and (Elems >= 1) and (Elems <= SlcMaxElements);
+  Result := (PcccElemSize(FType) > 0) and (Elems >= 1) and (Elems <= SlcMaxElements);
   if not Result then
     Exit;
-  T.Files[Num].Kind := Kind;
+  T.Files[Num].FType := FType;
   T.Files[Num].Elems := Elems;
   SetLength(T.Files[Num].Data, 0);   { zero-filled anew }
-  SetLength(T.Files[Num].Data, Elems * SlcElemSize(Kind));
+  SetLength(T.Files[Num].Data, Elems * PcccElemSize(FType));
 end;
 
-function SlcGetWord(const T: tSlcTable; Num: Byte; Elem: LongInt): Word;
+{ Byte offset of word Sub of element Elem, or -1 when there is none. }
+function WordAt(const F: tSlcFile; Elem, Sub: LongInt): LongInt;
+var
+  ES: LongInt;
 begin
-  with T.Files[Num] do
-    if (SlcElemSize(Kind) = 2) and (Elem >= 0) and (Elem < Elems) then
-      Result := Data[Elem * 2] or (Data[Elem * 2 + 1] shl 8)
-    else
-      Result := 0;
+  Result := -1;
+  ES := PcccElemSize(F.FType);
+  if WordBased(F.FType) and (Elem >= 0) and (Elem < F.Elems) and (Sub >= 0) and
+     (Sub * 2 < ES) then
+    Result := Elem * ES + Sub * 2;
+end;
+
+function SlcGetWord(const T: tSlcTable; Num: Byte; Elem: LongInt; Sub: LongInt): Word;
+var
+  At: LongInt;
+begin
+  At := WordAt(T.Files[Num], Elem, Sub);
+  if At < 0 then
+    Result := 0
+  else
+    Result := T.Files[Num].Data[At] or (T.Files[Num].Data[At + 1] shl 8);
 end;
 
 procedure SlcSetWord(var T: tSlcTable; Num: Byte; Elem: LongInt; V: Word);
+var
+  At: LongInt;
 begin
-  with T.Files[Num] do
-    if (SlcElemSize(Kind) = 2) and (Elem >= 0) and (Elem < Elems) then
-    begin
-      Data[Elem * 2] := Lo(V);
-      Data[Elem * 2 + 1] := Hi(V);
-    end;
+  At := WordAt(T.Files[Num], Elem, 0);
+  if At >= 0 then
+  begin
+    T.Files[Num].Data[At] := Lo(V);
+    T.Files[Num].Data[At + 1] := Hi(V);
+  end;
 end;
 
 function SlcGetFloat(const T: tSlcTable; Num: Byte; Elem: LongInt): Single;
@@ -223,7 +244,7 @@ var
 begin
   Result := 0;
   with T.Files[Num] do
-    if (Kind = 'F') and (Elem >= 0) and (Elem < Elems) then
+    if (FType = pft_Float) and (Elem >= 0) and (Elem < Elems) then
     begin
       L := LongWord(Data[Elem * 4]) or (LongWord(Data[Elem * 4 + 1]) shl 8) or
            (LongWord(Data[Elem * 4 + 2]) shl 16) or (LongWord(Data[Elem * 4 + 3]) shl 24);
@@ -233,24 +254,21 @@ end;
 
 { ------------------------------------------------------------ config text }
 
-{ 'N7' -> Kind, Num }
-function ParseFileName(const S: AnsiString; out Kind: Char; out Num: Byte): Boolean;
+{ 'N7' -> type code and number, by the library's address rules }
+function ParseFileName(const S: AnsiString; out FType: Byte; out Num: Byte): Boolean;
 var
-  N: LongInt;
+  A: tPcccAddr;
+  Err: ShortString;
 begin
-  Result := False;
-  Kind := #0;
+  FType := 0;
   Num := 0;
-  if Length(S) < 2 then
-    Exit;
-  Kind := UpCase(S[1]);
-  if SlcElemSize(Kind) = 0 then
-    Exit;
-  N := 0;
-  if not StrToNum(Copy(S, 2, 255), 0, 255, N) then
-    Exit;
-  Num := N;
-  Result := True;
+  Result := (Length(S) < 200) and (S <> '') and (S[Length(S)] in ['0'..'9']) and
+    (PcccParseAddress(S + ':0', A, Err) = res_Ok);
+  if Result then
+  begin
+    FType := A.FileType;
+    Num := A.FileNo;
+  end;
 end;
 
 function ParseFloat(const S: AnsiString; out F: Single): Boolean;
@@ -266,17 +284,27 @@ begin
     F := 0;
 end;
 
+procedure PutBytes(var F: tSlcFile; At: LongInt; V: LongWord; N: LongInt);
+var
+  K: LongInt;
+begin
+  for K := 0 to N - 1 do
+    F.Data[At + K] := (V shr (8 * K)) and $FF;
+end;
+
 function SlcLoadConfig(var T: tSlcTable; const Text: AnsiString;
   out ErrLine: LongInt; out Err: AnsiString): Boolean;
 var
   Lines: array of AnsiString;
-  Line, Tok, Head: AnsiString;
-  I, P, Colon, Count: Integer;
-  Kind: Char;
-  Num: Byte;
-  Elem, V: LongInt;
+  Line, Tok, Head, Str: AnsiString;
+  I, P, Q, Count: Integer;
+  FType, Num: Byte;
+  V, At, Stride, Size: LongInt;
   F: Single;
   L: LongWord;
+  A: tPcccAddr;
+  PErr: ShortString;
+  Buf: array[0..2 + PcccStringChars - 1] of Byte;
 
   procedure Split;
   var
@@ -338,55 +366,94 @@ begin
       T.Cif := V;
       Continue;
     end;
-    Colon := Pos(':', Head);
-    if Colon = 0 then
+    if Pos(':', Head) = 0 then
     begin
       { declaration: N7 100 }
       V := 0;
-      if not ParseFileName(Head, Kind, Num) then
-        Exit(Bad('"' + Head + '" is no file name (N, B, S or F and 0..255)'));
+      if not ParseFileName(Head, FType, Num) then
+        Exit(Bad('"' + Head + '" is no file name (O0 I1 S2, B T C R N F ST A L 3..255)'));
       if not Next(Tok) or not StrToNum(Tok, 1, SlcMaxElements, V) or Next(Tok) then
         Exit(Bad('a file wants its element count 1..' + IntToStr(SlcMaxElements)));
-      SlcAddFile(T, Kind, Num, V);
+      SlcAddFile(T, FType, Num, V);
       Continue;
     end;
-    { values: N7:0 = 1 2 3 }
-    Elem := 0;
-    if not ParseFileName(Copy(Head, 1, Colon - 1), Kind, Num) or
-       not StrToNum(Copy(Head, Colon + 1, 255), 0, SlcMaxElements - 1, Elem) then
-      Exit(Bad('"' + Head + '" is no element address (N7:0)'));
-    if T.Files[Num].Kind <> Kind then
-      Exit(Bad(Copy(Head, 1, Colon - 1) + ' is not declared (or declared with another type)'));
+    { values: N7:0 = 1 2 3, T4:0.PRE = 5, ST10:0 = "text" }
+    if Length(Head) > 200 then
+      Exit(Bad('address too long'));
+    if PcccParseAddress(Head, A, PErr) <> res_Ok then
+      Exit(Bad(PErr));
+    Head := PcccAddressText(A);
+    if (T.Files[A.FileNo].FType <> A.FileType) or (A.FileType = 0) then
+      Exit(Bad(PcccFileLetter(A.FileType) + IntToStr(A.FileNo) +
+        ' is not declared (or declared with another type)'));
+    if (A.Bit >= 0) then
+      Exit(Bad(Head + ': a bit address takes no start values'));
     if not Next(Tok) or (Tok <> '=') then
       Exit(Bad('"=" expected after ' + Head));
+    if A.Elem >= T.Files[A.FileNo].Elems then
+      Exit(Bad(Head + ' lies past the end of its file'));
+    if A.FileType = pft_String then
+    begin
+      { the rest of the line, in double quotes }
+      Str := Trim(Copy(Line, P, MaxInt));
+      Q := Length(Str);
+      if (Q < 2) or (Str[1] <> '"') or (Str[Q] <> '"') then
+        Exit(Bad(Head + ' wants one string in double quotes'));
+      if PcccEncodeString(Copy(Str, 2, Q - 2), Buf, PErr) <> res_Ok then
+        Exit(Bad(PErr));
+      Move(Buf, T.Files[A.FileNo].Data[A.Elem * PcccElemSize(pft_String)], SizeOf(Buf));
+      Continue;
+    end;
+    { where the values go: consecutive words (or 4-byte values), or the
+      same word of consecutive elements for .PRE/.ACC/.LEN/.POS }
+    Size := 2;
+    if A.FileType in [pft_Float, pft_Long] then
+      Size := 4;
+    Stride := Size;
+    At := A.Elem * PcccElemSize(A.FileType);
+    if A.HasSub then
+    begin
+      At := At + 2 * A.Sub;
+      Stride := PcccElemSize(A.FileType);
+    end;
     Count := 0;
     while Next(Tok) do
     begin
-      if Elem + Count >= T.Files[Num].Elems then
-        Exit(Bad('more values than ' + Copy(Head, 1, Colon - 1) + ' has elements'));
-      if Kind = 'F' then
+      if At + Count * Stride + Size > Length(T.Files[A.FileNo].Data) then
+        Exit(Bad('more values than ' + PcccFileLetter(A.FileType) + IntToStr(A.FileNo) +
+          ' has elements'));
+      if A.FileType = pft_Float then
       begin
         if not ParseFloat(Tok, F) then
           Exit(Bad('"' + Tok + '" is no float'));
         Move(F, L, 4);
-        T.Files[Num].Data[(Elem + Count) * 4] := L and $FF;
-        T.Files[Num].Data[(Elem + Count) * 4 + 1] := (L shr 8) and $FF;
-        T.Files[Num].Data[(Elem + Count) * 4 + 2] := (L shr 16) and $FF;
-        T.Files[Num].Data[(Elem + Count) * 4 + 3] := L shr 24;
+      end
+      else if A.FileType = pft_Long then
+      begin
+        V := 0;
+        if not StrToNum(Tok, Low(LongInt), High(LongInt), V) then
+          Exit(Bad('"' + Tok + '" is no 32-bit value'));
+        L := LongWord(V);
       end
       else
       begin
         V := 0;
         if not StrToNum(Tok, -32768, 65535, V) then
           Exit(Bad('"' + Tok + '" is no 16-bit value'));
-        SlcSetWord(T, Num, Elem + Count, Word(V and $FFFF));
+        L := LongWord(V) and $FFFF;
       end;
+      PutBytes(T.Files[A.FileNo], At + Count * Stride, L, Size);
       Inc(Count);
     end;
     if Count = 0 then
       Exit(Bad('no values after "="'));
   end;
   Result := True;
+end;
+
+function SlcDefaultConfig: AnsiString;
+begin
+  Result := SlcDefaultConfig1 + SlcDefaultConfig2;
 end;
 
 procedure SlcLoadDefault(var T: tSlcTable);
@@ -448,14 +515,19 @@ begin
   end;
 end;
 
-{ Protected typed logical read/write with three address fields. }
+type
+  tTypedOp = (twRead, twWrite, twMasked);
+
+{ Protected typed logical read, write and masked write with three address
+  fields. }
 procedure TypedRW(var T: tSlcTable; constref Req: tRecRecord; DataLen: Integer;
-  Write: Boolean; var Rep: tSendRecord; var N: Integer);
+  Op: tTypedOp; var Rep: tSendRecord; var N: Integer);
 var
   C: tCursor;
-  Size, FType: Byte;
-  FileNo, Elem, Sub: LongInt;
-  ES, At: LongInt;
+  Size, FType, Unit_: Byte;
+  FileNo, Elem, Sub, MaxSub: LongInt;
+  ES, At, K: LongInt;
+  Want: Integer;
 begin
   C.P := @Req.Data[0];
   C.Len := DataLen;
@@ -466,37 +538,52 @@ begin
     SetSts(Rep, N, sts_IllegalCmd, 0);       { fields missing }
     Exit;
   end;
-  if Write and (C.Len - C.Pos <> Size) then
+  case Op of
+    twWrite: Want := Size;
+    twMasked: Want := 2 * Size;              { mask, then data }
+  else
+    Want := 0;
+  end;
+  if C.Len - C.Pos <> Want then
   begin
     SetSts(Rep, N, sts_IllegalCmd, 0);       { data does not match SIZE }
     Exit;
   end;
-  if (FileNo > 255) or (T.Files[FileNo].Kind = #0) or
-     (SlcTypeCode(T.Files[FileNo].Kind) <> FType) or (Sub <> 0) or
+  MaxSub := 0;
+  if (FileNo <= 255) and IsTcr(T.Files[FileNo].FType) then
+    MaxSub := 2;                             { control word, PRE/LEN, ACC/POS }
+  if (FileNo > 255) or (T.Files[FileNo].FType = 0) or
+     (T.Files[FileNo].FType <> FType) or (Sub > MaxSub) or
      (Elem >= T.Files[FileNo].Elems) then
   begin
     SetSts(Rep, N, sts_ExtSts, ext_NotUsable);
     Exit;
   end;
-  ES := SlcElemSize(T.Files[FileNo].Kind);
-  if (Size = 0) or (Size > MaxDataLen) or (Size mod ES <> 0) then
+  ES := PcccElemSize(FType);
+  Unit_ := 2;
+  if not WordBased(FType) then
+    Unit_ := 4;
+  if (Size = 0) or (Size > MaxDataLen) or (Size mod Unit_ <> 0) then
   begin
     SetSts(Rep, N, sts_ExtSts, ext_IllegalVal);
     Exit;
   end;
-  if Elem + Size div ES > T.Files[FileNo].Elems then
+  At := Elem * ES + Sub * 2;
+  if At + Size > T.Files[FileNo].Elems * ES then
   begin
     SetSts(Rep, N, sts_ExtSts, ext_WrongSize);
     Exit;
   end;
-  At := Elem * ES;
-  if Write then
-  begin
-    Move(Req.Data[C.Pos], T.Files[FileNo].Data[At], Size);
-    N := 0;
-  end
+  N := 0;
+  case Op of
+    twWrite:
+      Move(Req.Data[C.Pos], T.Files[FileNo].Data[At], Size);
+    twMasked:
+      for K := 0 to Size - 1 do
+        T.Files[FileNo].Data[At + K] :=
+          (T.Files[FileNo].Data[At + K] and not Req.Data[C.Pos + K]) or
+          (Req.Data[C.Pos + Size + K] and Req.Data[C.Pos + K]);
   else
-  begin
     Move(T.Files[FileNo].Data[At], Rep.Data[0], Size);
     N := Size;
   end;
@@ -532,7 +619,7 @@ begin
     Exit;
   end;
   with T.Files[T.Cif] do
-    if (Kind <> 'N') or (Addr + Size > Elems * 2) then
+    if (FType <> pft_Integer) or (Addr + Size > Elems * 2) then
     begin
       SetSts(Rep, N, sts_Address, 0);
       Exit;
@@ -645,8 +732,9 @@ begin
       end;
     CmdTyped:
       case Fnc of
-        FncTRead3: TypedRW(T, Req, DataLen, False, Rep, N);
-        FncTWrite3: TypedRW(T, Req, DataLen, True, Rep, N);
+        FncTRead3: TypedRW(T, Req, DataLen, twRead, Rep, N);
+        FncTWrite3: TypedRW(T, Req, DataLen, twWrite, Rep, N);
+        FncTMaskWrite3: TypedRW(T, Req, DataLen, twMasked, Rep, N);
       else
         SetSts(Rep, N, sts_IllegalCmd, 0);
       end;

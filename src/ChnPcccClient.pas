@@ -1,0 +1,615 @@
+{ ChnPcccClient - read and write SLC 500 / MicroLogix data by address
+  ('N7:0', 'F8:2', 'B3:1/4', 'T4:0.ACC', 'ST9:0', 'L10:0') over any DF1
+  stack (full or half duplex, BCC or CRC), as a master.
+
+  The requests come from unit ChnPccc (0F A2 read, 0F AA write, 0F AB
+  masked write for bits); a read or write longer than one frame becomes
+  several requests whose results are joined. The link dialogue (ACK, NAK,
+  ENQ, three tries, polling in half duplex) is ChnDF1Link's master.
+
+  Two forms:
+  * blocking: PcccReadInts, PcccReadFloats, PcccReadString, PcccWrite*
+    return when done; Client.Err says what went wrong;
+  * stepped: PcccStartRead / PcccStartWrite* send the first request and
+    PcccStep, called from the program's poll loop, advances the exchange
+    without waiting, so the program keeps serving its other lines.
+  Every failure is a result code and a text naming the address: timeout
+  (no ACK after the tries, or no reply), res_PcccNak (every try NAKed),
+  res_PcccStatus (error reply, with STS and EXT STS), res_PcccReply (a
+  reply whose length does not match), res_PcccAddress, res_PcccCount,
+  res_PcccValue, res_PcccUsage, or the channel's result when the line
+  fails. Nothing is written past the caller's arrays. }
+unit ChnPcccClient;
+
+{$I chn.inc}
+
+interface
+
+uses
+  ChnTypes, ChnVirt, ChnDF1Codec, ChnDF1Link, ChnPccc;
+
+type
+  tPcccClient = record
+    Chn      : pChnVirt;     { a tChnDF1 stack, master }
+    OwnsChn  : Boolean;      { PcccClose disposes of Chn }
+    TimeoutMs: LongInt;      { link timeout, default DF1LinkTimeoutMs }
+    MaxBytes : Word;         { data bytes per request, 2..244 (default 244) }
+    Tns      : Word;         { TNS of the next request }
+    Idle     : tDF1Idle;     { blocking calls: called while waiting (nil: sleep) }
+    IdleData : Pointer;
+    Log      : tDF1LogProc;  { nil: quiet }
+    LogWire  : Boolean;
+    Requests : LongInt;      { exchanges made }
+    InUse    : Boolean;      { a request is under way: one at a time }
+    Err      : ShortString;  { the text of the last failure }
+  end;
+  pPcccClient = ^tPcccClient;
+
+  tPcccOp = (poRead, poWrite);
+
+  { One read or write in progress. The values of a read are in Ints,
+    Floats or Str (by Kind) once it is done with res_Ok. }
+  tPcccRequest = record
+    Client : pPcccClient;
+    Op     : tPcccOp;
+    Kind   : tPcccValueKind;
+    Plan   : tPcccPlan;
+    Index  : LongInt;        { request of the plan under way }
+    Expect : Word;           { data bytes its reply must carry }
+    Busy   : Boolean;
+    Result : tChResult;
+    Err    : ShortString;
+    Ints   : array of LongInt;
+    Floats : array of Single;
+    Str    : ShortString;
+    Master : tDF1Master;
+  end;
+
+{ A client on an open DF1 stack (it stays the caller's). }
+procedure PcccClientInit(var C: tPcccClient; Chn: pChnVirt);
+{ A client on a new DF1 stack built from Params (DF1OpenStack); res_Ok, or
+  res_CannotOpen with C.Err saying why. }
+function PcccOpen(var C: tPcccClient; const Params: ShortString): tChResult;
+{ Disconnect and dispose of a stack PcccOpen built. }
+procedure PcccClose(var C: tPcccClient);
+
+{ Blocking. Count items from Addr (see ChnPccc.PcccPlan: ints are 16-bit
+  words, 32-bit for L, 0/1 for bits, three per whole T/C/R element). }
+function PcccReadInts(var C: tPcccClient; const Addr: ShortString; Count: LongInt;
+  var Values: array of LongInt): tChResult;
+function PcccReadFloats(var C: tPcccClient; const Addr: ShortString; Count: LongInt;
+  var Values: array of Single): tChResult;
+function PcccReadString(var C: tPcccClient; const Addr: ShortString; out S: ShortString): tChResult;
+function PcccWriteInts(var C: tPcccClient; const Addr: ShortString;
+  const Values: array of LongInt): tChResult;
+function PcccWriteFloats(var C: tPcccClient; const Addr: ShortString;
+  const Values: array of Single): tChResult;
+function PcccWriteString(var C: tPcccClient; const Addr: ShortString; const S: ShortString): tChResult;
+
+{ Stepped. Start: False when nothing could be sent (R.Result, R.Err say
+  why; R is then done). R must stay where it is until PcccStep returns
+  True; then R.Result and R.Err hold the outcome. }
+function PcccStartRead(var R: tPcccRequest; var C: tPcccClient; const Addr: ShortString;
+  Count: LongInt): Boolean;
+function PcccStartWriteInts(var R: tPcccRequest; var C: tPcccClient; const Addr: ShortString;
+  const Values: array of LongInt): Boolean;
+function PcccStartWriteFloats(var R: tPcccRequest; var C: tPcccClient; const Addr: ShortString;
+  const Values: array of Single): Boolean;
+function PcccStartWriteString(var R: tPcccRequest; var C: tPcccClient; const Addr: ShortString;
+  const S: ShortString): Boolean;
+{ Values given as text, one per item, parsed for the address's kind
+  ('12', '$FF', '-1.5e3', a whole string for ST). }
+function PcccStartWriteText(var R: tPcccRequest; var C: tPcccClient; const Addr: ShortString;
+  const Values: array of ShortString): Boolean;
+{ Look at the line once; True when the request is done. }
+function PcccStep(var R: tPcccRequest): Boolean;
+{ Abandon a request under way (R.Result res_Timeout, 'cancelled'); the
+  client takes a new one at once. A client runs one request at a time: a
+  start while one is under way is refused with res_WrongState. }
+procedure PcccCancel(var R: tPcccRequest);
+{ Drive a started request to its end (with C.Idle or sleeping). }
+function PcccFinish(var R: tPcccRequest): tChResult;
+{ For tools: 0 res_Ok, 1 the request cannot be made (address, count,
+  value, kind), 3 the PLC's answer is an error or does not fit, 2 any
+  other failure (no answer, NAK, line lost). }
+function PcccExitCode(Res: tChResult): LongInt;
+{ 'N7:3 = -1', 'F8:0 = 1.5', 'B3:1/4 = 1', 'T4:0 = $A000 100 42' for item
+  Item of a finished read. }
+function PcccItemText(const R: tPcccRequest; Item: LongInt): ShortString;
+
+implementation
+
+uses
+  SysUtils, uString;
+
+procedure PcccClientInit(var C: tPcccClient; Chn: pChnVirt);
+begin
+  FillChar(C, SizeOf(C), 0);
+  C.Chn := Chn;
+  C.TimeoutMs := DF1LinkTimeoutMs;
+  C.MaxBytes := MaxDataLen;
+  { a PLC that detects duplicates drops a command with the TNS of the last
+    one: a program started again must not begin where it began before (the
+    clock, and the process id for two programs started in one millisecond) }
+  C.Tns := Word(ChMsTick xor (QWord(GetProcessID) * 40503));
+end;
+
+function PcccOpen(var C: tPcccClient; const Params: ShortString): tChResult;
+var
+  Chn: pChnVirt;
+  E: AnsiString;
+begin
+  Chn := DF1OpenStack(Params, 3000, E);
+  PcccClientInit(C, Chn);
+  if Chn = nil then
+  begin
+    C.Err := E;
+    Exit(res_CannotOpen);
+  end;
+  C.OwnsChn := True;
+  Result := res_Ok;
+end;
+
+procedure PcccClose(var C: tPcccClient);
+begin
+  if C.OwnsChn and (C.Chn <> nil) then
+  begin
+    C.Chn^.ChDisConnect;
+    C.Chn^.ChClose;
+    Dispose(C.Chn, Done);
+  end;
+  C.Chn := nil;
+  C.OwnsChn := False;
+end;
+
+{ ------------------------------------------------------------- stepping }
+
+{ R is over: the client is free for the next one. }
+procedure Release(var R: tPcccRequest);
+begin
+  if R.Busy then
+  begin
+    R.Busy := False;
+    R.Client^.InUse := False;
+  end;
+end;
+
+function Fail(var R: tPcccRequest; Res: tChResult; const Why: ShortString): Boolean;
+begin
+  Release(R);
+  R.Result := Res;
+  R.Err := PcccAddressText(R.Plan.Addr) + ': ' + Why;
+  if R.Client <> nil then
+    R.Client^.Err := R.Err;
+  Result := False;
+end;
+
+{ Prepare R for an operation at Addr; False (R failed) on a bad address
+  or count. }
+function Prepare(var R: tPcccRequest; var C: tPcccClient; const Addr: ShortString;
+  Count: LongInt; Op: tPcccOp): Boolean;
+var
+  A: tPcccAddr;
+  E: ShortString;
+  Res: tChResult;
+begin
+  if C.InUse then
+  begin
+    { R itself may be the one under way: leave it running }
+    R.Result := res_WrongState;
+    R.Err := Addr + ': another request is under way on this client';
+    C.Err := R.Err;
+    Exit(False);
+  end;
+  FillChar(R.Plan, SizeOf(R.Plan), 0);
+  R.Client := @C;
+  R.Op := Op;
+  R.Index := 0;
+  R.Busy := False;
+  R.Result := res_Ok;
+  R.Err := '';
+  R.Str := '';
+  SetLength(R.Ints, 0);
+  SetLength(R.Floats, 0);
+  C.Err := '';
+  Res := PcccParseAddress(Addr, A, E);
+  if Res <> res_Ok then
+  begin
+    R.Result := Res;
+    R.Err := E;
+    C.Err := E;
+    Exit(False);
+  end;
+  R.Plan.Addr := A;
+  R.Kind := PcccValueKind(A);
+  Res := PcccPlan(A, Count, Op = poWrite, C.MaxBytes, R.Plan, E);
+  if Res <> res_Ok then
+    Exit(Fail(R, Res, E));
+  if (R.Kind = pvString) and (Count <> 1) then
+    Exit(Fail(R, res_PcccCount, 'strings are read and written one at a time'));
+  if not IsDF1Channel(C.Chn) then
+    Exit(Fail(R, res_WrongLayer, 'the client has no DF1 channel'));
+  Result := True;
+end;
+
+{ Build request R.Index and send it. }
+function SendCurrent(var R: tPcccRequest): Boolean;
+var
+  Req: tSendRecord;
+  Len: Word;
+  Res: tChResult;
+  E: ShortString;
+  Buf: array[0..2 + PcccStringChars - 1] of Byte;
+  C: pPcccClient;
+begin
+  C := R.Client;
+  E := '';
+  R.Expect := 0;
+  if R.Op = poRead then
+    Res := PcccBuildPlanRead(R.Plan, R.Index, C^.Tns, Req, Len, R.Expect)
+  else
+    case R.Kind of
+      pvFloat: Res := PcccBuildPlanWriteFloats(R.Plan, R.Index, R.Floats, C^.Tns, Req, Len, E);
+      pvString:
+        begin
+          Res := PcccEncodeString(R.Str, Buf, E);
+          if Res = res_Ok then
+            Res := PcccBuildWrite(R.Plan.Addr, Buf, SizeOf(Buf), C^.Tns, Req, Len);
+        end;
+    else
+      Res := PcccBuildPlanWriteInts(R.Plan, R.Index, R.Ints, C^.Tns, Req, Len, E);
+    end;
+  if Res <> res_Ok then
+  begin
+    if E = '' then
+      E := ChResultText(Res, PcccLayer);
+    Exit(Fail(R, Res, E));
+  end;
+  C^.Tns := Word(C^.Tns + 1);
+  R.Busy := True;
+  C^.InUse := True;
+  if not DF1MasterStart(R.Master, C^.Chn, Req, Len, C^.TimeoutMs, C^.Log, C^.LogWire) then
+    Exit(Fail(R, R.Master.Result, 'cannot send: ' + C^.Chn^.ChResultStr(R.Master.Result)));
+  Result := True;
+end;
+
+function Start(var R: tPcccRequest): Boolean;
+begin
+  Result := SendCurrent(R);
+end;
+
+const
+  KindNames: array[tPcccValueKind] of string[8] = ('integers', 'floats', 'a string');
+
+function WrongKind(var R: tPcccRequest; const Given: ShortString): Boolean;
+begin
+  Result := Fail(R, res_PcccUsage, 'holds ' + KindNames[R.Kind] + ', not ' + Given);
+end;
+
+{ Start a read; with Check, only of kind Want and only when Room values
+  (-1: any) hold its result. }
+function StartReadAs(var R: tPcccRequest; var C: tPcccClient; const Addr: ShortString;
+  Count: LongInt; Check: Boolean; Want: tPcccValueKind; Room: LongInt): Boolean;
+var
+  N: LongInt;
+begin
+  Result := Prepare(R, C, Addr, Count, poRead);
+  if not Result then
+    Exit;
+  if Check and (R.Kind <> Want) then
+    Exit(WrongKind(R, KindNames[Want]));
+  N := PcccPlanValues(R.Plan);
+  if (Room >= 0) and (Room < N) then
+    Exit(Fail(R, res_PcccCount, Format('%d values to read, room for %d', [N, Room])));
+  case R.Kind of
+    pvInt: SetLength(R.Ints, N);
+    pvFloat: SetLength(R.Floats, N);
+  end;
+  Result := Start(R);
+end;
+
+function PcccStartRead(var R: tPcccRequest; var C: tPcccClient; const Addr: ShortString;
+  Count: LongInt): Boolean;
+begin
+  Result := StartReadAs(R, C, Addr, Count, False, pvInt, -1);
+end;
+
+function PcccStartWriteInts(var R: tPcccRequest; var C: tPcccClient; const Addr: ShortString;
+  const Values: array of LongInt): Boolean;
+var
+  I: LongInt;
+begin
+  Result := Prepare(R, C, Addr, Length(Values), poWrite);
+  if not Result then
+    Exit;
+  if R.Kind <> pvInt then
+    Exit(WrongKind(R, 'integers'));
+  if Length(Values) mod R.Plan.PerItem <> 0 then
+    Exit(Fail(R, res_PcccCount, Format('a whole element takes %d values', [R.Plan.PerItem])));
+  { a whole T/C/R element takes three values: plan by elements }
+  if R.Plan.PerItem > 1 then
+    if not Prepare(R, C, Addr, Length(Values) div R.Plan.PerItem, poWrite) then
+      Exit(False);
+  SetLength(R.Ints, Length(Values));
+  for I := 0 to High(Values) do
+    R.Ints[I] := Values[I];
+  Result := Start(R);
+end;
+
+function PcccStartWriteFloats(var R: tPcccRequest; var C: tPcccClient; const Addr: ShortString;
+  const Values: array of Single): Boolean;
+var
+  I: LongInt;
+begin
+  Result := Prepare(R, C, Addr, Length(Values), poWrite);
+  if not Result then
+    Exit;
+  if R.Kind <> pvFloat then
+    Exit(WrongKind(R, 'floats'));
+  SetLength(R.Floats, Length(Values));
+  for I := 0 to High(Values) do
+    R.Floats[I] := Values[I];
+  Result := Start(R);
+end;
+
+function PcccStartWriteString(var R: tPcccRequest; var C: tPcccClient; const Addr: ShortString;
+  const S: ShortString): Boolean;
+begin
+  Result := Prepare(R, C, Addr, 1, poWrite);
+  if not Result then
+    Exit;
+  if R.Kind <> pvString then
+    Exit(WrongKind(R, 'a string'));
+  R.Str := S;
+  Result := Start(R);
+end;
+
+function PcccStartWriteText(var R: tPcccRequest; var C: tPcccClient; const Addr: ShortString;
+  const Values: array of ShortString): Boolean;
+var
+  A: tPcccAddr;
+  E: ShortString;
+  Ints: array of LongInt;
+  Floats: array of Single;
+  I: LongInt;
+  D: Double;
+  Code: Integer;
+  Res: tChResult;
+begin
+  Res := PcccParseAddress(Addr, A, E);
+  if Res <> res_Ok then
+  begin
+    Prepare(R, C, Addr, 1, poWrite);      { fails the same way, fills R }
+    Exit(False);
+  end;
+  case PcccValueKind(A) of
+    pvString:
+      begin
+        if Length(Values) <> 1 then
+        begin
+          Prepare(R, C, Addr, Length(Values), poWrite);
+          Exit(Fail(R, res_PcccCount, 'one string at a time'));
+        end;
+        Result := PcccStartWriteString(R, C, Addr, Values[0]);
+      end;
+    pvFloat:
+      begin
+        SetLength(Floats, Length(Values));
+        for I := 0 to High(Values) do
+        begin
+          Val(Values[I], D, Code);
+          if (Code <> 0) or (Abs(D) > 3.4e38) then
+          begin
+            Prepare(R, C, Addr, Length(Values), poWrite);
+            Exit(Fail(R, res_PcccValue, '"' + Values[I] + '" is no float'));
+          end;
+          Floats[I] := D;
+        end;
+        Result := PcccStartWriteFloats(R, C, Addr, Floats);
+      end;
+  else
+    SetLength(Ints, Length(Values));
+    for I := 0 to High(Values) do
+    begin
+      Ints[I] := 0;
+      if not StrToNum(Values[I], Low(LongInt), High(LongInt), Ints[I]) then
+      begin
+        Prepare(R, C, Addr, Length(Values), poWrite);
+        Exit(Fail(R, res_PcccValue, '"' + Values[I] + '" is no integer'));
+      end;
+    end;
+    Result := PcccStartWriteInts(R, C, Addr, Ints);
+  end;
+end;
+
+{ The exchange of request R.Index is over: check, decode, go on. }
+procedure Exchanged(var R: tPcccRequest);
+var
+  E: ShortString;
+  Res: tChResult;
+  M: ^tDF1Master;
+begin
+  M := @R.Master;
+  Inc(R.Client^.Requests);
+  if M^.Result <> res_Ok then
+  begin
+    if (M^.Result = res_Timeout) and not M^.Acked and (M^.Naks >= M^.Tries) then
+      Fail(R, res_PcccNak, Format('NAK on each of %d tries', [M^.Tries]))
+    else if (M^.Result = res_Timeout) and not M^.Acked then
+      Fail(R, res_Timeout, Format('no ACK after %d tries', [M^.Tries]))
+    else if M^.Result = res_Timeout then
+      Fail(R, res_Timeout, 'no reply')
+    else if M^.Result = res_BadMessage then
+      Fail(R, res_BadMessage, 'the reply is not the one to this command')
+    else
+      Fail(R, M^.Result, R.Client^.Chn^.ChResultStr(M^.Result));
+    Exit;
+  end;
+  Res := PcccCheckReply(M^.Rep, M^.RepLen, R.Expect, E);
+  if Res = res_PcccStatus then
+  begin
+    Fail(R, Res, 'error reply ' + E);
+    Exit;
+  end;
+  if Res <> res_Ok then
+  begin
+    Fail(R, Res, E);
+    Exit;
+  end;
+  if R.Op = poRead then
+  begin
+    case R.Kind of
+      pvInt: Res := PcccDecodePlanInts(R.Plan, R.Index, M^.Rep.Data, R.Expect, R.Ints);
+      pvFloat: Res := PcccDecodePlanFloats(R.Plan, R.Index, M^.Rep.Data, R.Expect, R.Floats);
+      pvString: Res := PcccDecodeString(M^.Rep.Data, 0, R.Str);
+    end;
+    if Res <> res_Ok then
+    begin
+      Fail(R, Res, 'reply data cannot be decoded: ' + ChResultText(Res, PcccLayer));
+      Exit;
+    end;
+  end;
+  Inc(R.Index);
+  if R.Index < PcccPlanRequests(R.Plan) then
+    SendCurrent(R)
+  else
+  begin
+    Release(R);
+    R.Result := res_Ok;
+  end;
+end;
+
+procedure PcccCancel(var R: tPcccRequest);
+begin
+  if R.Busy then
+  begin
+    DF1MasterCancel(R.Master);
+    Fail(R, res_Timeout, 'cancelled');
+  end;
+end;
+
+function PcccStep(var R: tPcccRequest): Boolean;
+begin
+  if R.Busy and DF1MasterStep(R.Master) then
+    Exchanged(R);
+  Result := not R.Busy;
+end;
+
+function PcccFinish(var R: tPcccRequest): tChResult;
+begin
+  while not PcccStep(R) do
+    if Assigned(R.Client^.Idle) then
+      R.Client^.Idle(R.Client^.IdleData)
+    else
+      Sleep(1);
+  Result := R.Result;
+end;
+
+function PcccExitCode(Res: tChResult): LongInt;
+begin
+  case Res of
+    res_Ok: Result := 0;
+    res_PcccAddress, res_PcccCount, res_PcccValue, res_PcccUsage, res_WrongLayer: Result := 1;
+    res_PcccStatus, res_PcccReply, res_BadMessage: Result := 3;
+  else
+    Result := 2;
+  end;
+end;
+
+function PcccItemText(const R: tPcccRequest; Item: LongInt): ShortString;
+var
+  A: tPcccAddr;
+  K: LongInt;
+begin
+  A := PcccItemAddress(R.Plan, Item);
+  Result := PcccAddressText(A) + ' = ';
+  case R.Kind of
+    pvFloat: Result := Result + FloatToStr(R.Floats[Item]);
+    pvString: Result := Result + '"' + R.Str + '"';
+  else
+    if R.Plan.PerItem = 3 then
+    begin
+      Result := Result + '$' + IntToHex(Word(R.Ints[Item * 3]), 4);
+      for K := 1 to 2 do
+        Result := Result + ' ' + IntToStr(R.Ints[Item * 3 + K]);
+    end
+    else if (A.Bit < 0) and not A.HasSub and
+            (A.FileType in [pft_Bit, pft_Status, pft_Output, pft_Input, pft_Ascii]) then
+      Result := Result + '$' + IntToHex(R.Ints[Item], 4)
+    else
+      Result := Result + IntToStr(R.Ints[Item]);
+  end;
+end;
+
+{ ------------------------------------------------------------- blocking }
+
+function Copied(var C: tPcccClient; var R: tPcccRequest): tChResult;
+begin
+  Result := R.Result;
+  C.Err := R.Err;
+end;
+
+function PcccReadInts(var C: tPcccClient; const Addr: ShortString; Count: LongInt;
+  var Values: array of LongInt): tChResult;
+var
+  R: tPcccRequest;
+  I: LongInt;
+begin
+  if StartReadAs(R, C, Addr, Count, True, pvInt, Length(Values)) and (PcccFinish(R) = res_Ok) then
+    for I := 0 to High(R.Ints) do
+      Values[I] := R.Ints[I];
+  Result := Copied(C, R);
+end;
+
+function PcccReadFloats(var C: tPcccClient; const Addr: ShortString; Count: LongInt;
+  var Values: array of Single): tChResult;
+var
+  R: tPcccRequest;
+  I: LongInt;
+begin
+  if StartReadAs(R, C, Addr, Count, True, pvFloat, Length(Values)) and (PcccFinish(R) = res_Ok) then
+    for I := 0 to High(R.Floats) do
+      Values[I] := R.Floats[I];
+  Result := Copied(C, R);
+end;
+
+function PcccReadString(var C: tPcccClient; const Addr: ShortString; out S: ShortString): tChResult;
+var
+  R: tPcccRequest;
+begin
+  S := '';
+  if StartReadAs(R, C, Addr, 1, True, pvString, -1) and (PcccFinish(R) = res_Ok) then
+    S := R.Str;
+  Result := Copied(C, R);
+end;
+
+function PcccWriteInts(var C: tPcccClient; const Addr: ShortString;
+  const Values: array of LongInt): tChResult;
+var
+  R: tPcccRequest;
+begin
+  if PcccStartWriteInts(R, C, Addr, Values) then
+    PcccFinish(R);
+  Result := Copied(C, R);
+end;
+
+function PcccWriteFloats(var C: tPcccClient; const Addr: ShortString;
+  const Values: array of Single): tChResult;
+var
+  R: tPcccRequest;
+begin
+  if PcccStartWriteFloats(R, C, Addr, Values) then
+    PcccFinish(R);
+  Result := Copied(C, R);
+end;
+
+function PcccWriteString(var C: tPcccClient; const Addr: ShortString; const S: ShortString): tChResult;
+var
+  R: tPcccRequest;
+begin
+  if PcccStartWriteString(R, C, Addr, S) then
+    PcccFinish(R);
+  Result := Copied(C, R);
+end;
+
+end.

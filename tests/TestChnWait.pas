@@ -1,0 +1,457 @@
+{ Tests of ChnWait, the program-wide idle wait: a poll that finds nothing
+  waits on every open channel of the process, ends at the first byte on any
+  of them, and input nobody reads does not turn it into a busy loop. Serial
+  channels on pseudo terminals the tests create; LOOP pairs with a peer in
+  another thread. Timing bounds are generous (a loaded 2-core machine):
+  each still fails on the behaviour it guards (a wait on the polled
+  channel alone takes the full IDL of 1000 ms). }
+unit TestChnWait;
+
+{$MODE OBJFPC}{$H+}
+
+interface
+
+uses
+  Classes, SysUtils, fpcunit, testregistry, ChnTypes, ChnVirt, ChnWait, ChnLoop,
+  TestSupport
+  {$IFDEF UNIX}, BaseUnix, Unix, Linux, PtyPair, ChnCom{$ENDIF};
+
+type
+  TTestChnWait = class(TTestCase)
+  private
+    FChn: array of pChnVirt;
+    {$IFDEF UNIX}
+    FPty: array of TPtyPair;
+    procedure OpenComs(N: Integer; const Extra: string);
+    {$ENDIF}
+    procedure CloseAll;
+  protected
+    procedure TearDown; override;
+  published
+    procedure TestJoinAndLeaveCount;
+    procedure TestWaitAnyTimesOutAndZeroOnlyLooks;
+    procedure TestLoopPeerInOtherThreadEndsIdleWait;
+    {$IFDEF UNIX}
+    procedure TestIdleWaitEndsAtByteOnOtherChannel;
+    procedure TestRoundRobinReachesLineWithoutIdleWaits;
+    procedure TestUnreadChannelDoesNotSpin;
+    procedure TestFullRingDoesNotSpin;
+    procedure TestWaitAnyWakesOnInput;
+    procedure TestThreadsKeepTheirOwnWakeUps;
+    procedure TestLoopSendEndsSerialIdleWait;
+    procedure TestPtyWithoutClientDoesNotSpin;
+    {$ENDIF}
+  end;
+
+implementation
+
+{$IFDEF UNIX}
+uses
+  ChnPty;
+{$ENDIF}
+
+type
+  { Sends one byte through a LOOP end, or to a pty master, after DelayMs. }
+  TLateSender = class(TThread)
+    Chn: pChnVirt;
+    {$IFDEF UNIX}
+    Pty: TPtyPair;
+    {$ENDIF}
+    DelayMs: Integer;
+    SentAt: QWord;
+    procedure Execute; override;
+  end;
+
+procedure TLateSender.Execute;
+var
+  B: Byte;
+begin
+  Sleep(DelayMs);
+  B := $42;
+  SentAt := GetTickCount64;
+  {$IFDEF UNIX}
+  if Pty <> nil then
+    Pty.MasterWrite(B, 1)
+  else
+  {$ENDIF}
+    Chn^.ChSend(@B, 1);
+end;
+
+function CpuMs: Double;
+{$IFDEF UNIX}
+var
+  T: TTimeSpec;
+begin
+  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, @T);
+  Result := T.tv_sec * 1000.0 + T.tv_nsec / 1e6;
+end;
+{$ELSE}
+begin
+  Result := 0;
+end;
+{$ENDIF}
+
+procedure TTestChnWait.CloseAll;
+var
+  I: Integer;
+begin
+  for I := 0 to High(FChn) do
+    if FChn[I] <> nil then
+      Dispose(FChn[I], Done);
+  FChn := nil;
+  {$IFDEF UNIX}
+  for I := 0 to High(FPty) do
+    FPty[I].Free;
+  FPty := nil;
+  {$ENDIF}
+end;
+
+procedure TTestChnWait.TearDown;
+begin
+  CloseAll;
+end;
+
+{$IFDEF UNIX}
+procedure TTestChnWait.OpenComs(N: Integer; const Extra: string);
+var
+  I: Integer;
+  Err: string;
+begin
+  CloseAll;
+  SetLength(FPty, N);
+  SetLength(FChn, N);
+  for I := 0 to N - 1 do
+  begin
+    FPty[I] := TPtyPair.Create;
+    FChn[I] := OpenStack('COM', 'DEV=' + FPty[I].SlavePath + ' ' + Extra, Err);
+    AssertNotNull('COM ' + IntToStr(I) + ': ' + Err, FChn[I]);
+  end;
+end;
+{$ENDIF}
+
+procedure TTestChnWait.TestJoinAndLeaveCount;
+var
+  Before: LongInt;
+  Err: string;
+begin
+  Before := ChnWaitCount;
+  SetLength(FChn, 2);
+  FChn[0] := OpenStack('LOOP', 'PAIR=WAITCOUNT END=1', Err);
+  AssertNotNull(Err, FChn[0]);
+  FChn[1] := OpenStack('LOOP', 'PAIR=WAITCOUNT END=2', Err);
+  AssertNotNull(Err, FChn[1]);
+  AssertEquals('two ends joined', Before + 2, ChnWaitCount);
+  FChn[0]^.ChClose;
+  AssertEquals('a closed end left', Before + 1, ChnWaitCount);
+  CloseAll;
+  AssertEquals('all left', Before, ChnWaitCount);
+end;
+
+procedure TTestChnWait.TestWaitAnyTimesOutAndZeroOnlyLooks;
+var
+  T0, Took: QWord;
+  Err: string;
+begin
+  SetLength(FChn, 1);
+  FChn[0] := OpenStack('LOOP', 'PAIR=WAITANY0 END=1', Err);
+  AssertNotNull(Err, FChn[0]);
+  { let a wake-up left by an earlier test run out first }
+  ChnWaitAny(0);
+  T0 := GetTickCount64;
+  AssertFalse('nothing came in 0 ms', ChnWaitAny(0));
+  AssertTrue('0 only looks', GetTickCount64 - T0 < 200);
+  T0 := GetTickCount64;
+  AssertFalse('nothing came in 300 ms', ChnWaitAny(300));
+  Took := GetTickCount64 - T0;
+  if ChnWaitShared then
+    AssertTrue('waited about 300 ms (' + IntToStr(Took) + ')', (Took >= 250) and (Took < 3000));
+end;
+
+procedure TTestChnWait.TestLoopPeerInOtherThreadEndsIdleWait;
+var
+  S: TLateSender;
+  T0, Took: QWord;
+  St: tChState;
+  Err: string;
+begin
+  SetLength(FChn, 2);
+  FChn[0] := OpenStack('LOOP', 'PAIR=WAITLOOP END=1 IDL=1000', Err);
+  AssertNotNull(Err, FChn[0]);
+  FChn[1] := OpenStack('LOOP', 'PAIR=WAITLOOP END=2', Err);
+  AssertNotNull(Err, FChn[1]);
+  S := TLateSender.Create(True);
+  try
+    S.Chn := FChn[1];
+    S.DelayMs := 100;
+    T0 := GetTickCount64;
+    S.Start;
+    St := FChn[0]^.ChReceiveReady;
+    Took := GetTickCount64 - T0;
+    S.WaitFor;
+  finally
+    S.Free;
+  end;
+  AssertEquals('byte seen', CHS_ReceiveReady, St);
+  AssertTrue('returned on the byte, not after IDL=1000 (' + IntToStr(Took) + ' ms)', Took < 700);
+end;
+
+{$IFDEF UNIX}
+procedure TTestChnWait.TestIdleWaitEndsAtByteOnOtherChannel;
+var
+  S: TLateSender;
+  T0, Took: QWord;
+  St: tChState;
+begin
+  OpenComs(8, 'IDL=1000');
+  S := TLateSender.Create(True);
+  try
+    S.Pty := FPty[5];
+    S.DelayMs := 100;
+    T0 := GetTickCount64;
+    S.Start;
+    St := FChn[0]^.ChReceiveReady;     { channel 0 has nothing }
+    Took := GetTickCount64 - T0;
+    S.WaitFor;
+  finally
+    S.Free;
+  end;
+  AssertEquals('channel 0 got nothing', CHS_Receiving, St);
+  AssertTrue('its wait ended at channel 5''s byte, not after IDL=1000 (' +
+    IntToStr(Took) + ' ms)', Took < 700);
+  T0 := GetTickCount64;
+  AssertEquals('channel 5 has it', CHS_ReceiveReady, FChn[5]^.ChReceiveReady);
+  AssertTrue('at once', GetTickCount64 - T0 < 500);
+end;
+
+procedure TTestChnWait.TestRoundRobinReachesLineWithoutIdleWaits;
+const
+  N = 32;
+var
+  S: TLateSender;
+  I, Rounds: Integer;
+  Found: Boolean;
+  Took: QWord;
+begin
+  { IDL=200: a round over 32 idle lines that each waited on its own
+    device would take 6.4 s; with the shared wait, the byte on the last
+    line ends the current wait and no poll before that line sleeps }
+  OpenComs(N, 'IDL=200');
+  S := TLateSender.Create(True);
+  try
+    S.Pty := FPty[N - 1];
+    S.DelayMs := 300;
+    S.Start;
+    Found := False;
+    Rounds := 0;
+    repeat
+      for I := 0 to N - 1 do
+        if FChn[I]^.ChReceiveReady = CHS_ReceiveReady then
+        begin
+          AssertEquals('the line that got the byte', N - 1, I);
+          Found := True;
+          Break;
+        end;
+      Inc(Rounds);
+    until Found or (Rounds > 10);
+    Took := GetTickCount64 - S.SentAt;
+    S.WaitFor;
+  finally
+    S.Free;
+  end;
+  AssertTrue('the byte was seen', Found);
+  AssertTrue('seen without waiting on the idle lines before it (' +
+    IntToStr(Took) + ' ms after sending; one IDL per line would be 6200)', Took < 1500);
+end;
+
+{ The loop of a program that polls its lines round-robin, for Ms ms;
+  returns the CPU it used in % of one core. }
+function PollFor(const Chn: array of pChnVirt; First, Last, Ms: Integer): Double;
+var
+  C0: Double;
+  T0: QWord;
+  I: Integer;
+begin
+  C0 := CpuMs;
+  T0 := GetTickCount64;
+  repeat
+    for I := First to Last do
+      Chn[I]^.ChReceiveReady;
+  until GetTickCount64 - T0 >= QWord(Ms);
+  Result := (CpuMs - C0) / Ms * 100;
+end;
+
+procedure TTestChnWait.TestUnreadChannelDoesNotSpin;
+var
+  B: array[0..99] of Byte;
+  Cpu: Double;
+begin
+  OpenComs(8, '');
+  FillChar(B, SizeOf(B), $55);
+  { channel 0 has input that its program never reads (never polls) }
+  AssertEquals('written', SizeOf(B), FPty[0].MasterWrite(B, SizeOf(B)));
+  Cpu := PollFor(FChn, 1, 7, 1500);
+  WriteLn(Format('info  wait: 7 idle lines polled next to one nobody reads: %.2f %% of a core', [Cpu]));
+  { a busy loop would be near 100 %; idle with IDL=1 is about 1 % }
+  AssertTrue(Format('no busy loop: %.1f %% of a core', [Cpu]), Cpu < 15);
+  { more input on it meanwhile does not wake anybody either }
+  FPty[0].MasterWrite(B, SizeOf(B));
+  Cpu := PollFor(FChn, 1, 7, 500);
+  AssertTrue(Format('still no busy loop: %.1f %% of a core', [Cpu]), Cpu < 15);
+  { and its input is all still there for it }
+  AssertEquals('kept for its channel', CHS_ReceiveReady, FChn[0]^.ChReceiveReady);
+end;
+
+procedure TTestChnWait.TestFullRingDoesNotSpin;
+var
+  B: array[0..199] of Byte;
+  Cpu: Double;
+begin
+  { flow control: a full ring stops reading, so the OS keeps input that
+    keeps the descriptor readable; polling that line must not spin }
+  OpenComs(4, 'LRB=16 FLW=RTSCTS');
+  FillChar(B, SizeOf(B), $33);
+  FPty[0].MasterWrite(B, SizeOf(B));
+  Sleep(50);
+  AssertEquals('ring has input', CHS_ReceiveReady, FChn[0]^.ChReceiveReady);
+  Cpu := PollFor(FChn, 0, 3, 1500);    { the line's ring is never read }
+  WriteLn(Format('info  wait: 4 lines, one with a full ring nobody reads: %.2f %% of a core', [Cpu]));
+  AssertTrue(Format('no busy loop: %.1f %% of a core', [Cpu]), Cpu < 15);
+end;
+
+procedure TTestChnWait.TestWaitAnyWakesOnInput;
+var
+  S: TLateSender;
+  T0, Took: QWord;
+  Woke: Boolean;
+begin
+  OpenComs(4, 'IDL=0');
+  S := TLateSender.Create(True);
+  try
+    S.Pty := FPty[2];
+    S.DelayMs := 100;
+    T0 := GetTickCount64;
+    S.Start;
+    Woke := ChnWaitAny(1000);
+    Took := GetTickCount64 - T0;
+    S.WaitFor;
+  finally
+    S.Free;
+  end;
+  AssertTrue('woken by a channel', Woke);
+  AssertTrue('at the byte (' + IntToStr(Took) + ' ms)', Took < 700);
+  AssertEquals('channel 2 has it', CHS_ReceiveReady, FChn[2]^.ChReceiveReady);
+  { read, nothing new: the next wait sleeps its time }
+  T0 := GetTickCount64;
+  AssertFalse('nothing new', ChnWaitAny(200));
+  AssertTrue('slept', GetTickCount64 - T0 >= 150);
+end;
+
+type
+  { Polls its own channel until it has a message or Ms pass. }
+  TPoller = class(TThread)
+    Chn: pChnVirt;
+    Ms: Integer;
+    GotAt: QWord;
+    procedure Execute; override;
+  end;
+
+procedure TPoller.Execute;
+var
+  T0: QWord;
+begin
+  GotAt := 0;
+  T0 := GetTickCount64;
+  repeat
+    if Chn^.ChReceiveReady = CHS_ReceiveReady then
+    begin
+      GotAt := GetTickCount64;
+      Exit;
+    end;
+  until GetTickCount64 - T0 >= QWord(Ms);
+end;
+
+procedure TTestChnWait.TestThreadsKeepTheirOwnWakeUps;
+var
+  P: array[0..2] of TPoller;
+  B: Byte;
+  I: Integer;
+  SentAt: QWord;
+begin
+  { three threads, each polling its own line with IDL=1000; the byte for
+    one of them may end another's wait first, and must still reach its
+    own thread at once (not after its IDL) and stay in its channel }
+  OpenComs(3, 'IDL=1000');
+  for I := 0 to 2 do
+  begin
+    P[I] := TPoller.Create(True);
+    P[I].Chn := FChn[I];
+    P[I].Ms := 2500;
+    P[I].Start;
+  end;
+  Sleep(300);
+  B := 1;
+  SentAt := GetTickCount64;
+  FPty[1].MasterWrite(B, 1);
+  for I := 0 to 2 do
+    P[I].WaitFor;
+  try
+    AssertEquals('thread 0 got nothing', 0, P[0].GotAt);
+    AssertEquals('thread 2 got nothing', 0, P[2].GotAt);
+    AssertTrue('thread 1 got its byte', P[1].GotAt <> 0);
+    AssertTrue('at once, not after IDL=1000 (' + IntToStr(P[1].GotAt - SentAt) + ' ms)',
+      P[1].GotAt - SentAt < 700);
+  finally
+    for I := 0 to 2 do
+      P[I].Free;
+  end;
+end;
+
+procedure TTestChnWait.TestLoopSendEndsSerialIdleWait;
+var
+  S: TLateSender;
+  T0, Took: QWord;
+  Err: string;
+begin
+  OpenComs(1, 'IDL=1000');
+  SetLength(FChn, 3);
+  FChn[1] := OpenStack('LOOP', 'PAIR=WAITMIX END=1', Err);
+  AssertNotNull(Err, FChn[1]);
+  FChn[2] := OpenStack('LOOP', 'PAIR=WAITMIX END=2', Err);
+  AssertNotNull(Err, FChn[2]);
+  S := TLateSender.Create(True);
+  try
+    S.Chn := FChn[2];
+    S.DelayMs := 100;
+    T0 := GetTickCount64;
+    S.Start;
+    AssertEquals('serial line idle', CHS_Receiving, FChn[0]^.ChReceiveReady);
+    Took := GetTickCount64 - T0;
+    S.WaitFor;
+  finally
+    S.Free;
+  end;
+  AssertTrue('a LOOP byte ended the serial wait (' + IntToStr(Took) + ' ms)', Took < 700);
+  AssertEquals('the LOOP end has it', CHS_ReceiveReady, FChn[1]^.ChReceiveReady);
+end;
+
+procedure TTestChnWait.TestPtyWithoutClientDoesNotSpin;
+var
+  Err: string;
+  Cpu: Double;
+begin
+  { a pty master nobody opened answers poll with a hang-up at once,
+    every time: it must not be in the wait then }
+  SetLength(FChn, 2);
+  FChn[0] := OpenStack('COM', 'DRV=PTY', Err);
+  AssertNotNull(Err, FChn[0]);
+  FChn[1] := OpenStack('LOOP', 'PAIR=WAITPTY END=1 IDL=1', Err);
+  AssertNotNull(Err, FChn[1]);
+  Cpu := PollFor(FChn, 0, 1, 1000);
+  WriteLn(Format('info  wait: a pty master without client and a LOOP end: %.2f %% of a core', [Cpu]));
+  AssertTrue(Format('no busy loop: %.1f %% of a core', [Cpu]), Cpu < 15);
+end;
+{$ENDIF}
+
+initialization
+  RegisterTest(TTestChnWait);
+end.

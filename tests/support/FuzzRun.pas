@@ -1,0 +1,35 @@
+{ FuzzRun - the command line of the fuzzers: "NAME [seconds [seed]]"
+  (default 10 s, seed from the clock); seeds Random and prints the seed so
+  a failing run can be repeated. }
+unit FuzzRun;
+
+{$MODE OBJFPC}{$H+}
+
+interface
+
+{ Parse the arguments, seed Random, print "NAME: S s, seed N"; the
+  GetTickCount64 value at which the run ends. }
+function FuzzDeadline(const Name: string): QWord;
+
+implementation
+
+uses
+  SysUtils;
+
+function FuzzDeadline(const Name: string): QWord;
+var
+  Seconds: Integer;
+  Seed: LongInt;
+begin
+  Seconds := 10;
+  if ParamCount >= 1 then
+    Seconds := StrToIntDef(ParamStr(1), 10);
+  Seed := LongInt(GetTickCount64 and $7FFFFFFF);
+  if ParamCount >= 2 then
+    Seed := StrToIntDef(ParamStr(2), Seed);
+  RandSeed := Seed;
+  WriteLn(Name, ': ', Seconds, ' s, seed ', Seed);
+  Result := GetTickCount64 + QWord(Seconds) * 1000;
+end;
+
+end.

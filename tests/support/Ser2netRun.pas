@@ -1,0 +1,176 @@
+{ Ser2netRun - Debian's ser2net as a serial device server for the tests.
+
+  Writes a YAML configuration into a new temporary folder with two ports
+  on the loopback interface for one serial device: a raw TCP port and a
+  Telnet port with RFC 2217; starts "ser2net -n -u" (in the foreground, no
+  UUCP lock files) and waits until it accepts connections; stops it by its
+  PID (SIGTERM, or SIGKILL for a crash) and waits for it. The ports are
+  free ones the OS handed out just before. }
+unit Ser2netRun;
+
+{$MODE OBJFPC}{$H+}
+
+interface
+
+uses
+  SysUtils, Classes, Process, BaseUnix;
+
+type
+  TSer2net = class
+  private
+    FDir, FDevice, FLog: string;
+    FRawPort, FRfcPort: Word;
+    FProc: TProcess;
+  public
+    { The program on PATH, '' when not installed. }
+    class function Path: string;
+    { Configure for Device (a pty slave) at Line (e.g. '9600n81') and start. }
+    constructor Create(const Device, Line: string);
+    destructor Destroy; override;
+    procedure Start;
+    { Stop by PID with Sig (SIGTERM, SIGKILL) and wait for the process. }
+    procedure Stop(Sig: cint = SIGTERM);
+    function Running: Boolean;
+    function Pid: LongInt;
+    property RawPort: Word read FRawPort;
+    property RfcPort: Word read FRfcPort;
+    { what ser2net printed, for failure messages }
+    function LogText: string;
+  end;
+
+{ A TCP port on 127.0.0.1 that nothing listens on right now. }
+function FreeLoopbackPort: Word;
+
+implementation
+
+uses
+  ChnSock, TestTempDir;
+
+function FreeLoopbackPort: Word;
+var
+  A: tSockAddrs;
+  N: LongInt;
+  S: tSock;
+begin
+  Result := 0;
+  if SockResolve('127.0.0.1', 0, True, A, N) <> seOk then
+    raise Exception.Create('cannot resolve 127.0.0.1');
+  if SockListen(A[0], S) <> seOk then
+    raise Exception.Create('cannot bind a loopback port');
+  Result := SockLocalPort(S);
+  SockClose(S);
+end;
+
+class function TSer2net.Path: string;
+begin
+  Result := ExeSearch('ser2net', GetEnvironmentVariable('PATH') + ':/usr/sbin:/sbin');
+end;
+
+constructor TSer2net.Create(const Device, Line: string);
+var
+  Cfg: string;
+begin
+  inherited Create;
+  FDevice := Device;
+  FDir := MakeTempDir('chn-ser2net');
+  FLog := FDir + '/ser2net.log';
+  FRawPort := FreeLoopbackPort;
+  repeat
+    FRfcPort := FreeLoopbackPort;
+  until FRfcPort <> FRawPort;
+  Cfg :=
+    'connection: &raw' + LineEnding +
+    '  accepter: tcp,127.0.0.1,' + IntToStr(FRawPort) + LineEnding +
+    '  connector: serialdev,' + Device + ',' + Line + ',local' + LineEnding +
+    'connection: &rfc2217' + LineEnding +
+    '  accepter: telnet(rfc2217),tcp,127.0.0.1,' + IntToStr(FRfcPort) + LineEnding +
+    '  connector: serialdev,' + Device + ',' + Line + ',local' + LineEnding;
+  WriteFileText(FDir + '/ser2net.yaml', Cfg);
+  Start;
+end;
+
+destructor TSer2net.Destroy;
+begin
+  Stop(SIGTERM);
+  RemoveTempDir(FDir);
+  inherited Destroy;
+end;
+
+function PortTaken(Port: Word): Boolean;
+var
+  A: tSockAddrs;
+  N: LongInt;
+  S: tSock;
+begin
+  SockResolve('127.0.0.1', Port, True, A, N);
+  Result := SockListen(A[0], S) = seInUse;
+  SockClose(S);
+end;
+
+procedure TSer2net.Start;
+var
+  Deadline: QWord;
+begin
+  if Running then
+    Exit;
+  FreeAndNil(FProc);
+  FProc := TProcess.Create(nil);
+  FProc.Executable := '/bin/sh';
+  { exec: the PID is ser2net's own; output to a file, never a full pipe }
+  FProc.Parameters.Add('-c');
+  FProc.Parameters.Add('exec "$0" -n -u -c "$1" -P "$2" >>"$3" 2>&1');
+  FProc.Parameters.Add(Path);
+  FProc.Parameters.Add(FDir + '/ser2net.yaml');
+  FProc.Parameters.Add(FDir + '/ser2net.pid');
+  FProc.Parameters.Add(FLog);
+  FProc.Options := [];
+  FProc.Execute;
+  { ready when both ports are taken: probed by binding them ourselves, as
+    a probe connection would open the device and hold it for a moment }
+  Deadline := GetTickCount64 + 5000;
+  repeat
+    if PortTaken(FRawPort) and PortTaken(FRfcPort) then
+      Exit;
+    Sleep(20);
+  until (GetTickCount64 > Deadline) or not FProc.Running;
+  raise Exception.Create('ser2net did not come up: ' + LogText);
+end;
+
+procedure TSer2net.Stop(Sig: cint);
+var
+  Deadline: QWord;
+begin
+  if (FProc = nil) or not FProc.Running then
+    Exit;
+  FpKill(FProc.ProcessID, Sig);
+  Deadline := GetTickCount64 + 3000;
+  while FProc.Running and (GetTickCount64 < Deadline) do
+    Sleep(5);
+  if FProc.Running then
+    FpKill(FProc.ProcessID, SIGKILL);
+  FProc.WaitOnExit;
+  FreeAndNil(FProc);
+end;
+
+function TSer2net.Running: Boolean;
+begin
+  Result := (FProc <> nil) and FProc.Running;
+end;
+
+function TSer2net.Pid: LongInt;
+begin
+  if FProc = nil then
+    Result := 0
+  else
+    Result := FProc.ProcessID;
+end;
+
+function TSer2net.LogText: string;
+begin
+  if FileExists(FLog) then
+    Result := ReadFileText(FLog)
+  else
+    Result := '(no output)';
+end;
+
+end.
