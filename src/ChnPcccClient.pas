@@ -120,7 +120,7 @@ function PcccItemText(const R: tPcccRequest; Item: LongInt): ShortString;
 implementation
 
 uses
-  SysUtils, uString;
+  SysUtils, Math, uString;
 
 procedure PcccClientInit(var C: tPcccClient; Chn: pChnVirt);
 begin
@@ -317,19 +317,25 @@ end;
 function PcccStartWriteInts(var R: tPcccRequest; var C: tPcccClient; const Addr: ShortString;
   const Values: array of LongInt): Boolean;
 var
-  I: LongInt;
+  I, PerItem: LongInt;
+  A: tPcccAddr;
+  E: ShortString;
 begin
-  Result := Prepare(R, C, Addr, Length(Values), poWrite);
+  { a whole T/C/R element takes three values: the plan counts elements }
+  PerItem := 1;
+  if (PcccParseAddress(Addr, A, E) = res_Ok) and
+     (A.FileType in [pft_Timer, pft_Counter, pft_Control]) and not A.HasSub and (A.Bit < 0) then
+    PerItem := 3;
+  Result := Prepare(R, C, Addr, Max(Length(Values) div PerItem, 1), poWrite);
   if not Result then
     Exit;
   if R.Kind <> pvInt then
     Exit(WrongKind(R, 'integers'));
-  if Length(Values) mod R.Plan.PerItem <> 0 then
-    Exit(Fail(R, res_PcccCount, Format('a whole element takes %d values', [R.Plan.PerItem])));
-  { a whole T/C/R element takes three values: plan by elements }
-  if R.Plan.PerItem > 1 then
-    if not Prepare(R, C, Addr, Length(Values) div R.Plan.PerItem, poWrite) then
-      Exit(False);
+  if Length(Values) = 0 then
+    Exit(Fail(R, res_PcccCount, 'no values given'));
+  if Length(Values) mod PerItem <> 0 then
+    Exit(Fail(R, res_PcccCount, Format('%d values given for whole elements of %d',
+      [Length(Values), PerItem])));
   SetLength(R.Ints, Length(Values));
   for I := 0 to High(Values) do
     R.Ints[I] := Values[I];

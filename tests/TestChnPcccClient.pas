@@ -507,6 +507,10 @@ begin
   AssertEquals(res_PcccUsage, PcccWriteString(C, 'F8:0', 'x'));
   AssertEquals(res_PcccValue, PcccWriteString(C, 'ST10:0', StringOfChar('x', 83)));
   AssertEquals(res_PcccCount, PcccWriteInts(C, 'R6:0', [1, 2]));
+  AssertEquals('R6:0: 2 values given for whole elements of 3', C.Err);
+  AssertEquals(res_PcccCount, PcccWriteInts(C, 'N7:0', []));
+  AssertEquals('N7:0: no values given', C.Err);
+  AssertEquals(res_PcccCount, PcccWriteFloats(C, 'F8:0', []));
   AssertEquals(res_PcccCount, PcccWriteInts(C, 'N7:65535', [1, 2]));
   AssertEquals('nothing was sent', N, C.Requests);
   AssertEquals('nothing written', 1, SlcGetWord(Table, 7, 0));
