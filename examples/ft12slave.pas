@@ -6,8 +6,12 @@
     user data, confirm (FC 3)        -> single character ACK ($E5)
     user data, no reply (FC 4)       -> nothing
     request status of link (FC 9)    -> status of link (FC 11)
-    request class 1/2 data (FC 10/11)-> user data (FC 8, a counter) or
-                                        "data not available" (FC 9)
+    test function for link (FC 2)    -> ACK (balanced mode, MS=OFF PRI=OFF)
+    request class 1 data (FC 10)     -> "data not available" (FC 9)
+    request class 2 data (FC 11)     -> user data (FC 8): a measured value,
+                                        scaled (M_ME_NB_1, IOA 110, common
+                                        address 1, COT periodic) that
+                                        counts up with every request
   A repeated request (FCV = 1 and the same FCB as the last one) gets the
   last answer again, as the standard wants; the library leaves this to the
   application. Broken frames are printed with ChResultStr and not answered.
@@ -27,7 +31,8 @@ uses
   ChnLoop,
   ChnCom, ChnTcp,
   ChnFT12Codec,
-  ChnFT1_2;
+  ChnFT1_2,
+  Iec101Asdu;
 
 const
   DefaultParams: tParamStr =
@@ -41,7 +46,7 @@ var
   LReq, LAns: Word;
   HaveAns: Boolean;
   NextFcb: Boolean;       { FCB the next new request must carry }
-  Counter: Byte;
+  Counter: SmallInt;
   Params: tParamStr;
   Seconds: LongInt;
   Code: Integer;
@@ -125,13 +130,14 @@ begin
         FCM_1stSetUserFun: Answer(tpShortM, FCS_Ack, 0);
         FCM_CheckLink, FCM_UserDataReply: Answer(tpSACK, 0, 0);
         FCM_UserDataNoRep: ;
+        FCM_CheckLink: Answer(tpShortM, FCS_Ack, 0);
         FCM_ReqLinkState: Answer(tpShortM, FCS_LinkSAccesReq, 0);
         FCM_ReqUserData1: Answer(tpShortM, FCS_DataNotAcces, 0);
         FCM_ReqUserData2:
           begin
             Inc(Counter);
-            Answer(tpLongM, FCS_UserData, 1);
-            Ans.Data[1] := Counter;
+            Answer(tpLongM, FCS_UserData, 12);
+            AsduMeasuredScaled(@Ans.Data[1], CotPeriodic, 1, 110, Counter);
           end;
       else
         Answer(tpShortM, FCS_NackBusy, 0);

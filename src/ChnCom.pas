@@ -29,7 +29,9 @@
     IRQ=, ADR=, BASE=, PORT=                  DOS hardware keys: accepted,
               reported back, ignored
 
-  Receive buffer: every poll moves what the OS holds into the LRB ring. When
+  Receive buffer: every poll moves what the OS holds into the LRB ring (at
+  most MaxPullPerPoll bytes, so a sender that never pauses cannot keep one
+  poll reading until the ring overflows). When
   the ring is full, with FLW=NONE further bytes are lost as on the original
   interrupt-driven UART, counted, and the next ChReceive answers
   res_Overrun (the kept bytes are delivered); with flow control reading
@@ -145,6 +147,7 @@ const
   FlowNames: array[tPortFlow] of string[7] = ('NONE', 'RTSCTS', 'XONXOFF');
   Rs485Names: array[0..3] of string[6] = ('OFF', 'RTS', 'KERNEL', 'AUTO');
   MaxDrainPerPoll = 65536;   { bytes discarded per poll when the ring is full }
+  MaxPullPerPoll  = 65536;   { bytes one poll moves into the ring, see ComPull }
 
 constructor tChnCom.Init;
 begin
@@ -475,7 +478,7 @@ end;
 { Move what the OS holds into the ring; see the unit header for a full ring. }
 procedure tChnCom.ComPull;
 var
-  Room, Got, Dropped: LongInt;
+  Room, Got, Dropped, Pulled: LongInt;
   Tail: PByte;
   Scratch: array[0..1023] of Byte;
   R: tChResult;
@@ -484,7 +487,13 @@ begin
   if (CH_Port = nil) or (CH_Fault <> res_Ok) then
     Exit;
   Got := 0;
-  while RingRoom(CH_Ring) > 0 do
+  Pulled := 0;
+  { until the driver is empty, but at most MaxPullPerPoll bytes: input that
+    never pauses (a fast sender, a tap forwarding a stream) would keep one
+    poll reading until the ring is full and the next bytes were lost before
+    the caller could take any; the rest waits in the driver for the next
+    poll }
+  while (RingRoom(CH_Ring) > 0) and (Pulled < MaxPullPerPoll) do
   begin
     Room := RingTailSpan(CH_Ring, Tail);
     R := CH_Port.Read(Tail^, Room, Got);
@@ -500,6 +509,7 @@ begin
       and input left behind would wait for the next poll - or, without
       flow control, overrun the ring under a burst }
     RingCommit(CH_Ring, Got);
+    Inc(Pulled, Got);
   end;
   if (RingRoom(CH_Ring) = 0) and (CH_Set.Flow = flowNone) then
   begin

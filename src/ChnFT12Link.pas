@@ -26,9 +26,17 @@
   A caller that runs both ends in one thread passes an Idle procedure that
   steps the other end while the primary waits (as ChnDF1Link does).
 
-  Not covered: balanced mode (both stations primary and secondary), the
-  DFC flow control beyond reporting it, the "link service not functioning"
-  (FC 14) state. }
+  * tFT12Balanced / FT12BalancedStep, a station of a balanced link (MS=OFF):
+    primary and secondary at once on one channel - link set-up (FC 9,
+    FC 0), user data from a queue (FC 3/4), test function for link (FC 2)
+    when quiet, repetitions with the same FCB; answers to the peer's
+    requests at once, also while a request of its own is out, with the
+    cached answer for a repeated FCB. On a lost frame station B (DIR=0)
+    repeats half a timeout later than station A, so the two do not meet
+    again (docs/ChnFT1_2.md, balanced mode).
+
+  Not covered: DFC flow control beyond holding back after DFC = 1, the
+  "link service not functioning" (FC 14) state. }
 unit ChnFT12Link;
 
 {$I chn.inc}
@@ -466,6 +474,17 @@ end;
 
 { ----------------------------------------------------------- secondary }
 
+{ The answer to SEND/CONFIRM user data (FC 3) of Len record octets: ACK
+  when the application takes it, NACK when it refuses or has no callback. }
+function UserDataAnswer(F: tFT12UserDataFunc; Data: Pointer;
+  constref R: tRecRecord; Len: Word): Byte;
+begin
+  if Assigned(F) and F(Data, @R.Data[1], Len - cSizeHeadRecMsg, True) then
+    Result := FCS_Ack
+  else
+    Result := FCS_NackBusy;
+end;
+
 procedure FT12StationInit(var S: tFT12Station; Chn: pChnVirt);
 begin
   FillChar(S, SizeOf(S), 0);
@@ -576,11 +595,7 @@ begin
     FCM_UserDataReply:
       begin
         Inc(S.Executed);
-        if Assigned(S.OnUserData) and
-           S.OnUserData(S.Data, @S.RMess.Data[1], Len - cSizeHeadRecMsg, True) then
-          FixedReply(S, FCS_Ack)
-        else
-          FixedReply(S, FCS_NackBusy);
+        FixedReply(S, UserDataAnswer(S.OnUserData, S.Data, S.RMess, Len));
       end;
     FCM_ReqReplyAcces, FCM_ReqLinkState:
       FixedReply(S, FCS_LinkSAccesReq);
@@ -796,11 +811,7 @@ begin
     FCM_UserDataReply:
       begin
         Inc(B.Executed);
-        if Assigned(B.OnUserData) and
-           B.OnUserData(B.Data, @B.RMess.Data[1], Len - cSizeHeadRecMsg, True) then
-          BalReply(B, FCS_Ack)
-        else
-          BalReply(B, FCS_NackBusy);
+        BalReply(B, UserDataAnswer(B.OnUserData, B.Data, B.RMess, Len));
       end;
     FCM_ReqLinkState:
       BalReply(B, FCS_LinkSAccesReq);

@@ -11,12 +11,16 @@
   NOD=, DNO=, LEN=. Added by the port (see docs/ChnFT1_2.md):
     ADR=0|1|2  link address octets (default 1 as in the manual; 2 octets are
                little-endian and NOD=/DNO= then range up to 65535)
-    DIR=0|1    DIR bit sent in balanced mode (default 0)
+    DIR=0|1    balanced: station A (1) or B (0, default); the DIR bit sent,
+               and a received frame with it is res_ErrDir (own side)
     GAP=n      line-idle gap in character times that discards a
                half-received frame (0 = off, default); the character time
                is 11 bits at the BD= of the layer below, 9600 Bd if none
+  Balanced (MS=OFF): one channel takes requests and answers (CH_RPrm,
+  CH_RDir tell which came) and sends either (ChSendAs); PRI= is only the
+  default direction of ChSend.
   The link dialogue (FCB toggling, repetition, answering) is the
-  application's job, as in the SofCon design. }
+  application's job, as in the SofCon design, or ChnFT12Link's. }
 unit ChnFT1_2;
 
 {$I chn.inc}

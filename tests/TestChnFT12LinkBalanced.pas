@@ -16,13 +16,18 @@ uses
   ChnFT12Link, TestSupport, LoopTap;
 
 type
+  PSink = ^TSink;
+  TSink = record
+    Text  : string;    { user data the station's secondary took }
+    Accept: Boolean;   { its answer: ACK or NACK }
+  end;
+
   TTestChnFT12LinkBalanced = class(TTestCase)
   private
     FA, FB: pChnVirt;
     FTap: TLoopTap;
     FLa, FLb: tFT12Balanced;
-    FDataA, FDataB: string;     { user data each station's secondary took }
-    FAccept: Boolean;
+    FSinkA, FSinkB: TSink;
     procedure SetUpPair(TimeoutMs: LongInt = 1000; TestMs: LongInt = 0);
     { step A, pump, step B, pump; Rounds times }
     procedure Run(Rounds: Integer);
@@ -48,30 +53,18 @@ type
 
 implementation
 
-function OnUserA(Data: Pointer; Buf: PByte; Len: Word; Confirm: Boolean): Boolean;
+{ Data points to the TSink of one station: what it took, and its answer. }
+function OnUser(Data: Pointer; Buf: PByte; Len: Word; Confirm: Boolean): Boolean;
 var
-  T: TTestChnFT12LinkBalanced;
+  S: PSink;
 begin
-  T := TTestChnFT12LinkBalanced(Data);
-  if T.FDataA <> '' then
-    T.FDataA := T.FDataA + ' | ';
+  S := Data;
+  if S^.Text <> '' then
+    S^.Text := S^.Text + ' | ';
   if not Confirm then
-    T.FDataA := T.FDataA + 'noreply ';
-  T.FDataA := T.FDataA + BytesToHex(Buf[0], Len);
-  Result := True;
-end;
-
-function OnUserB(Data: Pointer; Buf: PByte; Len: Word; Confirm: Boolean): Boolean;
-var
-  T: TTestChnFT12LinkBalanced;
-begin
-  T := TTestChnFT12LinkBalanced(Data);
-  if T.FDataB <> '' then
-    T.FDataB := T.FDataB + ' | ';
-  if not Confirm then
-    T.FDataB := T.FDataB + 'noreply ';
-  T.FDataB := T.FDataB + BytesToHex(Buf[0], Len);
-  Result := T.FAccept;
+    S^.Text := S^.Text + 'noreply ';
+  S^.Text := S^.Text + BytesToHex(Buf[0], Len);
+  Result := S^.Accept;
 end;
 
 procedure TTestChnFT12LinkBalanced.SetUp;
@@ -79,9 +72,10 @@ begin
   FA := nil;
   FB := nil;
   FTap := nil;
-  FDataA := '';
-  FDataB := '';
-  FAccept := True;
+  FSinkA.Text := '';
+  FSinkB.Text := '';
+  FSinkA.Accept := True;
+  FSinkB.Accept := True;
 end;
 
 procedure TTestChnFT12LinkBalanced.TearDown;
@@ -111,10 +105,10 @@ begin
   FLb.TimeoutMs := TimeoutMs;
   FLa.TestMs := TestMs;
   FLb.TestMs := TestMs;
-  FLa.OnUserData := @OnUserA;
-  FLb.OnUserData := @OnUserB;
-  FLa.Data := Self;
-  FLb.Data := Self;
+  FLa.OnUserData := @OnUser;
+  FLb.OnUserData := @OnUser;
+  FLa.Data := @FSinkA;
+  FLb.Data := @FSinkB;
 end;
 
 procedure TTestChnFT12LinkBalanced.Run(Rounds: Integer);
@@ -225,8 +219,8 @@ begin
   AssertEquals('68 04 04 68 F3 02 01 02 F8 16 | 10 80 01 81 16', FTap.Lines('A'));
   { B: 73 = 40+20+10+3, sum 73+01+03+04 = 7B; ACK from 2 }
   AssertEquals('68 04 04 68 73 01 03 04 7B 16 | 10 00 02 02 16', FTap.Lines('B'));
-  AssertEquals('03 04', FDataA);
-  AssertEquals('01 02', FDataB);
+  AssertEquals('03 04', FSinkA.Text);
+  AssertEquals('01 02', FSinkB.Text);
   AssertEquals(1, FLa.Confirmed);
   AssertEquals(1, FLb.Confirmed);
   AssertTrue(FT12BalancedQuiet(FLa) and FT12BalancedQuiet(FLb));
@@ -236,7 +230,7 @@ begin
   Queue(FLa, '05');
   Run(3);
   AssertEquals('68 03 03 68 D3 02 05 DA 16', FTap.Lines('A'));
-  AssertEquals('01 02 | 05', FDataB);
+  AssertEquals('01 02 | 05', FSinkB.Text);
 end;
 
 procedure TTestChnFT12LinkBalanced.TestLostAckRepeatedWithSameFcbExecutedOnce;
@@ -259,7 +253,7 @@ begin
   { F3 02 AA: sum F3+02+AA = 9F, sent twice with the same FCB }
   AssertEquals('68 03 03 68 F3 02 AA 9F 16 | 68 03 03 68 F3 02 AA 9F 16', FTap.Lines('A'));
   AssertEquals('10 00 02 02 16 lost | 10 00 02 02 16', FTap.Lines('B'));
-  AssertEquals('executed once', 'AA', FDataB);
+  AssertEquals('executed once', 'AA', FSinkB.Text);
   AssertEquals(1, FLb.Repeats);
   AssertEquals(1, FLa.Retransmits);
   AssertEquals(1, FLa.Confirmed);
@@ -313,14 +307,14 @@ begin
   Run(2);
   FTap.InjectToB('68 03 03 68 D3 02 07 DC 16');
   Run(2);
-  AssertEquals('07', FDataB);
+  AssertEquals('07', FSinkB.Text);
   AssertEquals(2, FLb.Repeats);
   { the link still works both ways }
   Queue(FLb, '11');
   Queue(FLa, '22');
   Run(6);
-  AssertEquals('22', Copy(FDataB, Length(FDataB) - 1, 2));
-  AssertEquals('11', FDataA);
+  AssertEquals('22', Copy(FSinkB.Text, Length(FSinkB.Text) - 1, 2));
+  AssertEquals('11', FSinkA.Text);
   AssertTrue(FLa.State = bsAvailable);
   AssertTrue(FLb.State = bsAvailable);
 end;
@@ -358,7 +352,7 @@ begin
     '10 C9 02 CB 16 | 10 C0 02 C2 16 | 68 03 03 68 F3 02 33 28 16', FTap.Lines('A'));
   { B took it twice: once before and once after the reset (the standard's
     known window: a reset forgets the FCB) }
-  AssertEquals('33 | 33', FDataB);
+  AssertEquals('33 | 33', FSinkB.Text);
 end;
 
 procedure TTestChnFT12LinkBalanced.TestStationBRepeatsLater;
@@ -395,14 +389,14 @@ begin
   SetUpPair(30);
   BringUp;
   FTap.Log.Clear;
-  FAccept := False;
+  FSinkB.Accept := False;
   Queue(FLa, '44');
   Run(3);
   { B refuses: NACK from 2 (01+02 = 03); the data stays queued }
   AssertEquals('10 01 02 03 16', FTap.Lines('B'));
   AssertEquals(0, FLa.Confirmed);
   AssertEquals(1, FLa.QCount);
-  FAccept := True;
+  FSinkB.Accept := True;
   for I := 1 to 300 do
   begin
     Run(1);
@@ -412,7 +406,7 @@ begin
   end;
   { sent again after the hold, as a new frame: FCB 0 (D3 02 44, sum 19) }
   AssertEquals('68 03 03 68 F3 02 44 39 16 | 68 03 03 68 D3 02 44 19 16', FTap.Lines('A'));
-  AssertEquals('44 | 44', FDataB);
+  AssertEquals('44 | 44', FSinkB.Text);
   AssertEquals(0, FLa.QCount);
 end;
 
@@ -435,7 +429,7 @@ begin
   Run(3);
   { SEND/NO REPLY: C4 = 80+40+4 to 2, sum C4+02+55 = 1B; no answer }
   AssertEquals('68 03 03 68 C4 02 55 1B 16', Copy(FTap.Lines('A'), 1, 26));
-  AssertEquals('noreply 55', Copy(FDataB, 1, 10));
+  AssertEquals('noreply 55', Copy(FSinkB.Text, 1, 10));
   Run(30);
   AssertEquals(FT12BalQueueLen, FLa.Confirmed);
   AssertTrue(FT12BalancedQuiet(FLa));

@@ -20,19 +20,14 @@ uses
   TestSupport, BinSupport, Df1Pair;
 
 type
-  TTestChnPcccClient = class(TTestCase)
+  TTestChnPcccClient = class(TDf1PairCase)
   private
-    Table: tSlcTable;
-    Station: tDF1Station;
-    Master, Slave, Raw: pChnVirt;
     C: tPcccClient;
-    Proc: TProcess;
-    function Open(const Params: string): pChnVirt;
-    procedure StartPair(Full, Crc: Boolean; const Pair: string);
+    { StartPair, and C a client on Master that steps the station }
+    procedure StartClient(Full, Crc: Boolean; const Pair: string);
     procedure EveryAddressForm(const What: string);
   protected
     procedure SetUp; override;
-    procedure TearDown; override;
   published
     procedure TestFullDuplexCrc;
     procedure TestFullDuplexBcc;
@@ -112,47 +107,15 @@ begin
 end;
 
 procedure TTestChnPcccClient.SetUp;
-var
-  Line: LongInt;
-  Err: AnsiString;
 begin
-  Master := nil;
-  Slave := nil;
-  Raw := nil;
-  Proc := nil;
+  inherited SetUp;
   PcccClientInit(C, nil);
-  Err := '';
-  Line := 0;
-  if not SlcLoadConfig(Table, Config, Line, Err) then
-    Fail('config line ' + IntToStr(Line) + ': ' + Err);
+  LoadTable(Config);
 end;
 
-procedure TTestChnPcccClient.TearDown;
+procedure TTestChnPcccClient.StartClient(Full, Crc: Boolean; const Pair: string);
 begin
-  if Master <> nil then Dispose(Master, Done);
-  if Slave <> nil then Dispose(Slave, Done);
-  if Raw <> nil then Dispose(Raw, Done);
-  if Proc <> nil then
-  begin
-    if Proc.Running then
-      Proc.Terminate(1);
-    Proc.Free;
-  end;
-end;
-
-function TTestChnPcccClient.Open(const Params: string): pChnVirt;
-var
-  Err: string;
-begin
-  Result := OpenStack('DF1', Params, Err);
-  AssertTrue('open ' + Err, Result <> nil);
-end;
-
-procedure TTestChnPcccClient.StartPair(Full, Crc: Boolean; const Pair: string);
-begin
-  Slave := Open(Df1PairParams(False, Full, Crc, Pair));
-  Master := Open(Df1PairParams(True, Full, Crc, Pair));
-  SlcStationInit(Station, Slave, @Table);
+  StartPair(Full, Crc, Pair);
   PcccClientInit(C, Master);
   C.Idle := @StepStation;
   C.IdleData := @Station;
@@ -239,25 +202,25 @@ end;
 
 procedure TTestChnPcccClient.TestFullDuplexCrc;
 begin
-  StartPair(True, True, 'PCFC');
+  StartClient(True, True, 'PCFC');
   EveryAddressForm('full CRC');
 end;
 
 procedure TTestChnPcccClient.TestFullDuplexBcc;
 begin
-  StartPair(True, False, 'PCFB');
+  StartClient(True, False, 'PCFB');
   EveryAddressForm('full BCC');
 end;
 
 procedure TTestChnPcccClient.TestHalfDuplexCrc;
 begin
-  StartPair(False, True, 'PCHC');
+  StartClient(False, True, 'PCHC');
   EveryAddressForm('half CRC');
 end;
 
 procedure TTestChnPcccClient.TestHalfDuplexBcc;
 begin
-  StartPair(False, False, 'PCHB');
+  StartClient(False, False, 'PCHB');
   EveryAddressForm('half BCC');
 end;
 
@@ -267,7 +230,7 @@ var
   F: array[0..99] of Single;
   I, N: LongInt;
 begin
-  StartPair(True, True, 'PCLONG');
+  StartClient(True, True, 'PCLONG');
   for I := 0 to 299 do
     W[I] := I * 100 - 15000;
   N := C.Requests;
@@ -295,7 +258,7 @@ var
   V: array[0..9] of LongInt;
   N: LongInt;
 begin
-  StartPair(False, True, 'PCSMALL');
+  StartClient(False, True, 'PCSMALL');
   C.MaxBytes := 4;                     { two words a request }
   N := C.Requests;
   AssertEquals(res_Ok, PcccReadInts(C, 'N7:0', 5, V));
@@ -310,7 +273,7 @@ var
   T0, Longest: QWord;
   Done1, Done2: Boolean;
 begin
-  StartPair(False, False, 'PCSTEP');
+  StartClient(False, False, 'PCSTEP');
   AssertTrue('start read', PcccStartRead(R1, C, 'N7:0', 200));
   Steps := 0;
   Longest := 0;
@@ -362,7 +325,7 @@ var
   V: array[0..0] of LongInt;
   I: LongInt;
 begin
-  StartPair(True, True, 'PCONE');
+  StartClient(True, True, 'PCONE');
   AssertTrue('first', PcccStartRead(R1, C, 'N7:1', 1));
   AssertFalse('second while the first runs', PcccStartRead(R2, C, 'N7:2', 1));
   AssertEquals(res_WrongState, R2.Result);
@@ -414,7 +377,7 @@ var
   V: array[0..0] of LongInt;
   T0: QWord;
 begin
-  StartPair(True, True, 'PCNOACK');
+  StartClient(True, True, 'PCNOACK');
   C.Idle := nil;                      { the station is never stepped }
   C.TimeoutMs := 50;
   V[0] := 12345;
@@ -446,7 +409,7 @@ procedure TTestChnPcccClient.TestNoReply;
 var
   V: array[0..0] of LongInt;
 begin
-  StartPair(True, False, 'PCMUTE');
+  StartClient(True, False, 'PCMUTE');
   Station.Handler := @MuteHandler;
   C.TimeoutMs := 50;
   AssertEquals(res_Timeout, PcccReadInts(C, 'N7:0', 1, V));
@@ -458,7 +421,7 @@ var
   V: array[0..3] of LongInt;
   F: array[0..0] of Single;
 begin
-  StartPair(False, True, 'PCERR');
+  StartClient(False, True, 'PCERR');
   AssertEquals(res_PcccStatus, PcccReadInts(C, 'N99:0', 1, V));
   AssertEquals('N99:0: error reply STS $F0, EXT STS $06: address doesn''t point to something usable', C.Err);
   AssertEquals(res_PcccStatus, PcccReadInts(C, 'N7:299', 2, V));
@@ -472,7 +435,7 @@ var
   V: array[0..4] of LongInt;
   I: LongInt;
 begin
-  StartPair(True, True, 'PCSHORT');
+  StartClient(True, True, 'PCSHORT');
   Station.Handler := @ShortHandler;
   for I := 0 to 4 do
     V[I] := 777;
@@ -489,7 +452,7 @@ var
   S: ShortString;
   N: LongInt;
 begin
-  StartPair(True, True, 'PCREF');
+  StartClient(True, True, 'PCREF');
   N := C.Requests;
   AssertEquals(res_PcccAddress, PcccReadInts(C, 'X7:0', 1, V));
   AssertTrue(C.Err, Pos('"X7:0"', C.Err) > 0);

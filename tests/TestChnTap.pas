@@ -228,8 +228,9 @@ begin
     if N <= 0 then
       Sleep(0);
   end;
-  AssertEquals('A>B bytes', Length(AB), Length(GotB));
-  AssertEquals('B>A bytes', Length(BA), Length(GotA));
+  DrainTap;
+  AssertEquals('A>B bytes; chntap said: ' + Output, Length(AB), Length(GotB));
+  AssertEquals('B>A bytes; chntap said: ' + Output, Length(BA), Length(GotA));
   AssertTrue('A>B unchanged', AB = GotB);
   AssertTrue('B>A unchanged', BA = GotA);
   AssertEquals('exit code after SIGINT', 0, StopTap(SIGINT));

@@ -17,14 +17,8 @@ uses
   {$IFDEF UNIX}, PtyPair{$ENDIF};
 
 type
-  TTestDf1Sim = class(TTestCase)
+  TTestDf1Sim = class(TDf1PairCase)
   private
-    Table: tSlcTable;
-    Station: tDF1Station;
-    Master, Slave, Raw: pChnVirt;
-    Proc: TProcess;
-    function Open(const Params: string): pChnVirt;
-    procedure StartPair(Full, Crc: Boolean; const Pair: string);
     { one exchange through DF1Transact; 'STS=xx data...' }
     function Ask(CF: Word; const DataHex: string; Tns: Word): string;
     procedure AllCommands(Full, Crc: Boolean; const Pair: string);
@@ -32,7 +26,6 @@ type
     function RawSay(const Hex: string; Ms: Integer): string;
   protected
     procedure SetUp; override;
-    procedure TearDown; override;
   published
     procedure TestFullDuplexCrc;
     procedure TestFullDuplexBcc;
@@ -46,6 +39,7 @@ type
     procedure TestRepeatedCommandWithoutDup;
     {$IFDEF UNIX}
     procedure TestBinaryOverPty;   { df1sim --pty: a Unix pty }
+    procedure TestPtyTakesBdAndPar;
     {$ENDIF}
     procedure TestLogLines;
     procedure TestLogNoAck;
@@ -93,43 +87,9 @@ begin
 end;
 
 procedure TTestDf1Sim.SetUp;
-var
-  Line: Integer;
-  Err: string;
 begin
-  Master := nil;
-  Slave := nil;
-  Raw := nil;
-  Proc := nil;
-  AssertTrue('config', SlcLoadConfig(Table, Config, Line, Err));
-end;
-
-procedure TTestDf1Sim.TearDown;
-begin
-  if Master <> nil then Dispose(Master, Done);
-  if Slave <> nil then Dispose(Slave, Done);
-  if Raw <> nil then Dispose(Raw, Done);
-  if Proc <> nil then
-  begin
-    if Proc.Running then
-      Proc.Terminate(1);
-    Proc.Free;
-  end;
-end;
-
-function TTestDf1Sim.Open(const Params: string): pChnVirt;
-var
-  Err: string;
-begin
-  Result := OpenStack('DF1', Params, Err);
-  AssertTrue('open ' + Err, Result <> nil);
-end;
-
-procedure TTestDf1Sim.StartPair(Full, Crc: Boolean; const Pair: string);
-begin
-  Slave := Open(Df1PairParams(False, Full, Crc, Pair));
-  Master := Open(Df1PairParams(True, Full, Crc, Pair));
-  SlcStationInit(Station, Slave, @Table);
+  inherited SetUp;
+  LoadTable(Config);
 end;
 
 function TTestDf1Sim.Ask(CF: Word; const DataHex: string; Tns: Word): string;
@@ -410,6 +370,32 @@ begin
     Sleep(5);
   AssertFalse('df1sim ended on SIGTERM', Proc.Running);
   AssertEquals('exit code', 0, Proc.ExitCode);
+end;
+{$ENDIF}
+
+{$IFDEF UNIX}
+procedure TTestDf1Sim.TestPtyTakesBdAndPar;
+var
+  Out: string;
+begin
+  AssertTrue(BinPath('df1sim') + ' missing (make tools)', FileExists(BinPath('df1sim')));
+  { --bd/--par reach the pty (a virtual line takes them as given) }
+  AssertEquals(0, RunBin('df1sim', ['--pty', '--bd=38400', '--par=N', '--timeout=1'], 5000, Out));
+  AssertTrue(Out, Pos('DRV=PTY', Out) > 0);
+  AssertTrue(Out, Pos(' BD=38400 ', Out) > 0);
+  { PAR=E: taken as given where the pty driver keeps it, else refused
+    with the COM layer's text; never dropped in silence }
+  if RunBin('df1sim', ['--pty', '--par=E', '--timeout=1'], 5000, Out) = 0 then
+    AssertTrue(Out, Pos(' PAR=E ', Out) > 0)
+  else
+    AssertTrue(Out, Pos('PAR=E": device refuses the setting', Out) > 0);
+  { a bad one is refused by the COM layer, naming the token }
+  AssertEquals(1, RunBin('df1sim', ['--pty', '--par=X', '--timeout=1'], 5000, Out));
+  AssertTrue(Out, Pos('PAR=X', Out) > 0);
+  { with a parameter string they would be lost: refused }
+  AssertEquals(1, RunBin('df1sim', ['--pty', '--bd=9600', 'NAM=DF1', 'MAS=SLAVE',
+    'NAM=COM', 'DRV=PTY'], 5000, Out));
+  AssertTrue(Out, Pos('--bd/--par with a parameter string', Out) > 0);
 end;
 {$ENDIF}
 

@@ -12,7 +12,8 @@
                         one client at a time, on the loopback interface
                         unless ADDR is given; the first line on standard
                         output is "LISTEN <port>" (PORT 0: a free one)
-      --bd=N            baud rate (default 19200), --par=N|E|O (default N)
+      --bd=N            baud rate (default 19200), --par=N|E|O (default N);
+                        with --pty the pty takes them as given
       --half            half duplex (default full duplex)
       --bcc | --crc     checksum (default CRC)
       --dup=on|off      duplicate packet detect (DUP= of NAM=DF1; default on,
@@ -107,7 +108,7 @@ var
   Station: tDF1Station;
   Chn: pChnVirt;
   Params, Arg, Key, Value, Dev, Par, ConfigName, Err, Listen: string;
-  UsePty, Half, Crc, Dup: Boolean;
+  UsePty, Half, Crc, Dup, LineGiven: Boolean;
   Node, DNo, Bd, Count, TimeoutS, I, ErrLine: LongInt;
   LastMsg, CountReached: QWord;
 
@@ -118,6 +119,7 @@ begin
   ConfigName := '';
   Listen := '';
   UsePty := False;
+  LineGiven := False;
   Half := False;
   Crc := True;
   Dup := True;
@@ -166,8 +168,8 @@ begin
       end
     else if Key = '--dev' then Dev := Value
     else if Key = '--listen' then Listen := Value
-    else if Key = '--par' then Par := Value
-    else if Key = '--bd' then Bd := NumArg(Key, Value, 50, 4000000)
+    else if Key = '--par' then begin Par := Value; LineGiven := True; end
+    else if Key = '--bd' then begin Bd := NumArg(Key, Value, 50, 4000000); LineGiven := True; end
     else if Key = '--node' then Node := NumArg(Key, Value, 0, 254)
     else if Key = '--dno' then DNo := NumArg(Key, Value, 0, 254)
     else if Key = '--count' then Count := NumArg(Key, Value, 1, MaxLongInt)
@@ -199,15 +201,18 @@ begin
       Params := Params + ' DUP=OFF';
     if UsePty and (Listen <> '') then
       Die('--pty or --listen, not both')
+    { a pty takes BD=/PAR= as given and reports them (a virtual line) }
     else if UsePty then
-      Params := Params + ' NAM=COM DRV=PTY'
+      Params := Params + Format(' NAM=COM DRV=PTY BD=%d PAR=%s', [Bd, Par])
     else if Listen <> '' then
       Params := Params + ' NAM=TCP LISTEN=' + Listen
     else
       Params := Params + Format(' NAM=COM DEV=%s BD=%d PAR=%s', [Dev, Bd, Par]);
   end
   else if UsePty and (Pos('DRV=PTY', UpperCase(Params)) = 0) then
-    Die('--pty with a parameter string: put NAM=COM DRV=PTY in it');
+    Die('--pty with a parameter string: put NAM=COM DRV=PTY in it')
+  else if LineGiven then
+    Die('--bd/--par with a parameter string: put BD=/PAR= in its NAM=COM part');
 
   Chn := DF1OpenStack(Params, 3000, Err);
   if Chn = nil then

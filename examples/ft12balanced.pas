@@ -1,0 +1,159 @@
+{ ft12balanced - an IEC 60870-5-101 station in balanced transmission: one
+  FT 1.2 channel with MS=OFF, primary and secondary at once, driven by the
+  balanced link helper of ChnFT12Link (tFT12Balanced).
+
+  * establishes the link (request status of link, reset of remote link)
+    and answers the peer doing the same; test function for link when
+    quiet (both ways);
+  * prints every ASDU it receives; confirms every activation (COT 6) with
+    its mirror as ACT_CON (COT 7); a general interrogation (C_IC_NA_1) is
+    then answered with the measured value (COT 20) and terminated
+    (ACT_TERM, COT 10);
+  * as station A (DIR=1, the controlling side) it starts with a general
+    interrogation of common address 1 when the link is first available;
+  * sends a measured value, scaled (M_ME_NB_1, IOA 110, common address 1,
+    spontaneous) as user data every PERIOD seconds while the link is
+    available.
+
+  Usage:  ft12balanced 'parameter string' SECONDS [PERIOD]   (PERIOD 1)
+  e.g.    ft12balanced 'NAM=FT1_2 MS=OFF NOD=3 DNO=2 LEN=0 NAM=COM DEV=/dev/ttyUSB0 BD=9600 PAR=E' 60
+  Against a controlling station that sends DIR = 1 (lib60870's balanced
+  master) this station is B: DIR=0 (the default); against a station B,
+  give DIR=1. Exit code 0; 1 on a setup or line error; 2 for bad
+  arguments. }
+program ft12balanced;
+
+{$MODE OBJFPC}{$H-}
+
+uses
+  SysUtils, uString, ChnTypes, ChnVirt, ChnLoop, ChnCom, ChnTrc, ChnFT1_2,
+  ChnFT12Link, Iec101Asdu;
+
+var
+  Chn: pChnVirt;
+  L: tFT12Balanced;
+  Value: SmallInt = 0;
+
+procedure Fail(const What: string; R: tChResult);
+begin
+  WriteLn('Error: ', What, ': ', Chn^.ChResultStr(R), ' ', Chn^.ChParamError);
+  Dispose(Chn, Done);
+  Halt(1);
+end;
+
+function Stamp: string;
+begin
+  Result := FormatDateTime('hh:nn:ss.zzz', Now) + ' ';
+end;
+
+procedure Queue(Buf: PByte; Len: Word);
+begin
+  if FT12BalancedSend(L, Buf, Len, True) <> res_Ok then
+    WriteLn(Stamp, 'queue full: ', AsduText(Buf, Len), ' dropped')
+  else
+    WriteLn(Stamp, '-> ', AsduText(Buf, Len));
+end;
+
+{ The secondary's user data (FC 3 / FC 4): one ASDU. True = ACK. }
+function OnUserData(Data: Pointer; Buf: PByte; Len: Word; Confirm: Boolean): Boolean;
+var
+  Out: array[0..MaxDataLen - 1] of Byte;
+  N: Word;
+begin
+  WriteLn(Stamp, '<- ', AsduText(Buf, Len));
+  { room for the answers first, else NACK: the peer sends it again }
+  Result := L.QCount + 3 <= FT12BalQueueLen;
+  if not Result or (Len < AsduHeadLen) or (Buf[2] and $3F <> CotActivation) then
+    Exit;
+  AsduMirror(Buf, @Out, Len, CotActCon);
+  Queue(@Out, Len);
+  if Buf[0] = C_IC_NA_1 then
+  begin
+    N := AsduMeasuredScaled(@Out, CotInterrogated, 1, 110, Value);
+    Queue(@Out, N);
+    AsduMirror(Buf, @Out, Len, CotActTerm);
+    Queue(@Out, Len);
+  end;
+end;
+
+{ Argument I as a number of seconds, 1 or more; exit code 2 if not. }
+function PositiveArg(I: Integer; const What: string): LongInt;
+begin
+  Result := 0;
+  if not StrToNum(ParamStr(I), 1, MaxLongInt, Result) then
+  begin
+    WriteLn('Error: the ', What, ' must be a positive number of seconds');
+    Halt(2);
+  end;
+end;
+
+var
+  Params: tParamStr;
+  Seconds, Period: LongInt;
+  EndTime, NextValue: QWord;
+  Shown: tFT12BalState;
+  Asked: Boolean = False;
+  Out: array[0..15] of Byte;
+  N: Word;
+begin
+  if ParamCount < 2 then
+  begin
+    WriteLn('usage: ft12balanced ''parameter string'' SECONDS [PERIOD]');
+    Halt(2);
+  end;
+  Params := ParamStr(1);
+  Seconds := PositiveArg(2, 'run time');
+  Period := 1;
+  if ParamCount >= 3 then
+    Period := PositiveArg(3, 'period');
+  Chn := ChnCollection^.ChNewInit(ChnFT1_2.cName);
+  Chn^.ChSetParam(Params);
+  if Chn^.ChResult <> res_Ok then Fail('ChSetParam', Chn^.ChResult);
+  Chn^.ChOpen;
+  if Chn^.ChResult <> res_Ok then Fail('ChOpen', Chn^.ChResult);
+  Chn^.ChConnect;
+  if Chn^.ChResult <> res_Ok then Fail('ChConnect', Chn^.ChResult);
+  if FT12BalancedInit(L, Chn) <> res_Ok then
+    Fail('not a balanced FT 1.2 channel (MS=OFF)', res_BadParam);
+  L.OnUserData := @OnUserData;
+  WriteLn('ft12balanced: ', Chn^.ChGetParam(''));
+  Shown := L.State;
+  WriteLn(Stamp, 'link ', FT12BalStateName(Shown));
+  EndTime := ChMsTick + QWord(Seconds) * 1000;
+  NextValue := ChMsTick + QWord(Period) * 1000;
+  while ChMsTick < EndTime do
+  begin
+    if Chn^.ChResult <> res_Ok then Fail('line', Chn^.ChResult);
+    if not FT12BalancedStep(L) then
+      Sleep(1);       { the physical layer may already wait; never spin hard }
+    if L.State <> Shown then
+    begin
+      Shown := L.State;
+      WriteLn(Stamp, 'link ', FT12BalStateName(Shown));
+      if (Shown = bsAvailable) and pChnFT1_2(Chn)^.CH_Dir and not Asked then
+      begin
+        Asked := True;
+        N := AsduInterrogation(@Out, 1);
+        Queue(@Out, N);
+      end;
+    end;
+    if ChMsTick >= NextValue then
+    begin
+      NextValue := NextValue + QWord(Period) * 1000;
+      if L.State = bsAvailable then
+      begin
+        Inc(Value);
+        N := AsduMeasuredScaled(@Out, CotSpontaneous, 1, 110, Value);
+        Queue(@Out, N);
+      end;
+    end;
+  end;
+  WriteLn(Format('ft12balanced: %d frames, %d user data taken, %d confirmed, ' +
+    '%d test functions, %d repetitions sent, %d answered from memory, ' +
+    '%d link losses, %d broken, %d wrong DIR, %d unexpected answers',
+    [L.Frames, L.Executed, L.Confirmed, L.Tests, L.Retransmits, L.Repeats,
+     L.LinkLost, L.Broken, L.BadDir, L.Unexpected]));
+  Chn^.ChDisConnect;
+  Chn^.ChClose;
+  Dispose(Chn, Done);
+end.
