@@ -201,7 +201,7 @@ type
 
 const
   { sub-elements: the word, and the bit of the control word }
-  SubTable: array[0..20] of tSubInfo = (
+  SubTable: array[0..22] of tSubInfo = (
     (Name: 'PRE'; FType: pft_Timer;   Sub: 1; Bit: -1),
     (Name: 'ACC'; FType: pft_Timer;   Sub: 2; Bit: -1),
     (Name: 'EN';  FType: pft_Timer;   Sub: 0; Bit: 15),
@@ -214,6 +214,7 @@ const
     (Name: 'DN';  FType: pft_Counter; Sub: 0; Bit: 13),
     (Name: 'OV';  FType: pft_Counter; Sub: 0; Bit: 12),
     (Name: 'UN';  FType: pft_Counter; Sub: 0; Bit: 11),
+    (Name: 'UA';  FType: pft_Counter; Sub: 0; Bit: 10),
     (Name: 'LEN'; FType: pft_Control; Sub: 1; Bit: -1),
     (Name: 'POS'; FType: pft_Control; Sub: 2; Bit: -1),
     (Name: 'EN';  FType: pft_Control; Sub: 0; Bit: 15),
@@ -222,7 +223,8 @@ const
     (Name: 'EM';  FType: pft_Control; Sub: 0; Bit: 12),
     (Name: 'ER';  FType: pft_Control; Sub: 0; Bit: 11),
     (Name: 'UL';  FType: pft_Control; Sub: 0; Bit: 10),
-    (Name: 'IN';  FType: pft_Control; Sub: 0; Bit: 9));
+    (Name: 'IN';  FType: pft_Control; Sub: 0; Bit: 9),
+    (Name: 'FD';  FType: pft_Control; Sub: 0; Bit: 8));
 
 function FileIndex(FileType: Byte): Integer;
 var

@@ -165,7 +165,7 @@ begin
 end;
 {$ELSE}
 var
-  Fl: cint;
+  Fl: LongInt;
 begin
   Fl := FpFcntl(S, F_GETFL);
   Result := (Fl >= 0) and (FpFcntl(S, F_SETFL, Fl or O_NONBLOCK) = 0);
@@ -176,7 +176,7 @@ end;
 function SockWait(const Socks: array of tSock; ForWrite: Boolean; Ms: LongInt): Boolean;
 {$IFDEF WINDOWS}
 var
-  Fs: TFDSet;
+  Fs, Ex: TFDSet;
   Tv: TTimeVal;
   I: Integer;
 begin
@@ -184,6 +184,7 @@ begin
   for I := 0 to High(Socks) do
     if Socks[I] <> NoSock then
       FD_SET(TSocket(Socks[I]), Fs);
+  Ex := Fs;
   if Fs.fd_count = 0 then
   begin
     if Ms > 0 then
@@ -193,7 +194,8 @@ begin
   Tv.tv_sec := Ms div 1000;
   Tv.tv_usec := (Ms mod 1000) * 1000;
   if ForWrite then
-    Result := select(0, nil, @Fs, nil, @Tv) > 0
+    { Winsock reports a failed connect in the except set, not as writable }
+    Result := select(0, nil, @Fs, @Ex, @Tv) > 0
   else
     Result := select(0, @Fs, nil, nil, @Tv) > 0;
 end;
@@ -229,7 +231,7 @@ function SockOutQueue(S: tSock): LongInt;
 const
   SIOCOUTQ = $5411;               { = TIOCOUTQ }
 var
-  N: cint;
+  N: LongInt;
 begin
   N := 0;
   if (S = NoSock) or (FpIoctl(S, SIOCOUTQ, @N) <> 0) then
@@ -331,7 +333,7 @@ end;
 
 function SockConnectDone(S: tSock; Ms: LongInt): tSockErr;
 var
-  Err: cint;
+  Err: LongInt;
   L: TSockLen;
 begin
   if S = NoSock then
@@ -354,7 +356,7 @@ end;
 
 function SockListen(const A: tSockAddr; out S: tSock): tSockErr;
 var
-  One: cint;
+  One: LongInt;
 begin
   Result := NewSocket(A, S);
   if Result <> seOk then
@@ -395,15 +397,33 @@ begin
 end;
 
 procedure SockTune(S: tSock);
+{$IFDEF WINDOWS}
+type
+  TKeepAlive = record              { struct tcp_keepalive }
+    OnOff, Time, Interval: LongWord;
+  end;
+const
+  SIO_KEEPALIVE_VALS = $98000004;
 var
-  One: cint;
+  Ka: TKeepAlive;
+  Ret: DWORD;
+{$ENDIF}
+var
+  One: LongInt;
   {$IFDEF LINUX}
-  V: cint;
+  V: LongInt;
   {$ENDIF}
 begin
   One := 1;
   fpSetSockOpt(S, IPPROTO_TCP, TCP_NODELAY, @One, SizeOf(One));
   fpSetSockOpt(S, SOL_SOCKET, SO_KEEPALIVE, @One, SizeOf(One));
+  {$IFDEF WINDOWS}
+  Ka.OnOff := 1;                   { the same timing as on Linux; Windows }
+  Ka.Time := 10000;                { sends 10 probes before giving up }
+  Ka.Interval := 5000;
+  Ret := 0;
+  WSAIoctl(TSocket(S), SIO_KEEPALIVE_VALS, @Ka, SizeOf(Ka), nil, 0, @Ret, nil, nil);
+  {$ENDIF}
   {$IFDEF LINUX}
   V := 10;
   fpSetSockOpt(S, IPPROTO_TCP, TCP_KEEPIDLE, @V, SizeOf(V));

@@ -118,6 +118,11 @@ begin
   A := Addr('C5:0.CD'); AssertEquals(14, A.Bit);
   A := Addr('C5:0.OV'); AssertEquals(12, A.Bit);
   A := Addr('C5:0.UN'); AssertEquals(11, A.Bit);
+  A := Addr('C5:0.UA'); AssertEquals(10, A.Bit);
+  A := Addr('R6:0.IN'); AssertEquals(9, A.Bit);
+  A := Addr('R6:0.FD'); AssertEquals(8, A.Bit); AssertEquals('R6:0.FD', PcccAddressText(A));
+  A := Addr('R6:0.EN'); AssertEquals(15, A.Bit);
+  A := Addr('R6:0.UL'); AssertEquals(10, A.Bit);
   A := Addr('R6:2.LEN'); AssertEquals($88, A.FileType); AssertEquals(1, A.Sub);
   A := Addr('R6:2.POS'); AssertEquals(2, A.Sub);
   A := Addr('R6:2.POS/3'); AssertEquals(2, A.Sub); AssertEquals(3, A.Bit);

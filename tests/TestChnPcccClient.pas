@@ -14,7 +14,7 @@ unit TestChnPcccClient;
 interface
 
 uses
-  {$IFDEF UNIX}BaseUnix,{$ENDIF}
+  {$IFDEF UNIX}BaseUnix, PtyPair,{$ENDIF}
   SysUtils, Classes, Process, fpcunit, testregistry, ChnTypes, ChnVirt, ChnLoop,
   ChnCom, ChnDF1Codec, ChnDF1, ChnDF1Link, ChnSlc, ChnPccc, ChnPcccClient,
   TestSupport, BinSupport, Df1Pair;
@@ -43,11 +43,13 @@ type
     procedure TestNoReply;
     procedure TestErrorReply;
     procedure TestReplyOfWrongLength;
+    procedure TestReplyToAnotherCommand;
     procedure TestRefusedBeforeSending;
     procedure TestNoDF1Channel;
     {$IFDEF UNIX}
     procedure TestAgainstDf1SimFullDuplex;
     procedure TestAgainstDf1SimHalfDuplex;
+    procedure TestLineLost;
     {$ENDIF}
   end;
 
@@ -105,6 +107,44 @@ begin
     Chn^.ChSend(@Nak, 2);
   end;
 end;
+
+{ a slave answered by hand: ACK, then a reply with the next TNS }
+procedure WrongTnsSlave(Data: Pointer);
+var
+  Chn: pChnVirt;
+  Rec, Ans: tRecRecord;
+  Len: Word;
+begin
+  Chn := pChnVirt(Data);
+  Chn^.ChReceiveBuffer(@Rec, SizeOf(Rec));
+  if Chn^.ChReceiveReady <> CHS_ReceiveReady then
+    Exit;
+  Len := 0;
+  Chn^.ChReceive(Len);
+  if (Chn^.ChReceiveResult <> res_Ok) or (Rec.MessType <> tpDataMess) then
+    Exit;
+  FillChar(Ans, SizeOf(Ans), 0);
+  Ans.MessType := tpAckNak;
+  Ans.FlAck := True;
+  ChSendWhenFree(Chn, @Ans, 2, 100);
+  Ans.MessType := tpDataMess;
+  Ans.CF := $4F00;
+  Ans.Tns := Word(Rec.Tns + 1);
+  ChSendWhenFree(Chn, @Ans, cSizeHead + 2, 100);
+end;
+
+{$IFDEF UNIX}
+{ the USB adapter is pulled as the first frame arrives }
+procedure PullOnFirstFrame(Data: Pointer);
+var
+  P: TPtyPair;
+  B: array[0..63] of Byte;
+begin
+  P := TPtyPair(Data);
+  if (P.Master >= 0) and (P.MasterRead(B, SizeOf(B)) > 0) then
+    P.CloseMaster;
+end;
+{$ENDIF}
 
 procedure TTestChnPcccClient.SetUp;
 begin
@@ -445,6 +485,21 @@ begin
     AssertEquals('V[' + IntToStr(I) + '] untouched', 777, V[I]);
 end;
 
+procedure TTestChnPcccClient.TestReplyToAnotherCommand;
+var
+  V: array[0..0] of LongInt;
+begin
+  Slave := Open(Df1PairParams(False, True, True, 'PCTNS'));
+  Master := Open(Df1PairParams(True, True, True, 'PCTNS'));
+  PcccClientInit(C, Master);
+  C.Idle := @WrongTnsSlave;
+  C.IdleData := Slave;
+  V[0] := 5;
+  AssertEquals(res_BadMessage, PcccReadInts(C, 'N7:0', 1, V));
+  AssertEquals('N7:0: the reply is not the one to this command', C.Err);
+  AssertEquals('untouched', 5, V[0]);
+end;
+
 procedure TTestChnPcccClient.TestRefusedBeforeSending;
 var
   V: array[0..1] of LongInt;
@@ -497,7 +552,21 @@ end;
 {$IFDEF UNIX}
 { df1sim's built-in table (docs/df1sim.md) over a pty, each address form }
 procedure SimRoundTrip(T: TTestChnPcccClient; var C: tPcccClient; const What: string);
+type
+  tBitCase = record
+    Addr: string[8];
+    Want: LongInt;
+  end;
+const
+  Bits: array[0..15] of tBitCase = (
+    (Addr: 'T4:0.EN'; Want: 0), (Addr: 'T4:0.TT'; Want: 0), (Addr: 'T4:0.DN'; Want: 1),
+    (Addr: 'C5:0.CU'; Want: 1), (Addr: 'C5:0.CD'; Want: 0), (Addr: 'C5:0.DN'; Want: 0),
+    (Addr: 'C5:0.OV'; Want: 0), (Addr: 'C5:0.UN'; Want: 0), (Addr: 'R6:0.EN'; Want: 0),
+    (Addr: 'R6:0.EU'; Want: 0), (Addr: 'R6:0.DN'; Want: 0), (Addr: 'R6:0.EM'; Want: 0),
+    (Addr: 'R6:0.ER'; Want: 0), (Addr: 'R6:0.UL'; Want: 0), (Addr: 'R6:0.IN'; Want: 0),
+    (Addr: 'R6:0.FD'; Want: 0));
 var
+  K: LongInt;
   V: array[0..5] of LongInt;
   F: array[0..1] of Single;
   S: ShortString;
@@ -550,6 +619,18 @@ begin
   Ok(PcccWriteInts(C, 'L11:3', [-2000000000]), 'write L11:3');
   Ok(PcccReadInts(C, 'L11:3', 1, V), 'L11:3');
   T.AssertEquals(-2000000000, V[0]);
+  { every bit sub-element: T4:0 control word $2000, C5:0 $8000, R6:0 0 }
+  for K := 0 to High(Bits) do
+  begin
+    Ok(PcccReadInts(C, Bits[K].Addr, 1, V), Bits[K].Addr);
+    T.AssertEquals(What + ' ' + Bits[K].Addr, Bits[K].Want, V[0]);
+  end;
+  Ok(PcccWriteInts(C, 'C5:3.UN', [1]), 'set C5:3.UN');
+  Ok(PcccReadInts(C, 'C5:3', 1, V), 'C5:3');
+  T.AssertEquals('C5:3 control word', $0800, V[0]);
+  Ok(PcccReadInts(C, 'B3/16', 1, V), 'B3/16');
+  T.AssertEquals('B3/16 = B3:1/0', 0, V[0]);
+  Ok(PcccReadInts(C, 'S:0', 1, V), 'S:0');
   T.AssertEquals(res_PcccStatus, PcccReadInts(C, 'N7:50', 1, V));
 end;
 
@@ -582,6 +663,29 @@ begin
     SimRoundTrip(Self, C, 'df1sim half duplex');
   finally
     PcccClose(C);
+  end;
+end;
+
+procedure TTestChnPcccClient.TestLineLost;
+var
+  P: TPtyPair;
+  V: array[0..0] of LongInt;
+  T0: QWord;
+begin
+  P := TPtyPair.Create;
+  try
+    Master := Open('NAM=DF1 NOD=0 DNO=1 NAM=COM DEV=' + P.SlavePath);
+    PcccClientInit(C, Master);
+    C.Idle := @PullOnFirstFrame;
+    C.IdleData := P;
+    C.TimeoutMs := 300;
+    T0 := ChMsTick;
+    AssertEquals(res_DeviceLost, PcccReadInts(C, 'N7:0', 1, V));
+    AssertEquals('N7:0: ' + Master^.ChResultStr(res_DeviceLost), C.Err);
+    AssertTrue('at once, not after the tries: ' + IntToStr(ChMsTick - T0) + ' ms',
+      ChMsTick - T0 < 800);
+  finally
+    P.Free;
   end;
 end;
 {$ENDIF}

@@ -4,7 +4,8 @@
 # Not part of "make test". Builds a win64 RTL and the FCL units the test
 # runner needs (fpcunit, process) from Debian's fpc-source (the RTL copied
 # to a writable folder outside the repository), then compiles
-# src/ChnPortWin.pas and src/ChnCom.pas (and any program given) against it.
+# src/ChnPortWin.pas, src/ChnCom.pas and src/ChnTcp.pas (Winsock) and any
+# program given against it.
 # tools/wintest.sh ("make wintest") runs the results under Wine.
 #   tools/build-win64.sh                  units only
 #   tools/build-win64.sh prog.pas ...     also these programs (.exe in $OUT/bin)
@@ -45,6 +46,18 @@ if [ ! -f "$RTLU/fpcunit.ppu" ] || [ ! -f "$RTLU/process.ppu" ] || [ ! -f "$RTLU
       "$P/fcl-process/src/process.pp"; } >"$LOG" 2>&1 \
     || { tail -n 20 "$LOG"; echo "win64 FCL build failed, see $LOG"; exit 1; }
 fi
+# Winsock and the sockets unit for NAM=TCP (ChnSock), from rtl-extra;
+# DateUtils (ChnTrc) from rtl-objpas
+if [ ! -f "$RTLU/sockets.ppu" ] || [ ! -f "$RTLU/winsock2.ppu" ] || [ ! -f "$RTLU/dateutils.ppu" ]; then
+  X="$FPCSRC/packages/rtl-extra/src"
+  O="$FPCSRC/packages/rtl-objpas/src/inc"
+  LOG="$WORK/sockets-build.log"
+  { $PPC -Twin64 -Px86_64 -n -v0 -Fu"$RTLU" -FU"$RTLU" -Fi"$O" "$O/dateutils.pp" &&
+    $PPC -Twin64 -Px86_64 -n -v0 -Fu"$RTLU" -FU"$RTLU" "$X/win/winsock2.pp" &&
+    $PPC -Twin64 -Px86_64 -n -v0 -Fu"$RTLU" -FU"$RTLU" -Fi"$X/inc" -Fi"$X/win" \
+      "$X/win/sockets.pp"; } >"$LOG" 2>&1 \
+    || { tail -n 20 "$LOG"; echo "win64 sockets build failed, see $LOG"; exit 1; }
+fi
 mkdir -p "$OUT/units" "$OUT/bin"
 FLAGS="-Twin64 -Px86_64 -n -v0ew -Sew -O2 -Fu$RTLU -Fusrc -Futools/lib -Fisrc -FU$OUT/units -FE$OUT/bin"
 if [ -n "${SYNAPSE_DIR:-}" ]; then
@@ -60,5 +73,6 @@ if [ -n "${SYNAPSE_DIR:-}" ]; then
 fi
 $PPC $FLAGS src/ChnPortWin.pas
 $PPC $FLAGS src/ChnCom.pas
+$PPC $FLAGS src/ChnTcp.pas
 for p in "$@"; do $PPC $FLAGS "$p"; done
 echo "win64 build ok: $OUT"

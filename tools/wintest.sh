@@ -14,7 +14,10 @@
 #     maps COMn to a symlink in $WINEPREFIX/dosdevices, which this script
 #     points at a Linux pty: tests/wine/wincom.exe against the Linux helper
 #     tests/wine/ptyecho, and examples/df1echo.exe and df1read.exe against
-#     the Linux tools/df1sim --pty.
+#     the Linux tools/df1sim --pty;
+#  5. NAM=TCP on Winsock: df1echo.exe and df1read.exe against the Linux
+#     tools/df1sim --listen on loopback, and df1echo.exe with RFC 2217
+#     through Linux ser2net (when installed) to df1sim --pty.
 # Ends with "N passed, N failed" on the last line; exit 1 on any failure.
 #
 #   tools/wintest.sh [BUILD]        BUILD defaults to build (needs make all
@@ -217,6 +220,98 @@ serial_tests() {
   stop "$PID"
   rm -f "$WINEPREFIX/dosdevices/com5" "$WINEPREFIX/dosdevices/com6"
 }
+
+# ---------------------------------------------------------------- TCP
+# NAM=TCP on Winsock: the Windows examples against Linux listeners on the
+# loopback interface - tools/df1sim --listen (raw), and ser2net with RFC
+# 2217 in front of df1sim --pty when ser2net is installed.
+# Start a Linux program that prints "LISTEN <port>" first; sets PID, PORT.
+start_listen() {
+  local out=$1; shift
+  "$@" >"$out" 2>&1 &
+  PID=$!
+  PORT=
+  for _ in $(seq 60); do
+    PORT=$(head -n 1 "$out" 2>/dev/null | sed -n 's/^LISTEN //p')
+    [ -n "$PORT" ] && break
+    sleep 0.05
+  done
+}
+# a loopback port nothing listens on (bash's /dev/tcp connect fails)
+free_port() {
+  local p
+  for _ in $(seq 50); do
+    p=$((20000 + RANDOM % 20000))
+    (exec 3<>"/dev/tcp/127.0.0.1/$p") 2>/dev/null || { echo "$p"; return; }
+  done
+}
+tcp_tests() {
+  local bin=$1 tag="win64 TCP"
+  start_listen "$LOG/df1sim-tcp.out" "$BUILD/bin/df1sim" --listen=0 --timeout=20
+  if [ -z "$PORT" ]; then
+    fail "df1sim --listen=0 gave no port"; cat "$LOG/df1sim-tcp.out"
+  else
+    wrun "$bin/df1echo.exe" NAM=DF1 NOD=0 DNO=1 FHD=FULL CRC=ON NAM=TCP HOST=127.0.0.1 \
+      PORT="$PORT" 2>&1 | tr -d '\r' >"$LOG/df1echo-tcp.out"
+    rc=${PIPESTATUS[0]}
+    if [ "$rc" = 0 ] && grep -qx 'Ok' "$LOG/df1echo-tcp.out" &&
+       grep -q 'master <- reply CMD=\$46 STS=\$00 TNS=0 data: 41 68 6F 6A' "$LOG/df1echo-tcp.out" &&
+       grep -q -- '<- Echo STS=\$00 TNS=0 data: 41 68 6F 6A' "$LOG/df1sim-tcp.out"; then
+      pass "$tag df1echo.exe NAM=TCP against Linux df1sim --listen (127.0.0.1:$PORT)"
+    else
+      fail "$tag df1echo.exe against df1sim --listen: exit $rc"
+      cat "$LOG/df1echo-tcp.out" "$LOG/df1sim-tcp.out"
+    fi
+    wrun "$bin/df1read.exe" N7:0 3 NAM=DF1 NOD=0 DNO=1 NAM=TCP HOST=localhost \
+      PORT="$PORT" 2>&1 | tr -d '\r' >"$LOG/df1read-tcp.out"
+    rc=${PIPESTATUS[0]}
+    if [ "$rc" = 0 ] && grep -qx 'N7:0 = 0' "$LOG/df1read-tcp.out" &&
+       grep -qx 'N7:1 = 10' "$LOG/df1read-tcp.out" && grep -qx 'N7:2 = 20' "$LOG/df1read-tcp.out"; then
+      pass "$tag df1read.exe NAM=TCP HOST=localhost against df1sim --listen: N7:0..2 = 0 10 20"
+    else
+      fail "$tag df1read.exe against df1sim --listen: exit $rc"
+      cat "$LOG/df1read-tcp.out" "$LOG/df1sim-tcp.out"
+    fi
+  fi
+  stop "$PID"
+  local s2n
+  s2n=$(command -v ser2net || ls /usr/sbin/ser2net 2>/dev/null)
+  if [ -z "$s2n" ]; then
+    echo "note  $tag: ser2net not installed, RFC 2217 from Windows not run"
+    return
+  fi
+  start_pty "$LOG/df1sim-s2n.out" "$BUILD/bin/df1sim" --pty --timeout=20
+  local port cfg=$LOG/ser2net.yaml
+  port=$(free_port)
+  if [ -z "$PTY" ] || [ -z "$port" ]; then
+    fail "df1sim --pty gave no pty (or no free port)"; stop "$PID"; return
+  fi
+  printf 'connection: &w\n  accepter: telnet(rfc2217),tcp,127.0.0.1,%s\n  connector: serialdev,%s,9600n81,local\n' \
+    "$port" "$PTY" >"$cfg"
+  "$s2n" -n -u -c "$cfg" -P "$LOG/ser2net.pid" >"$LOG/ser2net.out" 2>&1 &
+  local s2pid=$!
+  # listening? asked without connecting: a connection would make ser2net
+  # open the device and hold it a moment after
+  for _ in $(seq 100); do
+    ss -Htln "sport = :$port" 2>/dev/null | grep -q . && break
+    sleep 0.05
+  done
+  wrun "$bin/df1echo.exe" NAM=DF1 NOD=0 DNO=1 FHD=FULL CRC=ON NAM=TCP HOST=127.0.0.1 \
+    PORT="$port" RFC2217=ON BD=19200 2>&1 | tr -d '\r' >"$LOG/df1echo-rfc.out"
+  rc=${PIPESTATUS[0]}
+  if [ "$rc" = 0 ] && grep -qx 'Ok' "$LOG/df1echo-rfc.out"; then
+    pass "$tag df1echo.exe RFC2217=ON BD=19200 through Linux ser2net to df1sim --pty"
+  else
+    fail "$tag df1echo.exe through ser2net: exit $rc"
+    cat "$LOG/df1echo-rfc.out" "$LOG/ser2net.out"
+  fi
+  stop "$s2pid"
+  stop "$PID"
+}
+
+tcp=1
+if [ -n "$FILTER" ] && [[ "tcp df1echo df1read" != *"${FILTER,,}"* ]]; then tcp=0; fi
+[ "$tcp" = 1 ] && tcp_tests "$OUT/bin"
 
 serial=1
 if [ -n "$FILTER" ] && [[ "wincom df1echo df1read chncom synapse" != *"${FILTER,,}"* ]]; then serial=0; fi
