@@ -122,6 +122,7 @@ type
       backend on COM=/DEV=; NAM=TCP overrides it). On failure Port is nil. }
     function  ComOpenPort(out Port: TChnPort): tChResult; virtual;
     procedure ComFault(R: tChResult);
+    procedure ComJoinWait;
     procedure ComPull;
     procedure ComPumpTx;
     procedure ComFreeBuffers;
@@ -392,14 +393,23 @@ begin
   Result := R;
 end;
 
-procedure tChnCom.ChOpen;
+{ Put CH_Port into the program-wide wait, where the port offers a source. }
+procedure tChnCom.ComJoinWait;
 var
-  Port: TChnPort;
-  R: tChResult;
   WaitKind: tChnWaitKind;
   WaitOs: PtrInt;
   WaitRearm: tChnWaitRearm;
   WaitData: Pointer;
+begin
+  CH_Wait := nil;
+  if ChnWaitShared and CH_Port.WaitSource(WaitKind, WaitOs, WaitRearm, WaitData) then
+    CH_Wait := ChnWaitJoin(WaitKind, WaitOs, WaitRearm, WaitData);
+end;
+
+procedure tChnCom.ChOpen;
+var
+  Port: TChnPort;
+  R: tChResult;
 begin
   if CH_State <> CHS_Close then
   begin
@@ -416,9 +426,7 @@ begin
     Exit;
   end;
   CH_Port := Port;
-  CH_Wait := nil;
-  if ChnWaitShared and Port.WaitSource(WaitKind, WaitOs, WaitRearm, WaitData) then
-    CH_Wait := ChnWaitJoin(WaitKind, WaitOs, WaitRearm, WaitData);
+  ComJoinWait;
   RingAlloc(CH_Ring, CH_LRB);
   CH_Lost := 0;
   CH_LostShown := 0;

@@ -24,7 +24,7 @@ unit ChnPortTcp;
 interface
 
 uses
-  ChnTypes, ChnPort, ChnSock, ChnTelnet;
+  ChnTypes, ChnPort, ChnWait, ChnSock, ChnTelnet;
 
 type
   TChnPortTcp = class(TChnPort)
@@ -90,6 +90,9 @@ type
     function SetKernelRs485(On: Boolean): tChResult; override;
     function OsOverruns(out N: LongWord): tChResult; override;
     function OsHandle: PtrInt; override;
+    { the program-wide wait (ChnWait): a client's socket on Unix }
+    function WaitSource(out Kind: tChnWaitKind; out Os: PtrInt;
+      out Rearm: tChnWaitRearm; out Data: Pointer): Boolean; override;
     { the local port (a server on port 0 gets a free one) }
     function LocalPort: Word;
     function HasClient: Boolean;
@@ -708,6 +711,24 @@ function TChnPortTcp.OsOverruns(out N: LongWord): tChResult;
 begin
   N := FLineOverruns;
   Result := res_Ok;
+end;
+
+{ A client's socket is fixed for the port's life (a reconnect makes a new
+  port), so it joins the shared wait on Unix. A server's descriptors change
+  with each client, and Windows would need WSAEventSelect: both wait on
+  their own sockets (WaitInput), bounded by IDL like any layer. }
+function TChnPortTcp.WaitSource(out Kind: tChnWaitKind; out Os: PtrInt;
+  out Rearm: tChnWaitRearm; out Data: Pointer): Boolean;
+begin
+  Kind := wkDescriptor;
+  Os := FSock;
+  Rearm := nil;
+  Data := nil;
+  {$IFDEF UNIX}
+  Result := FOpen and (FListen = NoSock) and (FSock <> NoSock);
+  {$ELSE}
+  Result := False;
+  {$ENDIF}
 end;
 
 function TChnPortTcp.OsHandle: PtrInt;

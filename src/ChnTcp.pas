@@ -86,7 +86,7 @@ function SplitHostPort(const S: ShortString; out Host: ShortString; out Port: Lo
 implementation
 
 uses
-  SysUtils, uString;
+  SysUtils, uString, ChnWait;
 
 function SplitHostPort(const S: ShortString; out Host: ShortString; out Port: LongInt): Boolean;
 var
@@ -312,9 +312,11 @@ begin
   if R = res_Ok then
   begin
     CH_Retry.SendSettings(CH_Set);  { answers are checked as they come }
+    ChnWaitLeave(CH_Wait);          { the shared wait: the new socket }
     CH_Port.Free;
     CH_Port := CH_Retry;
     CH_Retry := nil;
+    ComJoinWait;
     CH_TxLen := 0;
     CH_TxPos := 0;
     CH_Fault := res_Ok;

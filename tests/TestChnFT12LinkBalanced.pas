@@ -34,6 +34,8 @@ type
     { run until both links are available (bounded) }
     procedure BringUp;
     procedure RunFor(Ms: LongInt);
+    { run (1 ms apart) until Counter reaches Value, at most 3 s }
+    procedure RunUntil(var Counter: LongInt; Value: LongInt);
     procedure Queue(var L: tFT12Balanced; const Hex: string);
   protected
     procedure SetUp; override;
@@ -151,6 +153,18 @@ begin
   until GetTickCount64 > Until_;
 end;
 
+procedure TTestChnFT12LinkBalanced.RunUntil(var Counter: LongInt; Value: LongInt);
+var
+  Until_: QWord;
+begin
+  Until_ := GetTickCount64 + 3000;
+  while (Counter < Value) and (GetTickCount64 < Until_) do
+  begin
+    Run(1);
+    Sleep(1);
+  end;
+end;
+
 procedure TTestChnFT12LinkBalanced.Queue(var L: tFT12Balanced; const Hex: string);
 var
   B: TBytes;
@@ -234,21 +248,13 @@ begin
 end;
 
 procedure TTestChnFT12LinkBalanced.TestLostAckRepeatedWithSameFcbExecutedOnce;
-var
-  I: Integer;
 begin
   SetUpPair(40);
   BringUp;
   FTap.Log.Clear;
   Queue(FLa, 'AA');
   FTap.DropB := 1;              { B's ACK is lost }
-  for I := 1 to 200 do
-  begin
-    Run(1);
-    Sleep(1);
-    if FLa.Confirmed = 1 then
-      Break;
-  end;
+  RunUntil(FLa.Confirmed, 1);
   Run(2);
   { F3 02 AA: sum F3+02+AA = 9F, sent twice with the same FCB }
   AssertEquals('68 03 03 68 F3 02 AA 9F 16 | 68 03 03 68 F3 02 AA 9F 16', FTap.Lines('A'));
@@ -320,8 +326,6 @@ begin
 end;
 
 procedure TTestChnFT12LinkBalanced.TestLinkLostIsEstablishedAgain;
-var
-  I: Integer;
 begin
   SetUpPair(20);
   FLa.Retries := 1;
@@ -329,23 +333,11 @@ begin
   FTap.Log.Clear;
   Queue(FLa, '33');
   FTap.DropB := 2;              { B's ACK is lost twice: A gives up }
-  for I := 1 to 300 do
-  begin
-    Run(1);
-    Sleep(1);
-    if FLa.LinkLost > 0 then
-      Break;
-  end;
+  RunUntil(FLa.LinkLost, 1);
   AssertEquals(1, FLa.LinkLost);
   AssertEquals(1, FLa.Retransmits);
   { A establishes the link again (C9, C0) and sends the data once more }
-  for I := 1 to 300 do
-  begin
-    Run(1);
-    Sleep(1);
-    if FLa.Confirmed = 1 then
-      Break;
-  end;
+  RunUntil(FLa.Confirmed, 1);
   AssertEquals(1, FLa.Confirmed);
   AssertTrue(FLa.State = bsAvailable);
   AssertEquals('68 03 03 68 F3 02 33 28 16 | 68 03 03 68 F3 02 33 28 16 | ' +
@@ -383,8 +375,6 @@ begin
 end;
 
 procedure TTestChnFT12LinkBalanced.TestNackKeepsDataQueued;
-var
-  I: Integer;
 begin
   SetUpPair(30);
   BringUp;
@@ -397,13 +387,7 @@ begin
   AssertEquals(0, FLa.Confirmed);
   AssertEquals(1, FLa.QCount);
   FSinkB.Accept := True;
-  for I := 1 to 300 do
-  begin
-    Run(1);
-    Sleep(1);
-    if FLa.Confirmed = 1 then
-      Break;
-  end;
+  RunUntil(FLa.Confirmed, 1);
   { sent again after the hold, as a new frame: FCB 0 (D3 02 44, sum 19) }
   AssertEquals('68 03 03 68 F3 02 44 39 16 | 68 03 03 68 D3 02 44 19 16', FTap.Lines('A'));
   AssertEquals('44 | 44', FSinkB.Text);

@@ -10,7 +10,7 @@ unit TestChnTcp;
 interface
 
 uses
-  SysUtils, Classes, fpcunit, testregistry, ChnTypes, ChnVirt, ChnPort, ChnTcp, ChnSock, Sockets,
+  SysUtils, Classes, fpcunit, testregistry, ChnTypes, ChnVirt, ChnPort, ChnTcp, ChnLoop, ChnSock, Sockets,
   TestSupport;
 
 type
@@ -37,6 +37,16 @@ type
     procedure TestRfc2217ServerRefusesTheOption;
     procedure TestRfc2217ServerSilent;
     procedure TestRfc2217DataNotifyAndPurgeOnTheWire;
+    {$IFDEF UNIX}
+    procedure TestClientIsInTheSharedWait;
+    {$ENDIF}
+  end;
+
+  { Sends one byte through a channel after DelayMs, from its own thread. }
+  TSendLater = class(TThread)
+    Chn: pChnVirt;
+    DelayMs: Integer;
+    procedure Execute; override;
   end;
 
   { A scripted RFC 2217 server on a thread: the bytes it expects and sends
@@ -62,6 +72,15 @@ type
   end;
 
 implementation
+
+procedure TSendLater.Execute;
+var
+  B: Byte;
+begin
+  Sleep(DelayMs);
+  B := $42;
+  Chn^.ChSend(@B, 1);
+end;
 
 function Hex(const S: AnsiString): string;
 var
@@ -572,6 +591,61 @@ begin
     Srv2.Free;
   end;
 end;
+
+{$IFDEF UNIX}
+{ An idle TCP client's poll ends at input on another line (a LOOP pair), and
+  a LOOP line's poll ends at input on the TCP client: both are in the
+  program-wide wait (ChnWait), not each on its own device for IDL ms. }
+procedure TTestChnTcp.TestClientIsInTheSharedWait;
+var
+  Port: Word;
+  L1, L2: pChnVirt;
+  Err: string;
+  S: TSendLater;
+  T0, Took: QWord;
+  St: tChState;
+begin
+  Port := OpenServer('0');
+  AssertEquals(res_Ok, OpenClient('IDL=1000 HOST=127.0.0.1 PORT=' + IntToStr(Port)));
+  SendText(Cli, 'a');
+  AssertEquals('a', Receive(Srv, nil, 1, 3000));  { the server has its client }
+  L1 := OpenStack('LOOP', 'PAIR=tcpwait END=1 IDL=1000', Err);
+  AssertNotNull(Err, L1);
+  L2 := OpenStack('LOOP', 'PAIR=tcpwait END=2', Err);
+  AssertNotNull(Err, L2);
+  S := TSendLater.Create(True);
+  try
+    S.Chn := L2;
+    S.DelayMs := 100;
+    T0 := GetTickCount64;
+    S.Start;
+    St := Cli^.ChReceiveReady;       { nothing for the TCP client }
+    Took := GetTickCount64 - T0;
+    S.WaitFor;
+    AssertEquals('the client got nothing', CHS_Receiving, St);
+    AssertTrue(Format('its wait ended at the LOOP byte, not after IDL=1000 (%d ms)',
+      [Took]), Took < 700);
+    AssertEquals(CHS_ReceiveReady, L1^.ChReceiveReady);
+    L1^.ChReceiveFlush;
+    S.Free;
+    S := TSendLater.Create(True);
+    S.Chn := Srv;
+    S.DelayMs := 100;
+    T0 := GetTickCount64;
+    S.Start;
+    St := L1^.ChReceiveReady;        { nothing for LOOP }
+    Took := GetTickCount64 - T0;
+    S.WaitFor;
+    AssertEquals('LOOP got nothing', CHS_Receiving, St);
+    AssertTrue(Format('its wait ended at the TCP byte (%d ms)', [Took]), Took < 700);
+    AssertEquals(CHS_ReceiveReady, Cli^.ChReceiveReady);
+  finally
+    S.Free;
+    Dispose(L1, Done);
+    Dispose(L2, Done);
+  end;
+end;
+{$ENDIF}
 
 initialization
   RegisterTest(TTestChnTcp);
