@@ -1,12 +1,13 @@
 { benchtap - the latency tools/chntap adds, and its throughput. Run with
   "make bench" (Unix only).
 
-  Two pty pairs; device A is played on master 1, device B on master 2.
-  Baseline: this process itself forwards one byte from slave 1 to slave 2
-  at once (write master 1, poll slave 1, read, write slave 2, poll master
-  2), the cost of the two pty hops alone. Then chntap sits between the two
-  slaves and the same byte goes master 1 -> chntap -> master 2 (and back
-  the other way); the difference of the medians is what the tap adds. The
+  Four pty pairs. chntap sits between the slaves of pairs 1 and 2; device
+  A is played on master 1, device B on master 2: one byte goes master 1 ->
+  chntap -> master 2, and back the other way. Baseline, in the same round
+  so that both see the same load: this process itself forwards one byte
+  from the slave of pair 3 to the slave of pair 4 at once (write master 3,
+  poll slave 3, read, write slave 4, poll master 4), the two pty hops
+  without a tap. The difference of the medians is what the tap adds. The
   rounds are spaced irregularly so the byte does not always arrive at the
   same point of the tap's poll loop. Last, 1 MiB each way at once with
   DF1 decoding. Figures compare runs on one machine; nothing is asserted. }
@@ -83,8 +84,8 @@ begin
 end;
 
 var
-  M1, M2, S1, S2: cint;
-  Path1, Path2: AnsiString;
+  M1, M2, M3, M4, S3, S4: cint;
+  Path1, Path2, Path3, Path4: AnsiString;
   Base, AB, BA: tTimes;
   I: Integer;
   T0: Double;
@@ -129,7 +130,8 @@ end;
 
 begin
   WriteLn('benchtap: latency tools/chntap adds between two ptys (', Rounds, ' one-byte rounds)');
-  if (PtyCreate(M1, Path1) <> 0) or (PtyCreate(M2, Path2) <> 0) then
+  if (PtyCreate(M1, Path1) <> 0) or (PtyCreate(M2, Path2) <> 0) or
+     (PtyCreate(M3, Path3) <> 0) or (PtyCreate(M4, Path4) <> 0) then
   begin
     WriteLn('  no pseudo terminals here: nothing measured');
     Halt(0);
@@ -139,42 +141,38 @@ begin
   SetLength(Base, Rounds);
   SetLength(AB, Rounds);
   SetLength(BA, Rounds);
-  { baseline: the two hops, forwarded by this process without delay }
-  S1 := FpOpen(Path1, O_RDWR or O_NOCTTY);
-  S2 := FpOpen(Path2, O_RDWR or O_NOCTTY);
+  S3 := FpOpen(Path3, O_RDWR or O_NOCTTY);
+  S4 := FpOpen(Path4, O_RDWR or O_NOCTTY);
   B := $55;
-  for I := 0 to Rounds - 1 do
-  begin
-    Spacing(I);
-    T0 := NowUs;
-    FpWrite(M1, B, 1);
-    Ok := ReadOne(S1);
-    FpWrite(S2, B, 1);
-    Ok := Ok and ReadOne(M2);
-    Base[I] := NowUs - T0;
-    if not Ok then
-      WriteLn('  baseline: a byte was lost');
-  end;
-  FpClose(S1);
-  FpClose(S2);
-  Report('two pty hops, no tap', Base);
-
   Tap := StartTap(['--raw', '--quiet']);
   for I := 0 to Rounds - 1 do
   begin
+    { baseline: the two hops, forwarded by this process without delay }
     Spacing(I);
+    T0 := NowUs;
+    FpWrite(M3, B, 1);
+    Ok := ReadOne(S3);
+    FpWrite(S4, B, 1);
+    Ok := Ok and ReadOne(M4);
+    Base[I] := NowUs - T0;
+    if not Ok then
+      WriteLn('  baseline: a byte was lost');
+    Spacing(I + 1);
     T0 := NowUs;
     FpWrite(M1, B, 1);
     if not ReadOne(M2) then
       WriteLn('  A>B: a byte did not arrive');
     AB[I] := NowUs - T0;
-    Spacing(I + 1);
+    Spacing(I + 2);
     T0 := NowUs;
     FpWrite(M2, B, 1);
     if not ReadOne(M1) then
       WriteLn('  B>A: a byte did not arrive');
     BA[I] := NowUs - T0;
   end;
+  FpClose(S3);
+  FpClose(S4);
+  Report('two pty hops, no tap', Base);
   StopTap(Tap);
   Report('A>B through chntap (IDL=1)', AB);
   Report('B>A through chntap (IDL=1)', BA);
@@ -219,6 +217,8 @@ begin
     [Got2, Got1, T0 / 1000, Length(Data) / T0]));
   FpClose(M1);
   FpClose(M2);
+  FpClose(M3);
+  FpClose(M4);
 end.
 {$ELSE}
 begin

@@ -123,6 +123,9 @@ type
     function  ComOpenPort(out Port: TChnPort): tChResult; virtual;
     procedure ComFault(R: tChResult);
     procedure ComJoinWait;
+    { A full ring drops further input (FLW=NONE on a serial line); False
+      where the line itself holds the sender back (flow control, TCP). }
+    function  ComDropsWhenFull: Boolean; virtual;
     procedure ComPull;
     procedure ComPumpTx;
     procedure ComFreeBuffers;
@@ -393,6 +396,11 @@ begin
   Result := R;
 end;
 
+function tChnCom.ComDropsWhenFull: Boolean;
+begin
+  Result := CH_Set.Flow = flowNone;
+end;
+
 { Put CH_Port into the program-wide wait, where the port offers a source. }
 procedure tChnCom.ComJoinWait;
 var
@@ -519,7 +527,7 @@ begin
     RingCommit(CH_Ring, Got);
     Inc(Pulled, Got);
   end;
-  if (RingRoom(CH_Ring) = 0) and (CH_Set.Flow = flowNone) then
+  if (RingRoom(CH_Ring) = 0) and ComDropsWhenFull then
   begin
     { no flow control can stop the sender: bytes beyond LRB are lost, and
       said so, as with the interrupt-driven ring of the original }
@@ -543,7 +551,7 @@ begin
     end;
   { looked at the device: wake the program's waits for its next input,
     unless the ring cannot take any (flow control holds the sender) }
-  ChnWaitServed(CH_Wait, ((RingRoom(CH_Ring) > 0) or (CH_Set.Flow = flowNone)) and
+  ChnWaitServed(CH_Wait, ((RingRoom(CH_Ring) > 0) or ComDropsWhenFull) and
     CH_Port.WaitUseful);
 end;
 

@@ -70,6 +70,7 @@ type
     function  ChListenHandle: PtrInt;
   protected
     function  ComOpenPort(out Port: TChnPort): tChResult; virtual;
+    function  ComDropsWhenFull: Boolean; virtual;
   private
     function  TcpNewPort: TChnPortTcp;
     procedure TcpTick;
@@ -270,6 +271,14 @@ begin
   end;
   Port := P;
   CH_RetryAt := 0;
+end;
+
+{ TCP holds the sender back itself: a full ring leaves the bytes in the
+  socket, nothing is lost (the device server's own line may still overrun;
+  it reports that by NOTIFY-LINESTATE). }
+function tChnTcp.ComDropsWhenFull: Boolean;
+begin
+  Result := False;
 end;
 
 procedure tChnTcp.ChClose;

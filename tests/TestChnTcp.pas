@@ -33,6 +33,7 @@ type
     procedure TestPeerGoneIsDeviceLostNextTick;
     procedure TestReconnectsByItself;
     procedure TestSecondClientIsTurnedAway;
+    procedure TestFullRingHoldsTheSenderBack;
     procedure TestRfc2217ServerChangesTheRate;
     procedure TestRfc2217ServerRefusesTheOption;
     procedure TestRfc2217ServerSilent;
@@ -474,6 +475,51 @@ begin
   AssertEquals('back by itself', res_Ok, Cli^.ChResult);
   SendText(Cli, 'b');
   AssertEquals('b', Receive(Srv, nil, 1, 3000));
+end;
+
+{ Unlike a serial line without flow control, TCP never loses what a full
+  ring cannot take: it stays in the socket and the sender is held back. }
+procedure TTestChnTcp.TestFullRingHoldsTheSenderBack;
+const
+  Total = 60000;
+var
+  Port: Word;
+  Data, Got: string;
+  I: Integer;
+  Len: Word;
+  Deadline: QWord;
+begin
+  Port := OpenServer('0');
+  AssertEquals(res_Ok, OpenClient('LRB=16 HOST=127.0.0.1 PORT=' + IntToStr(Port)));
+  SendText(Cli, 'a');
+  AssertEquals('a', Receive(Srv, nil, 1, 3000));
+  SetLength(Data, Total);
+  for I := 1 to Total do
+    Data[I] := Chr(I * 7 mod 251);
+  Srv^.ChSend(@Data[1], Total);
+  AssertEquals(res_Ok, Srv^.ChSendResult);
+  for I := 1 to 200 do             { polls that do not take the bytes }
+  begin
+    Srv^.ChSendReady;
+    Cli^.ChReceiveReady;
+  end;
+  Got := '';
+  Deadline := GetTickCount64 + 10000;
+  while (Length(Got) < Total) and (GetTickCount64 < Deadline) do
+  begin
+    Srv^.ChSendReady;
+    if Cli^.ChReceiveReady = CHS_ReceiveReady then
+    begin
+      Cli^.ChReceive(Len);
+      AssertEquals('no overrun', res_Ok, Cli^.ChReceiveResult);
+      AssertTrue('never more than LRB at once', Len <= 16);
+      SetLength(Got, Length(Got) + Len);
+      Move(RBuf, Got[Length(Got) - Len + 1], Len);
+    end;
+  end;
+  AssertEquals('all of it', Total, Length(Got));
+  AssertTrue('unchanged', Got = Data);
+  AssertEquals(0, pChnTcp(Cli)^.ChLostBytes);
 end;
 
 procedure TTestChnTcp.TestSecondClientIsTurnedAway;

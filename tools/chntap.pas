@@ -28,10 +28,10 @@
   closed, the files completed, the summary printed; exit code 0. Exit code
   2: a usage error or a side that cannot be opened at the start.
 
-  The loop polls A then B; on a COM layer each poll that finds nothing
-  waits up to IDL= ms (default 1) for the first byte, so a byte waits at
-  most about one poll of the other side: see docs/chntap.md for the
-  measured latency (make bench, benchtap). }
+  The loop polls A then B; on a COM layer a poll that finds nothing waits
+  up to IDL= ms (default 1), and that wait (unit ChnWait) ends at input on
+  either device, so a byte is taken in the next pass: docs/chntap.md has
+  the measured latency (make bench, benchtap). }
 program chntap;
 
 {$MODE OBJFPC}{$H+}

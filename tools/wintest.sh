@@ -139,19 +139,22 @@ else
 fi
 
 # ---------------------------------------------------------------- serial
-# Start a Linux program that prints "PTY /dev/pts/N" first; sets PID and
-# PTY (empty when none came within 3 s).
-start_pty() {
-  local out=$1; shift
+# Start a Linux program whose first line is "TAG value"; sets PID and
+# FIRST = value (empty when none came within 3 s).
+start_first() {
+  local tag=$1 out=$2; shift 2
   "$@" >"$out" 2>&1 &
   PID=$!
-  PTY=
+  FIRST=
   for _ in $(seq 60); do
-    PTY=$(head -n 1 "$out" 2>/dev/null | sed -n 's/^PTY //p')
-    [ -n "$PTY" ] && break
+    FIRST=$(head -n 1 "$out" 2>/dev/null | sed -n "s/^$tag //p")
+    [ -n "$FIRST" ] && break
     sleep 0.05
   done
 }
+# "PTY /dev/pts/N" (df1sim --pty, ptyecho) -> PTY; "LISTEN port" -> PORT
+start_pty() { start_first PTY "$@"; PTY=$FIRST; }
+start_listen() { start_first LISTEN "$@"; PORT=$FIRST; }
 stop() { kill "$1" 2>/dev/null; wait "$1" 2>/dev/null; }
 # COMn of the Wine prefix -> a Linux device
 link_com() { ln -sfn "$2" "$WINEPREFIX/dosdevices/com$1"; }
@@ -225,18 +228,6 @@ serial_tests() {
 # NAM=TCP on Winsock: the Windows examples against Linux listeners on the
 # loopback interface - tools/df1sim --listen (raw), and ser2net with RFC
 # 2217 in front of df1sim --pty when ser2net is installed.
-# Start a Linux program that prints "LISTEN <port>" first; sets PID, PORT.
-start_listen() {
-  local out=$1; shift
-  "$@" >"$out" 2>&1 &
-  PID=$!
-  PORT=
-  for _ in $(seq 60); do
-    PORT=$(head -n 1 "$out" 2>/dev/null | sed -n 's/^LISTEN //p')
-    [ -n "$PORT" ] && break
-    sleep 0.05
-  done
-}
 # a loopback port nothing listens on (bash's /dev/tcp connect fails)
 free_port() {
   local p
