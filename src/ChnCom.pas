@@ -152,6 +152,7 @@ const
   Rs485Names: array[0..3] of string[6] = ('OFF', 'RTS', 'KERNEL', 'AUTO');
   MaxDrainPerPoll = 65536;   { bytes discarded per poll when the ring is full }
   MaxPullPerPoll  = 65536;   { bytes one poll moves into the ring, see ComPull }
+  SmallChunk = 1024;         { a message rather than bulk input, see ComPull }
 
 constructor tChnCom.Init;
 begin
@@ -494,6 +495,7 @@ end;
 { Move what the OS holds into the ring; see the unit header for a full ring. }
 procedure tChnCom.ComPull;
 var
+  ShortDrains: Boolean;
   Room, Got, Dropped, Pulled: LongInt;
   Tail: PByte;
   Scratch: array[0..1023] of Byte;
@@ -503,6 +505,7 @@ begin
   if (CH_Port = nil) or (CH_Fault <> res_Ok) then
     Exit;
   Got := 0;
+  ShortDrains := CH_Port.ShortReadDrains and ChnWaitArmed(CH_Wait);
   Pulled := 0;
   { until the driver is empty, but at most MaxPullPerPoll bytes: input that
     never pauses (a fast sender, a tap forwarding a stream) would keep one
@@ -520,12 +523,17 @@ begin
     end;
     if Got = 0 then
       Break;
-    { read again until the driver says empty: a short read does not prove
-      it (a tty hands out its line buffer in pieces, a socket a segment),
-      and input left behind would wait for the next poll - or, without
-      flow control, overrun the ring under a burst }
     RingCommit(CH_Ring, Got);
     Inc(Pulled, Got);
+    { Read again until the driver says empty - except after a small chunk
+      (a request, a reply) from a port whose short read proves it empty,
+      while the shared wait watches it: anything that came meanwhile ends
+      the next wait at once, so the read that would find nothing (one per
+      message) is saved. Bulk input keeps being read at once: left behind,
+      it would pile up in the OS and, without flow control, overrun the
+      ring under a burst. }
+    if (Got < Room) and (Got < SmallChunk) and ShortDrains then
+      Break;
   end;
   if (RingRoom(CH_Ring) = 0) and ComDropsWhenFull then
   begin
@@ -679,14 +687,26 @@ begin
 end;
 
 function tChnCom.ChReceiveReady: tChState;
+var
+  Waited: Boolean;
 begin
   if CH_State <> CHS_Connect then
     Exit(CHS_RecInactive);
   if CH_RCtrl <> CHS_ReceiveReady then
   begin
     ComPumpTx;                    { a long message keeps moving meanwhile }
-    ComPull;
-    if (CH_Ring.Count = 0) and (CH_Idle > 0) then
+    Waited := (CH_Idle > 0) and (CH_Ring.Count = 0) and ChnWaitWatching(CH_Wait);
+    if Waited then
+    begin
+      { the shared wait watches this port: input that came would end the
+        wait at once, so read only when it says so (no read that finds
+        nothing, once per idle poll) }
+      if ChnWaitIdle(CH_Wait, CH_Idle) then
+        ComPull;
+    end
+    else
+      ComPull;
+    if (CH_Ring.Count = 0) and (CH_Idle > 0) and not Waited then
     begin
       if CH_Wait <> nil then
       begin

@@ -110,6 +110,11 @@ type
       for nothing (a pty master with no program on the slave side answers
       poll with a hang-up every time); default True. }
     function WaitUseful: Boolean; virtual;
+    { True when a Read that returns less than asked took everything the
+      OS held at that moment (a tty's line buffer, a plain socket), so a
+      caller the shared wait watches need not read again to find EAGAIN.
+      False (the default) for a port that buffers or decodes internally. }
+    function ShortReadDrains: Boolean; virtual;
     { The OS handle (file descriptor, HANDLE), for tests and special calls;
       -1 when closed. }
     function OsHandle: PtrInt; virtual; abstract;
@@ -188,6 +193,11 @@ end;
 function TChnPort.WaitUseful: Boolean;
 begin
   Result := True;
+end;
+
+function TChnPort.ShortReadDrains: Boolean;
+begin
+  Result := False;
 end;
 
 procedure RegisterPortDriver(const Name: ShortString; Cls: TChnPortClass);

@@ -29,6 +29,11 @@ interface
 uses
   BaseUnix, Unix, TermIO, ChnTypes, ChnWait, ChnPort;
 
+const
+  { open(2) flag O_CLOEXEC, which the RTL does not name: descriptors of
+    the library stay out of programs this one starts }
+  OpenCloseOnExec = {$IFDEF LINUX}$80000{$ELSE}0{$ENDIF};
+
 type
   TChnPortUnix = class(TChnPort)
   private
@@ -61,6 +66,7 @@ type
     function OsOverruns(out N: LongWord): tChResult; override;
     function WaitSource(out Kind: tChnWaitKind; out Os: PtrInt;
       out Rearm: tChnWaitRearm; out Data: Pointer): Boolean; override;
+    function ShortReadDrains: Boolean; override;
     function OsHandle: PtrInt; override;
     procedure Close; override;
   end;
@@ -233,7 +239,9 @@ begin
   FailKey := '';
   FVirtual := False;
   FDevice := Path;
-  NewFd := FpOpen(Path, O_RDWR or O_NOCTTY or O_NONBLOCK);
+  { close-on-exec: a program this one starts must not hold the line (a
+    pty it kept open would never hang up for the other side) }
+  NewFd := FpOpen(Path, O_RDWR or O_NOCTTY or O_NONBLOCK or OpenCloseOnExec);
   if NewFd < 0 then
     Exit(Fail(FpGetErrno));
   { flock: one user per device, honoured by root too }
@@ -631,6 +639,12 @@ begin
   Rearm := nil;
   Data := nil;
   Result := FOpen;
+end;
+
+{ read(2) on a tty copies all its line buffer holds, up to the size asked }
+function TChnPortUnix.ShortReadDrains: Boolean;
+begin
+  Result := True;
 end;
 
 function TChnPortUnix.OsHandle: PtrInt;

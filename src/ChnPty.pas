@@ -87,7 +87,7 @@ var
   T: Termios;
 begin
   SlavePath := '';
-  Fd := FpOpen('/dev/ptmx', O_RDWR or O_NOCTTY or O_NONBLOCK);
+  Fd := FpOpen('/dev/ptmx', O_RDWR or O_NOCTTY or O_NONBLOCK or OpenCloseOnExec);
   if Fd < 0 then
     Exit(FpGetErrno);
   Result := PtyUnlock(Fd, SlavePath);

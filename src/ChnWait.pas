@@ -29,8 +29,8 @@
   thread that took events out of the OS wait while other threads were
   blocked in it wakes them too, so none of them misses its own input.
 
-  OS parts: Linux epoll (one-shot entries, so a fired descriptor leaves the
-  wait by itself) plus a pipe for wake-ups; Windows WaitForMultipleObjects
+  OS parts: Linux epoll (level-triggered; a fired descriptor of another
+  channel is taken out of the set until served) plus a pipe for wake-ups; Windows WaitForMultipleObjects
   over the armed handles plus a semaphore for wake-ups (63 handles per
   wait: with more, each wait takes the caller's own handle and a rotating
   window of the others). Other Unixes: no shared set, ChnWaitIdle answers
@@ -94,6 +94,14 @@ function  ChnWaitIdle(Src: pChnWaitSource; Ms: LongInt): Boolean;
   pending send can go on, or TimeoutMs passes (0: only look). True when
   woken by a channel, False on timeout. Poll the channels afterwards. }
 function  ChnWaitAny(TimeoutMs: LongInt): Boolean;
+{ True while the set watches Src's device for input (armed, not fired): any
+  input that came since the owner last read would end a wait at once, so a
+  poll about to wait may skip reading first and read only when
+  ChnWaitIdle says Src fired - one call less per idle poll. }
+function  ChnWaitWatching(Src: pChnWaitSource): Boolean;
+{ True while Src's device is in the OS wait, fired or not: what comes next
+  will end a wait (ComPull then need not read until EAGAIN). }
+function  ChnWaitArmed(Src: pChnWaitSource): Boolean;
 { True where ChnWaitIdle really waits on the whole set (Linux, Windows). }
 function  ChnWaitShared: Boolean;
 { Number of sources in the set now (open physical layers). }
@@ -182,11 +190,15 @@ begin
   Result := (QWord(Src^.Gen) shl 32) or QWord(LongWord(Src^.Index));
 end;
 
-{ Put a descriptor source into the wait (one-shot: it leaves by itself
-  when it fires). Caller holds Lock. }
+{ Put a descriptor source into the epoll set, or change its events.
+  Level-triggered: input already there when it is armed counts too. A
+  fired source of another channel is taken out (OsDisarm) rather than
+  muted, since epoll reports a hang-up even for an entry with no events.
+  Caller holds Lock. }
 procedure OsArm(Src: pChnWaitSource; First: Boolean);
 var
   E: EPoll_Event;
+  Op: cint;
 begin
   if Src^.Kind <> wkDescriptor then
   begin
@@ -196,25 +208,29 @@ begin
   if EpFd < 0 then
     Exit;
   FillChar(E, SizeOf(E), 0);
-  E.Events := EPOLLIN or EPOLLONESHOT;
+  E.Events := EPOLLIN;
   if Src^.WantOut then
     E.Events := E.Events or EPOLLOUT;
   E.Data.u64 := Tag(Src);
-  if First then
-    Src^.Armed := epoll_ctl(EpFd, EPOLL_CTL_ADD, Src^.Os, @E) = 0
+  if Src^.Armed then
+    Op := EPOLL_CTL_MOD
   else
-    Src^.Armed := epoll_ctl(EpFd, EPOLL_CTL_MOD, Src^.Os, @E) = 0;
+    Op := EPOLL_CTL_ADD;
+  Src^.Armed := epoll_ctl(EpFd, Op, Src^.Os, @E) = 0;
 end;
 
 procedure OsDisarm(Src: pChnWaitSource);
 begin
+  if (Src^.Kind = wkDescriptor) and Src^.Armed and (EpFd >= 0) then
+    epoll_ctl(EpFd, EPOLL_CTL_DEL, Src^.Os, nil);
   Src^.Armed := False;
 end;
 
 procedure OsForget(Src: pChnWaitSource);
 begin
-  if (Src^.Kind = wkDescriptor) and (EpFd >= 0) and (SetPid = FpGetPid) then
-    epoll_ctl(EpFd, EPOLL_CTL_DEL, Src^.Os, nil);
+  if SetPid = FpGetPid then        { never the set a parent process shares }
+    OsDisarm(Src);
+  Src^.Armed := False;
 end;
 
 { Wake every thread blocked in the wait: the pipe stays readable (each
@@ -234,8 +250,11 @@ end;
 const
   MaxEvents = 64;
 
-{ Block up to Ms; mark what fired. Called without Lock; takes it after. }
-function OsWait(Ms: LongInt): Boolean;
+{ Block up to Ms; mark what fired. The caller's own source stays in the
+  set (it reads its device at once; taking it out and back in would cost
+  two calls per message), every other fired source leaves it until its
+  owner has looked. Called without Lock; takes it after. }
+function OsWait(Ms: LongInt; Own: pChnWaitSource): Boolean;
 var
   Ev: array[0..MaxEvents - 1] of EPoll_Event;
   N, I: cint;
@@ -264,7 +283,8 @@ begin
         S := Slots[Idx];
         if not S^.Used or (S^.Gen <> LongWord(Ev[I].Data.u64 shr 32)) then
           Continue;                 { left the set meanwhile }
-        S^.Armed := False;          { one-shot: the kernel took it out }
+        if S <> Own then
+          OsDisarm(S);
         if not S^.Fired then
         begin
           S^.Fired := True;
@@ -415,6 +435,17 @@ begin
   {$ELSE}
   Result := False;
   {$ENDIF}
+end;
+
+function ChnWaitWatching(Src: pChnWaitSource): Boolean;
+begin
+  Result := (Src <> nil) and ChnWaitShared and (Src^.Kind <> wkSignal) and
+    Src^.Armed and not Src^.Fired;
+end;
+
+function ChnWaitArmed(Src: pChnWaitSource): Boolean;
+begin
+  Result := (Src <> nil) and ChnWaitShared and (Src^.Kind <> wkSignal) and Src^.Armed;
 end;
 
 function ChnWaitCount: LongInt;
@@ -606,7 +637,7 @@ begin
   end;
   Inc(Blocked);
   LeaveCriticalSection(Lock);
-  Result := OsWait(Ms);
+  Result := OsWait(Ms, Own);
   {$ELSE}
   if not OsReady then
   begin

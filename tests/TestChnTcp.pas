@@ -30,6 +30,9 @@ type
     procedure TestListenIsLoopbackByDefault;
     procedure TestHostNotResolved;
     procedure TestConnectionRefused;
+    {$IFDEF LINUX}
+    procedure TestConnectTimeout;
+    {$ENDIF}
     procedure TestPeerGoneIsDeviceLostNextTick;
     procedure TestReconnectsByItself;
     procedure TestSecondClientIsTurnedAway;
@@ -385,6 +388,10 @@ begin
   Port := OpenServer('[::1]:0');
   AssertEquals(Format('[%s]:%d', [NetAddrToStr6(StrToNetAddr6('::1')), Port]),
     SockLocalName(pChnTcp(Srv)^.ChListenHandle));
+  { an IPv6 literal as HOST= }
+  AssertEquals(res_Ok, OpenClient('HOST=::1 PORT=' + IntToStr(Port)));
+  SendText(Cli, 'v6');
+  AssertEquals('v6', Receive(Srv, nil, 2, 3000));
 end;
 
 procedure TTestChnTcp.TestHostNotResolved;
@@ -409,6 +416,54 @@ begin
   AssertEquals(CHS_Close, Cli^.ChReady);
   AssertEquals('connection refused', Cli^.ChResultStr(Cli^.ChResult));
 end;
+
+{$IFDEF LINUX}
+{ A listener whose accept queue is full drops further SYNs (Linux): a
+  connect to it neither succeeds nor is refused - as a host that is down. }
+procedure TTestChnTcp.TestConnectTimeout;
+var
+  L: tSock;
+  Fill: array[0..15] of tSock;
+  A: tSockAddrs;
+  N, I: LongInt;
+  Port: Word;
+  Full: Boolean;
+  T0, Took: QWord;
+begin
+  for I := 0 to High(Fill) do
+    Fill[I] := NoSock;
+  L := fpSocket(AF_INET, SOCK_STREAM, 0);
+  AssertTrue('socket', L >= 0);
+  try
+    AssertTrue(SockResolve('127.0.0.1', 0, True, A, N) = seOk);
+    AssertEquals('bind', 0, fpBind(L, PSockAddr(@A[0].Data), A[0].Len));
+    AssertEquals('listen, backlog 0', 0, fpListen(L, 0));
+    Port := SockLocalPort(L);
+    AssertTrue(SockResolve('127.0.0.1', Port, False, A, N) = seOk);
+    Full := False;
+    for I := 0 to High(Fill) do
+    begin
+      if SockConnectStart(A[0], Fill[I]) = seWouldBlock then
+        if SockConnectDone(Fill[I], 300) = seWouldBlock then
+        begin
+          Full := True;             { this SYN was dropped: the queue is full }
+          Break;
+        end;
+    end;
+    AssertTrue('the accept queue filled up', Full);
+    T0 := GetTickCount64;
+    AssertEquals(res_Timeout, OpenClient('CTO=500 HOST=127.0.0.1 PORT=' + IntToStr(Port)));
+    Took := GetTickCount64 - T0;
+    AssertEquals('HOST=127.0.0.1', Cli^.ChParamError);
+    AssertEquals(CHS_Close, Cli^.ChReady);
+    AssertTrue(Format('after CTO=500 (%d ms)', [Took]), (Took >= 450) and (Took < 3000));
+  finally
+    for I := 0 to High(Fill) do
+      SockClose(Fill[I]);
+    CloseSocket(L);
+  end;
+end;
+{$ENDIF}
 
 procedure TTestChnTcp.TestPeerGoneIsDeviceLostNextTick;
 var

@@ -41,13 +41,17 @@ type
     procedure TestLoopSendEndsSerialIdleWait;
     procedure TestPtyWithoutClientDoesNotSpin;
     {$ENDIF}
+    {$IFDEF LINUX}
+    procedure TestManyLinesAnswerAsFastAsOne;
+    procedure TestIdleLinesWakeAThousandTimesASecondAtMost;
+    {$ENDIF}
   end;
 
 implementation
 
 {$IFDEF UNIX}
 uses
-  ChnPty;
+  ChnPty{$IFDEF LINUX}, ChnWaitBench{$ENDIF};
 {$ENDIF}
 
 type
@@ -449,6 +453,42 @@ begin
   Cpu := PollFor(FChn, 0, 1, 1000);
   WriteLn(Format('info  wait: a pty master without client and a LOOP end: %.2f %% of a core', [Cpu]));
   AssertTrue(Format('no busy loop: %.1f %% of a core', [Cpu]), Cpu < 15);
+end;
+{$ENDIF}
+
+{$IFDEF LINUX}
+{ The short version of bench/benchwait's table (make bench has the
+  figures): a legacy round-robin program of DF1 slaves answering Echo. }
+procedure TTestChnWait.TestManyLinesAnswerAsFastAsOne;
+var
+  One, Many: tLatency;
+  Err: ShortString;
+begin
+  AssertTrue('1 line: ' + Err, RoundRobinEchoes(1, 200, 2, One, Err));
+  AssertTrue('64 lines: ' + Err, RoundRobinEchoes(64, 200, 2, Many, Err));
+  WriteLn(Format('info  wait: Echo reply, median/p99 ms: 1 line %.3f/%.3f, 64 lines %.3f/%.3f',
+    [One.Median, One.P99, Many.Median, Many.P99]));
+  { a wait per idle line before the right one would give a median of
+    about 32 ms (half the lines, IDL=1 each) }
+  AssertTrue(Format('64 lines median %.3f ms <= 5 x 1 line (%.3f) + 2 ms',
+    [Many.Median, One.Median]), Many.Median <= 5 * One.Median + 2);
+  AssertTrue(Format('64 lines p99 %.3f ms < 30 ms', [Many.P99]), Many.P99 < 30);
+end;
+
+procedure TTestChnWait.TestIdleLinesWakeAThousandTimesASecondAtMost;
+var
+  C: tIdleCost;
+  Err: ShortString;
+begin
+  AssertTrue(Err, IdleCost(64, 1500, C, Err));
+  WriteLn(Format('info  wait: 64 idle DF1 lines polled 1.5 s: %.2f %% of a core, %.0f sleeps/s, %.1f rounds/s',
+    [C.CpuPct, C.WakePerS, C.PollPerS]));
+  { IDL=1: one sleep of at most 1 ms per poll that finds nothing, whatever
+    the number of lines; a busy loop or a sleep per line would show }
+  AssertTrue(Format('at most about 1000 sleeps a second: %.0f', [C.WakePerS]), C.WakePerS < 1300);
+  AssertTrue(Format('a round over 64 lines takes about 64 ms: %.1f rounds/s', [C.PollPerS]),
+    C.PollPerS < 40);
+  AssertTrue(Format('CPU under 10 %% of a core: %.2f', [C.CpuPct]), C.CpuPct < 10);
 end;
 {$ENDIF}
 
