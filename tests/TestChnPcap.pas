@@ -46,7 +46,8 @@ type
 implementation
 
 uses
-  {$IFDEF UNIX}BaseUnix, ChnCom, ChnPty, ChnFT1_2, ChnFT12Link, BinSupport,{$ENDIF}
+  {$IFDEF UNIX}BaseUnix, ChnCom, ChnPty, ChnFT1_2, ChnFT12Link,{$ENDIF}
+  BinSupport,
   DateUtils, uString;
 
 const
@@ -304,7 +305,9 @@ begin
   AssertEquals(DateTimeToUnix(LocalTimeToUniversal(EncodeDateTime(2026, 12, 1, 23, 53, 29, 0))),
     LEtoN(PLongWord(@P[25])^));
   AssertEquals(Output, 0, RunBin('chndecode', ['--to-text', Dir + 'df1.pcap'], 30000, Output));
-  AssertEquals('text -> pcap -> text unchanged', Df1Trace, Output);
+  { (line ends are the system's: CR LF on Windows) }
+  AssertEquals('text -> pcap -> text unchanged', Df1Trace,
+    StringReplace(Output, #13#10, #10, [rfReplaceAll]));
   { the decoded frames are the same from either file }
   AssertEquals(0, RunBin('chndecode', ['--df1', Dir + 'df1.log'], 30000, FromText));
   AssertEquals(0, RunBin('chndecode', ['--df1', Dir + 'df1.pcap'], 30000, FromPcap));

@@ -48,16 +48,19 @@ WINESERVER=${WINESERVER:-$(dirname "$WINE")/wineserver}
 [ -x "$WINESERVER" ] || WINESERVER=$(command -v wineserver || echo wineserver)
 
 passed=0
+skipped=0
 failed=0
 pass() { passed=$((passed + 1)); echo "ok    $1"; }
 fail() { failed=$((failed + 1)); echo "FAIL  $1"; }
 finish() {
+  # tests that skip (an optional program missing) print "skip  X: why"
+  [ "$skipped" = 0 ] || echo "$skipped skipped (an optional program is missing: see the skip lines)"
   echo "$passed passed, $failed failed"
   [ "$failed" = 0 ]
   exit
 }
 # "ok    X" -> "ok    win64 X" (also FAIL, ERROR, note)
-win64_lines() { sed -E 's/^(ok|FAIL|ERROR|note)( +)/\1\2win64 /'; }
+win64_lines() { sed -E 's/^(ok|FAIL|ERROR|note|skip)( +)/\1\2win64 /'; }
 # run a Windows program with a deadline
 wrun() { timeout "${WTIMEOUT:-120}" "$WINE" "$@"; }
 
@@ -124,8 +127,8 @@ elif "$PPC" -Twin64 -Px86_64 -n -v0ew -Fu"$RTLU" -Fusrc -Fisrc -Futools/lib -Fut
   if [ -z "$res" ]; then
     fail "win64 runtests crashed (exit $rc) before it finished"
   else
-    read -r _ p f _ <<<"$res"
-    passed=$((passed + p)); failed=$((failed + f))
+    read -r _ p f s _ <<<"$res"
+    passed=$((passed + p)); failed=$((failed + f)); skipped=$((skipped + ${s:-0}))
     [ "$rc" = 0 ] || [ "$f" -gt 0 ] || fail "win64 runtests exit code $rc"
   fi
   if [ -f "$heaplog" ] && tr -d '\r' <"$heaplog" | grep -q '^0 unfreed memory blocks'; then
