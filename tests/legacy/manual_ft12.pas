@@ -1,5 +1,5 @@
 { manual_ft12 - the example program of the SofCon manual "ChnFT1_2"
-  v1.20, section 7 ("Příklad"): a master sends a variable-length frame to
+  v1.10, chapter 7 ("Příklad"): a master sends a variable-length frame to
   a slave and decodes the answer, over ChnCom, typed in as printed.
   tests/run.sh builds it in -Mtp -Mfpc -Mobjfpc -Mdelphi and runs it
   against examples/ft12slave on a socat null-modem (manual_ft12.peer),
