@@ -27,7 +27,15 @@
     anything else is res_BadSetting here rather than Synapse's silent B0
     (which would hang the line up).
   * RS-485: Synapse has no kernel RS-485 call, so KERNEL is refused (AUTO
-    then falls back to RTS toggling by tChnCom). }
+    then falls back to RTS toggling by tChnCom).
+  * The program-wide wait (unit ChnWait): on Unix the port joins it with
+    synaser's descriptor. On Windows it does not: synaser reads through
+    its own overlapped calls on the handle, and an outstanding read of our
+    own (what ChnPortWin waits on) would take bytes from under them, while
+    WaitCommEvent ends at once under Wine, so it could not be checked
+    either. There a poll waits on this port alone (WaitInput below), as
+    before: a program with many Synapse lines on Windows should use the
+    RTL backend for the shared wait. }
 unit ChnPortSynapse;
 
 {$I chn.inc}
@@ -35,7 +43,7 @@ unit ChnPortSynapse;
 interface
 
 uses
-  SysUtils, synaser, ChnTypes, ChnPort;
+  SysUtils, synaser, ChnTypes, ChnWait, ChnPort;
 
 type
   TChnPortSynapse = class(TChnPort)
@@ -59,6 +67,10 @@ type
     function GetLines(out Lines: tPortLines): tChResult; override;
     function SetKernelRs485(On: Boolean): tChResult; override;
     function OsOverruns(out N: LongWord): tChResult; override;
+    {$IFDEF UNIX}
+    function WaitSource(out Kind: tChnWaitKind; out Os: PtrInt;
+      out Rearm: tChnWaitRearm; out Data: Pointer): Boolean; override;
+    {$ENDIF}
     function OsHandle: PtrInt; override;
     procedure Close; override;
     property Serial: TBlockSerial read FSer;
@@ -446,6 +458,20 @@ begin
     Exit(res_WrongState);
   Result := res_Ok;
 end;
+
+{$IFDEF UNIX}
+{ synaser's descriptor is an ordinary tty descriptor: it joins the
+  program-wide wait as one (see the unit header for Windows) }
+function TChnPortSynapse.WaitSource(out Kind: tChnWaitKind; out Os: PtrInt;
+  out Rearm: tChnWaitRearm; out Data: Pointer): Boolean;
+begin
+  Kind := wkDescriptor;
+  Os := OsHandle;
+  Rearm := nil;
+  Data := nil;
+  Result := FOpen;
+end;
+{$ENDIF}
 
 function TChnPortSynapse.OsHandle: PtrInt;
 begin

@@ -4,13 +4,19 @@
   cross-compiles it on Debian, make wintest runs it under Wine on COM
   ports linked to Linux ptys: docs/Windows.md).
 
-  The handle is opened exclusively and without overlapped I/O. Reads never
-  wait: ReadIntervalTimeout = MAXDWORD with zero totals makes ReadFile
-  return at once with what the driver holds. Writes never wait either:
-  Write hands over only what fits in the driver's output queue (SetupComm
-  size minus ClearCommError's cbOutQue), and a 1 ms write timeout bounds
-  any driver that still blocks. WaitInput polls cbInQue in 1 ms steps,
-  which keeps an idle loop far below 1 % of a core.
+  The handle is opened exclusively, for overlapped I/O, with no read
+  timeouts. While the port is open one overlapped read of a single byte
+  is always outstanding ("the waiting read"): it completes at the first
+  byte that arrives and signals its event, which is what this port gives
+  the program-wide wait (unit ChnWait, a wkHandle source) and what
+  WaitInput waits on. Read never waits: it takes the byte of a completed
+  waiting read, then exactly the cbInQue bytes ClearCommError reports (a
+  read of bytes that are there completes at once), and starts the next
+  waiting read. (WaitCommEvent(EV_RXCHAR) would be the textbook event, but
+  Wine 8 ends it at once on a pty; a pending one-byte read works on both.)
+  Writes never wait either: Write hands over only what fits in the
+  driver's output queue (SetupComm size minus ClearCommError's cbOutQue),
+  and a 1 ms write timeout bounds any driver that still blocks.
 
   Result mapping: ERROR_FILE_NOT_FOUND/PATH_NOT_FOUND, and ACCESS_DENIED or
   SHARING_VIOLATION at open (Windows' answer for a port in use by another
@@ -19,8 +25,8 @@
   names the setting: for a rejected DCB the settings are tried one at a
   time to find it); the
   errors a pulled USB adapter gives (ACCESS_DENIED, BAD_COMMAND,
-  GEN_FAILURE, OPERATION_ABORTED, DEVICE_NOT_CONNECTED) and NOT_READY (what
-  Wine makes of EIO from a hung-up tty) -> res_DeviceLost.
+  GEN_FAILURE, OPERATION_ABORTED, DEVICE_NOT_CONNECTED) and NOT_READY or
+  BROKEN_PIPE (what Wine makes of EIO from a hung-up tty) -> res_DeviceLost.
   CE_OVERRUN / CE_RXOVER are counted for OsOverruns, one per event (Windows
   does not say how many bytes were lost). }
 unit ChnPortWin;
@@ -30,7 +36,7 @@ unit ChnPortWin;
 interface
 
 uses
-  Windows, ChnTypes, ChnPort;
+  Windows, ChnTypes, ChnWait, ChnPort;
 
 type
   TChnPortWin = class(TChnPort)
@@ -40,7 +46,16 @@ type
     FToggle: Boolean;          { RTS_CONTROL_TOGGLE requested }
     FFlow: tPortFlow;
     FOverruns: LongWord;
+    FWaitOv: TOverlapped;      { the waiting read; its hEvent is the wait source }
+    FIoOv: TOverlapped;        { reads and writes that complete at once }
+    FWaitByte: Byte;
+    FWaitPending: Boolean;     { the waiting read is outstanding }
+    FWaitHas: Boolean;         { it completed with FWaitByte, not yet delivered }
+    FWaitErr: DWORD;           { it failed with this error (device lost ...) }
     function Fail(E: DWORD): tChResult;
+    procedure ArmWait;
+    procedure CollectWait(Block: Boolean);
+    function IoResult(Ok: BOOL; out N: DWORD): Boolean;
     function Status(out InQue, OutQue: DWORD): tChResult;
     function ApplyDcb(var D: TDCB): tChResult;
     function RejectedKey(const D: TDCB): ShortString;
@@ -61,6 +76,8 @@ type
     function GetLines(out Lines: tPortLines): tChResult; override;
     function SetKernelRs485(On: Boolean): tChResult; override;
     function OsOverruns(out N: LongWord): tChResult; override;
+    function WaitSource(out Kind: tChnWaitKind; out Os: PtrInt;
+      out Rearm: tChnWaitRearm; out Data: Pointer): Boolean; override;
     function OsHandle: PtrInt; override;
     procedure Close; override;
   end;
@@ -69,6 +86,7 @@ implementation
 
 const
   ERROR_DEVICE_NOT_CONNECTED_ = 1167;
+  STATUS_PENDING_ = $103;
   DefaultOutQueue = 4096;
   { DCB.flags bits (winbase.h) }
   fBinary          = $0001;
@@ -97,6 +115,73 @@ begin
   FToggle := False;
   FFlow := flowNone;
   FOverruns := 0;
+  FillChar(FWaitOv, SizeOf(FWaitOv), 0);
+  FillChar(FIoOv, SizeOf(FIoOv), 0);
+end;
+
+{ An overlapped call that may have gone pending: wait for it (it moves
+  bytes that are there, or is bounded by the 1 ms write timeout). }
+function TChnPortWin.IoResult(Ok: BOOL; out N: DWORD): Boolean;
+begin
+  if Ok then
+    Exit(GetOverlappedResult(FH, FIoOv, N, False));
+  N := 0;
+  Result := (GetLastError = ERROR_IO_PENDING) and GetOverlappedResult(FH, FIoOv, N, True);
+end;
+
+{ Start the waiting read unless it is outstanding or its byte waits. }
+procedure TChnPortWin.ArmWait;
+var
+  N: DWORD;
+begin
+  if not FOpen or FWaitPending or FWaitHas or (FWaitErr <> 0) then
+  begin
+    if FWaitHas or (FWaitErr <> 0) then
+      SetEvent(FWaitOv.hEvent);     { still to be taken: keep waking }
+    Exit;
+  end;
+  ResetEvent(FWaitOv.hEvent);
+  N := 0;
+  if ReadFile(FH, FWaitByte, 1, N, @FWaitOv) then
+    FWaitHas := N = 1               { a byte was there already }
+  else if GetLastError = ERROR_IO_PENDING then
+    FWaitPending := True
+  else
+    FWaitErr := GetLastError;
+  if FWaitHas or (FWaitErr <> 0) then
+    SetEvent(FWaitOv.hEvent);
+end;
+
+{ The waiting read's outcome, if it has one (Block: wait for it). }
+procedure TChnPortWin.CollectWait(Block: Boolean);
+var
+  N: DWORD;
+begin
+  if not FWaitPending then
+    Exit;
+  if not Block and (FWaitOv.Internal = STATUS_PENDING_) then   { HasOverlappedIoCompleted }
+    Exit;
+  N := 0;
+  if GetOverlappedResult(FH, FWaitOv, N, True) then
+    FWaitHas := N = 1
+  else if GetLastError <> ERROR_OPERATION_ABORTED then
+    FWaitErr := GetLastError;       { aborted: by our own Flush or Close }
+  FWaitPending := False;
+end;
+
+procedure WinRearm(Data: Pointer);
+begin
+  TChnPortWin(Data).ArmWait;
+end;
+
+function TChnPortWin.WaitSource(out Kind: tChnWaitKind; out Os: PtrInt;
+  out Rearm: tChnWaitRearm; out Data: Pointer): Boolean;
+begin
+  Kind := wkHandle;
+  Os := PtrInt(FWaitOv.hEvent);
+  Rearm := @WinRearm;
+  Data := Self;
+  Result := FOpen;
 end;
 
 function TChnPortWin.Fail(E: DWORD): tChResult;
@@ -117,7 +202,8 @@ begin
       Result := res_BadSetting;
     ERROR_BAD_COMMAND, ERROR_GEN_FAILURE, ERROR_OPERATION_ABORTED,
     ERROR_INVALID_HANDLE, ERROR_DEVICE_NOT_CONNECTED_,
-    ERROR_NOT_READY:                { Wine's word for EIO: a tty hung up }
+    ERROR_NOT_READY,                { Wine's word for EIO: a tty hung up }
+    ERROR_BROKEN_PIPE:              { ... and for it in overlapped I/O }
       Result := res_DeviceLost;
   else
     Result := res_IOError;
@@ -157,7 +243,7 @@ begin
   FailKey := '';
   Name := Path;
   H := CreateFileA(PAnsiChar(Name), GENERIC_READ or GENERIC_WRITE, 0, nil,
-    OPEN_EXISTING, FILE_ATTRIBUTE_NORMAL, 0);
+    OPEN_EXISTING, FILE_FLAG_OVERLAPPED, 0);
   if H = INVALID_HANDLE_VALUE then
     Exit(Fail(GetLastError));
   FillChar(D, SizeOf(D), 0);
@@ -169,7 +255,8 @@ begin
     Exit(res_BadSetting);           { not a serial device }
   end;
   FillChar(T, SizeOf(T), 0);
-  T.ReadIntervalTimeout := MAXDWORD;  { ReadFile returns at once }
+  { no read timeouts: a read ends when its bytes came (Read asks only for
+    bytes that are there; the waiting read for the next one) }
   T.WriteTotalTimeoutConstant := 1;   { a blocking driver stalls 1 ms at most }
   if not SetCommTimeouts(H, T) then
   begin
@@ -180,6 +267,14 @@ begin
   FH := H;
   FOpen := True;
   FOverruns := 0;
+  FillChar(FWaitOv, SizeOf(FWaitOv), 0);
+  FillChar(FIoOv, SizeOf(FIoOv), 0);
+  FWaitOv.hEvent := CreateEvent(nil, True, False, nil);
+  FIoOv.hEvent := CreateEvent(nil, True, False, nil);
+  FWaitPending := False;
+  FWaitHas := False;
+  FWaitErr := 0;
+  ArmWait;
   Result := res_Ok;
 end;
 
@@ -308,38 +403,46 @@ end;
 function TChnPortWin.Read(var Buf; Size: LongInt; out Got: LongInt): tChResult;
 var
   N, InQ, OutQ: DWORD;
+  P: PByte;
 begin
   Got := 0;
   if not FOpen then
     Exit(res_WrongState);
   if Size <= 0 then
     Exit(res_Ok);
-  N := 0;
-  if not ReadFile(FH, Buf, DWORD(Size), N, nil) then
-    Exit(Fail(GetLastError));
-  Got := N;
-  if N > 0 then
-    Result := Status(InQ, OutQ)      { picks up overrun flags }
-  else
-    Result := res_Ok;
+  P := @Buf;
+  CollectWait(False);
+  if FWaitErr <> 0 then
+    Exit(Fail(FWaitErr));
+  if FWaitPending then
+    Exit(res_Ok);                   { it would have the first byte: none came }
+  if FWaitHas then
+  begin
+    P^ := FWaitByte;
+    FWaitHas := False;
+    Got := 1;
+  end;
+  Result := Status(InQ, OutQ);      { also picks up overrun flags }
+  if (Result = res_Ok) and (InQ > 0) and (Got < Size) then
+  begin
+    if InQ > DWORD(Size - Got) then
+      InQ := Size - Got;
+    if not IoResult(ReadFile(FH, P[Got], InQ, N, @FIoOv), N) then
+      Exit(Fail(GetLastError));
+    Inc(Got, N);
+  end;
+  if Result = res_Ok then
+    ArmWait;                        { the next byte signals again }
 end;
 
 function TChnPortWin.WaitInput(Ms: LongInt): Boolean;
-var
-  Deadline: QWord;
-  InQ, OutQ: DWORD;
 begin
   Result := False;
   if not FOpen then
     Exit;
-  Deadline := GetTickCount64 + QWord(Ms);
-  repeat
-    if (Status(InQ, OutQ) <> res_Ok) or (InQ > 0) then
-      Exit(True);                   { a byte, or a fault the read reports }
-    if GetTickCount64 >= Deadline then
-      Exit;
-    Sleep(1);
-  until False;
+  ArmWait;
+  Result := FWaitHas or (FWaitErr <> 0) or
+    (WaitForSingleObject(FWaitOv.hEvent, DWORD(Ms)) = WAIT_OBJECT_0);
 end;
 
 function TChnPortWin.WaitOutput(Ms: LongInt): Boolean;
@@ -379,7 +482,7 @@ begin
   if Len > Room then
     Len := Room;
   N := 0;
-  if not WriteFile(FH, Buf, DWORD(Len), N, nil) then
+  if not IoResult(WriteFile(FH, Buf, DWORD(Len), N, @FIoOv), N) then
     Exit(Fail(GetLastError));
   Done := N;                        { a write timeout leaves N < Len }
   Result := res_Ok;
@@ -418,6 +521,12 @@ begin
     F := F or PURGE_TXCLEAR or PURGE_TXABORT;
   if (F <> 0) and not PurgeComm(FH, F) then
     Exit(Fail(GetLastError));
+  if Input then
+  begin
+    CollectWait(True);              { PURGE_RXABORT ended the waiting read }
+    FWaitHas := False;
+    ArmWait;
+  end;
   Result := res_Ok;
 end;
 
@@ -514,7 +623,23 @@ end;
 procedure TChnPortWin.Close;
 begin
   if FH <> INVALID_HANDLE_VALUE then
+  begin
+    if FWaitPending then
+    begin
+      CancelIo(FH);
+      CollectWait(True);            { the OVERLAPPED must outlive the read }
+    end;
     CloseHandle(FH);
+  end;
+  if FWaitOv.hEvent <> 0 then
+    CloseHandle(FWaitOv.hEvent);
+  if FIoOv.hEvent <> 0 then
+    CloseHandle(FIoOv.hEvent);
+  FillChar(FWaitOv, SizeOf(FWaitOv), 0);
+  FillChar(FIoOv, SizeOf(FIoOv), 0);
+  FWaitPending := False;
+  FWaitHas := False;
+  FWaitErr := 0;
   FH := INVALID_HANDLE_VALUE;
   FOpen := False;
   FToggle := False;

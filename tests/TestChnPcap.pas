@@ -35,6 +35,7 @@ type
     procedure TestDf1TextTraceRoundTrip;
     procedure TestChndecodeTextToPcapToText;
     procedure TestChndecodeBadPcap;
+    procedure TestFilesRewrittenByEditcap;
     procedure TestTrcParams;
     procedure TestTrcWritesPcap;
     procedure TestTrcAppendsOnlyToOwnPcap;
@@ -331,6 +332,45 @@ begin
   AssertEquals(2, RunBin('chndecode', ['--to-pcap=' + Dir + 'x.pcap', '--date=2026-02-30',
     Dir + 'text.log'], 30000, Output));
   AssertTrue(Output, Pos('--date wants YYYY-MM-DD', Output) > 0);
+end;
+
+{ Wireshark's own writer (editcap, package wireshark-common, which tshark
+  pulls in) rewrites our file as microsecond pcap, nanosecond pcap and
+  pcapng: the first two read back to the same chunks, the third is refused
+  by name. }
+procedure TTestChnPcap.TestFilesRewrittenByEditcap;
+const
+  Formats: array[0..1] of string = ('pcap', 'nsecpcap');
+var
+  Editcap, Output, Fmt: string;
+  F, G: tTrcFrames;
+  Info: tPcapInfo;
+  N, I: LongInt;
+begin
+  Editcap := ExeSearch('editcap', GetEnvironmentVariable('PATH'));
+  if Editcap = '' then
+    Ignore('editcap is not installed (Debian package wireshark-common, with tshark): ' +
+      'files written by Wireshark are not checked');
+  N := TrcReadText(Df1Trace, F);
+  WriteFileText(Dir + 'df1.pcap', PcapFromTrc(F, N, 1796079600));
+  for Fmt in Formats do
+  begin
+    AssertEquals(Output, 0, RunExe(Editcap, ['-F', Fmt, Dir + 'df1.pcap', Dir + Fmt + '.out'],
+      30000, Output));
+    AssertEquals(Fmt, res_Ok, PcapReadBytes(ReadFileText(Dir + Fmt + '.out'), 3600, G, Info));
+    AssertEquals(Fmt, N, Length(G));
+    for I := 0 to N - 1 do
+    begin
+      AssertEquals(Fmt + ' time ' + IntToStr(I), F[I].TimeMs, G[I].TimeMs);
+      AssertTrue(Fmt + ' direction ' + IntToStr(I), F[I].Dir = G[I].Dir);
+      AssertEquals(Fmt + ' bytes ' + IntToStr(I), HexBytes(@F[I].Data[0], Length(F[I].Data)),
+        HexBytes(@G[I].Data[0], Length(G[I].Data)));
+    end;
+  end;
+  AssertEquals(Output, 0, RunExe(Editcap, ['-F', 'pcapng', Dir + 'df1.pcap', Dir + 'ng.out'],
+    30000, Output));
+  AssertEquals(res_PcapNotPcap, PcapReadBytes(ReadFileText(Dir + 'ng.out'), 0, G, Info));
+  AssertTrue(Info.ErrText, Pos('pcapng', Info.ErrText) > 0);
 end;
 
 procedure TTestChnPcap.TestTrcParams;

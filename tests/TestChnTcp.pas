@@ -10,7 +10,7 @@ unit TestChnTcp;
 interface
 
 uses
-  SysUtils, Classes, fpcunit, testregistry, ChnTypes, ChnVirt, ChnPort, ChnTcp, ChnLoop, ChnSock, Sockets,
+  SysUtils, Classes, fpcunit, testregistry, ChnTypes, ChnVirt, {$IFDEF LINUX}BaseUnix, Linux,{$ENDIF} ChnPort, ChnTcp, ChnLoop, ChnSock, Sockets,
   TestSupport;
 
 type
@@ -43,6 +43,9 @@ type
     procedure TestRfc2217DataNotifyAndPurgeOnTheWire;
     {$IFDEF UNIX}
     procedure TestClientIsInTheSharedWait;
+    {$ENDIF}
+    {$IFDEF LINUX}
+    procedure TestIdlePollingLoopCpu;
     {$ENDIF}
   end;
 
@@ -692,6 +695,50 @@ begin
     Srv2.Free;
   end;
 end;
+
+{$IFDEF LINUX}
+function CpuMs: Double;
+var
+  Ts: TTimeSpec;
+begin
+  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, @Ts);
+  Result := Ts.tv_sec * 1000.0 + Ts.tv_nsec / 1e6;
+end;
+
+{ A legacy "repeat until ChReceiveReady = CHS_ReceiveReady" on an idle TCP
+  client costs little CPU with the default IDL=1 (the wait works), and
+  spins with IDL=0 (so the measurement itself can see a busy loop). }
+procedure TTestChnTcp.TestIdlePollingLoopCpu;
+var
+  Port: Word;
+
+  function Spent(const Params: string): Double;
+  var
+    T: QWord;
+    C0: Double;
+  begin
+    if Cli <> nil then
+      Dispose(Cli, Done);
+    Cli := nil;
+    AssertEquals(res_Ok, OpenClient(Params + ' HOST=127.0.0.1 PORT=' + IntToStr(Port)));
+    Srv^.ChReceiveReady;
+    C0 := CpuMs;
+    T := GetTickCount64;
+    while GetTickCount64 - T < 1000 do
+      AssertTrue('nothing comes', Cli^.ChReceiveReady <> CHS_ReceiveReady);
+    Result := CpuMs - C0;
+  end;
+
+var
+  Idle, Busy: Double;
+begin
+  Port := OpenServer('0');
+  Idle := Spent('');
+  Busy := Spent('IDL=0');
+  AssertTrue(Format('IDL=1: %.1f ms CPU in 1000 ms (bound 50)', [Idle]), Idle < 50);
+  AssertTrue(Format('IDL=0 spins: %.1f ms CPU in 1000 ms', [Busy]), Busy > 100);
+end;
+{$ENDIF}
 
 {$IFDEF UNIX}
 { An idle TCP client's poll ends at input on another line (a LOOP pair), and
