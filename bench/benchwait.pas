@@ -360,15 +360,6 @@ begin
       WriteLn(Format('| %d | failed: %s |', [Ns[I], Err]));
 end;
 
-function CpuNow: Double;
-var
-  T: TTimeSpec;
-begin
-  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, @T);
-  Result := T.tv_nsec;
-  Result := T.tv_sec + Result / 1e9;
-end;
-
 procedure Idle;
 const
   Ns: array[0..1] of LongInt = (1, 128);
@@ -393,7 +384,7 @@ begin
       WriteLn(Format('| %d | failed: %s |', [Ns[I], Err]));
   { the floor: nothing but 1 ms sleeps, as any poll with IDL=1 must do }
   Sleeps := 0;
-  C0 := CpuNow;
+  C0 := CpuSec;
   T0 := NowSec;
   repeat
     FpPoll(nil, 0, 1);
@@ -401,7 +392,7 @@ begin
     T1 := NowSec;
   until (T1 - T0) * 1000 >= Ms div 2;
   WriteLn(Format('| floor: poll(2) of nothing for 1 ms in a loop | %.2f | %.0f | |',
-    [(CpuNow - C0) / (T1 - T0) * 100, Sleeps / (T1 - T0)]));
+    [(CpuSec - C0) / (T1 - T0) * 100, Sleeps / (T1 - T0)]));
 end;
 
 { Both pairs open at once, measured in alternating blocks, so a load that

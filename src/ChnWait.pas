@@ -355,34 +355,31 @@ var
   N, I, K: LongInt;
   R: DWORD;
   S: pChnWaitSource;
+
+  procedure Add(S: pChnWaitSource);
+  begin
+    if (N < MAXIMUM_WAIT_OBJECTS) and S^.Used and S^.Armed and (S^.Kind = wkHandle) then
+    begin
+      H[N] := THandle(S^.Os);
+      Who[N] := S;
+      Gens[N] := S^.Gen;
+      Inc(N);
+    end;
+  end;
+
 begin
   N := 1;
   H[0] := WakeEvt;
   Who[0] := nil;
   Gens[0] := 0;
-  if (Own <> nil) and Own^.Armed and (Own^.Kind = wkHandle) then
-  begin
-    H[N] := THandle(Own^.Os);
-    Who[N] := Own;
-    Gens[N] := Own^.Gen;
-    Inc(N);
-  end;
+  if Own <> nil then
+    Add(Own);                        { the caller's own handle always }
   if SlotCount > 0 then
   begin
     Rotor := Rotor mod SlotCount;
     for K := 0 to SlotCount - 1 do
-    begin
-      if N >= MAXIMUM_WAIT_OBJECTS then
-        Break;
-      S := Slots[(Rotor + K) mod SlotCount];
-      if S^.Used and S^.Armed and (S^.Kind = wkHandle) and (S <> Own) then
-      begin
-        H[N] := THandle(S^.Os);
-        Who[N] := S;
-        Gens[N] := S^.Gen;
-        Inc(N);
-      end;
-    end;
+      if Slots[(Rotor + K) mod SlotCount] <> Own then
+        Add(Slots[(Rotor + K) mod SlotCount]);
     Inc(Rotor, MAXIMUM_WAIT_OBJECTS - 2);
   end;
   Inc(Blocked);

@@ -34,6 +34,7 @@ type
     procedure TestConnectTimeout;
     {$ENDIF}
     procedure TestPeerGoneIsDeviceLostNextTick;
+    procedure TestPeerResetIsDeviceLostNextTick;
     procedure TestReconnectsByItself;
     procedure TestSecondClientIsTurnedAway;
     procedure TestFullRingHoldsTheSenderBack;
@@ -499,6 +500,43 @@ begin
   Cli^.ChReceiveBuffer(@RBuf, SizeOf(RBuf));
   SendText(Cli, 'b');
   AssertEquals('b', Receive(Srv, nil, 1, 3000));
+end;
+
+{ A peer that aborts (SO_LINGER 0: RST instead of FIN) is lost the same way. }
+procedure TTestChnTcp.TestPeerResetIsDeviceLostNextTick;
+type
+  TLinger = record
+    OnOff, Secs: LongInt;
+  end;
+var
+  L, S: tSock;
+  A: tSockAddrs;
+  N: LongInt;
+  Lg: TLinger;
+  Deadline: QWord;
+begin
+  AssertTrue(SockResolve('127.0.0.1', 0, True, A, N) = seOk);
+  AssertTrue(SockListen(A[0], L) = seOk);
+  S := NoSock;
+  try
+    AssertEquals(res_Ok, OpenClient('HOST=127.0.0.1 PORT=' + IntToStr(SockLocalPort(L))));
+    Deadline := GetTickCount64 + 3000;
+    while (SockAccept(L, S) <> seOk) and (GetTickCount64 < Deadline) do
+      Sleep(5);
+    AssertTrue('accepted', S <> NoSock);
+    Lg.OnOff := 1;
+    Lg.Secs := 0;
+    AssertEquals(0, fpSetSockOpt(S, SOL_SOCKET, SO_LINGER, @Lg, SizeOf(Lg)));
+    SockClose(S);                     { sends RST }
+    Sleep(50);
+    Cli^.ChReceiveReady;
+    AssertEquals('one tick after the reset', res_DeviceLost, Cli^.ChResult);
+    Cli^.ChSend(PChar('x'), 1);
+    AssertEquals(res_DeviceLost, Cli^.ChSendResult);
+  finally
+    SockClose(S);
+    SockClose(L);
+  end;
 end;
 
 procedure TTestChnTcp.TestReconnectsByItself;

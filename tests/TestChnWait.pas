@@ -14,7 +14,7 @@ interface
 uses
   Classes, SysUtils, fpcunit, testregistry, ChnTypes, ChnVirt, ChnWait, ChnLoop,
   TestSupport
-  {$IFDEF UNIX}, BaseUnix, Unix, Linux, PtyPair, ChnCom{$ENDIF};
+  {$IFDEF UNIX}, BaseUnix, PtyPair, ChnCom{$ENDIF};
 
 type
   TTestChnWait = class(TTestCase)
@@ -81,19 +81,46 @@ begin
     Chn^.ChSend(@B, 1);
 end;
 
-function CpuMs: Double;
-{$IFDEF UNIX}
+{ Another thread sends one byte 100 ms from now - through SendChn, or (on
+  Unix, SendChn nil) to SendPty's master - while this one polls Target
+  once (nil: calls ChnWaitAny(1000) instead; CHS_ReceiveReady when woken).
+  Took: how long the poll or wait took, ms. }
+function PollDuringLateSend(Target, SendChn: pChnVirt; SendPty: TObject;
+  out Took: QWord): tChState;
 var
-  T: TTimeSpec;
+  S: TLateSender;
+  T0: QWord;
 begin
-  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, @T);
-  Result := T.tv_sec * 1000.0 + T.tv_nsec / 1e6;
+  S := TLateSender.Create(True);
+  try
+    S.Chn := SendChn;
+    {$IFDEF UNIX}
+    S.Pty := TPtyPair(SendPty);
+    {$ENDIF}
+    S.DelayMs := 100;
+    T0 := GetTickCount64;
+    S.Start;
+    if Target <> nil then
+      Result := Target^.ChReceiveReady
+    else if ChnWaitAny(1000) then
+      Result := CHS_ReceiveReady
+    else
+      Result := CHS_Receiving;
+    Took := GetTickCount64 - T0;
+    S.WaitFor;
+  finally
+    S.Free;
+  end;
 end;
-{$ELSE}
+
+function CpuMs: Double;
 begin
+  {$IFDEF LINUX}
+  Result := CpuSec * 1000;
+  {$ELSE}
   Result := 0;
+  {$ENDIF}
 end;
-{$ENDIF}
 
 procedure TTestChnWait.CloseAll;
 var
@@ -173,8 +200,7 @@ end;
 
 procedure TTestChnWait.TestLoopPeerInOtherThreadEndsIdleWait;
 var
-  S: TLateSender;
-  T0, Took: QWord;
+  Took: QWord;
   St: tChState;
   Err: string;
 begin
@@ -183,18 +209,7 @@ begin
   AssertNotNull(Err, FChn[0]);
   FChn[1] := OpenStack('LOOP', 'PAIR=WAITLOOP END=2', Err);
   AssertNotNull(Err, FChn[1]);
-  S := TLateSender.Create(True);
-  try
-    S.Chn := FChn[1];
-    S.DelayMs := 100;
-    T0 := GetTickCount64;
-    S.Start;
-    St := FChn[0]^.ChReceiveReady;
-    Took := GetTickCount64 - T0;
-    S.WaitFor;
-  finally
-    S.Free;
-  end;
+  St := PollDuringLateSend(FChn[0], FChn[1], nil, Took);
   AssertEquals('byte seen', CHS_ReceiveReady, St);
   AssertTrue('returned on the byte, not after IDL=1000 (' + IntToStr(Took) + ' ms)', Took < 700);
 end;
@@ -202,23 +217,11 @@ end;
 {$IFDEF UNIX}
 procedure TTestChnWait.TestIdleWaitEndsAtByteOnOtherChannel;
 var
-  S: TLateSender;
   T0, Took: QWord;
   St: tChState;
 begin
   OpenComs(8, 'IDL=1000');
-  S := TLateSender.Create(True);
-  try
-    S.Pty := FPty[5];
-    S.DelayMs := 100;
-    T0 := GetTickCount64;
-    S.Start;
-    St := FChn[0]^.ChReceiveReady;     { channel 0 has nothing }
-    Took := GetTickCount64 - T0;
-    S.WaitFor;
-  finally
-    S.Free;
-  end;
+  St := PollDuringLateSend(FChn[0], nil, FPty[5], Took);   { channel 0 has nothing }
   AssertEquals('channel 0 got nothing', CHS_Receiving, St);
   AssertTrue('its wait ended at channel 5''s byte, not after IDL=1000 (' +
     IntToStr(Took) + ' ms)', Took < 700);
@@ -303,6 +306,12 @@ begin
   AssertTrue(Format('still no busy loop: %.1f %% of a core', [Cpu]), Cpu < 15);
   { and its input is all still there for it }
   AssertEquals('kept for its channel', CHS_ReceiveReady, FChn[0]^.ChReceiveReady);
+  { now its ring holds input: polled with the others but never read, while
+    more arrives }
+  FPty[0].MasterWrite(B, SizeOf(B));
+  Cpu := PollFor(FChn, 0, 7, 1000);
+  WriteLn(Format('info  wait: 8 lines polled, one whose ring holds input nobody reads: %.2f %% of a core', [Cpu]));
+  AssertTrue(Format('no busy loop with a ring nobody reads: %.1f %% of a core', [Cpu]), Cpu < 15);
 end;
 
 procedure TTestChnWait.TestFullRingDoesNotSpin;
@@ -324,24 +333,10 @@ end;
 
 procedure TTestChnWait.TestWaitAnyWakesOnInput;
 var
-  S: TLateSender;
   T0, Took: QWord;
-  Woke: Boolean;
 begin
   OpenComs(4, 'IDL=0');
-  S := TLateSender.Create(True);
-  try
-    S.Pty := FPty[2];
-    S.DelayMs := 100;
-    T0 := GetTickCount64;
-    S.Start;
-    Woke := ChnWaitAny(1000);
-    Took := GetTickCount64 - T0;
-    S.WaitFor;
-  finally
-    S.Free;
-  end;
-  AssertTrue('woken by a channel', Woke);
+  AssertEquals('woken by a channel', CHS_ReceiveReady, PollDuringLateSend(nil, nil, FPty[2], Took));
   AssertTrue('at the byte (' + IntToStr(Took) + ' ms)', Took < 700);
   AssertEquals('channel 2 has it', CHS_ReceiveReady, FChn[2]^.ChReceiveReady);
   { read, nothing new: the next wait sleeps its time }
@@ -412,8 +407,7 @@ end;
 
 procedure TTestChnWait.TestLoopSendEndsSerialIdleWait;
 var
-  S: TLateSender;
-  T0, Took: QWord;
+  Took: QWord;
   Err: string;
 begin
   OpenComs(1, 'IDL=1000');
@@ -422,18 +416,7 @@ begin
   AssertNotNull(Err, FChn[1]);
   FChn[2] := OpenStack('LOOP', 'PAIR=WAITMIX END=2', Err);
   AssertNotNull(Err, FChn[2]);
-  S := TLateSender.Create(True);
-  try
-    S.Chn := FChn[2];
-    S.DelayMs := 100;
-    T0 := GetTickCount64;
-    S.Start;
-    AssertEquals('serial line idle', CHS_Receiving, FChn[0]^.ChReceiveReady);
-    Took := GetTickCount64 - T0;
-    S.WaitFor;
-  finally
-    S.Free;
-  end;
+  AssertEquals('serial line idle', CHS_Receiving, PollDuringLateSend(FChn[0], FChn[2], nil, Took));
   AssertTrue('a LOOP byte ended the serial wait (' + IntToStr(Took) + ' ms)', Took < 700);
   AssertEquals('the LOOP end has it', CHS_ReceiveReady, FChn[1]^.ChReceiveReady);
 end;

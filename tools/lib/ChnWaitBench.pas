@@ -36,6 +36,8 @@ function RoundRobinEchoes(N, Count, PauseMs: LongInt; var L: tLatency;
 function IdleCost(N, Ms: LongInt; var C: tIdleCost; var Err: ShortString): Boolean;
 { Seconds of a monotonic clock, microsecond resolution. }
 function NowSec: Double;
+{ CPU seconds this process has used (all threads). }
+function CpuSec: Double;
 { Sort A[0..N-1] ascending and give the value at fraction Q (0..1). }
 function Quantile(var A: array of Double; N: LongInt; Q: Double): Double;
 
@@ -82,6 +84,15 @@ begin
   clock_gettime(CLOCK_MONOTONIC, @T);
   Result := T.tv_nsec;
   Result := T.tv_sec + Result / 1e9;    { a Double: 1e9 alone is a Single }
+end;
+
+function CpuSec: Double;
+var
+  T: TTimeSpec;
+begin
+  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, @T);
+  Result := T.tv_nsec;
+  Result := T.tv_sec + Result / 1e9;
 end;
 
 function Quantile(var A: array of Double; N: LongInt; Q: Double): Double;
