@@ -82,7 +82,9 @@ procedure ChnWaitServed(Src: pChnWaitSource; Hungry: Boolean);
   peer's bytes, a layer's own worker thread). Any thread may call it. }
 procedure ChnWaitSignal(Src: pChnWaitSource);
 { The owner has a send pending (True) or not (False): while True the
-  source also ends waits when the device can take more bytes. }
+  source also ends waits when the device can take more bytes. Call it
+  whenever the layer has tried to send (with True it also puts a fired
+  source back into the wait, as ChnWaitServed does for input). }
 procedure ChnWaitOutput(Src: pChnWaitSource; Want: Boolean);
 { A poll of Src found nothing: wait at most Ms ms for input on any source
   of the process. True when Src itself fired (its input may be waiting:
@@ -583,15 +585,23 @@ end;
 
 procedure ChnWaitOutput(Src: pChnWaitSource; Want: Boolean);
 begin
-  if (Src = nil) or (Src^.WantOut = Want) then
+  if Src = nil then
+    Exit;
+  { the common case - nothing changes - costs no lock and no call }
+  if (Src^.WantOut = Want) and (not Want or (Src^.Armed and not Src^.Fired)) then
     Exit;
   EnterCriticalSection(Lock);
   try
-    Src^.WantOut := Want;
-    {$IF DEFINED(LINUX) OR DEFINED(WINDOWS)}
-    if Src^.Used and Src^.Armed then
-      OsArm(Src, False);            { the new event mask }
-    {$ENDIF}
+    if Src^.Used then
+    begin
+      Src^.WantOut := Want;
+      if Want then
+        ClearFired(Src);            { the owner is looking at its send }
+      {$IF DEFINED(LINUX) OR DEFINED(WINDOWS)}
+      if Src^.Armed or (Want and Src^.Hungry) then
+        OsArm(Src, False);          { the new event mask, or back into the wait }
+      {$ENDIF}
+    end;
   finally
     LeaveCriticalSection(Lock);
   end;

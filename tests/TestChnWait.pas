@@ -40,6 +40,7 @@ type
     procedure TestThreadsKeepTheirOwnWakeUps;
     procedure TestLoopSendEndsSerialIdleWait;
     procedure TestPtyWithoutClientDoesNotSpin;
+    procedure TestWaitAnyWakesWhenASendCanGoOn;
     {$ENDIF}
     {$IFDEF LINUX}
     procedure TestManyLinesAnswerAsFastAsOne;
@@ -419,6 +420,62 @@ begin
   AssertEquals('serial line idle', CHS_Receiving, PollDuringLateSend(FChn[0], FChn[2], nil, Took));
   AssertTrue('a LOOP byte ended the serial wait (' + IntToStr(Took) + ' ms)', Took < 700);
   AssertEquals('the LOOP end has it', CHS_ReceiveReady, FChn[1]^.ChReceiveReady);
+end;
+
+type
+  { Empties a pty master after DelayMs, so a send waiting for room goes on. }
+  TLateReader = class(TThread)
+    Pty: TPtyPair;
+    DelayMs: Integer;
+    procedure Execute; override;
+  end;
+
+procedure TLateReader.Execute;
+var
+  B: array[0..4095] of Byte;
+  T0: QWord;
+begin
+  Sleep(DelayMs);
+  T0 := GetTickCount64;
+  repeat
+    if Pty.MasterRead(B, SizeOf(B)) <= 0 then
+      Sleep(1);
+  until GetTickCount64 - T0 > 300;
+end;
+
+procedure TTestChnWait.TestWaitAnyWakesWhenASendCanGoOn;
+var
+  Big: array of Byte;
+  R: TLateReader;
+  T0, Took: QWord;
+  Woke: Boolean;
+begin
+  OpenComs(1, 'IDL=0');
+  SetLength(Big, 65535);
+  FillChar(Big[0], Length(Big), $61);
+  { nobody reads the master: the pty takes a few KiB, the rest waits }
+  FChn[0]^.ChSend(@Big[0], Length(Big));
+  AssertEquals('send accepted', res_Ok, FChn[0]^.ChSendResult);
+  AssertEquals('not all of it could go', CHS_Sending, FChn[0]^.ChSendReady);
+  AssertFalse('no room, nothing to wake for', ChnWaitAny(200));
+  R := TLateReader.Create(True);
+  try
+    R.Pty := FPty[0];
+    R.DelayMs := 100;
+    T0 := GetTickCount64;
+    R.Start;
+    Woke := ChnWaitAny(1000);
+    Took := GetTickCount64 - T0;
+    { the program goes on sending as a poll would }
+    while (FChn[0]^.ChSendReady = CHS_Sending) and (GetTickCount64 - T0 < 2000) do
+      ChnWaitAny(1000);
+    R.WaitFor;
+  finally
+    R.Free;
+  end;
+  AssertTrue('ChnWaitAny woke when the send could go on (' + IntToStr(Took) + ' ms)',
+    Woke and (Took < 700));
+  AssertEquals('all sent within the reader''s 300 ms', CHS_SendReady, FChn[0]^.ChSendReady);
 end;
 
 procedure TTestChnWait.TestPtyWithoutClientDoesNotSpin;
