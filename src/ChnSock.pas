@@ -258,7 +258,7 @@ function SockResolve(const Host: ShortString; Port: Word; Passive: Boolean;
 var
   Hints: TAddrInfo;
   Res, P: PAddrInfo;
-  H, Svc: string;
+  H, Svc: AnsiString;             { a 255-character name still gets its #0 }
   HP: PChar;
 begin
   Count := 0;
@@ -267,15 +267,15 @@ begin
   Hints.ai_family := AF_UNSPEC;
   Hints.ai_socktype := SOCK_STREAM;
   Hints.ai_protocol := IPPROTO_TCP;
-  H := Host + #0;
+  H := Host;
   Svc := NumStr(Port) + #0;
-  HP := @H[1];
+  HP := PChar(H);
   if Host = '' then
     HP := nil;                      { any interface if Passive, else loopback }
   if Passive then
     Hints.ai_flags := AI_PASSIVE;
   Res := nil;
-  if getaddrinfo(HP, @Svc[1], @Hints, Res) <> 0 then
+  if getaddrinfo(HP, PChar(Svc), @Hints, Res) <> 0 then
   begin
     LastOsError := 0;
     Exit(seNoHost);

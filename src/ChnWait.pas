@@ -30,11 +30,12 @@
   blocked in it wakes them too, so none of them misses its own input.
 
   OS parts: Linux epoll (level-triggered; a fired descriptor of another
-  channel is taken out of the set until served) plus a pipe for wake-ups; Windows WaitForMultipleObjects
-  over the armed handles plus a semaphore for wake-ups (63 handles per
-  wait: with more, each wait takes the caller's own handle and a rotating
-  window of the others). Other Unixes: no shared set, ChnWaitIdle answers
-  False at once and the layer waits on its own device as before. }
+  channel is taken out of the set until served) plus a pipe for wake-ups;
+  Windows WaitForMultipleObjects over the armed handles plus a
+  manual-reset event for wake-ups (63 handles per wait: with more, each
+  wait takes the caller's own handle and a rotating window of the others).
+  Other Unixes: no shared set, ChnWaitIdle answers False at once and the
+  layer waits on its own device as before. }
 unit ChnWait;
 
 {$I chn.inc}

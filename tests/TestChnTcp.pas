@@ -407,6 +407,10 @@ begin
   AssertEquals('HOST=no-such-host.invalid', Cli^.ChParamError);
   AssertEquals(CHS_Close, Cli^.ChReady);
   AssertTrue('bounded', GetTickCount64 - T0 < 20000);
+  { the longest name a token holds: no overrun, just not resolved }
+  Dispose(Cli, Done);
+  Cli := nil;
+  AssertEquals(res_HostUnknown, OpenClient('PORT=4001 HOST=' + StringOfChar('a', 250)));
 end;
 
 procedure TTestChnTcp.TestConnectionRefused;
