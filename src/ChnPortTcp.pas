@@ -361,6 +361,9 @@ begin
   SendSetting(CPO_SETSTOPSIZE, V, 1);
   V[0] := FlowCodes[S.Flow];
   SendSetting(CPO_SETCONTROL, V, 1);
+  { the line-state mask is 0 by default: ask for overrun reports }
+  V[0] := CPL_OVERRUN;
+  SendSetting(CPO_SETLINEMASK, V, 1);
   FlushOut;
 end;
 

@@ -411,7 +411,16 @@ begin
   if Size <= 0 then
     Exit(res_Ok);
   P := @Buf;
-  CollectWait(False);
+  if FWaitPending then
+  begin
+    { bytes in the queue while the waiting read is still outstanding: it
+      is about to complete with the first of them (Wine completes it a
+      moment later) - wait for it, or the next bytes would come first }
+    Result := Status(InQ, OutQ);
+    if Result <> res_Ok then
+      Exit;
+    CollectWait(InQ > 0);
+  end;
   if FWaitErr <> 0 then
     Exit(Fail(FWaitErr));
   if FWaitPending then

@@ -714,6 +714,7 @@ begin
     AssertTrue('odd = 2', Pos(Bytes('FF FA 2C 03 02 FF F0'), Srv2.Seen) > 0);
     AssertTrue('2 stop', Pos(Bytes('FF FA 2C 04 02 FF F0'), Srv2.Seen) > 0);
     AssertTrue('hardware flow = 3', Pos(Bytes('FF FA 2C 05 03 FF F0'), Srv2.Seen) > 0);
+    AssertTrue('overrun reports asked for', Pos(Bytes('FF FA 2C 0A 02 FF F0'), Srv2.Seen) > 0);
     { data with IAC doubled, a modem-state notification in the middle }
     Srv2.Send(Bytes('01 FF FF 02 FF FA 2C 6B 30 FF F0 03 FF FA 2C 6A 02 FF F0 04'));
     Data := Receive(Cli, nil, 5, 3000);

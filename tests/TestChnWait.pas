@@ -13,7 +13,7 @@ interface
 
 uses
   Classes, SysUtils, fpcunit, testregistry, ChnTypes, ChnVirt, ChnWait, ChnLoop,
-  TestSupport
+  TestSupport{$IFDEF WINDOWS}, Windows{$ENDIF}
   {$IFDEF UNIX}, BaseUnix, PtyPair, ChnCom{$ENDIF};
 
 type
@@ -31,6 +31,9 @@ type
     procedure TestJoinAndLeaveCount;
     procedure TestWaitAnyTimesOutAndZeroOnlyLooks;
     procedure TestLoopPeerInOtherThreadEndsIdleWait;
+    {$IFDEF WINDOWS}
+    procedure TestMoreHandlesThanOneWaitTakes;
+    {$ENDIF}
     {$IFDEF UNIX}
     procedure TestIdleWaitEndsAtByteOnOtherChannel;
     procedure TestRoundRobinReachesLineWithoutIdleWaits;
@@ -214,6 +217,49 @@ begin
   AssertEquals('byte seen', CHS_ReceiveReady, St);
   AssertTrue('returned on the byte, not after IDL=1000 (' + IntToStr(Took) + ' ms)', Took < 700);
 end;
+
+{$IFDEF WINDOWS}
+{ One WaitForMultipleObjects takes 64 handles: with 70 sources each wait
+  takes a rotating window, so any signalled one is seen within two waits;
+  served, it sleeps again. Raw events stand for 70 ports. }
+procedure TTestChnWait.TestMoreHandlesThanOneWaitTakes;
+const
+  N = 70;
+var
+  Ev: array[0..N - 1] of THandle;
+  Src: array[0..N - 1] of pChnWaitSource;
+  I, K, Waits: LongInt;
+  Woke: Boolean;
+begin
+  for I := 0 to N - 1 do
+  begin
+    Ev[I] := CreateEvent(nil, True, False, nil);
+    Src[I] := ChnWaitJoin(wkHandle, PtrInt(Ev[I]), nil, nil);
+  end;
+  try
+    for K in [N - 1, 3, 40] do
+    begin
+      SetEvent(Ev[K]);
+      Waits := 0;
+      repeat
+        Woke := ChnWaitAny(300);
+        Inc(Waits);
+      until Woke or (Waits = 3);
+      AssertTrue('source ' + IntToStr(K) + ' of 70 seen within two waits (' +
+        IntToStr(Waits) + ')', Woke and (Waits <= 2));
+      ResetEvent(Ev[K]);             { its owner read it }
+      ChnWaitServed(Src[K], True);
+      AssertFalse('then nothing', ChnWaitAny(100));
+    end;
+  finally
+    for I := 0 to N - 1 do
+    begin
+      ChnWaitLeave(Src[I]);
+      CloseHandle(Ev[I]);
+    end;
+  end;
+end;
+{$ENDIF}
 
 {$IFDEF UNIX}
 procedure TTestChnWait.TestIdleWaitEndsAtByteOnOtherChannel;
