@@ -48,6 +48,7 @@ type
     FDueUntil: QWord;               { ... which must come by then }
     function SockResult(E: tSockErr): tChResult;
     function TryNextAddr: tSockErr;
+    function Resolve(Passive: Boolean): tSockErr;
     procedure Started;
     procedure Queue(const Buf; Len: LongInt);
     function FlushOut: tChResult;
@@ -169,14 +170,20 @@ begin
   end;
 end;
 
-function TChnPortTcp.StartConnect: tChResult;
-var
-  E: tSockErr;
+{ A fresh start: closed, no fault named, Host:Port resolved. }
+function TChnPortTcp.Resolve(Passive: Boolean): tSockErr;
 begin
   Close;
   FailKey := '';
   FDevice := Host + ':' + IntToStr(Port);
-  E := SockResolve(Host, Port, False, FAddrs, FAddrCount);
+  Result := SockResolve(Host, Port, Passive, FAddrs, FAddrCount);
+end;
+
+function TChnPortTcp.StartConnect: tChResult;
+var
+  E: tSockErr;
+begin
+  E := Resolve(False);
   if E <> seOk then
     Exit(SockResult(E));
   FAddrNext := 0;
@@ -253,10 +260,7 @@ function TChnPortTcp.Listen: tChResult;
 var
   E: tSockErr;
 begin
-  Close;
-  FailKey := '';
-  FDevice := Host + ':' + IntToStr(Port);
-  E := SockResolve(Host, Port, True, FAddrs, FAddrCount);
+  E := Resolve(True);
   if E = seOk then
     E := SockListen(FAddrs[0], FListen);
   if E <> seOk then

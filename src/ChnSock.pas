@@ -298,6 +298,15 @@ begin
     Result := seOk;
 end;
 
+{ S non-blocking, or closed and why not. }
+function NonBlocking(var S: tSock): tSockErr;
+begin
+  if SetNonBlocking(S) then
+    Exit(seOk);
+  Result := MapError(SocketError);
+  SockClose(S);
+end;
+
 function NewSocket(const A: tSockAddr; out S: tSock): tSockErr;
 var
   Family: Word;
@@ -309,13 +318,7 @@ begin
     S := NoSock;
     Exit(MapError(SocketError));
   end;
-  if not SetNonBlocking(S) then
-  begin
-    Result := MapError(SocketError);
-    SockClose(S);
-    Exit;
-  end;
-  Result := seOk;
+  Result := NonBlocking(S);
 end;
 
 function SockConnectStart(const A: tSockAddr; out S: tSock): tSockErr;
@@ -386,14 +389,9 @@ begin
       Result := seWouldBlock;     { the client gave up before we took it }
     Exit;
   end;
-  if not SetNonBlocking(S) then
-  begin
-    Result := MapError(SocketError);
-    SockClose(S);
-    Exit;
-  end;
-  SockTune(S);
-  Result := seOk;
+  Result := NonBlocking(S);
+  if Result = seOk then
+    SockTune(S);
 end;
 
 procedure SockTune(S: tSock);
