@@ -45,6 +45,7 @@ type
     FLineOverruns: LongWord;
     FConnecting: Boolean;
     FSettingsDue: Boolean;          { SendSettings before the server's DO }
+    FEvent: PtrInt;                 { Windows: the client socket's wait event }
     FDueUntil: QWord;               { ... which must come by then }
     function SockResult(E: tSockErr): tChResult;
     function TryNextAddr: tSockErr;
@@ -222,6 +223,7 @@ begin
     Exit(res_Busy);
   FConnecting := False;
   Started;
+  FEvent := SockEventCreate(FSock);
   if Rfc2217 then
   begin
     TelnetCmd(B[0], TN_WILL, TNO_COMPORT);
@@ -721,20 +723,31 @@ begin
 end;
 
 { A client's socket is fixed for the port's life (a reconnect makes a new
-  port), so it joins the shared wait on Unix. A server's descriptors change
-  with each client, and Windows would need WSAEventSelect: both wait on
-  their own sockets (WaitInput), bounded by IDL like any layer. }
+  port), so it joins the shared wait: its descriptor on Unix, an event of
+  WSAEventSelect on Windows (re-armed after each read, set again while
+  input waits). A server's sockets change with each client: it waits on
+  them itself (WaitInput), bounded by IDL like any layer. }
+procedure TcpRearm(Data: Pointer);
+begin
+  with TChnPortTcp(Data) do
+    SockEventRearm(FSock, FEvent);
+end;
+
 function TChnPortTcp.WaitSource(out Kind: tChnWaitKind; out Os: PtrInt;
   out Rearm: tChnWaitRearm; out Data: Pointer): Boolean;
 begin
+  {$IFDEF WINDOWS}
+  Kind := wkHandle;
+  Os := FEvent;
+  Rearm := @TcpRearm;
+  Data := Self;
+  Result := FOpen and (FListen = NoSock) and (FSock <> NoSock) and (FEvent <> 0);
+  {$ELSE}
   Kind := wkDescriptor;
   Os := FSock;
   Rearm := nil;
   Data := nil;
-  {$IFDEF UNIX}
   Result := FOpen and (FListen = NoSock) and (FSock <> NoSock);
-  {$ELSE}
-  Result := False;
   {$ENDIF}
 end;
 
@@ -759,6 +772,7 @@ begin
     FlushOut;                       { a last command (purge ...) still leaves }
   SockClose(FSock);
   SockClose(FListen);
+  SockEventFree(FEvent);
   FConnecting := False;
   FOpen := False;
 end;

@@ -72,6 +72,13 @@ function  SockLocalPort(S: tSock): Word;
 { 'a.b.c.d:port' or '[v6]:port' of the local end, '' when unknown. }
 function  SockLocalName(S: tSock): ShortString;
 procedure SockClose(var S: tSock);
+{ Windows: an event handle set on input or close (WSAEventSelect), for the
+  program-wide wait; 0 on failure and on other systems. }
+function  SockEventCreate(S: tSock): PtrInt;
+{ Reset the event, and set it again when input is still waiting (called
+  after the owner has read, so no signal is lost). }
+procedure SockEventRearm(S: tSock; Ev: PtrInt);
+procedure SockEventFree(var Ev: PtrInt);
 { The OS error code of the last failing call, for messages. }
 function  SockLastOsError: LongInt;
 
@@ -243,6 +250,54 @@ begin
   Result := 0;
 end;
 {$ENDIF}
+
+function SockEventCreate(S: tSock): PtrInt;
+{$IFDEF WINDOWS}
+var
+  Ev: WSAEVENT;
+begin
+  Result := 0;
+  Ev := WSACreateEvent;
+  if Ev = 0 then
+    Exit;
+  if WSAEventSelect(TSocket(S), Ev, FD_READ or FD_CLOSE) <> 0 then
+  begin
+    WSACloseEvent(Ev);
+    Exit;
+  end;
+  Result := PtrInt(Ev);
+end;
+{$ELSE}
+begin
+  Result := 0;
+end;
+{$ENDIF}
+
+procedure SockEventRearm(S: tSock; Ev: PtrInt);
+{$IFDEF WINDOWS}
+var
+  N: u_long;
+begin
+  if Ev = 0 then
+    Exit;
+  WSAResetEvent(WSAEVENT(Ev));
+  N := 0;
+  if (ioctlsocket(TSocket(S), LongInt(FIONREAD), N) = 0) and (N > 0) then
+    WSASetEvent(WSAEVENT(Ev));
+end;
+{$ELSE}
+begin
+end;
+{$ENDIF}
+
+procedure SockEventFree(var Ev: PtrInt);
+begin
+  {$IFDEF WINDOWS}
+  if Ev <> 0 then
+    WSACloseEvent(WSAEVENT(Ev));
+  {$ENDIF}
+  Ev := 0;
+end;
 
 procedure SockClose(var S: tSock);
 begin

@@ -10,7 +10,7 @@ unit TestChnTcp;
 interface
 
 uses
-  SysUtils, Classes, fpcunit, testregistry, ChnTypes, ChnVirt, {$IFDEF LINUX}BaseUnix, Linux,{$ENDIF} ChnPort, ChnTcp, ChnLoop, ChnSock, Sockets,
+  SysUtils, Classes, fpcunit, testregistry, ChnTypes, ChnVirt, {$IFDEF LINUX}BaseUnix, Linux,{$ENDIF} ChnPort, ChnPortTcp, ChnTcp, ChnLoop, ChnSock, Sockets,
   TestSupport;
 
 type
@@ -42,11 +42,10 @@ type
     procedure TestRfc2217ServerRefusesTheOption;
     procedure TestRfc2217ServerSilent;
     procedure TestRfc2217DataNotifyAndPurgeOnTheWire;
-    {$IFDEF UNIX}
     procedure TestClientIsInTheSharedWait;
-    {$ENDIF}
     {$IFDEF LINUX}
     procedure TestIdlePollingLoopCpu;
+    procedure TestNoDelayAndKeepAlive;
     {$ENDIF}
   end;
 
@@ -748,6 +747,40 @@ begin
   Result := Ts.tv_sec * 1000.0 + Ts.tv_nsec / 1e6;
 end;
 
+{ TCP_NODELAY and keep-alive with Linux timing, as the OS reports them for
+  the client's socket and a server's accepted one. }
+procedure TTestChnTcp.TestNoDelayAndKeepAlive;
+
+  function Opt(S: PtrInt; Level, Name: LongInt): LongInt;
+  var
+    L: TSockLen;
+  begin
+    Result := -1;
+    L := SizeOf(Result);
+    AssertEquals('getsockopt', 0, fpGetSockOpt(S, Level, Name, @Result, @L));
+  end;
+
+  procedure Check(const Who: string; S: PtrInt);
+  begin
+    AssertTrue(Who + ' socket', S >= 0);
+    AssertTrue(Who + ' TCP_NODELAY', Opt(S, IPPROTO_TCP, TCP_NODELAY) <> 0);
+    AssertTrue(Who + ' SO_KEEPALIVE', Opt(S, SOL_SOCKET, SO_KEEPALIVE) <> 0);
+    AssertEquals(Who + ' TCP_KEEPIDLE', 10, Opt(S, IPPROTO_TCP, TCP_KEEPIDLE));
+    AssertEquals(Who + ' TCP_KEEPINTVL', 5, Opt(S, IPPROTO_TCP, TCP_KEEPINTVL));
+    AssertEquals(Who + ' TCP_KEEPCNT', 3, Opt(S, IPPROTO_TCP, TCP_KEEPCNT));
+  end;
+
+var
+  Port: Word;
+begin
+  Port := OpenServer('0');
+  AssertEquals(res_Ok, OpenClient('HOST=127.0.0.1 PORT=' + IntToStr(Port)));
+  SendText(Cli, 'a');
+  AssertEquals('a', Receive(Srv, nil, 1, 3000));
+  Check('client', TChnPortTcp(pChnTcp(Cli)^.CH_Port).OsHandle);
+  Check('server', TChnPortTcp(pChnTcp(Srv)^.CH_Port).OsHandle);
+end;
+
 { A legacy "repeat until ChReceiveReady = CHS_ReceiveReady" on an idle TCP
   client costs little CPU with the default IDL=1 (the wait works), and
   spins with IDL=0 (so the measurement itself can see a busy loop). }
@@ -783,7 +816,6 @@ begin
 end;
 {$ENDIF}
 
-{$IFDEF UNIX}
 { An idle TCP client's poll ends at input on another line (a LOOP pair), and
   a LOOP line's poll ends at input on the TCP client: both are in the
   program-wide wait (ChnWait), not each on its own device for IDL ms. }
@@ -836,7 +868,6 @@ begin
     Dispose(L2, Done);
   end;
 end;
-{$ENDIF}
 
 initialization
   RegisterTest(TTestChnTcp);
