@@ -9,6 +9,9 @@
 #   make demo         a DF1 exchange on this machine, no hardware needed
 #   make bench        codec and channel benchmarks
 #   make fuzz         random-mutation fuzzing of the codecs and ChnPccc (SECONDS=10)
+#   make soak         every protocol over a noisy pty line between two
+#                     processes (SECONDS=10 per scenario, or COUNT=messages;
+#                     SEED=, ONLY=name); docs/reliability.md
 #   make wintest      the suite as win64 programs under Wine (docs/Windows.md)
 #   make clean
 # Optional: SYNAPSE_DIR=/path/to/synapse builds the Synapse serial backend.
@@ -63,7 +66,7 @@ PROGRAMS := $(EXAMPLES) $(TOOLS)
 PROGBINS := $(addprefix $(BINDIR)/,$(basename $(notdir $(PROGRAMS))))
 BENCHBINS := $(addprefix $(BINDIR)/,$(basename $(notdir $(BENCHES))))
 
-.PHONY: all units examples tools test demo bench fuzz wintest clean check-fpc \
+.PHONY: all units examples tools test demo bench fuzz soak wintest clean check-fpc \
         install uninstall
 
 all: units $(PROGBINS) chn.lpk
@@ -115,7 +118,7 @@ $(PROGBINS) $(BENCHBINS): src/chn.inc | $(BUILD)/units.stamp
 # test unit needs no edit anywhere else. Units that need Unix as a whole
 # (ptys) are listed here and built only there; single Unix-only tests are
 # {$IFDEF UNIX} in their unit.
-UNIX_TESTS := TestChnPty TestChnTcpSer2net TestFT12Examples
+UNIX_TESTS := TestChnPty TestChnTcpSer2net TestFT12Examples TestFaultCycling
 comma := ,
 uses_entry = $(if $(filter $(1),$(UNIX_TESTS)),'{$$IFDEF UNIX}$(1)$(comma){$$ENDIF}','$(1)$(comma)')
 $(BUILD)/testunits.inc: $(TESTUNITS)
@@ -132,6 +135,7 @@ $(BUILD)/fpcunit/stamp:
 test: all $(BUILD)/testunits.inc $(BUILD)/fpcunit/stamp
 	@mkdir -p $(TUNITDIR) $(TBINDIR)
 	@$(FPC) $(TESTFLAGS) tests/runtests.pas >$(BUILD)/test-build.log 2>&1 || { cat $(BUILD)/test-build.log; echo "0 passed, 1 failed"; exit 1; }
+	@$(FPC) $(SOAKFLAGS) tests/soak/soak.pas >>$(BUILD)/test-build.log 2>&1 || { cat $(BUILD)/test-build.log; echo "0 passed, 1 failed"; exit 1; }
 	@BUILD=$(BUILD) FPC=$(FPC) T="$(T)" bash tests/run.sh
 
 demo: all
@@ -144,12 +148,24 @@ bench: $(BENCHBINS) $(BINDIR)/chntap
 # plans, requests, reply decoding) with run-time checks on;
 # SECONDS=n for longer runs, SEED=n to repeat one.
 SECONDS ?= 10
+# the soak program: test flags, on the units the test build just made
+SOAKFLAGS = $(filter-out -B,$(TESTFLAGS))
 fuzz: units
 	@mkdir -p $(TUNITDIR) $(TBINDIR)
 	@$(FPC) $(TESTFLAGS) tests/fuzz/fuzzcodecs.pas >$(BUILD)/fuzz-build.log 2>&1 || { cat $(BUILD)/fuzz-build.log; exit 1; }
 	@$(FPC) $(TESTFLAGS) tests/fuzz/fuzzpccc.pas >>$(BUILD)/fuzz-build.log 2>&1 || { cat $(BUILD)/fuzz-build.log; exit 1; }
 	@rm -f $(BUILD)/fuzz-heap.log; HEAPTRC="log=$(BUILD)/fuzz-heap.log" $(TBINDIR)/fuzzcodecs $(SECONDS) $(SEED)
 	@rm -f $(BUILD)/fuzz-heap.log; HEAPTRC="log=$(BUILD)/fuzz-heap.log" $(TBINDIR)/fuzzpccc $(SECONDS) $(SEED)
+
+# The soak (docs/reliability.md): SECONDS per scenario or COUNT messages
+# per scenario; SEED= the first NOISE seed; ONLY= scenarios whose name
+# contains it. make test runs every scenario for 2 s.
+soak: all
+	@mkdir -p $(TUNITDIR) $(TBINDIR)
+	@$(FPC) $(TESTFLAGS) tests/soak/soak.pas >$(BUILD)/soak-build.log 2>&1 || { cat $(BUILD)/soak-build.log; exit 1; }
+	@rm -f $(BUILD)/soak-heap.log; HEAPTRC="log=$(BUILD)/soak-heap.log" $(TBINDIR)/soak \
+	  $(if $(COUNT),--count=$(COUNT),--seconds=$(SECONDS)) $(if $(SEED),--seed=$(SEED)) \
+	  $(if $(ONLY),--only=$(ONLY)) --df1sim=$(BINDIR)/df1sim
 
 # Cross-built for win64 and run under Wine; not part of test (CI has no Wine).
 wintest: all $(BUILD)/testunits.inc

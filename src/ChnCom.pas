@@ -157,9 +157,7 @@ const
 constructor tChnCom.Init;
 begin
   inherited Init;
-  CH_Type := cName;
-  CH_Name := CH_Type;
-  CH_NumName := ChNumName(CH_Type);
+  ChSetType(cName);
   CH_Com := 1;
   CH_Dev := '';
   CH_Drv := DefaultPortDriver;

@@ -222,9 +222,7 @@ const
 constructor tChnDF1.Init;
 begin
   inherited Init;
-  CH_Type    := cName;
-  CH_Name    := CH_Type;
-  CH_NumName := ChNumName(CH_Type);
+  ChSetType(cName);
   CH_RTick   := False;
   CH_SBuff   := nil;
   CH_MSBuff  := 0;
@@ -260,10 +258,7 @@ end;
 destructor tChnDF1.Done;
 begin
   inherited Done;
-  if CH_SBuff <> nil then
-    FreeMem(CH_SBuff, CH_MSBuff);
-  CH_SBuff := nil;
-  CH_MSBuff := 0;
+  ChFreeSendBuffer(CH_SBuff, CH_MSBuff);
   if CH_LastCmds <> nil then
     Dispose(CH_LastCmds);
   CH_LastCmds := nil;
@@ -288,11 +283,9 @@ function tChnDF1.ChSetOneParam(const S: tWordString; var CmdL: tCmd): tChResult;
 var
   Key: string;
   I: Integer;
-  N: LongInt;
 begin
   Key := ParamKey(S);
   I := 0;
-  N := 0;
   if Key = 'MAS' then
     Result := ParamFlag(S, MasterChoice, CmdL, CH_Master)
   else if Key = 'FHD' then
@@ -311,19 +304,7 @@ begin
         CH_NakByte := NAKAlt;
   end
   else if Key = 'LSB' then
-  begin
-    Result := ParamNum(S, 16, MaxTBuff, N);
-    { the layer below may still be sending from the old buffer }
-    if (Result = res_Ok) and (CH_State <> CHS_Close) then
-      Result := res_WrongState;
-    if (Result = res_Ok) and (CmdL = cmd_Set) then
-    begin
-      if CH_SBuff <> nil then
-        FreeMem(CH_SBuff, CH_MSBuff);
-      CH_MSBuff := N;
-      GetMem(CH_SBuff, CH_MSBuff);
-    end;
-  end
+    Result := ChParamSendBuffer(S, 16, MaxTBuff, CmdL, CH_SBuff, CH_MSBuff)
   else
     Result := inherited ChSetOneParam(S, CmdL);
 end;
@@ -383,11 +364,7 @@ begin
     CH_SResult := res_BadMessage;
     Exit;
   end;
-  if CH_SBuff = nil then
-  begin
-    CH_MSBuff := DF1DefaultSBuff;
-    GetMem(CH_SBuff, CH_MSBuff);
-  end;
+  ChSendBuffer(CH_SBuff, CH_MSBuff, DF1DefaultSBuff);
   N := 0;
   CH_SResult := DF1Encode(ChDF1Config, pSendRecord(Buff)^, Len, CH_SBuff^, CH_MSBuff, N);
   if CH_SResult <> res_Ok then

@@ -85,7 +85,9 @@ function DF1StationStep(var S: tDF1Station): Boolean;
   goes to Rep (RepLen); the channel's receive buffer is the caller's again
   afterwards (ChReceiveBuffer before the call stays in force). Results:
   res_Ok; res_Timeout (no ACK after the tries, or no reply); res_BadMessage
-  (a reply with another TNS or command); res_WrongLayer (Chn is not a
+  (only replies with another TNS or command came: each is ACKed and
+  ignored, as a late copy of an earlier reply, and the wait goes on until
+  the tries or the reply's deadline are used up); res_WrongLayer (Chn is not a
   tChnDF1 stack: nothing is sent); a send error of the channel, or
   its ChResult when the line fails (res_DeviceLost ...) while waiting for
   the reply. Idle and Log may be nil; LogWire as in tDF1Station. }
@@ -112,6 +114,8 @@ type
     Result   : tChResult;
     Tries    : LongInt;
     Naks     : LongInt;
+    NaksOut  : LongInt;        { broken replies NAKed (full duplex) }
+    Stale    : LongInt;        { replies to other commands, ACKed and ignored }
     Acked    : Boolean;        { the command was ACKed (or answered) }
     EnqSent  : Boolean;
     FullDup  : Boolean;
@@ -455,13 +459,22 @@ begin
   Result := MasterSend(M, Link, Len);
 end;
 
+{ Out of time or tries: res_BadMessage when only other replies came. }
+procedure MasterGiveUp(var M: tDF1Master);
+begin
+  if M.Stale > 0 then
+    MasterFinish(M, res_BadMessage)
+  else
+    MasterFinish(M, res_Timeout);
+end;
+
 { (Re)send the command: the next try, or a timeout after the last. }
 procedure MasterTry(var M: tDF1Master);
 begin
   if M.Tries >= DF1LinkTries then
   begin
     MasterSay(M, '-- no ACK after ' + IntToStr(M.Tries) + ' tries');
-    MasterFinish(M, res_Timeout);
+    MasterGiveUp(M);
     Exit;
   end;
   Inc(M.Tries);
@@ -489,20 +502,27 @@ begin
     MasterPoll(M);     { half duplex: the slave speaks when polled }
 end;
 
-{ The reply is in M.Rep: ACK it and check it answers the command. }
+{ A reply is in M.Rep: ACK it. The one to this command ends the exchange;
+  another (a late copy of an earlier reply: the slave sent it again after a
+  repeated command or a NAK) is ignored, and the wait goes on. }
 procedure MasterReply(var M: tDF1Master);
+var
+  Ours: Boolean;
 begin
-  M.Acked := True;
+  Ours := (M.Rep.CF and $FF00 = (M.Req.CF and $FF00) or MskCF_Reply) and (M.Rep.Tns = M.Req.Tns);
+  if Ours then
+    M.Acked := True;            { a late reply to another command is no ACK of ours }
   if not MasterLink(M, tpAckNak, True) then
     Exit;
-  if (M.Rep.CF and $FF00 <> (M.Req.CF and $FF00) or MskCF_Reply) or (M.Rep.Tns <> M.Req.Tns) then
+  if not Ours then
   begin
-    MasterSay(M, '-- the reply is not the one to this command');
-    MasterFinish(M, res_BadMessage);
+    MasterSay(M, '-- the reply is not the one to this command: ignored');
+    Inc(M.Stale);
   end
   else
     MasterFinish(M, res_Ok);
 end;
+
 
 function DF1MasterStart(var M: tDF1Master; Chn: pChnVirt; constref Req: tSendRecord;
   ReqLen: Word; TimeoutMs: LongInt; Log: tDF1LogProc; LogWire: Boolean): Boolean;
@@ -557,6 +577,11 @@ begin
       MasterSay(M, '<- broken frame: ' + M.Chn^.ChResultStr(M.Chn^.ChReceiveResult));
     if Got and (M.Rep.MessType = tpDataMess) then
       MasterReply(M)                   { in dmWaitAck: the reply overtook the ACK }
+    else if not Got and (M.State = dmWaitReply) and M.FullDup then
+    begin
+      Inc(M.NaksOut);                  { a broken reply: ask for it again }
+      MasterLink(M, tpAckNak, False);
+    end
     else if M.State = dmWaitAck then
     begin
       if Got and (M.Rep.MessType = tpAckNak) and M.Rep.FlAck then
@@ -579,7 +604,7 @@ begin
   else if (M.State = dmWaitReply) and (ChMsTick > M.Deadline) then
   begin
     MasterSay(M, '-- no reply');
-    MasterFinish(M, res_Timeout);
+    MasterGiveUp(M);
   end
   else if ChMsTick > M.Until_ then
     if M.State = dmWaitAck then

@@ -130,6 +130,9 @@ type
       characters count as secondary) and the DIR bit it carried }
     CH_RPrm     : Boolean;
     CH_RDir     : Boolean;
+    { BD= of the stack below for GAP= (9600 if none), taken when the stack
+      is built (ChSetParam) and at ChConnect, not on every send }
+    CH_LowBaud  : LongInt;
 
     constructor Init;
     constructor ChInitParam(const S: tParamStr);
@@ -154,6 +157,8 @@ type
     function  ChCodecConfig: tFT12Config;
     { GAP= in milliseconds (0 = off) }
     function  ChGapMs: LongWord;
+    { CH_LowBaud := the BD= of the stack below, 9600 if none }
+    procedure ChTakeLowBaud;
   end;
 
   pAddChnFT1_2 = ^tAddChnFT1_2;
@@ -173,9 +178,7 @@ const
 constructor tChnFT1_2.Init;
 begin
   inherited Init;
-  CH_Type := cName;
-  CH_Name := CH_Type;
-  CH_NumName := ChNumName(CH_Type);
+  ChSetType(cName);
   CH_RTick := False;
   CH_SBuff := nil;
   CH_MSBuff := 0;
@@ -197,6 +200,7 @@ begin
   CH_DnoGiven := False;
   CH_RPrm := False;
   CH_RDir := False;
+  CH_LowBaud := cDefaultBaud;
   FillChar(CH_Rx, SizeOf(CH_Rx), 0);
   CH_Rx.Cfg := ChCodecConfig;
   FT12RxReset(CH_Rx);
@@ -211,29 +215,30 @@ end;
 destructor tChnFT1_2.Done;
 begin
   inherited Done;
-  if CH_SBuff <> nil then
-    FreeMem(CH_SBuff);
-  CH_SBuff := nil;
-  CH_MSBuff := 0;
+  ChFreeSendBuffer(CH_SBuff, CH_MSBuff);
 end;
 
-function tChnFT1_2.ChGapMs: LongWord;
+procedure tChnFT1_2.ChTakeLowBaud;
 var
-  Baud: LongInt;
   Tok: string;
   P: Integer;
 begin
-  if CH_Gap = 0 then
-    Exit(0);
-  Baud := cDefaultBaud;
+  CH_LowBaud := cDefaultBaud;
   if CH_Low <> nil then
   begin
     P := 1;
     if NextToken(CH_Low^.ChGetParam('BD'), P, Tok) then
-      StrToNum(ParamValue(Tok), 1, 10000000, Baud);
+      StrToNum(ParamValue(Tok), 1, 10000000, CH_LowBaud);
   end;
+end;
+
+function tChnFT1_2.ChGapMs: LongWord;
+begin
+  if CH_Gap = 0 then
+    Exit(0);
   { round up: a gap shorter than one tick cannot be measured }
-  Result := (QWord(CH_Gap) * cBitsPerChar * 1000 + LongWord(Baud) - 1) div LongWord(Baud);
+  Result := (QWord(CH_Gap) * cBitsPerChar * 1000 + LongWord(CH_LowBaud) - 1) div
+    LongWord(CH_LowBaud);
   if Result = 0 then
     Result := 1;
 end;
@@ -265,6 +270,7 @@ begin
   CH_NodGiven := False;
   CH_DnoGiven := False;
   inherited ChSetParam(S);
+  ChTakeLowBaud;                  { the stack below may be new }
   CH_AdrNext := CH_AdrLen;
   CH_NodGiven := False;
   CH_DnoGiven := False;
@@ -284,11 +290,9 @@ function tChnFT1_2.ChSetOneParam(const S: tWordString; var CmdL: tCmd): tChResul
 var
   Key: string;
   N: LongInt;
-  I: Integer;
 begin
   Key := ParamKey(S);
   N := 0;
-  I := 0;
   if CmdL = cmd_Peek then
   begin
     { note what the checks of NOD=/DNO=/ADR= in this string depend on }
@@ -307,19 +311,7 @@ begin
   else if Key = 'PRI' then
     Result := ParamFlag(S, OnOffChoice, CmdL, CH_PriParam)
   else if Key = 'LSB' then
-  begin
-    Result := ParamNum(S, 1, MaxTBuf, N);
-    { the layer below may still be sending from the old buffer }
-    if (Result = res_Ok) and (CH_State <> CHS_Close) and (N <> CH_MSBuff) then
-      Result := res_WrongState;
-    if (Result = res_Ok) and (CmdL = cmd_Set) and (N <> CH_MSBuff) then
-    begin
-      if CH_SBuff <> nil then
-        FreeMem(CH_SBuff);
-      GetMem(CH_SBuff, N);
-      CH_MSBuff := N;
-    end;
-  end
+    Result := ChParamSendBuffer(S, 1, MaxTBuf, CmdL, CH_SBuff, CH_MSBuff)
   else if Key = 'LEN' then
   begin
     Result := ParamNum(S, 0, MaxDataLen, N);
@@ -376,7 +368,8 @@ begin
   inherited ChConnect;
   if CH_Result = res_Ok then
   begin
-    CH_Rx.Cfg := ChCodecConfig;   { GAP= needs the BD= of the stack below }
+    ChTakeLowBaud;                { BD= may have changed below since }
+    CH_Rx.Cfg := ChCodecConfig;
     FT12RxReset(CH_Rx);
     CH_RErr := res_Ok;
   end;
@@ -410,11 +403,7 @@ begin
     CH_SResult := res_BadMessage;   { unbalanced: the role is fixed }
     Exit;
   end;
-  if CH_SBuff = nil then
-  begin
-    GetMem(CH_SBuff, cFT12MaxFrame);   { no LSB= given: room for any frame }
-    CH_MSBuff := cFT12MaxFrame;
-  end;
+  ChSendBuffer(CH_SBuff, CH_MSBuff, cFT12MaxFrame);   { no LSB=: room for any frame }
   { one address field: the destination from a master/primary, the own
     address (SNO) from a slave/secondary }
   if Primary then

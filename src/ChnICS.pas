@@ -109,9 +109,7 @@ implementation
 constructor tChnICS.Init;
 begin
   inherited Init;
-  CH_Type := cName;
-  CH_Name := CH_Type;
-  CH_NumName := ChNumName(CH_Type);
+  ChSetType(cName);
   CH_RTick := False;
   CH_SBuff := nil;
   CH_MSBuff := 0;
@@ -134,10 +132,7 @@ end;
 destructor tChnICS.Done;
 begin
   inherited Done;                { closes the layers below first }
-  if CH_SBuff <> nil then
-    FreeMem(CH_SBuff);
-  CH_SBuff := nil;
-  CH_MSBuff := 0;
+  ChFreeSendBuffer(CH_SBuff, CH_MSBuff);
 end;
 
 function tChnICS.ChMaxNode: tNode;
@@ -148,30 +143,12 @@ end;
 function tChnICS.ChSetOneParam(const S: tWordString; var CmdL: tCmd): tChResult;
 var
   Key: string;
-  N: LongInt;
-  I: Integer;
 begin
   Key := ParamKey(S);
-  N := 0;
-  I := 0;
   if Key = 'MAS' then
     Result := ParamFlag(S, MasterChoice, CmdL, CH_Master)
   else if Key = 'LSB' then
-  begin
-    Result := ParamNum(S, 0, MaxTBuf, N);
-    { the layer below may still be sending from the old buffer }
-    if (Result = res_Ok) and (CH_State <> CHS_Close) and (N <> CH_MSBuff) then
-      Result := res_WrongState;
-    if (Result = res_Ok) and (CmdL = cmd_Set) and (N <> CH_MSBuff) then
-    begin
-      if CH_SBuff <> nil then
-        FreeMem(CH_SBuff);
-      CH_SBuff := nil;
-      if N > 0 then
-        GetMem(CH_SBuff, N);
-      CH_MSBuff := N;
-    end;
-  end
+    Result := ChParamSendBuffer(S, 0, MaxTBuf, CmdL, CH_SBuff, CH_MSBuff)
   else
     Result := inherited ChSetOneParam(S, CmdL);   { NOD=, DNO= 0..207 }
 end;
@@ -210,11 +187,7 @@ begin
   { Len = 4 (no numbers) is valid: the codec checks it }
   if not ChSendAllowed(Buff, Len, False) then
     Exit;
-  if CH_SBuff = nil then
-  begin
-    GetMem(CH_SBuff, ICSMaxFrame);
-    CH_MSBuff := ICSMaxFrame;
-  end;
+  ChSendBuffer(CH_SBuff, CH_MSBuff, ICSMaxFrame);
   N := 0;
   R := ICSEncode(pICSRecord(Buff)^, Len, CH_DNode, CH_Node, CH_SBuff^,
     CH_MSBuff, N);

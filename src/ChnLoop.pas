@@ -105,9 +105,7 @@ end;
 constructor tChnLoop.Init;
 begin
   inherited Init;
-  CH_Type := cName;
-  CH_Name := CH_Type;
-  CH_NumName := ChNumName(CH_Type);
+  ChSetType(cName);
   CH_Pair := 'A';
   CH_End := 1;
   CH_LRB := LoopDefaultLRB;

@@ -132,9 +132,7 @@ end;
 constructor tChnNoise.Init;
 begin
   inherited Init;
-  CH_Type := cName;
-  CH_Name := CH_Type;
-  CH_NumName := ChNumName(CH_Type);
+  ChSetType(cName);
   CH_Ber := 0;  CH_Drop := 0;  CH_Ins := 0;
   CH_BerT := 0; CH_DropT := 0; CH_InsT := 0;
   CH_Garbage := NoiseRandomByte;

@@ -120,9 +120,7 @@ end;
 constructor tChnTcp.Init;
 begin
   inherited Init;
-  CH_Type := cName;
-  CH_Name := CH_Type;
-  CH_NumName := ChNumName(CH_Type);
+  ChSetType(cName);
   CH_Host := '';
   CH_TcpPort := 0;
   CH_Listen := '';

@@ -131,9 +131,7 @@ end;
 constructor tChnTrc.Init;
 begin
   inherited Init;
-  CH_Type := cName;
-  CH_Name := CH_Type;
-  CH_NumName := ChNumName(CH_Type);
+  ChSetType(cName);
   CH_File := TrcStdErr;
   CH_Mode := trcHex;
   CH_Pcap := False;

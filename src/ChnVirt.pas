@@ -173,6 +173,17 @@ type
     { The end of every successful ChOpen: state CHS_Open, receiver off until
       ChConnect, every result Ok, nothing pulled from below. }
     procedure ChOpened;
+    { For a descendant's Init: CH_Type and CH_Name := AType, CH_NumName
+      its ChNumName. }
+    procedure ChSetType(const AType: ShortString);
+    { LSB= of a protocol layer: the size of its send buffer Buf (Size
+      bytes), Min..Max; with Min = 0, LSB=0 means none until the first
+      send (ChSendBuffer). While the channel is open only the size in force
+      is accepted (it changes nothing), another one is res_WrongState: the
+      layer below may still be sending from the buffer. The same rule in
+      every protocol layer. }
+    function  ChParamSendBuffer(const S: tWordString; Min, Max: LongInt;
+      CmdL: tCmd; var Buf: Pointer; var Size: Word): tChResult;
   end;
 
   pAddChnVirt = ^tAddChnVirt;
@@ -210,6 +221,11 @@ function ChMsTick: QWord;
   helpers above a channel (the DF1 and FT 1.2 link procedures). }
 function ChSendWhenFree(Chn: pChnVirt; Buff: Pointer; Len: Word;
   TimeoutMs: LongInt): tChResult;
+
+{ A protocol layer's send buffer: allocated with Default bytes when none is
+  there yet (no LSB=, or LSB=0), freed by Done. }
+procedure ChSendBuffer(var Buf: Pointer; var Size: Word; Default: Word);
+procedure ChFreeSendBuffer(var Buf: Pointer; var Size: Word);
 
 { Helpers for ChSetOneParam/ChOwnParams of every layer, so that number
   parsing, range checks and ON/OFF live in one place. }
@@ -275,6 +291,23 @@ begin
   end;
   Chn^.ChSend(Buff, Len);
   Result := Chn^.ChSendResult;
+end;
+
+procedure ChSendBuffer(var Buf: Pointer; var Size: Word; Default: Word);
+begin
+  if Buf = nil then
+  begin
+    GetMem(Buf, Default);
+    Size := Default;
+  end;
+end;
+
+procedure ChFreeSendBuffer(var Buf: Pointer; var Size: Word);
+begin
+  if Buf <> nil then
+    FreeMem(Buf);
+  Buf := nil;
+  Size := 0;
 end;
 
 function ParamKey(const S: tWordString): ShortString;
@@ -655,6 +688,33 @@ begin
     end;
   end;
   ChOpened;
+end;
+
+procedure tChnVirt.ChSetType(const AType: ShortString);
+begin
+  CH_Type := AType;
+  CH_Name := CH_Type;
+  CH_NumName := ChNumName(CH_Type);
+end;
+
+function tChnVirt.ChParamSendBuffer(const S: tWordString; Min, Max: LongInt;
+  CmdL: tCmd; var Buf: Pointer; var Size: Word): tChResult;
+var
+  N: LongInt;
+begin
+  N := 0;
+  Result := ParamNum(S, Min, Max, N);
+  if (Result <> res_Ok) or (N = Size) then
+    Exit;
+  if CH_State <> CHS_Close then
+    Result := res_WrongState
+  else if CmdL = cmd_Set then
+  begin
+    ChFreeSendBuffer(Buf, Size);
+    if N > 0 then
+      GetMem(Buf, N);
+    Size := N;
+  end;
 end;
 
 procedure tChnVirt.ChOpened;

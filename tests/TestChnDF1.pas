@@ -440,6 +440,15 @@ begin
   AssertEquals(res_WrongState, C^.ChResult);
   C^.ChSetParam('CRC=OFF');
   AssertEquals('other keys may change', res_Ok, C^.ChResult);
+  C^.ChClose;
+  C^.ChSetParam('LSB=100');
+  AssertEquals('closed', res_Ok, C^.ChResult);
+  C^.ChOpen;
+  C^.ChSetParam('LSB=100');
+  AssertEquals('the size in force, while open', res_Ok, C^.ChResult);
+  C^.ChSetParam('LSB=101');
+  AssertEquals('another size, while open', res_WrongState, C^.ChResult);
+  AssertEquals(100, pChnDF1(C)^.CH_MSBuff);
 end;
 
 procedure TTestChnDF1.TestSendHandsWireBytesDown;

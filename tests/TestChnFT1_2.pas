@@ -993,6 +993,16 @@ begin
     C^.ChConnect;
     AssertEquals(res_Ok, C^.ChResult);
     AssertEquals('the receiver uses it', 14, C^.CH_Rx.Cfg.GapMs);
+    { the rate is taken when the stack is built and at ChConnect, not read
+      again on every send: a rate changed below counts from the next
+      ChConnect }
+    pChnBaudTestLayer(C^.CH_Low)^.CH_Baud := 1200;
+    AssertEquals(14, C^.ChGapMs);
+    C^.ChDisConnect;
+    C^.ChConnect;
+    AssertEquals(res_Ok, C^.ChResult);
+    AssertEquals('3 characters * 11 bits at 1200 Bd = 27.5 ms -> 28', 28, C^.ChGapMs);
+    AssertEquals(28, C^.CH_Rx.Cfg.GapMs);
   finally
     Dispose(C, Done);
   end;

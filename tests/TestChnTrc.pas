@@ -78,9 +78,7 @@ type
 constructor tChnLiar.Init;
 begin
   inherited Init;
-  CH_Type := 'TLIE';
-  CH_Name := CH_Type;
-  CH_NumName := ChNumName(CH_Type);
+  ChSetType('TLIE');
 end;
 
 function tChnLiar.ChHasLow: Boolean;

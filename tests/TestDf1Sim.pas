@@ -24,6 +24,7 @@ type
     procedure AllCommands(Full, Crc: Boolean; const Pair: string);
     { raw end: send hex, collect what comes back within Ms (stepping the station) }
     function RawSay(const Hex: string; Ms: Integer): string;
+    function Scripted(const Answer: string; TimeoutMs: LongInt; var Rep: tRecRecord): tChResult;
   protected
     procedure SetUp; override;
   published
@@ -49,6 +50,8 @@ type
     procedure TestTransactReportsLostLine;   { a pty that is hung up }
     {$ENDIF}
     procedure TestTransactChecksTheReply;
+    procedure TestTransactSkipsALateReply;
+    procedure TestTransactNaksABrokenReply;
     procedure TestHelpersRefuseAnotherLayer;
   end;
 
@@ -536,6 +539,7 @@ var
   ScriptRaw: pChnVirt;       { the slave side of TestTransactChecksTheReply }
   ScriptAnswer: string;      { hex it sends when the command has come }
   ScriptCommand: string;     { hex of the command it got }
+  ScriptLater: string;       { hex of what the master sent after it }
 
 { Idle of TestTransactChecksTheReply: answer the first frame with
   ScriptAnswer; later ones (the master's ACK of the reply) are read and
@@ -552,7 +556,10 @@ begin
   Len := 0;
   ScriptRaw^.ChReceive(Len);
   if ScriptCommand <> '' then
+  begin
+    ScriptLater := Trim(ScriptLater + ' ' + BytesToHex(Buf, Len));
     Exit;
+  end;
   ScriptCommand := BytesToHex(Buf, Len);
   D := HexToBytes(ScriptAnswer);
   ScriptRaw^.ChSend(@D[0], Length(D));
@@ -600,6 +607,52 @@ begin
     Dispose(Raw, Done);
     Raw := nil;
   end;
+end;
+
+function TTestDf1Sim.Scripted(const Answer: string; TimeoutMs: LongInt;
+  var Rep: tRecRecord): tChResult;
+var
+  Req: tSendRecord;
+  RepLen: Word;
+  Err: string;
+begin
+  Master := Open('NAM=DF1 NOD=0 DNO=1 MAS=MASTER FHD=FULL CRC=OFF NAM=LOOP PAIR=SIMTL END=1');
+  Raw := OpenStack('LOOP', 'NAM=LOOP PAIR=SIMTL END=2', Err);
+  AssertTrue(Err, Raw <> nil);
+  ScriptRaw := Raw;
+  ScriptAnswer := Answer;
+  ScriptCommand := '';
+  ScriptLater := '';
+  EchoA(Req, 3);
+  RepLen := 0;
+  FillChar(Rep, SizeOf(Rep), 0);
+  Result := DF1Transact(Master, Req, 9, Rep, RepLen, @ScriptedSlave, nil, TimeoutMs);
+  ScriptedSlave(nil);                 { what the master sent last }
+end;
+
+{ A late copy of the reply to an earlier command (TNS 2: sum $8A -> $76)
+  before the reply to this one: both are ACKed, the late one is ignored
+  (it once ended the exchange with res_BadMessage, and the master sent
+  the command again although its reply was on the way). }
+procedure TTestDf1Sim.TestTransactSkipsALateReply;
+var
+  Rep: tRecRecord;
+begin
+  AssertEquals('result', res_Ok, Scripted('10 06 10 02 00 01 46 00 02 00 41 10 03 76 ' +
+    '10 02 00 01 46 00 03 00 41 10 03 75', 200, Rep));
+  AssertEquals('the reply to this command', 3, Rep.Tns);
+  AssertEquals('both replies ACKed', '10 06 10 06', ScriptLater);
+end;
+
+{ A reply with a wrong checksum: the master NAKs it so the slave sends it
+  again at once (it used to wait for the reply's deadline in silence). }
+procedure TTestDf1Sim.TestTransactNaksABrokenReply;
+var
+  Rep: tRecRecord;
+begin
+  AssertEquals('no good reply came', res_Timeout,
+    Scripted('10 06 10 02 00 01 46 00 03 00 41 10 03 76', 100, Rep));
+  AssertEquals('NAK of the broken reply', '10 15', ScriptLater);
 end;
 
 { The link helpers on a stack whose top is no tChnDF1 (here a bare LOOP):

@@ -28,6 +28,7 @@ var
   F: Boolean;
   Cmd: tCmd;
   Buf: array[0..7] of Byte;
+  P: Pointer;
   Chn, Peer: pChnVirt;
   Mgr: pAddChnVirt;
   SNode, DNode: tNode;
@@ -171,6 +172,24 @@ begin
   Check(Peer^.ChReceiveAllowed(W), 'ChReceiveAllowed');
   Dispose(Chn, Done);
   Dispose(Peer, Done);
+  New(Chn, Init);
+  S := 'Mine';
+  Chn^.ChSetType(S);
+  Check((Chn^.CH_Type = 'Mine') and (Chn^.CH_Name = 'Mine') and
+    (Chn^.CH_NumName = ChNumName('MINE')), 'ChSetType');
+  P := nil;
+  W := 0;
+  S := 'LSB=40';
+  Check((Chn^.ChParamSendBuffer(S, 0, 100, cmd_Set, P, W) = res_Ok) and
+    (P <> nil) and (W = 40), 'ChParamSendBuffer');
+  ChSendBuffer(P, W, 500);
+  Check(W = 40, 'ChSendBuffer keeps a buffer given');
+  ChFreeSendBuffer(P, W);
+  Check((P = nil) and (W = 0), 'ChFreeSendBuffer');
+  ChSendBuffer(P, W, 500);
+  Check((P <> nil) and (W = 500), 'ChSendBuffer');
+  ChFreeSendBuffer(P, W);
+  Dispose(Chn, Done);
   WriteLn('legacy_modeapi ok (Integer ', SizeOf(Integer), ' bytes, string ',
     SizeOf(string), ' bytes)');
 end.

@@ -32,9 +32,7 @@ implementation
 constructor tChnBaudTestLayer.Init;
 begin
   inherited Init;
-  CH_Type := cName;
-  CH_Name := CH_Type;
-  CH_NumName := ChNumName(CH_Type);
+  ChSetType(cName);
   CH_Baud := 9600;
 end;
 

@@ -40,9 +40,7 @@ implementation
 constructor tChnTestLayer.Init;
 begin
   inherited Init;
-  CH_Type := cName;
-  CH_Name := CH_Type;
-  CH_NumName := ChNumName(CH_Type);
+  ChSetType(cName);
   CH_Mode := 0;
   CH_Count := 0;
   CH_Flag := False;

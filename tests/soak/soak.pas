@@ -1,0 +1,1101 @@
+{ soak - the whole stack on a noisy line, for a long time (make soak).
+
+  Each scenario runs over a real pty pair between two processes: this
+  program is the master, with NAM=NOISE between its protocol layer and
+  NAM=COM; the peer is tools/df1sim (DF1 full duplex) or this program
+  started again with --serve=... (DF1 half duplex with three stations on one
+  line, FT 1.2 secondary, ICS slave), which creates the pty itself.
+
+    soak [--seconds=N | --count=N] [--seed=N] [--only=TEXT] [--df1sim=PATH]
+
+  --seconds  per scenario (default 10); --count  messages per scenario
+  instead; --seed  the first NOISE seed (scenario k uses seed + k; default
+  from the clock); --only  runs the scenarios whose name contains TEXT.
+
+  Every scenario prints one line, 'ok    soak NAME: ...' or 'FAIL  soak
+  NAME: ... (why)', with: messages (application messages completed),
+  retries (link repetitions and application re-sends), timeouts, losses,
+  duplicates, bad (a reply with wrong data or status accepted: a checksum
+  that let damage through), RSS and open descriptors of both processes at
+  start (after a warm-up) and end, and the seed. A scenario fails on a
+  loss, a duplicate, bad data on a CRC line, RSS growth above 1 MiB, a
+  descriptor count that changed, or no progress. Exit code 0 when every
+  scenario passed. See docs/reliability.md. }
+program soak;
+
+{$MODE OBJFPC}{$H+}
+
+uses
+  BaseUnix, SysUtils, Classes, Process,
+  ChnTypes, ChnVirt, ChnCom, ChnLoop, ChnNoise, ChnPty, uString,
+  ChnDF1, ChnDF1Link, ChnPccc, ChnSlc, ChnFT1_2, ChnFT12Link, ChnICS, TestSupport;
+
+const
+  DF1Timeout = 300;     { ms; the line is a pty, the machine is shared }
+  FT12Timeout = 300;
+  ICSTimeout = 300;
+  AppTries = 100;       { re-sends of one message before it counts as lost }
+  WarmUp = 50;          { messages before RSS/descriptors are taken }
+  CheckEvery = 64;      { messages between checks of the peer's counters }
+  HDStations = 3;
+  MaxRssGrowthKb = 1024;
+
+type
+  TNoise = record
+    Name, Params: string;
+  end;
+
+  TStats = record
+    Messages, Retries, Timeouts, Losses, Dups, Bad, Stale: Int64;
+    RssStart, RssEnd, FdStart, FdEnd: LongInt;        { master }
+    PRssStart, PRssEnd, PFdStart, PFdEnd: LongInt;    { peer }
+    Note: string;
+  end;
+
+const
+  Noises: array[0..3] of TNoise = (
+    (Name: 'clean';    Params: 'BER=0'),
+    (Name: 'ber1e-5';  Params: 'BER=1E-5'),
+    (Name: 'ber1e-3';  Params: 'BER=1E-3'),
+    (Name: 'drop1%';   Params: 'DRP=0.01'));
+
+var
+  Parent: TPid;         { a peer ends when the master is gone }
+
+function Orphaned: Boolean;
+begin
+  Result := FpGetPPid <> Parent;
+end;
+
+var
+  Seconds, Count, Seed: LongInt;
+  Only, Df1SimPath: string;
+  Stop: Boolean = False;
+
+{ ------------------------------------------------------------ helpers }
+
+procedure OnSignal(Sig: cint); cdecl;
+begin
+  Stop := True;
+end;
+
+procedure CatchSignals;
+var
+  Act: SigActionRec;
+begin
+  FillChar(Act, SizeOf(Act), 0);
+  Act.sa_handler := SigActionHandler(@OnSignal);
+  FpSigAction(SIGINT, @Act, nil);
+  FpSigAction(SIGTERM, @Act, nil);
+end;
+
+function RssKb(Pid: TPid): LongInt;
+var
+  F: TextFile;
+  Line: string;
+begin
+  Result := -1;
+  AssignFile(F, '/proc/' + IntToStr(Pid) + '/status');
+  {$I-}Reset(F);{$I+}
+  if IOResult <> 0 then
+    Exit;
+  while not Eof(F) do
+  begin
+    ReadLn(F, Line);
+    if Copy(Line, 1, 6) = 'VmRSS:' then
+      Result := StrToIntDef(Trim(StringReplace(Copy(Line, 7, 99), 'kB', '', [])), -1);
+  end;
+  CloseFile(F);
+end;
+
+function FdCount(Pid: TPid): LongInt;
+var
+  SR: TSearchRec;
+begin
+  Result := 0;
+  if FindFirst('/proc/' + IntToStr(Pid) + '/fd/*', faAnyFile, SR) = 0 then
+  begin
+    repeat
+      Inc(Result);
+    until FindNext(SR) <> 0;
+    FindClose(SR);
+  end;
+end;
+
+{ the peer process and its standard output }
+type
+  TPeer = record
+    Proc: TProcess;
+    Out_: string;     { what it printed so far }
+    Pty: string;
+  end;
+
+procedure PeerRead(var P: TPeer);
+var
+  Buf: array[0..1023] of Char;
+  N: LongInt;
+begin
+  while P.Proc.Output.NumBytesAvailable > 0 do
+  begin
+    N := P.Proc.Output.Read(Buf, SizeOf(Buf));
+    if N <= 0 then
+      Break;
+    P.Out_ := P.Out_ + Copy(Buf, 1, N);
+  end;
+end;
+
+function PeerStart(var P: TPeer; const Exe: string; const Args: array of string;
+  out Err: string): Boolean;
+var
+  I, At: LongInt;
+  Deadline: QWord;
+begin
+  Err := '';
+  P.Out_ := '';
+  P.Pty := '';
+  P.Proc := TProcess.Create(nil);
+  P.Proc.Executable := Exe;
+  for I := Low(Args) to High(Args) do
+    P.Proc.Parameters.Add(Args[I]);
+  P.Proc.Options := [poUsePipes, poStderrToOutPut];
+  try
+    P.Proc.Execute;
+  except
+    on E: Exception do
+    begin
+      Err := Exe + ': ' + E.Message;
+      Exit(False);
+    end;
+  end;
+  Deadline := ChMsTick + 5000;
+  repeat
+    PeerRead(P);
+    At := Pos('PTY ', P.Out_);
+    if (At > 0) and (Pos(#10, Copy(P.Out_, At, MaxInt)) > 0) then
+    begin
+      P.Pty := Trim(Copy(P.Out_, At + 4, Pos(#10, Copy(P.Out_, At, MaxInt)) - 5));
+      Exit(True);
+    end;
+    Sleep(5);
+  until (ChMsTick > Deadline) or not P.Proc.Running;
+  Err := 'peer did not report its pty: ' + P.Out_;
+  Result := False;
+end;
+
+{ SIGTERM, wait for the exit (and read what it printed last) }
+procedure PeerStop(var P: TPeer);
+var
+  Deadline: QWord;
+begin
+  if P.Proc = nil then
+    Exit;
+  if P.Proc.Running then
+    FpKill(P.Proc.ProcessID, SIGTERM);
+  Deadline := ChMsTick + 5000;
+  while P.Proc.Running and (ChMsTick < Deadline) do
+  begin
+    PeerRead(P);
+    Sleep(5);
+  end;
+  if P.Proc.Running then
+    P.Proc.Terminate(9);
+  P.Proc.WaitOnExit;
+  PeerRead(P);
+  FreeAndNil(P.Proc);
+end;
+
+{ KEY=value from the peer's last STATS line; -1 if missing }
+function PeerStat(const P: TPeer; const Key: string): Int64;
+var
+  At: LongInt;
+  S: string;
+begin
+  Result := -1;
+  At := Pos('STATS ', P.Out_);
+  if At = 0 then
+    Exit;
+  S := Copy(P.Out_, At, MaxInt);
+  At := Pos(' ' + Key + '=', S);
+  if At = 0 then
+    Exit;
+  S := Copy(S, At + Length(Key) + 2, MaxInt);
+  At := 1;
+  while (At <= Length(S)) and (S[At] in ['0'..'9', '-']) do
+    Inc(At);
+  Result := StrToInt64Def(Copy(S, 1, At - 1), -1);
+end;
+
+function Done_(const St: TStats; Start: QWord): Boolean;
+begin
+  if Stop then
+    Exit(True);
+  if Count > 0 then
+    Result := St.Messages >= Count
+  else
+    Result := ChMsTick - Start >= QWord(Seconds) * 1000;
+end;
+
+procedure TakeStart(var St: TStats; Peer: TPid);
+begin
+  St.RssStart := RssKb(FpGetPid);
+  St.FdStart := FdCount(FpGetPid);
+  St.PRssStart := RssKb(Peer);
+  St.PFdStart := FdCount(Peer);
+end;
+
+procedure TakeEnd(var St: TStats; Peer: TPid);
+begin
+  St.RssEnd := RssKb(FpGetPid);
+  St.FdEnd := FdCount(FpGetPid);
+  St.PRssEnd := RssKb(Peer);
+  St.PFdEnd := FdCount(Peer);
+end;
+
+var
+  Failed: LongInt = 0;
+  Ran: LongInt = 0;
+
+procedure Report(const Name: string; const St: TStats; ASeed: LongInt; Ms: QWord;
+  BadAllowed: Boolean);
+var
+  Why, Line: string;
+begin
+  Why := St.Note;
+  if St.Messages < 3 then
+    Why := Why + ' no progress;';
+  if St.Losses <> 0 then
+    Why := Why + ' losses;';
+  { a BCC line (an 8-bit sum) lets some damage through: a dropped $00 byte
+    or two flips that cancel. A command damaged that way may run as
+    another command (a second execution when the master repeats the real
+    one) and a damaged reply may be taken. On such a line duplicates and
+    bad data are reported, not failed, when the run shows that undetected
+    damage happened (bad or stale replies); a CRC line fails on both. }
+  if (St.Dups <> 0) and not (BadAllowed and (St.Bad + St.Stale > 0)) then
+    Why := Why + ' duplicates;';
+  if (St.Bad <> 0) and not BadAllowed then
+    Why := Why + ' bad data accepted;';
+  if (St.RssEnd - St.RssStart > MaxRssGrowthKb) or (St.PRssEnd - St.PRssStart > MaxRssGrowthKb) then
+    Why := Why + ' RSS grew;';
+  if (St.FdEnd <> St.FdStart) or (St.PFdEnd <> St.PFdStart) then
+    Why := Why + ' descriptors changed;';
+  Line := Format('soak %s: %d messages, %d retries, %d timeouts, %d losses, %d duplicates, ' +
+    '%d bad, %d stale; RSS %d->%d KiB, fds %d->%d; peer RSS %d->%d KiB, fds %d->%d; %.1f s, SEED=%d',
+    [Name, St.Messages, St.Retries, St.Timeouts, St.Losses, St.Dups, St.Bad, St.Stale,
+     St.RssStart, St.RssEnd, St.FdStart, St.FdEnd, St.PRssStart, St.PRssEnd,
+     St.PFdStart, St.PFdEnd, Ms / 1000, ASeed]);
+  Inc(Ran);
+  if BadAllowed and (St.Dups + St.Bad > 0) and (Why = '') then
+    Line := Line + ' (BCC let damage through: reported, not failed)';
+  if Why = '' then
+    WriteLn('ok    ', Line)
+  else
+  begin
+    WriteLn('FAIL  ', Line, ' (', Trim(Why), ')');
+    Inc(Failed);
+  end;
+  Flush(Output);
+end;
+
+{ ------------------------------------------------------------- DF1 master }
+
+var
+  LinkLines: LongInt;   { log lines of the current DF1Transact }
+  LinkSends: LongInt;   { frames of the command sent (first + repeats) }
+  LinkEnqs, LinkNoAck: LongInt;
+
+var
+  Verbose: Boolean = False;
+
+procedure CountLink(const Line: AnsiString);
+begin
+  if Verbose then
+    WriteLn(StdErr, FormatDateTime('nn:ss.zzz', Now), ' ', Line);
+  Inc(LinkLines);
+  if Copy(Line, 1, 3) = '-> ' then
+  begin
+    if Copy(Line, 4, 3) = 'ENQ' then
+      Inc(LinkEnqs)
+    else if (Copy(Line, 4, 3) <> 'ACK') and (Copy(Line, 4, 3) <> 'NAK') and
+            (Copy(Line, 4, 4) <> 'poll') then
+      Inc(LinkSends);
+  end
+  else if Copy(Line, 1, 5) = '-- no' then
+    Inc(LinkNoAck);
+end;
+
+{ One command until it is answered: True and Rep/RepLen; False: lost. }
+function DF1Do(Chn: pChnVirt; var Req: ChnDF1.tSendRecord; Len: Word;
+  var Rep: ChnDF1.tRecRecord; var RepLen: Word; var St: TStats): Boolean;
+var
+  Tries: LongInt;
+  R: tChResult;
+begin
+  for Tries := 1 to AppTries do
+  begin
+    LinkSends := 0;
+    LinkEnqs := 0;
+    LinkNoAck := 0;
+    RepLen := 0;
+    R := DF1Transact(Chn, Req, Len, Rep, RepLen, nil, nil, DF1Timeout, @CountLink);
+    if LinkSends > 1 then
+      Inc(St.Retries, LinkSends - 1);
+    Inc(St.Timeouts, LinkNoAck);
+    if R = res_Ok then
+      Exit(True);
+    if R = res_BadMessage then
+      Inc(St.Stale)          { a reply to an earlier command: send again }
+    else if R <> res_Timeout then
+    begin
+      St.Note := St.Note + ' ' + Chn^.ChResultStr(R) + ';';
+      Exit(False);
+    end;
+    Inc(St.Retries);
+    if Stop then
+      Break;
+  end;
+  Result := False;
+end;
+
+procedure TypedReq(var Req: ChnDF1.tSendRecord; var Len: Word; Tns: Word; Elem: Byte;
+  Write: Boolean; Value: Word);
+begin
+  FillChar(Req, SizeOf(Req), 0);
+  Req.MessType := ChnDF1.tpDataMess;
+  Req.Tns := Tns;
+  Req.Data[0] := 2;        { size: one word }
+  Req.Data[1] := 7;        { N7 }
+  Req.Data[2] := pft_Integer;
+  Req.Data[3] := Elem;
+  Req.Data[4] := 0;
+  if Write then
+  begin
+    Req.CF := CF_ProtectWrite3Addr;
+    Req.Data[5] := Lo(Value);
+    Req.Data[6] := Hi(Value);
+    Len := 8 + 7;
+  end
+  else
+  begin
+    Req.CF := CF_ProtectRead3Addr;
+    Len := 8 + 5;
+  end;
+end;
+
+{ Read diagnostic counter 7 (commands executed) of the station Chn talks
+  to. Lost: the command got no answer. Bad: an answer with the wrong shape
+  (damage the checksum let through); the command ran all the same. }
+type
+  TReadResult = (rrOk, rrLost, rrBad);
+
+function ReadExecuted(Chn: pChnVirt; Tns: Word; var St: TStats; out N: Word): TReadResult;
+var
+  Req: ChnDF1.tSendRecord;
+  Rep: ChnDF1.tRecRecord;
+  RepLen: Word;
+begin
+  FillChar(Req, SizeOf(Req), 0);
+  Req.MessType := ChnDF1.tpDataMess;
+  Req.CF := CF_ReadDiagnCounts;
+  Req.Tns := Tns;
+  Req.Data[0] := 2 * dgCommands;
+  Req.Data[1] := 0;
+  Req.Data[2] := 2;
+  N := 0;
+  if not DF1Do(Chn, Req, 8 + 3, Rep, RepLen, St) then
+    Exit(rrLost);
+  if (RepLen <> 8 + 2) or (Rep.Sts <> 0) then
+  begin
+    Inc(St.Bad);
+    Exit(rrBad);
+  end;
+  N := Rep.Data[0] or (Rep.Data[1] shl 8);
+  Result := rrOk;
+end;
+
+{ Writes of an increasing counter and reads back, to Stations stations
+  (1..Stations) in turn; every CheckEvery messages each station's count of
+  executed commands is compared with what was sent to it. }
+procedure DF1Master(Chn: pChnVirt; Stations: LongInt; PeerPid: TPid; var St: TStats);
+var
+  Req: ChnDF1.tSendRecord;
+  Rep: ChnDF1.tRecRecord;
+  Len, RepLen, Tns, Got, Value: Word;
+  Sent: array[1..HDStations] of Word;   { commands each station executed, mod 65536 }
+  Synced: array[1..HDStations] of Boolean;
+  S: LongInt;
+  Start: QWord;
+  I: Int64;
+
+  function Check(Stn: LongInt): Boolean;
+  var
+    T: LongInt;
+    R: TReadResult;
+  begin
+    Chn^.ChDestNode(Stn);
+    for T := 1 to AppTries do
+    begin
+      Tns := Word(Tns + 1);      { wraps, as TNS does }
+      R := ReadExecuted(Chn, Tns, St, Got);
+      if R = rrLost then
+        Exit(False);
+      if R = rrOk then
+        Break;
+      if Synced[Stn] then
+        Sent[Stn] := Word(Sent[Stn] + 1);   { it ran; its answer was damaged }
+    end;
+    if R <> rrOk then
+      Exit(False);
+    if not Synced[Stn] then
+    begin
+      Sent[Stn] := Got;             { what ran before this soak }
+      Synced[Stn] := True;
+    end
+    else if Got <> Sent[Stn] then
+    begin
+      Inc(St.Dups, SmallInt(Word(Got - Sent[Stn])));
+      if SmallInt(Word(Got - Sent[Stn])) < 0 then
+        Inc(St.Losses);
+      Sent[Stn] := Got;
+    end;
+    Sent[Stn] := Word(Sent[Stn] + 1);   { the read itself }
+    Result := True;
+  end;
+
+begin
+  Tns := Word(Random(65536));
+  for S := 1 to Stations do
+  begin
+    Synced[S] := False;
+    Sent[S] := 0;
+  end;
+  for S := 1 to Stations do
+    if not Check(S) then
+    begin
+      Inc(St.Losses);
+      Exit;
+    end;
+  Start := ChMsTick;
+  I := 0;
+  while not Done_(St, Start) do
+  begin
+    Inc(I);
+    S := 1 + (I div 2) mod Stations;
+    Chn^.ChDestNode(S);
+    Value := Word(I div 2);
+    Tns := Word(Tns + 1);      { wraps, as TNS does }
+    TypedReq(Req, Len, Tns, (I div 2) mod 50, not Odd(I), Value);
+    if not DF1Do(Chn, Req, Len, Rep, RepLen, St) then
+    begin
+      Inc(St.Losses);
+      Break;
+    end;
+    Sent[S] := Word(Sent[S] + 1);
+    Inc(St.Messages);
+    if Rep.Sts <> 0 then
+      Inc(St.Bad)
+    else if Odd(I) then
+    begin
+      if (RepLen <> 8 + 2) or (Rep.Data[0] or (Rep.Data[1] shl 8) <> Value) then
+        Inc(St.Bad);
+    end
+    else if RepLen <> 8 then
+      Inc(St.Bad);
+    if (St.Messages = 1) or (St.Messages = WarmUp) then
+      TakeStart(St, PeerPid);
+    if I mod CheckEvery = 0 then
+      for S := 1 to Stations do
+        if not Check(S) then
+        begin
+          Inc(St.Losses);
+          Exit;
+        end;
+  end;
+  for S := 1 to Stations do
+    if not Check(S) then
+      Inc(St.Losses);
+end;
+
+procedure RunDF1(const Name: string; Half, Crc: Boolean; const Noise: TNoise; ASeed: LongInt);
+var
+  Peer: TPeer;
+  Err, Params: string;
+  Chn: pChnVirt;
+  St: TStats;
+  T0: QWord;
+  CrcText: string;
+begin
+  FillChar(St, SizeOf(St), 0);
+  St.Note := '';
+  if Crc then CrcText := 'ON' else CrcText := 'OFF';
+  if Half then
+    PeerStart(Peer, ParamStr(0), ['--serve=df1hd', '--crc=' + CrcText], Err)
+  else if Crc then
+    PeerStart(Peer, Df1SimPath, ['--pty', '--quiet', '--crc', '--timeout=30'], Err)
+  else
+    PeerStart(Peer, Df1SimPath, ['--pty', '--quiet', '--bcc', '--timeout=30'], Err);
+  if Peer.Pty = '' then
+  begin
+    St.Note := Err + ';';
+    PeerStop(Peer);
+    Report(Name, St, ASeed, 0, False);
+    Exit;
+  end;
+  Params := Format('NAM=DF1 NOD=0 DNO=1 MAS=MASTER FHD=%s CRC=%s NAM=NOISE %s SEED=%d ' +
+    'NAM=COM DEV=%s BD=38400', [ChoiceWord('HALF|FULL', Ord(not Half)), CrcText,
+    Noise.Params, ASeed, Peer.Pty]);
+  T0 := ChMsTick;
+  Chn := DF1OpenStack(Params, 3000, Err);
+  if Chn = nil then
+    St.Note := Err + ';'
+  else
+  begin
+    if Half then
+      DF1Master(Chn, HDStations, Peer.Proc.ProcessID, St)
+    else
+      DF1Master(Chn, 1, Peer.Proc.ProcessID, St);
+    TakeEnd(St, Peer.Proc.ProcessID);
+    Chn^.ChDisConnect;
+    Chn^.ChClose;
+    Dispose(Chn, Done);
+  end;
+  PeerStop(Peer);
+  Report(Name, St, ASeed, ChMsTick - T0, not Crc);
+end;
+
+{ ------------------------------------------------------- DF1 HD stations }
+
+{ The peer of the half-duplex scenario: HDStations DF1 slave stations on
+  one line. The pty is the line; each station's stack ends in a LOOP pair
+  whose other end this relay joins to the pty, as a multidrop bus does
+  (every station hears the master, the master hears every station). }
+procedure ServeDF1HD(const CrcText: string);
+var
+  Com: pChnVirt;
+  Ends: array[1..HDStations] of pChnVirt;
+  Stns: array[1..HDStations] of pChnVirt;
+  Tables: array[1..HDStations] of tSlcTable;
+  Stations: array[1..HDStations] of tDF1Station;
+  Buf, Buf2: array[0..4095] of Byte;
+  Len: Word;
+  K: LongInt;
+  Err: string;
+  Busy: Boolean;
+begin
+  Com := ChnCollection^.ChNewInit('COM');
+  Com^.ChSetParam('NAM=COM DRV=PTY LRB=65000');
+  Com^.ChOpen;
+  Com^.ChConnect;
+  if Com^.ChResult <> res_Ok then
+  begin
+    WriteLn('soak: pty: ', Com^.ChResultStr(Com^.ChResult));
+    Halt(1);
+  end;
+  for K := 1 to HDStations do
+  begin
+    Ends[K] := OpenStack('LOOP', Format('NAM=LOOP PAIR=hd%d END=2 IDL=0', [K]), Err);
+    Stns[K] := DF1OpenStack(Format('NAM=DF1 MAS=SLAVE FHD=HALF NOD=%d DNO=0 CRC=%s DUP=ON ' +
+      'NAM=LOOP PAIR=hd%d END=1 IDL=0', [K, CrcText, K]), 3000, Err);
+    if (Ends[K] = nil) or (Stns[K] = nil) then
+    begin
+      WriteLn('soak: station ', K, ': ', Err);
+      Halt(1);
+    end;
+    SlcLoadDefault(Tables[K]);
+    SlcStationInit(Stations[K], Stns[K], @Tables[K]);
+  end;
+  WriteLn('PTY ', PtyLastSlave);
+  Flush(Output);
+  Com^.ChReceiveBuffer(@Buf, SizeOf(Buf));
+  while not Stop and not Orphaned and (Com^.ChResult = res_Ok) do
+  begin
+    Busy := False;
+    if Com^.ChReceiveReady = CHS_ReceiveReady then
+    begin
+      Len := 0;
+      Com^.ChReceive(Len);
+      for K := 1 to HDStations do
+        if Len > 0 then
+          ChSendWhenFree(Ends[K], @Buf, Len, 1000);
+      Busy := True;
+    end;
+    for K := 1 to HDStations do
+    begin
+      Ends[K]^.ChReceiveBuffer(@Buf2, SizeOf(Buf2));
+      if Ends[K]^.ChReceiveReady = CHS_ReceiveReady then
+      begin
+        Len := 0;
+        Ends[K]^.ChReceive(Len);
+        if Len > 0 then
+          ChSendWhenFree(Com, @Buf2, Len, 1000);
+        Busy := True;
+      end;
+      if DF1StationStep(Stations[K]) then
+        Busy := True;
+    end;
+    if not Busy then
+      Sleep(1);
+  end;
+  Write('STATS');
+  for K := 1 to HDStations do
+    Write(Format(' executed%d=%d repeats%d=%d', [K, Stations[K].Requests, K, Stations[K].Repeats]));
+  WriteLn;
+  Flush(Output);
+  for K := 1 to HDStations do
+  begin
+    Dispose(Stns[K], Done);
+    Dispose(Ends[K], Done);
+  end;
+  Dispose(Com, Done);
+end;
+
+{ ------------------------------------------------------------- FT 1.2 }
+
+type
+  TFT12Peer = record
+    Last, Delivered, Dups, Gaps: LongInt;
+  end;
+
+function FT12OnUserData(Data: Pointer; Buf: PByte; Len: Word; Confirm: Boolean): Boolean;
+var
+  P: ^TFT12Peer;
+  Seq: LongInt;
+begin
+  P := Data;
+  Result := True;
+  if Len <> 4 then
+    Exit;
+  Seq := Buf[0] or (Buf[1] shl 8) or (Buf[2] shl 16) or (LongInt(Buf[3]) shl 24);
+  if Seq <= P^.Last then
+    Inc(P^.Dups)
+  else
+  begin
+    Inc(P^.Gaps, Seq - P^.Last - 1);
+    Inc(P^.Delivered);
+    P^.Last := Seq;
+  end;
+end;
+
+procedure PutLong(var D: array of Byte; At: LongInt; V: LongInt);
+begin
+  D[At] := Byte(V);
+  D[At + 1] := Byte(V shr 8);
+  D[At + 2] := Byte(V shr 16);
+  D[At + 3] := Byte(V shr 24);
+end;
+
+function GetLong(const D: array of Byte; At: LongInt): LongInt;
+begin
+  Result := D[At] or (D[At + 1] shl 8) or (D[At + 2] shl 16) or (LongInt(D[At + 3]) shl 24);
+end;
+
+{ class 2 data: what arrived, for the master to check in band }
+function FT12OnClassData(Data: Pointer; ClassNo: Byte; var Rep: ChnFT1_2.tSendRecord;
+  var Len: Word): Boolean;
+var
+  P: ^TFT12Peer;
+begin
+  P := Data;
+  PutLong(Rep.Data, 0, P^.Delivered);   { Data is 1-based: open array index 0 = Data[1] }
+  PutLong(Rep.Data, 4, P^.Dups);
+  PutLong(Rep.Data, 8, P^.Gaps);
+  Len := 12;
+  Result := True;
+end;
+
+const
+  FT12SlaveParams = 'NAM=FT1_2 MS=ON MAS=SLAVE LEN=0 NOD=2 DNO=1';
+  FT12MasterParams = 'NAM=FT1_2 MS=ON MAS=MASTER LEN=0 NOD=1 DNO=2';
+  FT12Retries = 10;
+
+procedure ServeFT12;
+var
+  Chn: pChnVirt;
+  S: tFT12Station;
+  P: TFT12Peer;
+  Err: string;
+begin
+  Chn := OpenStack('FT1_2', FT12SlaveParams + ' NAM=COM DRV=PTY', Err);
+  if Chn = nil then
+  begin
+    WriteLn('soak: ', Err);
+    Halt(1);
+  end;
+  FillChar(P, SizeOf(P), 0);
+  FT12StationInit(S, Chn);
+  S.Data := @P;
+  S.OnUserData := @FT12OnUserData;
+  S.OnClassData := @FT12OnClassData;
+  WriteLn('PTY ', PtyLastSlave);
+  Flush(Output);
+  while not Stop and not Orphaned and (Chn^.ChResult = res_Ok) do
+    if not FT12StationStep(S) then
+      Sleep(1);
+  WriteLn(Format('STATS delivered=%d dups=%d gaps=%d repeats=%d', [P.Delivered, P.Dups, P.Gaps, S.Repeats]));
+  Flush(Output);
+  Dispose(Chn, Done);
+end;
+
+procedure RunFT12(const Name: string; const Noise: TNoise; ASeed: LongInt);
+var
+  Peer: TPeer;
+  Err: string;
+  Chn: pChnVirt;
+  St: TStats;
+  T0, Start: QWord;
+  Link: tFT12Link;
+  Req: ChnFT1_2.tSendRecord;
+  Rep: ChnFT1_2.tRecRecord;
+  RepLen: Word;
+  Seq, Tries, Delivered, Dups, Gaps: LongInt;
+  R: tChResult;
+  Ok: Boolean;
+
+  function Check: Boolean;
+  var
+    T: LongInt;
+  begin
+    Result := False;
+    for T := 1 to AppTries do
+    begin
+      RepLen := 0;
+      R := FT12RequestClass(Chn, Link, 2, Rep, RepLen, FT12Timeout, FT12Retries);
+      if (R = res_Ok) and (Rep.MessType = ChnFT1_2.tpLongM) and (RepLen = 4 + 12) then
+      begin
+        Delivered := GetLong(Rep.Data, 0);
+        Dups := GetLong(Rep.Data, 4);
+        Gaps := GetLong(Rep.Data, 8);
+        Exit(True);
+      end;
+      Inc(St.Retries);
+      if Stop then
+        Exit;
+    end;
+  end;
+
+begin
+  FillChar(St, SizeOf(St), 0);
+  St.Note := '';
+  PeerStart(Peer, ParamStr(0), ['--serve=ft12'], Err);
+  if Peer.Pty = '' then
+  begin
+    St.Note := Err + ';';
+    PeerStop(Peer);
+    Report(Name, St, ASeed, 0, False);
+    Exit;
+  end;
+  T0 := ChMsTick;
+  Chn := OpenStack('FT1_2', Format('%s NAM=NOISE %s SEED=%d NAM=COM DEV=%s BD=38400',
+    [FT12MasterParams, Noise.Params, ASeed, Peer.Pty]), Err);
+  if Chn = nil then
+    St.Note := Err + ';'
+  else
+  begin
+    FT12LinkInit(Link, 2);
+    Seq := 0;
+    Delivered := 0;
+    Dups := 0;
+    Gaps := 0;
+    Start := ChMsTick;
+    while not Done_(St, Start) do
+    begin
+      Inc(Seq);
+      FillChar(Req, SizeOf(Req), 0);
+      Req.MessType := ChnFT1_2.tpLongM;
+      Req.FC := FCM_UserDataReply;
+      PutLong(Req.Data, 0, Seq);
+      Ok := False;
+      for Tries := 1 to AppTries do
+      begin
+        RepLen := 0;
+        R := FT12Transact(Chn, Link, Req, 4 + 4, Rep, RepLen, FT12Timeout, FT12Retries);
+        if R = res_Ok then
+        begin
+          Ok := True;
+          Break;
+        end;
+        if R <> res_Timeout then
+        begin
+          St.Note := St.Note + ' ' + Chn^.ChResultStr(R) + ';';
+          Break;
+        end;
+        Inc(St.Retries);
+        Inc(St.Timeouts);
+        if Stop then
+          Break;
+      end;
+      if not Ok then
+      begin
+        Inc(St.Losses);
+        Break;
+      end;
+      Inc(St.Messages);
+      if not (((Rep.MessType = ChnFT1_2.tpShortM) and (Rep.FC = FCS_Ack)) or
+              (Rep.MessType = ChnFT1_2.tpSACK)) then
+        Inc(St.Bad);
+      if (St.Messages = 1) or (St.Messages = WarmUp) then
+        TakeStart(St, Peer.Proc.ProcessID);
+      if (Seq mod CheckEvery = 0) and not Check then
+      begin
+        Inc(St.Losses);
+        Break;
+      end;
+    end;
+    if Check then
+    begin
+      { delivered exactly once: every one arrived, none twice, none skipped }
+      if Delivered <> Seq then
+        St.Note := St.Note + Format(' secondary got %d of %d;', [Delivered, Seq]);
+      Inc(St.Dups, Dups);
+      Inc(St.Losses, Gaps);
+    end
+    else
+      Inc(St.Losses);
+    Inc(St.Retries, Link.Repeats);
+    TakeEnd(St, Peer.Proc.ProcessID);
+    Dispose(Chn, Done);
+  end;
+  PeerStop(Peer);
+  Report(Name, St, ASeed, ChMsTick - T0, False);
+end;
+
+{ ---------------------------------------------------------------- ICS }
+
+const
+  ICSSlaveParams = 'NAM=ICS MAS=SLAVE NOD=2 DNO=1';
+  ICSMasterParams = 'NAM=ICS MAS=MASTER NOD=1 DNO=2';
+
+function ICSValue(Seq: LongInt): SmallInt;
+begin
+  Result := SmallInt((Seq * 7) and $7FFF);
+end;
+
+procedure ServeICS;
+var
+  Chn: pChnVirt;
+  Req, Ans: ChnICS.tRecRecord;
+  Len: Word;
+  Answered: LongInt;
+  Err: string;
+begin
+  Chn := OpenStack('ICS', ICSSlaveParams + ' NAM=COM DRV=PTY', Err);
+  if Chn = nil then
+  begin
+    WriteLn('soak: ', Err);
+    Halt(1);
+  end;
+  Answered := 0;
+  Chn^.ChReceiveBuffer(@Req, SizeOf(Req));
+  WriteLn('PTY ', PtyLastSlave);
+  Flush(Output);
+  while not Stop and not Orphaned and (Chn^.ChResult = res_Ok) do
+  begin
+    if Chn^.ChReceiveReady <> CHS_ReceiveReady then
+    begin
+      Sleep(1);
+      Continue;
+    end;
+    Len := 0;
+    Chn^.ChReceive(Len);
+    if (Chn^.ChReceiveResult <> res_Ok) or (Req.OpCode <> OCM_ReadData) or (Len <> 4 + 4) then
+      Continue;                 { ICSlink has no NAK: the master asks again }
+    FillChar(Ans, SizeOf(Ans), 0);
+    Ans.OpCode := OCS_ReadData;
+    Ans.BlockNum := Req.BlockNum;
+    Ans.Data[0] := Req.Data[0];
+    Ans.Data[1] := Req.Data[1];
+    Ans.Data[2] := ICSValue(LongInt(Req.Data[0]) shl 15 + Req.Data[1]);
+    Ans.Text := '';
+    if ChSendWhenFree(Chn, @Ans, 4 + 6, 1000) = res_Ok then
+      Inc(Answered);
+  end;
+  WriteLn(Format('STATS answered=%d', [Answered]));
+  Flush(Output);
+  Dispose(Chn, Done);
+end;
+
+procedure RunICS(const Name: string; const Noise: TNoise; ASeed: LongInt);
+var
+  Peer: TPeer;
+  Err: string;
+  Chn: pChnVirt;
+  St: TStats;
+  T0, Start, Until_: QWord;
+  Req, Ans: ChnICS.tRecRecord;
+  Len: Word;
+  Seq, Tries: LongInt;
+  Got: Boolean;
+begin
+  FillChar(St, SizeOf(St), 0);
+  St.Note := '';
+  PeerStart(Peer, ParamStr(0), ['--serve=ics'], Err);
+  if Peer.Pty = '' then
+  begin
+    St.Note := Err + ';';
+    PeerStop(Peer);
+    Report(Name, St, ASeed, 0, False);
+    Exit;
+  end;
+  T0 := ChMsTick;
+  Chn := OpenStack('ICS', Format('%s NAM=NOISE %s SEED=%d NAM=COM DEV=%s BD=38400',
+    [ICSMasterParams, Noise.Params, ASeed, Peer.Pty]), Err);
+  if Chn = nil then
+    St.Note := Err + ';'
+  else
+  begin
+    Chn^.ChReceiveBuffer(@Ans, SizeOf(Ans));
+    Seq := 0;
+    Start := ChMsTick;
+    while not Done_(St, Start) do
+    begin
+      Inc(Seq);
+      FillChar(Req, SizeOf(Req), 0);
+      Req.OpCode := OCM_ReadData;
+      Req.BlockNum := Seq mod 10;
+      Req.Data[0] := (Seq shr 15) and $7FFF;
+      Req.Data[1] := Seq and $7FFF;
+      Req.Text := '';
+      Got := False;
+      for Tries := 1 to AppTries do
+      begin
+        if Tries > 1 then
+        begin
+          Inc(St.Retries);
+          Inc(St.Timeouts);
+        end;
+        if ChSendWhenFree(Chn, @Req, 4 + 4, 1000) <> res_Ok then
+        begin
+          St.Note := St.Note + ' send: ' + Chn^.ChResultStr(Chn^.ChSendResult) + ';';
+          Break;
+        end;
+        Until_ := ChMsTick + ICSTimeout;
+        repeat
+          if Chn^.ChReceiveReady = CHS_ReceiveReady then
+          begin
+            Len := 0;
+            Chn^.ChReceive(Len);
+            if Chn^.ChReceiveResult <> res_Ok then
+              Continue;         { broken: the answer is lost, ask again later }
+            if (Ans.OpCode = OCS_ReadData) and (Len = 4 + 6) and (Ans.BlockNum = Req.BlockNum) and
+               (Ans.Data[0] = Req.Data[0]) and (Ans.Data[1] = Req.Data[1]) then
+            begin
+              if Ans.Data[2] <> ICSValue(Seq) then
+                Inc(St.Bad);
+              Got := True;
+            end
+            else
+              Inc(St.Stale);    { the answer to an earlier request, or damage }
+          end
+          else if Chn^.ChResult <> res_Ok then
+            Break;
+        until Got or (ChMsTick > Until_);
+        if Got or (Chn^.ChResult <> res_Ok) or Stop then
+          Break;
+      end;
+      if not Got then
+      begin
+        Inc(St.Losses);
+        Break;
+      end;
+      Inc(St.Messages);
+      if (St.Messages = 1) or (St.Messages = WarmUp) then
+        TakeStart(St, Peer.Proc.ProcessID);
+    end;
+    TakeEnd(St, Peer.Proc.ProcessID);
+    Dispose(Chn, Done);
+  end;
+  PeerStop(Peer);
+  Report(Name, St, ASeed, ChMsTick - T0, False);
+end;
+
+{ --------------------------------------------------------------- main }
+
+function Selected(const Name: string): Boolean;
+begin
+  Result := (Only = '') or (Pos(LowerCase(Only), LowerCase(Name)) > 0);
+end;
+
+var
+  I, K, N: LongInt;
+  Arg, Key, Value, Serve, CrcArg: string;
+begin
+  Seconds := 10;
+  Count := 0;
+  Seed := 0;
+  Only := '';
+  Serve := '';
+  CrcArg := 'ON';
+  Df1SimPath := ExtractFilePath(ParamStr(0)) + '../bin/df1sim';
+  for I := 1 to ParamCount do
+  begin
+    Arg := ParamStr(I);
+    Key := Arg;
+    Value := '';
+    if Pos('=', Arg) > 0 then
+    begin
+      Key := Copy(Arg, 1, Pos('=', Arg) - 1);
+      Value := Copy(Arg, Pos('=', Arg) + 1, MaxInt);
+    end;
+    N := 0;
+    if (Key = '--seconds') and StrToNum(Value, 1, 1000000, N) then Seconds := N
+    else if (Key = '--count') and StrToNum(Value, 0, MaxLongInt, N) then Count := N
+    else if (Key = '--seed') and StrToNum(Value, 0, MaxLongInt - 100, N) then Seed := N
+    else if Key = '--only' then Only := Value
+    else if Key = '--df1sim' then Df1SimPath := Value
+    else if Key = '--serve' then Serve := Value
+    else if Key = '--crc' then CrcArg := Value
+    else if Key = '--verbose' then Verbose := True
+    else
+    begin
+      WriteLn('soak: bad argument ', Arg, ' (see tests/soak/soak.pas)');
+      Halt(2);
+    end;
+  end;
+  CatchSignals;
+  Parent := FpGetPPid;
+  if Serve = 'df1hd' then
+    ServeDF1HD(CrcArg)
+  else if Serve = 'ft12' then
+    ServeFT12
+  else if Serve = 'ics' then
+    ServeICS
+  else if Serve <> '' then
+  begin
+    WriteLn('soak: unknown --serve=', Serve);
+    Halt(2);
+  end
+  else
+  begin
+    Randomize;
+    if Seed = 0 then
+      Seed := 1 + Random(1000000);
+    if Count > 0 then
+      WriteLn(Format('soak: %d messages per scenario, seeds from %d', [Count, Seed]))
+    else
+      WriteLn(Format('soak: %d s per scenario, seeds from %d', [Seconds, Seed]));
+    K := 0;
+    for I := Low(Noises) to High(Noises) do
+    begin
+      if Selected('df1-full-crc-' + Noises[I].Name) then
+        RunDF1('df1-full-crc-' + Noises[I].Name, False, True, Noises[I], Seed);
+      Inc(K);
+      if Selected('df1-full-bcc-' + Noises[I].Name) then
+        RunDF1('df1-full-bcc-' + Noises[I].Name, False, False, Noises[I], Seed);
+      Inc(K);
+      if Selected('df1-half-crc-' + Noises[I].Name) then
+        RunDF1('df1-half-crc-' + Noises[I].Name, True, True, Noises[I], Seed);
+      Inc(K);
+      if Selected('ft12-' + Noises[I].Name) then
+        RunFT12('ft12-' + Noises[I].Name, Noises[I], Seed);
+      Inc(K);
+      if Selected('ics-' + Noises[I].Name) then
+        RunICS('ics-' + Noises[I].Name, Noises[I], Seed);
+      Inc(K);
+      if Stop then
+        Break;
+    end;
+    WriteLn(Format('soak: %d failed, %d scenarios run', [Failed, Ran]));
+    if Failed > 0 then
+      ExitCode := 1;   { not Halt: the main program's strings are freed at its end }
+  end;
+end.
