@@ -48,7 +48,7 @@ const
   RtacTxEnd        = 3;
   RtacRxEnd        = 4;
 
-  { results of the reader (texts registered for layer 'TRC', after the
+  { results of the reader (texts registered for TrcLayer, after the
     text reader's res_TrcShort / res_TrcLong) }
   res_PcapNotPcap  = res_Proto + 2;   { no pcap magic, or a file header cut short }
   res_PcapLinkType = res_Proto + 3;   { a pcap of another link type }
@@ -355,7 +355,7 @@ begin
 end;
 
 initialization
-  ChRegisterResultText('TRC', res_PcapNotPcap, 'not a pcap file');
-  ChRegisterResultText('TRC', res_PcapLinkType, 'pcap file of another link type than RTAC serial (250)');
-  ChRegisterResultText('TRC', res_PcapCut, 'pcap file cut off or damaged inside a record');
+  ChRegisterResultText(TrcLayer, res_PcapNotPcap, 'not a pcap file');
+  ChRegisterResultText(TrcLayer, res_PcapLinkType, 'pcap file of another link type than RTAC serial (250)');
+  ChRegisterResultText(TrcLayer, res_PcapCut, 'pcap file cut off or damaged inside a record');
 end.

@@ -141,7 +141,8 @@ const
 function ComDevicePath(N: LongInt): ShortString;
 
 { Backend registry. Names are upper case ('RTL', 'SYNAPSE'); registering a
-  name again replaces the class. }
+  name again replaces the class; a full table (MaxDrivers) stops the
+  program with RunError(217), as the other registries do (docs/LAYERS.md). }
 procedure RegisterPortDriver(const Name: ShortString; Cls: TChnPortClass);
 function FindPortDriver(const Name: ShortString): TChnPortClass;
 { 'RTL|SYNAPSE|...' in registration order, for ParamChoice and messages. }

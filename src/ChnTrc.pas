@@ -46,7 +46,7 @@ uses
   ChnTypes, ChnVirt, ChnTrcFormat, ChnPcap;
 
 const
-  cName = 'TRC';
+  cName = TrcLayer;
   TrcStdErr = 'STDERR';
   TrcStdOut = 'STDOUT';
 

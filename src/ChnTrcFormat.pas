@@ -47,7 +47,11 @@ const
   TrcMsPerDay   = 86400000;
   TrcMaxLen     = 65535;     { longest chunk the Ch* API can carry (Word) }
 
-  { results of the reader, per frame (texts registered for layer 'TRC') }
+  { the trace layer's name (ChnTrc.cName): the reader's result texts are
+    registered for it, ChResultText(R, TrcLayer) }
+  TrcLayer = 'TRC';
+
+  { results of the reader, per frame (texts registered for TrcLayer) }
   res_TrcShort = res_Proto;      { fewer bytes than the header announces }
   res_TrcLong  = res_Proto + 1;  { more bytes than the header announces }
 
@@ -498,6 +502,6 @@ begin
 end;
 
 initialization
-  ChRegisterResultText('TRC', res_TrcShort, 'trace frame has fewer bytes than its header says');
-  ChRegisterResultText('TRC', res_TrcLong, 'trace frame has more bytes than its header says');
+  ChRegisterResultText(TrcLayer, res_TrcShort, 'trace frame has fewer bytes than its header says');
+  ChRegisterResultText(TrcLayer, res_TrcLong, 'trace frame has more bytes than its header says');
 end.

@@ -85,10 +85,17 @@ type
   tXor8  = Byte;   { ICS: XOR of bytes }
 
 { Readable English text for a result code. Codes from res_Proto upward are
-  per protocol: give the layer type (cName, e.g. 'DF1') to pick its text. }
+  per protocol and the same value means different things in different
+  units (FT 1.2's $20 is res_ErrSum, DF1's res_ErrFrame): give the layer
+  type (cName, e.g. 'DF1') to pick its text, or call the channel's
+  ChResultStr. Without a layer a protocol code gets the text of whichever
+  unit registered that value first. }
 function ChResultText(R: tChResult; const Layer: ShortString): ShortString;
 function ChResultText(R: tChResult): ShortString;
-{ Protocol units call this from their initialization section. }
+{ Protocol units call this from their initialization section; the same
+  layer and code again replaces the text. A full table (MaxResultTexts) is
+  a programming error and stops the program with RunError(217), as a full
+  layer or port driver registry does. }
 procedure ChRegisterResultText(const Layer: ShortString; R: tChResult; const Text: ShortString);
 
 { Checksums. The *Add functions fold one byte into a running value that
@@ -166,7 +173,7 @@ begin
       Exit;
     end;
   if ResultTextCount >= MaxResultTexts then
-    Exit;
+    RunError(217);      { programming error: raise MaxResultTexts }
   Inc(ResultTextCount);
   ResultTexts[ResultTextCount].Layer := UpperCase(Layer);
   ResultTexts[ResultTextCount].Code := R;

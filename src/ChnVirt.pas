@@ -202,7 +202,9 @@ type
     Items: array[1..MaxChnManagers] of pAddChnVirt;
     constructor Init;
     destructor  Done; virtual;
-    { Register a manager; a manager of the same name is replaced. }
+    { Register a manager; a manager of the same name is replaced. A full
+      table or a ChNumName clash stops the program with RunError(217), as
+      the other registries do (docs/LAYERS.md). }
     procedure Insert(Item: pAddChnVirt);
     function  Search(const Name: ShortString): pAddChnVirt;
     { A new, initialised layer of that type, or nil for an unknown name. }

@@ -233,7 +233,7 @@ begin
         Count := Length(Frames);
         if R <> res_Ok then
         begin
-          WriteLn(StdErr, 'chndecode: ', FileName, ': ', ChResultText(R, 'TRC'),
+          WriteLn(StdErr, 'chndecode: ', FileName, ': ', ChResultText(R, TrcLayer),
             ' at byte ', Info.ErrPos, ': ', Info.ErrText);
           if (R <> res_PcapCut) or (Count = 0) then
             Halt(2);

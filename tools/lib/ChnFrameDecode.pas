@@ -549,7 +549,7 @@ begin
   begin
     Inc(D.Stats.BadChunks);
     Head := Head + Format(' - the capture holds %d bytes: %s', [Length(F.Data),
-      ChResultText(F.Status, 'TRC')]);
+      ChResultText(F.Status, TrcLayer)]);
   end;
   if D.Lines <> nil then
     D.Lines.Add(Head);
