@@ -40,12 +40,16 @@ run_with_peer() {
   . "$peerfile"
   peer "$tmp/b" >"$tmp/peer.log" 2>&1 &
   pp=$!
-  # the program starts once the peer holds its end open
+  # the program starts once the peer holds its end open, and a little
+  # later: the peer's ChConnect, right after its open, flushes the input
+  # (a frame sent in between would be lost, and the manuals' programs
+  # never repeat one)
   dev=$(readlink -f "$tmp/b")
   for i in $(seq 200); do
     ls -l /proc/$pp/fd 2>/dev/null | grep -q " $dev\$" && break
     sleep 0.05
   done
+  sleep 0.5
   timeout 60 "$prog" "$tmp/a" 2>&1 | head -c 100000
   kill $pp $sp 2>/dev/null; wait $pp $sp 2>/dev/null
   echo "--- peer:"; cat "$tmp/peer.log"
