@@ -30,8 +30,8 @@ skip() { echo "skip  $1"; }
 # inputs (the specification, the seed copies of the manuals) or a path
 # beside the checkout; docs/PROTOCOLS.md and docs/REFERENCES.md say it
 pat='SPEC\.md|SPEC section|seed [0-9]{3}|seeds/|\.\./shared'
-hits=$(git ls-files 2>/dev/null | grep -v '^tests/packaging.sh$' |
-       xargs grep -lE "$pat" 2>/dev/null || true)
+hits=$(grep -rlE "$pat" --exclude-dir=.git --exclude-dir="$(basename "$BUILD")" \
+       --exclude=packaging.sh . 2>/dev/null || true)
 if [ -z "$hits" ]; then ok "package: no file points outside the repository"
 else bad "package: files citing SPEC/seeds/../shared: $(echo $hits)"; fi
 
