@@ -122,6 +122,9 @@ type
       backend on COM=/DEV=; NAM=TCP overrides it). On failure Port is nil. }
     function  ComOpenPort(out Port: TChnPort): tChResult; virtual;
     procedure ComFault(R: tChResult);
+    { res_Ok when the port can be used now: res_WrongState while closed,
+      the fault once the device failed }
+    function  ComPortUsable: tChResult;
     procedure ComJoinWait;
     { A full ring drops further input (FLW=NONE on a serial line); False
       where the line itself holds the sender back (flow control, TCP). }
@@ -761,34 +764,33 @@ begin
     CH_RResult := CH_Fault;
 end;
 
-function tChnCom.ChSetRts(On: Boolean): tChResult;
+function tChnCom.ComPortUsable: tChResult;
 begin
   if CH_Port = nil then
     Result := res_WrongState
-  else if CH_Fault <> res_Ok then
-    Result := CH_Fault
   else
+    Result := CH_Fault;
+end;
+
+function tChnCom.ChSetRts(On: Boolean): tChResult;
+begin
+  Result := ComPortUsable;
+  if Result = res_Ok then
     Result := CH_Port.SetRts(On);
 end;
 
 function tChnCom.ChSetDtr(On: Boolean): tChResult;
 begin
-  if CH_Port = nil then
-    Result := res_WrongState
-  else if CH_Fault <> res_Ok then
-    Result := CH_Fault
-  else
+  Result := ComPortUsable;
+  if Result = res_Ok then
     Result := CH_Port.SetDtr(On);
 end;
 
 function tChnCom.ChModemLines(var Lines: tPortLines): tChResult;
 begin
   Lines := [];
-  if CH_Port = nil then
-    Result := res_WrongState
-  else if CH_Fault <> res_Ok then
-    Result := CH_Fault
-  else
+  Result := ComPortUsable;
+  if Result = res_Ok then
     Result := CH_Port.GetLines(Lines);
 end;
 

@@ -9,10 +9,11 @@
     broken frame (a half-duplex slave never NAKs). Commands are answered by
     a handler the application gives (tools/df1sim plugs in its data table);
     link events (frames in and out, NAKs, ENQs, repeated commands) can be
-    counted through an optional callback. The last reply stays cached: on
-    a channel with DUP=ON a repeated command (the master missed our ACK or
-    the reply) never reaches the handler again, and the master gets the
-    cached reply again instead (half duplex: at its next poll).
+    counted through an optional callback. The last reply to each of a few
+    source stations stays cached: on a channel with DUP=ON a repeated
+    command (the master missed our ACK or the reply) never reaches the
+    handler again, and the master gets the cached reply again instead
+    (half duplex: at its next poll).
   * DF1Transact, a master: send a command, up to three tries (NAK or
     no answer -> again; full duplex asks with ENQ first), then wait for the
     reply (half duplex: poll for it), ACK it.
@@ -52,6 +53,22 @@ type
   tDF1LinkEvent = (leFrameIn, leFrameOut, leNakOut, leEnqIn, leNakIn, leDupIn);
   tDF1EventProc = procedure(Data: Pointer; Event: tDF1LinkEvent);
 
+  { A reply kept for a repeated command: the last one to each of a few
+    source stations (a frame damaged into another SRC must not push out
+    the real master's reply). }
+  tDF1CachedReply = record
+    Used : Boolean;
+    Src  : Byte;
+    Tns  : Word;
+    Len  : Word;
+    Stamp: LongInt;       { S.Requests when it was kept: the oldest goes }
+    Rep  : tSendRecord;
+  end;
+
+const
+  DF1ReplyCacheSize = 4;
+
+type
   pDF1Station = ^tDF1Station;
   tDF1Station = record
     Chn      : pChnVirt;
@@ -69,6 +86,7 @@ type
     Messages : LongInt;       { messages taken, good or broken }
     Repeats  : LongInt;       { repeated commands answered from the cache }
     DupSeen  : LongInt;       { the DF1 layer's CH_DupCount already acted on }
+    Cache    : array[0..DF1ReplyCacheSize - 1] of tDF1CachedReply;
     Log      : tDF1LogProc;   { nil: quiet }
     LogWire  : Boolean;       { lines of sent frames end with the wire bytes }
   end;
@@ -320,6 +338,7 @@ end;
 procedure AnswerRepeats(var S: tDF1Station);
 var
   D: pChnDF1;
+  I: LongInt;
 begin
   D := pChnDF1(S.Chn);
   if D^.CH_DupCount = S.DupSeen then
@@ -327,13 +346,52 @@ begin
   S.DupSeen := D^.CH_DupCount;
   Count(S, leDupIn);
   Say(S, '<- repeated command TNS=' + IntToStr(D^.CH_DupTns) + ' (ACKed by the layer)');
-  if (S.ReplyLen = 0) or (S.Reply.Tns <> D^.CH_DupTns) then
-    Exit;
-  Inc(S.Repeats);
-  S.HasReply := True;
-  S.AwaitAck := False;
-  if S.FullDup then
-    StationSend(S, S.Reply, S.ReplyLen);   { half duplex: at the next poll }
+  for I := 0 to DF1ReplyCacheSize - 1 do
+    with S.Cache[I] do
+      if Used and (Src = D^.CH_DupSrc) and (Tns = D^.CH_DupTns) then
+      begin
+        Inc(S.Repeats);
+        S.Reply := Rep;
+        S.ReplyLen := Len;
+        S.HasReply := True;
+        S.AwaitAck := False;
+        if S.FullDup then
+          StationSend(S, S.Reply, S.ReplyLen);   { half duplex: at the next poll }
+        Exit;
+      end;
+end;
+
+{ Keep the reply to a command from Src: in the slot of that source, else
+  in the slot used longest ago (a real master, asking all the time, keeps
+  its slot against frames damaged into other sources). }
+procedure CacheReply(var S: tDF1Station; Src: Byte);
+var
+  I, Slot: LongInt;
+begin
+  Slot := -1;
+  for I := 0 to DF1ReplyCacheSize - 1 do
+    if S.Cache[I].Used and (S.Cache[I].Src = Src) then
+      Slot := I;
+  if Slot < 0 then
+  begin
+    Slot := 0;
+    for I := 0 to DF1ReplyCacheSize - 1 do
+    begin
+      if not S.Cache[I].Used then
+      begin
+        Slot := I;
+        Break;
+      end;
+      if S.Cache[I].Stamp < S.Cache[Slot].Stamp then
+        Slot := I;
+    end;
+  end;
+  S.Cache[Slot].Stamp := S.Requests;
+  S.Cache[Slot].Used := True;
+  S.Cache[Slot].Src := Src;
+  S.Cache[Slot].Tns := S.Reply.Tns;
+  S.Cache[Slot].Len := S.ReplyLen;
+  S.Cache[Slot].Rep := S.Reply;
 end;
 
 function DF1StationStep(var S: tDF1Station): Boolean;
@@ -403,6 +461,7 @@ begin
         if Assigned(S.Handler) and S.Handler(S.Data, S.RMess, Len, S.Reply, S.ReplyLen) then
         begin
           Inc(S.Requests);
+          CacheReply(S, Byte(S.Chn^.CH_RSNode));
           S.HasReply := True;
           S.AwaitAck := False;
           if S.FullDup then

@@ -46,7 +46,7 @@ type
   tNoiseDir = (ndRx, ndTx);
 
   pChnNoise = ^tChnNoise;
-  tChnNoise = object(tChnVirt)
+  tChnNoise = object(tChnMiddle)
     CH_Ber, CH_Drop, CH_Ins: Double;     { BER= DRP= INS= }
     CH_BerT, CH_DropT, CH_InsT: LongWord; { the same as thresholds of 2^32 }
     CH_Garbage : LongInt;     { BYTE=: 0..255 or NoiseRandomByte }
@@ -72,10 +72,6 @@ type
     function  ChReceiveReady: tChState; virtual;
     procedure ChReceive(var Len: Word); virtual;
     procedure ChReceiveFlush; virtual;
-    procedure ChReceiveTick; virtual;
-    procedure ChDestNode(DNode: tNode); virtual;
-    procedure ChGetNode(var SNode, DNode: tNode); virtual;
-    function  ChResultStr(R: tChResult): ShortString; virtual;
     { What the line makes of byte B at the next position of direction Dir:
       0, 1 or 2 bytes in Out (garbage first). }
     function  ChDamage(Dir: tNoiseDir; B: Byte; var Out: array of Byte): LongInt;
@@ -363,12 +359,6 @@ begin
     ChLowSend(CH_TxBuf, N);
 end;
 
-procedure tChnNoise.ChReceiveTick;
-begin
-  if (CH_State = CHS_Connect) and (CH_Low <> nil) then
-    CH_Low^.ChReceiveTick;
-end;
-
 function tChnNoise.ChReceiveReady: tChState;
 begin
   if CH_State <> CHS_Connect then
@@ -450,28 +440,6 @@ begin
   inherited ChReceiveFlush;
 end;
 
-procedure tChnNoise.ChDestNode(DNode: tNode);
-begin
-  inherited ChDestNode(DNode);
-  if CH_Low <> nil then
-    CH_Low^.ChDestNode(DNode);
-end;
-
-procedure tChnNoise.ChGetNode(var SNode, DNode: tNode);
-begin
-  if CH_Low <> nil then
-    CH_Low^.ChGetNode(SNode, DNode)
-  else
-    inherited ChGetNode(SNode, DNode);
-end;
-
-function tChnNoise.ChResultStr(R: tChResult): ShortString;
-begin
-  if (R >= res_Proto) and (CH_Low <> nil) then
-    Result := CH_Low^.ChResultStr(R)
-  else
-    Result := inherited ChResultStr(R);
-end;
 
 function tAddChnNoise.ChInit: pChnVirt;
 begin

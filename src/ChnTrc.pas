@@ -52,7 +52,7 @@ const
 
 type
   pChnTrc = ^tChnTrc;
-  tChnTrc = object(tChnVirt)
+  tChnTrc = object(tChnMiddle)
     CH_File     : tWordString;  { FILE=: a path, STDERR or STDOUT }
     CH_Mode     : tTrcMode;     { MOD=HEX|DEC: the text format }
     CH_Pcap     : Boolean;      { MOD=PCAP: binary pcap instead of text }
@@ -72,10 +72,6 @@ type
     procedure ChReceiveBuffer(Buff: Pointer; Size: Word); virtual;
     function  ChReceiveReady: tChState; virtual;
     procedure ChReceive(var Len: Word); virtual;
-    procedure ChReceiveTick; virtual;
-    procedure ChDestNode(DNode: tNode); virtual;
-    procedure ChGetNode(var SNode, DNode: tNode); virtual;
-    function  ChResultStr(R: tChResult): ShortString; virtual;
     { Write one entry to the log (also usable by tools for their own notes). }
     procedure ChTrcLog(Dir: tTrcDir; Buff: Pointer; Len: Word);
     function  PcapStart: Boolean;
@@ -371,37 +367,6 @@ begin
   if Len > 0 then
     ChTrcLog(trcRx, CH_RBuff, Len);
   CH_RCtrl := CHS_Receiving;
-end;
-
-procedure tChnTrc.ChReceiveTick;
-begin
-  if (CH_State = CHS_Connect) and (CH_Low <> nil) then
-    CH_Low^.ChReceiveTick;
-end;
-
-procedure tChnTrc.ChDestNode(DNode: tNode);
-begin
-  inherited ChDestNode(DNode);
-  if CH_Low <> nil then
-    CH_Low^.ChDestNode(DNode);
-end;
-
-procedure tChnTrc.ChGetNode(var SNode, DNode: tNode);
-begin
-  if CH_Low <> nil then
-    CH_Low^.ChGetNode(SNode, DNode)
-  else
-    inherited ChGetNode(SNode, DNode);
-end;
-
-function tChnTrc.ChResultStr(R: tChResult): ShortString;
-begin
-  { results from res_Proto up come from the layer below (TRC's own codes
-    of that range belong to the log reader, never to the layer) }
-  if (R >= res_Proto) and (CH_Low <> nil) then
-    Result := CH_Low^.ChResultStr(R)
-  else
-    Result := inherited ChResultStr(R);
 end;
 
 function tAddChnTrc.ChInit: pChnVirt;

@@ -186,6 +186,19 @@ type
       CmdL: tCmd; var Buf: Pointer; var Size: Word): tChResult;
   end;
 
+  pChnMiddle = ^tChnMiddle;
+  { The ancestor of a middle layer that passes messages through (TRC,
+    NOISE): station addresses, the receive automaton and protocol result
+    codes belong to the layer below, so ChDestNode, ChGetNode,
+    ChReceiveTick and ChResultStr (codes from res_Proto up) are handed to
+    it. Without a layer below it behaves as tChnVirt. No fields of its own. }
+  tChnMiddle = object(tChnVirt)
+    procedure ChReceiveTick; virtual;
+    procedure ChDestNode(DNode: tNode); virtual;
+    procedure ChGetNode(var SNode, DNode: tNode); virtual;
+    function  ChResultStr(R: tChResult): ShortString; virtual;
+  end;
+
   pAddChnVirt = ^tAddChnVirt;
   { A manager knows how to create one layer type; one per layer unit,
     registered in ChnCollection from the unit's initialization. }
@@ -959,6 +972,39 @@ procedure tChnVirt.ChLowDiscard;
 begin
   CH_LowLen := 0;
   CH_LowPos := 0;
+end;
+
+{ -------------------------------------------------------------- tChnMiddle }
+
+procedure tChnMiddle.ChReceiveTick;
+begin
+  if (CH_State = CHS_Connect) and (CH_Low <> nil) then
+    CH_Low^.ChReceiveTick;
+end;
+
+procedure tChnMiddle.ChDestNode(DNode: tNode);
+begin
+  inherited ChDestNode(DNode);
+  if CH_Low <> nil then
+    CH_Low^.ChDestNode(DNode);
+end;
+
+procedure tChnMiddle.ChGetNode(var SNode, DNode: tNode);
+begin
+  if CH_Low <> nil then
+    CH_Low^.ChGetNode(SNode, DNode)
+  else
+    inherited ChGetNode(SNode, DNode);
+end;
+
+function tChnMiddle.ChResultStr(R: tChResult): ShortString;
+begin
+  { a middle layer's own codes of that range, if any, are not results of
+    the channel (TRC's belong to its log reader) }
+  if (R >= res_Proto) and (CH_Low <> nil) then
+    Result := CH_Low^.ChResultStr(R)
+  else
+    Result := inherited ChResultStr(R);
 end;
 
 { ------------------------------------------------------------- tAddChnVirt }

@@ -111,6 +111,8 @@ type
     procedure TestOsOverrunReported;
     procedure TestSendErrors;
     procedure TestSettingRefusedLeavesClosed;
+    procedure TestModemLinesReachThePort;
+    procedure TestPortDriverNames;
   end;
 
 implementation
@@ -1057,6 +1059,8 @@ type
     class var Queue: LongInt;        { OutQueue answers this, then -100 }
     class var RxData: string;
     class var OsLost: LongWord;
+    class var LineState: tPortLines; { GetLines answers these }
+    class var ReadFault: tChResult;  { Read answers this when not res_Ok }
     function Open(const Path: tWordString): tChResult; override;
     function Configure(const S: tPortSettings): tChResult; override;
     function Read(var Buf; Size: LongInt; out Got: LongInt): tChResult; override;
@@ -1096,6 +1100,11 @@ end;
 
 function TFakePort.Read(var Buf; Size: LongInt; out Got: LongInt): tChResult;
 begin
+  if ReadFault <> res_Ok then
+  begin
+    Got := 0;
+    Exit(ReadFault);
+  end;
   Got := Length(RxData);
   if Got > Size then
     Got := Size;
@@ -1154,12 +1163,14 @@ end;
 
 function TFakePort.SetDtr(On: Boolean): tChResult;
 begin
+  Log := Log + 'dtr' + IntToStr(Ord(On)) + ';';
   Result := res_Ok;
 end;
 
 function TFakePort.GetLines(out Lines: tPortLines): tChResult;
 begin
-  Lines := [];
+  Lines := LineState;
+  Log := Log + 'lines;';
   Result := res_Ok;
 end;
 
@@ -1198,6 +1209,8 @@ begin
   TFakePort.Queue := 0;
   TFakePort.RxData := '';
   TFakePort.OsLost := 0;
+  TFakePort.LineState := [];
+  TFakePort.ReadFault := res_Ok;
 end;
 
 procedure TTestChnComLogic.TestDefaultParams;
@@ -1493,6 +1506,83 @@ begin
   finally
     Dispose(C, Done);
   end;
+end;
+
+procedure TTestChnComLogic.TestModemLinesReachThePort;
+var
+  C: pChnCom;
+  Lines: tPortLines;
+  Buf: array[0..15] of Byte;
+begin
+  New(C, Init);
+  try
+    C^.ChSetParam('DRV=FAKE DEV=/x');
+    Lines := [plRing];
+    AssertEquals('RTS while closed', res_WrongState, C^.ChSetRts(True));
+    AssertEquals('DTR while closed', res_WrongState, C^.ChSetDtr(True));
+    AssertEquals('lines while closed', res_WrongState, C^.ChModemLines(Lines));
+    AssertTrue('no lines while closed', Lines = []);
+    C^.ChOpen;
+    AssertEquals(res_Ok, C^.ChResult);
+    TFakePort.Log := '';
+    AssertEquals(res_Ok, C^.ChSetRts(True));
+    AssertEquals(res_Ok, C^.ChSetDtr(False));
+    AssertEquals(res_Ok, C^.ChSetRts(False));
+    AssertEquals(res_Ok, C^.ChSetDtr(True));
+    TFakePort.LineState := [plCts, plCarrier];
+    AssertEquals(res_Ok, C^.ChModemLines(Lines));
+    AssertTrue('CTS and CD as the port reports them', Lines = [plCts, plCarrier]);
+    AssertEquals('each call reaches the port, in order',
+      'rts1;dtr0;rts0;dtr1;lines;', TFakePort.Log);
+    { once the device failed, the calls say so and leave the port alone }
+    TFakePort.ReadFault := res_DeviceLost;
+    C^.ChReceiveBuffer(@Buf, SizeOf(Buf));
+    C^.ChConnect;
+    C^.ChReceiveReady;
+    AssertEquals('the fault', res_DeviceLost, C^.ChResult);
+    TFakePort.Log := '';
+    Lines := [plDsr];
+    AssertEquals(res_DeviceLost, C^.ChSetRts(True));
+    AssertEquals(res_DeviceLost, C^.ChSetDtr(True));
+    AssertEquals(res_DeviceLost, C^.ChModemLines(Lines));
+    AssertTrue('no lines from a lost device', Lines = []);
+    AssertEquals('nothing reached the port', '', TFakePort.Log);
+    C^.ChClose;
+    AssertEquals('closed again', res_WrongState, C^.ChSetDtr(False));
+  finally
+    Dispose(C, Done);
+  end;
+end;
+
+procedure TTestChnComLogic.TestPortDriverNames;
+var
+  Names, Seen, Name: string;
+  P: Integer;
+begin
+  RegisterPortDriver('fake', TFakePort);   { again, in lower case: replaces }
+  Names := PortDriverNames;
+  AssertTrue(Names, (Names <> '') and (Names[1] <> '|') and (Names[Length(Names)] <> '|'));
+  Seen := '|';
+  P := 1;
+  while P <= Length(Names) do
+  begin
+    Name := '';
+    while (P <= Length(Names)) and (Names[P] <> '|') do
+    begin
+      Name := Name + Names[P];
+      Inc(P);
+    end;
+    Inc(P);
+    AssertEquals('upper case', UpperCase(Name), Name);
+    AssertTrue(Name + ' is found', FindPortDriver(Name) <> nil);
+    AssertEquals(Name + ' once', 0, Pos('|' + Name + '|', Seen));
+    Seen := Seen + Name + '|';
+  end;
+  AssertTrue('the default backend', Pos('|' + DefaultPortDriver + '|', Seen) > 0);
+  AssertTrue('the test''s own', Pos('|FAKE|', Seen) > 0);
+  {$IFDEF UNIX}
+  AssertTrue('pty pairs', Pos('|PTY|', Seen) > 0);
+  {$ENDIF}
 end;
 
 initialization

@@ -47,6 +47,7 @@ type
     procedure TestOpenWithoutLowerLayer;
     procedure TestDisposeOpenStack;
     procedure TestResultTextOfLayer;
+    procedure TestMiddleLayerHandsAddressingDown;
   end;
 
 implementation
@@ -447,6 +448,42 @@ procedure TTestChnVirt.TestResultTextOfLayer;
 begin
   AssertEquals('bad parameter', Chn^.ChResultStr(res_BadParam));
   AssertTrue(Pos('unknown result code', Chn^.ChResultStr(res_Proto)) > 0);
+end;
+
+procedure TTestChnVirt.TestMiddleLayerHandsAddressingDown;
+var
+  M: pChnMiddle;
+  SNode, DNode: tNode;
+begin
+  ChRegisterResultText('TSTP', res_Proto + 7, 'a code of the layer below');
+  New(M, Init);
+  try
+    M^.ChSetType('MIDDLE');
+    { nothing below: as tChnVirt }
+    M^.ChDestNode(5);
+    AssertEquals(5, M^.CH_DNode);
+    M^.CH_RSNode := 3;
+    M^.CH_RDNode := 4;
+    M^.ChGetNode(SNode, DNode);
+    AssertEquals(3, SNode);
+    AssertEquals(4, DNode);
+    AssertTrue(Pos('unknown result code', M^.ChResultStr(res_Proto + 7)) > 0);
+    M^.ChReceiveTick;
+    { a layer below: addresses and protocol codes are its }
+    M^.CH_Low := ChnCollection^.ChNewInit('TSTP');
+    M^.ChDestNode(9);
+    AssertEquals('handed down', 9, M^.CH_Low^.CH_DNode);
+    AssertEquals('and kept', 9, M^.CH_DNode);
+    M^.CH_Low^.CH_RSNode := 7;
+    M^.CH_Low^.CH_RDNode := 8;
+    M^.ChGetNode(SNode, DNode);
+    AssertEquals('from below', 7, SNode);
+    AssertEquals('from below', 8, DNode);
+    AssertEquals('TSTP: a code of the layer below', M^.ChResultStr(res_Proto + 7));
+    AssertEquals('general codes are its own', 'device lost', M^.ChResultStr(res_DeviceLost));
+  finally
+    Dispose(M, Done);
+  end;
 end;
 
 initialization

@@ -38,6 +38,7 @@ type
     procedure TestRepeatedCommandFullDuplex;
     procedure TestRepeatedCommandHalfDuplex;
     procedure TestRepeatedCommandWithoutDup;
+    procedure TestRepeatedCommandAfterAnotherSource;
     {$IFDEF UNIX}
     procedure TestBinaryOverPty;   { df1sim --pty: a Unix pty }
     procedure TestPtyTakesBdAndPar;
@@ -323,6 +324,41 @@ begin
   AssertEquals('ACK: silence', '', RawSay('10 06', 50));
   AssertEquals('poll: EOT', '10 04', RawSay('10 05 01 FF', 50));
   AssertEquals('executed once', 1, Station.Requests);
+end;
+
+{ The soak found it: the master's command is executed and its reply lost;
+  before the master repeats it, a frame damaged into a command from another
+  SRC (BCC let it through) is executed too. The repetition is still a
+  repeated command for the layer (it remembers per SRC), so the station
+  must still have the reply to it - it kept only the last reply, of the
+  damaged frame, and stayed silent for good. Echo from SRC 2 with TNS 9:
+  sum $53 -> BCC $AD; its reply (TNS 9) sum $91 -> $6F. }
+procedure TTestDf1Sim.TestRepeatedCommandAfterAnotherSource;
+const
+  Reply5 = '10 06 10 02 00 01 46 00 05 00 41 10 03 73';
+var
+  Err: string;
+begin
+  Slave := Open('NAM=DF1 NOD=1 DNO=0 MAS=SLAVE FHD=FULL CRC=OFF DUP=ON NAM=LOOP PAIR=SIMDS END=2');
+  Raw := OpenStack('LOOP', 'NAM=LOOP PAIR=SIMDS END=1', Err);
+  AssertTrue(Err, Raw <> nil);
+  SlcStationInit(Station, Slave, @Table);
+  AssertEquals('SRC 0, TNS 5: ACK + reply', Reply5, RawSay('10 02 01 00 06 00 05 00 00 41 10 03 B3', 50));
+  AssertEquals('SRC 2, TNS 9: ACK + reply', '10 06 10 02 00 01 46 00 09 00 41 10 03 6F',
+    RawSay('10 02 01 02 06 00 09 00 00 41 10 03 AD', 50));
+  AssertEquals('SRC 0 repeats TNS 5: ACK + its reply', Reply5,
+    RawSay('10 02 01 00 06 00 05 00 00 41 10 03 B3', 50));
+  AssertEquals('executed twice, once per command', 2, Station.Requests);
+  { four more sources (echo TNS 9 from SRC 3..6: BCC $AC..$A9): the real
+    master's reply, the most recent one, must not be the one pushed out }
+  AssertEquals('SRC 0, TNS 6', '10 06 10 02 00 01 46 00 06 00 41 10 03 72',
+    RawSay('10 02 01 00 06 00 06 00 00 41 10 03 B2', 50));
+  RawSay('10 02 01 03 06 00 09 00 00 41 10 03 AC', 50);
+  RawSay('10 02 01 04 06 00 09 00 00 41 10 03 AB', 50);
+  RawSay('10 02 01 05 06 00 09 00 00 41 10 03 AA', 50);
+  AssertEquals('SRC 0 repeats TNS 6 after three other sources', '10 06 10 02 00 01 46 00 06 00 41 10 03 72',
+    RawSay('10 02 01 00 06 00 06 00 00 41 10 03 B2', 50));
+  AssertEquals('executed six times', 6, Station.Requests);
 end;
 
 { DUP=OFF (the default, the manual's behaviour): a repeated command is
