@@ -79,9 +79,14 @@ build_run() {
 
 # way 1: -Fu to the checkout
 for p in $progs; do
-  d="$TMP/checkout-$p"; mkdir -p "$d"; cp "$TMP/readme/$p.pas" "$d/"
-  build_run "-Fu to the checkout" "$d" "$p" "$FPC" -v0 -Fu"$REPO/src" -Fi"$REPO/src" "$p.pas"
+  d="$TMP/checkout-$p"; mkdir -p "$d/lib"; cp "$TMP/readme/$p.pas" "$d/"
+  build_run "-Fu to the checkout" "$d" "$p" "$FPC" -v0 -Fu"$REPO/src" -Fi"$REPO/src" -FUlib "$p.pas"
 done
+
+# the checkout stays clean: a build that follows the README leaves no
+# compiled unit beside the library's sources
+if [ -z "$(ls src/*.ppu src/*.o 2>/dev/null)" ]; then ok "package: building from the checkout writes nothing into src/"
+else bad "package: compiled units were left in src/"; fi
 
 # way 2: make install as a user (PREFIX=$HOME/.fppkg), then plain fpc
 H="$TMP/home"; mkdir -p "$H"
