@@ -88,6 +88,11 @@ check-fpc:
 units: $(BUILD)/units.stamp
 $(BUILD)/units.stamp: $(LIBSRC) | check-fpc
 	@mkdir -p $(UNITDIR) $(BINDIR)
+	@# compiled units that "fpc -Fusrc prog.pas" left beside the sources
+	@# would be taken as current and never reach $(UNITDIR)
+	@if [ -n "$$(ls src/*.ppu tools/lib/*.ppu 2>/dev/null)" ]; then \
+	  echo "note: removing compiler output left in src/ or tools/lib/"; \
+	  rm -f src/*.ppu src/*.o src/*.rsj tools/lib/*.ppu tools/lib/*.o tools/lib/*.rsj; fi
 	@$(if $(SYNAPSE_DIR),$(FPC) $(COMMON) $(SYNAPSE_FLAGS) -O2 -FU$(UNITDIR) -FE$(BINDIR) $(SYNAPSE_DIR)/synaser.pas >/dev/null;) true
 	@{ echo 'unit chnall; interface uses'; \
 	   echo '$(basename $(notdir $(UNITS)))' | sed 's/ /, /g'; \

@@ -5,7 +5,8 @@
     user data, confirm (FC 3)        -> single character ACK ($E5)
     user data, no reply (FC 4)       -> nothing
     request status of link (FC 9)    -> status of link (FC 11)
-    test function for link (FC 2)    -> ACK (balanced mode, MS=OFF PRI=OFF)
+    test function for link (FC 2)    -> ACK (balanced mode, MS=OFF PRI=OFF);
+                                        unbalanced: single character ACK ($E5)
     request class 1 data (FC 10)     -> "data not available" (FC 9)
     request class 2 data (FC 11)     -> user data (FC 8): a measured value,
                                         scaled (M_ME_NB_1, IOA 110, common
@@ -129,7 +130,11 @@ begin
         FCM_1stSetUserFun: Answer(tpShortM, FCS_Ack, 0);
         FCM_UserDataReply: Answer(tpSACK, 0, 0);
         FCM_UserDataNoRep: ;
-        FCM_CheckLink: Answer(tpShortM, FCS_Ack, 0);
+        FCM_CheckLink:
+          if pChnFT1_2(Chn)^.CH_MaSl then
+            Answer(tpSACK, 0, 0)      { unbalanced: E5, whatever LEN= is }
+          else
+            Answer(tpShortM, FCS_Ack, 0);
         FCM_ReqLinkState: Answer(tpShortM, FCS_LinkSAccesReq, 0);
         FCM_ReqUserData1: Answer(tpShortM, FCS_DataNotAcces, 0);
         FCM_ReqUserData2:

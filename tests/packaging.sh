@@ -30,8 +30,8 @@ skip() { echo "skip  $1"; }
 # inputs (the specification, the seed copies of the manuals) or a path
 # beside the checkout; docs/PROTOCOLS.md and docs/REFERENCES.md say it
 pat='SPEC\.md|SPEC section|seed [0-9]{3}|seeds/|\.\./shared'
-hits=$(git ls-files 2>/dev/null | grep -v '^tests/packaging.sh$' |
-       xargs grep -lE "$pat" 2>/dev/null || true)
+hits=$(grep -rlE "$pat" --exclude-dir=.git --exclude-dir="$(basename "$BUILD")" \
+       --exclude=packaging.sh . 2>/dev/null || true)
 if [ -z "$hits" ]; then ok "package: no file points outside the repository"
 else bad "package: files citing SPEC/seeds/../shared: $(echo $hits)"; fi
 
@@ -79,9 +79,14 @@ build_run() {
 
 # way 1: -Fu to the checkout
 for p in $progs; do
-  d="$TMP/checkout-$p"; mkdir -p "$d"; cp "$TMP/readme/$p.pas" "$d/"
-  build_run "-Fu to the checkout" "$d" "$p" "$FPC" -v0 -Fu"$REPO/src" -Fi"$REPO/src" "$p.pas"
+  d="$TMP/checkout-$p"; mkdir -p "$d/lib"; cp "$TMP/readme/$p.pas" "$d/"
+  build_run "-Fu to the checkout" "$d" "$p" "$FPC" -v0 -Fu"$REPO/src" -Fi"$REPO/src" -FUlib "$p.pas"
 done
+
+# the checkout stays clean: a build that follows the README leaves no
+# compiled unit beside the library's sources
+if [ -z "$(ls src/*.ppu src/*.o 2>/dev/null)" ]; then ok "package: building from the checkout writes nothing into src/"
+else bad "package: compiled units were left in src/"; fi
 
 # way 2: make install as a user (PREFIX=$HOME/.fppkg), then plain fpc
 H="$TMP/home"; mkdir -p "$H"

@@ -5,7 +5,10 @@
 #  3. the type rule of docs/LAYERS.md over the library's interfaces
 #     (tests/apicheck.pl; selected by T=api too);
 #  4. legacy programs in tests/legacy compiled in -Mtp -Mfpc -Mobjfpc
-#     -Mdelphi and run (each asserts record sizes and offsets itself);
+#     -Mdelphi and run (each asserts record sizes and offsets itself); a
+#     program with a NAME.peer file runs against that peer on a socat
+#     null-modem (see run_with_peer) and must end with the peer file's
+#     expected line;
 #  5. the soak (tests/soak/soak.pas), every scenario for 2 s over ptys
 #     between two processes (selected by T=soak too);
 #  6. tests/packaging.sh: make install, fpmake, chn.lpk and the README's
@@ -20,6 +23,39 @@ failed=0
 skipped=0
 pass() { passed=$((passed + 1)); echo "ok    $1"; }
 fail() { failed=$((failed + 1)); echo "FAIL  $1"; }
+
+# run_with_peer PROGRAM PEERFILE: a socat null-modem of two ptys; the peer
+# the .peer file defines (function "peer DEVICE", variable "expect") on one
+# end, PROGRAM with the other end as its argument. Output (at most 100 kB:
+# a legacy loop printing 'Chyba' must not fill the disk) goes to stdout,
+# then the peer's log after a line "--- peer:".
+run_with_peer() {
+  local prog=$1 peerfile=$2 tmp sp pp i dev
+  tmp=$(mktemp -d)
+  socat pty,raw,echo=0,link="$tmp/a" pty,raw,echo=0,link="$tmp/b" 2>"$tmp/socat.log" &
+  sp=$!
+  for i in $(seq 100); do [ -e "$tmp/a" ] && [ -e "$tmp/b" ] && break; sleep 0.05; done
+  BIN="$BUILD/bin"
+  # shellcheck disable=SC1090
+  . "$peerfile"
+  peer "$tmp/b" >"$tmp/peer.log" 2>&1 &
+  pp=$!
+  # the program starts once the peer holds its end open, and a little
+  # later: the peer's ChConnect, right after its open, flushes the input
+  # (a frame sent in between would be lost, and the manuals' programs
+  # never repeat one)
+  dev=$(readlink -f "$tmp/b")
+  for i in $(seq 200); do
+    ls -l /proc/$pp/fd 2>/dev/null | grep -q " $dev\$" && break
+    sleep 0.05
+  done
+  sleep 0.5
+  timeout 60 "$prog" "$tmp/a" 2>&1 | head -c 100000
+  kill $pp $sp 2>/dev/null; wait $pp $sp 2>/dev/null
+  echo "--- peer:"; cat "$tmp/peer.log"
+  rm -rf "$tmp"
+  return 0
+}
 # a check that cannot run here: counted, and it says why
 skip() { skipped=$((skipped + 1)); echo "skip  $1"; }
 
@@ -58,6 +94,9 @@ if [ -z "$FILTER" ] || [[ "api" == *"${FILTER,,}"* ]]; then
   fi
 fi
 
+# one clean unit folder per mode for this run: the first program builds
+# the library units, the others reuse them (no -B for each of them)
+for mode in tp fpc objfpc delphi; do rm -rf "$BUILD/legacy-$mode"; done
 for prog in tests/legacy/*.pas; do
   [ -e "$prog" ] || continue
   name=$(basename "$prog" .pas)
@@ -66,10 +105,23 @@ for prog in tests/legacy/*.pas; do
   for mode in tp fpc objfpc delphi; do
     dir="$BUILD/legacy-$mode"
     mkdir -p "$dir"
-    if ! "$FPC" -M$mode -Fusrc -Fisrc -FU"$dir" -FE"$dir" -B -Cr -Co -Ct "$prog" >"$dir/$name.log" 2>&1; then
+    if ! "$FPC" -M$mode -Fusrc -Fisrc -FU"$dir" -FE"$dir" -Cr -Co -Ct "$prog" >"$dir/$name.log" 2>&1; then
       fail "legacy $name -M$mode: does not compile"; tail -n 15 "$dir/$name.log"; continue
     fi
-    if timeout 120 "$dir/$name" >"$dir/$name.run" 2>&1; then
+    if [ -f "tests/legacy/$name.peer" ]; then
+      if ! command -v socat >/dev/null; then
+        skip "legacy $name -M$mode: socat is not installed (Debian package socat), no null-modem for its peer"
+        continue
+      fi
+      expect=''
+      run_with_peer "$dir/$name" "tests/legacy/$name.peer" >"$dir/$name.run"
+      last=$(sed -n '/^--- peer:$/q;p' "$dir/$name.run" | tail -n 1)
+      if [ -n "$expect" ] && [ "$last" = "$expect" ]; then
+        pass "legacy $name -M$mode (against its peer: $expect)"
+      else
+        fail "legacy $name -M$mode: last line '$last', expected '$expect'"; tail -n 15 "$dir/$name.run"
+      fi
+    elif timeout 120 "$dir/$name" >"$dir/$name.run" 2>&1; then
       pass "legacy $name -M$mode"
     else
       fail "legacy $name -M$mode: run failed"; tail -n 15 "$dir/$name.run"

@@ -18,9 +18,12 @@
   duplicates, bad (a reply with wrong data or status accepted: a checksum
   that let damage through), RSS and open descriptors of both processes at
   start (after a warm-up) and end, and the seed. A scenario fails on a
-  loss, a duplicate, bad data on a CRC line, RSS growth above 1 MiB, a
-  descriptor count that changed, or no progress. Exit code 0 when every
-  scenario passed. See docs/reliability.md. }
+  loss, a duplicate (on FT 1.2: beyond one per message sent again after
+  its transaction failed and the link was reset), bad data on a CRC line,
+  RSS growth above 1 MiB, a descriptor count that changed, or no progress
+  (fewer than 3 messages; --seconds is a minimum, a scenario goes on
+  until 3 messages went through, for at most 60 s). Exit code 0 when
+  every scenario passed. See docs/reliability.md. }
 program soak;
 
 {$MODE OBJFPC}{$H+}
@@ -39,6 +42,12 @@ const
   CheckEvery = 64;      { messages between checks of the peer's counters }
   HDStations = 3;
   MaxRssGrowthKb = 1024;
+  { --seconds is a minimum: a scenario also goes on until MinMessages
+    messages went through, which a loaded machine (make test runs five
+    groups at once on two cores) can take longer for; "no progress" is
+    fewer than that within ProgressCapMs }
+  MinMessages = 3;
+  ProgressCapMs = 60000;
 
 type
   TNoise = record
@@ -47,6 +56,7 @@ type
 
   TStats = record
     Messages, Retries, Timeouts, Losses, Dups, Bad, Stale: Int64;
+    DupsAfterReset: Int64;  { of Dups, those a link reset explains (FT 1.2) }
     RssStart, RssEnd, FdStart, FdEnd: LongInt;        { master }
     PRssStart, PRssEnd, PFdStart, PFdEnd: LongInt;    { peer }
     Note: string;
@@ -232,7 +242,8 @@ begin
   if Count > 0 then
     Result := St.Messages >= Count
   else
-    Result := ChMsTick - Start >= QWord(Seconds) * 1000;
+    Result := (ChMsTick - Start >= QWord(Seconds) * 1000) and
+      ((St.Messages >= MinMessages) or (ChMsTick - Start >= ProgressCapMs));
 end;
 
 procedure TakeStart(var St: TStats; Peer: TPid);
@@ -261,7 +272,7 @@ var
   Why, Line: string;
 begin
   Why := St.Note;
-  if St.Messages < 3 then
+  if St.Messages < MinMessages then
     Why := Why + ' no progress;';
   if St.Losses <> 0 then
     Why := Why + ' losses;';
@@ -271,7 +282,7 @@ begin
     one) and a damaged reply may be taken. On such a line duplicates and
     bad data are reported, not failed, when the run shows that undetected
     damage happened (bad or stale replies); a CRC line fails on both. }
-  if (St.Dups <> 0) and not (BadAllowed and (St.Bad + St.Stale > 0)) then
+  if (St.Dups > St.DupsAfterReset) and not (BadAllowed and (St.Bad + St.Stale > 0)) then
     Why := Why + ' duplicates;';
   if (St.Bad <> 0) and not BadAllowed then
     Why := Why + ' bad data accepted;';
@@ -286,7 +297,9 @@ begin
      St.PFdStart, St.PFdEnd, Ms / 1000, ASeed]);
   Inc(Ran);
   if BadAllowed and (St.Dups + St.Bad > 0) and (Why = '') then
-    Line := Line + ' (BCC let damage through: reported, not failed)';
+    Line := Line + ' (BCC let damage through: reported, not failed)'
+  else if (St.DupsAfterReset > 0) and (Why = '') then
+    Line := Line + Format(' (%d after a link reset: reported, not failed)', [St.DupsAfterReset]);
   if Why = '' then
     WriteLn('ok    ', Line)
   else
@@ -847,6 +860,18 @@ begin
       if Delivered <> Seq then
         St.Note := St.Note + Format(' secondary got %d of %d;', [Delivered, Seq]);
       Inc(St.Dups, Dups);
+      { A transaction that fails after all its repetitions (a timeout: on
+        a loaded machine the secondary's answer can be that late) leaves
+        the link not reset; the next one resets it, and the secondary
+        forgets its FCB, and sends the message again. If the first had
+        arrived and only its answer was late or lost, the secondary takes
+        it twice: IEC 60870-5-2 cannot tell after a reset. So each such
+        re-send may explain one duplicate; more than that, or one without
+        a failed transaction, fails (a secondary that ignores the FCB). }
+      if Dups <= St.Timeouts then
+        St.DupsAfterReset := Dups
+      else
+        St.DupsAfterReset := St.Timeouts;
       Inc(St.Losses, Gaps);
     end
     else
