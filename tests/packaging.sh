@@ -74,6 +74,8 @@ build_run() {
     ok "package: README program $p built and run ($way)"
   else
     bad "package: README program $p ($way) did not print $want" "$dir/$p.run"
+    # what the simulator saw, to tell a program's fault from the line's
+    echo "simulator, last lines:"; tail -n 12 "$TMP/sim.log"
   fi
 }
 
