@@ -529,6 +529,26 @@ begin
       Inc(St.Losses);
 end;
 
+{ A scenario's line below its protocol layer: the noise, then the pty to
+  the peer. }
+function NoisyLine(const Noise: TNoise; ASeed: LongInt; const Pty: string): string;
+begin
+  Result := Format('NAM=NOISE %s SEED=%d NAM=COM DEV=%s BD=38400', [Noise.Params, ASeed, Pty]);
+end;
+
+{ After PeerStart: False, with the scenario reported as failed for the
+  reason, when the peer did not come up. }
+function PeerUp(var Peer: TPeer; const Err, Name: string; var St: TStats; ASeed: LongInt): Boolean;
+begin
+  Result := Peer.Pty <> '';
+  if not Result then
+  begin
+    St.Note := Err + ';';
+    PeerStop(Peer);
+    Report(Name, St, ASeed, 0, False);
+  end;
+end;
+
 procedure RunDF1(const Name: string; Half, Crc: Boolean; const Noise: TNoise; ASeed: LongInt);
 var
   Peer: TPeer;
@@ -547,16 +567,10 @@ begin
     PeerStart(Peer, Df1SimPath, ['--pty', '--quiet', '--crc', '--timeout=30'], Err)
   else
     PeerStart(Peer, Df1SimPath, ['--pty', '--quiet', '--bcc', '--timeout=30'], Err);
-  if Peer.Pty = '' then
-  begin
-    St.Note := Err + ';';
-    PeerStop(Peer);
-    Report(Name, St, ASeed, 0, False);
+  if not PeerUp(Peer, Err, Name, St, ASeed) then
     Exit;
-  end;
-  Params := Format('NAM=DF1 NOD=0 DNO=1 MAS=MASTER FHD=%s CRC=%s NAM=NOISE %s SEED=%d ' +
-    'NAM=COM DEV=%s BD=38400', [ChoiceWord('HALF|FULL', Ord(not Half)), CrcText,
-    Noise.Params, ASeed, Peer.Pty]);
+  Params := Format('NAM=DF1 NOD=0 DNO=1 MAS=MASTER FHD=%s CRC=%s ',
+    [ChoiceWord('HALF|FULL', Ord(not Half)), CrcText]) + NoisyLine(Noise, ASeed, Peer.Pty);
   T0 := ChMsTick;
   Chn := DF1OpenStack(Params, 3000, Err);
   if Chn = nil then
@@ -790,16 +804,10 @@ begin
   FillChar(St, SizeOf(St), 0);
   St.Note := '';
   PeerStart(Peer, ParamStr(0), ['--serve=ft12'], Err);
-  if Peer.Pty = '' then
-  begin
-    St.Note := Err + ';';
-    PeerStop(Peer);
-    Report(Name, St, ASeed, 0, False);
+  if not PeerUp(Peer, Err, Name, St, ASeed) then
     Exit;
-  end;
   T0 := ChMsTick;
-  Chn := OpenStack('FT1_2', Format('%s NAM=NOISE %s SEED=%d NAM=COM DEV=%s BD=38400',
-    [FT12MasterParams, Noise.Params, ASeed, Peer.Pty]), Err);
+  Chn := OpenStack('FT1_2', FT12MasterParams + ' ' + NoisyLine(Noise, ASeed, Peer.Pty), Err);
   if Chn = nil then
     St.Note := Err + ';'
   else
@@ -954,16 +962,10 @@ begin
   FillChar(St, SizeOf(St), 0);
   St.Note := '';
   PeerStart(Peer, ParamStr(0), ['--serve=ics'], Err);
-  if Peer.Pty = '' then
-  begin
-    St.Note := Err + ';';
-    PeerStop(Peer);
-    Report(Name, St, ASeed, 0, False);
+  if not PeerUp(Peer, Err, Name, St, ASeed) then
     Exit;
-  end;
   T0 := ChMsTick;
-  Chn := OpenStack('ICS', Format('%s NAM=NOISE %s SEED=%d NAM=COM DEV=%s BD=38400',
-    [ICSMasterParams, Noise.Params, ASeed, Peer.Pty]), Err);
+  Chn := OpenStack('ICS', ICSMasterParams + ' ' + NoisyLine(Noise, ASeed, Peer.Pty), Err);
   if Chn = nil then
     St.Note := Err + ';'
   else
