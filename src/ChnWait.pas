@@ -109,6 +109,15 @@ function  ChnWaitArmed(Src: pChnWaitSource): Boolean;
 function  ChnWaitShared: Boolean;
 { Number of sources in the set now (open physical layers). }
 function  ChnWaitCount: LongInt;
+{ A layer holds input that has arrived but that the program has not taken
+  (bytes in its buffer, a decoded message waiting for ChReceive). Held is
+  the layer's own flag (False when it is created); the call keeps one
+  process-wide count of the layers holding input. While the count is
+  above zero ChnWaitAny returns True at once, so a program that steps its
+  clients from one wait never sleeps on input it already has. }
+procedure ChnWaitHeld(var Held: Boolean; Holds: Boolean);
+{ Number of layers that hold input not yet taken. }
+function  ChnWaitHeldCount: LongInt;
 
 implementation
 
@@ -125,6 +134,7 @@ var
   FiredCount: LongInt = 0;           { sources with Fired }
   SkipBudget: LongInt = 0;           { waits that may still return at once }
   Blocked: LongInt = 0;              { threads inside the OS wait now }
+  HeldCount: LongInt = 0;            { layers holding input not yet taken }
 
 {$IFDEF LINUX}
 var
@@ -455,6 +465,22 @@ begin
   LeaveCriticalSection(Lock);
 end;
 
+procedure ChnWaitHeld(var Held: Boolean; Holds: Boolean);
+begin
+  if Held = Holds then
+    Exit;
+  Held := Holds;
+  if Holds then
+    InterLockedIncrement(HeldCount)
+  else
+    InterLockedDecrement(HeldCount);
+end;
+
+function ChnWaitHeldCount: LongInt;
+begin
+  Result := HeldCount;
+end;
+
 { Caller holds Lock. }
 procedure ClearFired(Src: pChnWaitSource);
 begin
@@ -668,6 +694,8 @@ end;
 
 function ChnWaitAny(TimeoutMs: LongInt): Boolean;
 begin
+  if HeldCount > 0 then
+    Exit(True);                      { input is waiting in a layer: take it }
   if not ChnWaitShared then
   begin
     if TimeoutMs > 0 then

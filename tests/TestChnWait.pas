@@ -30,6 +30,7 @@ type
   published
     procedure TestJoinAndLeaveCount;
     procedure TestWaitAnyTimesOutAndZeroOnlyLooks;
+    procedure TestHeldInputEndsWaitAnyAtOnce;
     procedure TestLoopPeerInOtherThreadEndsIdleWait;
     {$IFDEF WINDOWS}
     procedure TestMoreHandlesThanOneWaitTakes;
@@ -180,6 +181,29 @@ begin
   AssertEquals('a closed end left', Before + 1, ChnWaitCount);
   CloseAll;
   AssertEquals('all left', Before, ChnWaitCount);
+end;
+
+procedure TTestChnWait.TestHeldInputEndsWaitAnyAtOnce;
+var
+  Held, Other: Boolean;
+  T0: QWord;
+begin
+  Held := False;
+  Other := False;
+  ChnWaitAny(0);
+  AssertEquals('nothing held at start', 0, ChnWaitHeldCount);
+  ChnWaitHeld(Held, True);
+  ChnWaitHeld(Held, True);            { the flag makes it count once }
+  ChnWaitHeld(Other, True);
+  AssertEquals('two layers hold input', 2, ChnWaitHeldCount);
+  T0 := GetTickCount64;
+  AssertTrue('held input ends the wait', ChnWaitAny(1000));
+  AssertTrue('at once, not after the timeout', GetTickCount64 - T0 < 200);
+  ChnWaitHeld(Held, False);
+  ChnWaitHeld(Other, False);
+  ChnWaitHeld(Other, False);
+  AssertEquals('taken: nothing held', 0, ChnWaitHeldCount);
+  AssertFalse('flag cleared', Held or Other);
 end;
 
 procedure TTestChnWait.TestWaitAnyTimesOutAndZeroOnlyLooks;
