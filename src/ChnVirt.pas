@@ -158,6 +158,10 @@ type
     { Next byte received by the lower layer, False if none is waiting now.
       Lower-layer errors are copied to CH_RResult. }
     function  ChLowGetByte(var B: Byte): Boolean;
+    { True when bytes pulled from below wait in CH_LowBuf[CH_LowPos ..
+      CH_LowLen - 1]; pulls the next chunk when none is left (errors as
+      ChLowGetByte). For a loop that reads CH_LowBuf itself (tChnProto). }
+    function  ChLowFill: Boolean;
     { Hand Len bytes to the lower layer's ChSend; result in CH_SResult. }
     procedure ChLowSend(Buff: Pointer; Len: Word);
     { Discard bytes pulled from the lower layer but not consumed yet. }
@@ -934,38 +938,43 @@ begin
   DNode := CH_RDNode;
 end;
 
-function tChnVirt.ChLowGetByte(var B: Byte): Boolean;
+function tChnVirt.ChLowFill: Boolean;
 var
   N: Word;
   R: tChResult;
 begin
-  if CH_LowPos >= CH_LowLen then
+  if CH_LowPos < CH_LowLen then
+    Exit(True);
+  CH_LowPos := 0;
+  CH_LowLen := 0;
+  if CH_Low = nil then
+    Exit(False);
+  if CH_Low^.ChReceiveReady <> CHS_ReceiveReady then
   begin
-    CH_LowPos := 0;
-    CH_LowLen := 0;
-    if CH_Low = nil then
-      Exit(False);
-    if CH_Low^.ChReceiveReady <> CHS_ReceiveReady then
-    begin
-      R := CH_Low^.ChReceiveResult;
-      if R <> res_Ok then
-        CH_RResult := R;
-      Exit(False);
-    end;
-    N := 0;
-    CH_Low^.ChReceive(N);
     R := CH_Low^.ChReceiveResult;
     if R <> res_Ok then
-      CH_RResult := R;          { e.g. res_Overrun: report, keep the bytes }
-    if N > SizeOf(CH_LowBuf) then
-      N := SizeOf(CH_LowBuf);
-    CH_LowLen := N;
-    if N = 0 then
-      Exit(False);
+      CH_RResult := R;
+    Exit(False);
   end;
-  B := CH_LowBuf[CH_LowPos];
-  Inc(CH_LowPos);
-  Result := True;
+  N := 0;
+  CH_Low^.ChReceive(N);
+  R := CH_Low^.ChReceiveResult;
+  if R <> res_Ok then
+    CH_RResult := R;          { e.g. res_Overrun: report, keep the bytes }
+  if N > SizeOf(CH_LowBuf) then
+    N := SizeOf(CH_LowBuf);
+  CH_LowLen := N;
+  Result := N > 0;
+end;
+
+function tChnVirt.ChLowGetByte(var B: Byte): Boolean;
+begin
+  Result := ChLowFill;
+  if Result then
+  begin
+    B := CH_LowBuf[CH_LowPos];
+    Inc(CH_LowPos);
+  end;
 end;
 
 procedure tChnVirt.ChLowDiscard;

@@ -67,7 +67,6 @@ type
     procedure TestManualExchangesFullDuplex;
     procedure TestHalfDuplexTwoSlavesFourWire;
     procedure TestHalfDuplexTwoSlavesTwoWire;
-    procedure TestBabblingLineDoesNotStallAPoll;
   end;
 
 implementation
@@ -957,21 +956,6 @@ end;
 procedure TTestChnDF1.TestHalfDuplexTwoSlavesTwoWire;
 begin
   HalfDuplexSession(True, 'HD2');
-end;
-
-{ A line that never stops sending bytes that start no frame (zeros, never a DLE):
-  one ChReceiveReady must return after a bounded number of bytes, not hang
-  the caller's polling loop for as long as the babble goes on. }
-procedure TTestChnDF1.TestBabblingLineDoesNotStallAPoll;
-var
-  State: tChState;
-  N: LongInt;
-begin
-  State := CHS_Close;
-  N := NoiseOnePoll('NAM=DF1 NAM=NOISE BYTE=0 CNT=1000000', State);
-  AssertTrue('stack opened', N >= 0);
-  AssertEquals('no message', CHS_Receiving, State);
-  AssertTrue('one poll took ' + IntToStr(N) + ' bytes', N <= 65536);
 end;
 
 initialization
