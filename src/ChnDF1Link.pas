@@ -201,11 +201,13 @@ function DF1OpenStack(const Params: AnsiString; TimeoutMs: LongInt; out Err: Ans
 var
   Step: AnsiString;
   R: tChResult;
+  Why: ShortString;
 begin
   Err := '';
-  if Length(Params) > High(tParamStr) then
+  Why := '';
+  if ParamLengthCheck(Length(Params), Why) <> res_Ok then
   begin
-    Err := 'parameter string longer than ' + IntToStr(High(tParamStr)) + ' characters';
+    Err := 'parameter string too long: ' + Why;   { refused, never cut }
     Exit(nil);
   end;
   Result := ChnCollection^.ChNewInit(ChnDF1.cName);

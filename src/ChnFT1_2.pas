@@ -117,10 +117,6 @@ type
     CH_Dir      : Boolean;   { DIR= }
     CH_Gap      : Word;      { GAP= in character times }
     CH_Rx       : tFT12Rx;   { receive automaton }
-    { noted when ChSetParam peeks at the string (cmd_Peek), so that NOD=/
-      DNO= are checked against the ADR= in force after it, in any order }
-    CH_AdrNext  : Byte;
-    CH_NodGiven, CH_DnoGiven: Boolean;
     { direction of the frame the last ChReceive gave (False after a broken
       frame): PRM (True = a request from the peer's primary; single
       characters count as secondary) and the DIR bit it carried }
@@ -134,10 +130,12 @@ type
 
     constructor Init;
     constructor ChInitParam(const S: tParamStr);
-    procedure ChSetParam(const S: tParamStr); virtual;
+    procedure ChSetParam(const S: tParamStr); virtual; overload;
     function  ChSetOneParam(const S: tWordString; var CmdL: tCmd): tChResult; virtual;
     function  ChOwnParams: tParamStr; virtual;
     function  ChMaxNode: tNode; virtual;
+    { NOD=/DNO= against the ADR= in force after the string, in any order }
+    function  ChCheckParams(const L: tParamList; var Culprit: tWordString): tChResult; virtual;
     procedure ChConnect; virtual;
     procedure ChSend(Buff: Pointer; Len: Word); virtual;
     { ChSend with the PRM bit chosen per frame: Primary = True sends a
@@ -193,9 +191,6 @@ begin
   CH_AdrLen := 1;
   CH_Dir := False;
   CH_Gap := 0;
-  CH_AdrNext := CH_AdrLen;
-  CH_NodGiven := False;
-  CH_DnoGiven := False;
   CH_RPrm := False;
   CH_RDir := False;
   CH_LowBaud := cDefaultBaud;
@@ -258,16 +253,8 @@ end;
 
 procedure tChnFT1_2.ChSetParam(const S: tParamStr);
 begin
-  { ChSetOneParam notes ADR=, NOD=, DNO= of this string when peeked at, so
-    that NOD=/DNO= are checked against the ADR= in force after it }
-  CH_AdrNext := CH_AdrLen;
-  CH_NodGiven := False;
-  CH_DnoGiven := False;
   inherited ChSetParam(S);
   ChTakeLowBaud;                  { the stack below may be new }
-  CH_AdrNext := CH_AdrLen;
-  CH_NodGiven := False;
-  CH_DnoGiven := False;
   { new settings: a half-received frame starts afresh with them; a whole
     frame waiting for ChReceive is kept }
   CH_Rx.Cfg := ChCodecConfig;
@@ -277,7 +264,58 @@ end;
 
 function tChnFT1_2.ChMaxNode: tNode;
 begin
-  Result := FT12MaxAddr(CH_AdrNext);
+  { the widest a token may give; ChCheckParams narrows it by ADR= }
+  Result := FT12MaxAddr(2);
+end;
+
+function tChnFT1_2.ChCheckParams(const L: tParamList; var Culprit: tWordString): tChResult;
+var
+  Adr, Nod, Dno: LongInt;
+
+  { the address a key leaves in force: the string's, else the one kept }
+  function Given(const Key: ShortString; Kept: LongInt; var Value: LongInt): Boolean;
+  var
+    I: LongInt;
+  begin
+    I := ParamFind(L, Key);
+    Result := I >= 0;
+    Value := Kept;
+    if Result then
+      ParamNum(L.Items[I].Text, 0, High(LongInt), Value);
+  end;
+
+  function Fits(const Key: ShortString; Kept: LongInt; var V: LongInt): Boolean;
+  begin
+    Result := True;
+    if Given(Key, Kept, V) then
+    begin
+      if V > FT12MaxAddr(Adr) then
+      begin
+        Culprit := L.Items[ParamFind(L, Key)].Text;
+        Result := False;
+      end;
+    end
+    else if V > FT12MaxAddr(Adr) then
+    begin
+      { an address kept from before that the new ADR= cannot carry }
+      Culprit := L.Items[ParamFind(L, 'ADR')].Text;
+      Result := False;
+    end;
+  end;
+
+begin
+  Result := res_Ok;
+  Given('ADR', CH_AdrLen, Adr);
+  Nod := 0;
+  Dno := 0;
+  { the first of NOD=/DNO= in the string is named first, as a token check would }
+  if ParamFind(L, 'DNO') < ParamFind(L, 'NOD') then
+  begin
+    if not Fits('DNO', CH_DNode, Dno) or not Fits('NOD', CH_Node, Nod) then
+      Result := res_BadParam;
+  end
+  else if not Fits('NOD', CH_Node, Nod) or not Fits('DNO', CH_DNode, Dno) then
+    Result := res_BadParam;
 end;
 
 function tChnFT1_2.ChSetOneParam(const S: tWordString; var CmdL: tCmd): tChResult;
@@ -287,18 +325,7 @@ var
 begin
   Key := ParamKey(S);
   N := 0;
-  if CmdL = cmd_Peek then
-  begin
-    { note what the checks of NOD=/DNO=/ADR= in this string depend on }
-    if (Key = 'ADR') and (ParamNum(S, 0, 2, N) = res_Ok) then
-      CH_AdrNext := N
-    else if Key = 'NOD' then
-      CH_NodGiven := True
-    else if Key = 'DNO' then
-      CH_DnoGiven := True;
-    Result := res_Ok;
-  end
-  else if Key = 'MS' then
+  if Key = 'MS' then
     Result := ParamFlag(S, OnOffChoice, CmdL, CH_MaSl)
   else if Key = 'MAS' then
     Result := ParamFlag(S, MasterChoice, CmdL, CH_MasParam)
@@ -312,12 +339,7 @@ begin
   end
   else if Key = 'ADR' then
   begin
-    Result := ParamNum(S, 0, 2, N);
-    { addresses kept from before must still fit the new length }
-    if (Result = res_Ok) and
-       ((not CH_NodGiven and (CH_Node > FT12MaxAddr(N))) or
-        (not CH_DnoGiven and (CH_DNode > FT12MaxAddr(N)))) then
-      Result := res_BadParam;
+    Result := ParamNum(S, 0, 2, N);   { with NOD=/DNO=: ChCheckParams }
     if (Result = res_Ok) and (CmdL = cmd_Set) then
       CH_AdrLen := N;
   end

@@ -68,8 +68,10 @@ type
 { A client on an open DF1 stack (it stays the caller's). }
 procedure PcccClientInit(var C: tPcccClient; Chn: pChnVirt);
 { A client on a new DF1 stack built from Params (DF1OpenStack); res_Ok, or
-  res_CannotOpen with C.Err saying why. }
-function PcccOpen(var C: tPcccClient; const Params: ShortString): tChResult;
+  res_CannotOpen with C.Err saying why; a string longer than the legacy
+  255 characters is res_ParamTooLong (C.Err: its length and the limit),
+  never cut to another device name. }
+function PcccOpen(var C: tPcccClient; const Params: AnsiString): tChResult;
 { Disconnect and dispose of a stack PcccOpen built. }
 procedure PcccClose(var C: tPcccClient);
 
@@ -134,11 +136,20 @@ begin
   C.Tns := Word(ChMsTick xor (QWord(GetProcessID) * 40503));
 end;
 
-function PcccOpen(var C: tPcccClient; const Params: ShortString): tChResult;
+function PcccOpen(var C: tPcccClient; const Params: AnsiString): tChResult;
 var
   Chn: pChnVirt;
   E: AnsiString;
+  Why: ShortString;
 begin
+  Why := '';
+  Result := ParamLengthCheck(Length(Params), Why);
+  if Result <> res_Ok then
+  begin
+    PcccClientInit(C, nil);
+    C.Err := 'parameter string too long: ' + Why;
+    Exit;
+  end;
   Chn := DF1OpenStack(Params, 3000, E);
   PcccClientInit(C, Chn);
   if Chn = nil then

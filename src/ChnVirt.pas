@@ -79,6 +79,7 @@ const
   res_HostUnknown  = ChnTypes.res_HostUnknown;
   res_Refused      = ChnTypes.res_Refused;
   res_Reconnecting = ChnTypes.res_Reconnecting;
+  res_ParamTooLong = ChnTypes.res_ParamTooLong;
   res_Proto        = ChnTypes.res_Proto;
 
 const
@@ -89,6 +90,23 @@ const
   MaxChnManagers = 32;
 
 type
+  { One token of a parameter string, split once by ParamSplit. }
+  tParamToken = record
+    Text : tWordString;   { KEY=VALUE as given }
+    Key  : string[31];    { upper-cased KEY ('' when there is no '=') }
+    Ok   : Boolean;       { of the form KEY=VALUE, VALUE not empty, one '=' }
+    Start: LongInt;       { where it begins in the string }
+  end;
+  { A parameter string as tokens; while ChSetParam checks a layer's tokens,
+    Items[OwnFirst .. OwnEnd - 1] are that layer's own (OwnEnd: the NAM=
+    of the layer below, or Count). }
+  tParamList = record
+    Count   : LongInt;
+    Items   : array of tParamToken;
+    OwnFirst: LongInt;
+    OwnEnd  : LongInt;
+  end;
+
   pChnVirt = ^tChnVirt;
   tChnVirt = object
     CH_Type    : string[15];   { layer type, the registry name ('DF1') }
@@ -116,7 +134,11 @@ type
     constructor ChInitParam(const S: tParamStr);
     destructor  Done; virtual;
 
-    procedure ChSetParam(const S: tParamStr); virtual;
+    procedure ChSetParam(const S: tParamStr); virtual; overload;
+    { The same for a long string (an AnsiString of new code): more than
+      the legacy limit of 255 characters is refused with res_ParamTooLong
+      (ChParamError says how long and the limit), never cut. }
+    procedure ChSetParam(const S: AnsiString); overload;
     function  ChSetOneParam(const S: tWordString; var CmdL: tCmd): tChResult; virtual;
     { '' : the whole configuration (cut after the last whole token that
       fits 255 characters); a key: only the tokens with that key }
@@ -151,6 +173,13 @@ type
     { Own parameters as ' KEY=VALUE' tokens, for ChGetParam; descendants
       append theirs to inherited ChOwnParams. }
     function  ChOwnParams: tParamStr; virtual;
+    { The whole-string check: called once every own token of the string
+      passed its own check (ChSetOneParam with cmd_Check), before anything
+      is applied, with the string's tokens (L.Items[L.OwnFirst ..
+      L.OwnEnd - 1] this layer's). A layer whose keys depend on each other
+      (FT 1.2: NOD=/DNO= on ADR=, in any order) checks them here; on an
+      error it names the token at fault in Culprit. Default: res_Ok. }
+    function  ChCheckParams(const L: tParamList; var Culprit: tWordString): tChResult; virtual;
     { False for a physical layer, which cannot have a layer below. }
     function  ChHasLow: Boolean; virtual;
     { Highest station address NOD=/DNO= accept; 0: the layer has none. }
@@ -246,6 +275,16 @@ function ChSendWhenFree(Chn: pChnVirt; Buff: Pointer; Len: Word;
 procedure ChSendBuffer(var Buf: Pointer; var Size: Word; Default: Word);
 procedure ChFreeSendBuffer(var Buf: Pointer; var Size: Word);
 
+{ Split a parameter string into tokens, once (ChSetParam). }
+procedure ParamSplit(const S: ShortString; var L: tParamList);
+{ Index of the first of a layer's own tokens with Key (upper case) while
+  ChCheckParams runs, -1 when the string does not give it. }
+function ParamFind(const L: tParamList; const Key: ShortString): LongInt;
+{ res_Ok when a parameter string of Len characters fits the legacy
+  tParamStr, else res_ParamTooLong and Why = 'N characters, the limit is
+  255' - for every entry point that takes a long string. }
+function ParamLengthCheck(Len: LongInt; var Why: ShortString): tChResult;
+
 { Helpers for ChSetOneParam/ChOwnParams of every layer, so that number
   parsing, range checks and ON/OFF live in one place. }
 { A routine that returns a number by reference comes for LongInt and SmallInt
@@ -327,6 +366,54 @@ begin
     FreeMem(Buf);
   Buf := nil;
   Size := 0;
+end;
+
+procedure ParamSplit(const S: ShortString; var L: tParamList);
+var
+  P, Start: LongInt;
+  Tok, K, V: ShortString;
+begin
+  L.Count := 0;
+  L.OwnFirst := 0;
+  L.OwnEnd := 0;
+  P := 1;
+  Start := 1;
+  while NextTokenAt(S, P, Tok, Start) do
+  begin
+    if L.Count >= Length(L.Items) then
+      SetLength(L.Items, 8 + 2 * L.Count);
+    with L.Items[L.Count] do
+    begin
+      Text := Tok;
+      K := '';
+      V := '';
+      Ok := SplitKeyValue(Tok, K, V) and (V <> '');
+      if Pos('=', Tok) > 1 then
+        Key := K
+      else
+        Key := '';
+    end;
+    L.Items[L.Count].Start := Start;
+    Inc(L.Count);
+  end;
+end;
+
+function ParamFind(const L: tParamList; const Key: ShortString): LongInt;
+var
+  I: LongInt;
+begin
+  for I := L.OwnFirst to L.OwnEnd - 1 do
+    if L.Items[I].Key = Key then
+      Exit(I);
+  Result := -1;
+end;
+
+function ParamLengthCheck(Len: LongInt; var Why: ShortString): tChResult;
+begin
+  if Len <= High(tParamStr) then
+    Exit(res_Ok);
+  Why := NumStr(Len) + ' characters, the limit is ' + NumStr(High(tParamStr));
+  Result := res_ParamTooLong;
 end;
 
 function ParamKey(const S: tWordString): ShortString;
@@ -472,89 +559,77 @@ begin
 end;
 
 procedure tChnVirt.ChSetParam(const S: tParamStr);
-const
-  MaxOwn = 128;
 var
-  OwnStart: array[1..MaxOwn] of Integer;   { where each own token begins }
-  OwnCount, I, J, P, Pos, TokStart, RestStart, Start: Integer;
-  Tok, Prev, ErrTok: tWordString;
-  Key, Value: string;
+  L: tParamList;
+  I, J, Rest: LongInt;
+  ErrTok: tWordString;
   Cmd: tCmd;
   R: tChResult;
   NewLow: pChnVirt;
 begin
   CH_ParamErr := '';
-  FillChar(OwnStart, SizeOf(OwnStart), 0);
-  OwnCount := 0;
-  RestStart := 0;
-  Pos := 1;
-  R := res_Ok;
-  ErrTok := '';
+  ParamSplit(S, L);
   { a leading NAM=<this layer's type> names this layer itself; any later
     NAM= starts the layer below (so 'NAM=TSTP NAM=TSTP' is two layers) }
-  Start := 1;
-  if NextToken(S, Pos, Tok) and SplitKeyValue(Tok, Key, Value) and
-     (Key = 'NAM') and (UpStr(Value) = UpStr(CH_Type)) then
-    Start := Pos;
-  { pass 0: let the layer peek at its tokens (see cmd_Peek) }
-  Pos := Start;
-  while NextTokenAt(S, Pos, Tok, TokStart) do
-  begin
-    if SplitKeyValue(Tok, Key, Value) and (Key = 'NAM') then
-      Break;
-    Cmd := cmd_Peek;
-    ChSetOneParam(Tok, Cmd);
-  end;
-  Pos := Start;
-  { pass 1: check this layer's tokens and find where the lower layer starts }
-  while (R = res_Ok) and NextTokenAt(S, Pos, Tok, TokStart) do
-  begin
-    ErrTok := Tok;
-    if not SplitKeyValue(Tok, Key, Value) or (Value = '') then
-      R := res_BadParam
-    else if Key = 'NAM' then
+  L.OwnFirst := 0;
+  if (L.Count > 0) and (L.Items[0].Key = 'NAM') and
+     (UpStr(ParamValue(L.Items[0].Text)) = UpStr(CH_Type)) then
+    L.OwnFirst := 1;
+  L.OwnEnd := L.Count;
+  for I := L.OwnFirst to L.Count - 1 do
+    if L.Items[I].Key = 'NAM' then
     begin
-      RestStart := TokStart;
+      L.OwnEnd := I;
       Break;
-    end
+    end;
+  { check every own token (no side effects), then the whole string }
+  R := res_Ok;
+  ErrTok := '';
+  I := L.OwnFirst;
+  while (R = res_Ok) and (I < L.OwnEnd) do
+  begin
+    ErrTok := L.Items[I].Text;
+    if not L.Items[I].Ok then
+      R := res_BadParam
     else
     begin
-      for J := 1 to OwnCount do
-      begin
-        P := OwnStart[J];
-        if NextToken(S, P, Prev) and (ParamKey(Prev) = Key) then
+      for J := L.OwnFirst to I - 1 do
+        if L.Items[J].Key = L.Items[I].Key then
           R := res_DupParam;
-      end;
       if R = res_Ok then
       begin
         Cmd := cmd_Check;
-        R := ChSetOneParam(Tok, Cmd);
-      end;
-      if (R = res_Ok) and (OwnCount >= MaxOwn) then
-        R := res_TooLong;
-      if R = res_Ok then
-      begin
-        Inc(OwnCount);
-        OwnStart[OwnCount] := TokStart;
+        R := ChSetOneParam(L.Items[I].Text, Cmd);
       end;
     end;
+    Inc(I);
   end;
-  { build the new lower layer completely before changing anything }
-  NewLow := nil;
-  if (R = res_Ok) and (RestStart > 0) then
+  if R = res_Ok then
   begin
-    if not ChHasLow then
+    ErrTok := '';
+    R := ChCheckParams(L, ErrTok);
+  end;
+  { the layer below: a NAM= token after the own ones, built completely
+    (through its own, virtual ChSetParam) before anything changes here }
+  NewLow := nil;
+  Rest := L.OwnEnd;
+  if (R = res_Ok) and (Rest < L.Count) then
+  begin
+    ErrTok := L.Items[Rest].Text;
+    if not L.Items[Rest].Ok then
+      R := res_BadParam
+    else if not ChHasLow then
       R := res_BadParam                 { a physical layer has nothing below }
     else if CH_State <> CHS_Close then
       R := res_WrongState               { cannot swap the stack while open }
     else
     begin
-      NewLow := ChnCollection^.ChNewInit(Value);
+      NewLow := ChnCollection^.ChNewInit(ParamValue(L.Items[Rest].Text));
       if NewLow = nil then
         R := res_UnknownLayer
       else
       begin
-        NewLow^.ChSetParam(Copy(S, RestStart, Length(S) - RestStart + 1));
+        NewLow^.ChSetParam(Copy(S, L.Items[Rest].Start, Length(S) - L.Items[Rest].Start + 1));
         R := NewLow^.ChResult;
         if R <> res_Ok then
         begin
@@ -571,13 +646,11 @@ begin
     CH_ParamErr := ErrTok;
     Exit;
   end;
-  { pass 2: apply }
-  for I := 1 to OwnCount do
+  { apply }
+  for I := L.OwnFirst to L.OwnEnd - 1 do
   begin
-    P := OwnStart[I];
-    NextToken(S, P, Tok);
     Cmd := cmd_Set;
-    ChSetOneParam(Tok, Cmd);
+    ChSetOneParam(L.Items[I].Text, Cmd);
   end;
   if NewLow <> nil then
   begin
@@ -586,6 +659,23 @@ begin
     CH_Low := NewLow;
   end;
   CH_Result := res_Ok;
+end;
+
+procedure tChnVirt.ChSetParam(const S: AnsiString);
+var
+  Why: ShortString;
+begin
+  Why := '';
+  CH_Result := ParamLengthCheck(Length(S), Why);
+  if CH_Result <> res_Ok then
+    CH_ParamErr := Why                  { nothing is applied }
+  else
+    ChSetParam(tParamStr(S));         { the virtual one: a layer's override runs }
+end;
+
+function tChnVirt.ChCheckParams(const L: tParamList; var Culprit: tWordString): tChResult;
+begin
+  Result := res_Ok;
 end;
 
 function tChnVirt.ChSetOneParam(const S: tWordString; var CmdL: tCmd): tChResult;
