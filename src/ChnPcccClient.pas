@@ -390,7 +390,6 @@ var
   Floats: array of Single;
   I: LongInt;
   D: Double;
-  Code: Integer;
   Res: tChResult;
 begin
   Res := PcccParseAddress(Addr, A, E);
@@ -414,8 +413,8 @@ begin
         SetLength(Floats, Length(Values));
         for I := 0 to High(Values) do
         begin
-          Val(Values[I], D, Code);
-          if (Code <> 0) or (Abs(D) > 3.4e38) then
+          { the shared parser: 2e308 is refused, never EOverflow }
+          if not StrToReal(Values[I], -3.4e38, 3.4e38, D) then
           begin
             Prepare(R, C, Addr, Length(Values), poWrite);
             Exit(Fail(R, res_PcccValue, '"' + Values[I] + '" is no float'));

@@ -709,11 +709,18 @@ end;
 function tChnVirt.ChGetParam(const S: tParamStr): tParamStr;
 var
   All: AnsiString;   { a deep stack may pass 255 characters }
+  Own: tParamStr;
   Tok: string;
   P, Start: Integer;
   Want: string;
 begin
-  All := 'NAM=' + CH_Type + ChOwnParams;
+  Own := ChOwnParams;
+  { a full ShortString may have been cut inside its last token by the
+    descendant's concatenation: keep whole tokens only, so it parses }
+  if Length(Own) = High(tParamStr) then
+    while (Length(Own) > 0) and (Own[Length(Own)] <> ' ') do
+      SetLength(Own, Length(Own) - 1);
+  All := 'NAM=' + CH_Type + Own;
   if CH_Low <> nil then
     All := All + ' ' + CH_Low^.ChGetParam('');
   Want := UpStr(S);
