@@ -18,6 +18,12 @@
   does not deliver it again; CH_DupCount/CH_DupSrc/CH_DupTns tell a link
   helper (ChnDF1Link's station) so it can send its cached reply again.
 
+  Full duplex, a reply (reply bit set) addressed to another station - DST
+  other than NOD, or SRC neither DNO nor a station one of the last
+  commands went to - is not ours: it is counted (CH_ForeignCount, the
+  last one's CH_ForeignSrc/CH_ForeignDst) and dropped, not delivered.
+  Commands are taken from any SRC, as a slave must (SPEC 6).
+
   As in the SofCon design the link dialogue (ACK after a good frame,
   NAK/ENQ/retries, polling) is the application's: it sends tpAckNak, tpEnq,
   tpPoll, tpNoPollRep records with ChSend like any other message.
@@ -184,6 +190,10 @@ type
     CH_DupTns  : Word;
     CH_DupAck  : Boolean;     { its ACK still waits for the layer below }
     CH_Sent    : tDF1SentLog; { last commands sent, to restore a reply's CF }
+    { full duplex: replies addressed to another station (DST <> NOD, or
+      from a station this layer sent no command to), dropped }
+    CH_ForeignCount: LongInt;
+    CH_ForeignSrc, CH_ForeignDst: Byte;   { SRC and DST of the last of them }
 
     constructor Init;
     constructor ChInitParam(const S: tParamStr);
@@ -207,6 +217,11 @@ type
     { DUP=ON: True (and the ACK sent) when the message just decoded repeats
       the last command from its source }
     function  ChDuplicate: Boolean;
+    { full duplex: True (and counted) when the reply just decoded is not
+      addressed to this station: DST <> NOD, or SRC is neither DNO nor a
+      station one of the last commands went to. Commands are never
+      foreign: a slave takes them from any SRC (SPEC 6). }
+    function  ChForeignReply: Boolean;
     procedure ChSendDupAck;
   end;
 
@@ -241,6 +256,9 @@ begin
   CH_DupSrc := 0;
   CH_DupTns := 0;
   CH_DupAck := False;
+  CH_ForeignCount := 0;
+  CH_ForeignSrc := 0;
+  CH_ForeignDst := 0;
   DF1SentInit(CH_Sent);
   DF1DecoderInit(CH_Dec, ChDF1Config);
 end;
@@ -403,6 +421,20 @@ begin
   end;
 end;
 
+function tChnDF1.ChForeignReply: Boolean;
+begin
+  Result := CH_FullDup and (CH_Dec.Msg.MessType = tpDataMess) and
+    (CH_Dec.Msg.CF and MskCF_Reply <> 0) and
+    ((CH_Dec.Dst <> Byte(CH_Node)) or
+     ((CH_Dec.Src <> Byte(CH_DNode)) and not DF1SentTo(CH_Sent, CH_Dec.Src)));
+  if Result then
+  begin
+    Inc(CH_ForeignCount);
+    CH_ForeignSrc := CH_Dec.Src;
+    CH_ForeignDst := CH_Dec.Dst;
+  end;
+end;
+
 procedure tChnDF1.ChRxReset;
 begin
   DF1DecoderInit(CH_Dec, ChDF1Config);
@@ -421,8 +453,8 @@ end;
 function tChnDF1.ChRxByte(B: Byte; var Err: tChResult): Boolean;
 begin
   CH_Event := DF1Feed(CH_Dec, B);
-  if (CH_Event = dfMessage) and ChDuplicate then
-    CH_Event := dfNone;        { ACKed, not delivered again }
+  if (CH_Event = dfMessage) and (ChDuplicate or ChForeignReply) then
+    CH_Event := dfNone;        { ACKed and not delivered again, or not ours }
   if CH_Event = dfError then
     Err := CH_Dec.Err;
   Result := CH_Event <> dfNone;
