@@ -270,51 +270,37 @@ end;
 
 function tChnFT1_2.ChCheckParams(const L: tParamList; var Culprit: tWordString): tChResult;
 var
-  Adr, Nod, Dno: LongInt;
+  Adr: LongInt;
 
-  { the address a key leaves in force: the string's, else the one kept }
-  function Given(const Key: ShortString; Kept: LongInt; var Value: LongInt): Boolean;
+  { a NOD=/DNO= of the string must fit the ADR= in force after it; a kept
+    one that no longer fits is the ADR= token's fault }
+  function Fits(const Key: ShortString; Kept: LongInt): Boolean;
   var
-    I: LongInt;
+    I, V: LongInt;
   begin
     I := ParamFind(L, Key);
-    Result := I >= 0;
-    Value := Kept;
-    if Result then
-      ParamNum(L.Items[I].Text, 0, High(LongInt), Value);
-  end;
-
-  function Fits(const Key: ShortString; Kept: LongInt; var V: LongInt): Boolean;
-  begin
-    Result := True;
-    if Given(Key, Kept, V) then
-    begin
-      if V > FT12MaxAddr(Adr) then
-      begin
-        Culprit := L.Items[ParamFind(L, Key)].Text;
-        Result := False;
-      end;
-    end
-    else if V > FT12MaxAddr(Adr) then
-    begin
-      { an address kept from before that the new ADR= cannot carry }
-      Culprit := L.Items[ParamFind(L, 'ADR')].Text;
-      Result := False;
-    end;
+    V := Kept;
+    if I >= 0 then
+      ParamNum(L.Items[I].Text, 0, High(LongInt), V)
+    else
+      I := ParamFind(L, 'ADR');
+    Result := V <= FT12MaxAddr(Adr);
+    if not Result and (I >= 0) then   { (fields written directly: no token) }
+      Culprit := L.Items[I].Text;
   end;
 
 begin
   Result := res_Ok;
-  Given('ADR', CH_AdrLen, Adr);
-  Nod := 0;
-  Dno := 0;
+  Adr := CH_AdrLen;
+  if ParamFind(L, 'ADR') >= 0 then
+    ParamNum(L.Items[ParamFind(L, 'ADR')].Text, 0, 2, Adr);
   { the first of NOD=/DNO= in the string is named first, as a token check would }
   if ParamFind(L, 'DNO') < ParamFind(L, 'NOD') then
   begin
-    if not Fits('DNO', CH_DNode, Dno) or not Fits('NOD', CH_Node, Nod) then
+    if not Fits('DNO', CH_DNode) or not Fits('NOD', CH_Node) then
       Result := res_BadParam;
   end
-  else if not Fits('NOD', CH_Node, Nod) or not Fits('DNO', CH_DNode, Dno) then
+  else if not Fits('NOD', CH_Node) or not Fits('DNO', CH_DNode) then
     Result := res_BadParam;
 end;
 

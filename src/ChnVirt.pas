@@ -180,6 +180,10 @@ type
       (FT 1.2: NOD=/DNO= on ADR=, in any order) checks them here; on an
       error it names the token at fault in Culprit. Default: res_Ok. }
     function  ChCheckParams(const L: tParamList; var Culprit: tWordString): tChResult; virtual;
+    { ChSetParam's steps: check the own tokens; build the layer below }
+    function  ChCheckOwn(const L: tParamList; var ErrTok: tWordString): tChResult;
+    function  ChBuildLow(const S: tParamStr; const L: tParamList;
+      var ErrTok: tWordString; var NewLow: pChnVirt): tChResult;
     { False for a physical layer, which cannot have a layer below. }
     function  ChHasLow: Boolean; virtual;
     { Highest station address NOD=/DNO= accept; 0: the layer has none. }
@@ -558,10 +562,64 @@ begin
   CH_Low := nil;
 end;
 
+{ ChSetParam's check of this layer's own tokens (no side effects): the
+  form, duplicates, then ChSetOneParam(cmd_Check) of each, then the
+  whole-string check. ErrTok names the token at fault. }
+function tChnVirt.ChCheckOwn(const L: tParamList; var ErrTok: tWordString): tChResult;
+var
+  I, J: LongInt;
+  Cmd: tCmd;
+begin
+  Result := res_Ok;
+  for I := L.OwnFirst to L.OwnEnd - 1 do
+  begin
+    ErrTok := L.Items[I].Text;
+    if not L.Items[I].Ok then
+      Exit(res_BadParam);
+    for J := L.OwnFirst to I - 1 do
+      if L.Items[J].Key = L.Items[I].Key then
+        Exit(res_DupParam);
+    Cmd := cmd_Check;
+    Result := ChSetOneParam(L.Items[I].Text, Cmd);
+    if Result <> res_Ok then
+      Exit;
+  end;
+  ErrTok := '';
+  Result := ChCheckParams(L, ErrTok);
+end;
+
+{ ChSetParam's layer below, from the NAM= token Items[L.OwnEnd] on: built
+  completely through its own (virtual) ChSetParam before anything changes
+  here; NewLow nil when it fails (ErrTok: the token at fault). }
+function tChnVirt.ChBuildLow(const S: tParamStr; const L: tParamList;
+  var ErrTok: tWordString; var NewLow: pChnVirt): tChResult;
+var
+  Nam: tParamToken;
+begin
+  NewLow := nil;
+  Nam := L.Items[L.OwnEnd];
+  ErrTok := Nam.Text;
+  if not Nam.Ok or not ChHasLow then
+    Exit(res_BadParam);                 { a physical layer has nothing below }
+  if CH_State <> CHS_Close then
+    Exit(res_WrongState);               { cannot swap the stack while open }
+  NewLow := ChnCollection^.ChNewInit(ParamValue(Nam.Text));
+  if NewLow = nil then
+    Exit(res_UnknownLayer);
+  NewLow^.ChSetParam(Copy(S, Nam.Start, Length(S) - Nam.Start + 1));
+  Result := NewLow^.ChResult;
+  if Result <> res_Ok then
+  begin
+    ErrTok := NewLow^.ChParamError;
+    Dispose(NewLow, Done);
+    NewLow := nil;
+  end;
+end;
+
 procedure tChnVirt.ChSetParam(const S: tParamStr);
 var
   L: tParamList;
-  I, J, Rest: LongInt;
+  I: LongInt;
   ErrTok: tWordString;
   Cmd: tCmd;
   R: tChResult;
@@ -575,78 +633,20 @@ begin
   if (L.Count > 0) and (L.Items[0].Key = 'NAM') and
      (UpStr(ParamValue(L.Items[0].Text)) = UpStr(CH_Type)) then
     L.OwnFirst := 1;
-  L.OwnEnd := L.Count;
-  for I := L.OwnFirst to L.Count - 1 do
-    if L.Items[I].Key = 'NAM' then
-    begin
-      L.OwnEnd := I;
-      Break;
-    end;
-  { check every own token (no side effects), then the whole string }
-  R := res_Ok;
+  L.OwnEnd := L.OwnFirst;
+  while (L.OwnEnd < L.Count) and (L.Items[L.OwnEnd].Key <> 'NAM') do
+    Inc(L.OwnEnd);
   ErrTok := '';
-  I := L.OwnFirst;
-  while (R = res_Ok) and (I < L.OwnEnd) do
-  begin
-    ErrTok := L.Items[I].Text;
-    if not L.Items[I].Ok then
-      R := res_BadParam
-    else
-    begin
-      for J := L.OwnFirst to I - 1 do
-        if L.Items[J].Key = L.Items[I].Key then
-          R := res_DupParam;
-      if R = res_Ok then
-      begin
-        Cmd := cmd_Check;
-        R := ChSetOneParam(L.Items[I].Text, Cmd);
-      end;
-    end;
-    Inc(I);
-  end;
-  if R = res_Ok then
-  begin
-    ErrTok := '';
-    R := ChCheckParams(L, ErrTok);
-  end;
-  { the layer below: a NAM= token after the own ones, built completely
-    (through its own, virtual ChSetParam) before anything changes here }
   NewLow := nil;
-  Rest := L.OwnEnd;
-  if (R = res_Ok) and (Rest < L.Count) then
-  begin
-    ErrTok := L.Items[Rest].Text;
-    if not L.Items[Rest].Ok then
-      R := res_BadParam
-    else if not ChHasLow then
-      R := res_BadParam                 { a physical layer has nothing below }
-    else if CH_State <> CHS_Close then
-      R := res_WrongState               { cannot swap the stack while open }
-    else
-    begin
-      NewLow := ChnCollection^.ChNewInit(ParamValue(L.Items[Rest].Text));
-      if NewLow = nil then
-        R := res_UnknownLayer
-      else
-      begin
-        NewLow^.ChSetParam(Copy(S, L.Items[Rest].Start, Length(S) - L.Items[Rest].Start + 1));
-        R := NewLow^.ChResult;
-        if R <> res_Ok then
-        begin
-          ErrTok := NewLow^.ChParamError;
-          Dispose(NewLow, Done);
-          NewLow := nil;
-        end;
-      end;
-    end;
-  end;
+  R := ChCheckOwn(L, ErrTok);
+  if (R = res_Ok) and (L.OwnEnd < L.Count) then
+    R := ChBuildLow(S, L, ErrTok, NewLow);
   if R <> res_Ok then
   begin
     CH_Result := R;
-    CH_ParamErr := ErrTok;
+    CH_ParamErr := ErrTok;              { nothing is applied }
     Exit;
   end;
-  { apply }
   for I := L.OwnFirst to L.OwnEnd - 1 do
   begin
     Cmd := cmd_Set;
