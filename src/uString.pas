@@ -250,44 +250,39 @@ end;
 function StrToReal(const S: ShortString; Min, Max: Double; var D: Double): Boolean;
 var
   V: Double;
-  Code, I, Digits, ExpDigits: LongInt;
+  Code, I, Digits: LongInt;
   Masked: TFPUExceptionMask;
+
+  { skip an optional sign (Signed) and the digits at I; how many digits }
+  function Skip(Signed: Boolean): LongInt;
+  begin
+    if Signed and (I <= Length(S)) and (S[I] in ['+', '-']) then
+      Inc(I);
+    Result := 0;
+    while (I <= Length(S)) and (S[I] in ['0'..'9']) do
+    begin
+      Inc(I);
+      Inc(Result);
+    end;
+  end;
+
 begin
   Result := False;
   { strict form: [+-] digits [. digits] [e|E [+-] digits], at least one
     digit before the exponent; Val would take blanks, '$', 'Inf', 'NaN' }
   I := 1;
-  Digits := 0;
-  if (I <= Length(S)) and (S[I] in ['+', '-']) then
-    Inc(I);
-  while (I <= Length(S)) and (S[I] in ['0'..'9']) do
-  begin
-    Inc(I);
-    Inc(Digits);
-  end;
+  Digits := Skip(True);
   if (I <= Length(S)) and (S[I] = '.') then
   begin
     Inc(I);
-    while (I <= Length(S)) and (S[I] in ['0'..'9']) do
-    begin
-      Inc(I);
-      Inc(Digits);
-    end;
+    Inc(Digits, Skip(False));
   end;
   if Digits = 0 then
     Exit;
   if (I <= Length(S)) and (S[I] in ['e', 'E']) then
   begin
     Inc(I);
-    if (I <= Length(S)) and (S[I] in ['+', '-']) then
-      Inc(I);
-    ExpDigits := 0;
-    while (I <= Length(S)) and (S[I] in ['0'..'9']) do
-    begin
-      Inc(I);
-      Inc(ExpDigits);
-    end;
-    if ExpDigits = 0 then
+    if Skip(True) = 0 then
       Exit;
   end;
   if I <= Length(S) then
