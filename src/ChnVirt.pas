@@ -287,7 +287,8 @@ function ParamFind(const L: tParamList; const Key: ShortString): LongInt;
 { res_Ok when a parameter string of Len characters fits the legacy
   tParamStr, else res_ParamTooLong and Why = 'N characters, the limit is
   255' - for every entry point that takes a long string. }
-function ParamLengthCheck(Len: LongInt; var Why: ShortString): tChResult;
+function ParamLengthCheck(Len: LongInt; var Why: ShortString): tChResult; overload;
+function ParamLengthCheck(Len: LongInt; var Why: AnsiString): tChResult; overload;
 
 { Helpers for ChSetOneParam/ChOwnParams of every layer, so that number
   parsing, range checks and ON/OFF live in one place. }
@@ -410,6 +411,16 @@ begin
     if L.Items[I].Key = Key then
       Exit(I);
   Result := -1;
+end;
+
+function ParamLengthCheck(Len: LongInt; var Why: AnsiString): tChResult;
+var
+  W: ShortString;
+begin
+  W := '';
+  Result := ParamLengthCheck(Len, W);
+  if Result <> res_Ok then
+    Why := W;
 end;
 
 function ParamLengthCheck(Len: LongInt; var Why: ShortString): tChResult;
