@@ -6,8 +6,8 @@
 
   For each layer the keys are what its ChGetParam reports on a fresh
   instance (the contract: every parameter in force), plus the keys every
-  layer's string may carry (NOD=, DNO=, LSB= ...) - each tried on every
-  layer. A token must give res_Ok or a refusal with ChParamError naming
+  layer's string may carry (NOD=, DNO=, LSB=, PORT=, LISTEN= ...) - each
+  tried on every layer. A token must give res_Ok or a refusal with ChParamError naming
   it; an exception, a run-time error or a refusal that names nothing
   fails the run. An accepted token must come back through ChGetParam and
   rebuild the same configuration.
@@ -29,7 +29,11 @@ const
     '18446744073709551616', '-9223372036854775809', '99999999999999999999999',
     '$FFFFFFFFF', '$FFFFFFFFFFFFFFFFFFFF', '-$80000001', '0x10', '1e', '1e+',
     '+', '-', '.', '-.', '.e1', '1..2', '--1', '1e1e1');
-  ExtraKeys: array[0..7] of string = ('NOD', 'DNO', 'LSB', 'IDL', 'LRB', 'BD', 'COM', 'IRQ');
+  { keys a fresh instance does not report (another form of the same
+    setting, DOS-only, or a client's/server's alternative), from the
+    layers' ChSetOneParam }
+  ExtraKeys: array[0..12] of string = ('NOD', 'DNO', 'LSB', 'IDL', 'LRB', 'BD', 'COM', 'IRQ',
+    'BASE', 'DEV', 'HOST', 'PORT', 'LISTEN');
   Chars = '0123456789+-.eE$';
 
 var
@@ -161,7 +165,10 @@ var
 begin
   Deadline := FuzzDeadline('fuzzparams');
   CollectKeys;
-  WriteLn(ChnCollection^.Count, ' layers, ', Length(Keys), ' keys');
+  Write(ChnCollection^.Count, ' layers, ', Length(Keys), ' keys:');
+  for K := 0 to High(Keys) do
+    Write(' ', Keys[K]);
+  WriteLn;
   { every key, every layer, every fixed hostile value once }
   for I := 1 to ChnCollection^.Count do
     for K := 0 to High(Keys) do
