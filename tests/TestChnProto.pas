@@ -18,8 +18,12 @@ type
   TTestChnProto = class(TTestCase)
   private
     Sender, Receiver: pChnVirt;
+    RBuf: array[0..599] of Byte;
+    { the case's two stacks over LOOP, the receiver's buffer RBuf }
     procedure OpenPair(Index: Integer);
     procedure SendMessage(Index, Nr: Integer);
+    { SendMessage, then poll the receiver until the frame waits }
+    procedure Arrive(Index, Nr: Integer);
     function CaseName(Index: Integer): string;
   protected
     procedure SetUp; override;
@@ -90,6 +94,13 @@ begin
   AssertTrue(Err, Sender <> nil);
   Receiver := OpenStack(Cases[Index].Name, Format(Cases[Index].Receiver, [Pair]), Err);
   AssertTrue(Err, Receiver <> nil);
+  Receiver^.ChReceiveBuffer(@RBuf, SizeOf(RBuf));
+end;
+
+procedure TTestChnProto.Arrive(Index, Nr: Integer);
+begin
+  SendMessage(Index, Nr);
+  AssertTrue(CaseName(Index) + ': arrived', WaitReceive(Receiver, 2000));
 end;
 
 { One data message of the case's protocol, numbered Nr. }
@@ -154,13 +165,11 @@ end;
 procedure TTestChnProto.TestReceiveStepsTheReceiverItself;
 var
   I: Integer;
-  Buf: array[0..599] of Byte;
   Len: Word;
 begin
   for I := Low(Cases) to High(Cases) do
   begin
     OpenPair(I);
-    Receiver^.ChReceiveBuffer(@Buf, SizeOf(Buf));
     Len := 0;
     Receiver^.ChReceive(Len);
     AssertEquals(CaseName(I) + ': nothing sent yet', res_NoMessage, Receiver^.ChReceiveResult);
@@ -195,7 +204,6 @@ end;
 procedure TTestChnProto.TestHeldWhileAFrameWaits;
 var
   I: Integer;
-  Buf: array[0..599] of Byte;
   Len: Word;
   Base: LongInt;
   T: QWord;
@@ -204,10 +212,8 @@ begin
   for I := Low(Cases) to High(Cases) do
   begin
     OpenPair(I);
-    Receiver^.ChReceiveBuffer(@Buf, SizeOf(Buf));
     AssertEquals(CaseName(I) + ': nothing held', Base, ChnWaitHeldCount);
-    SendMessage(I, 1);
-    AssertTrue(CaseName(I) + ': arrived', WaitReceive(Receiver, 2000));
+    Arrive(I, 1);
     AssertEquals(CaseName(I) + ': a frame waits', Base + 1, ChnWaitHeldCount);
     T := GetTickCount64;
     AssertTrue(CaseName(I) + ': ChnWaitAny sees it', ChnWaitAny(1000));
@@ -223,7 +229,6 @@ end;
 procedure TTestChnProto.TestHeldWhileBytesWaitUndecoded;
 var
   I: Integer;
-  Buf: array[0..599] of Byte;
   Len: Word;
   Base: LongInt;
 begin
@@ -231,11 +236,9 @@ begin
   for I := Low(Cases) to High(Cases) do
   begin
     OpenPair(I);
-    Receiver^.ChReceiveBuffer(@Buf, SizeOf(Buf));
     SendMessage(I, 1);
     AssertTrue(CaseName(I) + ': LOOP takes the second at once', WaitSent(Sender, 2000));
-    SendMessage(I, 2);
-    AssertTrue(CaseName(I) + ': arrived', WaitReceive(Receiver, 2000));
+    Arrive(I, 2);
     Receiver^.ChReceive(Len);
     AssertEquals(CaseName(I) + ' first', res_Ok, Receiver^.ChReceiveResult);
     AssertTrue(CaseName(I) + ': the second frame''s bytes wait in the layer',
@@ -251,7 +254,6 @@ end;
 procedure TTestChnProto.TestHeldClearedByCloseDisconnectFlushAndDispose;
 var
   I, Way: Integer;
-  Buf: array[0..599] of Byte;
   Base: LongInt;
 begin
   Base := ChnWaitHeldCount;
@@ -259,9 +261,7 @@ begin
     for Way := 0 to 3 do
     begin
       OpenPair(I);
-      Receiver^.ChReceiveBuffer(@Buf, SizeOf(Buf));
-      SendMessage(I, 1);
-      AssertTrue(CaseName(I) + ': arrived', WaitReceive(Receiver, 2000));
+      Arrive(I, 1);
       AssertEquals(CaseName(I) + ': held', Base + 1, ChnWaitHeldCount);
       case Way of
         0: Receiver^.ChClose;
