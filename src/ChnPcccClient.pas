@@ -35,7 +35,7 @@ type
     TimeoutMs: LongInt;      { link timeout, default DF1LinkTimeoutMs }
     MaxBytes : Word;         { data bytes per request, 2..244 (default 244) }
     Tns      : Word;         { TNS of the next request }
-    Idle     : tDF1Idle;     { blocking calls: called while waiting (nil: sleep) }
+    Idle     : tDF1Idle;     { blocking calls: called while waiting (nil: the program-wide wait) }
     IdleData : Pointer;
     Log      : tDF1LogProc;  { nil: quiet }
     LogWire  : Boolean;
