@@ -38,6 +38,22 @@
     repeats half a timeout later than station A, so the two do not meet
     again (docs/ChnFT1_2.md, balanced mode).
 
+  Late answers (both primaries). An answer carries nothing that says which
+  transmission it answers, so after a repetition the answer to the first
+  transmission, held up on the line longer than the timeout, and the
+  answer to the repetition may both arrive - the second while the next
+  request is out, where it would confirm a frame the secondary never got
+  (issue 24). The primary therefore keeps count: after a request that was
+  sent more than once (or not answered at all) answers to it may still
+  come (Suspect), and before its next request it sends a fence, request
+  status of link (FC 9). Its answer, status of link (FC 11), fits no other
+  request, and on a line that keeps order it arrives after every answer
+  the secondary sent before; every other answer meanwhile is late and
+  ignored (Stale). Status answers owed by earlier FC 9 transmissions are
+  counted too (OwedStatus; forgotten after 4 timeouts without one) and
+  skipped by the next FC 9. A fresh answer to any other request proves
+  that nothing older is still on the way.
+
   Not covered: DFC flow control beyond holding back after DFC = 1, the
   "link service not functioning" (FC 14) state. }
 unit ChnFT12Link;
@@ -258,6 +274,15 @@ type
     Ignored    : LongInt;     { answers that do not fit, or from another address }
     BadDir     : LongInt;     { frames with the DIR of this station's side }
     Broken     : LongInt;     { other broken frames (checksum, length, ...) }
+    { answers that may still come for earlier transmissions (see "Late
+      answers" in the unit header) }
+    Suspect    : Boolean;     { other than status of link: fence first }
+    OwedStatus : LongInt;     { status of link answers (FC 11) }
+    StatusSkip : LongInt;     { of those, to skip for the request now out }
+    StatusAt   : QWord;       { when a status request last went out }
+    Fencing    : Boolean;     { Out is a fence: FC 9 to flush late answers }
+    Fences     : LongInt;     { fences sent }
+    Stale      : LongInt;     { late answers recognised and ignored }
   end;
 
 { Bind B to a balanced tChnFT1_2 and set the defaults; the channel's
@@ -830,6 +855,17 @@ begin
   Result := B.Chn^.ChSendResult;
 end;
 
+{ Send Out (again), counting the status answer it may bring. }
+procedure BalTransmit(var B: tFT12Balanced);
+begin
+  if B.Out.FC = FCM_ReqLinkState then
+  begin
+    Inc(B.OwedStatus);
+    B.StatusAt := ChMsTick;
+  end;
+  SendDir(B, True, B.Out, B.OutLen);
+end;
+
 { Start a request: FCV from the function, FCB alternating for FCV = 1. }
 procedure StartRequest(var B: tFT12Balanced; T: tMessType; FC: Byte;
   Buf: PByte; Len: Word);
@@ -853,14 +889,25 @@ begin
   B.SentAt := ChMsTick;
   B.LastRequest := B.SentAt;
   B.Pending := FC <> FCM_UserDataNoRep;
-  SendDir(B, True, B.Out, B.OutLen);
+  if FC = FCM_ReqLinkState then
+  begin
+    { status answers of earlier FC 9 transmissions may still come: the
+      first that many to arrive are not this request's }
+    if B.SentAt - B.StatusAt > QWord(4 * B.TimeoutMs) then
+      B.OwedStatus := 0;
+    B.StatusSkip := B.OwedStatus;
+  end;
+  BalTransmit(B);
 end;
 
 procedure LinkLost(var B: tFT12Balanced);
 begin
   Inc(B.LinkLost);
+  if B.Out.FC <> FCM_ReqLinkState then
+    B.Suspect := True;            { its answers may still be on the way }
   B.State := bsIdle;
   B.Pending := False;
+  B.Fencing := False;
 end;
 
 procedure Dequeue(var B: tFT12Balanced);
@@ -873,20 +920,48 @@ end;
 procedure TakeAnswer(var B: tFT12Balanced);
 var
   F: pChnFT1_2;
-  Nack: Boolean;
+  Nack, Status: Boolean;
 begin
   F := pChnFT1_2(B.Chn);
+  if (B.RMess.MessType in [tpShortM, tpLongM]) and (F^.CH_AdrLen > 0) and
+     (B.Chn^.CH_RSNode <> B.Chn^.ChGetDestNode) then
+  begin
+    Inc(B.Ignored);               { another station's }
+    Exit;
+  end;
+  Status := (B.RMess.MessType in [tpShortM, tpLongM]) and (B.RMess.FC = FCS_LinkSAccesReq);
+  if Status and (B.OwedStatus > 0) then
+    Dec(B.OwedStatus);
   if not B.Pending then
   begin
     Inc(B.Unexpected);            { nothing of ours is waiting for it }
     Exit;
   end;
-  if ((B.RMess.MessType in [tpShortM, tpLongM]) and (F^.CH_AdrLen > 0) and
-      (B.Chn^.CH_RSNode <> B.Chn^.ChGetDestNode)) or
-     not ReplyFits(B.Out.FC, B.RMess.MessType, B.RMess.FC) then
+  if not ReplyFits(B.Out.FC, B.RMess.MessType, B.RMess.FC) then
   begin
-    Inc(B.Ignored);
+    if Status or (B.Out.FC = FCM_ReqLinkState) then
+      Inc(B.Stale)                { late: the answer to an earlier request }
+    else
+      Inc(B.Ignored);
     Exit;
+  end;
+  if (B.Out.FC = FCM_ReqLinkState) and (B.StatusSkip > 0) then
+  begin
+    Dec(B.StatusSkip);            { owed by an earlier FC 9 }
+    Inc(B.Stale);
+    Exit;
+  end;
+  { a fresh answer: everything the peer answered before it has arrived }
+  if B.Out.FC = FCM_ReqLinkState then
+  begin
+    B.Suspect := False;
+    B.OwedStatus := B.Tries - 1;  { this request's other transmissions }
+  end
+  else
+  begin
+    B.OwedStatus := 0;
+    if B.Tries > 1 then
+      B.Suspect := True;          { the answer to another transmission may follow }
   end;
   B.Pending := False;
   B.PeerDfc := (B.RMess.MessType in [tpShortM, tpLongM]) and B.RMess.FCV_DFC;
@@ -898,6 +973,9 @@ begin
     B.HoldUntil := ChMsTick + QWord(B.TimeoutMs);
   case B.Out.FC of
     FCM_ReqLinkState:
+      if B.Fencing then
+        B.Fencing := False        { late answers flushed: the data can go }
+      else
       begin
         { status of link: reset the peer's secondary }
         B.State := bsResetting;
@@ -1008,7 +1086,7 @@ begin
     Inc(B.Tries);
     Inc(B.Retransmits);
     B.SentAt := Now;
-    SendDir(B, True, B.Out, B.OutLen);   { a repetition: the same FCB }
+    BalTransmit(B);               { a repetition: the same FCB }
     Exit;
   end;
   if Now < B.HoldUntil then
@@ -1020,7 +1098,15 @@ begin
         StartRequest(B, tpShortM, FCM_ReqLinkState, nil, 0);
       end;
     bsAvailable:
-      if B.QCount > 0 then
+      if B.Suspect and ((B.QCount > 0) or
+         ((B.TestMs > 0) and (Now - B.LastRequest >= QWord(B.TestMs)))) then
+      begin
+        { late answers may still come: flush them before the next request }
+        Inc(B.Fences);
+        B.Fencing := True;
+        StartRequest(B, tpShortM, FCM_ReqLinkState, nil, 0);
+      end
+      else if B.QCount > 0 then
       begin
         Q := @B.Queue[B.QHead];
         if Q^.Confirm then
