@@ -85,6 +85,12 @@ type
     Dfc     : Boolean;   { DFC of the last reply: secondary cannot take more }
     Repeats : LongInt;   { repetitions sent after a missing reply }
     Ignored : LongInt;   { frames ignored while waiting (other address, broken) }
+    { late answers (unit header): }
+    Suspect   : Boolean; { answers to earlier transmissions may still come: fence first }
+    OwedStatus: LongInt; { status of link answers (FC 11) that may still come }
+    StatusAt  : QWord;   { when a status request last went out }
+    Fences    : LongInt; { fences (FC 9) sent before a service }
+    Stale     : LongInt; { late answers recognised and ignored }
   end;
 
   { Secondary callbacks; Data is tFT12Station.Data.
@@ -165,6 +171,8 @@ type
     Fcv      : Boolean;
     NoReply  : Boolean;
     Resetting: Boolean;         { the reset in front of an FCV = 1 service is out }
+    Fencing  : Boolean;         { the fence in front of them is out (FC 9) }
+    StatusSkip: LongInt;        { status answers owed from before: not this one's }
     Try_     : LongInt;         { repetitions of Out so far }
     Retries  : LongInt;
     TimeoutMs: LongInt;
@@ -363,6 +371,12 @@ end;
 
 procedure PrimaryPhaseEnd(var P: tFT12Primary; R: tChResult); forward;
 
+{ Requests answered by status of link (FC 11). }
+function IsStatusRequest(FC: Byte): Boolean;
+begin
+  Result := FC in [FCM_ReqReplyAcces, FCM_ReqLinkState];
+end;
+
 { The phase that starts now: Out built from the service (or the reset in
   front of it), sent for the first time. }
 procedure PrimarySendOut(var P: tFT12Primary);
@@ -371,6 +385,11 @@ var
 begin
   if P.Try_ > 0 then
     Inc(P.Link^.Repeats);
+  if IsStatusRequest(P.Out.FC) then
+  begin
+    Inc(P.Link^.OwedStatus);            { the status answer it may bring }
+    P.Link^.StatusAt := ChMsTick;
+  end;
   R := SendNow(P.Chn, P.Out, P.OutLen);   { a repetition: same FCB }
   if R <> res_Ok then
   begin
@@ -378,7 +397,7 @@ begin
     Exit;
   end;
   P.Until_ := ChMsTick + QWord(P.TimeoutMs);
-  if P.NoReply and not P.Resetting then
+  if P.NoReply and not P.Resetting and not P.Fencing then
     P.State := fpDraining
   else
     P.State := fpWaiting;
@@ -399,7 +418,14 @@ var
   Len: Word;
 begin
   FillChar(P.Out, SizeOf(P.Out), 0);
-  if P.Resetting then
+  if P.Fencing then
+  begin
+    Inc(P.Link^.Fences);
+    P.Out.MessType := tpShortM;
+    P.Out.FC := FCM_ReqLinkState;
+    P.OutLen := FixedLen(P.Chn);
+  end
+  else if P.Resetting then
   begin
     P.Out.MessType := tpShortM;
     P.Out.FC := FCM_1stSetTransmit;
@@ -422,6 +448,14 @@ begin
   end;
   P.RepLen := 0;
   P.Try_ := 0;
+  if IsStatusRequest(P.Out.FC) then
+  begin
+    { status answers of earlier transmissions may still come: the first
+      that many to arrive are not this request's }
+    if ChMsTick - P.Link^.StatusAt > QWord(4 * P.TimeoutMs) then
+      P.Link^.OwedStatus := 0;
+    P.StatusSkip := P.Link^.OwedStatus;
+  end;
   PrimarySendOut(P);
 end;
 
@@ -431,6 +465,21 @@ procedure PrimaryPhaseEnd(var P: tFT12Primary; R: tChResult);
 var
   Fcv: Boolean;
 begin
+  if (R <> res_Ok) and (R <> res_BadMessage) and not IsStatusRequest(P.Out.FC) then
+    P.Link^.Suspect := True;            { no answer came: it may still be on the way }
+  if P.Fencing then
+  begin
+    P.Fencing := False;
+    if R = res_Ok then
+      PrimaryBegin(P)                   { late answers flushed: the reset or service }
+    else
+    begin
+      if P.Fcv or P.Resetting then
+        P.Link^.Reset := False;
+      PrimaryFinish(P, R);
+    end;
+    Exit;
+  end;
   Fcv := P.Out.FCV_DFC;
   if R = res_Ok then
   begin
@@ -510,6 +559,10 @@ begin
   P.OldDNode := Chn^.ChGetDestNode;
   { the secondary's FCB memory is unknown: reset it first }
   P.Resetting := P.Fcv and not Link.Reset;
+  { answers to earlier transmissions may still come: a fence before
+    anything that an ACK, E5 or user data would answer }
+  P.Fencing := Link.Suspect and not P.NoReply and
+    (P.Resetting or not IsStatusRequest(Req.FC));
   PrimaryBegin(P);
   Result := P.State <> fpDone;
 end;
@@ -518,6 +571,7 @@ end;
 function PrimaryTake(var P: tFT12Primary; Len: Word): Boolean;
 var
   F: pChnFT1_2;
+  Status: Boolean;
 begin
   F := pChnFT1_2(P.Chn);
   if (P.Chn^.ChReceiveResult <> res_Ok) or
@@ -526,6 +580,34 @@ begin
   begin
     Inc(P.Link^.Ignored);               { garbled, or another station's }
     Exit(False);
+  end;
+  Status := (P.Rep.MessType in [tpShortM, tpLongM]) and (P.Rep.FC = FCS_LinkSAccesReq);
+  if Status and (P.Link^.OwedStatus > 0) then
+    Dec(P.Link^.OwedStatus);
+  { "not functioning" / "not implemented" answer anything }
+  if (Status <> IsStatusRequest(P.Out.FC)) and not ((P.Rep.MessType in [tpShortM, tpLongM]) and
+     (P.Rep.FC in [FCS_NotFunctioning, FCS_NotImplemented])) then
+  begin
+    Inc(P.Link^.Stale);                 { late: the answer to an earlier request }
+    Exit(False);
+  end;
+  if Status and (P.StatusSkip > 0) then
+  begin
+    Dec(P.StatusSkip);                  { owed by an earlier FC 9 }
+    Inc(P.Link^.Stale);
+    Exit(False);
+  end;
+  { a fresh answer: everything the secondary answered before it has arrived }
+  if Status then
+  begin
+    P.Link^.Suspect := False;
+    P.Link^.OwedStatus := P.Try_;       { this request's other transmissions }
+  end
+  else
+  begin
+    P.Link^.OwedStatus := 0;
+    if P.Try_ > 0 then
+      P.Link^.Suspect := True;          { the answer to another transmission may follow }
   end;
   P.RepLen := Len;
   if not ReplyFits(P.Out.FC, P.Rep.MessType, P.Rep.FC) or
