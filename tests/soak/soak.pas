@@ -4,7 +4,13 @@
   program is the master, with NAM=NOISE between its protocol layer and
   NAM=COM; the peer is tools/df1sim (DF1 full duplex) or this program
   started again with --serve=... (DF1 half duplex with three stations on one
-  line, FT 1.2 secondary, ICS slave), which creates the pty itself.
+  line, FT 1.2 secondary, FT 1.2 balanced station B, ICS slave), which
+  creates the pty itself. The FT 1.2 link procedures (unbalanced and
+  balanced) also run over faults of whole frames (FrameFaults: a stall
+  longer than the timeout, drops with stalls, reordering; NAM=NOISE LOS=
+  STL= STM= ROR=); the balanced scenario sends numbered user data both
+  ways and fails when a message was confirmed to its sender but not
+  delivered, or delivered twice beyond what link resets explain.
 
     soak [--seconds=N | --count=N] [--seed=N] [--only=TEXT] [--df1sim=PATH]
 
