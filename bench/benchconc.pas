@@ -195,10 +195,13 @@ begin
   end;
 end;
 
-procedure CycleRow(N, Cycles: LongInt);
+{ One row of the table: N simulators (stopped with SIGSTOP when Silent),
+  plcconc both ways over their lines; Cycles cycles, or Ms of idle CPU. }
+procedure Row(N, Cycles, Ms: LongInt; Silent: Boolean);
 var
   Sims: tSims;
   Lines: TStringList;
+  I: LongInt;
   Stepped, Robin: Double;
 begin
   Sims := nil;
@@ -206,6 +209,16 @@ begin
   try
     if not StartSims(N, Sims, Lines) then
       Halt(1);
+    if Silent then
+    begin
+      for I := 0 to High(Sims) do
+        FpKill(Sims[I].ProcessID, SIGSTOP);      { the lines fall silent }
+      Stepped := IdleCpu(Lines, Ms, False);
+      Robin := IdleCpu(Lines, Ms, True);
+      WriteLn(Format('  %3d silent lines, %d s: stepped+ChnWaitAny %.2f %% of a core, round robin %.2f %%',
+        [N, Ms div 1000, Stepped, Robin]));
+      Exit;
+    end;
     Stepped := MeanCycle(Lines, Cycles, False);
     Robin := MeanCycle(Lines, Cycles, True);
     if (Stepped < 0) or (Robin < 0) then
@@ -218,42 +231,18 @@ begin
   end;
 end;
 
-procedure IdleRow(N, Ms: LongInt);
-var
-  Sims: tSims;
-  Lines: TStringList;
-  I: LongInt;
-  Stepped, Robin: Double;
-begin
-  Sims := nil;
-  Lines := TStringList.Create;
-  try
-    if not StartSims(N, Sims, Lines) then
-      Halt(1);
-    for I := 0 to High(Sims) do
-      FpKill(Sims[I].ProcessID, SIGSTOP);        { the lines fall silent }
-    Stepped := IdleCpu(Lines, Ms, False);
-    Robin := IdleCpu(Lines, Ms, True);
-    WriteLn(Format('  %3d silent lines, %d s: stepped+ChnWaitAny %.2f %% of a core, round robin %.2f %%',
-      [N, Ms div 1000, Stepped, Robin]));
-  finally
-    StopSims(Sims);
-    Lines.Free;
-  end;
-end;
-
 begin
   Quick := (ParamCount > 0) and (ParamStr(1) = 'quick');
   WriteLn('benchconc: examples/plcconc, N df1sim on ptys, one read of N7:0 per line and cycle');
   if Quick then
   begin
-    CycleRow(8, 100);
-    IdleRow(8, 2000);
+    Row(8, 100, 0, False);
+    Row(8, 0, 2000, True);
   end
   else
   begin
-    CycleRow(8, 500);
-    CycleRow(32, 200);
-    IdleRow(8, 5000);
+    Row(8, 500, 0, False);
+    Row(32, 200, 0, False);
+    Row(8, 0, 5000, True);
   end;
 end.

@@ -235,65 +235,47 @@ begin
   FreeBuf(CH_RxQ, CH_RxLen, CH_RxCap);
 end;
 
+{ A probability 0..1 (BER= DRP= INS= LOS= STL= ROR=) and its threshold of
+  2^32, set only when CmdL = cmd_Set. }
+function RateParam(const S: tWordString; CmdL: tCmd; var Rate: Double;
+  var T: LongWord): tChResult;
+var
+  P: Double;
+begin
+  P := 0;
+  if not StrToReal(ParamValue(S), 0, MaxRate, P) then
+    Exit(res_BadParam);
+  if CmdL = cmd_Set then
+  begin
+    Rate := P;
+    T := Threshold(P);
+  end;
+  Result := res_Ok;
+end;
+
 function tChnNoise.ChSetOneParam(const S: tWordString; var CmdL: tCmd): tChResult;
 var
   Key: string;
-  P: Double;
   N: LongInt;
   I: Integer;
 begin
   Key := ParamKey(S);
-  P := 0;
   N := 0;
   I := 0;
-  if (Key = 'LOS') or (Key = 'STL') or (Key = 'ROR') then
-  begin
-    if StrToReal(ParamValue(S), 0, MaxRate, P) then
-      Result := res_Ok
-    else
-      Result := res_BadParam;
-    if (Result = res_Ok) and (CmdL = cmd_Set) then
-      if Key = 'LOS' then
-      begin
-        CH_Los := P;
-        CH_LosT := Threshold(P);
-      end
-      else if Key = 'STL' then
-      begin
-        CH_Stl := P;
-        CH_StlT := Threshold(P);
-      end
-      else
-      begin
-        CH_Ror := P;
-        CH_RorT := Threshold(P);
-      end;
-  end
+  if Key = 'BER' then
+    Result := RateParam(S, CmdL, CH_Ber, CH_BerT)
+  else if Key = 'DRP' then
+    Result := RateParam(S, CmdL, CH_Drop, CH_DropT)
+  else if Key = 'INS' then
+    Result := RateParam(S, CmdL, CH_Ins, CH_InsT)
+  else if Key = 'LOS' then
+    Result := RateParam(S, CmdL, CH_Los, CH_LosT)
+  else if Key = 'STL' then
+    Result := RateParam(S, CmdL, CH_Stl, CH_StlT)
+  else if Key = 'ROR' then
+    Result := RateParam(S, CmdL, CH_Ror, CH_RorT)
   else if Key = 'STM' then
     Result := ParamSetNum(S, 1, 600000, CmdL, CH_StallMs)
-  else if (Key = 'BER') or (Key = 'DRP') or (Key = 'INS') then
-  begin
-    if StrToReal(ParamValue(S), 0, MaxRate, P) then
-      Result := res_Ok
-    else
-      Result := res_BadParam;
-    if (Result = res_Ok) and (CmdL = cmd_Set) then
-      if Key = 'BER' then
-      begin
-        CH_Ber := P;
-        CH_BerT := Threshold(P);
-      end
-      else if Key = 'DRP' then
-      begin
-        CH_Drop := P;
-        CH_DropT := Threshold(P);
-      end
-      else
-      begin
-        CH_Ins := P;
-        CH_InsT := Threshold(P);
-      end;
-  end
   else if Key = 'BYTE' then
   begin
     if UpStr(ParamValue(S)) = 'RND' then

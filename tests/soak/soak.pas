@@ -562,6 +562,30 @@ begin
   end;
 end;
 
+{ The start every scenario with a peer of this program shares: St
+  cleared, the peer started with --serve=Serve, the master's stack
+  (Layer, its Params, then the noisy line to the peer's pty) opened. False
+  when the peer did not come up (the scenario is reported); Chn = nil with
+  St.Note saying why when the stack did not open. }
+function ScenarioStart(const Name, Serve, Layer, Params: string; const Noise: TNoise;
+  ASeed: LongInt; var St: TStats; var Peer: TPeer; out Chn: pChnVirt; out T0: QWord): Boolean;
+var
+  Err: string;
+begin
+  FillChar(St, SizeOf(St), 0);
+  St.Note := '';
+  Chn := nil;
+  T0 := ChMsTick;
+  PeerStart(Peer, ParamStr(0), ['--serve=' + Serve], Err);
+  if not PeerUp(Peer, Err, Name, St, ASeed) then
+    Exit(False);
+  T0 := ChMsTick;
+  Chn := OpenStack(Layer, Params + ' ' + NoisyLine(Noise, ASeed, Peer.Pty), Err);
+  if Chn = nil then
+    St.Note := Err + ';';
+  Result := True;
+end;
+
 procedure RunDF1(const Name: string; Half, Crc: Boolean; const Noise: TNoise; ASeed: LongInt);
 var
   Peer: TPeer;
@@ -748,6 +772,33 @@ const
   FT12MasterParams = 'NAM=FT1_2 MS=ON MAS=MASTER LEN=0 NOD=1 DNO=2';
   FT12Retries = 10;
 
+{ A peer's stack on a pty of its own (DRV=PTY); a peer that cannot open
+  it says why and ends. }
+function ServeOpen(const Layer, Params: string): pChnVirt;
+var
+  Err: string;
+begin
+  Result := OpenStack(Layer, Params + ' NAM=COM DRV=PTY', Err);
+  if Result = nil then
+  begin
+    WriteLn('soak: ', Err);
+    Halt(1);
+  end;
+end;
+
+{ A balanced station of the soak: the soak's timeout and retries, no test
+  function, user data counted in P. }
+procedure BalInit(var B: tFT12Balanced; Chn: pChnVirt; var P: TFT12Peer);
+begin
+  FillChar(P, SizeOf(P), 0);
+  FT12BalancedInit(B, Chn);
+  B.TimeoutMs := FT12Timeout;
+  B.Retries := FT12Retries;
+  B.TestMs := 0;
+  B.Data := @P;
+  B.OnUserData := @FT12OnUserData;
+end;
+
 procedure ServeFT12;
 var
   Chn: pChnVirt;
@@ -755,12 +806,7 @@ var
   P: TFT12Peer;
   Err: string;
 begin
-  Chn := OpenStack('FT1_2', FT12SlaveParams + ' NAM=COM DRV=PTY', Err);
-  if Chn = nil then
-  begin
-    WriteLn('soak: ', Err);
-    Halt(1);
-  end;
+  Chn := ServeOpen('FT1_2', FT12SlaveParams);
   FillChar(P, SizeOf(P), 0);
   FT12StationInit(S, Chn);
   S.Data := @P;
@@ -814,16 +860,9 @@ var
   end;
 
 begin
-  FillChar(St, SizeOf(St), 0);
-  St.Note := '';
-  PeerStart(Peer, ParamStr(0), ['--serve=ft12'], Err);
-  if not PeerUp(Peer, Err, Name, St, ASeed) then
+  if not ScenarioStart(Name, 'ft12', 'FT1_2', FT12MasterParams, Noise, ASeed, St, Peer, Chn, T0) then
     Exit;
-  T0 := ChMsTick;
-  Chn := OpenStack('FT1_2', FT12MasterParams + ' ' + NoisyLine(Noise, ASeed, Peer.Pty), Err);
-  if Chn = nil then
-    St.Note := Err + ';'
-  else
+  if Chn <> nil then
   begin
     FT12LinkInit(Link, 2);
     Seq := 0;
@@ -946,19 +985,8 @@ var
   Seq: LongInt;
   Until_: QWord;
 begin
-  Chn := OpenStack('FT1_2', FT12BalBParams + ' NAM=COM DRV=PTY', Err);
-  if Chn = nil then
-  begin
-    WriteLn('soak: ', Err);
-    Halt(1);
-  end;
-  FillChar(P, SizeOf(P), 0);
-  FT12BalancedInit(B, Chn);
-  B.TimeoutMs := FT12Timeout;
-  B.Retries := FT12Retries;
-  B.TestMs := 0;
-  B.Data := @P;
-  B.OnUserData := @FT12OnUserData;
+  Chn := ServeOpen('FT1_2', FT12BalBParams);
+  BalInit(B, Chn, P);
   Seq := 0;
   WriteLn('PTY ', PtyLastSlave);
   Flush(Output);
@@ -989,24 +1017,11 @@ var
   Seq: LongInt;
   BDelivered, BDups, BGaps, BConfirmed, BLinkLost: Int64;
 begin
-  FillChar(St, SizeOf(St), 0);
-  St.Note := '';
-  PeerStart(Peer, ParamStr(0), ['--serve=ft12bal'], Err);
-  if not PeerUp(Peer, Err, Name, St, ASeed) then
+  if not ScenarioStart(Name, 'ft12bal', 'FT1_2', FT12BalAParams, Noise, ASeed, St, Peer, Chn, T0) then
     Exit;
-  T0 := ChMsTick;
-  Chn := OpenStack('FT1_2', FT12BalAParams + ' ' + NoisyLine(Noise, ASeed, Peer.Pty), Err);
-  if Chn = nil then
-    St.Note := Err + ';'
-  else
+  if Chn <> nil then
   begin
-    FillChar(P, SizeOf(P), 0);
-    FT12BalancedInit(A, Chn);
-    A.TimeoutMs := FT12Timeout;
-    A.Retries := FT12Retries;
-    A.TestMs := 0;
-    A.Data := @P;
-    A.OnUserData := @FT12OnUserData;
+    BalInit(A, Chn, P);
     Seq := 0;
     Start := ChMsTick;
     while not Done_(St, Start) do
@@ -1094,12 +1109,7 @@ var
   Answered: LongInt;
   Err: string;
 begin
-  Chn := OpenStack('ICS', ICSSlaveParams + ' NAM=COM DRV=PTY', Err);
-  if Chn = nil then
-  begin
-    WriteLn('soak: ', Err);
-    Halt(1);
-  end;
+  Chn := ServeOpen('ICS', ICSSlaveParams);
   Answered := 0;
   Chn^.ChReceiveBuffer(@Req, SizeOf(Req));
   WriteLn('PTY ', PtyLastSlave);
@@ -1142,16 +1152,9 @@ var
   Seq, Tries: LongInt;
   Got: Boolean;
 begin
-  FillChar(St, SizeOf(St), 0);
-  St.Note := '';
-  PeerStart(Peer, ParamStr(0), ['--serve=ics'], Err);
-  if not PeerUp(Peer, Err, Name, St, ASeed) then
+  if not ScenarioStart(Name, 'ics', 'ICS', ICSMasterParams, Noise, ASeed, St, Peer, Chn, T0) then
     Exit;
-  T0 := ChMsTick;
-  Chn := OpenStack('ICS', ICSMasterParams + ' ' + NoisyLine(Noise, ASeed, Peer.Pty), Err);
-  if Chn = nil then
-    St.Note := Err + ';'
-  else
+  if Chn <> nil then
   begin
     Chn^.ChReceiveBuffer(@Ans, SizeOf(Ans));
     Seq := 0;
