@@ -38,6 +38,10 @@ uses
 const
   DF1LinkTimeoutMs = 1000;   { the RACOM note's link timeout }
   DF1LinkTries     = 3;
+  { messages one DF1MasterStep takes at most: all that was received, but a
+    peer that never stops (50 ENQs a millisecond) cannot keep the step
+    from running the timers }
+  DF1MaxFramesPerStep = 64;
 
 type
   tDF1Idle = procedure(Data: Pointer);
@@ -694,12 +698,16 @@ end;
 function DF1MasterStep(var M: tDF1Master): Boolean;
 var
   Got: Boolean;
+  N: LongInt;
 begin
   { everything already received, in one step: the ACK and the reply often
     come in one chunk, and the program's wait would not wake for the
     second }
-  while (M.State <> dmDone) and (M.Chn^.ChReceiveReady = CHS_ReceiveReady) do
+  N := 0;
+  while (M.State <> dmDone) and (N < DF1MaxFramesPerStep) and
+        (M.Chn^.ChReceiveReady = CHS_ReceiveReady) do
   begin
+    Inc(N);
     M.RepLen := 0;
     M.Chn^.ChReceive(M.RepLen);
     Got := M.Chn^.ChReceiveResult = res_Ok;

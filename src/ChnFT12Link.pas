@@ -68,6 +68,9 @@ uses
 const
   FT12LinkTimeoutMs = 1000;
   FT12LinkRetries   = 3;
+  { frames one step takes at most: all that was received, but a peer that
+    never stops sending cannot keep a step from running the timers }
+  FT12MaxFramesPerStep = 64;
 
   { secondary function codes of IEC 60870-5-2 that the manual does not name }
   FCS_NotFunctioning  = 14;  { link service not functioning }
@@ -302,8 +305,8 @@ function FT12BalancedInit(var B: tFT12Balanced; Chn: pChnVirt): tChResult;
   is full, res_TooLong above MaxDataLen, res_BadLen for 0. }
 function FT12BalancedSend(var B: tFT12Balanced; Buf: PByte; Len: Word;
   Confirm: Boolean): tChResult;
-{ Take at most one frame and act on it, then run the primary's timers.
-  True when a frame was taken. }
+{ Take every frame already received (at most FT12MaxFramesPerStep) and act
+  on each, then run the primary's timers. True when a frame was taken. }
 function FT12BalancedStep(var B: tFT12Balanced): Boolean;
 { Nothing queued and no request outstanding. }
 function FT12BalancedQuiet(const B: tFT12Balanced): Boolean;
@@ -623,6 +626,7 @@ end;
 function FT12PrimaryStep(var P: tFT12Primary): Boolean;
 var
   Len: Word;
+  N: LongInt;
 begin
   if P.State = fpDraining then
   begin
@@ -632,8 +636,11 @@ begin
       PrimaryFinish(P, P.Chn^.ChResult);
   end;
   { everything already received, in one step }
-  while (P.State = fpWaiting) and (P.Chn^.ChReceiveReady = CHS_ReceiveReady) do
+  N := 0;
+  while (P.State = fpWaiting) and (N < FT12MaxFramesPerStep) and
+        (P.Chn^.ChReceiveReady = CHS_ReceiveReady) do
   begin
+    Inc(N);
     Len := 0;
     P.Chn^.ChReceive(Len);
     PrimaryTake(P, Len);
@@ -1209,12 +1216,17 @@ function FT12BalancedStep(var B: tFT12Balanced): Boolean;
 var
   Len: Word;
   R: tChResult;
+  N: LongInt;
 begin
   Result := False;
   if (B.Chn = nil) or (B.Chn^.CH_State <> CHS_Connect) then
     Exit;
-  if B.Chn^.ChReceiveReady = CHS_ReceiveReady then
+  { everything already received (a bounded number of frames, so a peer
+    that never stops cannot hold the timers up) }
+  N := 0;
+  while (N < FT12MaxFramesPerStep) and (B.Chn^.ChReceiveReady = CHS_ReceiveReady) do
   begin
+    Inc(N);
     Result := True;
     Inc(B.Frames);
     Len := 0;

@@ -45,6 +45,7 @@ type
     procedure TestLostAckOfUserDataNotExecutedTwice;
     procedure TestTimeoutAfterRetriesThenResetAgain;
     procedure TestLateAnswerToARepetitionConfirmsNothingElse;
+    procedure TestOneStepTakesEverythingReceived;
     procedure TestReplyFromWrongAddressOrGarbledIgnored;
     procedure TestReplyNotFittingTheFunction;
     procedure TestBroadcastAndNoReply;
@@ -409,6 +410,27 @@ begin
   AssertEquals('BB confirmed', res_Ok, P.Result);
   AssertEquals('only once the secondary took it; each once', 'AA | BB', FUserData);
   AssertEquals(1, FLink.Fences);
+end;
+
+{ Another station's frame and the answer in one chunk: one step of the
+  stepped primary takes both and is done. }
+procedure TTestChnFT12Link.TestOneStepTakesEverythingReceived;
+var
+  P: tFT12Primary;
+  Req: tSendRecord;
+begin
+  SetUpPair;
+  FillChar(Req, SizeOf(Req), 0);
+  Req.MessType := tpShortM;
+  Req.FC := FCM_ReqLinkState;
+  AssertTrue(FT12PrimaryStart(P, FM, FLink, Req, 4, 1000, 0));
+  FTap.Pump;
+  { status of link from station 6 ($0B+$06 = $11), then from 5 }
+  FTap.InjectToA('10 0B 06 11 16 10 0B 05 10 16');
+  AssertTrue('done in one step', FT12PrimaryStep(P));
+  AssertEquals(res_Ok, P.Result);
+  AssertEquals(FCS_LinkSAccesReq, P.Rep.FC);
+  AssertEquals(1, FLink.Ignored);
 end;
 
 procedure TTestChnFT12Link.TestReplyFromWrongAddressOrGarbledIgnored;

@@ -46,6 +46,7 @@ type
     procedure TestUserDataCollisionBothConfirmed;
     procedure TestLostAckRepeatedWithSameFcbExecutedOnce;
     procedure TestLateAnswerToARepetitionConfirmsNothingElse;
+    procedure TestOneStepTakesEverythingReceived;
     procedure TestTestFunctionWhenIdle;
     procedure TestBadInputNeverStopsTheLink;
     procedure TestLinkLostIsEstablishedAgain;
@@ -201,14 +202,15 @@ begin
   SetUpPair;
   BringUp;
   { A: request status of link to 2 (C9+02 = CB); reset of remote link to 2
-    (C0+02 = C2); status of link from 1 to B's request (80+0B = 8B, +01 =
-    8C); ACK from 1 to B's reset (80+01 = 81) }
-  AssertEquals('10 C9 02 CB 16 | 10 C0 02 C2 16 | 10 8B 01 8C 16 | 10 80 01 81 16',
+    (C0+02 = C2) and, in the same step (one chunk for the tap: a step
+    takes every frame received), status of link from 1 to B's request
+    (80+0B = 8B, +01 = 8C); ACK from 1 to B's reset (80+01 = 81) }
+  AssertEquals('10 C9 02 CB 16 | 10 C0 02 C2 16 10 8B 01 8C 16 | 10 80 01 81 16',
     FTap.Lines('A'));
   { B: status of link from 2 (0B+02 = 0D) answering A first, then its own
     request status (49+01 = 4A) in the same step (one chunk for the tap),
-    ACK from 2 (00+02), reset to 1 (40+01) }
-  AssertEquals('10 0B 02 0D 16 10 49 01 4A 16 | 10 00 02 02 16 | 10 40 01 41 16',
+    ACK from 2 (00+02) and reset to 1 (40+01), again in one step }
+  AssertEquals('10 0B 02 0D 16 10 49 01 4A 16 | 10 00 02 02 16 10 40 01 41 16',
     FTap.Lines('B'));
   AssertTrue(FLa.PeerReset and FLb.PeerReset);
   AssertTrue('first FCB after a reset is 1', FLa.Fcb and FLb.Fcb);
@@ -313,6 +315,24 @@ begin
   Run(3);
   AssertEquals('both confirmed', 2, FLa.Confirmed);
   AssertEquals('and both delivered, once each', 'AA | BB', FSinkB.Text);
+end;
+
+{ Two frames in one chunk (an answer and a request of B): one step takes
+  both, so a program stepping from ChnWaitAny never waits for the second. }
+procedure TTestChnFT12LinkBalanced.TestOneStepTakesEverythingReceived;
+var
+  Frames: LongInt;
+begin
+  SetUpPair;
+  BringUp;
+  FTap.Log.Clear;
+  Frames := FLa.Frames;
+  { status of link from 2 (0B+02 = 0D), request status of link to 1 (49+01 = 4A) }
+  FTap.InjectToA('10 0B 02 0D 16 10 49 01 4A 16');
+  AssertTrue(FT12BalancedStep(FLa));
+  AssertEquals('both frames in one step', Frames + 2, FLa.Frames);
+  FTap.Pump;
+  AssertEquals('and B''s request answered (8B+01 = 8C)', '10 8B 01 8C 16', FTap.Lines('A'));
 end;
 
 procedure TTestChnFT12LinkBalanced.TestTestFunctionWhenIdle;
