@@ -32,6 +32,7 @@ type
     procedure TestWaitAnyTimesOutAndZeroOnlyLooks;
     procedure TestHeldInputEndsWaitAnyAtOnce;
     procedure TestBytesInARingEndWaitAnyUntilTaken;
+    procedure TestHelpersWaitIsNotEndedByOthersHeldInput;
     procedure TestLoopPeerInOtherThreadEndsIdleWait;
     {$IFDEF WINDOWS}
     procedure TestMoreHandlesThanOneWaitTakes;
@@ -236,6 +237,43 @@ begin
   AssertEquals(res_Ok, ChSendWhenFree(FChn[0], @B, 5, 1000));
   CloseAll;
   AssertEquals('closing lets go of what the ring held', 0, ChnWaitHeldCount);
+end;
+
+{ A helper blocked on its own channel (ChnWaitNew, ChnWaitUntil) could not
+  take input another layer holds: that input does not end its wait, which
+  would make it spin to its deadline; ChnWaitAny still returns at once. }
+procedure TTestChnWait.TestHelpersWaitIsNotEndedByOthersHeldInput;
+var
+  Held: Boolean;
+  T0, Took: QWord;
+  Err: string;
+begin
+  SetLength(FChn, 1);
+  FChn[0] := OpenStack('LOOP', 'PAIR=WAITNEW END=1', Err);   { a set to wait on }
+  AssertNotNull(Err, FChn[0]);
+  ChnWaitAny(0);
+  Held := False;
+  ChnWaitHeld(Held, True);
+  try
+    T0 := GetTickCount64;
+    AssertTrue(ChnWaitAny(500));
+    AssertTrue('ChnWaitAny at once', GetTickCount64 - T0 < 200);
+    T0 := GetTickCount64;
+    ChnWaitNew(150);
+    Took := GetTickCount64 - T0;
+    AssertTrue('ChnWaitNew sleeps its time: ' + IntToStr(Took), Took >= 120);
+    T0 := GetTickCount64;
+    ChnWaitUntil(GetTickCount64 + 5000, 100);
+    Took := GetTickCount64 - T0;
+    AssertTrue('ChnWaitUntil: at most MaxMs: ' + IntToStr(Took), (Took >= 80) and (Took < 1000));
+    T0 := GetTickCount64;
+    ChnWaitUntil(GetTickCount64 + 60);
+    Took := GetTickCount64 - T0;
+    AssertTrue('ChnWaitUntil: to the deadline: ' + IntToStr(Took), (Took >= 40) and (Took < 1000));
+    AssertEquals('a deadline passed: 0 ms left', 0, ChnWaitLeft(GetTickCount64 - 10));
+  finally
+    ChnWaitHeld(Held, False);
+  end;
 end;
 
 procedure TTestChnWait.TestWaitAnyTimesOutAndZeroOnlyLooks;
