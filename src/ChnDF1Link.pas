@@ -702,10 +702,11 @@ var
 begin
   { everything already received, in one step: the ACK and the reply often
     come in one chunk, and the program's wait would not wake for the
-    second }
+    second. After the first look only while the channel holds input it
+    has pulled in: a look may wait IDL ms for new input }
   N := 0;
   while (M.State <> dmDone) and (N < DF1MaxFramesPerStep) and
-        (M.Chn^.ChReceiveReady = CHS_ReceiveReady) do
+        ((N = 0) or M.Chn^.ChHoldsInput) and (M.Chn^.ChReceiveReady = CHS_ReceiveReady) do
   begin
     Inc(N);
     M.RepLen := 0;

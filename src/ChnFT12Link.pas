@@ -448,6 +448,13 @@ begin
   begin
     Len := 0;
     P.Chn^.ChReceive(Len);
+    if (P.Chn^.ChReceiveResult = res_Ok) and (P.Rep.MessType in [tpShortM, tpLongM]) and
+       (P.Chn^.CH_RSNode = P.Link^.Addr) then
+    begin
+      Inc(P.Link^.Stale);
+      if (P.Rep.FC = FCS_LinkSAccesReq) and (P.Link^.OwedStatus > 0) then
+        Dec(P.Link^.OwedStatus);        { one status answer less on the way }
+    end;
   end;
   P.RepLen := 0;
   P.Try_ := 0;
@@ -638,7 +645,7 @@ begin
   { everything already received, in one step }
   N := 0;
   while (P.State = fpWaiting) and (N < FT12MaxFramesPerStep) and
-        (P.Chn^.ChReceiveReady = CHS_ReceiveReady) do
+        ((N = 0) or P.Chn^.ChHoldsInput) and (P.Chn^.ChReceiveReady = CHS_ReceiveReady) do
   begin
     Inc(N);
     Len := 0;
@@ -1221,10 +1228,13 @@ begin
   Result := False;
   if (B.Chn = nil) or (B.Chn^.CH_State <> CHS_Connect) then
     Exit;
-  { everything already received (a bounded number of frames, so a peer
-    that never stops cannot hold the timers up) }
+  { everything already received: after the first look only while the
+    channel holds input it has pulled in (a look may wait IDL ms for new
+    input), and a bounded number of frames, so a peer that never stops
+    cannot hold the timers and the application up }
   N := 0;
-  while (N < FT12MaxFramesPerStep) and (B.Chn^.ChReceiveReady = CHS_ReceiveReady) do
+  while (N < FT12MaxFramesPerStep) and ((N = 0) or B.Chn^.ChHoldsInput) and
+        (B.Chn^.ChReceiveReady = CHS_ReceiveReady) do
   begin
     Inc(N);
     Result := True;
@@ -1240,8 +1250,11 @@ begin
       TakeRequest(B, Len)
     else
       TakeAnswer(B);
+    { the next request goes out before the next look, which may wait IDL }
+    RunPrimary(B);
   end;
-  RunPrimary(B);
+  if not Result then
+    RunPrimary(B);
 end;
 
 initialization

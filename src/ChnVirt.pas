@@ -150,6 +150,12 @@ type
       ChDestNode. }
     procedure ChGetReceiveBuffer(var Buff: Pointer; var Size: Word);
     function  ChGetDestNode: tNode;
+    { True while the layer holds input it has already pulled in: a
+      message waiting for ChReceive, or bytes from below not yet fed to
+      its automaton. A stepped client takes more messages in the same
+      step only while this is True, so a step never waits for new input
+      (a poll of a layer with IDL= may). }
+    function  ChHoldsInput: Boolean; virtual;
     { The token that made the last ChSetParam fail ('' after success). }
     function  ChParamError: tWordString; virtual;
     { Readable text of a result code of this layer (protocol codes included). }
@@ -942,6 +948,11 @@ end;
 function tChnVirt.ChGetDestNode: tNode;
 begin
   Result := CH_DNode;
+end;
+
+function tChnVirt.ChHoldsInput: Boolean;
+begin
+  Result := (CH_RCtrl = CHS_ReceiveReady) or (CH_LowPos < CH_LowLen);
 end;
 
 procedure tChnVirt.ChDestNode(DNode: tNode);
