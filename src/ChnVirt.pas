@@ -166,6 +166,18 @@ type
     procedure ChGetNode(var SNode, DNode: tNode); virtual;
 
     { --- additions of the port (not in the SofCon manuals) --- }
+    { The receive buffer ChReceiveBuffer gave last (nil, 0: none) and the
+      destination ChDestNode set: what a helper that borrows the channel
+      for an exchange gives back afterwards, through ChReceiveBuffer and
+      ChDestNode. }
+    procedure ChGetReceiveBuffer(var Buff: Pointer; var Size: Word);
+    function  ChGetDestNode: tNode;
+    { True while the layer holds input it has already pulled in: a
+      message waiting for ChReceive, or bytes from below not yet fed to
+      its automaton. A stepped client takes more messages in the same
+      step only while this is True, so a step never waits for new input
+      (a poll of a layer with IDL= may). }
+    function  ChHoldsInput: Boolean; virtual;
     { The token that made the last ChSetParam fail ('' after success). }
     function  ChParamError: tWordString; virtual;
     { Readable text of a result code of this layer (protocol codes included). }
@@ -324,7 +336,7 @@ var
 implementation
 
 uses
-  SysUtils;
+  SysUtils, ChnWait;
 
 function ChNumName(const Name: ShortString): Word;
 var
@@ -351,6 +363,10 @@ begin
       Exit(Chn^.ChResult);
     if ChMsTick > Deadline then
       Exit(res_Timeout);
+    { the program-wide wait ends when the transmitter can take more; at
+      most 10 ms, for a transmitter that cannot end it (an RS-485 line
+      draining with RTS raised) }
+    ChnWaitUntil(Deadline + 1, 10);
   end;
   Chn^.ChSend(Buff, Len);
   Result := Chn^.ChSendResult;
@@ -1033,6 +1049,22 @@ end;
 
 procedure tChnVirt.ChReceiveTick;
 begin
+end;
+
+procedure tChnVirt.ChGetReceiveBuffer(var Buff: Pointer; var Size: Word);
+begin
+  Buff := CH_RBuff;
+  Size := CH_RSize;
+end;
+
+function tChnVirt.ChGetDestNode: tNode;
+begin
+  Result := CH_DNode;
+end;
+
+function tChnVirt.ChHoldsInput: Boolean;
+begin
+  Result := (CH_RCtrl = CHS_ReceiveReady) or (CH_LowPos < CH_LowLen);
 end;
 
 procedure tChnVirt.ChDestNode(DNode: tNode);
