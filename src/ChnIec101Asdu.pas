@@ -263,6 +263,10 @@ function IecTimeCheck(const T: tIecTime; Short: Boolean; out Err: ShortString): 
 
 { A zero object (Quality 0, Time 0) with the IOA given. }
 function IecObject(Ioa: LongWord): tIecObject;
+{ Set the cause and P/N bit of the ASDU in Buf (the test bit, the OA and
+  the rest stay): an activation answered as its confirmation or
+  termination in place. False (nothing changed) when Len < 3 or Cot > 63. }
+function IecSetCot(var Buf: array of Byte; Len: Word; Cot: Byte; Negative: Boolean): Boolean;
 
 implementation
 
@@ -484,6 +488,13 @@ function IecObject(Ioa: LongWord): tIecObject;
 begin
   FillChar(Result, SizeOf(Result), 0);
   Result.Ioa := Ioa;
+end;
+
+function IecSetCot(var Buf: array of Byte; Len: Word; Cot: Byte; Negative: Boolean): Boolean;
+begin
+  Result := (Len >= 3) and (Length(Buf) >= 3) and (Cot <= 63);
+  if Result then
+    Buf[2] := (Buf[2] and $80) or Cot or (Ord(Negative) shl 6);
 end;
 
 { ------------------------------------------------------------ time }
