@@ -116,6 +116,7 @@ type
     DeadMinMs, DeadMaxMs: LongInt;   { back-off of a dead slave (1000, 30000) }
     CommandMs: LongInt;    { confirmation of a command (10000) }
     OnObject : tIecObjectFunc;
+    OnSent   : tIecObjectFunc;   { each command object as it goes out (nil: none) }
     OnBad    : tIecBadFunc;
     Data     : Pointer;
     Idle     : tFT12Idle;  { called while a link service waits (tests: the slave) }
@@ -552,6 +553,24 @@ begin
   end;
 end;
 
+{ The current stage went out to slave index S: tell OnSent. }
+procedure StageSent(var M: tIecMaster; S: Integer);
+var
+  H: tIecAsdu;
+  O: tIecObject;
+  Ti, Cot: Byte;
+begin
+  if not Assigned(M.OnSent) then
+    Exit;
+  StageAsdu(M, Ti, Cot, O);
+  FillChar(H, SizeOf(H), 0);
+  H.Ti := Ti;
+  H.Count := 1;
+  H.Cot := Cot;
+  H.Ca := M.Cmd.Ca;
+  M.OnSent(M.Data, M.Slaves[S].Addr, H, O);
+end;
+
 { ------------------------------------------------------------ unbalanced }
 
 { The one place that drives an FT 1.2 primary service: FC with Len octets
@@ -672,6 +691,7 @@ begin
         if (M.Rep.MessType = tpSACK) or (M.Rep.FC = FCS_Ack) then
         begin
           Inc(Sl^.Commands);
+          StageSent(M, S);
           if M.Cmd.Stage = stDelaySend then
             StageConfirmed(M)           { the delay is no activation: nothing confirms it }
           else
@@ -771,6 +791,7 @@ begin
     if R = res_Ok then
     begin
       Inc(M.Slaves[0].Commands);
+      StageSent(M, 0);
       M.Cmd.SentAt := ChMsTick;
       if M.Cmd.Stage = stDelaySend then
         StageConfirmed(M)
