@@ -382,22 +382,25 @@ begin
   Result := True;
 end;
 
-function IecStartInterrogation(var M: tIecMaster; Addr, Ca: Word; Qoi: Byte): Boolean;
+{ A command whose element is one number (a qualifier, the test pattern). }
+function StartWith(var M: tIecMaster; Addr, Ca: Word; Ti: Byte; Value: LongInt;
+  WaitTerm: Boolean): Boolean;
 var
   O: tIecObject;
 begin
   O := IecObject(0);
-  O.Int := Qoi;
-  Result := Start(M, Addr, Ca, C_IC_NA_1, O, False, True, False);
+  O.Int := Value;
+  Result := Start(M, Addr, Ca, Ti, O, False, WaitTerm, False);
+end;
+
+function IecStartInterrogation(var M: tIecMaster; Addr, Ca: Word; Qoi: Byte): Boolean;
+begin
+  Result := StartWith(M, Addr, Ca, C_IC_NA_1, Qoi, True);
 end;
 
 function IecStartCounterInterrogation(var M: tIecMaster; Addr, Ca: Word; Qcc: Byte): Boolean;
-var
-  O: tIecObject;
 begin
-  O := IecObject(0);
-  O.Int := Qcc;
-  Result := Start(M, Addr, Ca, C_CI_NA_1, O, False, True, False);
+  Result := StartWith(M, Addr, Ca, C_CI_NA_1, Qcc, True);
 end;
 
 function IecStartRead(var M: tIecMaster; Addr, Ca: Word; Ioa: LongWord): Boolean;
@@ -415,21 +418,13 @@ begin
 end;
 
 function IecStartTest(var M: tIecMaster; Addr, Ca: Word): Boolean;
-var
-  O: tIecObject;
 begin
-  O := IecObject(0);
-  O.Int := Fbp_Test;
-  Result := Start(M, Addr, Ca, C_TS_NA_1, O, False, False, False);
+  Result := StartWith(M, Addr, Ca, C_TS_NA_1, Fbp_Test, False);
 end;
 
 function IecStartResetProcess(var M: tIecMaster; Addr, Ca: Word; Qrp: Byte): Boolean;
-var
-  O: tIecObject;
 begin
-  O := IecObject(0);
-  O.Int := Qrp;
-  Result := Start(M, Addr, Ca, C_RP_NA_1, O, False, False, False);
+  Result := StartWith(M, Addr, Ca, C_RP_NA_1, Qrp, False);
 end;
 
 function IecStartCommand(var M: tIecMaster; Addr, Ca: Word; Ti: Byte; const Obj: tIecObject;

@@ -59,6 +59,21 @@ var
   I, N: Integer;
   Buf: array[0..4095] of Char;
   Deadline: QWord;
+
+  procedure Take;
+  begin
+    while P.Output.NumBytesAvailable > 0 do
+    begin
+      N := P.Output.Read(Buf, SizeOf(Buf));
+      FOut := FOut + Copy(Buf, 0, N);
+    end;
+    while P.Stderr.NumBytesAvailable > 0 do
+    begin
+      N := P.Stderr.Read(Buf, SizeOf(Buf));
+      FErr := FErr + Copy(Buf, 0, N);
+    end;
+  end;
+
 begin
   AssertTrue(BinPath('iec101master') + ' missing (make examples)', FileExists(BinPath('iec101master')));
   P := TProcess.Create(nil);
@@ -77,32 +92,14 @@ begin
       end
       else
         ChnWaitAny(5);
-      while P.Output.NumBytesAvailable > 0 do
-      begin
-        N := P.Output.Read(Buf, SizeOf(Buf));
-        FOut := FOut + Copy(Buf, 0, N);
-      end;
-      while P.Stderr.NumBytesAvailable > 0 do
-      begin
-        N := P.Stderr.Read(Buf, SizeOf(Buf));
-        FErr := FErr + Copy(Buf, 0, N);
-      end;
+      Take;
     until not P.Running or (ChMsTick > Deadline);
     if P.Running then
     begin
       P.Terminate(255);
       Fail('did not end in 10 s: ' + FOut + FErr);
     end;
-    while P.Output.NumBytesAvailable > 0 do
-    begin
-      N := P.Output.Read(Buf, SizeOf(Buf));
-      FOut := FOut + Copy(Buf, 0, N);
-    end;
-    while P.Stderr.NumBytesAvailable > 0 do
-    begin
-      N := P.Stderr.Read(Buf, SizeOf(Buf));
-      FErr := FErr + Copy(Buf, 0, N);
-    end;
+    Take;
     Result := P.ExitCode;
   finally
     P.Free;
