@@ -123,7 +123,7 @@ $(PROGBINS) $(BENCHBINS): src/chn.inc | $(BUILD)/units.stamp
 # test unit needs no edit anywhere else. Units that need Unix as a whole
 # (ptys) are listed here and built only there; single Unix-only tests are
 # {$IFDEF UNIX} in their unit.
-UNIX_TESTS := TestChnPty TestChnTcpSer2net TestFT12Examples TestFaultCycling
+UNIX_TESTS := TestChnPty TestChnTcpSer2net TestFT12Examples TestFaultCycling TestIec101Examples
 comma := ,
 uses_entry = $(if $(filter $(1),$(UNIX_TESTS)),'{$$IFDEF UNIX}$(1)$(comma){$$ENDIF}','$(1)$(comma)')
 $(BUILD)/testunits.inc: $(TESTUNITS)
@@ -149,8 +149,8 @@ demo: all
 bench: $(BENCHBINS) $(BINDIR)/chntap
 	@set -e; for b in $(BENCHBINS); do $$b; done
 
-# Random-mutation fuzzing of the three codecs and of ChnPccc (addresses,
-# plans, requests, reply decoding) with run-time checks on;
+# Random-mutation fuzzing of the three codecs, of ChnPccc (addresses,
+# plans, requests, reply decoding) and of ChnIec101Asdu with run-time checks on;
 # SECONDS=n for longer runs, SEED=n to repeat one.
 SECONDS ?= 10
 # the soak program: test flags, on the units the test build just made
@@ -159,8 +159,10 @@ fuzz: units
 	@mkdir -p $(TUNITDIR) $(TBINDIR)
 	@$(FPC) $(TESTFLAGS) tests/fuzz/fuzzcodecs.pas >$(BUILD)/fuzz-build.log 2>&1 || { cat $(BUILD)/fuzz-build.log; exit 1; }
 	@$(FPC) $(TESTFLAGS) tests/fuzz/fuzzpccc.pas >>$(BUILD)/fuzz-build.log 2>&1 || { cat $(BUILD)/fuzz-build.log; exit 1; }
+	@$(FPC) $(TESTFLAGS) tests/fuzz/fuzzasdu.pas >>$(BUILD)/fuzz-build.log 2>&1 || { cat $(BUILD)/fuzz-build.log; exit 1; }
 	@rm -f $(BUILD)/fuzz-heap.log; HEAPTRC="log=$(BUILD)/fuzz-heap.log" $(TBINDIR)/fuzzcodecs $(SECONDS) $(SEED)
 	@rm -f $(BUILD)/fuzz-heap.log; HEAPTRC="log=$(BUILD)/fuzz-heap.log" $(TBINDIR)/fuzzpccc $(SECONDS) $(SEED)
+	@rm -f $(BUILD)/fuzz-heap.log; HEAPTRC="log=$(BUILD)/fuzz-heap.log" $(TBINDIR)/fuzzasdu $(SECONDS) $(SEED)
 
 # The soak (docs/reliability.md): SECONDS per scenario or COUNT messages
 # per scenario; SEED= the first NOISE seed; ONLY= scenarios whose name

@@ -642,7 +642,9 @@ var
   S: Single;
 begin
   Result := IsNan(X) or IsInfinite(X) or (Abs(X) <= MaxSingle);
-  if Result then
+  if IsNan(X) then
+    PutLong($7FC00000, B, At)            { one quiet NaN, whatever the payload }
+  else if Result then
   begin
     S := X;
     PutLong(PLongWord(@S)^, B, At);
@@ -654,7 +656,11 @@ var
   L: LongWord;
 begin
   L := GetLong(B, At);
-  Result := PSingle(@L)^;
+  { a NaN from the line (signalling ones too) must not trap the FPU }
+  if (L and $7F800000 = $7F800000) and (L and $007FFFFF <> 0) then
+    Result := NaN
+  else
+    Result := PSingle(@L)^;
 end;
 
 { -1 <= X < 1 as a 16-bit fraction; False when out of range. }

@@ -116,6 +116,7 @@ type
     DeadMinMs, DeadMaxMs: LongInt;   { back-off of a dead slave (1000, 30000) }
     CommandMs: LongInt;    { confirmation of a command (10000) }
     OnObject : tIecObjectFunc;
+    OnSent   : tIecObjectFunc;   { each command object as it goes out (nil: none) }
     OnBad    : tIecBadFunc;
     Data     : Pointer;
     Idle     : tFT12Idle;  { called while a link service waits (tests: the slave) }
@@ -381,22 +382,25 @@ begin
   Result := True;
 end;
 
-function IecStartInterrogation(var M: tIecMaster; Addr, Ca: Word; Qoi: Byte): Boolean;
+{ A command whose element is one number (a qualifier, the test pattern). }
+function StartWith(var M: tIecMaster; Addr, Ca: Word; Ti: Byte; Value: LongInt;
+  WaitTerm: Boolean): Boolean;
 var
   O: tIecObject;
 begin
   O := IecObject(0);
-  O.Int := Qoi;
-  Result := Start(M, Addr, Ca, C_IC_NA_1, O, False, True, False);
+  O.Int := Value;
+  Result := Start(M, Addr, Ca, Ti, O, False, WaitTerm, False);
+end;
+
+function IecStartInterrogation(var M: tIecMaster; Addr, Ca: Word; Qoi: Byte): Boolean;
+begin
+  Result := StartWith(M, Addr, Ca, C_IC_NA_1, Qoi, True);
 end;
 
 function IecStartCounterInterrogation(var M: tIecMaster; Addr, Ca: Word; Qcc: Byte): Boolean;
-var
-  O: tIecObject;
 begin
-  O := IecObject(0);
-  O.Int := Qcc;
-  Result := Start(M, Addr, Ca, C_CI_NA_1, O, False, True, False);
+  Result := StartWith(M, Addr, Ca, C_CI_NA_1, Qcc, True);
 end;
 
 function IecStartRead(var M: tIecMaster; Addr, Ca: Word; Ioa: LongWord): Boolean;
@@ -414,21 +418,13 @@ begin
 end;
 
 function IecStartTest(var M: tIecMaster; Addr, Ca: Word): Boolean;
-var
-  O: tIecObject;
 begin
-  O := IecObject(0);
-  O.Int := Fbp_Test;
-  Result := Start(M, Addr, Ca, C_TS_NA_1, O, False, False, False);
+  Result := StartWith(M, Addr, Ca, C_TS_NA_1, Fbp_Test, False);
 end;
 
 function IecStartResetProcess(var M: tIecMaster; Addr, Ca: Word; Qrp: Byte): Boolean;
-var
-  O: tIecObject;
 begin
-  O := IecObject(0);
-  O.Int := Qrp;
-  Result := Start(M, Addr, Ca, C_RP_NA_1, O, False, False, False);
+  Result := StartWith(M, Addr, Ca, C_RP_NA_1, Qrp, False);
 end;
 
 function IecStartCommand(var M: tIecMaster; Addr, Ca: Word; Ti: Byte; const Obj: tIecObject;
@@ -552,6 +548,24 @@ begin
   end;
 end;
 
+{ The current stage went out to slave index S: tell OnSent. }
+procedure StageSent(var M: tIecMaster; S: Integer);
+var
+  H: tIecAsdu;
+  O: tIecObject;
+  Ti, Cot: Byte;
+begin
+  if not Assigned(M.OnSent) then
+    Exit;
+  StageAsdu(M, Ti, Cot, O);
+  FillChar(H, SizeOf(H), 0);
+  H.Ti := Ti;
+  H.Count := 1;
+  H.Cot := Cot;
+  H.Ca := M.Cmd.Ca;
+  M.OnSent(M.Data, M.Slaves[S].Addr, H, O);
+end;
+
 { ------------------------------------------------------------ unbalanced }
 
 { The one place that drives an FT 1.2 primary service: FC with Len octets
@@ -672,6 +686,7 @@ begin
         if (M.Rep.MessType = tpSACK) or (M.Rep.FC = FCS_Ack) then
         begin
           Inc(Sl^.Commands);
+          StageSent(M, S);
           if M.Cmd.Stage = stDelaySend then
             StageConfirmed(M)           { the delay is no activation: nothing confirms it }
           else
@@ -771,6 +786,7 @@ begin
     if R = res_Ok then
     begin
       Inc(M.Slaves[0].Commands);
+      StageSent(M, 0);
       M.Cmd.SentAt := ChMsTick;
       if M.Cmd.Stage = stDelaySend then
         StageConfirmed(M)

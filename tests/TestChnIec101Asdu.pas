@@ -9,7 +9,7 @@ unit TestChnIec101Asdu;
 interface
 
 uses
-  SysUtils, DateUtils, fpcunit, testregistry, ChnTypes, ChnIec101Asdu, TestSupport;
+  SysUtils, DateUtils, Math, fpcunit, testregistry, ChnTypes, ChnIec101Asdu, TestSupport;
 
 type
   TTestChnIec101Asdu = class(TTestCase)
@@ -33,6 +33,7 @@ type
     procedure TestMalformedAreRefused;
     procedure TestImpossibleEncodesAreRefused;
     procedure TestTimeConversion;
+    procedure TestNaNFromTheLineDoesNotTrap;
   end;
 
 implementation
@@ -670,6 +671,23 @@ begin
   T.Msec := 60000;
   AssertEquals(res_AsduValue, IecTimeCheck(T, True, E));
   AssertTrue(E, Pos('milliseconds 60000', E) > 0);
+end;
+
+{ Found by fuzzasdu: a signalling NaN converted to Double raised
+  EInvalidOp. Every NaN decodes to a quiet one and encodes as $7FC00000. }
+procedure TTestChnIec101Asdu.TestNaNFromTheLineDoesNotTrap;
+var
+  O: tIecObject;
+  H: tIecAsdu;
+begin
+  DecodeOne(IecDefaultParams, '0D 01 03 00 01 00 01 00 00 01 00 80 7F 00', H, O);
+  AssertTrue('signalling NaN', IsNan(O.Number));
+  DecodeOne(IecDefaultParams, '0D 01 03 00 01 00 01 00 00 00 00 C0 FF 00', H, O);
+  AssertTrue('quiet NaN', IsNan(O.Number));
+  AssertEquals('0D 01 03 00 01 00 01 00 00 00 00 C0 7F 00', Enc(IecDefaultParams, M_ME_NC_1, Cot_Spontaneous, 1, O));
+  DecodeOne(IecDefaultParams, '0D 01 03 00 01 00 01 00 00 00 00 80 FF 00', H, O);
+  AssertTrue('minus infinity', IsInfinite(O.Number) and (O.Number < 0));
+  AssertEquals('0D 01 03 00 01 00 01 00 00 00 00 80 FF 00', Enc(IecDefaultParams, M_ME_NC_1, Cot_Spontaneous, 1, O));
 end;
 
 initialization
