@@ -189,7 +189,7 @@ begin
 end;
 
 var
-  Slave, Table: tIecSlave;
+  Slave, Table: tIecSlaveStation;
 
 procedure Show(Data: Pointer; Sent: Boolean; Buf: PByte; Len: Word);
 var

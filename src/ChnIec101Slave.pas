@@ -89,7 +89,7 @@ type
   tIecSlaveAsduFunc = procedure(Data: Pointer; Sent: Boolean; Buf: PByte; Len: Word);
   tIecSlaveBadFunc = procedure(Data: Pointer; const Err: ShortString);
 
-  tIecSlave = record
+  tIecSlaveStation = record
     Chn      : pChnVirt;
     Params   : tIecParams;
     Ca       : Word;          { own common address (IecSlaveInit: 1) }
@@ -123,42 +123,42 @@ type
       CounterInterrogations, Reads, Events, Negatives, Overflows: LongInt;
     LastBad  : ShortString;
   end;
-  pIecSlave = ^tIecSlave;
+  pIecSlaveStation = ^tIecSlaveStation;
 
 { A slave on an open tChnFT1_2 stack (it stays the caller's) with the
   application parameters P and common address Ca. res_WrongLayer (no
   tChnFT1_2), res_AsduParam (Err), res_BadParam (Ca above the CA size),
   res_BadMessage (an unbalanced master channel). S must not move
   afterwards (the channel receives into it). }
-function IecSlaveInit(var S: tIecSlave; Chn: pChnVirt; const P: tIecParams; Ca: Word;
+function IecSlaveInit(var S: tIecSlaveStation; Chn: pChnVirt; const P: tIecParams; Ca: Word;
   out Err: ShortString): tChResult;
 { Add a point; Obj.Ioa is its address. res_AsduType (not a monitoring or
   command type, or end of initialisation), res_AsduIoa (above the IOA
   size), res_BadParam (IOA twice, group above 16 / 4 for counters),
   res_Busy (table full), res_AsduValue (a value its type cannot carry);
   Err names the point and what is wrong. }
-function IecSlaveAddPoint(var S: tIecSlave; Ti: Byte; const Obj: tIecObject; Group: Byte;
+function IecSlaveAddPoint(var S: tIecSlaveStation; Ti: Byte; const Obj: tIecObject; Group: Byte;
   out Err: ShortString): tChResult;
 { Index of the point with this IOA, -1 when there is none. }
-function IecSlaveFind(const S: tIecSlave; Ioa: LongWord): Integer;
+function IecSlaveFind(const S: tIecSlaveStation; Ioa: LongWord): Integer;
 { New value and quality of point Ioa (the value fields of Obj; its IOA,
   and a counter's sequence number, are the table's); a time-tagged type
   takes the station clock's time. With
   Spontaneous the change goes out as a class 1 event (COT 3).
   res_AsduIoa (no such point), res_AsduValue (Err), res_Busy (event
   queue full: the table has the new value, the event is lost). }
-function IecSlaveUpdate(var S: tIecSlave; Ioa: LongWord; const Obj: tIecObject;
+function IecSlaveUpdate(var S: tIecSlaveStation; Ioa: LongWord; const Obj: tIecObject;
   Spontaneous: Boolean; out Err: ShortString): tChResult;
 { The station clock (PC clock + ClockOffsetMs). }
-function IecSlaveNow(const S: tIecSlave): TDateTime;
+function IecSlaveNow(const S: tIecSlaveStation): TDateTime;
 { Take at most one frame and act on it; move waiting ASDUs to a balanced
   link; end a selection whose time is up. True when a frame was taken. }
-function IecSlaveStep(var S: tIecSlave): Boolean;
+function IecSlaveStep(var S: tIecSlaveStation): Boolean;
 { ms the caller may wait (ChnWaitAny) before the next step when
   IecSlaveStep returned False: short while a balanced link has work. }
-function IecSlaveWaitMs(const S: tIecSlave): LongInt;
+function IecSlaveWaitMs(const S: tIecSlaveStation): LongInt;
 { ASDUs waiting in class 1 and class 2 (and an interrogation's rest). }
-function IecSlavePending(const S: tIecSlave): Boolean;
+function IecSlavePending(const S: tIecSlaveStation): Boolean;
 
 implementation
 
@@ -186,7 +186,7 @@ begin
   Dec(Q.Count);
 end;
 
-procedure Queue1(var S: tIecSlave; const Buf: array of Byte; Len: Word);
+procedure Queue1(var S: tIecSlaveStation; const Buf: array of Byte; Len: Word);
 begin
   if not QueuePut(S.Class1, Buf, Len) then
     Inc(S.Overflows);
@@ -204,12 +204,12 @@ begin
   Result := Ti in [C_SC_NA_1..C_BO_NA_1, C_SC_TA_1..C_BO_TA_1];
 end;
 
-function IecSlaveNow(const S: tIecSlave): TDateTime;
+function IecSlaveNow(const S: tIecSlaveStation): TDateTime;
 begin
   Result := IncMilliSecond(Now, S.ClockOffsetMs);
 end;
 
-function IecSlaveFind(const S: tIecSlave; Ioa: LongWord): Integer;
+function IecSlaveFind(const S: tIecSlaveStation; Ioa: LongWord): Integer;
 var
   I: Integer;
 begin
@@ -220,7 +220,7 @@ begin
 end;
 
 { Can Obj be sent as type Ti? (the encoder's own checks) }
-function CheckObject(const S: tIecSlave; Ti: Byte; const Obj: tIecObject; out Err: ShortString): tChResult;
+function CheckObject(const S: tIecSlaveStation; Ti: Byte; const Obj: tIecObject; out Err: ShortString): tChResult;
 var
   Buf: array[0..MaxDataLen - 1] of Byte;
   Len: Word;
@@ -228,7 +228,7 @@ begin
   Result := IecEncodeOne(S.Params, Ti, Cot_Spontaneous, S.Ca, Obj, Buf, Len, Err);
 end;
 
-function IecSlaveAddPoint(var S: tIecSlave; Ti: Byte; const Obj: tIecObject; Group: Byte;
+function IecSlaveAddPoint(var S: tIecSlaveStation; Ti: Byte; const Obj: tIecObject; Group: Byte;
   out Err: ShortString): tChResult;
 var
   P: pIecPoint;
@@ -280,7 +280,7 @@ begin
 end;
 
 { Encode one object of type Ti with cause Cot into the class 1 queue. }
-function QueueObject(var S: tIecSlave; Ti, Cot: Byte; const O: tIecObject): tChResult;
+function QueueObject(var S: tIecSlaveStation; Ti, Cot: Byte; const O: tIecObject): tChResult;
 var
   Buf: array[0..MaxDataLen - 1] of Byte;
   Len: Word;
@@ -298,7 +298,7 @@ begin
   end;
 end;
 
-function IecSlaveUpdate(var S: tIecSlave; Ioa: LongWord; const Obj: tIecObject;
+function IecSlaveUpdate(var S: tIecSlaveStation; Ioa: LongWord; const Obj: tIecObject;
   Spontaneous: Boolean; out Err: ShortString): tChResult;
 var
   I: Integer;
@@ -335,7 +335,7 @@ end;
 { ---------------------------------------------------------- interrogation }
 
 { Does point P answer the interrogation under way? }
-function GiWants(const S: tIecSlave; const P: tIecPoint): Boolean;
+function GiWants(const S: tIecSlaveStation; const P: tIecPoint): Boolean;
 var
   Grp: Byte;
 begin
@@ -352,7 +352,7 @@ end;
 
 { The next answer ASDU of the interrogation: consecutive points of one
   type, as many as fit; False when none is left (then ACT_TERM is queued). }
-function GiNextAsdu(var S: tIecSlave; var Out: tIecQueued): Boolean;
+function GiNextAsdu(var S: tIecSlaveStation; var Out: tIecQueued): Boolean;
 var
   Objs: array[0..IecMaxObjects - 1] of tIecObject;
   H: tIecAsdu;
@@ -407,7 +407,7 @@ begin
 end;
 
 { Freeze / reset the counters of the group of a C_CI_NA_1. }
-procedure CounterAction(var S: tIecSlave; Qcc: Byte);
+procedure CounterAction(var S: tIecSlaveStation; Qcc: Byte);
 var
   I: Integer;
   Grp: Byte;
@@ -433,7 +433,7 @@ end;
 
 { ---------------------------------------------------------------- answers }
 
-procedure Bad(var S: tIecSlave; const Err: ShortString);
+procedure Bad(var S: tIecSlaveStation; const Err: ShortString);
 begin
   Inc(S.BadAsdus);
   S.LastBad := Err;
@@ -442,7 +442,7 @@ begin
 end;
 
 { The received ASDU mirrored with Cot (negative or not) into class 1. }
-procedure Answer(var S: tIecSlave; const Buf: array of Byte; Len: Word; Cot: Byte; Negative: Boolean);
+procedure Answer(var S: tIecSlaveStation; const Buf: array of Byte; Len: Word; Cot: Byte; Negative: Boolean);
 var
   Out: array[0..MaxDataLen - 1] of Byte;
 begin
@@ -456,7 +456,7 @@ begin
 end;
 
 { A command of types 45..51 / 58..64 with cause 6 or 8. }
-procedure TakeCommand(var S: tIecSlave; const Buf: array of Byte; Len: Word;
+procedure TakeCommand(var S: tIecSlaveStation; const Buf: array of Byte; Len: Word;
   const H: tIecAsdu; const O: tIecObject);
 var
   I: Integer;
@@ -514,7 +514,7 @@ begin
   Answer(S, Buf, Len, Cot_ActCon, not Ok);
 end;
 
-procedure TakeClock(var S: tIecSlave; const Buf: array of Byte; Len: Word; const O: tIecObject);
+procedure TakeClock(var S: tIecSlaveStation; const Buf: array of Byte; Len: Word; const O: tIecObject);
 var
   DT: TDateTime;
 begin
@@ -531,7 +531,7 @@ begin
   Answer(S, Buf, Len, Cot_ActCon, False);      { ACT_CON with the time received }
 end;
 
-procedure TakeRead(var S: tIecSlave; const Buf: array of Byte; Len: Word; const O: tIecObject);
+procedure TakeRead(var S: tIecSlaveStation; const Buf: array of Byte; Len: Word; const O: tIecObject);
 var
   I: Integer;
 begin
@@ -545,7 +545,7 @@ begin
   QueueObject(S, S.Points[I].Ti, Cot_Request, S.Points[I].Obj);
 end;
 
-procedure TakeInterrogation(var S: tIecSlave; const Buf: array of Byte; Len: Word;
+procedure TakeInterrogation(var S: tIecSlaveStation; const Buf: array of Byte; Len: Word;
   const H: tIecAsdu; const O: tIecObject);
 var
   Q: Byte;
@@ -602,7 +602,7 @@ begin
 end;
 
 { One ASDU from the master. }
-procedure TakeAsdu(var S: tIecSlave; Buf: PByte; Len: Word);
+procedure TakeAsdu(var S: tIecSlaveStation; Buf: PByte; Len: Word);
 var
   A: array[0..MaxDataLen - 1] of Byte;
   H: tIecAsdu;
@@ -680,16 +680,16 @@ end;
 
 function OnUserData(Data: Pointer; Buf: PByte; Len: Word; Confirm: Boolean): Boolean;
 var
-  S: pIecSlave;
+  S: pIecSlaveStation;
 begin
-  S := pIecSlave(Data);
+  S := pIecSlaveStation(Data);
   { no room for the answers: NACK, the master sends it again }
   Result := S^.Class1.Count + 3 <= IecSlaveQueueLen;
   if Result then
     TakeAsdu(S^, Buf, Len);
 end;
 
-procedure Sent(var S: tIecSlave; const Q: tIecQueued);
+procedure Sent(var S: tIecSlaveStation; const Q: tIecQueued);
 begin
   if Assigned(S.OnAsdu) then
     S.OnAsdu(S.Data, True, @Q.Data[0], Q.Len);
@@ -697,11 +697,11 @@ end;
 
 function OnClassData(Data: Pointer; ClassNo: Byte; var Rep: tSendRecord; var Len: Word): Boolean;
 var
-  S: pIecSlave;
+  S: pIecSlaveStation;
   Q: ^tIecQueue;
   G: tIecQueued;
 begin
-  S := pIecSlave(Data);
+  S := pIecSlaveStation(Data);
   if ClassNo = 1 then
     Q := @S^.Class1
   else
@@ -720,10 +720,10 @@ end;
 
 function OnClass1(Data: Pointer): Boolean;
 begin
-  Result := pIecSlave(Data)^.Class1.Count > 0;
+  Result := pIecSlaveStation(Data)^.Class1.Count > 0;
 end;
 
-function IecSlaveInit(var S: tIecSlave; Chn: pChnVirt; const P: tIecParams; Ca: Word;
+function IecSlaveInit(var S: tIecSlaveStation; Chn: pChnVirt; const P: tIecParams; Ca: Word;
   out Err: ShortString): tChResult;
 begin
   FillChar(S, SizeOf(S), 0);
@@ -770,7 +770,7 @@ end;
 
 { Balanced: hand waiting ASDUs to the link while its queue has room, class
   1 first. }
-procedure FeedBalanced(var S: tIecSlave);
+procedure FeedBalanced(var S: tIecSlaveStation);
 var
   G: tIecQueued;
   Q: ^tIecQueue;
@@ -796,7 +796,7 @@ begin
   end;
 end;
 
-function IecSlaveStep(var S: tIecSlave): Boolean;
+function IecSlaveStep(var S: tIecSlaveStation): Boolean;
 begin
   Result := False;
   if S.Chn = nil then
@@ -812,12 +812,12 @@ begin
     Result := FT12StationStep(S.Station);
 end;
 
-function IecSlavePending(const S: tIecSlave): Boolean;
+function IecSlavePending(const S: tIecSlaveStation): Boolean;
 begin
   Result := (S.Class1.Count > 0) or (S.Class2.Count > 0) or S.GiActive;
 end;
 
-function IecSlaveWaitMs(const S: tIecSlave): LongInt;
+function IecSlaveWaitMs(const S: tIecSlaveStation): LongInt;
 begin
   if S.Balanced and (IecSlavePending(S) or not FT12BalancedQuiet(S.Bal) or
      (S.Bal.State <> bsAvailable)) then

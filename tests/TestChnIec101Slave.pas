@@ -32,7 +32,7 @@ type
     procedure SetUp; override;
     procedure TearDown; override;
   public
-    S: tIecSlave;
+    S: tIecSlaveStation;
     Cmds, Clocks, Bads: TStringList;
     Accept: Boolean;
     Peer: tFT12Balanced;

@@ -36,10 +36,10 @@ function IecParseValue(Ti: Byte; const Tok: AnsiString; var O: tIecObject): Bool
 function IecParseQuality(const Tok: AnsiString; out Q: Byte): Boolean;
 { One line of the file into the table: True when it was a point, a blank
   line or a comment; False with Err 'what is wrong (TOKEN)'. }
-function IecPointLine(var S: tIecSlave; const Line: AnsiString; out Err: AnsiString): Boolean;
+function IecPointLine(var S: tIecSlaveStation; const Line: AnsiString; out Err: AnsiString): Boolean;
 { Every line of Text (a file's content) into the table; False with Err
   'NAME line N: what is wrong (TOKEN)' at the first bad line. }
-function IecLoadPoints(var S: tIecSlave; const Name, Text: AnsiString; out Err: AnsiString): Boolean;
+function IecLoadPoints(var S: tIecSlaveStation; const Name, Text: AnsiString; out Err: AnsiString): Boolean;
 
 implementation
 
@@ -191,7 +191,7 @@ begin
   end;
 end;
 
-function IecPointLine(var S: tIecSlave; const Line: AnsiString; out Err: AnsiString): Boolean;
+function IecPointLine(var S: tIecSlaveStation; const Line: AnsiString; out Err: AnsiString): Boolean;
 var
   F: TStringList;
   T: AnsiString;
@@ -247,7 +247,7 @@ begin
   end;
 end;
 
-function IecLoadPoints(var S: tIecSlave; const Name, Text: AnsiString; out Err: AnsiString): Boolean;
+function IecLoadPoints(var S: tIecSlaveStation; const Name, Text: AnsiString; out Err: AnsiString): Boolean;
 var
   L: TStringList;
   I: Integer;
