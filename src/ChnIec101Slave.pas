@@ -75,7 +75,7 @@ type
 
   tIecQueue = record
     Items: array[0..IecSlaveQueueLen - 1] of tIecQueued;
-    Head, Count: Integer;
+    Head, Count: LongInt;
   end;
 
   { A command for the program: H the ASDU's identifier (Ti, Cot, Ca ...),
@@ -97,12 +97,12 @@ type
     Station  : tFT12Station;  { unbalanced link }
     Bal      : tFT12Balanced; { balanced link }
     Points   : array[0..IecSlaveMaxPoints - 1] of tIecPoint;
-    PointCount: Integer;
+    PointCount: LongInt;
     Class1, Class2: tIecQueue;
     { interrogation under way (station/group or counters) }
     GiActive : Boolean;
     GiQoi    : Byte;
-    GiNext   : Integer;       { next point index to look at }
+    GiNext   : LongInt;       { next point index to look at }
     GiAsdu   : tIecQueued;    { its ACT_CON, the mirror for ACT_TERM }
     { select before operate }
     SelActive: Boolean;
@@ -140,7 +140,7 @@ function IecSlaveInit(var S: tIecSlaveStation; Chn: pChnVirt; const P: tIecParam
 function IecSlaveAddPoint(var S: tIecSlaveStation; Ti: Byte; const Obj: tIecObject; Group: Byte;
   out Err: ShortString): tChResult;
 { Index of the point with this IOA, -1 when there is none. }
-function IecSlaveFind(const S: tIecSlaveStation; Ioa: LongWord): Integer;
+function IecSlaveFind(const S: tIecSlaveStation; Ioa: LongWord): LongInt;
 { New value and quality of point Ioa (the value fields of Obj; its IOA,
   and a counter's sequence number, are the table's); a time-tagged type
   takes the station clock's time. With
@@ -209,7 +209,7 @@ begin
   Result := IncMilliSecond(Now, S.ClockOffsetMs);
 end;
 
-function IecSlaveFind(const S: tIecSlaveStation; Ioa: LongWord): Integer;
+function IecSlaveFind(const S: tIecSlaveStation; Ioa: LongWord): LongInt;
 var
   I: Integer;
 begin

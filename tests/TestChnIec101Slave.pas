@@ -51,6 +51,7 @@ type
     procedure TestNegativeCauses44To47;
     procedure TestMalformedCountedNeverStops;
     procedure TestBalancedInterrogationInOrder;
+    procedure TestRandomAsdusNeverStopIt;
   end;
 
 implementation
@@ -561,6 +562,8 @@ var
   B: TBytes;
   T0: QWord;
   I: Integer;
+  O: tIecObject;
+  E: ShortString;
 begin
   Open(True);
   AddStd;
@@ -588,8 +591,59 @@ begin
     Copy(PeerGot[3], 1, Length('01 14 14 00 01 00 E9 03 00 01 EA 03 00 00 EB 03 00 01')));
   AssertEquals((6 + 20 * 4) * 3, Length(PeerGot[3]) + 1);
   AssertEquals('64 01 0A 00 01 00 00 00 00 14', PeerGot[4]);
+  { a spontaneous change goes out as user data at once }
+  O := IecObject(0);
+  O.Int := 7;
+  AssertEquals(res_Ok, IecSlaveUpdate(S, 101, O, True, E));
+  T0 := ChMsTick;
+  repeat
+    FT12BalancedStep(Peer);
+    if not IecSlaveStep(S) then
+      Sleep(1);
+  until (PeerGot.Count >= 6) or (ChMsTick - T0 > 3000);
+  AssertEquals('0B 01 03 00 01 00 65 00 00 07 00 00', PeerGot[5]);
   AssertEquals(0, S.BadAsdus);
   AssertEquals(S.Bal.State = bsAvailable, True);
+end;
+
+{ 400 random ASDUs (a known type or not, any length): each is counted as
+  malformed or answered, nothing is raised, and the slave then answers an
+  interrogation as before. }
+procedure TTestChnIec101Slave.TestRandomAsdusNeverStopIt;
+const
+  Types: array[0..9] of Byte = (45, 46, 48, 50, 58, 100, 101, 102, 103, 200);
+var
+  I, J, N: Integer;
+  Hex: string;
+  Answers: Integer;
+begin
+  Open;
+  AddStd;
+  RandSeed := 20261201;
+  Answers := 0;
+  for I := 1 to 400 do
+  begin
+    N := 1 + Random(24);
+    Hex := IntToHex(Types[Random(Length(Types))], 2);
+    for J := 2 to N do
+      if (J = 5) and (Random(2) = 0) then
+        Hex := Hex + ' 01'                      { often our common address }
+      else
+        Hex := Hex + ' ' + IntToHex(Random(256), 2);
+    Send(Hex);
+    while Poll(1) <> '-' do
+      Inc(Answers);
+    AssertFalse('nothing left for class 1', FAcd);
+  end;
+  AssertEquals('every ASDU counted', 400, S.Asdus);
+  AssertTrue('some malformed', S.BadAsdus > 0);
+  AssertTrue('some answered', Answers > 0);
+  { the interrogations the random ASDUs started are finished by now (class 2) }
+  while Poll(2) <> '-' do ;
+  while Poll(1) <> '-' do ;
+  Send('64 01 06 00 01 00 00 00 00 14');
+  AssertEquals('64 01 07 00 01 00 00 00 00 14', Poll(1));
+  AssertEquals('0B 03 14 00 01 00 64 00 00 FF FF 00 65 00 00 17 00 00 66 00 00 FC 08 00', Poll(2));
 end;
 
 initialization

@@ -22,7 +22,7 @@
   blank lines are skipped. A tool unit, not part of the library. }
 unit Iec101Points;
 
-{$MODE OBJFPC}{$H+}
+{$MODE OBJFPC}{$H-}
 
 interface
 
