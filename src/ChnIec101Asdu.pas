@@ -217,7 +217,7 @@ function IecTypeKind(Ti: Byte): tIecKind;
 function IecTypeTime(Ti: Byte): tIecTimeKind;
 { Octets of one element of the type after its IOA, time tag included;
   -1 for an unknown type. }
-function IecElementSize(Ti: Byte): Integer;
+function IecElementSize(Ti: Byte): LongInt;
 { Monitoring direction (1..40, 70): sent by the controlled station. }
 function IecIsMonitor(Ti: Byte): Boolean;
 { 'ACT_CON', 'INTERROGATED_BY_GROUP_3', 'UNKNOWN_IOA' ...; 'COT_n' otherwise. }
@@ -245,7 +245,7 @@ function IecDecodeHeader(const P: tIecParams; const Buf: array of Byte; Len: Wor
 { Object Index (0..H.Count-1) of an ASDU whose header IecDecodeHeader
   accepted (res_AsduCount for an index outside). }
 function IecDecodeObject(const P: tIecParams; const H: tIecAsdu; const Buf: array of Byte;
-  Index: Integer; out Obj: tIecObject): tChResult;
+  Index: LongInt; out Obj: tIecObject): tChResult;
 { Header and every object into Objs; res_AsduCount when Objs is shorter
   than the count. }
 function IecDecodeAsdu(const P: tIecParams; const Buf: array of Byte; Len: Word;
@@ -440,7 +440,7 @@ begin
     Result := tkNone;
 end;
 
-function IecElementSize(Ti: Byte): Integer;
+function IecElementSize(Ti: Byte): LongInt;
 var
   I: Integer;
 begin
@@ -1078,7 +1078,7 @@ begin
 end;
 
 function IecDecodeObject(const P: tIecParams; const H: tIecAsdu; const Buf: array of Byte;
-  Index: Integer; out Obj: tIecObject): tChResult;
+  Index: LongInt; out Obj: tIecObject): tChResult;
 var
   At: Integer;
   Ioa: LongWord;

@@ -87,7 +87,7 @@ type
   tIecCommand = record
     Phase   : tIecCmdPhase;
     Stage   : tIecCmdStage;
-    Slave   : Integer;     { index in Slaves }
+    Slave   : LongInt;     { index in Slaves }
     Ti      : Byte;        { type of the main command }
     Ca      : Word;
     Obj     : tIecObject;  { its object (IOA, value, qualifier) }
@@ -106,8 +106,8 @@ type
     Params   : tIecParams;
     Balanced : Boolean;
     Slaves   : array[0..IecMaxSlaves - 1] of tIecSlave;
-    SlaveCount: Integer;
-    Turn     : Integer;    { the slave whose turn it is }
+    SlaveCount: LongInt;
+    Turn     : LongInt;    { the slave whose turn it is }
     Bal      : tFT12Balanced;
     { settings }
     TimeoutMs: LongInt;    { link answer (FT12LinkTimeoutMs) }
@@ -140,7 +140,7 @@ function IecMasterInit(var M: tIecMaster; Chn: pChnVirt; const P: tIecParams): t
   there, res_BadParam for an address twice or above 255 (ADR=1). }
 function IecMasterAddSlave(var M: tIecMaster; Addr: Word): tChResult;
 { Index of a slave, -1 when not added. }
-function IecMasterSlave(const M: tIecMaster; Addr: Word): Integer;
+function IecMasterSlave(const M: tIecMaster; Addr: Word): LongInt;
 { One step: at most one link service (unbalanced) or one frame
   (balanced), the command's timer. True when something was done; False:
   nothing is due before IecMasterWaitEnd (wait with ChnWaitAny). }
@@ -242,7 +242,7 @@ begin
     Result := res_BadMessage;
 end;
 
-function IecMasterSlave(const M: tIecMaster; Addr: Word): Integer;
+function IecMasterSlave(const M: tIecMaster; Addr: Word): LongInt;
 var
   I: Integer;
 begin

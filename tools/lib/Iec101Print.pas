@@ -19,7 +19,7 @@
   events "elapsed" (ms), parameters "qpm". }
 unit Iec101Print;
 
-{$MODE OBJFPC}{$H+}
+{$MODE OBJFPC}{$H-}
 
 interface
 
