@@ -217,7 +217,7 @@ function IecTypeKind(Ti: Byte): tIecKind;
 function IecTypeTime(Ti: Byte): tIecTimeKind;
 { Octets of one element of the type after its IOA, time tag included;
   -1 for an unknown type. }
-function IecElementSize(Ti: Byte): Integer;
+function IecElementSize(Ti: Byte): LongInt;
 { Monitoring direction (1..40, 70): sent by the controlled station. }
 function IecIsMonitor(Ti: Byte): Boolean;
 { 'ACT_CON', 'INTERROGATED_BY_GROUP_3', 'UNKNOWN_IOA' ...; 'COT_n' otherwise. }
@@ -245,7 +245,7 @@ function IecDecodeHeader(const P: tIecParams; const Buf: array of Byte; Len: Wor
 { Object Index (0..H.Count-1) of an ASDU whose header IecDecodeHeader
   accepted (res_AsduCount for an index outside). }
 function IecDecodeObject(const P: tIecParams; const H: tIecAsdu; const Buf: array of Byte;
-  Index: Integer; out Obj: tIecObject): tChResult;
+  Index: LongInt; out Obj: tIecObject): tChResult;
 { Header and every object into Objs; res_AsduCount when Objs is shorter
   than the count. }
 function IecDecodeAsdu(const P: tIecParams; const Buf: array of Byte; Len: Word;
@@ -398,14 +398,23 @@ begin
     Result := $FFFF;
 end;
 
-function IecTypeName(Ti: Byte): ShortString;
+const
+  NoType: tTypeInfo = (Ti: 0; Name: ''; Kind: ikNone; Time: tkNone; Size: 0);
+
+{ The table entry of a type; NoType when unknown. }
+function TypeEntry(Ti: Byte): tTypeInfo;
 var
   I: Integer;
 begin
   if Info(Ti, I) then
-    Result := Types[I].Name
+    Result := Types[I]
   else
-    Result := '';
+    Result := NoType;
+end;
+
+function IecTypeName(Ti: Byte): ShortString;
+begin
+  Result := TypeEntry(Ti).Name;
 end;
 
 function IecTypeByName(const Name: ShortString): Byte;
@@ -421,31 +430,19 @@ begin
 end;
 
 function IecTypeKind(Ti: Byte): tIecKind;
-var
-  I: Integer;
 begin
-  if Info(Ti, I) then
-    Result := Types[I].Kind
-  else
-    Result := ikNone;
+  Result := TypeEntry(Ti).Kind;
 end;
 
 function IecTypeTime(Ti: Byte): tIecTimeKind;
-var
-  I: Integer;
 begin
-  if Info(Ti, I) then
-    Result := Types[I].Time
-  else
-    Result := tkNone;
+  Result := TypeEntry(Ti).Time;
 end;
 
-function IecElementSize(Ti: Byte): Integer;
-var
-  I: Integer;
+function IecElementSize(Ti: Byte): LongInt;
 begin
-  if Info(Ti, I) then
-    Result := Types[I].Size
+  if TypeIndex[Ti] >= 0 then
+    Result := TypeEntry(Ti).Size
   else
     Result := -1;
 end;
@@ -1078,7 +1075,7 @@ begin
 end;
 
 function IecDecodeObject(const P: tIecParams; const H: tIecAsdu; const Buf: array of Byte;
-  Index: Integer; out Obj: tIecObject): tChResult;
+  Index: LongInt; out Obj: tIecObject): tChResult;
 var
   At: Integer;
   Ioa: LongWord;

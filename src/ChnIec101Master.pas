@@ -32,9 +32,10 @@
   The blocking forms (IecInterrogation ...) start and step to the end.
 
   Link dependency: the one place that drives an FT 1.2 primary service is
-  LinkService below. It uses FT12Transact, which waits for its reply (at
-  most TimeoutMs x (1 + Retries), calling Idle meanwhile); a stepped FT 1.2
-  primary service replaces it there alone. }
+  LinkStart/LinkStep below. Today it uses FT12Transact, which waits for its
+  reply (at most TimeoutMs x (1 + Retries), calling Idle meanwhile); the
+  stepped FT 1.2 primary service of ChnFT12Link replaces it there alone,
+  and the rest of the master already runs as a stepped machine on it. }
 unit ChnIec101Master;
 
 {$I chn.inc}
@@ -81,13 +82,15 @@ type
   tIecBadFunc = procedure(Data: Pointer; Addr: Word; const Err: ShortString);
 
   tIecCmdPhase = (cpNone, cpSend, cpConfirm, cpTerm, cpDone);
+  { what the link service under way is for }
+  tIecLinkJob = (ljNone, ljStatus, ljReset, ljCommand, ljClass1, ljClass2);
   tIecCmdStage = (stDelayAct, stDelaySend, stSelect, stMain);
 
   { The command under way. }
   tIecCommand = record
     Phase   : tIecCmdPhase;
     Stage   : tIecCmdStage;
-    Slave   : Integer;     { index in Slaves }
+    Slave   : LongInt;     { index in Slaves }
     Ti      : Byte;        { type of the main command }
     Ca      : Word;
     Obj     : tIecObject;  { its object (IOA, value, qualifier) }
@@ -106,8 +109,8 @@ type
     Params   : tIecParams;
     Balanced : Boolean;
     Slaves   : array[0..IecMaxSlaves - 1] of tIecSlave;
-    SlaveCount: Integer;
-    Turn     : Integer;    { the slave whose turn it is }
+    SlaveCount: LongInt;
+    Turn     : LongInt;    { the slave whose turn it is }
     Bal      : tFT12Balanced;
     { settings }
     TimeoutMs: LongInt;    { link answer (FT12LinkTimeoutMs) }
@@ -126,7 +129,12 @@ type
     Asdus, Objects, BadAsdus: LongInt;
     LastBad  : ShortString;
     LineResult: tChResult; { the channel failed (res_DeviceLost ...), else res_Ok }
+    { the link service under way (unbalanced) }
+    Job      : tIecLinkJob;
+    JobSlave : LongInt;
+    LinkResult: tChResult;
     Rep      : tRecRecord;
+    RepLen   : Word;
   end;
   pIecMaster = ^tIecMaster;
 
@@ -140,7 +148,7 @@ function IecMasterInit(var M: tIecMaster; Chn: pChnVirt; const P: tIecParams): t
   there, res_BadParam for an address twice or above 255 (ADR=1). }
 function IecMasterAddSlave(var M: tIecMaster; Addr: Word): tChResult;
 { Index of a slave, -1 when not added. }
-function IecMasterSlave(const M: tIecMaster; Addr: Word): Integer;
+function IecMasterSlave(const M: tIecMaster; Addr: Word): LongInt;
 { One step: at most one link service (unbalanced) or one frame
   (balanced), the command's timer. True when something was done; False:
   nothing is due before IecMasterWaitEnd (wait with ChnWaitAny). }
@@ -242,7 +250,7 @@ begin
     Result := res_BadMessage;
 end;
 
-function IecMasterSlave(const M: tIecMaster; Addr: Word): Integer;
+function IecMasterSlave(const M: tIecMaster; Addr: Word): LongInt;
 var
   I: Integer;
 begin
@@ -568,10 +576,13 @@ end;
 
 { ------------------------------------------------------------ unbalanced }
 
-{ The one place that drives an FT 1.2 primary service: FC with Len octets
-  of user data (an ASDU) to slave S; the reply in M.Rep/RepLen. }
-function LinkService(var M: tIecMaster; S: Integer; FC: Byte; const Asdu: array of Byte;
-  Len: Word; Retries: LongInt; out RepLen: Word): tChResult;
+{ The one place that drives an FT 1.2 primary service. LinkStart starts
+  FC with Len octets of user data (an ASDU) to slave S for Job; LinkStep is
+  True once it is over (M.LinkResult, the reply in M.Rep/M.RepLen). Today
+  FT12Transact does the whole service inside LinkStart (it waits, calling
+  Idle); the stepped FT 1.2 primary (FT12PrimaryStart/Step) goes here. }
+procedure LinkStart(var M: tIecMaster; S: LongInt; Job: tIecLinkJob; FC: Byte;
+  const Asdu: array of Byte; Len: Word; Retries: LongInt);
 var
   Req: tSendRecord;
 begin
@@ -582,12 +593,20 @@ begin
     Move(Asdu[0], Req.Data[1], Len);
   end
   else
+  begin
     Req.MessType := tpShortM;
-  Req.FC := FC;
-  if Len = 0 then
     Len := pChnFT1_2(M.Chn)^.CH_LenShortM;   { a fixed frame: LEN= zero octets }
-  Result := FT12Transact(M.Chn, M.Slaves[S].Link, Req, cSizeHeadSndMsg + Len, M.Rep, RepLen,
-    M.TimeoutMs, Retries, M.Idle, M.IdleData);
+  end;
+  Req.FC := FC;
+  M.Job := Job;
+  M.JobSlave := S;
+  M.LinkResult := FT12Transact(M.Chn, M.Slaves[S].Link, Req, cSizeHeadSndMsg + Len, M.Rep,
+    M.RepLen, M.TimeoutMs, Retries, M.Idle, M.IdleData);
+end;
+
+function LinkStep(var M: tIecMaster): Boolean;
+begin
+  Result := M.Job <> ljNone;
 end;
 
 procedure SlaveFailed(var M: tIecMaster; S: Integer; R: tChResult);
@@ -635,11 +654,10 @@ begin
     end;
 end;
 
-{ One service to slave S. }
-procedure Serve(var M: tIecMaster; S: Integer);
+{ Start the service slave S is due for. }
+procedure Serve(var M: tIecMaster; S: LongInt);
 var
   R: tChResult;
-  RepLen: Word;
   Buf: array[0..IecMaxAsdu - 1] of Byte;
   Len: Word;
   E: ShortString;
@@ -652,81 +670,105 @@ begin
   if Sl^.State = isDead then
     Retries := 0;                       { one try: the others wait one timeout only }
   case Sl^.State of
-    isOffline, isDead:
-      begin
-        R := LinkService(M, S, FCM_ReqLinkState, Buf, 0, Retries, RepLen);
-        if R = res_Ok then
-        begin
-          SlaveAnswered(M, S);
-          Sl^.State := isLinkStatus;
-        end;
-      end;
-    isLinkStatus:
-      begin
-        R := LinkService(M, S, FCM_1stSetTransmit, Buf, 0, Retries, RepLen);
-        if R = res_Ok then
-        begin
-          Inc(Sl^.Resets);
-          Sl^.State := isOnline;
-          Sl^.NextPoll := 0;
-        end;
-      end;
+    isOffline, isDead: LinkStart(M, S, ljStatus, FCM_ReqLinkState, Buf, 0, Retries);
+    isLinkStatus: LinkStart(M, S, ljReset, FCM_1stSetTransmit, Buf, 0, Retries);
   else
     if (M.Cmd.Slave = S) and (M.Cmd.Phase = cpSend) then
     begin
       R := StageEncode(M, Buf, Len, E);
       if R <> res_Ok then
-      begin
-        Finish(M, R, E);                { cannot happen: checked at the start }
-        Exit;
-      end;
-      M.Cmd.SentAt := ChMsTick;
-      R := LinkService(M, S, FCM_UserDataReply, Buf, Len, Retries, RepLen);
-      if R = res_Ok then
-        if (M.Rep.MessType = tpSACK) or (M.Rep.FC = FCS_Ack) then
-        begin
-          Inc(Sl^.Commands);
-          StageSent(M, S);
-          if M.Cmd.Stage = stDelaySend then
-            StageConfirmed(M)           { the delay is no activation: nothing confirms it }
-          else
-          begin
-            M.Cmd.Phase := cpConfirm;
-            M.Cmd.Deadline := ChMsTick + QWord(M.CommandMs);
-          end;
-        end;
-        { a NACK (busy): sent again at the next turn }
-    end
-    else
-    begin
-      if Sl^.Link.Acd then
-        R := LinkService(M, S, FCM_ReqUserData1, Buf, 0, Retries, RepLen)
+        Finish(M, R, E)                 { cannot happen: checked at the start }
       else
       begin
-        R := LinkService(M, S, FCM_ReqUserData2, Buf, 0, Retries, RepLen);
-        Sl^.NextPoll := ChMsTick + QWord(M.CycleMs);
+        M.Cmd.SentAt := ChMsTick;
+        LinkStart(M, S, ljCommand, FCM_UserDataReply, Buf, Len, Retries);
       end;
-      if R = res_Ok then
+    end
+    else if Sl^.Link.Acd then
+      LinkStart(M, S, ljClass1, FCM_ReqUserData1, Buf, 0, Retries)
+    else
+    begin
+      Sl^.NextPoll := ChMsTick + QWord(M.CycleMs);
+      LinkStart(M, S, ljClass2, FCM_ReqUserData2, Buf, 0, Retries);
+    end;
+  end;
+end;
+
+{ The service under way is over: act on its answer. }
+procedure Complete(var M: tIecMaster);
+var
+  S: LongInt;
+  Sl: ^tIecSlave;
+  Job: tIecLinkJob;
+begin
+  S := M.JobSlave;
+  Sl := @M.Slaves[S];
+  Job := M.Job;
+  M.Job := ljNone;
+  if M.LinkResult <> res_Ok then
+  begin
+    SlaveFailed(M, S, M.LinkResult);
+    M.Turn := (S + 1) mod M.SlaveCount;
+    Exit;
+  end;
+  case Job of
+    ljStatus:
       begin
-        if Sl^.Link.Acd then
+        SlaveAnswered(M, S);
+        Sl^.State := isLinkStatus;
+      end;
+    ljReset:
+      begin
+        Inc(Sl^.Resets);
+        Sl^.State := isOnline;
+        Sl^.NextPoll := 0;
+      end;
+    ljCommand:
+      if (M.Cmd.Slave = S) and (M.Cmd.Phase = cpSend)
+        and ((M.Rep.MessType = tpSACK) or (M.Rep.FC = FCS_Ack)) then
+      begin
+        Inc(Sl^.Commands);
+        StageSent(M, S);
+        if M.Cmd.Stage = stDelaySend then
+          StageConfirmed(M)             { the delay is no activation: nothing confirms it }
+        else
+        begin
+          M.Cmd.Phase := cpConfirm;
+          M.Cmd.Deadline := ChMsTick + QWord(M.CommandMs);
+        end;
+      end;
+      { a NACK (busy): sent again at the next turn }
+    ljClass1, ljClass2:
+      begin
+        if Job = ljClass1 then
           Inc(Sl^.Class1)
         else
           Inc(Sl^.Class2);
-        if (M.Rep.MessType = tpLongM) and (M.Rep.FC = FC_UserData) and (RepLen > cSizeHeadRecMsg) then
-          TakeAsdu(M, S, M.Rep.Data, RepLen - cSizeHeadRecMsg);
+        if (M.Rep.MessType = tpLongM) and (M.Rep.FC = FC_UserData) and (M.RepLen > cSizeHeadRecMsg) then
+          TakeAsdu(M, S, M.Rep.Data, M.RepLen - cSizeHeadRecMsg);
       end;
-    end;
   end;
-  if R <> res_Ok then
-    SlaveFailed(M, S, R);
+  { a slave with class 1 data waiting keeps its turn }
+  if not ((Sl^.State = isOnline) and Sl^.Link.Acd) then
+    M.Turn := (S + 1) mod M.SlaveCount;
 end;
 
 function StepUnbalanced(var M: tIecMaster): Boolean;
 var
-  I, S: Integer;
+  I, S: LongInt;
   T: QWord;
 begin
   Result := False;
+  if M.Job <> ljNone then
+  begin
+    { a service under way: done yet? }
+    if LinkStep(M) then
+    begin
+      Complete(M);
+      Result := True;
+    end;
+    Exit;
+  end;
   if M.SlaveCount = 0 then
     Exit;
   T := ChMsTick;
@@ -744,9 +786,8 @@ begin
   if S < 0 then
     Exit;
   Serve(M, S);
-  { a slave with class 1 data waiting keeps its turn }
-  if not ((M.Slaves[S].State = isOnline) and M.Slaves[S].Link.Acd) then
-    M.Turn := (S + 1) mod M.SlaveCount;
+  if (M.Job <> ljNone) and LinkStep(M) then
+    Complete(M);
   Result := True;
 end;
 
