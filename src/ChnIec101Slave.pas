@@ -33,7 +33,8 @@
     COT 3 kept as the delay): ACT_CON;
   * anything else is mirrored as a negative answer with COT 44 (unknown
     type), 45 (a cause the type does not take), 46 (another common
-    address) or 47 (an IOA the table does not have for that type).
+    address, or the broadcast address with a read or a command) or 47 (an
+    IOA the table does not have for that type).
   A malformed ASDU (too short, wrong length for its type and count) is
   counted in BadAsdus, described in LastBad and given to OnBad; it is not
   answered and never stops the slave.
@@ -634,7 +635,11 @@ begin
   Ca := A[HeadLen - S.Params.CaSize];
   if S.Params.CaSize = 2 then
     Ca := Ca or (A[HeadLen - 1] shl 8);
-  if (Ca <> S.Ca) and (Ca <> IecMaxCa(S.Params)) then
+  { the broadcast address is for the station-wide requests only (a read
+    or a command to every station at once is refused, as lib60870 does) }
+  if ((Ca <> S.Ca) and (Ca <> IecMaxCa(S.Params))) or
+     ((Ca = IecMaxCa(S.Params)) and (Ca <> S.Ca) and
+      not (H.Ti in [C_IC_NA_1, C_CI_NA_1, C_CS_NA_1, C_TS_NA_1, C_RP_NA_1, C_CD_NA_1, C_TS_TA_1])) then
   begin
     Answer(S, A, Len, Cot_UnknownCa, True);
     Exit;

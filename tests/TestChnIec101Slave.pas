@@ -535,7 +535,13 @@ begin
   { the broadcast common address is taken }
   Send('68 01 06 00 FF FF 00 00 00 AA 55');
   AssertEquals('68 01 07 00 FF FF 00 00 00 AA 55', Poll(1));
-  AssertEquals(5, S.Negatives);
+  { but not for a command or a read }
+  Send('2D 01 06 00 FF FF 88 13 00 01');
+  AssertEquals('2D 01 6E 00 FF FF 88 13 00 01', Poll(1));
+  Send('66 01 05 00 FF FF 68 00 00');
+  AssertEquals('66 01 6E 00 FF FF 68 00 00', Poll(1));
+  AssertEquals(0, Cmds.Count);
+  AssertEquals(7, S.Negatives);
   AssertEquals(0, S.BadAsdus);
 end;
 
