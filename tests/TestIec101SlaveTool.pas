@@ -33,6 +33,7 @@ type
     procedure TestUsageVersionAndErrors;
     procedure TestBadPointsFileOpensNothing;
     procedure TestAnswersOurMasterOnAPty;
+    procedure TestPcapOfEveryTypeDissectedByTshark;
   end;
 
 implementation
@@ -307,6 +308,71 @@ begin
     Lst.Free;
     Dispose(Chn, Done);
   end;
+end;
+
+procedure StepSlave(Data: Pointer);
+begin
+  IecSlaveStep(TTestIec101SlaveTool(Data).S);
+end;
+
+{ Our master (with NAM=TRC MOD=PCAP under it) and our slave with every
+  monitoring type (tests/data/iec101-alltypes.points) on a pty pair, in
+  one thread; then tshark reads the pcap as IEC 60870-5-101 with the
+  sizes COT 2, CA 2, IOA 3: no malformed frame, every ASDU there. }
+procedure TTestIec101SlaveTool.TestPcapOfEveryTypeDissectedByTshark;
+var
+  MChn, SChn: pChnVirt;
+  M: tIecMaster;
+  E: AnsiString;
+  Es: ShortString;
+  Tshark, Output: string;
+  Code: Integer;
+begin
+  Tshark := ExeSearch('tshark', GetEnvironmentVariable('PATH'));
+  if Tshark = '' then
+    Ignore('tshark is not installed (Debian package tshark): the pcap is not checked by Wireshark');
+  MChn := ChnCollection^.ChNewInit(ChnFT1_2.cName);
+  MChn^.ChSetParam('NAM=FT1_2 MS=ON MAS=MASTER LEN=0 NOD=0 DNO=1 NAM=TRC FILE=' + FDir +
+    '/live.pcap MOD=PCAP NAM=COM DRV=PTY');
+  MChn^.ChOpen;
+  MChn^.ChConnect;
+  AssertEquals(res_Ok, MChn^.ChResult);
+  SChn := ChnCollection^.ChNewInit(ChnFT1_2.cName);
+  try
+    SChn^.ChSetParam('NAM=FT1_2 MS=ON MAS=SLAVE LEN=0 NOD=1 NAM=COM DEV=' + PtyLastSlave + ' PAR=E');
+    SChn^.ChOpen;
+    SChn^.ChConnect;
+    AssertEquals(res_Ok, SChn^.ChResult);
+    AssertEquals(res_Ok, IecSlaveInit(S, SChn, IecDefaultParams, 1, Es));
+    AssertTrue(E, IecLoadPoints(S, 'alltypes', ReadFileText('tests/data/iec101-alltypes.points'), E));
+    AssertEquals(res_Ok, IecMasterInit(M, MChn, IecDefaultParams));
+    AssertEquals(res_Ok, IecMasterAddSlave(M, 1));
+    M.Idle := @StepSlave;
+    M.IdleData := Self;
+    M.OnObject := @OnObj;
+    M.Data := Self;
+    M.CycleMs := 1;
+    AssertEquals(M.Cmd.Err, res_Ok, IecInterrogation(M, 1, 1, Qoi_Station));
+    AssertEquals(M.Cmd.Err, res_Ok, IecCounterInterrogation(M, 1, 1, Qcc_General));
+    AssertEquals('29 points, 3 counters, 4 confirmations', 36, Objects.Count);
+  finally
+    Dispose(MChn, Done);
+    Dispose(SChn, Done);
+  end;
+  Code := RunExe(Tshark, ['-r', FDir + '/live.pcap', '-d', 'rtacser.data,iec60870_101',
+    '-o', 'iec60870_101.cot_len:2 octet', '-o', 'iec60870_101.asdu_addr_len:2 octet',
+    '-o', 'iec60870_101.asdu_ioa_len:3 octet',
+    '-Y', 'data or _ws.malformed or _ws.expert.severity >= warning'], 30000, Output);
+  AssertEquals(Output, 0, Code);
+  AssertEquals('no undissected or malformed frame: ' + Output, 0, Pos('IEC 60870', Output) + Pos('RTAC', Output));
+  Code := RunExe(Tshark, ['-r', FDir + '/live.pcap', '-d', 'rtacser.data,iec60870_101',
+    '-o', 'iec60870_101.cot_len:2 octet', '-o', 'iec60870_101.asdu_addr_len:2 octet',
+    '-o', 'iec60870_101.asdu_ioa_len:3 octet', '-Y', 'iec60870_asdu'], 30000, Output);
+  AssertEquals(Output, 0, Code);
+  AssertTrue(Output, Pos('M_SP_NA_1 Inrogen IOA=1', Output) > 0);
+  AssertTrue(Output, Pos('M_EP_TF_1 Inrogen IOA=40', Output) > 0);
+  AssertTrue(Output, Pos('M_IT_TB_1 Reqcogen IOA=37', Output) > 0);
+  AssertTrue(Output, Pos('C_CI_NA_1 ActTerm IOA=0', Output) > 0);
 end;
 
 initialization
