@@ -153,7 +153,8 @@ function IecSlaveUpdate(var S: tIecSlaveStation; Ioa: LongWord; const Obj: tIecO
 { The station clock (PC clock + ClockOffsetMs). }
 function IecSlaveNow(const S: tIecSlaveStation): TDateTime;
 { Take at most one frame and act on it; move waiting ASDUs to a balanced
-  link; end a selection whose time is up. True when a frame was taken. }
+  link. True when a frame was taken. (A selection whose time is up stays
+  until its execute, which is refused, or the next select.) }
 function IecSlaveStep(var S: tIecSlaveStation): Boolean;
 { ms the caller may wait (ChnWaitAny) before the next step when
   IecSlaveStep returned False: short while a balanced link has work. }
@@ -290,9 +291,7 @@ begin
   Result := IecEncodeOne(S.Params, Ti, Cot, S.Ca, O, Buf, Len, Err);
   if Result <> res_Ok then
     Exit;
-  if QueuePut(S.Class1, Buf, Len) then
-    Inc(S.Events)
-  else
+  if not QueuePut(S.Class1, Buf, Len) then
   begin
     Inc(S.Overflows);
     Result := res_Busy;
@@ -328,6 +327,8 @@ begin
   if Spontaneous then
   begin
     Result := QueueObject(S, S.Points[I].Ti, Cot_Spontaneous, O);
+    if Result = res_Ok then
+      Inc(S.Events);
     if Result = res_Busy then
       Err := 'point ' + IntToStr(Ioa) + ': class 1 queue full, event lost';
   end;
@@ -806,8 +807,6 @@ begin
   Result := False;
   if S.Chn = nil then
     Exit;
-  if S.SelActive and (ChMsTick > S.SelUntil + 60000) then
-    S.SelActive := False;                      { long forgotten }
   if S.Balanced then
   begin
     Result := FT12BalancedStep(S.Bal);
