@@ -146,7 +146,7 @@ test: all $(BUILD)/testunits.inc $(BUILD)/fpcunit/stamp
 demo: all
 	@bash tools/demo.sh $(BUILD)
 
-bench: $(BENCHBINS) $(BINDIR)/chntap
+bench: $(BENCHBINS) $(BINDIR)/chntap $(BINDIR)/plcconc $(BINDIR)/df1sim
 	@set -e; for b in $(BENCHBINS); do $$b; done
 
 # Random-mutation fuzzing of the three codecs, of ChnPccc (addresses,

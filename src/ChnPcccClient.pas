@@ -35,7 +35,7 @@ type
     TimeoutMs: LongInt;      { link timeout, default DF1LinkTimeoutMs }
     MaxBytes : Word;         { data bytes per request, 2..244 (default 244) }
     Tns      : Word;         { TNS of the next request }
-    Idle     : tDF1Idle;     { blocking calls: called while waiting (nil: sleep) }
+    Idle     : tDF1Idle;     { blocking calls: called while waiting (nil: the program-wide wait) }
     IdleData : Pointer;
     Log      : tDF1LogProc;  { nil: quiet }
     LogWire  : Boolean;
@@ -101,7 +101,9 @@ function PcccStartWriteString(var R: tPcccRequest; var C: tPcccClient; const Add
   ('12', '$FF', '-1.5e3', a whole string for ST). }
 function PcccStartWriteText(var R: tPcccRequest; var C: tPcccClient; const Addr: ShortString;
   const Values: array of ShortString): Boolean;
-{ Look at the line once; True when the request is done. }
+{ Take everything the line has received for R, without waiting; True
+  when the request is done. A program with many requests in flight waits
+  in ChnWaitAny and steps each of them after every wait. }
 function PcccStep(var R: tPcccRequest): Boolean;
 { Abandon a request under way (R.Result res_Timeout, 'cancelled'); the
   client takes a new one at once. A client runs one request at a time: a
@@ -120,7 +122,7 @@ function PcccItemText(const R: tPcccRequest; Item: LongInt): ShortString;
 implementation
 
 uses
-  SysUtils, Math, uString;
+  SysUtils, Math, uString, ChnWait;
 
 procedure PcccClientInit(var C: tPcccClient; Chn: pChnVirt);
 begin
@@ -507,7 +509,7 @@ begin
     if Assigned(R.Client^.Idle) then
       R.Client^.Idle(R.Client^.IdleData)
     else
-      Sleep(1);
+      ChnWaitUntil(DF1MasterWaitEnd(R.Master));   { the program-wide wait }
   Result := R.Result;
 end;
 

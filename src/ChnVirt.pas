@@ -144,6 +144,12 @@ type
     procedure ChGetNode(var SNode, DNode: tNode); virtual;
 
     { --- additions of the port (not in the SofCon manuals) --- }
+    { The receive buffer ChReceiveBuffer gave last (nil, 0: none) and the
+      destination ChDestNode set: what a helper that borrows the channel
+      for an exchange gives back afterwards, through ChReceiveBuffer and
+      ChDestNode. }
+    procedure ChGetReceiveBuffer(var Buff: Pointer; var Size: Word);
+    function  ChGetDestNode: tNode;
     { The token that made the last ChSetParam fail ('' after success). }
     function  ChParamError: tWordString; virtual;
     { Readable text of a result code of this layer (protocol codes included). }
@@ -276,7 +282,7 @@ var
 implementation
 
 uses
-  SysUtils;
+  SysUtils, ChnWait;
 
 function ChNumName(const Name: ShortString): Word;
 var
@@ -303,6 +309,10 @@ begin
       Exit(Chn^.ChResult);
     if ChMsTick > Deadline then
       Exit(res_Timeout);
+    { the program-wide wait ends when the transmitter can take more; at
+      most 10 ms, for a transmitter that cannot end it (an RS-485 line
+      draining with RTS raised) }
+    ChnWaitUntil(Deadline + 1, 10);
   end;
   Chn^.ChSend(Buff, Len);
   Result := Chn^.ChSendResult;
@@ -921,6 +931,17 @@ end;
 
 procedure tChnVirt.ChReceiveTick;
 begin
+end;
+
+procedure tChnVirt.ChGetReceiveBuffer(var Buff: Pointer; var Size: Word);
+begin
+  Buff := CH_RBuff;
+  Size := CH_RSize;
+end;
+
+function tChnVirt.ChGetDestNode: tNode;
+begin
+  Result := CH_DNode;
 end;
 
 procedure tChnVirt.ChDestNode(DNode: tNode);

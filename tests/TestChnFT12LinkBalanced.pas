@@ -45,6 +45,7 @@ type
     procedure TestLinkComesUpInBothDirections;
     procedure TestUserDataCollisionBothConfirmed;
     procedure TestLostAckRepeatedWithSameFcbExecutedOnce;
+    procedure TestLateAnswerToARepetitionConfirmsNothingElse;
     procedure TestTestFunctionWhenIdle;
     procedure TestBadInputNeverStopsTheLink;
     procedure TestLinkLostIsEstablishedAgain;
@@ -263,6 +264,55 @@ begin
   AssertEquals(1, FLb.Repeats);
   AssertEquals(1, FLa.Retransmits);
   AssertEquals(1, FLa.Confirmed);
+end;
+
+{ Issue 24, on the wire: the line stalls longer than the timeout, so A
+  repeats its user data; the stall ends and A gets the answer to the first
+  transmission, and sends the next user data at once - which the line
+  loses. The answer to the repetition comes after it: taken for the new
+  frame's, it confirmed data B never got (and B then took the frame after
+  it for a repetition). Now A first asks for the status of link (its
+  answer, FC 11, cannot be mistaken for an ACK, and comes after every
+  earlier answer), then sends the data: confirmed only once B took it. }
+procedure TTestChnFT12LinkBalanced.TestLateAnswerToARepetitionConfirmsNothingElse;
+var
+  Until_: QWord;
+begin
+  SetUpPair(40);
+  BringUp;
+  FTap.Log.Clear;
+  Queue(FLa, 'AA');
+  Queue(FLa, 'BB');
+  FT12BalancedStep(FLa);          { AA goes out }
+  FTap.Pump;
+  FTap.HoldA := True;             { the line stalls both ways }
+  FTap.HoldB := True;
+  FT12BalancedStep(FLb);          { B takes AA and ACKs: held }
+  FTap.Pump;
+  Sleep(60);
+  FT12BalancedStep(FLa);          { no answer: AA again, same FCB: held }
+  FTap.Pump;
+  AssertEquals('AA repeated', 1, FLa.Retransmits);
+  FTap.HoldA := False;
+  FTap.HoldB := False;
+  FTap.Release;                   { the stall ends: ACK to A, repetition to B }
+  FT12BalancedStep(FLa);          { AA confirmed; the next frame goes out ... }
+  AssertEquals('AA confirmed', 1, FLa.Confirmed);
+  FTap.DropA := 1;                { ... and is lost }
+  FTap.Pump;
+  FT12BalancedStep(FLb);          { the repetition of AA: the cached ACK again }
+  FTap.Pump;
+  FT12BalancedStep(FLa);          { that late ACK }
+  AssertEquals('a late answer confirms nothing', 1, FLa.Confirmed);
+  Until_ := GetTickCount64 + 3000;
+  while (FLa.Confirmed < 2) and (GetTickCount64 < Until_) do
+  begin
+    Run(1);
+    Sleep(1);
+  end;
+  Run(3);
+  AssertEquals('both confirmed', 2, FLa.Confirmed);
+  AssertEquals('and both delivered, once each', 'AA | BB', FSinkB.Text);
 end;
 
 procedure TTestChnFT12LinkBalanced.TestTestFunctionWhenIdle;

@@ -31,6 +31,7 @@ type
     procedure TestJoinAndLeaveCount;
     procedure TestWaitAnyTimesOutAndZeroOnlyLooks;
     procedure TestHeldInputEndsWaitAnyAtOnce;
+    procedure TestBytesInARingEndWaitAnyUntilTaken;
     procedure TestLoopPeerInOtherThreadEndsIdleWait;
     {$IFDEF WINDOWS}
     procedure TestMoreHandlesThanOneWaitTakes;
@@ -204,6 +205,37 @@ begin
   ChnWaitHeld(Other, False);
   AssertEquals('taken: nothing held', 0, ChnWaitHeldCount);
   AssertFalse('flag cleared', Held or Other);
+end;
+
+procedure TTestChnWait.TestBytesInARingEndWaitAnyUntilTaken;
+var
+  Err: string;
+  B: array[0..7] of Byte;
+  Len: Word;
+  T0: QWord;
+begin
+  SetLength(FChn, 2);
+  FChn[0] := OpenStack('LOOP', 'PAIR=WAITHELD END=1', Err);
+  AssertNotNull(Err, FChn[0]);
+  FChn[1] := OpenStack('LOOP', 'PAIR=WAITHELD END=2', Err);
+  AssertNotNull(Err, FChn[1]);
+  FillChar(B, SizeOf(B), 7);
+  AssertEquals(res_Ok, ChSendWhenFree(FChn[0], @B, 5, 1000));
+  AssertEquals('the bytes wait in end 2''s ring', 1, ChnWaitHeldCount);
+  T0 := GetTickCount64;
+  AssertTrue('held bytes end ChnWaitAny', ChnWaitAny(1000));
+  AssertTrue('at once', GetTickCount64 - T0 < 200);
+  FChn[1]^.ChReceiveBuffer(@B, 2);
+  FChn[1]^.ChReceive(Len);
+  AssertEquals('two taken', 2, Len);
+  AssertEquals('three still held', 1, ChnWaitHeldCount);
+  FChn[1]^.ChReceiveBuffer(@B, SizeOf(B));
+  FChn[1]^.ChReceive(Len);
+  AssertEquals('the rest taken', 3, Len);
+  AssertEquals('an empty ring holds nothing', 0, ChnWaitHeldCount);
+  AssertEquals(res_Ok, ChSendWhenFree(FChn[0], @B, 5, 1000));
+  CloseAll;
+  AssertEquals('closing lets go of what the ring held', 0, ChnWaitHeldCount);
 end;
 
 procedure TTestChnWait.TestWaitAnyTimesOutAndZeroOnlyLooks;
@@ -405,12 +437,21 @@ end;
 procedure TTestChnWait.TestWaitAnyWakesOnInput;
 var
   T0, Took: QWord;
+  Buf: array[0..63] of Byte;
+  Len: Word;
 begin
   OpenComs(4, 'IDL=0');
   AssertEquals('woken by a channel', CHS_ReceiveReady, PollDuringLateSend(nil, nil, FPty[2], Took));
   AssertTrue('at the byte (' + IntToStr(Took) + ' ms)', Took < 700);
   AssertEquals('channel 2 has it', CHS_ReceiveReady, FChn[2]^.ChReceiveReady);
-  { read, nothing new: the next wait sleeps its time }
+  { held in the ring, not taken: the wait returns at once }
+  T0 := GetTickCount64;
+  AssertTrue('input held in a ring ends the wait', ChnWaitAny(200));
+  AssertTrue('at once', GetTickCount64 - T0 < 100);
+  { taken, nothing new: the next wait sleeps its time }
+  FChn[2]^.ChReceiveBuffer(@Buf, SizeOf(Buf));
+  FChn[2]^.ChReceive(Len);
+  AssertEquals('the byte is taken', 0, ChnWaitHeldCount);
   T0 := GetTickCount64;
   AssertFalse('nothing new', ChnWaitAny(200));
   AssertTrue('slept', GetTickCount64 - T0 >= 150);
