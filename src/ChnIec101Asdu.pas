@@ -398,14 +398,23 @@ begin
     Result := $FFFF;
 end;
 
-function IecTypeName(Ti: Byte): ShortString;
+const
+  NoType: tTypeInfo = (Ti: 0; Name: ''; Kind: ikNone; Time: tkNone; Size: 0);
+
+{ The table entry of a type; NoType when unknown. }
+function TypeEntry(Ti: Byte): tTypeInfo;
 var
   I: Integer;
 begin
   if Info(Ti, I) then
-    Result := Types[I].Name
+    Result := Types[I]
   else
-    Result := '';
+    Result := NoType;
+end;
+
+function IecTypeName(Ti: Byte): ShortString;
+begin
+  Result := TypeEntry(Ti).Name;
 end;
 
 function IecTypeByName(const Name: ShortString): Byte;
@@ -421,31 +430,19 @@ begin
 end;
 
 function IecTypeKind(Ti: Byte): tIecKind;
-var
-  I: Integer;
 begin
-  if Info(Ti, I) then
-    Result := Types[I].Kind
-  else
-    Result := ikNone;
+  Result := TypeEntry(Ti).Kind;
 end;
 
 function IecTypeTime(Ti: Byte): tIecTimeKind;
-var
-  I: Integer;
 begin
-  if Info(Ti, I) then
-    Result := Types[I].Time
-  else
-    Result := tkNone;
+  Result := TypeEntry(Ti).Time;
 end;
 
 function IecElementSize(Ti: Byte): LongInt;
-var
-  I: Integer;
 begin
-  if Info(Ti, I) then
-    Result := Types[I].Size
+  if TypeIndex[Ti] >= 0 then
+    Result := TypeEntry(Ti).Size
   else
     Result := -1;
 end;

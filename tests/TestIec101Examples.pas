@@ -30,6 +30,7 @@ type
     procedure TestReadableLinesAndSelect;
     procedure TestNegativeAndUnknownAnswers;
     procedure TestSlaveThatDoesNotAnswer;
+    procedure TestBalancedLine;
   end;
 
 implementation
@@ -206,6 +207,19 @@ begin
   AssertEquals(4, Run(['--timeout=50', '--retries=0', '--wait=2000', MasterParams, 'gi'], False));
   AssertTrue(FErr, Pos('C_IC_NA_1 to slave 5: slave does not answer', FErr) > 0);
   AssertTrue(FErr, Pos('slave 5 DEAD', FErr) > 0);
+end;
+
+procedure TTestIec101Examples.TestBalancedLine;
+begin
+  FreeAndNil(FSim);
+  FSim := TSim.Create('NAM=FT1_2 MS=OFF PRI=OFF DIR=0 LEN=0 NOD=5 DNO=1 NAM=COM DRV=PTY', True, 200);
+  AssertEquals(FErr, 0, Run(['--timeout=200', 'NAM=FT1_2 MS=OFF PRI=ON DIR=1 LEN=0 NOD=1 DNO=5 NAM=COM DEV='
+    + PtyLastSlave, 'gi', 'sc', '5000=1']));
+  AssertTrue(FOut, Pos('<- M_ME_NB_1 INTERROGATED_BY_STATION CA 1 IOA 102 = 2300' + LineEnding, FOut) > 0);
+  AssertTrue(FOut, Pos('<- C_IC_NA_1 ACTIVATION_TERMINATION CA 1 IOA 0 = 20' + LineEnding, FOut) > 0);
+  AssertTrue(FOut, Pos('<- C_SC_NA_1 ACTIVATION_CON CA 1 IOA 5000 = on execute' + LineEnding, FOut) > 0);
+  AssertEquals('64 01 06 00 01 00 00 00 00 14', FSim.Got[0]);
+  AssertTrue(FErr, Pos('slave 5 ONLINE', FErr) > 0);
 end;
 
 initialization

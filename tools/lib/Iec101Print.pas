@@ -51,21 +51,15 @@ uses
 var
   Fmt: TFormatSettings;
 
-function Num(X: Double): AnsiString;
+{ A number for JSON: Digits significant digits (7 for a short float,
+  the digits a Single has; 15 for a normalized fraction); null when NaN or
+  infinite. }
+function Num(X: Double; Digits: Integer = 15): AnsiString;
 begin
   if IsNan(X) or IsInfinite(X) then
     Result := 'null'
   else
-    Result := FloatToStrF(X, ffGeneral, 15, 0, Fmt);
-end;
-
-{ A short float shows the digits a Single has. }
-function Flt(X: Double): AnsiString;
-begin
-  if IsNan(X) or IsInfinite(X) then
-    Result := 'null'
-  else
-    Result := FloatToStrF(X, ffGeneral, 7, 0, Fmt);
+    Result := FloatToStrF(X, ffGeneral, Digits, 0, Fmt);
 end;
 
 function Bool(B: Boolean): AnsiString;
@@ -100,7 +94,7 @@ begin
     ikStep: Result := IntToStr(O.Int) + ',"transient":' + Bool(O.Transient);
     ikBits, ikBitsCmd, ikPacked, ikStartEvents, ikOutputCircuit: Result := IntToStr(O.Bits);
     ikNormal, ikSetNormal, ikParNormal: Result := Num(O.Number);
-    ikFloat, ikSetFloat, ikParFloat: Result := Flt(O.Number);
+    ikFloat, ikSetFloat, ikParFloat: Result := Num(O.Number, 7);
     ikCounter: Result := IntToStr(O.Int) + ',"seq":' + IntToStr(O.Seq);
     ikDelay: Result := IntToStr(O.Elapsed);
   else
@@ -137,7 +131,7 @@ begin
     ikBits, ikBitsCmd, ikPacked, ikStartEvents, ikOutputCircuit:
       Result := '0x' + IntToHex(O.Bits, 8);
     ikNormal, ikSetNormal, ikParNormal: Result := Num(O.Number);
-    ikFloat, ikSetFloat, ikParFloat: Result := Flt(O.Number);
+    ikFloat, ikSetFloat, ikParFloat: Result := Num(O.Number, 7);
     ikCounter: Result := IntToStr(O.Int) + ' seq ' + IntToStr(O.Seq);
     ikProtection: Result := DoubleNames[O.Int and 3] + ' (' + IntToStr(O.Int) + ')';
     ikDelay: Result := IntToStr(O.Elapsed) + ' ms';
