@@ -47,38 +47,47 @@ begin
     Result.IoaSize := Random(6);       { impossible now and then }
 end;
 
+{ 0..N-1, now and then up to N+Extra-1: mostly in range, sometimes not. }
+function Wild(N, Extra: LongInt): LongInt;
+begin
+  if Random(16) = 0 then
+    Result := N + Random(Extra)
+  else
+    Result := Random(N);
+end;
+
 function RandomObject(Ioa: LongWord): tIecObject;
 begin
   Result := IecObject(Ioa);
-  case Random(3) of
-    0: Result.Int := Random(4);
-    1: Result.Int := Random(65536) - 32768;
+  case Random(16) of
+    0..9: Result.Int := Wild(2, 3);
+    10..14: Result.Int := Random(65536) - 32768;
   else
     Result.Int := LongInt(Random($7FFFFFFF)) - Random($7FFFFFFF);
   end;
   Result.Bits := LongWord(Random($7FFFFFFF)) * 2 + LongWord(Random(2));
-  if Random(8) = 0 then
-    Result.Bits := Random(64);
-  case Random(4) of
-    0: Result.Number := Random * 2 - 1;
-    1: Result.Number := (Random - 0.5) * 1e6;
-    2: Result.Number := Random(3) - 1;
+  if Random(4) <> 0 then
+    Result.Bits := Wild(64, 200);
+  case Random(16) of
+    0..11: Result.Number := Random * 2 - 1;
+    12, 13: Result.Number := (Random - 0.5) * 1e6;
+    14: Result.Number := Random(3) - 1;
   else
     Result.Number := (Random - 0.5) * 1e40;
   end;
   Result.Quality := Random(256);
   Result.Transient := Random(2) = 0;
-  Result.Seq := Random(40);
+  Result.Seq := Wild(32, 8);
   Result.Select := Random(2) = 0;
-  Result.Qu := Random(140);
+  Result.Qu := Wild(32, 120);
   Result.Elapsed := Random(65536);
   Result.Time.Msec := Random(65536);
-  Result.Time.Minute := Random(70);
-  Result.Time.Hour := Random(34);
-  Result.Time.Day := Random(34);
-  Result.Time.DayOfWeek := Random(9);
-  Result.Time.Month := Random(17);
-  Result.Time.Year := Random(130);
+  Result.Time.Minute := Wild(64, 6);
+  Result.Time.Hour := Wild(32, 3);
+  Result.Time.Day := Wild(32, 3);
+  Result.Time.DayOfWeek := Wild(8, 2);
+  Result.Time.Month := Wild(16, 2);
+  Result.Time.Year := Wild(128, 3);
   Result.Time.Invalid := Random(2) = 0;
   Result.Time.Summer := Random(2) = 0;
 end;
