@@ -33,6 +33,7 @@ type
     Bad: TStringList;
     procedure Pump;
   published
+    procedure TestLayouts;
     procedure TestInitRefusesOtherChannels;
     procedure TestInterrogationGetsEveryObjectOfItsSlave;
     procedure TestCommandsAreConfirmed;
@@ -162,6 +163,26 @@ begin
     if FSims[I].Chn^.CH_Node = Addr then
       Exit(FSims[I]);
   Result := nil;
+end;
+
+{ The records programs read, packed (chn.inc): offsets by hand from the
+  field sizes. tFT12Link is ChnFT12Link's, taken as it is. }
+procedure TTestChnIec101Master.TestLayouts;
+var
+  C: tIecCommand;
+  S: tIecSlave;
+  L: LongInt;
+begin
+  AssertEquals('SizeOf(tIecCommand)', 327, SizeOf(tIecCommand));
+  AssertEquals('Slave@2', 2, PtrUInt(@C.Slave) - PtrUInt(@C));
+  AssertEquals('Obj@9', 9, PtrUInt(@C.Obj) - PtrUInt(@C));
+  AssertEquals('SentAt@49', 49, PtrUInt(@C.SentAt) - PtrUInt(@C));
+  AssertEquals('Result@69', 69, PtrUInt(@C.Result) - PtrUInt(@C));
+  AssertEquals('Err@71', 71, PtrUInt(@C.Err) - PtrUInt(@C));
+  L := SizeOf(tFT12Link);
+  AssertEquals('State after Addr and Link', 2 + L, LongInt(PtrUInt(@S.State) - PtrUInt(@S)));
+  AssertEquals('Class1', 2 + L + 1 + 8 + 8 + 4, LongInt(PtrUInt(@S.Class1) - PtrUInt(@S)));
+  AssertEquals('SizeOf(tIecSlave)', 2 + L + 1 + 8 + 8 + 4 + 9 * 4, SizeOf(tIecSlave));
 end;
 
 procedure TTestChnIec101Master.TestInitRefusesOtherChannels;
