@@ -31,6 +31,7 @@ type
     procedure TestNegativeAndUnknownAnswers;
     procedure TestSlaveThatDoesNotAnswer;
     procedure TestBalancedLine;
+    procedure TestSeveralSlavesOneDead;
   end;
 
 implementation
@@ -220,6 +221,19 @@ begin
   AssertTrue(FOut, Pos('<- C_SC_NA_1 ACTIVATION_CON CA 1 IOA 5000 = on execute' + LineEnding, FOut) > 0);
   AssertEquals('64 01 06 00 01 00 00 00 00 14', FSim.Got[0]);
   AssertTrue(FErr, Pos('slave 5 ONLINE', FErr) > 0);
+end;
+
+{ --slaves 5,7 on a line where only 5 answers: 5's interrogation is
+  complete, 7's fails (exit 4), 5 is polled meanwhile and after. }
+procedure TTestIec101Examples.TestSeveralSlavesOneDead;
+begin
+  AssertEquals(FErr, 4, Run(['--slaves', '5,7', '--timeout=50', '--wait=1000', MasterParams, 'gi', 'poll', '1']));
+  AssertTrue(FOut, Pos('slave 5 <- C_IC_NA_1 ACTIVATION_TERMINATION CA 1 IOA 0 = 20' + LineEnding, FOut) > 0);
+  AssertTrue(FOut, Pos('slave 5 <- M_ME_NB_1 INTERROGATED_BY_STATION CA 1 IOA 100 = -1' + LineEnding, FOut) > 0);
+  AssertTrue(FErr, Pos('C_IC_NA_1 to slave 7: slave does not answer', FErr) > 0);
+  AssertTrue(FErr, Pos('slave 5 ONLINE', FErr) > 0);
+  AssertTrue(FErr, Pos('slave 7 DEAD', FErr) > 0);
+  AssertEquals('only the interrogation reached slave 5', 1, FSim.Got.Count);
 end;
 
 initialization
