@@ -26,9 +26,9 @@
   Every refusal is a result code (res_Asdu*, texts registered for the
   layer name Iec101Layer) and a text that names the part that is wrong.
   Nothing here reads or writes past the arrays it is given.
-  Deliberate differences: none of the standard is left out of the types
-  listed; file transfer (120..127) and the 104-only types with CP56 on
-  commands of 101 (58..64 are included, as lib60870 has them) are not. }
+  Not covered: file transfer (120..127) and the types of IEC 60870-5-104
+  alone (the commands with CP56Time2a, 58..64, and C_TS_TA_1, 107, are
+  here: IEC 101 stations and lib60870 use them too). }
 unit ChnIec101Asdu;
 
 {$I chn.inc}

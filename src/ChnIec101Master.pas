@@ -192,9 +192,6 @@ implementation
 uses
   SysUtils, ChnWait;
 
-const
-  FC_UserData = 8;   { FCS_UserData of ChnFT1_2 }
-
 function IecSlaveStateName(S: tIecSlaveState): ShortString;
 begin
   case S of
@@ -341,11 +338,9 @@ var
   Len: Word;
   E: ShortString;
   R: tChResult;
-  Old: tIecCommand;
   First: tIecCmdStage;
 begin
-  Old := M.Cmd;
-  if (Old.Phase <> cpNone) and (Old.Phase <> cpDone) then
+  if not IecCommandDone(M) then
   begin
     { keep the command under way; say why this one was refused }
     M.Cmd.Err := IecTypeName(Ti) + ': a command is under way (' + CmdName(M) + ')';
@@ -751,7 +746,7 @@ begin
           Inc(Sl^.Class1)
         else
           Inc(Sl^.Class2);
-        if (M.Rep.MessType = tpLongM) and (M.Rep.FC = FC_UserData) and (M.RepLen > cSizeHeadRecMsg) then
+        if (M.Rep.MessType = tpLongM) and (M.Rep.FC = FCS_UserData) and (M.RepLen > cSizeHeadRecMsg) then
           TakeAsdu(M, S, M.Rep.Data, M.RepLen - cSizeHeadRecMsg);
       end;
   end;
