@@ -32,10 +32,9 @@
   The blocking forms (IecInterrogation ...) start and step to the end.
 
   Link dependency: the one place that drives an FT 1.2 primary service is
-  LinkStart/LinkStep below. Today it uses FT12Transact, which waits for its
-  reply (at most TimeoutMs x (1 + Retries), calling Idle meanwhile); the
-  stepped FT 1.2 primary service of ChnFT12Link replaces it there alone,
-  and the rest of the master already runs as a stepped machine on it. }
+  LinkStart/LinkStep below, on ChnFT12Link's stepped primary: a step never
+  waits, so the master serves its line from the program's poll loop (Idle,
+  when set, runs between steps of the blocking forms instead of the wait). }
 unit ChnIec101Master;
 
 {$I chn.inc}
@@ -122,7 +121,7 @@ type
     OnSent   : tIecObjectFunc;   { each command object as it goes out (nil: none) }
     OnBad    : tIecBadFunc;
     Data     : Pointer;
-    Idle     : tFT12Idle;  { called while a link service waits (tests: the slave) }
+    Idle     : tFT12Idle;  { blocking forms: called instead of waiting (tests: the slave) }
     IdleData : Pointer;
     Cmd      : tIecCommand;
     { counters and the last trouble }
@@ -133,6 +132,7 @@ type
     Job      : tIecLinkJob;
     JobSlave : LongInt;
     LinkResult: tChResult;
+    Prim     : tFT12Primary;
     Rep      : tRecRecord;
     RepLen   : Word;
   end;
@@ -572,10 +572,10 @@ end;
 { ------------------------------------------------------------ unbalanced }
 
 { The one place that drives an FT 1.2 primary service. LinkStart starts
-  FC with Len octets of user data (an ASDU) to slave S for Job; LinkStep is
-  True once it is over (M.LinkResult, the reply in M.Rep/M.RepLen). Today
-  FT12Transact does the whole service inside LinkStart (it waits, calling
-  Idle); the stepped FT 1.2 primary (FT12PrimaryStart/Step) goes here. }
+  FC with Len octets of user data (an ASDU) to slave S for Job; LinkStep
+  takes what has arrived, without waiting, and is True once the service is
+  over (M.LinkResult, the reply in M.Rep/M.RepLen): ChnFT12Link's stepped
+  primary (FT12PrimaryStart/Step). }
 procedure LinkStart(var M: tIecMaster; S: LongInt; Job: tIecLinkJob; FC: Byte;
   const Asdu: array of Byte; Len: Word; Retries: LongInt);
 var
@@ -595,13 +595,20 @@ begin
   Req.FC := FC;
   M.Job := Job;
   M.JobSlave := S;
-  M.LinkResult := FT12Transact(M.Chn, M.Slaves[S].Link, Req, cSizeHeadSndMsg + Len, M.Rep,
-    M.RepLen, M.TimeoutMs, Retries, M.Idle, M.IdleData);
+  { False: nothing sent, the service is over at once (Prim.Result says why) }
+  FT12PrimaryStart(M.Prim, M.Chn, M.Slaves[S].Link, Req, cSizeHeadSndMsg + Len, M.TimeoutMs, Retries);
 end;
 
 function LinkStep(var M: tIecMaster): Boolean;
 begin
-  Result := M.Job <> ljNone;
+  Result := (M.Job <> ljNone) and FT12PrimaryStep(M.Prim);
+  if Result then
+  begin
+    M.LinkResult := M.Prim.Result;
+    M.RepLen := M.Prim.RepLen;
+    if M.RepLen > 0 then
+      M.Rep := M.Prim.Rep;
+  end;
 end;
 
 procedure SlaveFailed(var M: tIecMaster; S: Integer; R: tChResult);
@@ -880,6 +887,8 @@ begin
   end;
   if (M.Cmd.Phase in [cpSend, cpConfirm, cpTerm]) and (M.Cmd.Deadline + 1 < Result) then
     Result := M.Cmd.Deadline + 1;
+  if (M.Job <> ljNone) and (FT12PrimaryWaitEnd(M.Prim) < Result) then
+    Result := FT12PrimaryWaitEnd(M.Prim);
 end;
 
 { Wait for the line or the next due service, or run Idle (one thread). }

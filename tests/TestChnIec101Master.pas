@@ -14,7 +14,7 @@ interface
 
 uses
   Classes, SysUtils, fpcunit, testregistry, ChnTypes, ChnVirt, ChnLoop, ChnFT1_2,
-  ChnFT12Link, ChnIec101Asdu, ChnIec101Master, TestSupport, LoopHub, Iec101Sim;
+  ChnFT12Link, ChnWait, ChnIec101Asdu, ChnIec101Master, TestSupport, LoopHub, Iec101Sim;
 
 type
   TTestChnIec101Master = class(TTestCase)
@@ -46,6 +46,7 @@ type
     procedure TestDeadSlaveDoesNotStarveTheOther;
     procedure TestSteppedFormAndOneCommandAtATime;
     procedure TestBalancedPeer;
+    procedure TestStepNeverWaitsForADeadSlave;
   end;
 
 implementation
@@ -414,13 +415,14 @@ begin
   AssertFalse('one at a time', IecStartCommand(M, 5, 1, C_SC_NA_1, O, False));
   AssertTrue(M.Cmd.Err, Pos('under way (C_IC_NA_1 to slave 5)', M.Cmd.Err) > 0);
   AssertEquals(res_IecBusy, IecCommand(M, 5, 1, C_SC_NA_1, O, False));
-  M.Idle := @Idle;                      { FT12Transact waits: it must step the slave }
   Steps := 0;
   Until_ := ChMsTick + 3000;
   while not IecCommandDone(M) and (ChMsTick < Until_) do
   begin
     if IecMasterStep(M) then
-      Inc(Steps);
+      Inc(Steps)
+    else
+      ChnWaitAny(2);
     Pump;
   end;
   AssertTrue('done', IecCommandDone(M));
@@ -459,6 +461,38 @@ begin
   Sim(5).Send('0B 01 03 00 01 00 6E 00 00 FE FF 00', False);
   IecPollFor(M, 100);
   AssertTrue(Objects.Text, Objects.IndexOf('5 M_ME_NB_1 3 110 = -2') >= 0);
+end;
+
+{ The stepped form on the stepped FT 1.2 primary: with a dead slave on the
+  line (link timeout 200 ms) no step takes anywhere near a timeout, and the
+  live slave's data keep coming. }
+procedure TTestChnIec101Master.TestStepNeverWaitsForADeadSlave;
+var
+  T0, T1, Until_, Longest: QWord;
+  Steps: LongInt;
+begin
+  Open('NAM=FT1_2 MS=ON MAS=MASTER LEN=0 NOD=0 DNO=5', [5, 7]);
+  Sim(7).Alive := False;
+  M.Idle := nil;
+  M.TimeoutMs := 200;
+  Longest := 0;
+  Steps := 0;
+  Until_ := ChMsTick + 1500;
+  while ChMsTick < Until_ do
+  begin
+    T0 := ChMsTick;
+    if IecMasterStep(M) then
+      Inc(Steps)
+    else
+      ChnWaitAny(2);
+    T1 := ChMsTick;
+    if T1 - T0 > Longest then
+      Longest := T1 - T0;
+    Pump;
+  end;
+  AssertTrue('longest step ' + IntToStr(Longest) + ' ms', Longest < 50);
+  AssertEquals('slave 7 dead', Ord(isDead), Ord(M.Slaves[1].State));
+  AssertTrue('slave 5 polled: ' + IntToStr(M.Slaves[0].Class2), M.Slaves[0].Class2 > 20);
 end;
 
 initialization
