@@ -9,7 +9,8 @@
 
   One value per item from ADDRESS on (three for a whole T, C or R element:
   control word, PRE or LEN, ACC or POS); the parameter string starts at the
-  first argument with '='. A negative value is a value, not an option
+  first argument with '='. The address and the values are checked (a dry
+  run on an in-memory line) before the device is opened. A negative value is a value, not an option
   ("--" is not needed). The command line is unit ChnCli's; --help lists
   the exit codes (docs/TOOLS.md). }
 program df1write;
@@ -51,8 +52,7 @@ begin
     '  df1write B3:1/4 1 NAM=DF1 NOD=0 DNO=1 NAM=COM DEV=/dev/ttyUSB0 BD=19200' + LineEnding);
   CliExit(Cli, 0, 'the values were written');
   CliExit(Cli, 1, 'the line could not be opened, or was lost');
-  CliExit(Cli, 3, 'an error reply (STS <> 0) or a reply that does not fit, or a value ' +
-    'that does not fit the address');
+  CliExit(Cli, 3, 'an error reply (STS <> 0) or a reply that does not fit');
   CliExit(Cli, 4, 'no answer in time');
   { "-1" is a value: no short option may take it }
   CliParse(Cli);
@@ -73,9 +73,19 @@ begin
   Params := CliRest(Cli, First);
   if Params = '' then
     CliUsageError(Cli, 'no parameter string (e.g. NAM=DF1 NOD=0 DNO=1 NAM=COM DEV=/dev/ttyUSB0)', '');
+  { the values against the address before any device is opened: a dry run
+    on an in-memory line (NAM=LOOP, nobody at the other end) }
   PcccClientInit(C, nil);
-  if not PcccStartWriteText(R, C, Addr, Values) and (R.Result <> res_WrongLayer) then
-    CliUsageError(Cli, R.Err, Addr);
+  if PcccOpen(C, 'NAM=DF1 NOD=0 DNO=1 NAM=LOOP PAIR=DF1WRITE-DRY-RUN END=1') = res_Ok then
+  begin
+    if PcccStartWriteText(R, C, Addr, Values) then
+      PcccCancel(R)
+    else if (R.Result = res_PcccAddress) or (R.Result = res_PcccCount) or
+            (R.Result = res_PcccValue) or (R.Result = res_PcccUsage) then
+      CliUsageError(Cli, R.Err, Addr);
+    PcccClose(C);
+  end;
+  PcccClientInit(C, nil);
   CliCheckParams(Cli, Params, ChnDF1.cName);
   if PcccOpen(C, Params) <> res_Ok then
     Fail(C.Err, 1);

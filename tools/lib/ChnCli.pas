@@ -24,7 +24,7 @@
     refuses a value; a long option must be spelt out (getopts alone would
     take any part of a name);
   * an argument that starts with "-" and a digit is a number, not an
-    option (df1write N7:0 -5 ...);
+    option (df1write N7:0 -5 ...), and an empty argument is an argument;
   * every command-line error is one line "PROG: what is wrong (TOKEN)" on
     standard error, exit 2 (CliExitUsage), before anything was opened;
   * the other exit codes are the program's, listed with CliExit, and
@@ -272,6 +272,24 @@ begin
   Result := -1;
 end;
 
+const
+  StandIn: PChar = #1;
+
+{ argv as it was (ParamStr reads it), before the program goes on or ends }
+procedure RestoreArgv(const Orig: array of AnsiString);
+var
+  I: LongInt;
+begin
+  for I := 1 to High(Orig) do
+    if argv[I] = StandIn then
+      argv[I] := PChar(Orig[I]);
+end;
+
+var
+  { the arguments as given; argv points into them again after CliParse,
+    so they live as long as the program }
+  Orig: array of AnsiString;
+
 procedure CliParse(var Cli: tCli);
 var
   Long: array of TOption;
@@ -303,22 +321,28 @@ begin
     end;
   Long[High(Long)].Name := '';
   OptErr := False;               { our own messages, on standard error }
+  { getopts fails on an empty argument and takes "-5" for options: it
+    sees a one-character stand-in (a non-option) for those; Orig keeps
+    every argument as given }
+  SetLength(Orig, ParamCount + 1);
+  for I := 1 to ParamCount do
+  begin
+    Orig[I] := ParamStr(I);
+    if (Orig[I] = '') or ((Length(Orig[I]) >= 2) and (Orig[I][1] = '-') and
+       (Orig[I][2] in ['0'..'9', '.'])) then
+      argv[I] := StandIn;
+  end;
   repeat
     Before := OptInd;
     if Before < 1 then
       Before := 1;
-    { a negative number is an argument (a value to write), not options }
-    Tok := ParamStr(Before);
-    if (OptInd >= 1) and (Length(Tok) >= 2) and (Tok[1] = '-') and (Tok[2] in ['0'..'9', '.']) then
-    begin
-      SetLength(Cli.Args, Length(Cli.Args) + 1);
-      Cli.Args[High(Cli.Args)] := Tok;
-      Inc(OptInd);
-      Continue;
-    end;
     LongIndex := 0;
     C := GetLongOpts(Shorts, @Long[0], LongIndex);
-    Tok := ParamStr(Before);
+    Tok := '';
+    if Before <= ParamCount then
+      Tok := Orig[Before];
+    if (OptArg = StandIn) and (OptInd >= 1) and (OptInd - 1 <= ParamCount) then
+      OptArg := Orig[OptInd - 1];
     case C of
       EndOfOptions:
         Break;
@@ -388,8 +412,9 @@ begin
   for I := OptInd to ParamCount do
   begin
     SetLength(Cli.Args, Length(Cli.Args) + 1);
-    Cli.Args[High(Cli.Args)] := ParamStr(I);
+    Cli.Args[High(Cli.Args)] := Orig[I];
   end;
+  RestoreArgv(Orig);
 end;
 
 function CliHas(const Cli: tCli; const Name: AnsiString): Boolean;
