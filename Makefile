@@ -211,6 +211,19 @@ $(MANDIR)/%.1: $(BINDIR)/%
 	    -n "$$($< --help | sed -n '2,/^$$/p' | tr '\n' ' ' | sed 's/ ([^)]*)//g; s/[.:;].*//')" -o $@ $< || exit 1; \
 	else echo "note: help2man not found (apt-get install help2man): no man page for $*"; fi
 
+# The API reference from the interface comments, by Debian's pasdoc, as
+# HTML in build/doc; a warning fails it (the suite checks that every
+# library unit has its page: tests/packaging.sh).
+DOCSRC := $(sort $(wildcard src/*.pas src/*/*.pas))
+doc:
+	@command -v pasdoc >/dev/null 2>&1 || { echo "pasdoc not found: apt-get install pasdoc"; exit 1; }
+	@rm -rf $(BUILD)/doc; mkdir -p $(BUILD)/doc
+	@pasdoc --format html --output $(BUILD)/doc --title 'Chn library $(shell sed -n "s/^  ChnVersion = '\(.*\)';/\1/p" tools/lib/ChnCli.pas)' \
+	  $(addprefix --include ,$(sort $(dir $(DOCSRC)))) --define FPC --define UNIX --define LINUX \
+	  --write-uses-list --sort=structures,non-record-fields $(DOCSRC) >$(BUILD)/doc.log 2>&1 || { cat $(BUILD)/doc.log; exit 1; }
+	@if grep -E '^(Warning|Error)' $(BUILD)/doc.log; then echo "make doc: pasdoc warnings (above)"; exit 1; fi
+	@echo "API reference: $(BUILD)/doc/index.html ($(words $(DOCSRC)) units)"
+
 install: units $(addprefix $(BINDIR)/,$(TOOL_PROGRAMS)) man
 	@set -e; d='$(DESTDIR)$(INSTALL_UNITDIR)'; s='$(DESTDIR)$(INSTALL_SRCDIR)'; \
 	b='$(DESTDIR)$(INSTALL_BINDIR)'; m='$(DESTDIR)$(INSTALL_MANDIR)'; \

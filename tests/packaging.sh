@@ -10,7 +10,8 @@
 #  3. make install DESTDIR=... PREFIX=/usr puts the units where Debian's
 #     fpc looks, a program builds against them, the tools go into usr/bin
 #     with man pages and work there, make uninstall removes it all;
-#  4. fpmake.pp builds and installs the package.
+#  4. fpmake.pp builds and installs the package;
+#  5. make doc: the pasdoc API reference, no warnings, every unit.
 # Prints "ok|FAIL|skip  name" lines; tests/run.sh counts them.
 set -u
 BUILD=${BUILD:-build}
@@ -195,4 +196,20 @@ if (cd "$F" && "$FPC" -v0 fpmake.pp && ./fpmake build && \
   build_run "fpmake install, plain fpc" "$d" "$p" env HOME="$F/home" "$FPC" -v0 "$p.pas"
 else
   bad "package: fpc fpmake.pp && ./fpmake build && ./fpmake install" "$F/log"
+fi
+
+# 5. the API reference: make doc (pasdoc) builds without a warning and
+# has a page for every library unit
+if ! command -v pasdoc >/dev/null 2>&1; then
+  skip "package: make doc: pasdoc missing (apt-get install pasdoc), the API reference is not checked"
+elif make -s doc BUILD="$BUILD" >"$TMP/doc.log" 2>&1; then
+  missing=""
+  for f in $(ls src/*.pas src/*/*.pas 2>/dev/null); do
+    u=$(basename "$f" .pas)
+    [ -f "$BUILD/doc/$u.html" ] || missing="$missing $u"
+  done
+  if [ -z "$missing" ]; then ok "package: make doc: the API reference (pasdoc, no warnings) has every library unit"
+  else bad "package: make doc: no page for$missing"; fi
+else
+  bad "package: make doc (pasdoc warnings or errors)" "$TMP/doc.log"
 fi
