@@ -3,7 +3,7 @@
 #  0. no file points outside the repository;
 #  1. chn.lpk lists every unit of src/;
 #  2. every complete program in README.md ("program ...;" in a ```pascal
-#     block) is built outside the tree the three ways the README gives -
+#     block), and docs/TOOLS.md's three, is built outside the tree the three ways the README gives -
 #     -Fu to this checkout, "make install" (per user, found by plain fpc),
 #     the Lazarus package (lazbuild) - and run against tools/df1sim on a
 #     pty: each must print "Ok";
@@ -67,7 +67,7 @@ PARAMS="NAM=DF1 NOD=0 DNO=1 FHD=FULL CRC=ON NAM=COM DEV=$PTY BD=9600"
 # device and prints the simulator's N7:0 (0 in its default table), the
 # others take a parameter string and print "Ok"
 build_run() {
-  local way=$1 dir=$2 p=$3 arg=$PARAMS want='^Ok'; shift 3
+  local way=$1 dir=$2 p=$3 arg=$PARAMS want=${WANT:-'^Ok'}; shift 3
   if ! (cd "$dir" && "$@") >"$dir/$p.build" 2>&1; then
     bad "package: README program $p ($way) does not build" "$dir/$p.build"; return
   fi
@@ -91,6 +91,28 @@ for p in $progs; do
   cmd=$(echo "$way1" | sed "s|/path/to/chn|$REPO|g; s|plcecho\.pas|$p.pas|g; s|^fpc |$FPC -v0 |")
   build_run "-Fu to the checkout, README's commands" "$d" "$p" bash -c "$cmd"
 done
+
+# docs/TOOLS.md's programs (the three styles), the same way, each with
+# the line it prints against the simulator's default table
+mkdir -p "$TMP/tools-md"
+awk -v dir="$TMP/tools-md" '
+  /^```pascal/ { inblk = 1; text = ""; name = ""; next }
+  /^```/ && inblk { inblk = 0; if (name != "") { f = dir "/" name ".pas"; printf "%s", text > f; close(f) } next }
+  inblk { text = text $0 "\n"; if (name == "" && match($0, /^program [A-Za-z0-9_]+;/)) { name = substr($0, 9, RLENGTH - 9) } }
+' docs/TOOLS.md
+tprogs=$(cd "$TMP/tools-md" && ls *.pas 2>/dev/null | sed 's/\.pas$//')
+[ "$(echo $tprogs)" = "blockread pollecho stepread" ] || bad "package: docs/TOOLS.md: the three programs, found: $(echo $tprogs)"
+for p in $tprogs; do
+  case $p in
+    blockread) WANT='^N7:0 = 0, N7:1 = 10$' ;;
+    stepread) WANT='^line 1: N7:0 = 0, N7:1 = 10$' ;;
+    pollecho) WANT='^echo: Ok$' ;;
+    *) WANT='^never$' ;;
+  esac
+  d="$TMP/toolsmd-$p"; mkdir -p "$d/lib"; cp "$TMP/tools-md/$p.pas" "$d/"
+  build_run "docs/TOOLS.md, -Fu to the checkout" "$d" "$p" "$FPC" -v0 -Sew -Fu"$REPO/src" -Fi"$REPO/src" -FUlib "$p.pas"
+done
+WANT=
 
 # the checkout stays clean: a build that follows the README leaves no
 # compiled unit beside the library's sources
