@@ -46,19 +46,6 @@ const
     '10:00:00.030 tx   2 | TRC' + NL +
     '1006' + NL;
 
-procedure WriteText(const Name: string; const Text: AnsiString);
-var
-  S: TFileStream;
-begin
-  S := TFileStream.Create(Name, fmCreate);
-  try
-    if Text <> '' then
-      S.WriteBuffer(Text[1], Length(Text));
-  finally
-    S.Free;
-  end;
-end;
-
 procedure TTestChnDecodeTool.SetUp;
 begin
   Dir := MakeTempDir('chndecode');
@@ -77,7 +64,7 @@ var
   Opt: tDecOptions;
   Why: AnsiString;
 begin
-  WriteText(Dir + 'bcc.log', BccTrace);
+  WriteFileText(Dir + 'bcc.log', BccTrace);
   AssertEquals('0 errors:'#10 + Output, 0, RunBin('chndecode', ['--df1', Dir + 'bcc.log'], 10000, Output));
   AssertTrue('says which it chose:'#10 + Output, Pos('DF1 check: BCC, found from the frames', Output) > 0);
   AssertTrue(Output, Pos('BCC $B7 ok', Output) > 0);
@@ -107,7 +94,7 @@ begin
   finally
     L.Free;
   end;
-  WriteText(Dir + 'crc.hex', Hex);
+  WriteFileText(Dir + 'crc.hex', Hex);
   AssertEquals('0 errors:'#10 + Output, 0, RunBin('chndecode', ['--hex', Dir + 'crc.hex'], 10000, Output));
   AssertTrue('says which it chose:'#10 + Output, Pos('DF1 check: CRC, found from the frames', Output) > 0);
   AssertTrue(Output, Pos(' 0 errors, 0 incomplete', Output) > 0);
@@ -117,7 +104,7 @@ procedure TTestChnDecodeTool.TestGivenCheckIsKept;
 var
   Output: string;
 begin
-  WriteText(Dir + 'bcc.log', BccTrace);
+  WriteFileText(Dir + 'bcc.log', BccTrace);
   { told CRC, it decodes CRC: the frames are broken, and nothing is guessed }
   AssertEquals(1, RunBin('chndecode', ['--crc', Dir + 'bcc.log'], 10000, Output));
   AssertEquals(Output, 0, Pos('found from the frames', Output));
@@ -135,7 +122,7 @@ var
 begin
   N := TrcReadText(BccTrace, F);
   Pcap := PcapFromTrc(F, N, 1796079600);
-  WriteText(Dir + 'good.pcap', Pcap);
+  WriteFileText(Dir + 'good.pcap', Pcap);
   AssertEquals('the whole file'#10 + Output, 0, RunBin('chndecode', [Dir + 'good.pcap'], 10000, Output));
   { after the first record (24 + 16 + 12 + 13 bytes) a record header
     announcing 100000 bytes: impossible, the rest is lost }
@@ -143,12 +130,12 @@ begin
   Bad[8] := $A0; Bad[9] := $86; Bad[10] := $01;      { incl_len 100000 }
   Bad[12] := $A0; Bad[13] := $86; Bad[14] := $01;    { orig_len 100000 }
   Move(Bad, Pcap[24 + 16 + 12 + 13 + 1], SizeOf(Bad));
-  WriteText(Dir + 'damaged.pcap', Pcap);
+  WriteFileText(Dir + 'damaged.pcap', Pcap);
   AssertEquals('damaged: exit 2'#10 + Output, 2, RunBin('chndecode', ['--bcc', Dir + 'damaged.pcap'], 10000, Output));
   AssertTrue('names the record:'#10 + Output, Pos('record 2: impossible length 100000', Output) > 0);
   AssertTrue('what could be read is decoded:'#10 + Output, Pos('BCC $B7 ok', Output) > 0);
   { cut off inside the second record's header }
-  WriteText(Dir + 'cut.pcap', Copy(Pcap, 1, 24 + 16 + 12 + 13 + 7));
+  WriteFileText(Dir + 'cut.pcap', Copy(Pcap, 1, 24 + 16 + 12 + 13 + 7));
   AssertEquals('cut: exit 2'#10 + Output, 2, RunBin('chndecode', ['--bcc', Dir + 'cut.pcap'], 10000, Output));
 end;
 
@@ -170,7 +157,7 @@ begin
   AssertEquals(1, Length(G));
   AssertTrue('length not negative', G[0].Len > 0);
   AssertEquals('flagged short', res_TrcShort, G[0].Status);
-  WriteText(Dir + 'huge.pcap', Pcap);
+  WriteFileText(Dir + 'huge.pcap', Pcap);
   AssertEquals('a short record is damage: exit 2'#10 + Output, 2,
     RunBin('chndecode', ['--bcc', Dir + 'huge.pcap'], 10000, Output));
   AssertEquals('no negative length:'#10 + Output, 0, Pos(' -', Copy(Output, 1, Pos('bytes', Output))));
