@@ -37,7 +37,7 @@
   addresses) are kept in order; "--" ends the options. }
 unit ChnCli;
 
-{$MODE OBJFPC}{$H+}
+{$I chn.inc}
 
 interface
 
@@ -185,15 +185,21 @@ end;
   Indent blanks. }
 function Wrap(const Text: AnsiString; Indent, Width: LongInt): AnsiString;
 var
-  Words: TStringArray;
-  Line: AnsiString;
-  W: AnsiString;
+  Line, W: AnsiString;
+  P, Q: LongInt;
 begin
   Result := '';
   Line := '';
-  Words := Text.Split([' ']);
-  for W in Words do
+  P := 1;
+  while P <= Length(Text) do
   begin
+    while (P <= Length(Text)) and (Text[P] = ' ') do
+      Inc(P);
+    Q := P;
+    while (Q <= Length(Text)) and (Text[Q] <> ' ') do
+      Inc(Q);
+    W := Copy(Text, P, Q - P);
+    P := Q;
     if W = '' then
       Continue;
     if (Line <> '') and (Length(Line) + 1 + Length(W) > Width - Indent) then

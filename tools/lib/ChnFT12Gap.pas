@@ -7,7 +7,7 @@
   character times at the line's BD=. }
 unit ChnFT12Gap;
 
-{$MODE OBJFPC}{$H+}
+{$I chn.inc}
 
 interface
 
