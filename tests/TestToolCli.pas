@@ -32,6 +32,7 @@ type
     procedure TestUnknownOptionNamesItsToken;
     procedure TestValueOptionBothForms;
     procedure TestNoCzechInMessages;
+    procedure TestUnknownLayerNamesItsUnit;
     {$IFDEF LINUX}
     procedure TestOpenIsNoticed;
     procedure TestNothingOpenedOnABadCommandLine;
@@ -41,7 +42,8 @@ type
 implementation
 
 uses
-  {$IFDEF UNIX}BaseUnix,{$ENDIF} ChnVirt;
+  {$IFDEF UNIX}BaseUnix,{$ENDIF} ChnTypes, ChnVirt, ChnLayers, ChnCom, ChnTcp, ChnLoop,
+  ChnTrc, ChnNoise, ChnDF1, ChnFT1_2, ChnICS;
 
 function ReadAvail(S: TStream): string;
 var
@@ -315,6 +317,42 @@ begin
   finally
     S.Free;
     L.Free;
+  end;
+end;
+
+{ ChnVirt's table of layer names and units is complete: every layer the
+  runner links (it links them all, as ChnLayers does) has its unit there,
+  and an unknown NAM= of the library says which unit to add. }
+procedure TTestToolCli.TestUnknownLayerNamesItsUnit;
+const
+  LibraryLayers: array[0..7] of string = ('COM', 'TCP', 'LOOP', 'TRC', 'NOISE', 'DF1', 'FT1_2', 'ICS');
+var
+  Chn: pChnVirt;
+  Name: string;
+begin
+  { every layer of the library (the test suite's own layers aside) }
+  AssertEquals('ChnCom', ChLayerUnit(ChnCom.cName));
+  AssertEquals('ChnTcp', ChLayerUnit(ChnTcp.cName));
+  AssertEquals('ChnLoop', ChLayerUnit(ChnLoop.cName));
+  AssertEquals('ChnTrc', ChLayerUnit(ChnTrc.cName));
+  AssertEquals('ChnNoise', ChLayerUnit(ChnNoise.cName));
+  AssertEquals('ChnDF1', ChLayerUnit(ChnDF1.cName));
+  AssertEquals('ChnFT1_2', ChLayerUnit(ChnFT1_2.cName));
+  AssertEquals('ChnICS', ChLayerUnit(ChnICS.cName));
+  { and each of them is linked by ChnLayers }
+  for Name in LibraryLayers do
+    AssertTrue(Name + ' registered', ChnCollection^.Search(Name) <> nil);
+  AssertEquals('NAM=trc: add ChnTrc to the uses clause', ChUnknownLayerText('trc'));
+  AssertEquals('ChnNoise', ChLayerUnit('NOISE'));
+  AssertEquals('not the library''s', 'NAM=NOSUCH', ChUnknownLayerText('NOSUCH'));
+  { through ChSetParam: the token names the name as given }
+  Chn := ChnCollection^.ChNewInit('DF1');
+  try
+    Chn^.ChSetParam('NOD=1 NAM=NOSUCH');
+    AssertEquals(res_UnknownLayer, Chn^.ChResult);
+    AssertEquals('NAM=NOSUCH', Chn^.ChParamError);
+  finally
+    Dispose(Chn, Done);
   end;
 end;
 
