@@ -3,8 +3,11 @@
 #                     (incremental: only what changed is rebuilt)
 #   make test         the regression suite (FPCUnit + heap check + legacy modes)
 #   make test T=DF1   only tests whose name contains DF1
-#   make install      units (and sources) where Debian's fpc finds them;
+#   make install      units (and sources) where Debian's fpc finds them, the
+#                     tools into $(PREFIX)/bin with man pages (help2man);
 #                     PREFIX=/usr (default), DESTDIR=, or PREFIX=$HOME/.fppkg
+#   make man          the tools' man pages into build/man (help2man)
+#   make doc          the API reference (pasdoc) into build/doc
 #   make uninstall    removes what install put there
 #   make demo         a DF1 exchange on this machine, no hardware needed
 #   make bench        codec and channel benchmarks
@@ -68,7 +71,7 @@ PROGBINS := $(addprefix $(BINDIR)/,$(basename $(notdir $(PROGRAMS))))
 BENCHBINS := $(addprefix $(BINDIR)/,$(basename $(notdir $(BENCHES))))
 
 .PHONY: all units examples tools test demo bench fuzz soak wintest clean check-fpc \
-        install uninstall
+        install uninstall man doc
 
 all: units $(PROGBINS) chn.lpk
 examples: $(addprefix $(BINDIR)/,$(basename $(notdir $(EXAMPLES))))
@@ -196,17 +199,52 @@ FPCLIBDIR = $(if $(filter /usr,$(PREFIX)),$(PREFIX)/lib/$(MULTIARCH)/fpc,$(PREFI
 INSTALL_UNITDIR ?= $(FPCLIBDIR)/$(FPCVER)/units/$(FPCTARGET)/chn
 INSTALL_SRCDIR  ?= $(PREFIX)/share/chn
 
-install: units
+# The programs that are tools (docs/TOOLS.md, "Installed tools"): into
+# $(PREFIX)/bin, each with a man page made from its --help and --version
+# by Debian's help2man (without help2man the pages are left out, with a
+# note). The other examples are demos of the API and stay in build/bin.
+TOOL_PROGRAMS := df1sim chndecode chntap df1read df1write df1echo comraw waitany \
+                 $(basename $(notdir $(wildcard examples/iec101master.pas examples/iec101slave.pas examples/plcconc.pas)))
+INSTALL_BINDIR ?= $(PREFIX)/bin
+INSTALL_MANDIR ?= $(PREFIX)/share/man/man1
+MANDIR := $(BUILD)/man
+
+man: $(addprefix $(MANDIR)/,$(addsuffix .1,$(TOOL_PROGRAMS)))
+$(MANDIR)/%.1: $(BINDIR)/%
+	@mkdir -p $(MANDIR)
+	@if command -v help2man >/dev/null 2>&1; then \
+	  help2man -N --no-discard-stderr -s 1 -m 'Chn tools' -S 'Chn $(shell sed -n "s/^  ChnVersion = '\(.*\)';/\1/p" tools/lib/ChnCli.pas)' \
+	    -n "$$($< --help | sed -n '2,/^$$/p' | tr '\n' ' ' | sed 's/ ([^)]*)//g; s/[.:;].*//')" -o $@ $< || exit 1; \
+	else echo "note: help2man not found (apt-get install help2man): no man page for $*"; fi
+
+# The API reference from the interface comments, by Debian's pasdoc, as
+# HTML in build/doc; a warning fails it (the suite checks that every
+# library unit has its page: tests/packaging.sh).
+DOCSRC := $(sort $(wildcard src/*.pas src/*/*.pas))
+doc:
+	@command -v pasdoc >/dev/null 2>&1 || { echo "pasdoc not found: apt-get install pasdoc"; exit 1; }
+	@rm -rf $(BUILD)/doc; mkdir -p $(BUILD)/doc
+	@pasdoc --format html --output $(BUILD)/doc --title 'Chn library $(shell sed -n "s/^  ChnVersion = '\(.*\)';/\1/p" tools/lib/ChnCli.pas)' \
+	  $(addprefix --include ,$(sort $(dir $(DOCSRC)))) --define FPC --define UNIX --define LINUX \
+	  --write-uses-list --sort=structures,non-record-fields $(DOCSRC) >$(BUILD)/doc.log 2>&1 || { cat $(BUILD)/doc.log; exit 1; }
+	@if grep -E '^(Warning|Error)' $(BUILD)/doc.log; then echo "make doc: pasdoc warnings (above)"; exit 1; fi
+	@echo "API reference: $(BUILD)/doc/index.html ($(words $(DOCSRC)) units)"
+
+install: units $(addprefix $(BINDIR)/,$(TOOL_PROGRAMS)) man
 	@set -e; d='$(DESTDIR)$(INSTALL_UNITDIR)'; s='$(DESTDIR)$(INSTALL_SRCDIR)'; \
-	mkdir -p "$$d" "$$s/src"; \
+	b='$(DESTDIR)$(INSTALL_BINDIR)'; m='$(DESTDIR)$(INSTALL_MANDIR)'; \
+	mkdir -p "$$d" "$$s/src" "$$b"; \
 	for u in $(basename $(notdir $(UNITS))); do l=$$(echo $$u | tr A-Z a-z); \
 	  install -m 644 $(UNITDIR)/$$u.ppu "$$d/$$l.ppu"; \
-	  install -m 644 $(UNITDIR)/$$u.o "$$d/$$l.o"; done; \
+	  if [ -f $(UNITDIR)/$$u.o ]; then install -m 644 $(UNITDIR)/$$u.o "$$d/$$l.o"; fi; done; \
 	install -m 644 $(LIBSRC) "$$s/src/"; install -m 644 chn.lpk "$$s/"; \
-	echo "installed units in $$d, sources in $$s"
+	for p in $(TOOL_PROGRAMS); do install -m 755 $(BINDIR)/$$p "$$b/$$p"; \
+	  if [ -f $(MANDIR)/$$p.1 ]; then mkdir -p "$$m"; install -m 644 $(MANDIR)/$$p.1 "$$m/$$p.1"; fi; done; \
+	echo "installed units in $$d, sources in $$s, tools in $$b, man pages in $$m"
 
 uninstall:
 	rm -rf '$(DESTDIR)$(INSTALL_UNITDIR)' '$(DESTDIR)$(INSTALL_SRCDIR)'
+	rm -f $(foreach p,$(TOOL_PROGRAMS),'$(DESTDIR)$(INSTALL_BINDIR)/$(p)' '$(DESTDIR)$(INSTALL_MANDIR)/$(p).1')
 
 clean:
 	rm -rf $(BUILD)

@@ -3,15 +3,17 @@
   table, as in df1slave) in one process, joined by the in-memory null modem
   NAM=LOOP, first in full duplex with CRC, then in half duplex with BCC
   (poll / EOT / data / ACK). Prints every message and the wire bytes of
-  each frame sent; exit code 0 when both exchanges succeed. }
+  each frame sent; exit code 0 when both exchanges succeed. It takes no
+  arguments (but --help and --version, unit ChnCli). }
 program df1demo;
 
 {$MODE OBJFPC}{$H+}
 
 uses
-  SysUtils, ChnTypes, ChnVirt, ChnLoop, ChnDF1, ChnSlc, ChnDF1Link;
+  SysUtils, ChnTypes, ChnVirt, ChnLayers, ChnDF1, ChnSlc, ChnDF1Link, ChnCli;
 
 var
+  Cli: tCli;
   Table: tSlcTable;
   Slave: tDF1Station;
   Failures: Integer;
@@ -39,7 +41,7 @@ begin
   Result := DF1OpenStack(Params, 1000, Err);
   if Result = nil then
   begin
-    WriteLn('df1demo: ', Err);
+    WriteLn(StdErr, 'df1demo: ', Err);
     Halt(1);
   end;
 end;
@@ -90,6 +92,17 @@ begin
 end;
 
 begin
+  CliInit(Cli, 'df1demo', '[OPTION]',
+    'A DF1 echo exchange with no hardware: a master and a slave in one process, ' +
+    'joined by the in-memory null modem NAM=LOOP, first in full duplex with CRC, ' +
+    'then in half duplex with BCC; every message and the wire bytes of each frame ' +
+    'are printed. It takes no arguments.');
+  CliNoArgsOk(Cli);
+  CliExit(Cli, 0, 'both exchanges succeeded');
+  CliExit(Cli, 1, 'one exchange failed (3: both; the number of failures, never 2)');
+  CliParse(Cli);
+  if CliArgCount(Cli) > 0 then
+    CliUsageError(Cli, 'no arguments wanted', Cli.Args[0]);
   Failures := 0;
   SlcLoadDefault(Table);
   Run('full duplex, CRC (manual section 7)',
@@ -105,5 +118,7 @@ begin
     WriteLn('df1demo: all exchanges ok')
   else
     WriteLn('df1demo: ', Failures, ' exchange(s) failed');
+  if Failures = 2 then
+    Failures := 3;               { 2 is a usage error }
   Halt(Failures);
 end.

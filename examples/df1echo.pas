@@ -2,11 +2,13 @@
   (docs/PROTOCOLS.md section 7): sends CF_Echo with 'Ahoj' to a DF1 slave and checks
   the reply.
 
-    df1echo [parameter string]
+    df1echo [OPTION]... PARAMETER-STRING...
     df1echo NAM=DF1 NOD=1 DNO=2 FHD=FULL CRC=ON NAM=COM DEV=/dev/ttyUSB0 BD=19200 PAR=E
 
-  All arguments together form the parameter string; without any, the
-  manual's string is used. Corrections to the manual's program: a space
+  All arguments together form the parameter string (the manual's string
+  is the example of the usage; without arguments the program prints its
+  usage and opens nothing, so it never transmits on a COM1 nobody named).
+  The command line is unit ChnCli's (docs/TOOLS.md). Corrections to the manual's program: a space
   between 'CRC=ON' and 'NAM=COM'; Data[0..3] := 'Ahoj' (the manual assigns
   Data[0] four times); the reply is 8+4 bytes long (replies carry no FNC
   byte; the manual checks 8+5); the waits for CHS_Open and CHS_Connect end
@@ -15,18 +17,18 @@
   adds the link dialogue the manual leaves out (NAK, ENQ, retries, ACK of
   the reply, polling in half duplex) and bounds every wait.
 
-  Exit code: 0 echo ok, 1 setup error (parameters, open, connect),
-  2 no answer, 3 wrong answer. Every error is printed as text. }
+  Exit code: 0 echo ok, 1 open or connect failed or the line was lost,
+  2 command-line error, 3 wrong answer, 4 no answer. Every error is
+  printed as text. }
 program df1echo;
 
 {$MODE OBJFPC}{$H+}
 
 uses
   {$IFDEF UNIX}cthreads,{$ENDIF}
-  SysUtils, uString, ChnTypes, ChnVirt, ChnLoop, ChnCom, ChnTcp, ChnTrc, ChnDF1,
-  ChnDF1Link;
-  { units register their layer names when they are linked in: LOOP, COM,
-    TRC and DF1 can be named in the parameter string }
+  SysUtils, uString, ChnTypes, ChnVirt, ChnLayers, ChnDF1, ChnDF1Link, ChnCli;
+  { units register their layer names when they are linked in: ChnLayers
+    links every layer, so any of them can be named in the parameter string }
 
 const
   DefaultParams = 'NAM=DF1 LSB=500 NOD=1 DNO=2 FHD=FULL CRC=ON ' +
@@ -39,17 +41,20 @@ var
   RMess: tRecRecord;
   LSMess, LRMess: Word;
   Params: string;
-  I, Code: Integer;
+  Code: Integer;
   R: tChResult;
+
+var
+  Cli: tCli;
 
 procedure Fail(const What: string; R: tChResult);
 begin
   if R = res_Ok then
     R := res_Timeout;          { the state never came }
-  Write('df1echo: ', What, ': ', Chn^.ChResultStr(R));
+  Write(StdErr, 'df1echo: ', What, ': ', Chn^.ChResultStr(R));
   if Chn^.ChParamError <> '' then
-    Write(' (', Chn^.ChParamError, ')');
-  WriteLn;
+    Write(StdErr, ' (', Chn^.ChParamError, ')');
+  WriteLn(StdErr);
   Dispose(Chn, Done);
   Halt(1);
 end;
@@ -71,16 +76,21 @@ begin
 end;
 
 begin
-  Params := '';
-  for I := 1 to ParamCount do
-    Params := Trim(Params + ' ' + ParamStr(I));
+  CliInit(Cli, 'df1echo', '[OPTION]... PARAMETER-STRING...',
+    'The echo test of the SofCon ChnDF1 manual (section 7), corrected: send ' +
+    'CF_Echo with ''Ahoj'' to a DF1 station and check the reply, with the link ' +
+    'dialogue of ChnDF1Link. All arguments together form the parameter string.');
+  CliEpilog(Cli, 'Example (the manual''s string):' + LineEnding + '  df1echo ' +
+    DefaultParams + LineEnding);
+  CliExit(Cli, 0, 'the echo came back');
+  CliExit(Cli, 1, 'the line could not be opened or connected, or was lost');
+  CliExit(Cli, 3, 'an answer that is not the echo');
+  CliExit(Cli, 4, 'no answer');
+  CliParse(Cli);
+  Params := CliRest(Cli, 0);
   if Params = '' then
-    Params := DefaultParams;
-  if Length(Params) > High(tParamStr) then
-  begin
-    WriteLn('df1echo: parameter string longer than ', High(tParamStr), ' characters');
-    Halt(1);
-  end;
+    CliUsageError(Cli, 'no parameter string', '');
+  CliCheckParams(Cli, Params, ChnDF1.cName);
   Chn := ChnCollection^.ChNewInit(ChnDF1.cName);
   with Chn^ do
   begin
@@ -109,8 +119,10 @@ begin
       @ShowLine, True);
     if R <> res_Ok then
     begin
-      WriteLn('Chyba (error): ', ChResultStr(R));
-      Code := 2;
+      WriteLn(StdErr, 'df1echo: no echo: ', ChResultStr(R));
+      Code := CliExitOf(R);
+      if Code = 3 then
+        Code := 1;               { a link fault, not an answer }
     end
     else
       with RMess do
@@ -123,7 +135,7 @@ begin
         end
         else
         begin
-          WriteLn('Chyba (error): the reply is not the echo');
+          WriteLn(StdErr, 'df1echo: the reply is not the echo');
           Code := 3;
         end;
     ChDisConnect;

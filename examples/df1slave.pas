@@ -9,30 +9,30 @@
   send. tools/df1sim is the same station with options, a configurable
   table and a pty of its own.
 
-    df1slave [-t seconds] [parameter string]
+    df1slave [-t SECONDS] PARAMETER-STRING...
     df1slave -t 30 NAM=DF1 NOD=2 DNO=1 MAS=SLAVE CRC=ON NAM=COM DEV=/dev/ttyUSB0 BD=19200 PAR=E
 
-  -t ends the program after that many seconds without a message (default:
-  run until interrupted). Exit code 0, or 1 on a setup error, printed as
-  text. }
+  -t (--timeout) ends the program after that many seconds without a
+  message (default: run until interrupted). Without arguments it prints
+  its usage and opens nothing. The command line is unit ChnCli's; --help
+  lists the exit codes (docs/TOOLS.md). }
 program df1slave;
 
 {$MODE OBJFPC}{$H+}
 
 uses
-  SysUtils, uString, ChnTypes, ChnVirt, ChnLoop, ChnCom, ChnTcp, ChnTrc, ChnDF1,
-  ChnSlc, ChnDF1Link;
+  SysUtils, ChnTypes, ChnVirt, ChnLayers, ChnDF1, ChnSlc, ChnDF1Link, ChnCli;
 
 const
   DefaultParams = 'NAM=DF1 LSB=500 NOD=2 DNO=1 MAS=SLAVE FHD=FULL CRC=ON ' +
                   'NAM=COM COM=1 IRQ=4 BD=9600 BIT=8 STOP=1 PAR=E LRB=1000';
 
 var
+  Cli: tCli;
   Chn: pChnVirt;
   Table: tSlcTable;
   Slave: tDF1Station;
   Params, Err: string;
-  I: Integer;
   IdleSec: LongInt;
   LastMsg: QWord;
 
@@ -42,30 +42,27 @@ begin
 end;
 
 begin
-  Params := '';
-  IdleSec := 0;
-  I := 1;
-  while I <= ParamCount do
-  begin
-    if ParamStr(I) = '-t' then
-    begin
-      Inc(I);
-      if not StrToNum(ParamStr(I), 1, 86400, IdleSec) then
-      begin
-        WriteLn('df1slave: -t wants seconds (1..86400)');
-        Halt(1);
-      end;
-    end
-    else
-      Params := Trim(Params + ' ' + ParamStr(I));
-    Inc(I);
-  end;
+  CliInit(Cli, 'df1slave', '[-t SECONDS] PARAMETER-STRING...',
+    'A small DF1 slave (a tDF1Station of ChnDF1Link) answering from the default ' +
+    'SLC data table of ChnSlc: Echo, Diagnostic Status, the diagnostic counters, ' +
+    'the protected typed logical read/write and the unprotected read/write. ' +
+    'All arguments after the options form the parameter string.');
+  CliOption(Cli, 'timeout', 't', 'SECONDS', 'end after SECONDS without a message ' +
+    '(default: run until interrupted)');
+  CliEpilog(Cli, 'Example (the manual''s string):' + LineEnding + '  df1slave -t 30 ' +
+    DefaultParams + LineEnding);
+  CliExit(Cli, 0, 'ended by --timeout');
+  CliExit(Cli, 1, 'the line could not be opened, or was lost');
+  CliParse(Cli);
+  IdleSec := CliNum(Cli, 'timeout', 1, 86400, 0);
+  Params := CliRest(Cli, 0);
   if Params = '' then
-    Params := DefaultParams;
+    CliUsageError(Cli, 'no parameter string', '');
+  CliCheckParams(Cli, Params, ChnDF1.cName);
   Chn := DF1OpenStack(Params, 3000, Err);
   if Chn = nil then
   begin
-    WriteLn('df1slave: ', Err);
+    WriteLn(StdErr, 'df1slave: ', Err);
     Halt(1);
   end;
   if pChnDF1(Chn)^.CH_Master then
@@ -81,8 +78,9 @@ begin
       LastMsg := ChMsTick
     else if Chn^.ChResult <> res_Ok then
     begin
-      WriteLn('df1slave: line lost: ', Chn^.ChResultStr(Chn^.ChResult));
-      Break;
+      WriteLn(StdErr, 'df1slave: line lost: ', Chn^.ChResultStr(Chn^.ChResult));
+      Dispose(Chn, Done);
+      Halt(1);
     end
     else
       Sleep(1);            { nothing waiting: do not burn the CPU }

@@ -19,15 +19,16 @@
   e.g.    ft12balanced 'NAM=FT1_2 MS=OFF NOD=3 DNO=2 LEN=0 NAM=COM DEV=/dev/ttyUSB0 BD=9600 PAR=E' 60
   Against a controlling station that sends DIR = 1 (lib60870's balanced
   master) this station is B: DIR=0 (the default); against a station B,
-  give DIR=1. Exit code 0; 1 on a setup or line error; 2 for bad
-  arguments. }
+  give DIR=1. A string without GAP= gets the tools' default (ChnFT12Gap).
+  The command line is unit ChnCli's; --help lists the exit codes
+  (docs/TOOLS.md). }
 program ft12balanced;
 
 {$MODE OBJFPC}{$H-}
 
 uses
-  SysUtils, uString, ChnTypes, ChnVirt, ChnLoop, ChnCom, ChnTrc, ChnFT1_2,
-  ChnFT12Link, ChnIec101Asdu, Iec101Print;
+  SysUtils, uString, ChnTypes, ChnVirt, ChnLayers, ChnFT1_2, ChnFT12Link,
+  ChnIec101Asdu, Iec101Print, ChnFT12Gap, ChnCli;
 
 var
   Chn: pChnVirt;
@@ -36,7 +37,7 @@ var
 
 procedure Fail(const What: string; R: tChResult);
 begin
-  WriteLn('Error: ', What, ': ', Chn^.ChResultStr(R), ' ', Chn^.ChParamError);
+  WriteLn(StdErr, 'ft12balanced: ', What, ': ', Chn^.ChResultStr(R), ' (', Chn^.ChParamError, ')');
   Dispose(Chn, Done);
   Halt(1);
 end;
@@ -102,18 +103,8 @@ begin
   end;
 end;
 
-{ Argument I as a number of seconds, 1 or more; exit code 2 if not. }
-function PositiveArg(I: Integer; const What: string): LongInt;
-begin
-  Result := 0;
-  if not StrToNum(ParamStr(I), 1, MaxLongInt, Result) then
-  begin
-    WriteLn('Error: the ', What, ' must be a positive number of seconds');
-    Halt(2);
-  end;
-end;
-
 var
+  Cli: tCli;
   Params: tParamStr;
   Seconds, Period: LongInt;
   EndTime, NextValue: QWord;
@@ -124,19 +115,31 @@ var
   Obj: tIecObject;
   Err: ShortString;
 begin
-  if ParamCount < 2 then
-  begin
-    WriteLn('usage: ft12balanced ''parameter string'' SECONDS [PERIOD]');
-    Halt(2);
-  end;
-  Params := ParamStr(1);
-  Seconds := PositiveArg(2, 'run time');
+  CliInit(Cli, 'ft12balanced', '[OPTION]... PARAMETER-STRING SECONDS [PERIOD]',
+    'An IEC 60870-5-101 station in balanced transmission (MS=OFF) for SECONDS: ' +
+    'establishes the link, answers interrogations and activations, and sends a ' +
+    'measured value every PERIOD seconds (default 1). As station A (DIR=1) it ' +
+    'starts with a general interrogation.');
+  CliEpilog(Cli, 'Example:' + LineEnding +
+    '  ft12balanced ''NAM=FT1_2 MS=OFF NOD=3 DNO=2 LEN=0 NAM=COM DEV=/dev/ttyUSB0 BD=9600 PAR=E'' 60' +
+    LineEnding);
+  CliExit(Cli, 0, 'the time is over');
+  CliExit(Cli, 1, 'the line could not be opened, or was lost');
+  CliParse(Cli);
+  if (CliArgCount(Cli) < 2) or (CliArgCount(Cli) > 3) then
+    CliUsageError(Cli, 'PARAMETER-STRING SECONDS [PERIOD] wanted', CliRest(Cli, 0));
+  Params := Cli.Args[0];
+  Seconds := 0;
   Period := 1;
-  if ParamCount >= 3 then
-    Period := PositiveArg(3, 'period');
+  if not StrToNum(Cli.Args[1], 1, MaxLongInt, Seconds) then
+    CliUsageError(Cli, 'SECONDS wants a positive number', Cli.Args[1]);
+  if (CliArgCount(Cli) = 3) and not StrToNum(Cli.Args[2], 1, MaxLongInt, Period) then
+    CliUsageError(Cli, 'PERIOD wants a positive number of seconds', Cli.Args[2]);
+  CliCheckParams(Cli, Cli.Args[0], ChnFT1_2.cName);
   Chn := ChnCollection^.ChNewInit(ChnFT1_2.cName);
   Chn^.ChSetParam(Params);
   if Chn^.ChResult <> res_Ok then Fail('ChSetParam', Chn^.ChResult);
+  FT12SetDefaultGap(Chn, Params);
   Chn^.ChOpen;
   if Chn^.ChResult <> res_Ok then Fail('ChOpen', Chn^.ChResult);
   Chn^.ChConnect;

@@ -9,11 +9,14 @@
   wants FCV = True for it). Every wait has a timeout and every error is
   printed with ChResultStr, so the program never hangs.
 
-  Usage:  ft12master ['parameter string' [timeout-ms]]
+  Usage:  ft12master [--timeout=MS] 'parameter string' [timeout-ms]
   e.g.    ft12master 'NAM=FT1_2 MS=ON MAS=MASTER LSB=500 NOD=1 DNO=2 NAM=COM COM=1 BD=9600 BIT=8 STOP=1 PAR=E LRB=1000'
 
-  The physical layer is chosen by NAM= in the string; its unit must be in
-  the uses clause (ChnLoop and ChnCom here). }
+  Without arguments it prints its usage and opens nothing (it never
+  transmits on a COM1 nobody named). The physical layer is chosen by NAM=
+  in the string; ChnLayers links every layer. A string without GAP= gets
+  the tools' default (ChnFT12Gap). A line lost while waiting ends the
+  program at once. The command line is unit ChnCli's (docs/TOOLS.md). }
 program ft12master;
 
 {$MODE OBJFPC}{$H-}
@@ -23,9 +26,10 @@ uses
   uString,
   ChnTypes,
   ChnVirt,
-  ChnLoop,
-  ChnCom, ChnTcp,
-  ChnFT1_2;
+  ChnLayers,
+  ChnFT1_2,
+  ChnFT12Gap,
+  ChnCli;
 
 const
   DefaultParams: tParamStr =
@@ -33,6 +37,7 @@ const
     'NAM=COM COM=1 IRQ=4 BD=9600 BIT=8 STOP=1 PAR=E LRB=1000';
 
 var
+  Cli   : tCli;
   Chn   : pChnVirt;
   SMess : pSendRecord;
   RMess : pRecRecord;
@@ -42,34 +47,42 @@ var
   Params: tParamStr;
   TimeoutMs: LongInt;
   Deadline: QWord;
-  Code  : Integer;
 
 { Print what went wrong, clean up and stop with exit code 1. }
 procedure Fail(const What: string; R: tChResult);
 begin
-  WriteLn('Error: ', What, ': ', Chn^.ChResultStr(R));
+  Write(StdErr, 'ft12master: ', What, ': ', Chn^.ChResultStr(R));
   if Chn^.ChParamError <> '' then
-    WriteLn('  in parameter ', Chn^.ChParamError);
+    Write(StdErr, ' (', Chn^.ChParamError, ')');
+  WriteLn(StdErr);
   Dispose(Chn, Done);
   Dispose(SMess);
   Dispose(RMess);
+  if R = res_Timeout then
+    Halt(4);
   Halt(1);
 end;
 
 begin
-  Params := DefaultParams;
-  if ParamCount >= 1 then
-    Params := ParamStr(1);
-  TimeoutMs := 2000;
-  if ParamCount >= 2 then
-  begin
-    Val(ParamStr(2), TimeoutMs, Code);
-    if (Code <> 0) or (TimeoutMs <= 0) then
-    begin
-      WriteLn('Error: timeout must be a positive number of milliseconds');
-      Halt(2);
-    end;
-  end;
+  CliInit(Cli, 'ft12master', '[OPTION]... PARAMETER-STRING [TIMEOUT-MS]',
+    'The example of the ChnFT1_2 manual (chapter 7), corrected: send one ' +
+    'variable-length message (user data, FC 3) from an unbalanced master to a ' +
+    'slave and print the answer. TIMEOUT-MS (default 2000) bounds every wait. A ' +
+    'string without GAP= gets GAP= for ' + IntToStr(FT12DefaultGapMs) + ' ms at its BD=.');
+  CliOption(Cli, 'timeout', 't', 'MS', 'wait at most MS ms for each step (default 2000)');
+  CliEpilog(Cli, 'Example (the manual''s string):' + LineEnding + '  ft12master ''' +
+    DefaultParams + '''' + LineEnding);
+  CliExit(Cli, 0, 'an answer came and was printed');
+  CliExit(Cli, 1, 'the line could not be opened, was lost, or the answer was broken');
+  CliExit(Cli, 4, 'no answer in time');
+  CliParse(Cli);
+  if (CliArgCount(Cli) < 1) or (CliArgCount(Cli) > 2) then
+    CliUsageError(Cli, 'PARAMETER-STRING [TIMEOUT-MS] wanted', CliRest(Cli, 0));
+  TimeoutMs := CliNum(Cli, 'timeout', 1, 600000, 2000);
+  if (CliArgCount(Cli) = 2) and not StrToNum(Cli.Args[1], 1, 600000, TimeoutMs) then
+    CliUsageError(Cli, 'TIMEOUT-MS wants 1..600000', Cli.Args[1]);
+  Params := Cli.Args[0];
+  CliCheckParams(Cli, Params, ChnFT1_2.cName);
   New(SMess);
   New(RMess);
   { create the channel }
@@ -79,6 +92,7 @@ begin
     { communication parameters }
     ChSetParam(Params);
     if ChResult <> res_Ok then Fail('ChSetParam', ChResult);
+    FT12SetDefaultGap(Chn, Params);
     ChOpen;
     if ChResult <> res_Ok then Fail('ChOpen', ChResult);
     { where received messages go }
@@ -114,7 +128,10 @@ begin
     { wait for the answer }
     Deadline := ChMsTick + QWord(TimeoutMs);
     while not (ChReceiveReady = CHS_ReceiveReady) do
+    begin
+      if ChResult <> res_Ok then Fail('line lost', ChResult);
       if ChMsTick > Deadline then Fail('no answer', res_Timeout);
+    end;
     ChReceive(LRMess);
     if ChReceiveResult <> res_Ok then
       Fail('received a broken frame', ChReceiveResult)

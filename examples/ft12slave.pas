@@ -16,10 +16,12 @@
   last answer again, as the standard wants; the library leaves this to the
   application. Broken frames are printed with ChResultStr and not answered.
 
-  Usage:  ft12slave ['parameter string' [seconds]]      (default 60 s)
+  Usage:  ft12slave [--seconds=S] 'parameter string' [SECONDS]   (default 60 s)
   e.g.    ft12slave 'NAM=FT1_2 MS=ON MAS=SLAVE LEN=0 NOD=1 NAM=COM DEV=/dev/ttyUSB0 BD=9600 PAR=E'
-  The physical layer's unit must be in the uses clause (ChnLoop and
-  ChnCom here). }
+  Without arguments it prints its usage and opens nothing. A string
+  without GAP= gets the tools' default (ChnFT12Gap): one corrupted length
+  byte then costs one request, not the ~240 bytes after it. ChnLayers
+  links every layer; the command line is unit ChnCli's (docs/TOOLS.md). }
 program ft12slave;
 
 {$MODE OBJFPC}{$H-}
@@ -28,9 +30,11 @@ uses
   SysUtils,
   ChnTypes,
   ChnVirt,
-  ChnLoop,
-  ChnCom, ChnTcp,
+  uString,
+  ChnLayers,
   ChnFT12Codec,
+  ChnFT12Gap,
+  ChnCli,
   ChnFT1_2,
   ChnIec101Asdu;
 
@@ -40,6 +44,7 @@ const
     'NAM=COM COM=1 BD=9600 BIT=8 STOP=1 PAR=E';
 
 var
+  Cli: tCli;
   Chn: pChnVirt;
   Req: tRecRecord;
   Ans: tSendRecord;
@@ -52,13 +57,12 @@ var
   AsduErr: ShortString;
   Params: tParamStr;
   Seconds: LongInt;
-  Code: Integer;
   EndTime: QWord;
   SNode, DNode: tNode;
 
 procedure Fail(const What: string; R: tChResult);
 begin
-  WriteLn('Error: ', What, ': ', Chn^.ChResultStr(R), ' ', Chn^.ChParamError);
+  WriteLn(StdErr, 'ft12slave: ', What, ': ', Chn^.ChResultStr(R), ' (', Chn^.ChParamError, ')');
   Dispose(Chn, Done);
   Halt(1);
 end;
@@ -73,22 +77,29 @@ begin
 end;
 
 begin
-  Params := DefaultParams;
-  if ParamCount >= 1 then
-    Params := ParamStr(1);
-  Seconds := 60;
-  if ParamCount >= 2 then
-  begin
-    Val(ParamStr(2), Seconds, Code);
-    if (Code <> 0) or (Seconds <= 0) then
-    begin
-      WriteLn('Error: run time must be a positive number of seconds');
-      Halt(2);
-    end;
-  end;
+  CliInit(Cli, 'ft12slave', '[OPTION]... PARAMETER-STRING [SECONDS]',
+    'An unbalanced FT 1.2 slave (secondary station) answering the link services of ' +
+    'IEC 60870-5-101: reset, status of link, user data, class 1 and 2 data (a ' +
+    'measured value that counts up), for SECONDS (default 60). A string without ' +
+    'GAP= gets GAP= for ' + IntToStr(FT12DefaultGapMs) + ' ms at its BD=.');
+  CliOption(Cli, 'seconds', 's', 'S', 'run for S seconds (default 60; also the second argument)');
+  CliEpilog(Cli, 'Example:' + LineEnding +
+    '  ft12slave ''NAM=FT1_2 MS=ON MAS=SLAVE LEN=0 NOD=1 NAM=COM DEV=/dev/ttyUSB0 BD=9600 PAR=E''' +
+    LineEnding);
+  CliExit(Cli, 0, 'the time is over');
+  CliExit(Cli, 1, 'the line could not be opened, or was lost');
+  CliParse(Cli);
+  if (CliArgCount(Cli) < 1) or (CliArgCount(Cli) > 2) then
+    CliUsageError(Cli, 'PARAMETER-STRING [SECONDS] wanted', CliRest(Cli, 0));
+  Seconds := CliNum(Cli, 'seconds', 1, 86400 * 366, 60);
+  if (CliArgCount(Cli) = 2) and not StrToNum(Cli.Args[1], 1, 86400 * 366, Seconds) then
+    CliUsageError(Cli, 'SECONDS wants 1..31622400', Cli.Args[1]);
+  Params := Cli.Args[0];
+  CliCheckParams(Cli, Params, ChnFT1_2.cName);
   Chn := ChnCollection^.ChNewInit(ChnFT1_2.cName);
   Chn^.ChSetParam(Params);
   if Chn^.ChResult <> res_Ok then Fail('ChSetParam', Chn^.ChResult);
+  FT12SetDefaultGap(Chn, Params);
   Chn^.ChOpen;
   if Chn^.ChResult <> res_Ok then Fail('ChOpen', Chn^.ChResult);
   Chn^.ChReceiveBuffer(@Req, SizeOf(Req));

@@ -2,13 +2,14 @@
   ReadData request (RD, block 0, numbers 0 10 15 and a text) and print the
   answer.
 
-    icsread [-t ms] 'NAM=ICS LSB=500 NOD=1 DNO=2 NAM=COM DEV=/dev/ttyUSB0 BD=9600 PAR=E'
+    icsread [-t MS] 'NAM=ICS LSB=500 NOD=1 DNO=2 NAM=COM DEV=/dev/ttyUSB0 BD=9600 PAR=E'
 
   The parameter string comes from the command line (all remaining
-  arguments, joined with blanks). Every wait has a deadline (-t, default
-  2000 ms) and every error is printed with ChResultStr. Exit code: 0 good
-  answer, 1 usage, 2 channel error, 3 no answer in time, 4 broken or
-  unexpected answer.
+  arguments, joined with blanks). Every wait has a deadline (-t or
+  --timeout, default 2000 ms) and every error is printed with
+  ChResultStr. The command line is unit ChnCli's (docs/TOOLS.md). Exit
+  code: 0 good answer, 1 channel error (open, line lost), 2 command-line
+  error, 3 broken or unexpected answer, 4 no answer in time.
 
   Corrections to the manual's text (docs/PROTOCOLS.md section 7): the constant is not
   called ParamStr (that hides System.ParamStr), "while not ChReceiveReady =
@@ -17,7 +18,7 @@
   ends), and errors say what went wrong instead of 'Chyba'.
 
   Physical layers are found through the registry, so a layer is available
-  when its unit is in the uses clause below (ChnLoop and ChnCom). }
+  when its unit is in the uses clause below (ChnLayers: all of them). }
 program icsread;
 
 {$MODE OBJFPC}{$H+}
@@ -27,14 +28,15 @@ uses
   uString,
   ChnTypes,
   ChnVirt,
-  ChnLoop,
-  ChnCom, ChnTcp,
-  ChnICS;
+  ChnLayers,
+  ChnICS,
+  ChnCli;
 
 const
   DefaultParams = 'NAM=ICS LSB=500 NOD=1 DNO=2 NAM=COM COM=1 BD=9600 BIT=8 STOP=1 PAR=E LRB=1000';
 
 var
+  Cli    : tCli;
   Chn    : pChnVirt;
   SMess  : pSendRecord;
   RMess  : pRecRecord;
@@ -49,9 +51,10 @@ var
 { Print the error, tear the channel down and stop. }
 procedure Fail(const What: string; R: tChResult; Code: Integer);
 begin
-  WriteLn(StdErr, 'icsread: ', What, ': ', Chn^.ChResultStr(R));
+  Write(StdErr, 'icsread: ', What, ': ', Chn^.ChResultStr(R));
   if Chn^.ChParamError <> '' then
-    WriteLn(StdErr, '  offending parameter: ', Chn^.ChParamError);
+    Write(StdErr, ' (', Chn^.ChParamError, ')');
+  WriteLn(StdErr);
   Dispose(Chn, Done);
   Dispose(SMess);
   Dispose(RMess);
@@ -70,27 +73,22 @@ var
   N: LongInt;
 
 begin
-  Timeout := 2000;
-  ArgI := 1;
-  if (ParamCount >= 2) and (ParamStr(1) = '-t') then
-  begin
-    N := 0;
-    if not StrToNum(ParamStr(2), 1, 600000, N) then
-    begin
-      WriteLn(StdErr, 'icsread: -t wants milliseconds, 1..600000');
-      Halt(1);
-    end;
-    Timeout := N;
-    ArgI := 3;
-  end;
-  Params := '';
-  for I := ArgI to ParamCount do
-    Params := Trim(Params + ' ' + ParamStr(I));
+  CliInit(Cli, 'icsread', '[OPTION]... PARAMETER-STRING...',
+    'The ChnICS manual''s example (section 7), corrected: send one ReadData request ' +
+    '(RD, block 0, numbers 0 10 15 and a text) to an ICSlink station and print the ' +
+    'answer. All arguments after the options form the parameter string.');
+  CliOption(Cli, 'timeout', 't', 'MS', 'wait at most MS ms for each step (default 2000)');
+  CliEpilog(Cli, 'Example:' + LineEnding + '  icsread -t 1000 ''' + DefaultParams + '''' + LineEnding);
+  CliExit(Cli, 0, 'a good answer (DB with 3 numbers)');
+  CliExit(Cli, 1, 'the line could not be opened, or was lost');
+  CliExit(Cli, 3, 'a broken or unexpected answer');
+  CliExit(Cli, 4, 'no answer in time');
+  CliParse(Cli);
+  Timeout := CliNum(Cli, 'timeout', 1, 600000, 2000);
+  Params := CliRest(Cli, 0);
   if Params = '' then
-  begin
-    WriteLn('usage: icsread [-t ms] ''', DefaultParams, '''');
-    Halt(1);
-  end;
+    CliUsageError(Cli, 'no parameter string', '');
+  CliCheckParams(Cli, Params, ChnICS.cName);
 
   New(SMess);
   New(RMess);
@@ -100,20 +98,20 @@ begin
   begin
     ChSetParam(Params);
     if ChResult <> res_Ok then
-      Fail('parameters', ChResult, 2);
+      Fail('parameters', ChResult, 1);
     ChOpen;
     Deadline := ChMsTick + QWord(Timeout);
     while ChReady <> CHS_Open do
     begin
       if ChResult <> res_Ok then
-        Fail('open', ChResult, 2);
+        Fail('open', ChResult, 1);
       if Expired(Deadline) then
-        Fail('open', res_Timeout, 3);
+        Fail('open', res_Timeout, 4);
     end;
     ChReceiveBuffer(RMess, SizeOf(RMess^));
     ChConnect;
     if ChResult <> res_Ok then
-      Fail('connect', ChResult, 2);
+      Fail('connect', ChResult, 1);
 
     with SMess^ do
     begin
@@ -129,16 +127,16 @@ begin
     Deadline := ChMsTick + QWord(Timeout);
     while ChSendReady <> CHS_SendReady do
       if Expired(Deadline) then
-        Fail('transmitter busy', res_Timeout, 3);
+        Fail('transmitter busy', res_Timeout, 4);
     ChSend(SMess, LSMess);
     if ChSendResult <> res_Ok then
-      Fail('send', ChSendResult, 2);
+      Fail('send', ChSendResult, 1);
     while ChSendReady <> CHS_SendReady do
     begin
       if ChSendResult <> res_Ok then
-        Fail('send', ChSendResult, 2);
+        Fail('send', ChSendResult, 1);
       if Expired(Deadline) then
-        Fail('send', res_Timeout, 3);
+        Fail('send', res_Timeout, 4);
     end;
 
     { wait for the answer }
@@ -146,13 +144,15 @@ begin
     while ChReceiveReady <> CHS_ReceiveReady do
     begin
       if not (ChReceiveResult in [res_Ok, res_NoMessage]) then
-        Fail('receive', ChReceiveResult, 2);
+        Fail('receive', ChReceiveResult, 1);
+      if ChResult <> res_Ok then
+        Fail('line lost', ChResult, 1);
       if Expired(Deadline) then
-        Fail('no answer within ' + IntToStr(Timeout) + ' ms', res_Timeout, 3);
+        Fail('no answer within ' + IntToStr(Timeout) + ' ms', res_Timeout, 4);
     end;
     ChReceive(LRMess);
     if ChReceiveResult <> res_Ok then
-      Fail('broken answer', ChReceiveResult, 4);
+      Fail('broken answer', ChReceiveResult, 3);
 
     ChGetNode(SNode, DNode);
     with RMess^ do
@@ -166,7 +166,7 @@ begin
       if (OpCode <> OCS_ReadData) or (LRMess <> 4 + 3 * SizeOf(tData)) then
       begin
         WriteLn(StdErr, 'icsread: expected DB with 3 numbers');
-        ExitCode := 4;
+        ExitCode := 3;
       end;
     end;
 

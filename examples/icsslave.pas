@@ -12,10 +12,11 @@
   reported and not answered (ICSlink has no negative acknowledgement);
   frames for another station are ignored.
 
-    icsslave [-t seconds] [-n requests] 'NAM=ICS MAS=SLAVE NOD=2 DNO=1 NAM=COM DEV=/dev/ttyUSB1'
+    icsslave [-t SECONDS] [-n REQUESTS] 'NAM=ICS MAS=SLAVE NOD=2 DNO=1 NAM=COM DEV=/dev/ttyUSB1'
 
   Runs until -n requests were answered or -t seconds passed (default 60),
-  never endlessly. }
+  never endlessly. The command line is unit ChnCli's; --help lists the
+  exit codes (docs/TOOLS.md). }
 program icsslave;
 
 {$MODE OBJFPC}{$H+}
@@ -25,66 +26,52 @@ uses
   uString,
   ChnTypes,
   ChnVirt,
-  ChnLoop,
-  ChnCom, ChnTcp,
-  ChnICS;
+  ChnLayers,
+  ChnICS,
+  ChnCli;
 
 const
   RegCount = 1024;
   BadRegister = '!bad register!';
 
 var
+  Cli     : tCli;
   Chn     : pChnVirt;
   Req, Ans: tRecRecord;
   Regs    : array[0..RegCount - 1] of tData;
   Params  : string;
   Seconds, MaxRequests, Answered: LongInt;
 
-procedure Usage;
-begin
-  WriteLn('usage: icsslave [-t seconds] [-n requests] ''NAM=ICS MAS=SLAVE NOD=2 DNO=1 NAM=...''');
-  Halt(1);
-end;
-
 procedure ParseArgs;
-var
-  I: Integer;
-  N: LongInt;
 begin
-  Seconds := 60;
-  MaxRequests := 0;            { 0: no limit but the time }
-  Params := '';
-  I := 1;
-  while I <= ParamCount do
-  begin
-    N := 0;
-    if (ParamStr(I) = '-t') or (ParamStr(I) = '-n') then
-    begin
-      if (I = ParamCount) or not StrToNum(ParamStr(I + 1), 1, 86400, N) then
-        Usage;
-      if ParamStr(I) = '-t' then
-        Seconds := N
-      else
-        MaxRequests := N;
-      Inc(I, 2);
-    end
-    else
-    begin
-      Params := Trim(Params + ' ' + ParamStr(I));
-      Inc(I);
-    end;
-  end;
+  CliInit(Cli, 'icsslave', '[OPTION]... PARAMETER-STRING...',
+    'An ICSlink slave with a table of 1024 registers (register i starts as i * 10), ' +
+    'the partner of icsread: RD -> DB with the values, RL -> LB with the register ' +
+    'count, WD first v1 v2 ... -> OK. All arguments after the options form the ' +
+    'parameter string.');
+  CliOption(Cli, 'timeout', 't', 'SECONDS', 'run at most SECONDS (default 60)');
+  CliOption(Cli, 'requests', 'n', 'N', 'end after answering N requests');
+  CliEpilog(Cli, 'Example:' + LineEnding +
+    '  icsslave -t 30 ''NAM=ICS MAS=SLAVE NOD=2 DNO=1 NAM=COM DEV=/dev/ttyUSB1''' + LineEnding);
+  CliExit(Cli, 0, 'the time is over or N requests were answered');
+  CliExit(Cli, 1, 'the line could not be opened, or was lost');
+  CliParse(Cli);
+  Seconds := CliNum(Cli, 'timeout', 1, 86400, 60);
+  MaxRequests := CliNum(Cli, 'requests', 1, 86400, 0);   { 0: no limit but the time }
+  Params := CliRest(Cli, 0);
   if Params = '' then
-    Usage;
+    CliUsageError(Cli, 'no parameter string', '');
+  CliCheckParams(Cli, Params, ChnICS.cName);
 end;
 
 procedure Stop(const What: string; R: tChResult);
 begin
-  WriteLn(StdErr, 'icsslave: ', What, ': ', Chn^.ChResultStr(R));
+  Write(StdErr, 'icsslave: ', What, ': ', Chn^.ChResultStr(R));
   if Chn^.ChParamError <> '' then
-    WriteLn(StdErr, '  offending parameter: ', Chn^.ChParamError);
+    Write(StdErr, ' (', Chn^.ChParamError, ')');
+  WriteLn(StdErr);
   Dispose(Chn, Done);
-  Halt(2);
+  Halt(1);
 end;
 
 { Fill Ans for the request in Req (Len bytes); False: no answer. }

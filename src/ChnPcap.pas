@@ -118,6 +118,12 @@ implementation
 uses
   uString;
 
+{ An unsigned 32-bit field as text (NumStr is for LongInt). }
+function UNumStr(V: LongWord): ShortString;
+begin
+  Str(V, Result);
+end;
+
 function Swap32(V: LongWord): LongWord; inline;
 begin
   Result := (V shr 24) or ((V shr 8) and $FF00) or ((V shl 8) and $FF0000) or (V shl 24);
@@ -240,7 +246,7 @@ begin
   Info.LinkType := Fix(H.LinkType);
   if Info.LinkType <> PcapLinkRtac then
   begin
-    Result := Fail(res_PcapLinkType, 20, 'link type ' + NumStr(Info.LinkType) +
+    Result := Fail(res_PcapLinkType, 20, 'link type ' + UNumStr(Info.LinkType) +
       ', RTAC serial is 250');
     Exit;
   end;
@@ -261,7 +267,7 @@ begin
     if (R.InclLen > PcapSnapLen) or (R.InclLen > R.OrigLen) then
     begin
       Result := Fail(res_PcapCut, Pos, 'record ' + NumStr(Info.Records + 1) +
-        ': impossible length ' + NumStr(LongInt(R.InclLen and $7FFFFFFF)));
+        ': impossible length ' + UNumStr(R.InclLen));
       Break;
     end;
     Inc(Info.Records);
@@ -305,7 +311,12 @@ begin
     else
       Frames[Count].DirText := 'rx';
     Frames[Count].Tag := 'pcap';
-    Frames[Count].Len := LongInt(R.OrigLen) - RtacHeaderLen;
+    { the announced length, unsigned on the wire: one past what a chunk
+      can hold stands for "more", and the record is flagged short below }
+    if R.OrigLen - RtacHeaderLen > LongWord(High(LongInt)) then
+      Frames[Count].Len := High(LongInt)
+    else
+      Frames[Count].Len := LongInt(R.OrigLen - RtacHeaderLen);
     SetLength(Frames[Count].Data, Payload);
     if Payload > 0 then
       Move(Data[Pos + 1 + RtacHeaderLen], Frames[Count].Data[0], Payload);

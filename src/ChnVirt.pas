@@ -277,6 +277,15 @@ type
   same in every program; registration refuses a clash. }
 function ChNumName(const Name: ShortString): Word;
 
+{ The library unit that registers layer Name ('TRC' -> 'ChnTrc'), '' for a
+  name the library does not have: an unknown NAM= can say which unit is
+  missing from the program's uses clause (unit ChnLayers links them all). }
+function ChLayerUnit(const Name: ShortString): ShortString;
+{ 'NAM=TRC: add ChnTrc to the uses clause' for a layer of the library
+  that is not linked in, else 'NAM=NAME': the token an unknown layer
+  error names. }
+function ChUnknownLayerText(const Name: ShortString): ShortString;
+
 { Milliseconds from a monotonic clock, for timeouts and line-idle gaps. }
 function ChMsTick: QWord;
 
@@ -337,6 +346,30 @@ implementation
 
 uses
   SysUtils, ChnWait;
+
+const
+  { every layer name of the library and the unit that registers it }
+  LayerUnits: array[0..7, 0..1] of string[8] = (
+    ('COM', 'ChnCom'), ('TCP', 'ChnTcp'), ('LOOP', 'ChnLoop'),
+    ('TRC', 'ChnTrc'), ('NOISE', 'ChnNoise'), ('DF1', 'ChnDF1'),
+    ('FT1_2', 'ChnFT1_2'), ('ICS', 'ChnICS'));
+
+function ChLayerUnit(const Name: ShortString): ShortString;
+var
+  I: Integer;
+begin
+  Result := '';
+  for I := Low(LayerUnits) to High(LayerUnits) do
+    if LayerUnits[I, 0] = UpStr(Name) then
+      Result := LayerUnits[I, 1];
+end;
+
+function ChUnknownLayerText(const Name: ShortString): ShortString;
+begin
+  Result := 'NAM=' + Name;
+  if ChLayerUnit(Name) <> '' then
+    Result := Result + ': add ' + ChLayerUnit(Name) + ' to the uses clause';
+end;
 
 function ChNumName(const Name: ShortString): Word;
 var
@@ -632,7 +665,10 @@ begin
     Exit(res_WrongState);               { cannot swap the stack while open }
   NewLow := ChnCollection^.ChNewInit(ParamValue(Nam.Text));
   if NewLow = nil then
+  begin
+    ErrTok := ChUnknownLayerText(ParamValue(Nam.Text));
     Exit(res_UnknownLayer);
+  end;
   NewLow^.ChSetParam(Copy(S, Nam.Start, Length(S) - Nam.Start + 1));
   Result := NewLow^.ChResult;
   if Result <> res_Ok then

@@ -215,7 +215,7 @@ begin
   AssertEquals('the NAK', 1, Count('<g class="frame refused">', S));
   AssertEquals(2, RunBin('chndecode', ['--svg=', Dir + 'df1.log'], 30000, Output));
   AssertEquals(2, RunBin('chndecode', ['--gap=x', Dir + 'df1.log'], 30000, Output));
-  AssertTrue(Output, Pos('--gap wants milliseconds', Output) > 0);
+  AssertTrue(Output, Pos('--gap wants a whole number 0..86400000 (--gap=x)', Output) > 0);
 end;
 
 initialization

@@ -93,7 +93,7 @@ begin
   end;
   {$ENDIF}
   Code := RunBin('df1echo', ['NAM=DF1', 'XYZ=1', 'NAM=LOOP'], 10000, Output);
-  AssertEquals('bad parameter: exit 1', 1, Code);
+  AssertEquals('bad parameter: a command-line error, exit 2', 2, Code);
   AssertTrue('says which:'#10 + Output, Pos('XYZ', Output) > 0);
 end;
 
@@ -110,7 +110,7 @@ var
 begin
   AssertTrue(BinPath('df1read') + ' missing (make examples)', FileExists(BinPath('df1read')));
   Code := RunExe('/bin/sh', ['-c', BinPath('df1read') + ' "" NAM=DF1 NAM=LOOP'], 10000, Output);
-  AssertEquals('empty address: exit 1'#10 + Output, 1, Code);
+  AssertEquals('empty address: a command-line error, exit 2'#10 + Output, 2, Code);
   AssertTrue('says why:'#10 + Output, Pos('address', Output) > 0);
   Sim := StartSimPty(['--timeout=10', '--quiet'], Pty);
   try
@@ -189,12 +189,13 @@ begin
     AssertTrue(Output, Pos('L11:2 = -99999', Output) > 0);
     Run('df1read', ['R6:0.LEN', '1'], 0);
     AssertTrue(Output, Pos('R6:0.LEN = 8', Output) > 0);
-    { refusals: a value out of range and a bad address before sending,
-      an address the PLC does not have after }
-    Run('df1write', ['N7:0', '40000'], 1);
+    { refusals: a value out of range and a bad address before anything is
+      opened (command-line errors, exit 2), an address the PLC does not
+      have after }
+    Run('df1write', ['N7:0', '40000'], 2);
     AssertTrue(Output, Pos('value 40000 for N7:0 is not -32768..32767', Output) > 0);
-    Run('df1write', ['B3:1/4', '2'], 1);
-    Run('df1read', ['N7:0.ACC', '1'], 1);
+    Run('df1write', ['B3:1/4', '2'], 2);
+    Run('df1read', ['N7:0.ACC', '1'], 2);
     AssertTrue(Output, Pos('".ACC"', Output) > 0);
     Run('df1write', ['N99:0', '1'], 3);
     AssertTrue(Output, Pos('EXT STS $06', Output) > 0);

@@ -428,11 +428,12 @@ begin
     AssertTrue(Out, Pos(' PAR=E ', Out) > 0)
   else
     AssertTrue(Out, Pos('PAR=E": device refuses the setting', Out) > 0);
-  { a bad one is refused by the COM layer, naming the token }
-  AssertEquals(1, RunBin('df1sim', ['--pty', '--par=X', '--timeout=1'], 5000, Out));
+  { a bad one is refused by the COM layer, naming the token: a
+    command-line error (exit 2), found before anything is opened }
+  AssertEquals(2, RunBin('df1sim', ['--pty', '--par=X', '--timeout=1'], 5000, Out));
   AssertTrue(Out, Pos('PAR=X', Out) > 0);
   { with a parameter string they would be lost: refused }
-  AssertEquals(1, RunBin('df1sim', ['--pty', '--bd=9600', 'NAM=DF1', 'MAS=SLAVE',
+  AssertEquals(2, RunBin('df1sim', ['--pty', '--bd=9600', 'NAM=DF1', 'MAS=SLAVE',
     'NAM=COM', 'DRV=PTY'], 5000, Out));
   AssertTrue(Out, Pos('--bd/--par with a parameter string', Out) > 0);
 end;

@@ -3,13 +3,15 @@
 #  0. no file points outside the repository;
 #  1. chn.lpk lists every unit of src/;
 #  2. every complete program in README.md ("program ...;" in a ```pascal
-#     block) is built outside the tree the three ways the README gives -
+#     block), and docs/TOOLS.md's three, is built outside the tree the three ways the README gives -
 #     -Fu to this checkout, "make install" (per user, found by plain fpc),
 #     the Lazarus package (lazbuild) - and run against tools/df1sim on a
 #     pty: each must print "Ok";
 #  3. make install DESTDIR=... PREFIX=/usr puts the units where Debian's
-#     fpc looks, a program builds against them, make uninstall removes them;
-#  4. fpmake.pp builds and installs the package.
+#     fpc looks, a program builds against them, the tools go into usr/bin
+#     with man pages and work there, make uninstall removes it all;
+#  4. fpmake.pp builds and installs the package;
+#  5. make doc: the pasdoc API reference, no warnings, every unit.
 # Prints "ok|FAIL|skip  name" lines; tests/run.sh counts them.
 set -u
 BUILD=${BUILD:-build}
@@ -65,7 +67,7 @@ PARAMS="NAM=DF1 NOD=0 DNO=1 FHD=FULL CRC=ON NAM=COM DEV=$PTY BD=9600"
 # device and prints the simulator's N7:0 (0 in its default table), the
 # others take a parameter string and print "Ok"
 build_run() {
-  local way=$1 dir=$2 p=$3 arg=$PARAMS want='^Ok'; shift 3
+  local way=$1 dir=$2 p=$3 arg=$PARAMS want=${WANT:-'^Ok'}; shift 3
   if ! (cd "$dir" && "$@") >"$dir/$p.build" 2>&1; then
     bad "package: README program $p ($way) does not build" "$dir/$p.build"; return
   fi
@@ -79,11 +81,38 @@ build_run() {
   fi
 }
 
-# way 1: -Fu to the checkout
+# way 1: -Fu to the checkout, the README's command as written (with this
+# checkout for /path/to/chn and the program for plcecho.pas), in a fresh
+# folder: the README's "mkdir -p lib" comes first
+way1=$(awk '/^\*\*1\. Point fpc at a checkout/ { f = 1 } f && /^```sh/ { g = 1; next } g && /^```/ { exit } g { print }' README.md)
+if ! echo "$way1" | grep -q -- '-FUlib'; then bad "package: README way 1 (-FUlib) not found"; fi
 for p in $progs; do
-  d="$TMP/checkout-$p"; mkdir -p "$d/lib"; cp "$TMP/readme/$p.pas" "$d/"
-  build_run "-Fu to the checkout" "$d" "$p" "$FPC" -v0 -Fu"$REPO/src" -Fi"$REPO/src" -FUlib "$p.pas"
+  d="$TMP/checkout-$p"; mkdir -p "$d"; cp "$TMP/readme/$p.pas" "$d/"
+  cmd=$(echo "$way1" | sed "s|/path/to/chn|$REPO|g; s|plcecho\.pas|$p.pas|g; s|^fpc |$FPC -v0 |")
+  build_run "-Fu to the checkout, README's commands" "$d" "$p" bash -c "$cmd"
 done
+
+# docs/TOOLS.md's programs (the three styles), the same way, each with
+# the line it prints against the simulator's default table
+mkdir -p "$TMP/tools-md"
+awk -v dir="$TMP/tools-md" '
+  /^```pascal/ { inblk = 1; text = ""; name = ""; next }
+  /^```/ && inblk { inblk = 0; if (name != "") { f = dir "/" name ".pas"; printf "%s", text > f; close(f) } next }
+  inblk { text = text $0 "\n"; if (name == "" && match($0, /^program [A-Za-z0-9_]+;/)) { name = substr($0, 9, RLENGTH - 9) } }
+' docs/TOOLS.md
+tprogs=$(cd "$TMP/tools-md" && ls *.pas 2>/dev/null | sed 's/\.pas$//')
+[ "$(echo $tprogs)" = "blockread pollecho stepread" ] || bad "package: docs/TOOLS.md: the three programs, found: $(echo $tprogs)"
+for p in $tprogs; do
+  case $p in
+    blockread) WANT='^N7:0 = 0, N7:1 = 10$' ;;
+    stepread) WANT='^line 1: N7:0 = 0, N7:1 = 10$' ;;
+    pollecho) WANT='^echo: Ok$' ;;
+    *) WANT='^never$' ;;
+  esac
+  d="$TMP/toolsmd-$p"; mkdir -p "$d/lib"; cp "$TMP/tools-md/$p.pas" "$d/"
+  build_run "docs/TOOLS.md, -Fu to the checkout" "$d" "$p" "$FPC" -v0 -Sew -Fu"$REPO/src" -Fi"$REPO/src" -FUlib "$p.pas"
+done
+WANT=
 
 # the checkout stays clean: a build that follows the README leaves no
 # compiled unit beside the library's sources
@@ -128,9 +157,50 @@ if make -s install BUILD="$BUILD" DESTDIR="$D" >"$TMP/dinstall.log" 2>&1 && [ -f
   p=$(echo $progs | cut -d' ' -f1)
   d="$TMP/destdir"; mkdir -p "$d"; cp "$TMP/readme/$p.pas" "$d/"
   build_run "make install DESTDIR= PREFIX=/usr" "$d" "$p" "$FPC" -v0 -Fu"$U" "$p.pas"
+  # the tools: in usr/bin, each answering --help, with a man page
+  TOOLS_INSTALLED="df1sim chndecode chntap df1read df1write df1echo comraw waitany"
+  missing=""
+  for t in $TOOLS_INSTALLED; do
+    [ -x "$D/usr/bin/$t" ] && "$D/usr/bin/$t" --help 2>/dev/null | grep -q "^Usage: $t " || missing="$missing $t"
+  done
+  if [ -z "$missing" ]; then ok "package: make install puts the tools into \$PREFIX/bin, each answers --help"
+  else bad "package: tools missing in $D/usr/bin or without --help:$missing"; fi
+  if ! command -v help2man >/dev/null 2>&1; then
+    skip "package: man pages of the tools: help2man missing (apt-get install help2man)"
+  else
+    missing=""
+    for t in $TOOLS_INSTALLED; do
+      grep -q "^\.TH $(echo $t | tr a-z A-Z) \"1\"" "$D/usr/share/man/man1/$t.1" 2>/dev/null || missing="$missing $t"
+    done
+    if [ -z "$missing" ]; then ok "package: a man page (help2man) for every installed tool in \$PREFIX/share/man/man1"
+    else bad "package: man pages missing or not a man page:$missing"; fi
+  fi
+  # the installed tools at work, with nothing of the checkout: the
+  # installed df1sim on its pty, the installed df1read and df1write against
+  # it, the installed chndecode on the trace df1read wrote
+  (
+    cd "$TMP" || exit 1
+    "$D/usr/bin/df1sim" --pty --timeout 20 --quiet >"$TMP/isim.log" 2>&1 &
+    isim=$!
+    for _ in $(seq 50); do [ -s "$TMP/isim.log" ] && break; sleep 0.1; done
+    read -r _ IPTY <"$TMP/isim.log"
+    P2="NAM=DF1 NOD=0 DNO=1 NAM=TRC FILE=$TMP/itrace.log NAM=COM DEV=$IPTY BD=19200"
+    "$D/usr/bin/df1write" N7:3 33 $P2 >"$TMP/itools.log" 2>&1 &&
+    "$D/usr/bin/df1read" N7:3 1 $P2 >>"$TMP/itools.log" 2>&1 &&
+    "$D/usr/bin/chndecode" --df1 "$TMP/itrace.log" >>"$TMP/itools.log" 2>&1
+    rc=$?
+    kill $isim 2>/dev/null; wait $isim 2>/dev/null
+    exit $rc
+  )
+  if [ $? = 0 ] && grep -q '^N7:3 = 33$' "$TMP/itools.log" && grep -q ' 0 errors, 0 incomplete$' "$TMP/itools.log"; then
+    ok "package: the installed df1sim, df1write, df1read and chndecode work together"
+  else
+    bad "package: the installed tools against each other" "$TMP/itools.log"
+  fi
   make -s uninstall BUILD="$BUILD" DESTDIR="$D" >/dev/null 2>&1
-  if [ -e "$U" ] || [ -e "$D/usr/share/chn" ]; then bad "package: make uninstall left files"
-  else ok "package: make uninstall removes the units and sources"; fi
+  left=$(cd "$D" 2>/dev/null && find . -type f | head -n 5)
+  if [ -e "$U" ] || [ -e "$D/usr/share/chn" ] || [ -n "$left" ]; then bad "package: make uninstall left files: $left"
+  else ok "package: make uninstall removes the units, sources, tools and man pages"; fi
 else
   bad "package: make install DESTDIR=... PREFIX=/usr (units in $U)" "$TMP/dinstall.log"
 fi
@@ -148,4 +218,20 @@ if (cd "$F" && "$FPC" -v0 fpmake.pp && ./fpmake build && \
   build_run "fpmake install, plain fpc" "$d" "$p" env HOME="$F/home" "$FPC" -v0 "$p.pas"
 else
   bad "package: fpc fpmake.pp && ./fpmake build && ./fpmake install" "$F/log"
+fi
+
+# 5. the API reference: make doc (pasdoc) builds without a warning and
+# has a page for every library unit
+if ! command -v pasdoc >/dev/null 2>&1; then
+  skip "package: make doc: pasdoc missing (apt-get install pasdoc), the API reference is not checked"
+elif make -s doc BUILD="$BUILD" >"$TMP/doc.log" 2>&1; then
+  missing=""
+  for f in $(ls src/*.pas src/*/*.pas 2>/dev/null); do
+    u=$(basename "$f" .pas)
+    [ -f "$BUILD/doc/$u.html" ] || missing="$missing $u"
+  done
+  if [ -z "$missing" ]; then ok "package: make doc: the API reference (pasdoc, no warnings) has every library unit"
+  else bad "package: make doc: no page for$missing"; fi
+else
+  bad "package: make doc (pasdoc warnings or errors)" "$TMP/doc.log"
 fi

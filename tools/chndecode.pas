@@ -6,7 +6,9 @@
                 --pcap     a pcap file (link type 250) only
                 --hex      hex text ('10 02 03 00 ...'), one received stream
                 --bin      a binary file, one received stream
-      protocol  --df1 [--crc|--bcc] [--half [--master=tx|rx]]   (default --df1 --crc)
+      protocol  --df1 [--crc|--bcc] [--half [--master=tx|rx]]   (default --df1;
+                without --crc or --bcc the check is found from the frames
+                and named on standard error)
                 --ft12 [--adr=0..2] [--len=N] [--cot-size=1|2] [--ca-size=1|2] [--ioa-size=1..3]
                 --ics
       options   --lines=A-B   only chunks whose header is on lines A..B
@@ -20,23 +22,26 @@
     FILE '-' reads standard input.
 
   The work is done by units ChnFrameDecode, ChnPcap and ChnLadder
-  (docs/chndecode.md). Exit code: 0 all
-  frames good, 1 broken or incomplete frames found, 2 usage error or
-  unreadable input. }
+  (docs/chndecode.md); the command line is unit ChnCli's (docs/TOOLS.md):
+  every value option takes --opt VALUE and --opt=VALUE. Exit code: 0 all
+  frames good, 1 broken or incomplete frames found, 2 usage error, or an
+  input that is unreadable or damaged (a pcap cut off or with an
+  impossible record, a chunk shorter than its header says): what could
+  be read is still decoded and printed. }
 program chndecode;
 
 {$MODE OBJFPC}{$H+}
 
 uses
   SysUtils, Classes, DateUtils, uString, ChnTypes, ChnTrcFormat, ChnPcap,
-  ChnFrameDecode, ChnLadder;
+  ChnFrameDecode, ChnLadder, ChnCli;
+
+var
+  Cli: tCli;
 
 procedure Usage(const Why: string);
 begin
-  WriteLn(StdErr, 'chndecode: ', Why);
-  WriteLn(StdErr, 'usage: chndecode [--capture|--pcap|--hex|--bin] [--df1 [--crc|--bcc] [--half [--master=tx|rx]] | --ft12 [--adr=N] [--len=N] [--cot-size=N] [--ca-size=N] [--ioa-size=N] | --ics] [--lines=A-B]');
-  WriteLn(StdErr, '                 [--to-pcap=OUT [--date=YYYY-MM-DD] | --to-text | --svg=OUT [--gap=MS] [--title=T]] FILE');
-  Halt(2);
+  CliUsageError(Cli, Why, '');
 end;
 
 function ReadAll(const Name: string; out Text: AnsiString): Boolean;
@@ -133,93 +138,111 @@ var
   Data: tTrcBytes;
   Lines: TStringList;
   Input: Char;       { c, h, b }
-  Arg, Key, Value, FileName, Err: string;
+  FileName, Err, Value, Why: string;
   Text: AnsiString;
   I, Count, Dash: Integer;
   N, N2: LongInt;
+  Damaged: Boolean;
 begin
+  CliInit(Cli, 'chndecode', '[OPTION]... FILE',
+    'Print each frame of a capture decoded: DF1, FT 1.2 or ICS. FILE is a RACOM ' +
+    'text capture or NAM=TRC log (--capture, the default), a pcap file of link type ' +
+    '250 (RTAC serial), hex text or a binary stream; - reads standard input. DF1 ' +
+    'without --crc or --bcc: the check is found from the frames and named on ' +
+    'standard error.');
+  CliOption(Cli, 'capture', #0, '', 'a RACOM text capture / NAM=TRC log, or a pcap (default)');
+  CliOption(Cli, 'pcap', #0, '', 'a pcap file (link type 250) only');
+  CliOption(Cli, 'hex', #0, '', 'hex text (''10 02 03 00 ...''), one received stream');
+  CliOption(Cli, 'bin', #0, '', 'a binary file, one received stream');
+  CliOption(Cli, 'df1', #0, '', 'DF1 (default)');
+  CliOption(Cli, 'crc', #0, '', 'DF1 with CRC-16');
+  CliOption(Cli, 'bcc', #0, '', 'DF1 with BCC');
+  CliOption(Cli, 'half', #0, '', 'DF1 half duplex');
+  CliOption(Cli, 'master', #0, 'tx|rx', 'DF1 half duplex: the direction of the master''s bytes');
+  CliOption(Cli, 'ft12', #0, '', 'FT 1.2 (IEC 60870-5-2)');
+  CliOption(Cli, 'adr', #0, '0..2', 'FT 1.2 link address octets (default 1)');
+  CliOption(Cli, 'len', #0, 'N', 'FT 1.2 data octets of a fixed frame (default 0)');
+  CliOption(Cli, 'cot-size', #0, '1|2', 'FT 1.2 ASDU: cause of transmission octets (default 2)');
+  CliOption(Cli, 'ca-size', #0, '1|2', 'FT 1.2 ASDU: common address octets (default 2)');
+  CliOption(Cli, 'ioa-size', #0, '1..3', 'FT 1.2 ASDU: information object address octets (default 3)');
+  CliOption(Cli, 'ics', #0, '', 'DACS ICSlink');
+  CliOption(Cli, 'lines', #0, 'A-B', 'only chunks whose header is on lines A..B (pcap: records); ' +
+    'A- for all from A');
+  CliOption(Cli, 'to-pcap', #0, 'OUT', 'write the chunks as a pcap file; nothing is decoded');
+  CliOption(Cli, 'date', #0, 'YYYY-MM-DD', 'with --to-pcap: the date of the times (default today)');
+  CliOption(Cli, 'to-text', #0, '', 'print the chunks in the trace layer''s text format');
+  CliOption(Cli, 'svg', #0, 'OUT', 'also draw a ladder diagram into OUT');
+  CliOption(Cli, 'gap', #0, 'MS', 'with --svg: mark pauses longer than MS (default 1000, 0 none)');
+  CliOption(Cli, 'title', #0, 'T', 'with --svg: the title (default the file name)');
+  CliEpilog(Cli, 'Examples:' + LineEnding +
+    '  chndecode --df1 plc.log' + LineEnding +
+    '  chndecode --df1 --svg=plc.svg plc.pcap' + LineEnding +
+    '  chndecode --ft12 --adr=1 --lines 1-20 line.log' + LineEnding);
+  CliExit(Cli, 0, 'every frame good');
+  CliExit(Cli, 1, 'broken or incomplete frames found');
+  CliExit(Cli, 2, 'also: the input cannot be read or is damaged (a pcap cut off or with an ' +
+    'impossible record, a chunk shorter than announced); what could be read is decoded');
+  CliParse(Cli);
   DecodeDefaults(Opt);
   LadderDefaults(Ladder);
   Input := 'c';
-  FileName := '';
   ToPcap := '';
   ToText := '';
   SvgOut := '';
   Midnight := Date;
-  for I := 1 to ParamCount do
-  begin
-    Arg := ParamStr(I);
-    if (Arg = '-') or (Copy(Arg, 1, 2) <> '--') then
-    begin
-      if FileName <> '' then
-        Usage('more than one input file');
-      FileName := Arg;
-      Continue;
-    end;
-    DecodeSplitArg(Arg, Key, Value);
-    N := 0;
-    if DecodeOption(Key, Value, Opt, Err) then
-    begin
-      if Err <> '' then
-        Usage(Err);
-    end
-    else if Key = '--capture' then Input := 'c'
-    else if Key = '--pcap' then Input := 'p'
-    else if Key = '--hex' then Input := 'h'
-    else if Key = '--bin' then Input := 'b'
-    else if Key = '--master' then
-    begin
-      if Value = 'tx' then Opt.MasterDir := trcTx
-      else if Value = 'rx' then Opt.MasterDir := trcRx
-      else Usage('--master wants tx or rx');
-    end
-    else if Key = '--to-pcap' then
-    begin
-      if Value = '' then
-        Usage('--to-pcap wants a file name');
-      ToPcap := Value;
-    end
-    else if Key = '--to-text' then ToText := 'y'
-    else if Key = '--svg' then
-    begin
-      if Value = '' then
-        Usage('--svg wants a file name');
-      SvgOut := Value;
-    end
-    else if Key = '--gap' then
-    begin
-      if not StrToNum(Value, 0, 86400000, N) then
-        Usage('--gap wants milliseconds, 0..86400000');
-      Ladder.GapMs := N;
-    end
-    else if Key = '--title' then Ladder.Title := Value
-    else if Key = '--date' then
-    begin
-      Y := 0;
-      Mo := 0;
-      Dy := 0;
-      if (Length(Value) <> 10) or (Value[5] <> '-') or (Value[8] <> '-') or
-         not StrToNum(Copy(Value, 1, 4), 1970, 2105, Y) or
-         not StrToNum(Copy(Value, 6, 2), 1, 12, Mo) or
-         not StrToNum(Copy(Value, 9, 2), 1, 31, Dy) or
-         not TryEncodeDate(Y, Mo, Dy, Midnight) then
-        Usage('--date wants YYYY-MM-DD, e.g. 2026-12-01');
-    end
-    else if Key = '--lines' then
-    begin
-      Dash := Pos('-', Value);
-      N2 := 0;
-      if (Dash = 0) or not StrToNum(Copy(Value, 1, Dash - 1), 1, MaxLongInt, N) or
-         ((Dash < Length(Value)) and not StrToNum(Copy(Value, Dash + 1, MaxInt), N, MaxLongInt, N2)) then
-        Usage('--lines wants A-B or A- (line numbers)');
-      Opt.FirstLine := N;
-      Opt.LastLine := N2;
-    end
-    else
-      Usage('unknown option ' + Arg);
-  end;
-  if FileName = '' then
+  if CliArgCount(Cli) = 0 then
     Usage('no input file');
+  if CliArgCount(Cli) > 1 then
+    CliUsageError(Cli, 'more than one input file', Cli.Args[1]);
+  FileName := Cli.Args[0];
+  for I := 0 to High(DecodeOptionNames) do
+    if CliHas(Cli, DecodeOptionNames[I]) then
+      if DecodeOption('--' + DecodeOptionNames[I], CliValue(Cli, DecodeOptionNames[I], ''), Opt, Err) and
+         (Err <> '') then
+        CliUsageError(Cli, Err, CliValue(Cli, DecodeOptionNames[I], ''));
+  if CliHas(Cli, 'pcap') then Input := 'p';
+  if CliHas(Cli, 'hex') then Input := 'h';
+  if CliHas(Cli, 'bin') then Input := 'b';
+  case CliChoice(Cli, 'master', 'TX|RX', 0) of
+    0: Opt.MasterDir := trcTx;
+    1: Opt.MasterDir := trcRx;
+  end;
+  ToPcap := CliValue(Cli, 'to-pcap', '');
+  if CliHas(Cli, 'to-pcap') and (ToPcap = '') then
+    Usage('--to-pcap wants a file name');
+  if CliHas(Cli, 'to-text') then
+    ToText := 'y';
+  SvgOut := CliValue(Cli, 'svg', '');
+  if CliHas(Cli, 'svg') and (SvgOut = '') then
+    Usage('--svg wants a file name');
+  Ladder.GapMs := CliNum(Cli, 'gap', 0, 86400000, Ladder.GapMs);
+  Ladder.Title := CliValue(Cli, 'title', Ladder.Title);
+  if CliHas(Cli, 'date') then
+  begin
+    Value := CliValue(Cli, 'date', '');
+    Y := 0;
+    Mo := 0;
+    Dy := 0;
+    if (Length(Value) <> 10) or (Value[5] <> '-') or (Value[8] <> '-') or
+       not StrToNum(Copy(Value, 1, 4), 1970, 2105, Y) or
+       not StrToNum(Copy(Value, 6, 2), 1, 12, Mo) or
+       not StrToNum(Copy(Value, 9, 2), 1, 31, Dy) or
+       not TryEncodeDate(Y, Mo, Dy, Midnight) then
+      CliUsageError(Cli, '--date wants YYYY-MM-DD, e.g. 2026-12-01', Value);
+  end;
+  if CliHas(Cli, 'lines') then
+  begin
+    Value := CliValue(Cli, 'lines', '');
+    Dash := Pos('-', Value);
+    N := 0;
+    N2 := 0;
+    if (Dash = 0) or not StrToNum(Copy(Value, 1, Dash - 1), 1, MaxLongInt, N) or
+       ((Dash < Length(Value)) and not StrToNum(Copy(Value, Dash + 1, MaxInt), N, MaxLongInt, N2)) then
+      CliUsageError(Cli, '--lines wants A-B or A- (line numbers)', Value);
+    Opt.FirstLine := N;
+    Opt.LastLine := N2;
+  end;
+  Damaged := False;
   if not ReadAll(FileName, Text) then
     Halt(2);
   if (Input = 'c') and IsPcap(Text) then
@@ -237,6 +260,7 @@ begin
             ' at byte ', Info.ErrPos, ': ', Info.ErrText);
           if (R <> res_PcapCut) or (Count = 0) then
             Halt(2);
+          Damaged := True;
         end;
         if Info.Skipped > 0 then
           WriteLn(StdErr, 'chndecode: ', FileName, ': ', Info.Skipped,
@@ -290,6 +314,14 @@ begin
         Write(TrcFormat(Frames[I].TimeMs, Frames[I].Dir, I, 0, trcHex, 'TRC'));
     Halt(0);
   end;
+  if (Opt.Proto = dpDF1) and not CliHas(Cli, 'crc') and not CliHas(Cli, 'bcc') then
+  begin
+    Opt.Crc := DecodeGuessDF1Check(Opt, Frames, Count, Why);
+    if Opt.Crc then
+      WriteLn(StdErr, 'chndecode: DF1 check: CRC, found from the frames (', Why, ')')
+    else
+      WriteLn(StdErr, 'chndecode: DF1 check: BCC, found from the frames (', Why, ')');
+  end;
   Lines := TStringList.Create;
   try
     DecodeBegin(Dec, Opt, Lines);
@@ -314,6 +346,12 @@ begin
     WriteLn(StdErr, 'chndecode: ', FileName, ': no chunks found');
     Halt(2);
   end;
-  if (Stats.Errors > 0) or (Stats.Incomplete > 0) or (Stats.BadChunks > 0) then
+  if Damaged or (Stats.BadChunks > 0) then
+  begin
+    WriteLn(StdErr, 'chndecode: ', FileName, ': the input is damaged (',
+      Stats.BadChunks, ' chunks shorter than announced); what could be read is above');
+    Halt(2);
+  end;
+  if (Stats.Errors > 0) or (Stats.Incomplete > 0) then
     Halt(1);
 end.

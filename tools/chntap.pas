@@ -6,7 +6,9 @@
     chntap [protocol] [--pcap=FILE] [--trace=FILE] [--quiet] 'A' 'B'
       A, B      parameter strings of the two sides, e.g.
                 'NAM=COM DEV=/dev/ttyUSB0 BD=19200 PAR=E'
-      protocol  --df1 [--crc|--bcc] [--half [--master=A|B]]  (default)
+      protocol  --df1 [--crc|--bcc] [--half [--master=A|B]]  (default; without
+                --crc or --bcc the check is found from the first frames,
+                and the choice printed)
                 --ft12 [--adr=0..2] [--len=N] [--cot-size=1|2] [--ca-size=1|2] [--ioa-size=1..3]
                 --ics
                 --raw     decode nothing, only forward (and trace)
@@ -26,7 +28,9 @@
   open with its settings; bytes that arrive meanwhile for the missing side
   are counted as dropped. SIGINT or SIGTERM ends the tap: both sides are
   closed, the files completed, the summary printed; exit code 0. Exit code
-  2: a usage error or a side that cannot be opened at the start.
+  1: a side that cannot be opened at the start; 2: a command-line error
+  (unit ChnCli, docs/TOOLS.md; both strings are checked before either side
+  is opened).
 
   The loop polls A then B; on a COM layer a poll that finds nothing waits
   up to IDL= ms (default 1), and that wait (unit ChnWait) ends at input on
@@ -38,8 +42,8 @@ program chntap;
 
 uses
   {$IFDEF UNIX}BaseUnix,{$ENDIF}
-  SysUtils, Classes, uString, ChnTypes, ChnVirt, ChnCom, ChnLoop, ChnTrc,
-  ChnTrcFormat, ChnFrameDecode;
+  SysUtils, Classes, uString, ChnTypes, ChnVirt, ChnLayers, ChnCom, ChnTrc,
+  ChnTrcFormat, ChnFrameDecode, ChnCli;
 
 const
   BufSize   = 65535;
@@ -63,11 +67,16 @@ type
   end;
 
 var
+  Cli: tCli;
   Sides: array[0..1] of tSide;
   Stop: Boolean = False;
   Quiet: Boolean = False;
   Raw: Boolean = False;
   Dec: tDecoder;
+  { DF1 without --crc/--bcc: a BCC decoder beside Dec (CRC) until the
+    first frame tells them apart }
+  Guessing: Boolean = False;
+  DecBcc: tDecoder;
 
 {$IFDEF UNIX}
 procedure OnSignal(Sig: cint); cdecl;
@@ -78,10 +87,7 @@ end;
 
 procedure Usage(const Why: string);
 begin
-  WriteLn(StdErr, 'chntap: ', Why);
-  WriteLn(StdErr, 'usage: chntap [--df1 [--crc|--bcc] [--half [--master=A|B]] | --ft12 [--adr=N] [--len=N] [--cot-size=N] [--ca-size=N] [--ioa-size=N] | --ics | --raw]');
-  WriteLn(StdErr, '              [--pcap=FILE] [--trace=FILE] [--quiet] ''NAM=COM DEV=... (side A)'' ''NAM=COM DEV=... (side B)''');
-  Halt(2);
+  CliUsageError(Cli, Why, '');
 end;
 
 procedure Say(const S: string);
@@ -205,6 +211,23 @@ begin
   SetLength(F.Data, Len);
   Move(Sides[I].Buf, F.Data[0], Len);
   DecodeChunk(Dec, F);
+  if Guessing then
+  begin
+    DecodeChunk(DecBcc, F);
+    if (Dec.Stats.Errors <> DecBcc.Stats.Errors) or (Dec.Stats.Frames <> DecBcc.Stats.Frames) then
+    begin
+      Guessing := False;
+      if not DecodeBetterCheck(Dec.Stats, DecBcc.Stats) then
+      begin
+        Dec := DecBcc;                 { its events of this chunk are printed below }
+        Say('DF1 check: BCC, found from the first frames (--crc or --bcc sets it)');
+      end
+      else
+        Say('DF1 check: CRC, found from the first frames (--crc or --bcc sets it)');
+    end
+    else
+      DecBcc.EventCount := 0;
+  end;
   for K := 0 to Dec.EventCount - 1 do
   begin
     E := @Dec.Events[K];
@@ -308,66 +331,67 @@ var
   Opt: tDecOptions;
   Stats: tDecStats;
   PcapFile, TraceFile, Prefix: string;
-  Arg, Key, Value, Err: AnsiString;
-  NSides, I: Integer;
+  Err: AnsiString;
+  I: Integer;
   Full: AnsiString;
 begin
+  CliInit(Cli, 'chntap', '[OPTION]... SIDE-A SIDE-B',
+    'A software Y-cable between two serial devices: every byte that arrives on one ' +
+    'side is passed on to the other as it arrives, each frame is printed decoded ' +
+    'with its time and direction (A>B, B>A), and the traffic can be written as a ' +
+    'pcap file and/or a text trace. SIDE-A and SIDE-B are parameter strings ' +
+    '(NAM=COM DEV=/dev/ttyUSB0 BD=19200 ...). A side that goes away is reported and ' +
+    'opened again every second; SIGINT or SIGTERM ends the tap.');
+  CliOption(Cli, 'df1', #0, '', 'DF1 (default)');
+  CliOption(Cli, 'crc', #0, '', 'DF1 with CRC-16 (default: found from the first frames)');
+  CliOption(Cli, 'bcc', #0, '', 'DF1 with BCC');
+  CliOption(Cli, 'half', #0, '', 'DF1 half duplex');
+  CliOption(Cli, 'master', #0, 'A|B', 'DF1 half duplex: the side of the master');
+  CliOption(Cli, 'ft12', #0, '', 'FT 1.2 (IEC 60870-5-2)');
+  CliOption(Cli, 'adr', #0, '0..2', 'FT 1.2 link address octets (default 1)');
+  CliOption(Cli, 'len', #0, 'N', 'FT 1.2 data octets of a fixed frame');
+  CliOption(Cli, 'cot-size', #0, '1|2', 'FT 1.2 ASDU: cause of transmission octets (default 2)');
+  CliOption(Cli, 'ca-size', #0, '1|2', 'FT 1.2 ASDU: common address octets (default 2)');
+  CliOption(Cli, 'ioa-size', #0, '1..3', 'FT 1.2 ASDU: information object address octets (default 3)');
+  CliOption(Cli, 'ics', #0, '', 'DACS ICSlink');
+  CliOption(Cli, 'raw', #0, '', 'decode nothing, only forward (and trace)');
+  CliOption(Cli, 'pcap', #0, 'FILE', 'write a pcap of link type 250 (NAM=TRC MOD=PCAP)');
+  CliOption(Cli, 'trace', #0, 'FILE', 'write the trace layer''s text log');
+  CliOption(Cli, 'quiet', 'q', '', 'no line per frame, only the summary at the end');
+  CliEpilog(Cli, 'Example:' + LineEnding +
+    '  chntap --df1 --pcap=line.pcap ''NAM=COM DEV=/dev/ttyUSB0 BD=19200'' ''NAM=COM DEV=/dev/ttyUSB1 BD=19200''' +
+    LineEnding);
+  CliExit(Cli, 0, 'ended by SIGINT or SIGTERM');
+  CliExit(Cli, 1, 'a side could not be opened at the start');
+  CliParse(Cli);
   DecodeDefaults(Opt);
-  PcapFile := '';
-  TraceFile := '';
-  NSides := 0;
-  I := 1;
-  while I <= ParamCount do
-  begin
-    Arg := ParamStr(I);
-    Inc(I);
-    if Copy(Arg, 1, 2) <> '--' then
-    begin
-      if NSides = 2 then
-        Usage('more than two sides: ' + Arg);
-      if Length(Arg) > 255 then
-        Usage('parameter string longer than 255 characters: ' + Arg);
-      Sides[NSides].Params := Arg;
-      Inc(NSides);
-      Continue;
-    end;
-    DecodeSplitArg(Arg, Key, Value);
-    if (Value = '') and (Pos('=', Arg) = 0) and
-       ((Key = '--pcap') or (Key = '--trace')) and (I <= ParamCount) then
-    begin
-      Value := ParamStr(I);
-      Inc(I);
-    end;
-    if DecodeOption(Key, Value, Opt, Err) then
-    begin
-      if Err <> '' then
-        Usage(Err);
-    end
-    else if Key = '--master' then
-    begin
-      if UpperCase(Value) = 'A' then Opt.MasterDir := trcTx
-      else if UpperCase(Value) = 'B' then Opt.MasterDir := trcRx
-      else Usage('--master wants A or B');
-    end
-    else if Key = '--raw' then Raw := True
-    else if Key = '--quiet' then Quiet := True
-    else if Key = '--pcap' then
-    begin
-      if (Value = '') or (Pos(' ', Value) > 0) then
-        Usage('--pcap wants a file name without blanks');
-      PcapFile := Value;
-    end
-    else if Key = '--trace' then
-    begin
-      if (Value = '') or (Pos(' ', Value) > 0) then
-        Usage('--trace wants a file name without blanks');
-      TraceFile := Value;
-    end
-    else
-      Usage('unknown option ' + Arg);
+  for I := 0 to High(DecodeOptionNames) do
+    if CliHas(Cli, DecodeOptionNames[I]) then
+      if DecodeOption('--' + DecodeOptionNames[I], CliValue(Cli, DecodeOptionNames[I], ''), Opt, Err) and
+         (Err <> '') then
+        CliUsageError(Cli, Err, CliValue(Cli, DecodeOptionNames[I], ''));
+  case CliChoice(Cli, 'master', 'A|B', 0) of
+    0: Opt.MasterDir := trcTx;
+    1: Opt.MasterDir := trcRx;
   end;
-  if NSides < 2 then
+  Raw := CliHas(Cli, 'raw');
+  Quiet := CliHas(Cli, 'quiet');
+  PcapFile := CliValue(Cli, 'pcap', '');
+  TraceFile := CliValue(Cli, 'trace', '');
+  if CliHas(Cli, 'pcap') and ((PcapFile = '') or (Pos(' ', PcapFile) > 0)) then
+    CliUsageError(Cli, '--pcap wants a file name without blanks', PcapFile);
+  if CliHas(Cli, 'trace') and ((TraceFile = '') or (Pos(' ', TraceFile) > 0)) then
+    CliUsageError(Cli, '--trace wants a file name without blanks', TraceFile);
+  if CliArgCount(Cli) > 2 then
+    CliUsageError(Cli, 'more than two sides', Cli.Args[2]);
+  if CliArgCount(Cli) < 2 then
     Usage('two parameter strings needed, side A and side B');
+  for I := 0 to 1 do
+  begin
+    if Length(Cli.Args[I]) > 255 then
+      CliUsageError(Cli, 'parameter string longer than 255 characters', Copy(Cli.Args[I], 1, 40) + '...');
+    Sides[I].Params := Cli.Args[I];
+  end;
   { the files are trace layers on top of B's stack }
   Prefix := '';
   if PcapFile <> '' then
@@ -389,19 +413,30 @@ begin
     Sides[I].Frames := 0;
     Sides[I].Errors := 0;
   end;
+  { both strings whole before anything is opened }
+  for I := 0 to 1 do
+    Sides[I].Chn := CliChannel(Cli, Sides[I].Params, '');
   if not OpenSide(Sides[0], False) or not OpenSide(Sides[1], False) then
   begin
     for I := 0 to 1 do
       if Sides[I].Chn <> nil then
         Dispose(Sides[I].Chn, Done);
-    Halt(2);
+    Halt(1);
   end;
   {$IFDEF UNIX}
   FpSignal(SIGINT, @OnSignal);
   FpSignal(SIGTERM, @OnSignal);
   {$ENDIF}
+  Guessing := (Opt.Proto = dpDF1) and not CliHas(Cli, 'crc') and not CliHas(Cli, 'bcc') and not Raw;
+  Opt.Crc := Opt.Crc or Guessing;
   DecodeBegin(Dec, Opt, nil);
   Dec.KeepEvents := True;
+  if Guessing then
+  begin
+    Opt.Crc := False;
+    DecodeBegin(DecBcc, Opt, nil);
+    DecBcc.KeepEvents := True;
+  end;
   Say('A: ' + Sides[0].Chn^.ChGetParam(''));
   Say('B: ' + Sides[1].Chn^.ChGetParam(''));
   while not Stop do

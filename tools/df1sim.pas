@@ -7,7 +7,9 @@
     df1sim [options] [parameter string]
       --pty             create a pty pair; the first line on standard output
                         is "PTY /dev/pts/N", the device to connect to
-      --dev=PATH        serial device (NAM=COM DEV=PATH), default /dev/ttyS0
+      --dev=PATH        serial device (NAM=COM DEV=PATH); one of --pty,
+                        --dev, --listen or a parameter string is needed:
+                        df1sim never opens a device nobody named
       --listen=[ADDR:]PORT  serve over TCP instead (NAM=TCP LISTEN=..., raw),
                         one client at a time, on the loopback interface
                         unless ADDR is given; the first line on standard
@@ -28,15 +30,18 @@
     ... NAM=COM DEV=/dev/ttyUSB0 BD=9600 PAR=E') is used as it is.
 
   SIGINT and SIGTERM end it cleanly: the port is closed (a pty it created
-  disappears), nothing else is touched. Exit code 0, 1 on a setup error. }
+  disappears), nothing else is touched. Every value option takes
+  "--opt VALUE" and "--opt=VALUE" (unit ChnCli, docs/TOOLS.md). Exit code
+  0 (ended by a signal, --count or --timeout), 1 the port could not be
+  opened or was lost, 2 a command-line error (nothing was opened). }
 program df1sim;
 
 {$MODE OBJFPC}{$H+}
 
 uses
   {$IFDEF UNIX}BaseUnix, ChnPty,{$ENDIF}
-  SysUtils, Classes, uString, ChnTypes, ChnVirt, ChnCom, ChnTcp, ChnTrc, ChnDF1,
-  ChnSlc, ChnDF1Link;
+  SysUtils, Classes, uString, ChnTypes, ChnVirt, ChnLayers, ChnTcp, ChnDF1,
+  ChnSlc, ChnDF1Link, ChnCli;
 
 const
   LingerMs = 1000;   { after the last counted command: time for the master's ACK }
@@ -70,17 +75,13 @@ begin
   Flush(Output);
 end;
 
+var
+  Cli: tCli;
+
 procedure Die(const Why: string);
 begin
   WriteLn(StdErr, 'df1sim: ', Why);
   Halt(1);
-end;
-
-function NumArg(const Name, Value: string; Min, Max: LongInt): LongInt;
-begin
-  Result := 0;
-  if not StrToNum(Value, Min, Max, Result) then
-    Die(Format('%s wants a number %d..%d', [Name, Min, Max]));
 end;
 
 function LoadFile(const Name: string): AnsiString;
@@ -99,7 +100,7 @@ begin
     end;
   except
     on E: Exception do
-      Die(Name + ': ' + E.Message);
+      CliUsageError(Cli, 'cannot read the data table: ' + E.Message, '--config ' + Name);
   end;
 end;
 
@@ -107,82 +108,69 @@ var
   Table: tSlcTable;
   Station: tDF1Station;
   Chn: pChnVirt;
-  Params, Arg, Key, Value, Dev, Par, ConfigName, Err, Listen: string;
+  Params, Dev, Par, ConfigName, Err, Listen: string;
   UsePty, Half, Crc, Dup, LineGiven: Boolean;
-  Node, DNo, Bd, Count, TimeoutS, I, ErrLine: LongInt;
+  Node, DNo, Bd, Count, TimeoutS, ErrLine: LongInt;
   LastMsg, CountReached: QWord;
 
 begin
-  Params := '';
-  Dev := '/dev/ttyS0';
-  Par := 'N';
-  ConfigName := '';
-  Listen := '';
-  UsePty := False;
-  LineGiven := False;
-  Half := False;
-  Crc := True;
-  Dup := True;
-  Node := 1;
-  DNo := 0;
-  Bd := 19200;
-  Count := 0;
-  TimeoutS := 0;
-  I := 1;
-  while I <= ParamCount do
-  begin
-    Arg := ParamStr(I);
-    Inc(I);
-    if Copy(Arg, 1, 2) <> '--' then
-    begin
-      Params := Trim(Params + ' ' + Arg);
-      Continue;
-    end;
-    Key := Arg;
-    Value := '';
-    if Pos('=', Arg) > 0 then
-    begin
-      Key := Copy(Arg, 1, Pos('=', Arg) - 1);
-      Value := Copy(Arg, Pos('=', Arg) + 1, MaxInt);
-    end
-    else if ((Key = '--count') or (Key = '--timeout') or (Key = '--config') or
-             (Key = '--dev') or (Key = '--node') or (Key = '--dno') or
-             (Key = '--bd') or (Key = '--par') or (Key = '--dup') or
-             (Key = '--listen')) and (I <= ParamCount) then
-    begin
-      Value := ParamStr(I);         { "--count 3" as well as "--count=3" }
-      Inc(I);
-    end;
-    if Key = '--pty' then UsePty := True
-    else if Key = '--half' then Half := True
-    else if Key = '--full' then Half := False
-    else if Key = '--bcc' then Crc := False
-    else if Key = '--crc' then Crc := True
-    else if Key = '--quiet' then Quiet := True
-    else if Key = '--dup' then
-      case ChoiceIndex(Value, 'OFF|ON') of
-        0: Dup := False;
-        1: Dup := True;
-      else
-        Die('--dup wants on or off');
-      end
-    else if Key = '--dev' then Dev := Value
-    else if Key = '--listen' then Listen := Value
-    else if Key = '--par' then begin Par := Value; LineGiven := True; end
-    else if Key = '--bd' then begin Bd := NumArg(Key, Value, 50, 4000000); LineGiven := True; end
-    else if Key = '--node' then Node := NumArg(Key, Value, 0, 254)
-    else if Key = '--dno' then DNo := NumArg(Key, Value, 0, 254)
-    else if Key = '--count' then Count := NumArg(Key, Value, 1, MaxLongInt)
-    else if Key = '--timeout' then TimeoutS := NumArg(Key, Value, 1, 86400)
-    else if Key = '--config' then ConfigName := Value
-    else
-      Die('unknown option ' + Arg + ' (see docs/df1sim.md)');
-  end;
+  CliInit(Cli, 'df1sim', '[OPTION]... [PARAMETER-STRING...]',
+    'A DF1 slave that behaves like an Allen-Bradley SLC 5/0x, on a serial port ' +
+    '(--dev), a pseudo terminal it creates (--pty) or a TCP port (--listen); or on ' +
+    'the stack a parameter string gives (NAM=DF1 MAS=SLAVE ... NAM=COM ...), used ' +
+    'as it is. One of them is needed: df1sim never opens a device nobody named.');
+  CliOption(Cli, 'pty', #0, '', 'create a pty pair; the first line on standard output is ' +
+    '"PTY /dev/pts/N", the device to connect to');
+  CliOption(Cli, 'dev', #0, 'PATH', 'serial device (NAM=COM DEV=PATH)');
+  CliOption(Cli, 'listen', #0, '[ADDR:]PORT', 'serve over TCP (NAM=TCP LISTEN=..., raw), one ' +
+    'client at a time, loopback unless ADDR is given; the first line on standard output is ' +
+    '"LISTEN <port>" (PORT 0: a free one)');
+  CliOption(Cli, 'bd', #0, 'N', 'baud rate (default 19200); a pty takes it as given');
+  CliOption(Cli, 'par', #0, 'N|E|O', 'parity (default N)');
+  CliOption(Cli, 'half', #0, '', 'half duplex (default full duplex)');
+  CliOption(Cli, 'full', #0, '', 'full duplex');
+  CliOption(Cli, 'bcc', #0, '', 'BCC checksum (default CRC)');
+  CliOption(Cli, 'crc', #0, '', 'CRC-16 checksum');
+  CliOption(Cli, 'dup', #0, 'on|off', 'duplicate packet detect (DUP= of NAM=DF1; default on, ' +
+    'as a PLC channel)');
+  CliOption(Cli, 'node', #0, 'N', 'station address (default 1)');
+  CliOption(Cli, 'dno', #0, 'N', 'peer address (default 0)');
+  CliOption(Cli, 'config', #0, 'FILE', 'data table (tools/df1sim.conf); default: built in');
+  CliOption(Cli, 'count', #0, 'N', 'exit after answering N commands');
+  CliOption(Cli, 'timeout', #0, 'S', 'exit after S seconds without a message');
+  CliOption(Cli, 'quiet', 'q', '', 'no per-message log');
+  CliEpilog(Cli, 'Examples:' + LineEnding +
+    '  df1sim --pty --half --bcc' + LineEnding +
+    '  df1sim --dev=/dev/ttyUSB1 --bd=19200' + LineEnding +
+    '  df1sim NAM=DF1 MAS=SLAVE NOD=1 NAM=TRC FILE=sim.log NAM=COM DRV=PTY' + LineEnding);
+  CliExit(Cli, 0, 'ended by a signal, --count or --timeout');
+  CliExit(Cli, 1, 'the port could not be opened, or was lost');
+  CliParse(Cli);
+  UsePty := CliHas(Cli, 'pty');
+  Half := CliHas(Cli, 'half') and not CliHas(Cli, 'full');
+  Crc := not CliHas(Cli, 'bcc') or CliHas(Cli, 'crc');
+  Quiet := CliHas(Cli, 'quiet');
+  Dup := CliChoice(Cli, 'dup', 'OFF|ON', 1) = 1;
+  Dev := CliValue(Cli, 'dev', '');
+  Listen := CliValue(Cli, 'listen', '');
+  Par := CliValue(Cli, 'par', 'N');
+  LineGiven := CliHas(Cli, 'bd') or CliHas(Cli, 'par');
+  Bd := CliNum(Cli, 'bd', 50, 4000000, 19200);
+  Node := CliNum(Cli, 'node', 0, 254, 1);
+  DNo := CliNum(Cli, 'dno', 0, 254, 0);
+  Count := CliNum(Cli, 'count', 1, MaxLongInt, 0);
+  TimeoutS := CliNum(Cli, 'timeout', 1, 86400, 0);
+  ConfigName := CliValue(Cli, 'config', '');
+  Params := CliRest(Cli, 0);
+  if Ord(UsePty) + Ord(Dev <> '') + Ord(Listen <> '') > 1 then
+    CliUsageError(Cli, 'one of --pty, --dev, --listen', CliRest(Cli, 0));
+  if (Params = '') and not UsePty and (Dev = '') and (Listen = '') then
+    CliUsageError(Cli, 'no line: give --pty, --dev=PATH, --listen=PORT or a parameter string', '');
 
   if ConfigName = '' then
     SlcLoadDefault(Table)
   else if not SlcLoadConfig(Table, LoadFile(ConfigName), ErrLine, Err) then
-    Die(Format('%s line %d: %s', [ConfigName, ErrLine, Err]));
+    CliUsageError(Cli, Format('%s line %d: %s', [ConfigName, ErrLine, Err]), '--config ' + ConfigName);
 
   if Params = '' then
   begin
@@ -199,10 +187,8 @@ begin
       Params := Params + ' DUP=ON'
     else
       Params := Params + ' DUP=OFF';
-    if UsePty and (Listen <> '') then
-      Die('--pty or --listen, not both')
     { a pty takes BD=/PAR= as given and reports them (a virtual line) }
-    else if UsePty then
+    if UsePty then
       Params := Params + Format(' NAM=COM DRV=PTY BD=%d PAR=%s', [Bd, Par])
     else if Listen <> '' then
       Params := Params + ' NAM=TCP LISTEN=' + Listen
@@ -210,9 +196,14 @@ begin
       Params := Params + Format(' NAM=COM DEV=%s BD=%d PAR=%s', [Dev, Bd, Par]);
   end
   else if UsePty and (Pos('DRV=PTY', UpperCase(Params)) = 0) then
-    Die('--pty with a parameter string: put NAM=COM DRV=PTY in it')
+    CliUsageError(Cli, '--pty with a parameter string: put NAM=COM DRV=PTY in it', '--pty')
   else if LineGiven then
-    Die('--bd/--par with a parameter string: put BD=/PAR= in its NAM=COM part');
+    CliUsageError(Cli, '--bd/--par with a parameter string: put BD=/PAR= in its NAM=COM part',
+      CliValue(Cli, 'bd', CliValue(Cli, 'par', '')))
+  else if (Dev <> '') or (Listen <> '') then
+    CliUsageError(Cli, '--dev/--listen with a parameter string: put the line in the string',
+      CliRest(Cli, 0));
+  CliCheckParams(Cli, Params, ChnDF1.cName);
 
   Chn := DF1OpenStack(Params, 3000, Err);
   if Chn = nil then
@@ -239,8 +230,9 @@ begin
       LastMsg := ChMsTick
     else if Chn^.ChResult <> res_Ok then
     begin
-      LogLine('df1sim: line lost: ' + Chn^.ChResultStr(Chn^.ChResult));
-      Break;
+      WriteLn(StdErr, 'df1sim: line lost: ', Chn^.ChResultStr(Chn^.ChResult));
+      Dispose(Chn, Done);
+      Halt(1);
     end
     else
       Sleep(1);

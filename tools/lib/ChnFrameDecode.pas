@@ -105,6 +105,12 @@ procedure DecodeSplitArg(const Arg: AnsiString; out Key, Value: AnsiString);
   --adr=0..2 --len=0..247 --cot-size=1|2 --ca-size=1|2 --ioa-size=1..3
   (the ASDU of FT 1.2 variable frames) --ics. True when Key is one of them; Err is ''
   or says what is wrong with Value. (--master differs per program.) }
+const
+  { the protocol options DecodeOption takes, without the leading '--':
+    chndecode and chntap offer exactly these }
+  DecodeOptionNames: array[0..10] of string = ('df1', 'crc', 'bcc', 'half',
+    'ft12', 'ics', 'adr', 'len', 'cot-size', 'ca-size', 'ioa-size');
+
 function DecodeOption(const Key, Value: AnsiString; var Opt: tDecOptions;
   out Err: AnsiString): Boolean;
 
@@ -126,6 +132,15 @@ procedure DecodeBytesAsChunk(const Data: tTrcBytes; var Frames: tTrcFrames);
 { Decode Frames[0..Count-1]; lines go to Lines, counts to Stats. }
 procedure DecodeRun(const Opt: tDecOptions; const Frames: tTrcFrames; Count: LongInt;
   Lines: TStrings; out Stats: tDecStats);
+{ DF1 without --crc or --bcc: decodes the chunks both ways and returns
+  True for CRC, False for BCC - the check with fewer broken frames (a BCC
+  frame read as CRC takes one byte too many and fails, a CRC frame read as
+  BCC fails its one-byte sum), on a tie the one with more good frames, on
+  a tie CRC. Why gives the counts, for the line that says which was taken. }
+function DecodeGuessDF1Check(const Opt: tDecOptions; const Frames: tTrcFrames;
+  Count: LongInt; out Why: AnsiString): Boolean;
+{ The rule above for two running totals (chntap decides live): True = CRC. }
+function DecodeBetterCheck(const Crc, Bcc: tDecStats): Boolean;
 
 implementation
 
@@ -606,6 +621,30 @@ begin
       [D.Stats.Chunks, D.Stats.Bytes, D.Stats.Frames, D.Stats.Errors, D.Stats.Incomplete]));
   SetLength(D.Events, D.EventCount);
   Stats := D.Stats;
+end;
+
+function DecodeGuessDF1Check(const Opt: tDecOptions; const Frames: tTrcFrames;
+  Count: LongInt; out Why: AnsiString): Boolean;
+var
+  O: tDecOptions;
+  Crc, Bcc: tDecStats;
+begin
+  O := Opt;
+  O.Crc := True;
+  DecodeRun(O, Frames, Count, nil, Crc);
+  O.Crc := False;
+  DecodeRun(O, Frames, Count, nil, Bcc);
+  Result := DecodeBetterCheck(Crc, Bcc);
+  Why := Format('CRC: %d frames good, %d broken; BCC: %d good, %d broken',
+    [Crc.Frames, Crc.Errors, Bcc.Frames, Bcc.Errors]);
+end;
+
+function DecodeBetterCheck(const Crc, Bcc: tDecStats): Boolean;
+begin
+  if Crc.Errors <> Bcc.Errors then
+    Result := Crc.Errors < Bcc.Errors
+  else
+    Result := Crc.Frames >= Bcc.Frames;
 end;
 
 procedure DecodeRun(const Opt: tDecOptions; const Frames: tTrcFrames; Count: LongInt;
