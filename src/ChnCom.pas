@@ -52,6 +52,10 @@
 unit ChnCom;
 
 {$I chn.inc}
+{ this OS's backends live in src/unix or src/win: found from here, so a
+  program needs only -Fu to src/ }
+{$IFDEF UNIX}{$UNITPATH unix}{$ENDIF}
+{$IFDEF WINDOWS}{$UNITPATH win}{$ENDIF}
 
 interface
 
