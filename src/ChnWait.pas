@@ -35,7 +35,10 @@
   manual-reset event for wake-ups (63 handles per wait: with more, each
   wait takes the caller's own handle and a rotating window of the others).
   Other Unixes: no shared set, ChnWaitIdle answers False at once and the
-  layer waits on its own device as before. }
+  layer waits on its own device as before. The OS parts are include files
+  (unix/chnwait.inc, win/chnwait.inc) with one contract: every Os* routine
+  is called with Lock held and returns with it held; OsWait alone lets it
+  go while it blocks (and counts itself in Blocked meanwhile). }
 unit ChnWait;
 
 {$I chn.inc}
@@ -366,24 +369,13 @@ begin
     LeaveCriticalSection(Lock);
     Exit(False);
   end;
-  {$IFDEF LINUX}
-  if EpFd < 0 then                   { made by the first ChnWaitJoin }
+  if not OsCanWait then
   begin
     LeaveCriticalSection(Lock);
     Exit(False);
   end;
-  Inc(Blocked);
+  Result := OsWait(Ms, Own);         { returns with Lock held, as it came }
   LeaveCriticalSection(Lock);
-  Result := OsWait(Ms, Own);
-  {$ELSE}
-  if not OsReady then
-  begin
-    LeaveCriticalSection(Lock);
-    Exit(False);
-  end;
-  Result := OsWait(Ms, Own);
-  LeaveCriticalSection(Lock);
-  {$ENDIF}
   {$ENDIF}
 end;
 
@@ -416,19 +408,8 @@ begin
     Dispose(Slots[I]);
   SlotCount := 0;
   Slots := nil;
-  {$IFDEF LINUX}
-  if (EpFd >= 0) and (SetPid = FpGetPid) then
-  begin
-    FpClose(EpFd);
-    FpClose(WakeRd);
-    FpClose(WakeWr);
-  end;
-  EpFd := -1;
-  {$ENDIF}
-  {$IFDEF WINDOWS}
-  if WakeEvt <> 0 then
-    CloseHandle(WakeEvt);
-  WakeEvt := 0;
+  {$IF DEFINED(LINUX) OR DEFINED(WINDOWS)}
+  OsDone;
   {$ENDIF}
 end;
 
