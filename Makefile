@@ -77,15 +77,12 @@ all: units $(PROGBINS) chn.lpk
 examples: $(addprefix $(BINDIR)/,$(basename $(notdir $(EXAMPLES))))
 tools: $(addprefix $(BINDIR)/,$(basename $(notdir $(TOOLS))))
 
+# A build never installs anything itself (not even as root): it says how.
 check-fpc:
 	@command -v $(FPC) >/dev/null 2>&1 || { \
-	  if [ "$$(id -u)" = 0 ]; then \
-	    echo "fpc not found: installing $(DEB_PACKAGES)"; \
-	    apt-get update -q && DEBIAN_FRONTEND=noninteractive apt-get install -y -q $(DEB_PACKAGES); \
-	  else \
-	    echo "fpc not found. Install it with:"; \
-	    echo "  sudo apt-get install -y $(DEB_PACKAGES)"; exit 1; \
-	  fi; }
+	  echo "fpc not found. Install it with:"; \
+	  if [ "$$(id -u)" = 0 ]; then echo "  apt-get install -y $(DEB_PACKAGES)"; \
+	  else echo "  sudo apt-get install -y $(DEB_PACKAGES)"; fi; exit 1; }
 
 # Every library unit, compiled once by one fpc call on a generated unit
 # that uses them all; fpc itself recompiles only what changed.
