@@ -52,17 +52,11 @@
 unit ChnCom;
 
 {$I chn.inc}
-{ this OS's backends live in src/unix or src/win: found from here, so a
-  program needs only -Fu to src/ }
-{$IFDEF UNIX}{$UNITPATH unix}{$ENDIF}
-{$IFDEF WINDOWS}{$UNITPATH win}{$ENDIF}
 
 interface
 
 uses
-  ChnTypes, ChnVirt, ChnRing, ChnWait, ChnPort
-  {$IFDEF WINDOWS}, ChnPortWin{$ELSE}, ChnPortUnix{$ENDIF}
-  {$IFDEF CHN_SYNAPSE}, ChnPortSynapse{$ENDIF};
+  ChnTypes, ChnVirt, ChnRing, ChnWait, ChnPort;
 
 const
   cName = 'COM';
@@ -151,7 +145,8 @@ function ComLineText(const S: tPortSettings): ShortString;
 implementation
 
 uses
-  SysUtils, uString;
+  SysUtils, uString,
+  ChnPorts;          { links the port drivers of this build (DRV=) }
 
 const
   ParityLetters: array[tPortParity] of Char = ('N', 'E', 'O', 'M', 'S');

@@ -85,7 +85,7 @@ function  SockLastOsError: LongInt;
 implementation
 
 uses
-  {$IFDEF WINDOWS}WinSock2,{$ELSE}BaseUnix, Unix,{$ENDIF} Sockets, SysUtils, uString;
+  {$IFDEF WINDOWS}WinSock2,{$ELSE}BaseUnix, Unix, ChnUnix,{$ENDIF} Sockets, SysUtils, uString;
 
 const
   AI_PASSIVE = 1;

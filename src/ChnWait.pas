@@ -126,7 +126,7 @@ implementation
 
 uses
   SysUtils
-  {$IFDEF LINUX}, BaseUnix, Linux{$ENDIF}
+  {$IFDEF LINUX}, BaseUnix, Linux, ChnUnix{$ENDIF}
   {$IFDEF WINDOWS}, Windows{$ENDIF};
 
 var
