@@ -192,12 +192,13 @@ FPCLIBDIR = $(if $(filter /usr,$(PREFIX)),$(PREFIX)/lib/$(MULTIARCH)/fpc,$(PREFI
 INSTALL_UNITDIR ?= $(FPCLIBDIR)/$(FPCVER)/units/$(FPCTARGET)/chn
 INSTALL_SRCDIR  ?= $(PREFIX)/share/chn
 
+# (a unit without code, such as ChnPorts, has no object file)
 install: units
 	@set -e; d='$(DESTDIR)$(INSTALL_UNITDIR)'; s='$(DESTDIR)$(INSTALL_SRCDIR)'; \
 	mkdir -p "$$d" "$$s/src"; \
 	for u in $(basename $(notdir $(UNITS))); do l=$$(echo $$u | tr A-Z a-z); \
 	  install -m 644 $(UNITDIR)/$$u.ppu "$$d/$$l.ppu"; \
-	  install -m 644 $(UNITDIR)/$$u.o "$$d/$$l.o"; done; \
+	  if [ -f $(UNITDIR)/$$u.o ]; then install -m 644 $(UNITDIR)/$$u.o "$$d/$$l.o"; fi; done; \
 	for f in $(wildcard src/*.pas src/*.inc src/*/*.pas src/*/*.inc); do \
 	  install -D -m 644 "$$f" "$$s/$$f"; done; install -m 644 chn.lpk "$$s/"; \
 	echo "installed units in $$d, sources in $$s"
