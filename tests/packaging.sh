@@ -1,7 +1,9 @@
 #!/usr/bin/env bash
 # tests/packaging.sh - the library as users get it (called by tests/run.sh):
 #  0. no file points outside the repository;
-#  1. chn.lpk lists every unit of src/ and its OS folders;
+#  1. fpmake.pp lists every unit of src/ with its OSes and dependencies
+#     (tests/fpmakecheck.pl), chn.lpk lists every unit of src/ and its OS
+#     folders;
 #  2. every complete program in README.md ("program ...;" in a ```pascal
 #     block) is built outside the tree the three ways the README gives -
 #     -Fu to this checkout, "make install" (per user, found by plain fpc),
@@ -35,7 +37,10 @@ hits=$(grep -rlE "$pat" --exclude-dir=.git --exclude-dir="$(basename "$BUILD")" 
 if [ -z "$hits" ]; then ok "package: no file points outside the repository"
 else bad "package: files citing SPEC/seeds/../shared: $(echo $hits)"; fi
 
-# 1. chn.lpk
+# 1. fpmake.pp is the one list of units (every unit of src/, its OSes, its
+# real dependencies), and chn.lpk lists them
+perl tests/fpmakecheck.pl
+
 missing=""
 for f in src/*.pas src/*.inc src/unix/*.pas src/unix/*.inc src/win/*.pas src/win/*.inc; do
   grep -q "<Filename Value=\"$f\"/>" chn.lpk || missing="$missing $f"
