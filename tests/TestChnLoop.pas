@@ -7,15 +7,14 @@ unit TestChnLoop;
 interface
 
 uses
-  Classes, SysUtils, fpcunit, testregistry, ChnTypes, ChnVirt, ChnLoop, TestSupport;
+  Classes, SysUtils, fpcunit, testregistry, ChnTypes, ChnVirt, ChnLoop, TestSupport,
+  StackCase;
 
 type
-  TTestChnLoop = class(TTestCase)
+  TTestChnLoop = class(TStackCase)
   private
     A, B: pChnVirt;
     procedure OpenPair(const Pair: string; const Extra: string = '');
-  protected
-    procedure TearDown; override;
   published
     procedure TestBytesBothWays;
     procedure TestBurst64KiBWithoutLoss;
@@ -33,23 +32,9 @@ type
 implementation
 
 procedure TTestChnLoop.OpenPair(const Pair: string; const Extra: string);
-var
-  Err: string;
 begin
-  A := OpenStack('LOOP', 'PAIR=' + Pair + ' END=1 ' + Extra, Err);
-  AssertNotNull(Err, A);
-  B := OpenStack('LOOP', 'PAIR=' + Pair + ' END=2 ' + Extra, Err);
-  AssertNotNull(Err, B);
-end;
-
-procedure TTestChnLoop.TearDown;
-begin
-  if A <> nil then
-    Dispose(A, Done);
-  if B <> nil then
-    Dispose(B, Done);
-  A := nil;
-  B := nil;
+  A := Stack('LOOP', 'PAIR=' + Pair + ' END=1 ' + Extra);
+  B := Stack('LOOP', 'PAIR=' + Pair + ' END=2 ' + Extra);
 end;
 
 { Read from R until Count bytes arrived (or a deadline), keeping W moving. }
