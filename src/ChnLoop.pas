@@ -303,13 +303,11 @@ begin
   Result := res_Ok;
 end;
 
+{ wkSignal (TChnPort's answer, but True): the ends signal each other. }
 function TChnPortLoop.WaitSource(out Kind: tChnWaitKind; out Os: PtrInt;
   out Rearm: tChnWaitRearm; out Data: Pointer): Boolean;
 begin
-  Kind := wkSignal;
-  Os := -1;
-  Rearm := nil;
-  Data := nil;
+  inherited WaitSource(Kind, Os, Rearm, Data);
   Result := True;
 end;
 

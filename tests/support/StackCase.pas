@@ -19,6 +19,8 @@ type
     { OpenStack (TestSupport): built, opened and connected, or the test
       fails with the reason; disposed by CloseStacks. }
     function Stack(const Name, Params: string): pChnVirt;
+    { A stack the test built itself, disposed with the others. }
+    function Keep(Chn: pChnVirt): pChnVirt;
     { Dispose every stack Stack opened (a test that starts over). }
     procedure CloseStacks;
     procedure TearDown; override;
@@ -36,8 +38,14 @@ begin
   Err := '';
   Result := OpenStack(Name, Params, Err);
   AssertTrue(Name + ' stack ' + Params + ': ' + Err, Result <> nil);
+  Keep(Result);
+end;
+
+function TStackCase.Keep(Chn: pChnVirt): pChnVirt;
+begin
   SetLength(FStacks, Length(FStacks) + 1);
-  FStacks[High(FStacks)] := Result;
+  FStacks[High(FStacks)] := Chn;
+  Result := Chn;
 end;
 
 procedure TStackCase.CloseStacks;
