@@ -49,6 +49,10 @@ type
     procedure ChSend(Buff: Pointer; Len: Word); virtual;
     { CHS_Sending also while the port still holds part of the message. }
     function  ChSendReady: tChState; virtual;
+    { While COM's ring is empty, input is taken straight from the pair's
+      ring (one copy instead of two); otherwise as COM. }
+    function  ChReceiveReady: tChState; virtual;
+    procedure ChReceive(var Len: Word); virtual;
   protected
     function  ComOpenPort(out Port: TChnPort): tChResult; virtual;
     function  ComDropsWhenFull: Boolean; virtual;
@@ -267,6 +271,12 @@ end;
 
 function TChnPortLoop.OutQueue(out N: LongInt): tChResult;
 begin
+  N := 0;
+  Result := res_Ok;
+  { no lock for nothing pending: only this end's Write makes a rest }
+  with FPair^.Dir[OtherEnd(FEnd)] do
+    if PendPos >= PendLen then
+      Exit;
   EnterCriticalSection(Lock);
   with FPair^.Dir[OtherEnd(FEnd)] do
   begin
@@ -277,11 +287,11 @@ begin
   Result := res_Ok;
 end;
 
+{ No lock: only this end takes bytes out of its ring, so a count above 0
+  read at any moment is true (one read a moment too early only says 0). }
 function TChnPortLoop.WaitInput(Ms: LongInt): Boolean;
 begin
-  EnterCriticalSection(Lock);
   Result := FPair^.Dir[FEnd].Ring.Count > 0;
-  LeaveCriticalSection(Lock);
 end;
 
 function TChnPortLoop.WaitOutput(Ms: LongInt): Boolean;
@@ -367,8 +377,10 @@ begin
     if (Result = res_Ok) and (CmdL = cmd_Set) then
       CH_End := N;
   end
-  else if (Key = 'LRB') or (Key = 'IDL') then
-    Result := inherited ChSetOneParam(S, CmdL)
+  else if Key = 'LRB' then         { COM's ranges, without its key chain }
+    Result := ParamSetNum(S, 1, 1 shl 24, CmdL, CH_LRB)
+  else if Key = 'IDL' then
+    Result := ParamSetNum(S, 0, 1000, CmdL, CH_Idle)
   else
     { COM's device and line keys mean nothing on an in-memory line }
     Result := tChnVirt.ChSetOneParam(S, CmdL);
@@ -413,6 +425,39 @@ begin
   if (Result = CHS_SendReady) and (CH_Port <> nil) and (ComPortUsable = res_Ok) and
     (CH_Port.OutQueue(N) = res_Ok) and (N > 0) then
     Result := CHS_Sending;
+end;
+
+function tChnLoop.ChReceiveReady: tChState;
+begin
+  if (CH_State = CHS_Connect) and (CH_RCtrl <> CHS_ReceiveReady) and
+    (CH_Ring.Count = 0) and (CH_Port <> nil) and CH_Port.WaitInput(0) then
+  begin
+    ComPumpTx;                    { a long message keeps moving meanwhile }
+    CH_RCtrl := CHS_ReceiveReady;
+    Exit(CH_RCtrl);
+  end;
+  Result := inherited ChReceiveReady;
+end;
+
+procedure tChnLoop.ChReceive(var Len: Word);
+var
+  Got: LongInt;
+begin
+  if (CH_Ring.Count > 0) or (CH_Port = nil) then
+  begin
+    inherited ChReceive(Len);
+    Exit;
+  end;
+  if not ChReceiveAllowed(Len) then
+    Exit;
+  CH_Port.Read(PByte(CH_RBuff)^, CH_RSize, Got);
+  ChnWaitServed(CH_Wait, True);   { looked: the next input wakes the waits }
+  Len := Got;
+  if Len = 0 then
+    CH_RResult := res_NoMessage
+  else
+    CH_RResult := res_Ok;
+  CH_RCtrl := CHS_Receiving;     { the next ChReceiveReady looks again }
 end;
 
 { The sender waits for room: nothing is ever lost on a loop. }
