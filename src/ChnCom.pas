@@ -56,9 +56,7 @@ unit ChnCom;
 interface
 
 uses
-  ChnTypes, ChnVirt, ChnRing, ChnWait, ChnPort
-  {$IFDEF WINDOWS}, ChnPortWin{$ELSE}, ChnPortUnix{$ENDIF}
-  {$IFDEF CHN_SYNAPSE}, ChnPortSynapse{$ENDIF};
+  ChnTypes, ChnVirt, ChnRing, ChnWait, ChnPort;
 
 const
   cName = 'COM';
@@ -121,11 +119,22 @@ type
     { Create, open and configure the port this layer drives (COM: the DRV=
       backend on COM=/DEV=; NAM=TCP overrides it). On failure Port is nil. }
     function  ComOpenPort(out Port: TChnPort): tChResult; virtual;
+    { The device failed while open: latch R (once: a later fault does not
+      replace the first), drop the message being sent, stop waiting on it. }
     procedure ComFault(R: tChResult);
+    { Put R into CH_Fault and the three results the application polls
+      (ChResult, ChReceiveResult, ChSendResult): the one place a fault, a
+      reconnect in progress (res_Reconnecting) or its end (res_Ok) is
+      reported; CH_Fault itself belongs to this layer. }
+    procedure ComLatch(R: tChResult);
+    { Open again: Port (open, configured) replaces the one in use - the
+      wait follows it, a pending send is dropped, faults are cleared. }
+    procedure ComReplacePort(Port: TChnPort);
     { res_Ok when the port can be used now: res_WrongState while closed,
       the fault once the device failed }
     function  ComPortUsable: tChResult;
     procedure ComJoinWait;
+    procedure ComLeaveWait;
     { A full ring drops further input (FLW=NONE on a serial line); False
       where the line itself holds the sender back (flow control, TCP). }
     function  ComDropsWhenFull: Boolean; virtual;
@@ -147,7 +156,8 @@ function ComLineText(const S: tPortSettings): ShortString;
 implementation
 
 uses
-  SysUtils, uString;
+  SysUtils, uString,
+  ChnPorts;          { links the port drivers of this build (DRV=) }
 
 const
   ParityLetters: array[tPortParity] of Char = ('N', 'E', 'O', 'M', 'S');
@@ -413,7 +423,30 @@ var
 begin
   CH_Wait := nil;
   if ChnWaitShared and CH_Port.WaitSource(WaitKind, WaitOs, WaitRearm, WaitData) then
+  begin
     CH_Wait := ChnWaitJoin(WaitKind, WaitOs, WaitRearm, WaitData);
+    CH_Port.WaitJoined(CH_Wait);
+  end;
+end;
+
+{ Out of the program-wide wait, before the port's descriptor goes. }
+procedure tChnCom.ComLeaveWait;
+begin
+  if (CH_Wait <> nil) and (CH_Port <> nil) then
+    CH_Port.WaitJoined(nil);
+  ChnWaitLeave(CH_Wait);
+end;
+
+procedure tChnCom.ComReplacePort(Port: TChnPort);
+begin
+  ComLeaveWait;
+  CH_Port.Free;
+  CH_Port := Port;
+  ComJoinWait;
+  CH_TxLen := 0;
+  CH_TxPos := 0;
+  CH_RtsUp := False;
+  ComLatch(res_Ok);
 end;
 
 procedure tChnCom.ChOpen;
@@ -455,7 +488,7 @@ begin
     CH_Result := res_WrongState;
     Exit;
   end;
-  ChnWaitLeave(CH_Wait);           { before the descriptor goes }
+  ComLeaveWait;
   if CH_Port <> nil then
   begin
     if CH_Fault = res_Ok then
@@ -483,14 +516,19 @@ procedure tChnCom.ComFault(R: tChResult);
 begin
   if CH_Fault <> res_Ok then
     Exit;
-  CH_Fault := R;
-  CH_Result := R;
-  CH_RResult := R;
-  CH_SResult := R;
+  ComLatch(R);
   CH_TxLen := 0;
   CH_TxPos := 0;
   CH_RtsUp := False;
   ChnWaitServed(CH_Wait, False);  { nothing more to wait for on it }
+end;
+
+procedure tChnCom.ComLatch(R: tChResult);
+begin
+  CH_Fault := R;
+  CH_Result := R;
+  CH_RResult := R;
+  CH_SResult := R;
 end;
 
 { Move what the OS holds into the ring; see the unit header for a full ring. }
@@ -615,6 +653,7 @@ end;
 procedure tChnCom.ChSend(Buff: Pointer; Len: Word);
 var
   R: tChResult;
+  Written, Rest: LongInt;
 begin
   if not ChSendAllowed(Buff, Len, True) then
     Exit;
@@ -639,12 +678,6 @@ begin
     CH_SResult := CH_Fault;
     Exit;
   end;
-  if Len > CH_TxCap then
-  begin
-    ReAllocMem(CH_TxBuf, Len);
-    CH_TxCap := Len;
-  end;
-  Move(Buff^, CH_TxBuf^, Len);
   if CH_RtsToggle then
   begin
     R := CH_Port.SetRts(True);
@@ -655,7 +688,23 @@ begin
     end;
     CH_RtsUp := True;
   end;
-  CH_TxLen := Len;
+  { what the port takes now goes straight from the caller's buffer; only
+    the rest is copied, to move on from later polls }
+  R := CH_Port.Write(Buff^, Len, Written);
+  if R <> res_Ok then
+  begin
+    ComFault(R);
+    Exit;
+  end;
+  Rest := Len - Written;
+  if Rest > CH_TxCap then
+  begin
+    ReAllocMem(CH_TxBuf, Rest);
+    CH_TxCap := Rest;
+  end;
+  if Rest > 0 then
+    Move(PByte(Buff)[Written], CH_TxBuf^, Rest);
+  CH_TxLen := Rest;
   CH_TxPos := 0;
   CH_SResult := res_Ok;
   ComPumpTx;

@@ -1,7 +1,9 @@
 #!/usr/bin/env bash
 # tests/packaging.sh - the library as users get it (called by tests/run.sh):
 #  0. no file points outside the repository;
-#  1. chn.lpk lists every unit of src/;
+#  1. fpmake.pp lists every unit of src/ with its OSes and dependencies
+#     (tests/fpmakecheck.pl), chn.lpk lists every unit of src/ and its OS
+#     folders;
 #  2. every complete program in README.md ("program ...;" in a ```pascal
 #     block), and docs/TOOLS.md's three, is built outside the tree the three ways the README gives -
 #     -Fu to this checkout, "make install" (per user, found by plain fpc),
@@ -24,9 +26,10 @@ cleanup() {
   rm -rf "$TMP"
 }
 trap cleanup EXIT
-ok() { echo "ok    $1"; }
-bad() { echo "FAIL  $1"; [ -n "${2:-}" ] && [ -f "$2" ] && tail -n 15 "$2"; }
-skip() { echo "skip  $1"; }
+# pass, fail, skip (tests/run.sh counts the lines)
+. tests/support/report.sh
+# a failure, and the end of the log that says why
+bad() { fail "$1"; [ -n "${2:-}" ] && [ -f "$2" ] && tail -n 15 "$2"; }
 
 # 0. the repository stands alone: no file cites the project's outside
 # inputs (the specification, the seed copies of the manuals) or a path
@@ -34,15 +37,18 @@ skip() { echo "skip  $1"; }
 pat='SPEC\.md|SPEC section|seed [0-9]{3}|seeds/|\.\./shared'
 hits=$(grep -rlE "$pat" --exclude-dir=.git --exclude-dir="$(basename "$BUILD")" \
        --exclude=packaging.sh . 2>/dev/null || true)
-if [ -z "$hits" ]; then ok "package: no file points outside the repository"
+if [ -z "$hits" ]; then pass "package: no file points outside the repository"
 else bad "package: files citing SPEC/seeds/../shared: $(echo $hits)"; fi
 
-# 1. chn.lpk
+# 1. fpmake.pp is the one list of units (every unit of src/, its OSes, its
+# real dependencies), and chn.lpk lists them
+perl tests/fpmakecheck.pl
+
 missing=""
-for f in src/*.pas src/chn.inc; do
+for f in src/*.pas src/*.inc src/unix/*.pas src/unix/*.inc src/win/*.pas src/win/*.inc; do
   grep -q "<Filename Value=\"$f\"/>" chn.lpk || missing="$missing $f"
 done
-if [ -z "$missing" ]; then ok "package: chn.lpk lists every unit of src/"
+if [ -z "$missing" ]; then pass "package: chn.lpk lists every unit of src/ (and src/unix, src/win)"
 else bad "package: chn.lpk misses$missing (make writes it: commit it)"; fi
 
 # 2. README programs, each in its own folder outside the tree
@@ -73,7 +79,7 @@ build_run() {
   fi
   [ "$p" = readn7 ] && { arg=$PTY; want='^N7:0 = 0$'; }
   if timeout 20 "$dir/$p" "$arg" >"$dir/$p.run" 2>&1 && grep -q "$want" "$dir/$p.run"; then
-    ok "package: README program $p built and run ($way)"
+    pass "package: README program $p built and run ($way)"
   else
     bad "package: README program $p ($way) did not print $want" "$dir/$p.run"
     # what the simulator saw, to tell a program's fault from the line's
@@ -116,7 +122,7 @@ WANT=
 
 # the checkout stays clean: a build that follows the README leaves no
 # compiled unit beside the library's sources
-if [ -z "$(ls src/*.ppu src/*.o 2>/dev/null)" ]; then ok "package: building from the checkout writes nothing into src/"
+if [ -z "$(ls src/*.ppu src/*.o src/*/*.ppu src/*/*.o 2>/dev/null)" ]; then pass "package: building from the checkout writes nothing into src/"
 else bad "package: compiled units were left in src/"; fi
 
 # way 2: make install as a user (PREFIX=$HOME/.fppkg), then plain fpc
@@ -137,7 +143,7 @@ else
   L="$TMP/laz"; mkdir -p "$L/pkg"; cp -r chn.lpk src "$L/pkg/"
   if lazbuild --pcp="$L/cfg" --add-package-link "$L/pkg/chn.lpk" >"$L/link.log" 2>&1 &&
      lazbuild --pcp="$L/cfg" "$L/pkg/chn.lpk" >"$L/pkg.log" 2>&1; then
-    ok "package: lazbuild chn.lpk"
+    pass "package: lazbuild chn.lpk"
     for p in $progs; do
       d="$L/$p"; mkdir -p "$d"; cp "$TMP/readme/$p.pas" "$d/$p.lpr"
       sed "s/@NAME@/$p/g" tests/data/project.lpi.in > "$d/$p.lpi"
@@ -163,7 +169,7 @@ if make -s install BUILD="$BUILD" DESTDIR="$D" >"$TMP/dinstall.log" 2>&1 && [ -f
   for t in $TOOLS_INSTALLED; do
     [ -x "$D/usr/bin/$t" ] && "$D/usr/bin/$t" --help 2>/dev/null | grep -q "^Usage: $t " || missing="$missing $t"
   done
-  if [ -z "$missing" ]; then ok "package: make install puts the tools into \$PREFIX/bin, each answers --help"
+  if [ -z "$missing" ]; then pass "package: make install puts the tools into \$PREFIX/bin, each answers --help"
   else bad "package: tools missing in $D/usr/bin or without --help:$missing"; fi
   if ! command -v help2man >/dev/null 2>&1; then
     skip "package: man pages of the tools: help2man missing (apt-get install help2man)"
@@ -172,7 +178,7 @@ if make -s install BUILD="$BUILD" DESTDIR="$D" >"$TMP/dinstall.log" 2>&1 && [ -f
     for t in $TOOLS_INSTALLED; do
       grep -q "^\.TH $(echo $t | tr a-z A-Z) \"1\"" "$D/usr/share/man/man1/$t.1" 2>/dev/null || missing="$missing $t"
     done
-    if [ -z "$missing" ]; then ok "package: a man page (help2man) for every installed tool in \$PREFIX/share/man/man1"
+    if [ -z "$missing" ]; then pass "package: a man page (help2man) for every installed tool in \$PREFIX/share/man/man1"
     else bad "package: man pages missing or not a man page:$missing"; fi
   fi
   # the installed tools at work, with nothing of the checkout: the
@@ -193,14 +199,14 @@ if make -s install BUILD="$BUILD" DESTDIR="$D" >"$TMP/dinstall.log" 2>&1 && [ -f
     exit $rc
   )
   if [ $? = 0 ] && grep -q '^N7:3 = 33$' "$TMP/itools.log" && grep -q ' 0 errors, 0 incomplete$' "$TMP/itools.log"; then
-    ok "package: the installed df1sim, df1write, df1read and chndecode work together"
+    pass "package: the installed df1sim, df1write, df1read and chndecode work together"
   else
     bad "package: the installed tools against each other" "$TMP/itools.log"
   fi
   make -s uninstall BUILD="$BUILD" DESTDIR="$D" >/dev/null 2>&1
   left=$(cd "$D" 2>/dev/null && find . -type f | head -n 5)
   if [ -e "$U" ] || [ -e "$D/usr/share/chn" ] || [ -n "$left" ]; then bad "package: make uninstall left files: $left"
-  else ok "package: make uninstall removes the units, sources, tools and man pages"; fi
+  else pass "package: make uninstall removes the units, sources, tools and man pages"; fi
 else
   bad "package: make install DESTDIR=... PREFIX=/usr (units in $U)" "$TMP/dinstall.log"
 fi
@@ -230,7 +236,7 @@ elif make -s doc BUILD="$BUILD" >"$TMP/doc.log" 2>&1; then
     u=$(basename "$f" .pas)
     [ -f "$BUILD/doc/$u.html" ] || missing="$missing $u"
   done
-  if [ -z "$missing" ]; then ok "package: make doc: the API reference (pasdoc, no warnings) has every library unit"
+  if [ -z "$missing" ]; then pass "package: make doc: the API reference (pasdoc, no warnings) has every library unit"
   else bad "package: make doc: no page for$missing"; fi
 else
   bad "package: make doc (pasdoc warnings or errors)" "$TMP/doc.log"

@@ -18,11 +18,8 @@ set -u
 BUILD=${BUILD:-build}
 FPC=${FPC:-fpc}
 FILTER=${T:-}
-passed=0
-failed=0
-skipped=0
-pass() { passed=$((passed + 1)); echo "ok    $1"; }
-fail() { failed=$((failed + 1)); echo "FAIL  $1"; }
+# pass, fail, skip, report_lines, report_end
+. tests/support/report.sh
 
 # run_with_peer PROGRAM PEERFILE: a socat null-modem of two ptys; the peer
 # the .peer file defines (function "peer DEVICE", variable "expect") on one
@@ -56,8 +53,6 @@ run_with_peer() {
   rm -rf "$tmp"
   return 0
 }
-# a check that cannot run here: counted, and it says why
-skip() { skipped=$((skipped + 1)); echo "skip  $1"; }
 
 heaplog="$BUILD/heaptrc.log"
 rm -f "$heaplog"
@@ -84,7 +79,7 @@ fi
 
 if [ -z "$FILTER" ] || [[ "api" == *"${FILTER,,}"* ]]; then
   if command -v perl >/dev/null; then
-    if perl tests/apicheck.pl src/*.pas $(ls tools/lib/*.pas 2>/dev/null); then
+    if perl tests/apicheck.pl src/*.pas src/unix/*.pas src/win/*.pas $(ls tools/lib/*.pas 2>/dev/null); then
       pass "api: no Integer, Cardinal, plain string or {\$H+} in library interfaces"
     else
       fail "api: mode-dependent types in library interfaces (docs/LAYERS.md)"
@@ -165,14 +160,7 @@ fi
 
 # the library as users get it: make install, fpmake, chn.lpk, README programs
 if [ -z "$FILTER" ] || [[ "packaging" == *"${FILTER,,}"* ]]; then
-  while IFS= read -r line; do
-    case $line in
-      "ok    "*) pass "${line#ok    }" ;;
-      "FAIL  "*) fail "${line#FAIL  }" ;;
-      "skip  "*) skip "${line#skip  }" ;;
-      *) echo "$line" ;;
-    esac
-  done < <(BUILD=$BUILD FPC=$FPC bash tests/packaging.sh 2>&1)
+  report_lines < <(BUILD=$BUILD FPC=$FPC bash tests/packaging.sh 2>&1)
 fi
 
 # a T= filter that selects nothing is a mistake, not a pass (the heap
@@ -183,6 +171,4 @@ fi
 
 # skipped tests (an optional program missing) are listed with their reason
 # by runtests ("skip  Test: why"); the count comes before the last line
-[ "$skipped" = 0 ] || echo "$skipped skipped (an optional program is missing: see the skip lines)"
-echo "$passed passed, $failed failed"
-[ "$failed" = 0 ]
+report_end "an optional program is missing: see the skip lines"
