@@ -160,7 +160,7 @@ begin
     if P^.Open[EndNo] then
       Exit(res_CannotOpen);         { this end is in use by another stack }
     P^.Open[EndNo] := True;
-    RingAlloc(P^.Dir[EndNo].Ring, RingSize);
+    RingAlloc(P^.Dir[EndNo].Ring, RingSize, True);   { input held here ends ChnWaitAny }
     FPair := P;
     FEnd := EndNo;
     FOpen := True;
