@@ -13,6 +13,11 @@
 #                     processes (SECONDS=10 per scenario, or COUNT=messages;
 #                     SEED=, ONLY=name); docs/reliability.md
 #   make wintest      the suite as win64 programs under Wine (docs/Windows.md)
+#   make cross ARCH=armhf|aarch64      everything for ARM Linux, built by a
+#                     cross compiler made once from Debian's fpc source in
+#                     CROSS_CACHE (docs/ARM.md)
+#   make crosstest ARCH=armhf|aarch64  the suite and the legacy programs
+#                     for ARM under qemu-user
 #   make clean
 # Optional: SYNAPSE_DIR=/path/to/synapse builds the Synapse serial backend.
 #
@@ -67,7 +72,7 @@ PROGBINS := $(addprefix $(BINDIR)/,$(basename $(notdir $(PROGRAMS))))
 BENCHBINS := $(addprefix $(BINDIR)/,$(basename $(notdir $(BENCHES))))
 
 .PHONY: all units examples tools test demo bench fuzz soak wintest clean check-fpc \
-        install uninstall
+        install uninstall cross crosstest
 
 all: units $(PROGBINS) chn.lpk
 examples: $(addprefix $(BINDIR)/,$(basename $(notdir $(EXAMPLES))))
@@ -175,6 +180,15 @@ soak: all
 # Cross-built for win64 and run under Wine; not part of test (CI has no Wine).
 wintest: all $(BUILD)/testunits.inc
 	@BUILD=$(BUILD) FPC=$(FPC) T="$(T)" SYNAPSE_DIR="$(SYNAPSE_DIR)" bash tools/wintest.sh
+
+# ARM Linux (docs/ARM.md): the cross compiler is built once into
+# CROSS_CACHE (outside the repository; from Debian's fpc source package),
+# the project into $(BUILD)/$(ARCH) with the usual flags.
+ARCH ?=
+CROSS_CACHE ?= $(if $(HOME),$(HOME),/tmp)/.cache/chn-cross
+cross crosstest:
+	@CROSS_CACHE='$(CROSS_CACHE)' BUILD='$(BUILD)/$(ARCH)' T='$(T)' SYNAPSE_DIR='$(SYNAPSE_DIR)' \
+	  bash tools/cross.sh $(if $(filter cross,$@),build,test) '$(ARCH)'
 
 # ---------------------------------------------------------------- install
 # Debian's /etc/fpc.cfg searches /usr/lib/<multiarch>/fpc/<version>/units/
