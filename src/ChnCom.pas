@@ -131,6 +131,10 @@ type
     function  ComDropsWhenFull: Boolean; virtual;
     procedure ComPull;
     procedure ComPumpTx;
+    { Before a close: what ChSend was given leaves the driver, bounded }
+    procedure ComDrainTx;
+    { Milliseconds N bytes take on the line at the BD BIT PAR STOP in force }
+    function  ComLineMs(N: LongInt): LongInt;
     procedure ComFreeBuffers;
     { ' LRB=.. LSB=.. IDL=..' for ChOwnParams }
     function  ComBufferText: ShortString;
@@ -460,9 +464,8 @@ begin
   begin
     if CH_Fault = res_Ok then
     begin
-      if CH_TxPos < CH_TxLen then
-        CH_Port.Flush(False, True);  { abandon the unsent rest }
-      if CH_RtsUp then
+      ComDrainTx;                   { nothing sent is lost at a close }
+      if CH_RtsUp and (CH_Fault = res_Ok) then
         CH_Port.SetRts(False);
     end;
     CH_Port.Free;
@@ -610,6 +613,68 @@ begin
     end;
     CH_RtsUp := False;
   end;
+end;
+
+function tChnCom.ComLineMs(N: LongInt): LongInt;
+var
+  Bits: LongInt;
+begin
+  Bits := 1 + CH_Set.DataBits + CH_Set.StopBits;    { start, data, stop }
+  if CH_Set.Parity <> ppNone then
+    Inc(Bits);
+  if CH_Set.Baud <= 0 then
+    Exit(0);
+  Result := (Int64(N) * Bits * 1000 + CH_Set.Baud - 1) div CH_Set.Baud;
+end;
+
+{ A message handed to ChSend just before ChClose (an answer, then exit)
+  must reach the line: the rest of it goes to the OS, the OS queue empties,
+  then Drain waits for the last bit (tcdrain, FlushFileBuffers, synaser's
+  Flush). All of it within 1.5 times the time the pending bytes take at
+  BD, plus 250 ms: a line held by flow control, or a pty nobody reads,
+  cannot keep ChClose for ever; what is left then is discarded, as
+  before. No purge happens before this (a purge is what lost the tail). }
+procedure tChnCom.ComDrainTx;
+var
+  Queued, Left: LongInt;
+  Deadline, Now: QWord;
+begin
+  if (CH_Port = nil) or (CH_Fault <> res_Ok) then
+    Exit;
+  Queued := 0;
+  if CH_Port.OutQueue(Queued) <> res_Ok then
+    Queued := 0;
+  Deadline := GetTickCount64 + QWord(ComLineMs(CH_TxLen - CH_TxPos + Queued)) * 3 div 2 + 250;
+  repeat
+    ComPumpTx;
+    if CH_Fault <> res_Ok then
+      Exit;
+    Now := GetTickCount64;
+    if Now >= Deadline then
+      Break;
+    Left := Deadline - Now;
+    if CH_TxPos < CH_TxLen then
+      CH_Port.WaitOutput(Left)      { returns when the OS takes more }
+    else
+    begin
+      if CH_Port.OutQueue(Queued) <> res_Ok then
+        Queued := 0;
+      if Queued = 0 then
+        Break;
+      { the OS is sending: wait as long as that takes, then look again }
+      if ComLineMs(Queued) + 1 < Left then
+        Left := ComLineMs(Queued) + 1;
+      Sleep(Left);
+    end;
+  until False;
+  if (CH_TxPos >= CH_TxLen) and (CH_Port.OutQueue(Queued) <> res_Ok) then
+    Queued := 0;
+  if (CH_TxPos >= CH_TxLen) and (Queued = 0) then
+    CH_Port.Drain                   { only the UART FIFO is left: short }
+  else
+    CH_Port.Flush(False, True);     { the bound is over: abandon the rest }
+  CH_TxLen := 0;
+  CH_TxPos := 0;
 end;
 
 procedure tChnCom.ChSend(Buff: Pointer; Len: Word);

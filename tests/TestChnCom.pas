@@ -54,6 +54,9 @@ type
     procedure TestDeviceInUse;
     procedure TestOtherUserCanOpenAfterClose;
     procedure TestDeviceLostThenReopen;
+    procedure TestCloseRightAfterSendLosesNothing;
+    procedure TestCloseWaitsUntilALongMessageLeft;
+    procedure TestCloseIsBoundedWhenNobodyReads;
     procedure TestOverrunReportedWithoutFlowControl;
     procedure TestFlowControlPausesInsteadOfDropping;
     procedure TestRs485RefusedOnPty;
@@ -639,6 +642,106 @@ begin
   FChn^.ChReceiveBuffer(@FRBuf, SizeOf(FRBuf));
   FChn^.ChConnect;
   ExchangeAllByteValues('after reopen');
+end;
+
+{ An answer sent just before the program closes the line (icsslave: answer,
+  exit) must reach the peer: 50 times open, send a frame, close at once;
+  the peer reads only afterwards and finds all 50 in order. (synaser's
+  close purged both directions, which on a pty drops what the master
+  side has not read yet.) }
+procedure TTestChnComPty.TestCloseRightAfterSendLosesNothing;
+const
+  Frames = 50;
+  FrameLen = 64;
+var
+  Frame: array[0..FrameLen - 1] of Byte;
+  Back: array[0..Frames * FrameLen - 1] of Byte;
+  I, J, Got: Integer;
+begin
+  for I := 0 to Frames - 1 do
+  begin
+    AssertEquals('open ' + IntToStr(I), res_Ok, OpenCom(''));
+    for J := 0 to FrameLen - 1 do
+      Frame[J] := Pattern(I * FrameLen + J);
+    FChn^.ChSend(@Frame, FrameLen);
+    AssertEquals('send ' + IntToStr(I), res_Ok, FChn^.ChSendResult);
+    FChn^.ChClose;
+    AssertEquals('close ' + IntToStr(I), res_Ok, FChn^.ChResult);
+  end;
+  FillChar(Back, SizeOf(Back), 0);
+  Got := FPty.MasterReadAll(Back, SizeOf(Back), 3000);
+  AssertEquals('the peer got every frame (bytes)', SizeOf(Back), Got);
+  for I := 0 to High(Back) do
+    AssertEquals('byte ' + IntToStr(I), Pattern(I), Back[I]);
+end;
+
+type
+  { the peer: reads the master side until it has Want bytes or 10 s passed }
+  TMasterReader = class(TThread)
+    Pty: TPtyPair;
+    Want, Got: LongInt;
+    Buf: array of Byte;
+    procedure Execute; override;
+  end;
+
+procedure TMasterReader.Execute;
+begin
+  SetLength(Buf, Want);
+  Got := Pty.MasterReadAll(Buf[0], Want, 10000);
+end;
+
+{ A message larger than the pty takes at once (about 22 kB on Linux):
+  without the drain, ChClose discarded the part not yet handed over. }
+procedure TTestChnComPty.TestCloseWaitsUntilALongMessageLeft;
+const
+  Len = 60000;
+var
+  Msg: array of Byte;
+  R: TMasterReader;
+  I: Integer;
+begin
+  AssertEquals('open', res_Ok, OpenCom('BD=115200'));
+  SetLength(Msg, Len);
+  for I := 0 to Len - 1 do
+    Msg[I] := Pattern(I);
+  R := TMasterReader.Create(True);
+  try
+    R.Pty := FPty;
+    R.Want := Len;
+    FChn^.ChSend(@Msg[0], Len);
+    AssertEquals('send', res_Ok, FChn^.ChSendResult);
+    R.Start;                      { the peer starts reading now }
+    FChn^.ChClose;
+    AssertEquals('close', res_Ok, FChn^.ChResult);
+    R.WaitFor;
+    AssertEquals('every byte reached the peer', Len, R.Got);
+    for I := 0 to Len - 1 do
+      AssertEquals('byte ' + IntToStr(I), Msg[I], R.Buf[I]);
+  finally
+    R.Free;
+  end;
+end;
+
+{ Nobody reads: ChClose gives up after 1.5 times the line time of what is
+  pending at BD (here 921600 Bd: about 0.6 s for 38 kB left) + 250 ms. }
+procedure TTestChnComPty.TestCloseIsBoundedWhenNobodyReads;
+const
+  Len = 60000;
+var
+  Msg: array of Byte;
+  T0, Took: QWord;
+begin
+  AssertEquals('open', res_Ok, OpenCom('BD=921600'));
+  SetLength(Msg, Len);
+  FillChar(Msg[0], Len, $55);
+  FChn^.ChSend(@Msg[0], Len);
+  AssertEquals('send', res_Ok, FChn^.ChSendResult);
+  T0 := GetTickCount64;
+  FChn^.ChClose;
+  Took := GetTickCount64 - T0;
+  AssertEquals('close', res_Ok, FChn^.ChResult);
+  AssertEquals('closed', CHS_Close, FChn^.ChReady);
+  AssertTrue('waited, bounded (' + IntToStr(Took) + ' ms)', (Took >= 250) and (Took < 3000));
 end;
 
 procedure TTestChnComPty.TestOverrunReportedWithoutFlowControl;
