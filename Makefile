@@ -34,10 +34,19 @@ TUNITDIR := $(BUILD)/test-units
 TBINDIR  := $(BUILD)/test-bin
 DEB_PACKAGES := fp-compiler fp-units-rtl fp-units-base fp-units-fcl
 
+# Per-OS code lives in src/unix and src/win (units and the include files
+# of portable units), as in Free Pascal's own packages; this OS's folder
+# is searched too. The optional Synapse backend builds only with SYNAPSE_DIR.
+ifeq ($(OS),Windows_NT)
+OSDIR    := win
+else
+OSDIR    := unix
+endif
+
 SYNAPSE_FLAGS := $(if $(SYNAPSE_DIR),-Fu$(SYNAPSE_DIR) -Fi$(SYNAPSE_DIR) -dCHN_SYNAPSE)
 COMMON   := -Fisrc -v0ew -l-
 # library units: warnings are errors; release code is optimised
-UNITFLAGS := $(COMMON) $(SYNAPSE_FLAGS) -Fusrc -O2 -Sew -FU$(UNITDIR) -FE$(BINDIR)
+UNITFLAGS := $(COMMON) $(SYNAPSE_FLAGS) -Fusrc -Fusrc/$(OSDIR) -O2 -Sew -FU$(UNITDIR) -FE$(BINDIR)
 # examples, tools, benchmarks: the compiled library (as an installed one
 # would be used; Synapse's units too, so they are not rebuilt with -Sew),
 # plus tools/lib
@@ -46,22 +55,17 @@ PROGFLAGS := $(COMMON) $(if $(SYNAPSE_DIR),-dCHN_SYNAPSE) -Fu$(UNITDIR) -Futools
 # tests: range, overflow and stack checks, heaptrc, line info (and -Xs-:
 # Debian's fpc.cfg strips it otherwise, and failures could not say where);
 # -B rebuilds everything, as FPC's one-second timestamps can miss a quick edit
-TESTFLAGS := $(COMMON) $(SYNAPSE_FLAGS) -Fusrc -Futools/lib -Futests/support -B -Cr -Co -Ct -gh -gl -Xs- \
+TESTFLAGS := $(COMMON) $(SYNAPSE_FLAGS) -Fusrc -Fusrc/$(OSDIR) -Futools/lib -Futests/support -B -Cr -Co -Ct -gh -gl -Xs- \
              -Fu$(BUILD)/fpcunit -FU$(TUNITDIR) -FE$(TBINDIR) -Fi$(BUILD)
 # FPCUnit rebuilt from Debian's fpc-source without optimisation, so that a
 # failing assert's location names the test's own line (the prebuilt one
 # loses the caller's frame); without fpc-source the prebuilt one is used.
 FPCUNIT_SRC = /usr/share/fpcsrc/$(shell $(FPC) -iV)/packages/fcl-fpcunit/src
 
-# Units that only build on another OS or with an optional library.
-ifeq ($(OS),Windows_NT)
-OS_UNITS := src/ChnPortUnix.pas src/ChnPty.pas
-else
-OS_UNITS := src/ChnPortWin.pas
-endif
-OPTIONAL_UNITS := $(if $(SYNAPSE_DIR),,src/ChnPortSynapse.pas) $(OS_UNITS)
-LIBSRC   := $(wildcard src/*.pas) src/chn.inc
-UNITS    := $(filter-out $(OPTIONAL_UNITS),$(wildcard src/*.pas))
+# The optional Synapse backend builds only with SYNAPSE_DIR.
+OPTIONAL_UNITS := $(if $(SYNAPSE_DIR),,src/ChnPortSynapse.pas)
+LIBSRC   := $(wildcard src/*.pas src/*.inc src/$(OSDIR)/*.pas src/$(OSDIR)/*.inc)
+UNITS    := $(filter-out $(OPTIONAL_UNITS),$(wildcard src/*.pas src/$(OSDIR)/*.pas))
 TOOLLIB  := $(wildcard tools/lib/*.pas)
 EXAMPLES := $(wildcard examples/*.pas)
 TOOLS    := $(wildcard tools/*.pas)
@@ -78,15 +82,12 @@ all: units $(PROGBINS) chn.lpk
 examples: $(addprefix $(BINDIR)/,$(basename $(notdir $(EXAMPLES))))
 tools: $(addprefix $(BINDIR)/,$(basename $(notdir $(TOOLS))))
 
+# A build never installs anything itself (not even as root): it says how.
 check-fpc:
 	@command -v $(FPC) >/dev/null 2>&1 || { \
-	  if [ "$$(id -u)" = 0 ]; then \
-	    echo "fpc not found: installing $(DEB_PACKAGES)"; \
-	    apt-get update -q && DEBIAN_FRONTEND=noninteractive apt-get install -y -q $(DEB_PACKAGES); \
-	  else \
-	    echo "fpc not found. Install it with:"; \
-	    echo "  sudo apt-get install -y $(DEB_PACKAGES)"; exit 1; \
-	  fi; }
+	  echo "fpc not found. Install it with:"; \
+	  if [ "$$(id -u)" = 0 ]; then echo "  apt-get install -y $(DEB_PACKAGES)"; \
+	  else echo "  sudo apt-get install -y $(DEB_PACKAGES)"; fi; exit 1; }
 
 # Every library unit, compiled once by one fpc call on a generated unit
 # that uses them all; fpc itself recompiles only what changed.
@@ -95,9 +96,10 @@ $(BUILD)/units.stamp: $(LIBSRC) | check-fpc
 	@mkdir -p $(UNITDIR) $(BINDIR)
 	@# compiled units that "fpc -Fusrc prog.pas" left beside the sources
 	@# would be taken as current and never reach $(UNITDIR)
-	@if [ -n "$$(ls src/*.ppu tools/lib/*.ppu 2>/dev/null)" ]; then \
+	@if [ -n "$$(ls src/*.ppu src/*/*.ppu tools/lib/*.ppu 2>/dev/null)" ]; then \
 	  echo "note: removing compiler output left in src/ or tools/lib/"; \
-	  rm -f src/*.ppu src/*.o src/*.rsj tools/lib/*.ppu tools/lib/*.o tools/lib/*.rsj; fi
+	  rm -f src/*.ppu src/*.o src/*.rsj src/*/*.ppu src/*/*.o src/*/*.rsj \
+	    tools/lib/*.ppu tools/lib/*.o tools/lib/*.rsj; fi
 	@$(if $(SYNAPSE_DIR),$(FPC) $(COMMON) $(SYNAPSE_FLAGS) -O2 -FU$(UNITDIR) -FE$(BINDIR) $(SYNAPSE_DIR)/synaser.pas >/dev/null;) true
 	@{ echo 'unit chnall; interface uses'; \
 	   echo '$(basename $(notdir $(UNITS)))' | sed 's/ /, /g'; \
@@ -106,14 +108,14 @@ $(BUILD)/units.stamp: $(LIBSRC) | check-fpc
 	@$(FPC) $(UNITFLAGS) $(BUILD)/chnall.pas
 	@touch $@
 
-# The Lazarus package lists every unit of src/.
-chn.lpk: $(wildcard src/*.pas) tools/mklpk.sh
+# The Lazarus package lists every unit of src/ and its OS folders.
+chn.lpk: $(wildcard src/*.pas src/*/*.pas src/*/*.inc) tools/mklpk.sh
 	@bash tools/mklpk.sh
 
 # Which sources each program depends on (from the uses clauses).
 $(BUILD)/deps.mk: $(LIBSRC) $(TOOLLIB) $(PROGRAMS) $(BENCHES) tools/mkdeps.sh
 	@mkdir -p $(BUILD)
-	@bash tools/mkdeps.sh $(BINDIR) src tools/lib -- $(PROGRAMS) $(BENCHES) > $@.tmp && mv $@.tmp $@
+	@bash tools/mkdeps.sh $(BINDIR) src src/$(OSDIR) tools/lib -- $(PROGRAMS) $(BENCHES) > $@.tmp && mv $@.tmp $@
 -include $(BUILD)/deps.mk
 
 # One program: its units are current (units.stamp, order only: a program
@@ -210,7 +212,8 @@ install: units
 	for u in $(basename $(notdir $(UNITS))); do l=$$(echo $$u | tr A-Z a-z); \
 	  install -m 644 $(UNITDIR)/$$u.ppu "$$d/$$l.ppu"; \
 	  install -m 644 $(UNITDIR)/$$u.o "$$d/$$l.o"; done; \
-	install -m 644 $(LIBSRC) "$$s/src/"; install -m 644 chn.lpk "$$s/"; \
+	for f in $(wildcard src/*.pas src/*.inc src/*/*.pas src/*/*.inc); do \
+	  install -D -m 644 "$$f" "$$s/$$f"; done; install -m 644 chn.lpk "$$s/"; \
 	echo "installed units in $$d, sources in $$s"
 
 uninstall:

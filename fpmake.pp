@@ -5,8 +5,8 @@
     ./fpmake install                           # where fpc finds them
     ./fpmake install --prefix=$HOME/.fppkg     # per user (Debian searches it)
 
-  Every unit in src/ belongs to the package; the OS picks the serial
-  backend: *Unix.pas and ChnPty for Unix-likes, *Win.pas for Windows.
+  Every unit in src/ belongs to the package; per-OS units and include
+  files are in src/unix (Unix-likes) and src/win (Windows).
   ChnPortSynapse needs Synapse, which is not part of this package (build
   it with "make SYNAPSE_DIR=..." instead). Tools, examples and tests are
   built by the Makefile. }
@@ -20,21 +20,26 @@ uses
 const
   Version = '1.0.0';
 
-function OSesOf(const UnitName: string): TOSes;
+procedure AddDir(P: TPackage; const Dir: string; OSes: TOSes);
+var
+  T: TTarget;
+  F: TSearchRec;
 begin
-  if (Pos('Unix', UnitName) > 0) or (UnitName = 'ChnPty') then
-    Result := AllUnixOSes
-  else if Pos('Win', UnitName) > 0 then
-    Result := [win32, win64]
-  else
-    Result := AllOSes;
+  if FindFirst(Dir + PathDelim + '*.pas', faAnyFile, F) = 0 then
+  try
+    repeat
+      if Pos('Synapse', F.Name) > 0 then
+        Continue;                      { optional third-party backend }
+      T := P.Targets.AddUnit(F.Name, OSes);
+      T.Dependencies.AddInclude('chn.inc');
+    until FindNext(F) <> 0;
+  finally
+    FindClose(F);
+  end;
 end;
 
 var
   P: TPackage;
-  T: TTarget;
-  F: TSearchRec;
-  Name: string;
 begin
   with Installer do
   begin
@@ -47,19 +52,12 @@ begin
     P.Dependencies.Add('rtl-extra');   { serial, termio }
     P.Dependencies.Add('fcl-base');
     P.SourcePath.Add('src');
+    P.SourcePath.Add('src/unix', AllUnixOSes);
+    P.SourcePath.Add('src/win', [win32, win64]);
     P.IncludePath.Add('src');
-    if FindFirst('src' + PathDelim + '*.pas', faAnyFile, F) = 0 then
-    try
-      repeat
-        Name := ChangeFileExt(F.Name, '');
-        if Pos('Synapse', Name) > 0 then
-          Continue;                      { optional third-party backend }
-        T := P.Targets.AddUnit(F.Name, OSesOf(Name));
-        T.Dependencies.AddInclude('chn.inc');
-      until FindNext(F) <> 0;
-    finally
-      FindClose(F);
-    end;
+    AddDir(P, 'src', AllOSes);
+    AddDir(P, 'src/unix', AllUnixOSes);
+    AddDir(P, 'src/win', [win32, win64]);
     Run;
   end;
 end.

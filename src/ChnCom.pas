@@ -56,9 +56,7 @@ unit ChnCom;
 interface
 
 uses
-  ChnTypes, ChnVirt, ChnRing, ChnWait, ChnPort
-  {$IFDEF WINDOWS}, ChnPortWin{$ELSE}, ChnPortUnix{$ENDIF}
-  {$IFDEF CHN_SYNAPSE}, ChnPortSynapse{$ENDIF};
+  ChnTypes, ChnVirt, ChnRing, ChnWait, ChnPort;
 
 const
   cName = 'COM';
@@ -151,7 +149,8 @@ function ComLineText(const S: tPortSettings): ShortString;
 implementation
 
 uses
-  SysUtils, uString;
+  SysUtils, uString,
+  ChnPorts;          { links the port drivers of this build (DRV=) }
 
 const
   ParityLetters: array[tPortParity] of Char = ('N', 'E', 'O', 'M', 'S');

@@ -6,12 +6,16 @@
   a tChResult of ChnTypes, never with an exception, so the channel layer can
   pass it on unchanged. OS code lives only in the backends:
 
-    ChnPortUnix     termios (Free Pascal RTL), driver name 'RTL' on Unix
-    ChnPortWin      Windows API,               driver name 'RTL' on Windows
-    ChnPortSynapse  Synapse's synaser,         driver name 'SYNAPSE'
-                    (built only with -dCHN_SYNAPSE, see docs/ChnCom.md)
+    unix/ChnPortUnix  termios (Free Pascal RTL), driver name 'RTL' on Unix
+    unix/ChnPty       a new pseudo-terminal pair,  driver name 'PTY'
+    win/ChnPortWin    Windows API,                 driver name 'RTL' on Windows
+    ChnPortSynapse    Synapse's synaser,           driver name 'SYNAPSE'
+                      (built only with -dCHN_SYNAPSE, see docs/ChnCom.md)
+    ChnPortTcp        a TCP connection (NAM=TCP), ChnLoop the in-memory
+                      null modem (NAM=LOOP): chosen by their layers
 
-  Backends register a class under a driver name; tChnCom picks one with its
+  Backends register a class under a driver name in their initialization;
+  unit ChnPorts links those of the build, so tChnCom picks one with its
   DRV= parameter. Tests register their own fake backends the same way.
 
   Result codes used by every backend:
@@ -50,8 +54,11 @@ type
 
   TChnPortClass = class of TChnPort;
 
-  { The serial-port interface. A descendant implements every abstract
-    method; all of them return at once unless the text says otherwise. }
+  { The serial-port interface. A driver implements Open, Read, Write,
+    WaitInput and Close (calling inherited Close); every other method has
+    a default for a device without that capability (below), so a driver
+    overrides only what its device does. All return at once unless the
+    text says otherwise. }
   TChnPort = class
   protected
     FDevice: ShortString;
@@ -71,41 +78,55 @@ type
     function Open(const Path: tWordString): tChResult; virtual; abstract;
     { Apply every setting; a value the device cannot take exactly (a baud
       rate the OS or the chip lacks, mark parity without support) gives
-      res_BadSetting and no silent fallback. }
-    function Configure(const S: tPortSettings): tChResult; virtual; abstract;
+      res_BadSetting and no silent fallback. Default: res_Ok (a device
+      with no line settings: only bytes cross it). }
+    function Configure(const S: tPortSettings): tChResult; virtual;
     { Copy up to Size waiting bytes into Buf, never wait. Got = 0 with
       res_Ok means nothing is waiting. }
     function Read(var Buf; Size: LongInt; out Got: LongInt): tChResult; virtual; abstract;
     { Wait at most Ms milliseconds for input; True as soon as a byte (or a
       fault, which the next Read reports) is waiting. Ms = 0 only looks. }
     function WaitInput(Ms: LongInt): Boolean; virtual; abstract;
-    { Wait at most Ms milliseconds until Write could accept bytes. }
-    function WaitOutput(Ms: LongInt): Boolean; virtual; abstract;
+    { Wait at most Ms milliseconds until Write could accept bytes. Default:
+      True at once (no buffer the OS could fill). }
+    function WaitOutput(Ms: LongInt): Boolean; virtual;
     { Hand up to Len bytes to the OS, never wait: Done tells how many were
       taken (possibly 0 when the OS buffer is full). }
     function Write(const Buf; Len: LongInt; out Done: LongInt): tChResult; virtual; abstract;
-    { Bytes handed to the OS but not yet on the line; 0 where unknown. }
-    function OutQueue(out N: LongInt): tChResult; virtual; abstract;
+    { Bytes handed to the OS but not yet on the line; 0 where unknown (the
+      default). }
+    function OutQueue(out N: LongInt): tChResult; virtual;
     { Wait until the last bit has left the transmitter (tcdrain). Blocks for
-      as long as the OS still holds bytes: call it when OutQueue is 0. }
-    function Drain: tChResult; virtual; abstract;
-    { Discard received and/or not yet sent bytes held by the OS. }
-    function Flush(Input, Output: Boolean): tChResult; virtual; abstract;
-    function SetRts(On: Boolean): tChResult; virtual; abstract;
-    function SetDtr(On: Boolean): tChResult; virtual; abstract;
-    function GetLines(out Lines: tPortLines): tChResult; virtual; abstract;
+      as long as the OS still holds bytes: call it when OutQueue is 0.
+      Default: res_Ok at once (nothing is held). }
+    function Drain: tChResult; virtual;
+    { Discard received and/or not yet sent bytes held by the OS. Default:
+      res_Ok (the OS holds none). }
+    function Flush(Input, Output: Boolean): tChResult; virtual;
+    { Modem lines. Default: res_BadSetting, a line without them (raw TCP,
+      an in-memory line); GetLines then answers []. }
+    function SetRts(On: Boolean): tChResult; virtual;
+    function SetDtr(On: Boolean): tChResult; virtual;
+    function GetLines(out Lines: tPortLines): tChResult; virtual;
     { Let the driver switch RTS around each transmission (Linux TIOCSRS485,
-      Windows RTS_CONTROL_TOGGLE). res_BadSetting where not supported. }
-    function SetKernelRs485(On: Boolean): tChResult; virtual; abstract;
+      Windows RTS_CONTROL_TOGGLE). res_BadSetting where not supported (the
+      default). }
+    function SetKernelRs485(On: Boolean): tChResult; virtual;
     { Receive overruns the OS counted since Open (UART or driver buffer);
-      0 where the OS does not count them. }
-    function OsOverruns(out N: LongWord): tChResult; virtual; abstract;
+      0 where the OS does not count them (the default). }
+    function OsOverruns(out N: LongWord): tChResult; virtual;
     { What the program-wide wait (unit ChnWait) can wait on for input of
       this port: a descriptor or an event handle, and for a handle the
-      procedure that arms it again after it fired. False: nothing; tChnCom
-      then waits with WaitInput on this port alone. The default is False. }
+      procedure that arms it again after it fired; or wkSignal for a
+      device that signals its input itself (WaitJoined). False: nothing;
+      tChnCom then waits with WaitInput on this port alone. The default
+      is False. }
     function WaitSource(out Kind: tChnWaitKind; out Os: PtrInt;
       out Rearm: tChnWaitRearm; out Data: Pointer): Boolean; virtual;
+    { The source tChnCom made of WaitSource in the program-wide wait, or
+      nil before it leaves it: a wkSignal port calls ChnWaitSignal on it
+      when input arrives. Default: ignored. }
+    procedure WaitJoined(Src: pChnWaitSource); virtual;
     { False while waiting on WaitSource's object would only wake at once
       for nothing (a pty master with no program on the slave side answers
       poll with a hang-up every time); default True. }
@@ -116,10 +137,11 @@ type
       False (the default) for a port that buffers or decodes internally. }
     function ShortReadDrains: Boolean; virtual;
     { The OS handle (file descriptor, HANDLE), for tests and special calls;
-      -1 when closed. }
-    function OsHandle: PtrInt; virtual; abstract;
-    { Close; safe to call when not open. }
-    procedure Close; virtual; abstract;
+      -1 when closed or when there is none (the default). }
+    function OsHandle: PtrInt; virtual;
+    { Close; safe to call when not open. A driver releases its device and
+      calls inherited (which marks the port closed). }
+    procedure Close; virtual;
 
     property Device: ShortString read FDevice;
     property IsOpen: Boolean read FOpen;
@@ -179,6 +201,73 @@ begin
   if FOpen then
     Close;
   inherited Destroy;
+end;
+
+function TChnPort.Configure(const S: tPortSettings): tChResult;
+begin
+  Result := res_Ok;
+end;
+
+function TChnPort.WaitOutput(Ms: LongInt): Boolean;
+begin
+  Result := True;
+end;
+
+function TChnPort.OutQueue(out N: LongInt): tChResult;
+begin
+  N := 0;
+  Result := res_Ok;
+end;
+
+function TChnPort.Drain: tChResult;
+begin
+  Result := res_Ok;
+end;
+
+function TChnPort.Flush(Input, Output: Boolean): tChResult;
+begin
+  Result := res_Ok;
+end;
+
+function TChnPort.SetRts(On: Boolean): tChResult;
+begin
+  Result := res_BadSetting;
+end;
+
+function TChnPort.SetDtr(On: Boolean): tChResult;
+begin
+  Result := res_BadSetting;
+end;
+
+function TChnPort.GetLines(out Lines: tPortLines): tChResult;
+begin
+  Lines := [];
+  Result := res_BadSetting;
+end;
+
+function TChnPort.SetKernelRs485(On: Boolean): tChResult;
+begin
+  Result := res_BadSetting;
+end;
+
+function TChnPort.OsOverruns(out N: LongWord): tChResult;
+begin
+  N := 0;
+  Result := res_Ok;
+end;
+
+function TChnPort.OsHandle: PtrInt;
+begin
+  Result := -1;
+end;
+
+procedure TChnPort.Close;
+begin
+  FOpen := False;
+end;
+
+procedure TChnPort.WaitJoined(Src: pChnWaitSource);
+begin
 end;
 
 function TChnPort.WaitSource(out Kind: tChnWaitKind; out Os: PtrInt;

@@ -91,7 +91,7 @@ implementation
 
 {$IFDEF UNIX}
 uses
-  BaseUnix, Unix, TermIO, ChnPortUnix;
+  BaseUnix, Unix, TermIO, ChnUnix;
 
 const
   { c_cflag bits set by synaser's Config and read back }

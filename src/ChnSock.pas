@@ -85,218 +85,19 @@ function  SockLastOsError: LongInt;
 implementation
 
 uses
-  {$IFDEF WINDOWS}WinSock2,{$ELSE}BaseUnix, Unix,{$ENDIF} Sockets, SysUtils, uString;
-
-{$PACKRECORDS C}   { an OS structure: C alignment, not chn.inc's packing }
-type
-  { struct addrinfo: the field order differs between Linux and Windows }
-  PAddrInfo = ^TAddrInfo;
-  TAddrInfo = record
-    ai_flags, ai_family, ai_socktype, ai_protocol: LongInt;
-    {$IFDEF WINDOWS}
-    ai_addrlen: PtrUInt;
-    ai_canonname: PChar;
-    ai_addr: PSockAddr;
-    {$ELSE}
-    ai_addrlen: LongWord;
-    ai_addr: PSockAddr;
-    ai_canonname: PChar;
-    {$ENDIF}
-    ai_next: PAddrInfo;
-  end;
-{$PACKRECORDS 1}
+  {$IFDEF WINDOWS}WinSock2,{$ELSE}BaseUnix, Unix, ChnUnix,{$ENDIF} Sockets, SysUtils, uString;
 
 const
   AI_PASSIVE = 1;
-  {$IFDEF WINDOWS}
-  GaiLib = 'ws2_32.dll';
-  {$ENDIF}
 
-{$IFDEF WINDOWS}
-function getaddrinfo(Node, Service: PChar; Hints: PAddrInfo; var Res: PAddrInfo): LongInt;
-  stdcall; external GaiLib name 'getaddrinfo';
-procedure freeaddrinfo(Res: PAddrInfo); stdcall; external GaiLib name 'freeaddrinfo';
-{$ELSE}
-function getaddrinfo(Node, Service: PChar; Hints: PAddrInfo; var Res: PAddrInfo): LongInt;
-  cdecl; external 'c' name 'getaddrinfo';
-procedure freeaddrinfo(Res: PAddrInfo); cdecl; external 'c' name 'freeaddrinfo';
-{$ENDIF}
-
-var
-  LastOsError: LongInt = 0;
+{ the OS part: struct addrinfo, error codes, non-blocking mode, waiting,
+  event handles, keep-alive timing }
+{$IFDEF UNIX}{$I unix/chnsock.inc}{$ENDIF}
+{$IFDEF WINDOWS}{$I win/chnsock.inc}{$ENDIF}
 
 function SockLastOsError: LongInt;
 begin
   Result := LastOsError;
-end;
-
-{ ---- the OS-specific part: error codes, non-blocking mode, waiting ---- }
-
-function MapError(E: LongInt): tSockErr;
-begin
-  LastOsError := E;
-  {$IFDEF WINDOWS}
-  case E of
-    WSAEWOULDBLOCK, WSAEINPROGRESS, WSAEALREADY: Result := seWouldBlock;
-    WSAECONNREFUSED: Result := seRefused;
-    WSAETIMEDOUT: Result := seTimeout;
-    WSAECONNRESET, WSAECONNABORTED, WSAENETRESET, WSAESHUTDOWN,
-    WSAENOTCONN: Result := seLost;
-    WSAEADDRINUSE: Result := seInUse;
-    WSAEACCES: Result := seAccess;
-  else
-    Result := seOther;
-  end;
-  {$ELSE}
-  case E of
-    ESysEAGAIN, ESysEINPROGRESS, ESysEALREADY, ESysEINTR: Result := seWouldBlock;
-    ESysECONNREFUSED: Result := seRefused;
-    ESysETIMEDOUT, ESysEHOSTUNREACH, ESysENETUNREACH: Result := seTimeout;
-    ESysECONNRESET, ESysECONNABORTED, ESysEPIPE, ESysENETRESET,
-    ESysENOTCONN: Result := seLost;
-    ESysEADDRINUSE: Result := seInUse;
-    ESysEACCES, ESysEPERM: Result := seAccess;
-  else
-    Result := seOther;
-  end;
-  {$ENDIF}
-end;
-
-function SetNonBlocking(S: tSock): Boolean;
-{$IFDEF WINDOWS}
-var
-  Arg: u_long;
-begin
-  Arg := 1;
-  Result := ioctlsocket(TSocket(S), LongInt(FIONBIO), Arg) = 0;
-end;
-{$ELSE}
-var
-  Fl: LongInt;
-begin
-  Fl := FpFcntl(S, F_GETFL);
-  Result := (Fl >= 0) and (FpFcntl(S, F_SETFL, Fl or O_NONBLOCK) = 0);
-  FpFcntl(S, F_SETFD, 1);   { FD_CLOEXEC: a child we start must not keep it }
-end;
-{$ENDIF}
-
-function SockWait(const Socks: array of tSock; ForWrite: Boolean; Ms: LongInt): Boolean;
-{$IFDEF WINDOWS}
-var
-  Fs, Ex: TFDSet;
-  Tv: TTimeVal;
-  I: Integer;
-begin
-  FD_ZERO(Fs);
-  for I := 0 to High(Socks) do
-    if Socks[I] <> NoSock then
-      FD_SET(TSocket(Socks[I]), Fs);
-  Ex := Fs;
-  if Fs.fd_count = 0 then
-  begin
-    if Ms > 0 then
-      Sleep(Ms);
-    Exit(False);
-  end;
-  Tv.tv_sec := Ms div 1000;
-  Tv.tv_usec := (Ms mod 1000) * 1000;
-  if ForWrite then
-    { Winsock reports a failed connect in the except set, not as writable }
-    Result := select(0, nil, @Fs, @Ex, @Tv) > 0
-  else
-    Result := select(0, @Fs, nil, nil, @Tv) > 0;
-end;
-{$ELSE}
-var
-  P: array[0..3] of TPollFd;
-  I, N: Integer;
-begin
-  N := 0;
-  for I := 0 to High(Socks) do
-    if (Socks[I] <> NoSock) and (N <= High(P)) then
-    begin
-      P[N].fd := Socks[I];
-      if ForWrite then
-        P[N].events := POLLOUT
-      else
-        P[N].events := POLLIN;
-      P[N].revents := 0;
-      Inc(N);
-    end;
-  if N = 0 then
-  begin
-    if Ms > 0 then
-      Sleep(Ms);
-    Exit(False);
-  end;
-  Result := FpPoll(@P[0], N, Ms) > 0;
-end;
-{$ENDIF}
-
-function SockOutQueue(S: tSock): LongInt;
-{$IFDEF LINUX}
-const
-  SIOCOUTQ = $5411;               { = TIOCOUTQ }
-var
-  N: LongInt;
-begin
-  N := 0;
-  if (S = NoSock) or (FpIoctl(S, SIOCOUTQ, @N) <> 0) then
-    N := 0;
-  Result := N;
-end;
-{$ELSE}
-begin
-  Result := 0;
-end;
-{$ENDIF}
-
-function SockEventCreate(S: tSock): PtrInt;
-{$IFDEF WINDOWS}
-var
-  Ev: WSAEVENT;
-begin
-  Result := 0;
-  Ev := WSACreateEvent;
-  if Ev = 0 then
-    Exit;
-  if WSAEventSelect(TSocket(S), Ev, FD_READ or FD_CLOSE) <> 0 then
-  begin
-    WSACloseEvent(Ev);
-    Exit;
-  end;
-  Result := PtrInt(Ev);
-end;
-{$ELSE}
-begin
-  Result := 0;
-end;
-{$ENDIF}
-
-procedure SockEventRearm(S: tSock; Ev: PtrInt);
-{$IFDEF WINDOWS}
-var
-  N: u_long;
-begin
-  if Ev = 0 then
-    Exit;
-  WSAResetEvent(WSAEVENT(Ev));
-  N := 0;
-  if (ioctlsocket(TSocket(S), LongInt(FIONREAD), N) = 0) and (N > 0) then
-    WSASetEvent(WSAEVENT(Ev));
-end;
-{$ELSE}
-begin
-end;
-{$ENDIF}
-
-procedure SockEventFree(var Ev: PtrInt);
-begin
-  {$IFDEF WINDOWS}
-  if Ev <> 0 then
-    WSACloseEvent(WSAEVENT(Ev));
-  {$ENDIF}
-  Ev := 0;
 end;
 
 procedure SockClose(var S: tSock);
@@ -305,8 +106,6 @@ begin
     CloseSocket(S);
   S := NoSock;
 end;
-
-{ ---- portable over the sockets unit ---- }
 
 function SockResolve(const Host: ShortString; Port: Word; Passive: Boolean;
   out Addrs: tSockAddrs; out Count: LongInt): tSockErr;
@@ -368,7 +167,7 @@ var
 begin
   Family := PSockAddr(@A.Data)^.sa_family;
   S := fpSocket(Family, SOCK_STREAM, IPPROTO_TCP);
-  if (S < 0) {$IFDEF WINDOWS}or (S = tSock(INVALID_SOCKET)){$ENDIF} then
+  if BadSocket(S) then
   begin
     S := NoSock;
     Exit(MapError(SocketError));
@@ -420,12 +219,7 @@ begin
   if Result <> seOk then
     Exit;
   One := 1;
-  {$IFDEF WINDOWS}
-  { Windows' SO_REUSEADDR would let a second program steal the port }
-  fpSetSockOpt(S, SOL_SOCKET, SO_EXCLUSIVEADDRUSE, @One, SizeOf(One));
-  {$ELSE}
-  fpSetSockOpt(S, SOL_SOCKET, SO_REUSEADDR, @One, SizeOf(One));
-  {$ENDIF}
+  fpSetSockOpt(S, SOL_SOCKET, ListenReuse, @One, SizeOf(One));
   if (fpBind(S, PSockAddr(@A.Data), A.Len) <> 0) or (fpListen(S, 4) <> 0) then
   begin
     Result := MapError(SocketError);
@@ -436,7 +230,7 @@ end;
 function SockAccept(L: tSock; out S: tSock): tSockErr;
 begin
   S := fpAccept(L, nil, nil);
-  if (S < 0) {$IFDEF WINDOWS}or (S = tSock(INVALID_SOCKET)){$ENDIF} then
+  if BadSocket(S) then
   begin
     S := NoSock;
     Result := MapError(SocketError);
@@ -450,41 +244,13 @@ begin
 end;
 
 procedure SockTune(S: tSock);
-{$IFDEF WINDOWS}
-type
-  TKeepAlive = record              { struct tcp_keepalive }
-    OnOff, Time, Interval: LongWord;
-  end;
-const
-  SIO_KEEPALIVE_VALS = $98000004;
-var
-  Ka: TKeepAlive;
-  Ret: DWORD;
-{$ENDIF}
 var
   One: LongInt;
-  {$IFDEF LINUX}
-  V: LongInt;
-  {$ENDIF}
 begin
   One := 1;
   fpSetSockOpt(S, IPPROTO_TCP, TCP_NODELAY, @One, SizeOf(One));
   fpSetSockOpt(S, SOL_SOCKET, SO_KEEPALIVE, @One, SizeOf(One));
-  {$IFDEF WINDOWS}
-  Ka.OnOff := 1;                   { the same timing as on Linux; Windows }
-  Ka.Time := 10000;                { sends 10 probes before giving up }
-  Ka.Interval := 5000;
-  Ret := 0;
-  WSAIoctl(TSocket(S), SIO_KEEPALIVE_VALS, @Ka, SizeOf(Ka), nil, 0, @Ret, nil, nil);
-  {$ENDIF}
-  {$IFDEF LINUX}
-  V := 10;
-  fpSetSockOpt(S, IPPROTO_TCP, TCP_KEEPIDLE, @V, SizeOf(V));
-  V := 5;
-  fpSetSockOpt(S, IPPROTO_TCP, TCP_KEEPINTVL, @V, SizeOf(V));
-  V := 3;
-  fpSetSockOpt(S, IPPROTO_TCP, TCP_KEEPCNT, @V, SizeOf(V));
-  {$ENDIF}
+  OsTune(S);
 end;
 
 function SockRecv(S: tSock; var Buf; Size: LongInt; out Got: LongInt): tSockErr;
@@ -512,7 +278,7 @@ var
   N: LongInt;
 begin
   Done := 0;
-  N := fpSend(S, @Buf, Len, {$IFDEF LINUX}MSG_NOSIGNAL{$ELSE}0{$ENDIF});
+  N := fpSend(S, @Buf, Len, SendFlags);
   if N >= 0 then
   begin
     Done := N;

@@ -35,7 +35,10 @@
   manual-reset event for wake-ups (63 handles per wait: with more, each
   wait takes the caller's own handle and a rotating window of the others).
   Other Unixes: no shared set, ChnWaitIdle answers False at once and the
-  layer waits on its own device as before. }
+  layer waits on its own device as before. The OS parts are include files
+  (unix/chnwait.inc, win/chnwait.inc) with one contract: every Os* routine
+  is called with Lock held and returns with it held; OsWait alone lets it
+  go while it blocks (and counts itself in Blocked meanwhile). }
 unit ChnWait;
 
 {$I chn.inc}
@@ -123,7 +126,7 @@ implementation
 
 uses
   SysUtils
-  {$IFDEF LINUX}, BaseUnix, Linux{$ENDIF}
+  {$IFDEF LINUX}, BaseUnix, Linux, ChnUnix{$ENDIF}
   {$IFDEF WINDOWS}, Windows{$ENDIF};
 
 var
@@ -136,305 +139,8 @@ var
   Blocked: LongInt = 0;              { threads inside the OS wait now }
   HeldCount: LongInt = 0;            { layers holding input not yet taken }
 
-{$IFDEF LINUX}
-var
-  EpFd: cint = -1;
-  WakeRd: cint = -1;
-  WakeWr: cint = -1;
-  SetPid: TPid = 0;                  { process that made EpFd (fork check) }
-  KickPending: Boolean = False;      { the wake pipe holds a byte }
-
-const
-  WakeTag = QWord($FFFFFFFFFFFFFFFF);
-  FD_CLOEXEC = 1;
-
-procedure CloseOnExec(Fd: cint);
-begin
-  FpFcntl(Fd, F_SETFD, FpFcntl(Fd, F_GETFD) or FD_CLOEXEC);
-end;
-
-{ Caller holds Lock. The epoll set is made on first use, and again in a
-  child process after fork (the parent's set is shared with it). }
-function OsReady: Boolean;
-var
-  P: TFilDes;
-  E: EPoll_Event;
-  Pid: TPid;
-begin
-  Pid := FpGetPid;
-  if (EpFd >= 0) and (Pid = SetPid) then
-    Exit(True);
-  if EpFd >= 0 then
-  begin
-    { a forked child: drop the parent's set without touching it }
-    FpClose(EpFd);
-    FpClose(WakeRd);
-    FpClose(WakeWr);
-    EpFd := -1;
-  end;
-  KickPending := False;
-  Result := False;
-  EpFd := epoll_create(16);
-  if EpFd < 0 then
-    Exit;
-  if FpPipe(P) <> 0 then
-  begin
-    FpClose(EpFd);
-    EpFd := -1;
-    Exit;
-  end;
-  WakeRd := P[0];
-  WakeWr := P[1];
-  FpFcntl(WakeRd, F_SETFL, FpFcntl(WakeRd, F_GETFL) or O_NONBLOCK);
-  FpFcntl(WakeWr, F_SETFL, FpFcntl(WakeWr, F_GETFL) or O_NONBLOCK);
-  CloseOnExec(EpFd);
-  CloseOnExec(WakeRd);
-  CloseOnExec(WakeWr);
-  FillChar(E, SizeOf(E), 0);
-  E.Events := EPOLLIN;
-  E.Data.u64 := WakeTag;
-  epoll_ctl(EpFd, EPOLL_CTL_ADD, WakeRd, @E);
-  SetPid := Pid;
-  Result := True;
-end;
-
-function Tag(Src: pChnWaitSource): QWord;
-begin
-  Result := (QWord(Src^.Gen) shl 32) or QWord(LongWord(Src^.Index));
-end;
-
-{ Put a descriptor source into the epoll set, or change its events.
-  Level-triggered: input already there when it is armed counts too. A
-  fired source of another channel is taken out (OsDisarm) rather than
-  muted, since epoll reports a hang-up even for an entry with no events.
-  Caller holds Lock. }
-procedure OsArm(Src: pChnWaitSource; First: Boolean);
-var
-  E: EPoll_Event;
-  Op: cint;
-begin
-  if Src^.Kind <> wkDescriptor then
-  begin
-    Src^.Armed := True;
-    Exit;
-  end;
-  if EpFd < 0 then
-    Exit;
-  FillChar(E, SizeOf(E), 0);
-  E.Events := EPOLLIN;
-  if Src^.WantOut then
-    E.Events := E.Events or EPOLLOUT;
-  E.Data.u64 := Tag(Src);
-  if Src^.Armed then
-    Op := EPOLL_CTL_MOD
-  else
-    Op := EPOLL_CTL_ADD;
-  Src^.Armed := epoll_ctl(EpFd, Op, Src^.Os, @E) = 0;
-end;
-
-procedure OsDisarm(Src: pChnWaitSource);
-begin
-  if (Src^.Kind = wkDescriptor) and Src^.Armed and (EpFd >= 0) then
-    epoll_ctl(EpFd, EPOLL_CTL_DEL, Src^.Os, nil);
-  Src^.Armed := False;
-end;
-
-procedure OsForget(Src: pChnWaitSource);
-begin
-  if SetPid = FpGetPid then        { never the set a parent process shares }
-    OsDisarm(Src);
-  Src^.Armed := False;
-end;
-
-{ Wake every thread blocked in the wait: the pipe stays readable (each
-  blocked thread's epoll_wait returns) until the last of them has left,
-  who empties it. A count of bytes instead would let one thread that
-  loops quickly take another's wake-up. Caller holds Lock. }
-procedure OsWake(N: LongInt);
-var
-  B: Byte;
-begin
-  if (WakeWr < 0) or KickPending then
-    Exit;
-  B := 0;
-  KickPending := FpWrite(WakeWr, B, 1) = 1;
-end;
-
-const
-  MaxEvents = 64;
-
-{ Block up to Ms; mark what fired. The caller's own source stays in the
-  set (it reads its device at once; taking it out and back in would cost
-  two calls per message), every other fired source leaves it until its
-  owner has looked. Called without Lock; takes it after. }
-function OsWait(Ms: LongInt; Own: pChnWaitSource): Boolean;
-var
-  Ev: array[0..MaxEvents - 1] of EPoll_Event;
-  N, I: cint;
-  Idx: LongInt;
-  S: pChnWaitSource;
-  B: Byte;
-  Got: Boolean;
-begin
-  N := epoll_wait(EpFd, @Ev[0], MaxEvents, Ms);
-  Got := False;
-  Result := N > 0;
-  EnterCriticalSection(Lock);
-  Dec(Blocked);
-  if KickPending and (Blocked = 0) then
-  begin
-    FpRead(WakeRd, B, 1);           { the last woken thread ends the wake-up }
-    KickPending := False;
-  end;
-  if N > 0 then
-    for I := 0 to N - 1 do
-      if Ev[I].Data.u64 <> WakeTag then
-      begin
-        Idx := LongInt(Ev[I].Data.u64 and $FFFFFFFF);
-        if Idx >= SlotCount then
-          Continue;
-        S := Slots[Idx];
-        if not S^.Used or (S^.Gen <> LongWord(Ev[I].Data.u64 shr 32)) then
-          Continue;                 { left the set meanwhile }
-        if S <> Own then
-          OsDisarm(S);
-        if not S^.Fired then
-        begin
-          S^.Fired := True;
-          Inc(FiredCount);
-        end;
-        Got := True;
-      end;
-  if Got then
-  begin
-    SkipBudget := 2 * Members + 2;
-    if Blocked > 0 then
-      OsWake(Blocked);              { their own input may be among these }
-  end;
-  LeaveCriticalSection(Lock);
-end;
-{$ENDIF LINUX}
-
-{$IFDEF WINDOWS}
-var
-  WakeEvt: THandle = 0;              { manual reset: wakes every blocked thread }
-  KickPending: Boolean = False;
-  Rotor: LongInt = 0;
-
-function OsReady: Boolean;
-begin
-  if WakeEvt = 0 then
-    WakeEvt := CreateEvent(nil, True, False, nil);
-  Result := WakeEvt <> 0;
-end;
-
-procedure OsArm(Src: pChnWaitSource; First: Boolean);
-begin
-  if Src^.Kind = wkHandle then
-  begin
-    if not First or (Src^.Rearm <> nil) then
-    begin
-      if Src^.Rearm <> nil then
-        Src^.Rearm(Src^.RearmData)
-      else
-        ResetEvent(THandle(Src^.Os));
-    end;
-  end;
-  Src^.Armed := True;
-end;
-
-procedure OsDisarm(Src: pChnWaitSource);
-begin
-  Src^.Armed := False;
-end;
-
-procedure OsForget(Src: pChnWaitSource);
-begin
-end;
-
-{ As on Linux: signalled until the last blocked thread has left. }
-procedure OsWake(N: LongInt);
-begin
-  if (WakeEvt <> 0) and not KickPending then
-    KickPending := SetEvent(WakeEvt);
-end;
-
-{ Called with Lock held; releases it while blocked. }
-function OsWait(Ms: LongInt; Own: pChnWaitSource): Boolean;
-var
-  H: array[0..MAXIMUM_WAIT_OBJECTS - 1] of THandle;
-  Who: array[0..MAXIMUM_WAIT_OBJECTS - 1] of pChnWaitSource;
-  Gens: array[0..MAXIMUM_WAIT_OBJECTS - 1] of LongWord;
-  N, I, K: LongInt;
-  R: DWORD;
-  S: pChnWaitSource;
-
-  procedure Add(S: pChnWaitSource);
-  begin
-    if (N < MAXIMUM_WAIT_OBJECTS) and S^.Used and S^.Armed and (S^.Kind = wkHandle) then
-    begin
-      H[N] := THandle(S^.Os);
-      Who[N] := S;
-      Gens[N] := S^.Gen;
-      Inc(N);
-    end;
-  end;
-
-begin
-  N := 1;
-  H[0] := WakeEvt;
-  Who[0] := nil;
-  Gens[0] := 0;
-  if Own <> nil then
-    Add(Own);                        { the caller's own handle always }
-  if SlotCount > 0 then
-  begin
-    Rotor := Rotor mod SlotCount;
-    for K := 0 to SlotCount - 1 do
-      if Slots[(Rotor + K) mod SlotCount] <> Own then
-        Add(Slots[(Rotor + K) mod SlotCount]);
-    Inc(Rotor, MAXIMUM_WAIT_OBJECTS - 2);
-  end;
-  Inc(Blocked);
-  LeaveCriticalSection(Lock);
-  R := WaitForMultipleObjects(N, @H[0], False, DWORD(Ms));
-  EnterCriticalSection(Lock);
-  Dec(Blocked);
-  if KickPending and (Blocked = 0) then
-  begin
-    ResetEvent(WakeEvt);
-    KickPending := False;
-  end;
-  Result := False;
-  if R < WAIT_OBJECT_0 + DWORD(N) then   { WAIT_OBJECT_0 is 0 }
-  begin
-    Result := True;
-    I := R - WAIT_OBJECT_0;
-    if I > 0 then
-    begin
-      { several may be signalled: take every one that is, so one line
-        cannot hide another }
-      for K := I to N - 1 do
-        if (K = I) or (WaitForSingleObject(H[K], 0) = WAIT_OBJECT_0) then
-        begin
-          S := Who[K];
-          if S^.Used and (S^.Gen = Gens[K]) then
-          begin
-            S^.Armed := False;
-            if not S^.Fired then
-            begin
-              S^.Fired := True;
-              Inc(FiredCount);
-            end;
-          end;
-        end;
-      SkipBudget := 2 * Members + 2;
-      if Blocked > 0 then
-        OsWake(Blocked);
-    end;
-  end;
-end;
-{$ENDIF WINDOWS}
+{$IFDEF UNIX}{$I unix/chnwait.inc}{$ENDIF}
+{$IFDEF WINDOWS}{$I win/chnwait.inc}{$ENDIF}
 
 { ------------------------------------------------------------------ set }
 
@@ -663,24 +369,13 @@ begin
     LeaveCriticalSection(Lock);
     Exit(False);
   end;
-  {$IFDEF LINUX}
-  if EpFd < 0 then                   { made by the first ChnWaitJoin }
+  if not OsCanWait then
   begin
     LeaveCriticalSection(Lock);
     Exit(False);
   end;
-  Inc(Blocked);
+  Result := OsWait(Ms, Own);         { returns with Lock held, as it came }
   LeaveCriticalSection(Lock);
-  Result := OsWait(Ms, Own);
-  {$ELSE}
-  if not OsReady then
-  begin
-    LeaveCriticalSection(Lock);
-    Exit(False);
-  end;
-  Result := OsWait(Ms, Own);
-  LeaveCriticalSection(Lock);
-  {$ENDIF}
   {$ENDIF}
 end;
 
@@ -713,19 +408,8 @@ begin
     Dispose(Slots[I]);
   SlotCount := 0;
   Slots := nil;
-  {$IFDEF LINUX}
-  if (EpFd >= 0) and (SetPid = FpGetPid) then
-  begin
-    FpClose(EpFd);
-    FpClose(WakeRd);
-    FpClose(WakeWr);
-  end;
-  EpFd := -1;
-  {$ENDIF}
-  {$IFDEF WINDOWS}
-  if WakeEvt <> 0 then
-    CloseHandle(WakeEvt);
-  WakeEvt := 0;
+  {$IF DEFINED(LINUX) OR DEFINED(WINDOWS)}
+  OsDone;
   {$ENDIF}
 end;
 

@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # tests/packaging.sh - the library as users get it (called by tests/run.sh):
 #  0. no file points outside the repository;
-#  1. chn.lpk lists every unit of src/;
+#  1. chn.lpk lists every unit of src/ and its OS folders;
 #  2. every complete program in README.md ("program ...;" in a ```pascal
 #     block) is built outside the tree the three ways the README gives -
 #     -Fu to this checkout, "make install" (per user, found by plain fpc),
@@ -37,10 +37,10 @@ else bad "package: files citing SPEC/seeds/../shared: $(echo $hits)"; fi
 
 # 1. chn.lpk
 missing=""
-for f in src/*.pas src/chn.inc; do
+for f in src/*.pas src/*.inc src/unix/*.pas src/unix/*.inc src/win/*.pas src/win/*.inc; do
   grep -q "<Filename Value=\"$f\"/>" chn.lpk || missing="$missing $f"
 done
-if [ -z "$missing" ]; then ok "package: chn.lpk lists every unit of src/"
+if [ -z "$missing" ]; then ok "package: chn.lpk lists every unit of src/ (and src/unix, src/win)"
 else bad "package: chn.lpk misses$missing (make writes it: commit it)"; fi
 
 # 2. README programs, each in its own folder outside the tree
@@ -87,7 +87,7 @@ done
 
 # the checkout stays clean: a build that follows the README leaves no
 # compiled unit beside the library's sources
-if [ -z "$(ls src/*.ppu src/*.o 2>/dev/null)" ]; then ok "package: building from the checkout writes nothing into src/"
+if [ -z "$(ls src/*.ppu src/*.o src/*/*.ppu src/*/*.o 2>/dev/null)" ]; then ok "package: building from the checkout writes nothing into src/"
 else bad "package: compiled units were left in src/"; fi
 
 # way 2: make install as a user (PREFIX=$HOME/.fppkg), then plain fpc

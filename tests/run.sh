@@ -88,7 +88,7 @@ fi
 
 if [ -z "$FILTER" ] || [[ "api" == *"${FILTER,,}"* ]]; then
   if command -v perl >/dev/null; then
-    if perl tests/apicheck.pl src/*.pas $(ls tools/lib/*.pas 2>/dev/null); then
+    if perl tests/apicheck.pl src/*.pas src/unix/*.pas src/win/*.pas $(ls tools/lib/*.pas 2>/dev/null); then
       pass "api: no Integer, Cardinal, plain string or {\$H+} in library interfaces"
     else
       fail "api: mode-dependent types in library interfaces (docs/LAYERS.md)"

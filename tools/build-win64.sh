@@ -4,7 +4,7 @@
 # Not part of "make test". Builds a win64 RTL and the FCL units the test
 # runner needs (fpcunit, process) from Debian's fpc-source (the RTL copied
 # to a writable folder outside the repository), then compiles
-# src/ChnPortWin.pas, src/ChnCom.pas and src/ChnTcp.pas (Winsock) and any
+# src/win/ChnPortWin.pas, src/ChnCom.pas and src/ChnTcp.pas (Winsock) and any
 # program given against it.
 # tools/wintest.sh ("make wintest") runs the results under Wine.
 #   tools/build-win64.sh                  units only
@@ -69,7 +69,7 @@ if [ ! -f "$RTLU/strutils.ppu" ]; then
     || { tail -n 20 "$WORK/strutils-build.log"; echo "win64 StrUtils build failed"; exit 1; }
 fi
 mkdir -p "$OUT/units" "$OUT/bin"
-FLAGS="-Twin64 -Px86_64 -n -v0ew -Sew -O2 -Fu$RTLU -Fusrc -Futools/lib -Fisrc -FU$OUT/units -FE$OUT/bin"
+FLAGS="-Twin64 -Px86_64 -n -v0ew -Sew -O2 -Fu$RTLU -Fusrc -Fusrc/win -Futools/lib -Fisrc -FU$OUT/units -FE$OUT/bin"
 if [ -n "${SYNAPSE_DIR:-}" ]; then
   # synaser needs registry and winver from the FPC packages; its own
   # warnings are not ours, so no -Sew for it
@@ -81,7 +81,7 @@ if [ -n "${SYNAPSE_DIR:-}" ]; then
   FLAGS="$FLAGS -Fu$SYNAPSE_DIR -Fi$SYNAPSE_DIR -dCHN_SYNAPSE"
   $PPC $FLAGS src/ChnPortSynapse.pas
 fi
-$PPC $FLAGS src/ChnPortWin.pas
+$PPC $FLAGS src/win/ChnPortWin.pas
 $PPC $FLAGS src/ChnCom.pas
 $PPC $FLAGS src/ChnTcp.pas
 for p in "$@"; do $PPC $FLAGS "$p"; done

@@ -1,18 +1,20 @@
 #!/usr/bin/env bash
 # tools/mklpk.sh - writes chn.lpk, the Lazarus runtime package, listing
-# every unit of src/ (run by make whenever src/ changes; tests/packaging.sh
-# checks the committed file is current). OS-specific units and the optional
-# Synapse backend stay out of the package's uses section: ChnCom pulls in
-# the one its OS needs.
+# every unit of src/ and of its OS folders src/unix and src/win (run by
+# make whenever src/ changes; tests/packaging.sh checks the committed file
+# is current). OS-specific units and the optional Synapse backend stay out
+# of the package's uses section: ChnCom pulls in the one its OS needs.
 set -eu
 cd "$(dirname "$0")/.."
-files=$(ls src/*.pas | LC_ALL=C sort -f)
-n=$(($(echo "$files" | wc -l) + 1))
+files=$(ls src/*.pas src/unix/*.pas src/win/*.pas | LC_ALL=C sort -f)
+incs=$(ls src/*.inc src/unix/*.inc src/win/*.inc | LC_ALL=C sort -f)
+n=$(($(echo "$files" | wc -l) + $(echo "$incs" | wc -l)))
 {
 cat <<'HEAD'
 <?xml version="1.0" encoding="UTF-8"?>
 <!-- chn.lpk - the Chn library as a Lazarus runtime package (no LCL).
-     Written by tools/mklpk.sh from the units in src/; do not edit.
+     Written by tools/mklpk.sh from the units in src/, src/unix and
+     src/win; do not edit.
      Add it to a project (Package > Open Package File > chn.lpk, compile,
      then Project Inspector > Add > New Requirement > chn) or from the
      command line: lazbuild -add-package-link chn.lpk; lazbuild your.lpi.
@@ -27,7 +29,7 @@ cat <<'HEAD'
       <Version Value="11"/>
       <SearchPaths>
         <IncludeFiles Value="src"/>
-        <OtherUnitFiles Value="src"/>
+        <OtherUnitFiles Value="src;src/$(SrcOS)"/>
         <UnitOutputDirectory Value="lib/$(TargetCPU)-$(TargetOS)"/>
       </SearchPaths>
     </CompilerOptions>
@@ -46,11 +48,13 @@ for f in $files; do
   esac
   echo "      </Item$i>"
 done
-i=$((i + 1))
-echo "      <Item$i>"
-echo '        <Filename Value="src/chn.inc"/>'
-echo '        <Type Value="Include"/>'
-echo "      </Item$i>"
+for f in $incs; do
+  i=$((i + 1))
+  echo "      <Item$i>"
+  echo "        <Filename Value=\"$f\"/>"
+  echo '        <Type Value="Include"/>'
+  echo "      </Item$i>"
+done
 cat <<'TAIL'
     </Files>
     <RequiredPkgs Count="1">

@@ -27,12 +27,7 @@ unit ChnPortUnix;
 interface
 
 uses
-  BaseUnix, Unix, TermIO, ChnTypes, ChnWait, ChnPort;
-
-const
-  { open(2) flag O_CLOEXEC, which the RTL does not name: descriptors of
-    the library stay out of programs this one starts }
-  OpenCloseOnExec = {$IFDEF LINUX}$80000{$ELSE}0{$ENDIF};
+  BaseUnix, Unix, TermIO, ChnTypes, ChnWait, ChnPort, ChnUnix;
 
 type
   TChnPortUnix = class(TChnPort)
@@ -70,14 +65,6 @@ type
     function OsHandle: PtrInt; override;
     procedure Close; override;
   end;
-
-{ True when Fd (opened on Path) is a pseudo terminal, slave or master: a
-  virtual line. Also used by the Synapse backend on Unix. }
-function PortIsPty(Fd: cint; const Path: tWordString): Boolean;
-
-{ The parameter key ('BIT', 'STOP', 'PAR', 'FLW', else 'BD') behind the
-  c_cflag bits (within Mask) a driver changed from Want to Got. }
-function PortCFlagKey(Got, Want, Mask: LongWord): ShortString;
 
 implementation
 
@@ -183,50 +170,6 @@ begin
   if Result = res_BadSetting then
     FailKey := 'BD';
 end;
-
-function PortCFlagKey(Got, Want, Mask: LongWord): ShortString;
-var
-  Diff: LongWord;
-begin
-  Diff := (Got xor Want) and Mask;
-  if Diff and CSIZE <> 0 then
-    Result := 'BIT'
-  else if Diff and CSTOPB <> 0 then
-    Result := 'STOP'
-  else if Diff and (PARENB or PARODD {$IFDEF LINUX}or CMSPAR{$ENDIF}) <> 0 then
-    Result := 'PAR'
-  else if Diff and CRTSCTS <> 0 then
-    Result := 'FLW'
-  else
-    Result := 'BD';
-end;
-
-{ A pseudo terminal, slave or master, by device number on Linux (Unix98
-  slaves: majors 136..143, /dev/ptmx: 5,2; BSD-style ptys: 2 and 3), by
-  path elsewhere. A symlink (socat link=) was resolved by open. }
-function PortIsPty(Fd: cint; const Path: tWordString): Boolean;
-{$IFDEF LINUX}
-var
-  St: Stat;
-  Major, Minor: QWord;
-begin
-  Result := False;
-  if FpFStat(Fd, St) <> 0 then
-    Exit;
-  if not FpS_ISCHR(St.st_mode) then
-    Exit;
-  Major := ((St.st_rdev shr 8) and $FFF) or ((St.st_rdev shr 32) and not QWord($FFF));
-  Minor := (St.st_rdev and $FF) or ((St.st_rdev shr 12) and not QWord($FF));
-  Result := ((Major >= 136) and (Major <= 143)) or ((Major = 5) and (Minor = 2)) or
-    (Major = 2) or (Major = 3);
-end;
-{$ELSE}
-begin
-  Result := (Copy(Path, 1, 9) = '/dev/pts/') or (Path = '/dev/ptmx') or
-    (Copy(Path, 1, 8) = '/dev/pty') or (Copy(Path, 1, 8) = '/dev/tty') and
-    (Length(Path) = 10) and (Path[9] in ['p'..'z']);
-end;
-{$ENDIF}
 
 function TChnPortUnix.Open(const Path: tWordString): tChResult;
 var

@@ -21,7 +21,7 @@ unit ChnPty;
 interface
 
 uses
-  BaseUnix, ChnTypes, ChnPort, ChnPortUnix;
+  BaseUnix, ChnTypes, ChnPort, ChnPortUnix, ChnUnix;
 
 const
   PtyDriver = 'PTY';
