@@ -93,6 +93,8 @@ type
     CH_TxBuf   : PByte;            { copy of the message being sent }
     CH_TxCap, CH_TxLen, CH_TxPos: LongInt;
     CH_Wait    : pChnWaitSource;   { this port in the program-wide wait; nil: none }
+    CH_Reopen  : LongInt;          { RECON= ms between reopen attempts, 0 = off }
+    CH_ReopenAt: QWord;            { next reopen attempt (GetTickCount64) }
     constructor Init;
     constructor ChInitParam(const S: tParamStr);
     destructor  Done; virtual;
@@ -128,6 +130,8 @@ type
       where the line itself holds the sender back (flow control, TCP). }
     function  ComDropsWhenFull: Boolean; virtual;
     procedure ComPull;
+    { RECON=: after a device loss, reopen the device in the polls }
+    procedure ComReopen;
     procedure ComPumpTx;
     { Before a close: what ChSend was given leaves the driver, bounded }
     procedure ComDrainTx;
@@ -187,6 +191,8 @@ begin
   CH_TxLen := 0;
   CH_TxPos := 0;
   CH_Wait := nil;
+  CH_Reopen := 0;
+  CH_ReopenAt := 0;
 end;
 
 constructor tChnCom.ChInitParam(const S: tParamStr);
@@ -284,6 +290,8 @@ begin
     Result := ParamSetNum(S, 1, 65535, CmdL, CH_LSB)
   else if Key = 'IDL' then
     Result := ParamSetNum(S, 0, 1000, CmdL, CH_Idle)
+  else if Key = 'RECON' then
+    Result := ParamSetNum(S, 0, 3600000, CmdL, CH_Reopen)
   else if Key = 'IRQ' then
   begin
     Result := res_Ok;             { DOS only: accepted and ignored }
@@ -315,6 +323,8 @@ begin
     R := R + ParamText('COM', CH_Com);
   R := R + ComLineText(CH_Set) + ' RS485=' + Rs485Names[CH_Rs485] +
     ComBufferText;
+  if CH_Reopen <> 0 then
+    R := R + ParamText('RECON', CH_Reopen);
   if CH_Irq <> '' then
     R := R + ' IRQ=' + CH_Irq;
   if CH_DosKey <> '' then
@@ -566,6 +576,72 @@ begin
     CH_Port.WaitUseful);
 end;
 
+{ RECON=: a lost device (USB adapter pulled) is closed at once - so the
+  kernel can give the adapter its name again when it comes back - and
+  reopened every RECON ms from the polls with every setting (ComOpenPort,
+  as ChOpen); results say res_Reconnecting until that works. An open of a
+  tty does not block (O_NONBLOCK), so a poll never hangs on it, and one
+  attempt per RECON ms never spins. A device that comes back but refuses
+  a setting ends it: res_BadSetting, the token named. Bytes received
+  before the loss can still be taken. }
+procedure tChnCom.ComReopen;
+var
+  Port: TChnPort;
+  R: tChResult;
+  Now: QWord;
+begin
+  if (CH_Reopen = 0) or (CH_Port = nil) or
+    ((CH_Fault <> res_DeviceLost) and (CH_Fault <> res_IOError) and
+     (CH_Fault <> res_Reconnecting)) then
+    Exit;
+  Now := GetTickCount64;
+  if CH_Fault <> res_Reconnecting then
+  begin
+    ChnWaitLeave(CH_Wait);
+    CH_Port.Close;                  { the object stays until a new port works }
+    CH_Fault := res_Reconnecting;
+    CH_ReopenAt := Now + QWord(CH_Reopen);
+  end;
+  if Now >= CH_ReopenAt then
+  begin
+    CH_RtsToggle := False;
+    R := ComOpenPort(Port);         { names the token when it fails }
+    if R = res_Ok then
+    begin
+      CH_Port.Free;
+      CH_Port := Port;
+      ComJoinWait;
+      CH_TxLen := 0;
+      CH_TxPos := 0;
+      CH_RtsUp := False;
+      CH_OsLost := 0;               { the new port counts from 0 }
+      CH_Fault := res_Ok;
+      CH_ParamErr := '';
+      CH_Result := res_Ok;
+      CH_RResult := res_Ok;
+      CH_SResult := res_Ok;
+      Exit;
+    end;
+    if R = res_BadSetting then
+    begin
+      CH_Fault := R;                { back, but not as configured: no retry }
+      CH_Result := R;
+      CH_RResult := R;
+      CH_SResult := R;
+      Exit;
+    end;
+    CH_ReopenAt := Now + QWord(CH_Reopen);
+  end;
+  if CH_ParamErr = '' then
+    if CH_Dev <> '' then
+      CH_ParamErr := ChGetParam('DEV')
+    else
+      CH_ParamErr := ChGetParam('COM');
+  CH_Result := res_Reconnecting;
+  CH_RResult := res_Reconnecting;
+  CH_SResult := res_Reconnecting;
+end;
+
 { Hand as much of the pending message to the OS as it takes now; drop RTS
   once an RS-485 transmission has completely left the line. }
 procedure tChnCom.ComPumpTx;
@@ -682,6 +758,7 @@ var
 begin
   if not ChSendAllowed(Buff, Len, True) then
     Exit;
+  ComReopen;
   if CH_Fault <> res_Ok then
   begin
     CH_SResult := CH_Fault;
@@ -729,6 +806,7 @@ end;
 
 function tChnCom.ChSendReady: tChState;
 begin
+  ComReopen;
   Result := CHS_SendReady;
   if (CH_Port = nil) or (CH_Fault <> res_Ok) then
     Exit;
@@ -757,6 +835,7 @@ var
 begin
   if CH_State <> CHS_Connect then
     Exit(CHS_RecInactive);
+  ComReopen;
   if CH_RCtrl <> CHS_ReceiveReady then
   begin
     ComPumpTx;                    { a long message keeps moving meanwhile }
@@ -795,6 +874,7 @@ end;
 
 procedure tChnCom.ChReceive(var Len: Word);
 begin
+  ComReopen;
   if not ChReceiveAllowed(Len) then
     Exit;
   if CH_RCtrl <> CHS_ReceiveReady then

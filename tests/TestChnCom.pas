@@ -54,6 +54,8 @@ type
     procedure TestDeviceInUse;
     procedure TestOtherUserCanOpenAfterClose;
     procedure TestDeviceLostThenReopen;
+    procedure TestReconnectsAfterDeviceLoss;
+    procedure TestReconnectStopsAtARefusedSetting;
     procedure TestCloseRightAfterSendLosesNothing;
     procedure TestCloseWaitsUntilALongMessageLeft;
     procedure TestCloseIsBoundedWhenNobodyReads;
@@ -695,6 +697,120 @@ begin
   FChn^.ChReceiveBuffer(@FRBuf, SizeOf(FRBuf));
   FChn^.ChConnect;
   ExchangeAllByteValues('after reopen');
+end;
+
+{ RECON=: the device is a symlink, as /dev/serial/by-id/... is; it goes
+  away with the adapter and comes back pointing at another tty. The layer
+  reports res_Reconnecting with the device named, polls keep waiting IDL
+  (no busy loop), and once the device is back the layer has reopened it
+  by itself with every setting (read from the kernel) and bytes flow. }
+procedure TTestChnComPty.TestReconnectsAfterDeviceLoss;
+var
+  Link: string;
+  T0: QWord;
+  C0, Used: Double;
+  Polls: LongInt;
+begin
+  Link := GetTempDir(False) + 'chn-recon-' + IntToStr(FpGetPid) + '-' + Drv;
+  DeleteFile(Link);
+  AssertEquals('symlink', 0, FpSymlink(PChar(FPty.SlavePath), PChar(Link)));
+  try
+    FChn := ChnCollection^.ChNewInit(ChnCom.cName);
+    FChn^.ChSetParam('NAM=COM DRV=' + Drv + ' DEV=' + Link + ' BD=19200 STOP=2 RECON=50 IDL=5');
+    AssertEquals('params ' + FChn^.ChParamError, res_Ok, FChn^.ChResult);
+    AssertTrue('reported back', Pos('RECON=50', FChn^.ChGetParam('')) > 0);
+    FChn^.ChOpen;
+    AssertEquals('open', res_Ok, FChn^.ChResult);
+    FChn^.ChReceiveBuffer(@FRBuf, SizeOf(FRBuf));
+    FChn^.ChConnect;
+    ExchangeAllByteValues('before the loss');
+    { the adapter is pulled: its tty hangs up, its by-id link goes }
+    FPty.CloseMaster;
+    DeleteFile(Link);
+    T0 := GetTickCount64;
+    C0 := CpuMs;
+    Polls := 0;
+    while GetTickCount64 - T0 < 600 do
+    begin
+      AssertEquals('receiving', CHS_Receiving, FChn^.ChReceiveReady);
+      Inc(Polls);
+    end;
+    Used := CpuMs - C0;
+    AssertEquals('ChResult while away', res_Reconnecting, FChn^.ChResult);
+    AssertEquals('ChReceiveResult', res_Reconnecting, FChn^.ChReceiveResult);
+    AssertEquals('the device named', 'DEV=' + Link, FChn^.ChParamError);
+    FChn^.ChSend(@FRBuf, 1);
+    AssertEquals('ChSendResult', res_Reconnecting, FChn^.ChSendResult);
+    AssertEquals('still connected for the program', CHS_Connect, FChn^.ChReady);
+    { IDL=5: about 120 polls in 600 ms, each waiting; a spinning loop
+      makes thousands and burns the CPU }
+    AssertTrue('polls waited (' + IntToStr(Polls) + ' polls)', Polls < 1000);
+    AssertTrue('no busy loop (' + FloatToStrF(Used, ffFixed, 8, 1) + ' ms CPU in 600 ms)',
+      Used < 200);
+    { the adapter comes back: another tty behind the same name }
+    FPty.Free;
+    FPty := TPtyPair.Create;
+    AssertEquals('symlink again', 0, FpSymlink(PChar(FPty.SlavePath), PChar(Link)));
+    T0 := GetTickCount64;
+    while (FChn^.ChResult <> res_Ok) and (GetTickCount64 - T0 < 3000) do
+      FChn^.ChReceiveReady;
+    AssertEquals('reconnected by itself', res_Ok, FChn^.ChResult);
+    AssertEquals('receive result', res_Ok, FChn^.ChReceiveResult);
+    AssertEquals('no token named', '', FChn^.ChParamError);
+    CheckTermios('settings re-applied', KCS8 or KCSTOPB, $E { B19200 });
+    ExchangeAllByteValues('after the reconnect');
+  finally
+    DeleteFile(Link);
+  end;
+end;
+
+{ A device that comes back but is not what was configured (here: not a
+  terminal at all) ends the reconnect with the refusal named; a device
+  that never comes back stays res_Reconnecting until ChClose. }
+procedure TTestChnComPty.TestReconnectStopsAtARefusedSetting;
+var
+  Link: string;
+  T0: QWord;
+begin
+  Link := GetTempDir(False) + 'chn-recon2-' + IntToStr(FpGetPid) + '-' + Drv;
+  DeleteFile(Link);
+  AssertEquals('symlink', 0, FpSymlink(PChar(FPty.SlavePath), PChar(Link)));
+  try
+    FChn := ChnCollection^.ChNewInit(ChnCom.cName);
+    FChn^.ChSetParam('NAM=COM DRV=' + Drv + ' DEV=' + Link + ' RECON=20 IDL=5');
+    FChn^.ChOpen;
+    AssertEquals('open', res_Ok, FChn^.ChResult);
+    FChn^.ChReceiveBuffer(@FRBuf, SizeOf(FRBuf));
+    FChn^.ChConnect;
+    FPty.CloseMaster;
+    DeleteFile(Link);
+    T0 := GetTickCount64;
+    while GetTickCount64 - T0 < 300 do
+      FChn^.ChReceiveReady;
+    AssertEquals('never back (yet)', res_Reconnecting, FChn^.ChResult);
+    AssertEquals('the device named', 'DEV=' + Link, FChn^.ChParamError);
+    AssertEquals('back as something else', 0, FpSymlink(PChar('/dev/null'), PChar(Link)));
+    T0 := GetTickCount64;
+    while (FChn^.ChResult = res_Reconnecting) and (GetTickCount64 - T0 < 3000) do
+      FChn^.ChReceiveReady;
+    AssertEquals('refused', res_BadSetting, FChn^.ChResult);
+    AssertEquals('the token', 'DEV=' + Link, FChn^.ChParamError);
+    { no further attempts: a good device now changes nothing }
+    DeleteFile(Link);
+    FPty.Free;
+    FPty := TPtyPair.Create;
+    AssertEquals('symlink again', 0, FpSymlink(PChar(FPty.SlavePath), PChar(Link)));
+    T0 := GetTickCount64;
+    while GetTickCount64 - T0 < 200 do
+      FChn^.ChReceiveReady;
+    AssertEquals('stays refused', res_BadSetting, FChn^.ChResult);
+    FChn^.ChClose;
+    AssertEquals('close', res_Ok, FChn^.ChResult);
+    FChn^.ChOpen;
+    AssertEquals('ChClose + ChOpen starts again', res_Ok, FChn^.ChResult);
+  finally
+    DeleteFile(Link);
+  end;
 end;
 
 { An answer sent just before the program closes the line (icsslave: answer,
