@@ -206,12 +206,24 @@ FPCLIBDIR = $(if $(filter /usr,$(PREFIX)),$(PREFIX)/lib/$(MULTIARCH)/fpc,$(PREFI
 INSTALL_UNITDIR ?= $(FPCLIBDIR)/$(FPCVER)/units/$(FPCTARGET)/chn
 INSTALL_SRCDIR  ?= $(PREFIX)/share/chn
 
+# A Synapse build's units use synaser (and what it uses): a program built
+# with plain fpc against the installed units needs them too, so the
+# Synapse units this build compiled (those of $(UNITDIR) that are sources
+# of SYNAPSE_DIR) are installed beside them; uninstall removes them with
+# the folder. Synapse itself is not part of this project (docs/ChnCom.md).
+SYNAPSE_INSTALL = n=0; for p in $(UNITDIR)/*.ppu; do u=$$(basename "$$p" .ppu); \
+	  if [ -f '$(SYNAPSE_DIR)'/"$$u.pas" ] || [ -f '$(SYNAPSE_DIR)'/"$$u.pp" ]; then \
+	    install -m 644 "$$p" "$$d/"; install -m 644 "$(UNITDIR)/$$u.o" "$$d/"; n=$$((n+1)); fi; done; \
+	  if [ "$$n" = 0 ]; then echo "install: no Synapse units in $(UNITDIR) (SYNAPSE_DIR=$(SYNAPSE_DIR)): run make SYNAPSE_DIR=... first" >&2; exit 1; fi; \
+	  echo "installed $$n Synapse units (synaser and what it uses) from $(SYNAPSE_DIR) beside them"
+
 install: units
 	@set -e; d='$(DESTDIR)$(INSTALL_UNITDIR)'; s='$(DESTDIR)$(INSTALL_SRCDIR)'; \
 	mkdir -p "$$d" "$$s/src"; \
 	for u in $(basename $(notdir $(UNITS))); do l=$$(echo $$u | tr A-Z a-z); \
 	  install -m 644 $(UNITDIR)/$$u.ppu "$$d/$$l.ppu"; \
 	  install -m 644 $(UNITDIR)/$$u.o "$$d/$$l.o"; done; \
+	$(if $(SYNAPSE_DIR),$(SYNAPSE_INSTALL);) \
 	for f in $(wildcard src/*.pas src/*.inc src/*/*.pas src/*/*.inc); do \
 	  install -D -m 644 "$$f" "$$s/$$f"; done; install -m 644 chn.lpk "$$s/"; \
 	echo "installed units in $$d, sources in $$s"
