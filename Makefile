@@ -217,12 +217,13 @@ SYNAPSE_INSTALL = n=0; for p in $(UNITDIR)/*.ppu; do u=$$(basename "$$p" .ppu); 
 	  if [ "$$n" = 0 ]; then echo "install: no Synapse units in $(UNITDIR) (SYNAPSE_DIR=$(SYNAPSE_DIR)): run make SYNAPSE_DIR=... first" >&2; exit 1; fi; \
 	  echo "installed $$n Synapse units (synaser and what it uses) from $(SYNAPSE_DIR) beside them"
 
+# (a unit without code, such as ChnPorts, has no object file)
 install: units
 	@set -e; d='$(DESTDIR)$(INSTALL_UNITDIR)'; s='$(DESTDIR)$(INSTALL_SRCDIR)'; \
 	mkdir -p "$$d" "$$s/src"; \
 	for u in $(basename $(notdir $(UNITS))); do l=$$(echo $$u | tr A-Z a-z); \
 	  install -m 644 $(UNITDIR)/$$u.ppu "$$d/$$l.ppu"; \
-	  install -m 644 $(UNITDIR)/$$u.o "$$d/$$l.o"; done; \
+	  if [ -f $(UNITDIR)/$$u.o ]; then install -m 644 $(UNITDIR)/$$u.o "$$d/$$l.o"; fi; done; \
 	$(if $(SYNAPSE_DIR),$(SYNAPSE_INSTALL);) \
 	for f in $(wildcard src/*.pas src/*.inc src/*/*.pas src/*/*.inc); do \
 	  install -D -m 644 "$$f" "$$s/$$f"; done; install -m 644 chn.lpk "$$s/"; \

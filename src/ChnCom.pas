@@ -121,11 +121,22 @@ type
     { Create, open and configure the port this layer drives (COM: the DRV=
       backend on COM=/DEV=; NAM=TCP overrides it). On failure Port is nil. }
     function  ComOpenPort(out Port: TChnPort): tChResult; virtual;
+    { The device failed while open: latch R (once: a later fault does not
+      replace the first), drop the message being sent, stop waiting on it. }
     procedure ComFault(R: tChResult);
+    { Put R into CH_Fault and the three results the application polls
+      (ChResult, ChReceiveResult, ChSendResult): the one place a fault, a
+      reconnect in progress (res_Reconnecting) or its end (res_Ok) is
+      reported; CH_Fault itself belongs to this layer. }
+    procedure ComLatch(R: tChResult);
+    { Open again: Port (open, configured) replaces the one in use - the
+      wait follows it, a pending send is dropped, faults are cleared. }
+    procedure ComReplacePort(Port: TChnPort);
     { res_Ok when the port can be used now: res_WrongState while closed,
       the fault once the device failed }
     function  ComPortUsable: tChResult;
     procedure ComJoinWait;
+    procedure ComLeaveWait;
     { A full ring drops further input (FLW=NONE on a serial line); False
       where the line itself holds the sender back (flow control, TCP). }
     function  ComDropsWhenFull: Boolean; virtual;
@@ -426,7 +437,30 @@ var
 begin
   CH_Wait := nil;
   if ChnWaitShared and CH_Port.WaitSource(WaitKind, WaitOs, WaitRearm, WaitData) then
+  begin
     CH_Wait := ChnWaitJoin(WaitKind, WaitOs, WaitRearm, WaitData);
+    CH_Port.WaitJoined(CH_Wait);
+  end;
+end;
+
+{ Out of the program-wide wait, before the port's descriptor goes. }
+procedure tChnCom.ComLeaveWait;
+begin
+  if (CH_Wait <> nil) and (CH_Port <> nil) then
+    CH_Port.WaitJoined(nil);
+  ChnWaitLeave(CH_Wait);
+end;
+
+procedure tChnCom.ComReplacePort(Port: TChnPort);
+begin
+  ComLeaveWait;
+  CH_Port.Free;
+  CH_Port := Port;
+  ComJoinWait;
+  CH_TxLen := 0;
+  CH_TxPos := 0;
+  CH_RtsUp := False;
+  ComLatch(res_Ok);
 end;
 
 procedure tChnCom.ChOpen;
@@ -468,7 +502,7 @@ begin
     CH_Result := res_WrongState;
     Exit;
   end;
-  ChnWaitLeave(CH_Wait);           { before the descriptor goes }
+  ComLeaveWait;
   if CH_Port <> nil then
   begin
     if CH_Fault = res_Ok then
@@ -495,14 +529,19 @@ procedure tChnCom.ComFault(R: tChResult);
 begin
   if CH_Fault <> res_Ok then
     Exit;
-  CH_Fault := R;
-  CH_Result := R;
-  CH_RResult := R;
-  CH_SResult := R;
+  ComLatch(R);
   CH_TxLen := 0;
   CH_TxPos := 0;
   CH_RtsUp := False;
   ChnWaitServed(CH_Wait, False);  { nothing more to wait for on it }
+end;
+
+procedure tChnCom.ComLatch(R: tChResult);
+begin
+  CH_Fault := R;
+  CH_Result := R;
+  CH_RResult := R;
+  CH_SResult := R;
 end;
 
 { Move what the OS holds into the ring; see the unit header for a full ring. }
@@ -597,9 +636,9 @@ begin
   Now := GetTickCount64;
   if CH_Fault <> res_Reconnecting then
   begin
-    ChnWaitLeave(CH_Wait);
+    ComLeaveWait;
     CH_Port.Close;                  { the object stays until a new port works }
-    CH_Fault := res_Reconnecting;
+    ComLatch(res_Reconnecting);
     CH_ReopenAt := Now + QWord(CH_Reopen);
   end;
   if Now >= CH_ReopenAt then
@@ -608,26 +647,14 @@ begin
     R := ComOpenPort(Port);         { names the token when it fails }
     if R = res_Ok then
     begin
-      CH_Port.Free;
-      CH_Port := Port;
-      ComJoinWait;
-      CH_TxLen := 0;
-      CH_TxPos := 0;
-      CH_RtsUp := False;
+      ComReplacePort(Port);
       CH_OsLost := 0;               { the new port counts from 0 }
-      CH_Fault := res_Ok;
       CH_ParamErr := '';
-      CH_Result := res_Ok;
-      CH_RResult := res_Ok;
-      CH_SResult := res_Ok;
       Exit;
     end;
     if R = res_BadSetting then
     begin
-      CH_Fault := R;                { back, but not as configured: no retry }
-      CH_Result := R;
-      CH_RResult := R;
-      CH_SResult := R;
+      ComLatch(R);                  { back, but not as configured: no retry }
       Exit;
     end;
     CH_ReopenAt := Now + QWord(CH_Reopen);
@@ -637,9 +664,6 @@ begin
       CH_ParamErr := ChGetParam('DEV')
     else
       CH_ParamErr := ChGetParam('COM');
-  CH_Result := res_Reconnecting;
-  CH_RResult := res_Reconnecting;
-  CH_SResult := res_Reconnecting;
 end;
 
 { Hand as much of the pending message to the OS as it takes now; drop RTS

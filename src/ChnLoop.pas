@@ -2,22 +2,26 @@
 
   Two channel stacks in one process talk to each other with no OS device:
     'NAM=DF1 NOD=1 NAM=LOOP PAIR=A END=1'   and   '... NAM=LOOP PAIR=A END=2'
-  Each end is a tChnLoop; the ends of one PAIR share two byte rings, one per
-  direction. A ring holds LRB bytes; a message larger than the free space
-  stays pending at the sender and moves on as the receiver reads, so the
-  transfer is flow-controlled and never loses bytes (ChSendReady reports
-  CHS_Sending meanwhile). Bytes sent while the other end is closed are lost,
-  as on a cable with nobody listening.
+  Each end is a tChnLoop: a tChnCom whose port is TChnPortLoop, so the
+  receive ring, LRB=, IDL=, the transmit buffer and the program-wide wait
+  are COM's. The ends of one PAIR share two byte rings in the drivers, one
+  per direction, each of the receiving end's LRB bytes. A message larger
+  than the free space stays pending at the sender (COM's transmit buffer)
+  and moves on as the receiver reads, so the transfer is flow-controlled
+  and never loses bytes (ChSendReady reports CHS_Sending meanwhile). Bytes
+  sent while the other end is closed are lost, as on a cable with nobody
+  listening.
 
   Parameters: PAIR=name (default A), END=1|2 (default 1; PAIR= and END=
   cannot change while the end is open: res_WrongState), LRB=receive ring
-  size (default 4096, taken at the next ChOpen), IDL=ms to sleep in
+  size (default 4096, taken at the next ChOpen), IDL=ms to wait in
   ChReceiveReady when nothing is waiting (default 0: the peer usually runs
   in the same thread, where waiting only adds latency; give IDL when the
-  peer runs in another thread). Each open end is a wkSignal source of the
-  program-wide wait (unit ChnWait): bytes put into its ring, or room made
-  for its pending send, wake the waits of the process.
-  Safe for two threads when the program uses cthreads. }
+  peer runs in another thread). COM's device and line keys mean nothing
+  here. Each open end is a wkSignal source of the program-wide wait (unit
+  ChnWait): bytes put into its ring, or room made for its pending send,
+  wake the waits of the process. Safe for two threads when the program
+  uses cthreads. }
 unit ChnLoop;
 
 {$I chn.inc}
@@ -25,7 +29,7 @@ unit ChnLoop;
 interface
 
 uses
-  ChnTypes, ChnVirt, ChnRing, ChnWait;
+  ChnTypes, ChnVirt, ChnRing, ChnWait, ChnPort, ChnCom;
 
 const
   cName = 'LOOP';
@@ -35,35 +39,20 @@ type
   pLoopPair = ^tLoopPair;
 
   pChnLoop = ^tChnLoop;
-  tChnLoop = object(tChnVirt)
+  tChnLoop = object(tChnCom)
     CH_Pair   : string[31];   { PAIR= }
     CH_End    : Byte;         { END=, 1 or 2 }
-    CH_LRB    : LongInt;      { LRB= }
-    CH_Idle   : LongInt;      { IDL= in ms }
-    CH_PairRef: pLoopPair;    { shared state while open }
-    CH_TxBuf  : PByte;        { copy of the message being sent }
-    CH_TxCap  : LongInt;
     constructor Init;
     constructor ChInitParam(const S: tParamStr);
-    destructor  Done; virtual;
     function  ChSetOneParam(const S: tWordString; var CmdL: tCmd): tChResult; virtual;
     function  ChOwnParams: tParamStr; virtual;
-    function  ChHasLow: Boolean; virtual;
-    procedure ChOpen; virtual;
-    procedure ChClose; virtual;
-    procedure ChSend(Buff: Pointer; Len: Word); virtual;
-    function  ChSendReady: tChState; virtual;
-    function  ChReceiveReady: tChState; virtual;
-    procedure ChReceive(var Len: Word); virtual;
-    procedure ChReceiveFlush; virtual;
-  private
-    function LoopAvail: LongInt;
+  protected
+    function  ComOpenPort(out Port: TChnPort): tChResult; virtual;
+    function  ComDropsWhenFull: Boolean; virtual;
   end;
 
   tLoopDir = record             { bytes flowing towards one end }
     Ring: tByteRing;            { Buf is nil while that end is closed }
-    Pend: PByte;                { sender's message not yet in the ring }
-    PendLen, PendPos: LongInt;
   end;
 
   tLoopPair = record
@@ -72,6 +61,32 @@ type
     Open: array[1..2] of Boolean;
     Wait: array[1..2] of pChnWaitSource;   { each open end in the shared wait }
     Next: pLoopPair;
+  end;
+
+  { One end of a pair as a port: Write puts bytes into the other end's
+    ring (as many as fit), Read takes them from this end's. }
+  TChnPortLoop = class(TChnPort)
+  private
+    FPair: pLoopPair;
+    FEnd: Byte;
+  public
+    PairName: ShortString;      { set before Open }
+    EndNo: Byte;
+    RingSize: LongInt;
+    { Path is ignored: the pair is PairName, the end EndNo. res_CannotOpen
+      when that end is open in another stack. }
+    function Open(const Path: tWordString): tChResult; override;
+    function Read(var Buf; Size: LongInt; out Got: LongInt): tChResult; override;
+    function Write(const Buf; Len: LongInt; out Done: LongInt): tChResult; override;
+    { Whether bytes wait; never sleeps (the shared wait does that). }
+    function WaitInput(Ms: LongInt): Boolean; override;
+    { Whether the other end's ring has room now. }
+    function WaitOutput(Ms: LongInt): Boolean; override;
+    function Flush(Input, Output: Boolean): tChResult; override;
+    function WaitSource(out Kind: tChnWaitKind; out Os: PtrInt;
+      out Rearm: tChnWaitRearm; out Data: Pointer): Boolean; override;
+    procedure WaitJoined(Src: pChnWaitSource); override;
+    procedure Close; override;
   end;
 
   pAddChnLoop = ^tAddChnLoop;
@@ -86,21 +101,159 @@ uses
 
 var
   Pairs: pLoopPair = nil;
-  Lock: TRTLCriticalSection;    { guards Pairs and every ring }
+  Lock: TRTLCriticalSection;    { guards Pairs, every ring and Wait[] }
 
 function OtherEnd(E: Byte): Byte; inline;
 begin
   Result := 3 - E;
 end;
 
-{ Move what fits of the pending message into the ring. Caller holds Lock. }
-procedure Pump(var D: tLoopDir);
+{ ---------------------------------------------------------------- port }
+
+function TChnPortLoop.Open(const Path: tWordString): tChResult;
+var
+  P: pLoopPair;
 begin
-  if D.Ring.Buf = nil then
-    D.PendPos := D.PendLen      { nobody listening: the bytes are gone }
-  else if D.PendPos < D.PendLen then
-    Inc(D.PendPos, RingPut(D.Ring, @D.Pend[D.PendPos], D.PendLen - D.PendPos));
+  if FOpen then
+    Exit(res_WrongState);
+  FDevice := PairName;
+  FVirtual := True;
+  EnterCriticalSection(Lock);
+  try
+    P := Pairs;
+    while (P <> nil) and (P^.Name <> PairName) do
+      P := P^.Next;
+    if P = nil then
+    begin
+      New(P);
+      FillChar(P^, SizeOf(P^), 0);
+      P^.Name := PairName;
+      P^.Next := Pairs;
+      Pairs := P;
+    end;
+    if P^.Open[EndNo] then
+      Exit(res_CannotOpen);         { this end is in use by another stack }
+    P^.Open[EndNo] := True;
+    RingAlloc(P^.Dir[EndNo].Ring, RingSize);
+    FPair := P;
+    FEnd := EndNo;
+    FOpen := True;
+  finally
+    LeaveCriticalSection(Lock);
+  end;
+  Result := res_Ok;
 end;
+
+procedure TChnPortLoop.Close;
+var
+  Link: ^pLoopPair;
+begin
+  if FPair <> nil then
+  begin
+    EnterCriticalSection(Lock);
+    try
+      FPair^.Open[FEnd] := False;
+      FPair^.Wait[FEnd] := nil;
+      RingFree(FPair^.Dir[FEnd].Ring);
+      if not FPair^.Open[OtherEnd(FEnd)] then
+      begin
+        Link := @Pairs;
+        while Link^ <> FPair do
+          Link := @Link^^.Next;
+        Link^ := FPair^.Next;
+        Dispose(FPair);
+      end;
+      FPair := nil;
+    finally
+      LeaveCriticalSection(Lock);
+    end;
+  end;
+  inherited Close;
+end;
+
+function TChnPortLoop.Read(var Buf; Size: LongInt; out Got: LongInt): tChResult;
+var
+  WasFull: Boolean;
+begin
+  EnterCriticalSection(Lock);
+  try
+    with FPair^.Dir[FEnd] do
+    begin
+      WasFull := RingRoom(Ring) = 0;
+      Got := RingGet(Ring, @Buf, Size);
+      { room again: the sender's pending rest can go on }
+      if (Got > 0) and WasFull then
+        ChnWaitSignal(FPair^.Wait[OtherEnd(FEnd)]);
+    end;
+  finally
+    LeaveCriticalSection(Lock);
+  end;
+  Result := res_Ok;
+end;
+
+function TChnPortLoop.Write(const Buf; Len: LongInt; out Done: LongInt): tChResult;
+begin
+  EnterCriticalSection(Lock);
+  try
+    with FPair^.Dir[OtherEnd(FEnd)] do
+      if Ring.Buf = nil then
+        Done := Len                 { nobody listening: the bytes are gone }
+      else
+      begin
+        Done := RingPut(Ring, @Buf, Len);
+        if Done > 0 then
+          ChnWaitSignal(FPair^.Wait[OtherEnd(FEnd)]);
+      end;
+  finally
+    LeaveCriticalSection(Lock);
+  end;
+  Result := res_Ok;
+end;
+
+function TChnPortLoop.WaitInput(Ms: LongInt): Boolean;
+begin
+  EnterCriticalSection(Lock);
+  Result := FPair^.Dir[FEnd].Ring.Count > 0;
+  LeaveCriticalSection(Lock);
+end;
+
+function TChnPortLoop.WaitOutput(Ms: LongInt): Boolean;
+begin
+  EnterCriticalSection(Lock);
+  with FPair^.Dir[OtherEnd(FEnd)] do
+    Result := (Ring.Buf = nil) or (RingRoom(Ring) > 0);
+  LeaveCriticalSection(Lock);
+end;
+
+function TChnPortLoop.Flush(Input, Output: Boolean): tChResult;
+begin
+  if Input then
+  begin
+    EnterCriticalSection(Lock);
+    RingClear(FPair^.Dir[FEnd].Ring);
+    LeaveCriticalSection(Lock);
+  end;
+  Result := res_Ok;
+end;
+
+function TChnPortLoop.WaitSource(out Kind: tChnWaitKind; out Os: PtrInt;
+  out Rearm: tChnWaitRearm; out Data: Pointer): Boolean;
+begin
+  Kind := wkSignal;
+  Os := -1;
+  Rearm := nil;
+  Data := nil;
+  Result := True;
+end;
+
+procedure TChnPortLoop.WaitJoined(Src: pChnWaitSource);
+begin
+  EnterCriticalSection(Lock);
+  FPair^.Wait[FEnd] := Src;
+  LeaveCriticalSection(Lock);
+end;
+
+{ --------------------------------------------------------------- layer }
 
 constructor tChnLoop.Init;
 begin
@@ -110,28 +263,12 @@ begin
   CH_End := 1;
   CH_LRB := LoopDefaultLRB;
   CH_Idle := 0;
-  CH_PairRef := nil;
-  CH_TxBuf := nil;
-  CH_TxCap := 0;
 end;
 
 constructor tChnLoop.ChInitParam(const S: tParamStr);
 begin
   Init;
   ChSetParam(S);
-end;
-
-destructor tChnLoop.Done;
-begin
-  inherited Done;               { closes the end }
-  if CH_TxBuf <> nil then
-    FreeMem(CH_TxBuf);
-  CH_TxBuf := nil;
-end;
-
-function tChnLoop.ChHasLow: Boolean;
-begin
-  Result := False;
 end;
 
 function tChnLoop.ChSetOneParam(const S: tWordString; var CmdL: tCmd): tChResult;
@@ -165,226 +302,40 @@ begin
     if (Result = res_Ok) and (CmdL = cmd_Set) then
       CH_End := N;
   end
-  else if Key = 'LRB' then
-    Result := ParamSetNum(S, 1, 1 shl 24, CmdL, CH_LRB)
-  else if Key = 'IDL' then
-    Result := ParamSetNum(S, 0, 1000, CmdL, CH_Idle)
+  else if (Key = 'LRB') or (Key = 'IDL') then
+    Result := inherited ChSetOneParam(S, CmdL)
   else
-    Result := inherited ChSetOneParam(S, CmdL);
+    { COM's device and line keys mean nothing on an in-memory line }
+    Result := tChnVirt.ChSetOneParam(S, CmdL);
 end;
 
 function tChnLoop.ChOwnParams: tParamStr;
 begin
-  Result := inherited ChOwnParams + ' PAIR=' + CH_Pair + ParamText('END', CH_End) +
+  Result := tChnVirt.ChOwnParams + ' PAIR=' + CH_Pair + ParamText('END', CH_End) +
     ParamText('LRB', CH_LRB) + ParamText('IDL', CH_Idle);
 end;
 
-procedure tChnLoop.ChOpen;
+function tChnLoop.ComOpenPort(out Port: TChnPort): tChResult;
 var
-  P: pLoopPair;
+  P: TChnPortLoop;
 begin
-  if CH_State <> CHS_Close then
+  P := TChnPortLoop.Create;
+  P.PairName := CH_Pair;
+  P.EndNo := CH_End;
+  P.RingSize := CH_LRB;
+  Result := P.Open('');
+  if Result <> res_Ok then
   begin
-    CH_Result := res_WrongState;
-    Exit;
+    CH_ParamErr := ChGetParam('END');
+    FreeAndNil(P);
   end;
-  EnterCriticalSection(Lock);
-  try
-    P := Pairs;
-    while (P <> nil) and (P^.Name <> CH_Pair) do
-      P := P^.Next;
-    if P = nil then
-    begin
-      New(P);
-      FillChar(P^, SizeOf(P^), 0);
-      P^.Name := CH_Pair;
-      P^.Next := Pairs;
-      Pairs := P;
-    end;
-    if P^.Open[CH_End] then
-    begin
-      CH_Result := res_CannotOpen;   { this end is in use by another stack }
-      Exit;
-    end;
-    P^.Open[CH_End] := True;
-    RingAlloc(P^.Dir[CH_End].Ring, CH_LRB);
-    P^.Wait[CH_End] := ChnWaitJoin(wkSignal, -1, nil, nil);
-    CH_PairRef := P;
-  finally
-    LeaveCriticalSection(Lock);
-  end;
-  ChOpened;
+  Port := P;
 end;
 
-procedure tChnLoop.ChClose;
-var
-  P: pLoopPair;
-  Link: ^pLoopPair;
+{ The sender waits for room: nothing is ever lost on a loop. }
+function tChnLoop.ComDropsWhenFull: Boolean;
 begin
-  if CH_State = CHS_Close then
-  begin
-    CH_Result := res_WrongState;
-    Exit;
-  end;
-  EnterCriticalSection(Lock);
-  try
-    P := CH_PairRef;
-    P^.Open[CH_End] := False;
-    ChnWaitLeave(P^.Wait[CH_End]);
-    RingFree(P^.Dir[CH_End].Ring);
-    with P^.Dir[OtherEnd(CH_End)] do
-    begin
-      Pend := nil;                  { our transmit buffer may go away now }
-      PendLen := 0;
-      PendPos := 0;
-    end;
-    if not P^.Open[OtherEnd(CH_End)] then
-    begin
-      Link := @Pairs;
-      while Link^ <> P do
-        Link := @Link^^.Next;
-      Link^ := P^.Next;
-      Dispose(P);
-    end;
-    CH_PairRef := nil;
-  finally
-    LeaveCriticalSection(Lock);
-  end;
-  CH_State := CHS_Close;
-  CH_RCtrl := CHS_RecInactive;
-  CH_Result := res_Ok;
-end;
-
-procedure tChnLoop.ChSend(Buff: Pointer; Len: Word);
-begin
-  if not ChSendAllowed(Buff, Len, True) then
-    Exit;
-  if ChSendReady <> CHS_SendReady then
-  begin
-    CH_SResult := res_Busy;
-    Exit;
-  end;
-  if Len > CH_TxCap then
-  begin
-    ReAllocMem(CH_TxBuf, Len);
-    CH_TxCap := Len;
-  end;
-  Move(Buff^, CH_TxBuf^, Len);
-  EnterCriticalSection(Lock);
-  try
-    with CH_PairRef^.Dir[OtherEnd(CH_End)] do
-    begin
-      Pend := CH_TxBuf;
-      PendLen := Len;
-      PendPos := 0;
-    end;
-    Pump(CH_PairRef^.Dir[OtherEnd(CH_End)]);
-    ChnWaitSignal(CH_PairRef^.Wait[OtherEnd(CH_End)]);
-  finally
-    LeaveCriticalSection(Lock);
-  end;
-  CH_SResult := res_Ok;
-end;
-
-function tChnLoop.ChSendReady: tChState;
-begin
-  Result := CHS_SendReady;
-  if CH_PairRef = nil then
-    Exit;
-  EnterCriticalSection(Lock);
-  try
-    with CH_PairRef^.Dir[OtherEnd(CH_End)] do
-    begin
-      Pump(CH_PairRef^.Dir[OtherEnd(CH_End)]);
-      if PendPos < PendLen then
-        Result := CHS_Sending;
-    end;
-  finally
-    LeaveCriticalSection(Lock);
-  end;
-end;
-
-function tChnLoop.LoopAvail: LongInt;
-begin
-  EnterCriticalSection(Lock);
-  try
-    { looking now: the next bytes for this end wake the program's waits }
-    ChnWaitServed(CH_PairRef^.Wait[CH_End], True);
-    Pump(CH_PairRef^.Dir[CH_End]);
-    Result := CH_PairRef^.Dir[CH_End].Ring.Count;
-  finally
-    LeaveCriticalSection(Lock);
-  end;
-end;
-
-function tChnLoop.ChReceiveReady: tChState;
-var
-  Avail: LongInt;
-  Deadline, Now: QWord;
-begin
-  if (CH_State <> CHS_Connect) or (CH_PairRef = nil) then
-    Exit(CHS_RecInactive);
-  Avail := LoopAvail;
-  if (Avail = 0) and (CH_Idle > 0) then
-  begin
-    { nothing yet: wait up to IDL ms on the program-wide wait, which the
-      peer's ChSend ends at once (from any thread) }
-    Deadline := ChMsTick + QWord(CH_Idle);
-    repeat
-      Now := ChMsTick;
-      if Now >= Deadline then
-        Break;
-      if not ChnWaitIdle(CH_PairRef^.Wait[CH_End], Deadline - Now) then
-        Break;                    { timed out, or woke for another channel }
-      Avail := LoopAvail;
-    until Avail > 0;
-  end;
-  if Avail > 0 then
-    CH_RCtrl := CHS_ReceiveReady
-  else
-    CH_RCtrl := CHS_Receiving;
-  Result := CH_RCtrl;
-end;
-
-procedure tChnLoop.ChReceive(var Len: Word);
-var
-  Before: LongInt;
-begin
-  if not ChReceiveAllowed(Len) then
-    Exit;
-  EnterCriticalSection(Lock);
-  try
-    with CH_PairRef^.Dir[CH_End] do
-    begin
-      Pump(CH_PairRef^.Dir[CH_End]);
-      Len := RingGet(Ring, CH_RBuff, CH_RSize);
-      Before := PendPos;
-      Pump(CH_PairRef^.Dir[CH_End]);   { room again for the sender }
-      if PendPos > Before then
-        ChnWaitSignal(CH_PairRef^.Wait[OtherEnd(CH_End)]);   { its send went on }
-    end;
-  finally
-    LeaveCriticalSection(Lock);
-  end;
-  if Len = 0 then
-    CH_RResult := res_NoMessage
-  else
-    CH_RResult := res_Ok;
-  CH_RCtrl := CHS_Receiving;
-end;
-
-procedure tChnLoop.ChReceiveFlush;
-begin
-  if CH_PairRef <> nil then
-  begin
-    EnterCriticalSection(Lock);
-    try
-      RingClear(CH_PairRef^.Dir[CH_End].Ring);
-    finally
-      LeaveCriticalSection(Lock);
-    end;
-  end;
-  inherited ChReceiveFlush;
+  Result := False;
 end;
 
 function tAddChnLoop.ChInit: pChnVirt;

@@ -87,7 +87,7 @@ function SplitHostPort(const S: ShortString; out Host: ShortString; out Port: Lo
 implementation
 
 uses
-  SysUtils, uString, ChnWait;
+  SysUtils, uString;
 
 function SplitHostPort(const S: ShortString; out Host: ShortString; out Port: LongInt): Boolean;
 var
@@ -296,12 +296,7 @@ begin
     (CH_Fault = res_Ok) or (CH_Fault = res_BadSetting) then
     Exit;
   if CH_Fault <> res_Reconnecting then
-  begin
-    CH_Fault := res_Reconnecting;
-    CH_Result := res_Reconnecting;
-    CH_RResult := res_Reconnecting;
-    CH_SResult := res_Reconnecting;
-  end;
+    ComLatch(res_Reconnecting);
   Now := GetTickCount64;
   if (CH_Retry = nil) and (Now >= CH_RetryAt) then
   begin
@@ -319,17 +314,8 @@ begin
   if R = res_Ok then
   begin
     CH_Retry.SendSettings(CH_Set);  { answers are checked as they come }
-    ChnWaitLeave(CH_Wait);          { the shared wait: the new socket }
-    CH_Port.Free;
-    CH_Port := CH_Retry;
+    ComReplacePort(CH_Retry);       { the shared wait follows the new socket }
     CH_Retry := nil;
-    ComJoinWait;
-    CH_TxLen := 0;
-    CH_TxPos := 0;
-    CH_Fault := res_Ok;
-    CH_Result := res_Ok;
-    CH_RResult := res_Ok;
-    CH_SResult := res_Ok;
   end
   else if (R <> res_Busy) or (Now >= CH_RetryEnd) then
   begin
