@@ -19,6 +19,14 @@
               AUTO: KERNEL where supported, else RTS
     LRB=      receive buffer (bytes held between ChReceive calls)
     LSB=      longest message ChSend accepts (res_TooLong above it)
+    RECON=ms  0 (default): a lost device stays lost until ChClose + ChOpen;
+              n: reopen the same device every n ms by itself (a USB
+              adapter plugged back), every setting again; results say
+              res_Reconnecting meanwhile (docs/ChnCom.md)
+    LAT=ms    1..255: the latency timer of a USB adapter (Linux sysfs
+              latency_timer, FTDI and others); refused with LAT= named
+              where the driver has none or it may not be written; 0
+              (default) leaves it as it is
     IDL=ms    when a poll finds nothing, wait on the device at most this long
               for input (returns at the first byte); 0 never waits. Default 1,
               so legacy busy loops do not burn a CPU.
@@ -94,6 +102,7 @@ type
     CH_TxCap, CH_TxLen, CH_TxPos: LongInt;
     CH_Wait    : pChnWaitSource;   { this port in the program-wide wait; nil: none }
     CH_Reopen  : LongInt;          { RECON= ms between reopen attempts, 0 = off }
+    CH_Lat     : LongInt;          { LAT= USB adapter latency timer ms, 0 = as it is }
     CH_ReopenAt: QWord;            { next reopen attempt (GetTickCount64) }
     constructor Init;
     constructor ChInitParam(const S: tParamStr);
@@ -204,6 +213,7 @@ begin
   CH_Wait := nil;
   CH_Reopen := 0;
   CH_ReopenAt := 0;
+  CH_Lat := 0;
 end;
 
 constructor tChnCom.ChInitParam(const S: tParamStr);
@@ -303,6 +313,8 @@ begin
     Result := ParamSetNum(S, 0, 1000, CmdL, CH_Idle)
   else if Key = 'RECON' then
     Result := ParamSetNum(S, 0, 3600000, CmdL, CH_Reopen)
+  else if Key = 'LAT' then
+    Result := ParamSetNum(S, 0, 255, CmdL, CH_Lat)
   else if Key = 'IRQ' then
   begin
     Result := res_Ok;             { DOS only: accepted and ignored }
@@ -336,6 +348,8 @@ begin
     ComBufferText;
   if CH_Reopen <> 0 then
     R := R + ParamText('RECON', CH_Reopen);
+  if CH_Lat <> 0 then
+    R := R + ParamText('LAT', CH_Lat);
   if CH_Irq <> '' then
     R := R + ' IRQ=' + CH_Irq;
   if CH_DosKey <> '' then
@@ -413,6 +427,11 @@ begin
           R := Port.SetRts(False);
         end;
     end;
+  if (R = res_Ok) and (CH_Lat <> 0) then
+  begin
+    Key := 'LAT';                   { a driver without the timer refuses it }
+    R := Port.SetLatency(CH_Lat);
+  end;
   if R <> res_Ok then
   begin
     CH_ParamErr := ChGetParam(Key);

@@ -79,6 +79,7 @@ type
     function SetKernelRs485(On: Boolean): tChResult; override;
     function OsOverruns(out N: LongWord): tChResult; override;
     {$IFDEF UNIX}
+    function SetLatency(Ms: LongInt): tChResult; override;
     function WaitSource(out Kind: tChnWaitKind; out Os: PtrInt;
       out Rearm: tChnWaitRearm; out Data: Pointer): Boolean; override;
     {$ENDIF}
@@ -508,6 +509,18 @@ begin
 end;
 
 {$IFDEF UNIX}
+{ the adapter's latency timer is the driver's, whichever backend drives it }
+function TChnPortSynapse.SetLatency(Ms: LongInt): tChResult;
+var
+  E: cint;
+begin
+  if not FOpen then
+    Exit(res_WrongState);
+  Result := PortSetLatency(FDevice, Ms, E);
+  if Result <> res_Ok then
+    FOSError := E;
+end;
+
 { synaser's descriptor is an ordinary tty descriptor: it joins the
   program-wide wait as one (see the unit header for Windows) }
 function TChnPortSynapse.WaitSource(out Kind: tChnWaitKind; out Os: PtrInt;

@@ -19,7 +19,7 @@ interface
 
 uses
   SysUtils, Classes, fpcunit, testregistry,
-  {$IFDEF UNIX}BaseUnix, Unix, TermIO, Linux, Process, PtyPair, ChnPortUnix, ChnPty, BinSupport,{$ENDIF}
+  {$IFDEF UNIX}BaseUnix, Unix, TermIO, Linux, Process, PtyPair, ChnPortUnix, ChnUnix, ChnPty, BinSupport,{$ENDIF}
   {$IFDEF CHN_SYNAPSE}ChnPortSynapse,{$ENDIF}
   ChnTypes, ChnVirt, ChnPort, ChnCom, ChnDF1, TestSupport;
 
@@ -56,6 +56,8 @@ type
     procedure TestDeviceLostThenReopen;
     procedure TestReconnectsAfterDeviceLoss;
     procedure TestReconnectStopsAtARefusedSetting;
+    procedure TestLatencyRefusedWithoutTheTimer;
+    procedure TestLatencyWrittenWhereTheDriverHasIt;
     procedure TestCloseRightAfterSendLosesNothing;
     procedure TestCloseWaitsUntilALongMessageLeft;
     procedure TestCloseIsBoundedWhenNobodyReads;
@@ -810,6 +812,62 @@ begin
     AssertEquals('ChClose + ChOpen starts again', res_Ok, FChn^.ChResult);
   finally
     DeleteFile(Link);
+  end;
+end;
+
+{ LAT=: a pty (like a UART or a CDC-ACM modem) has no latency timer: the
+  open is refused with the token named; LAT=0 leaves it alone. }
+procedure TTestChnComPty.TestLatencyRefusedWithoutTheTimer;
+begin
+  AssertEquals('LAT=1 on a pty', res_BadSetting, OpenCom('LAT=1'));
+  AssertEquals('the token', 'LAT=1', FChn^.ChParamError);
+  AssertEquals('closed', CHS_Close, FChn^.ChReady);
+  AssertTrue('reported back', Pos(' LAT=1', FChn^.ChGetParam('')) > 0);
+  AssertEquals('LAT=0 opens', res_Ok, OpenCom('LAT=0'));
+  FChn^.ChSetParam('LAT=256');
+  AssertEquals('LAT=256 is no value', res_BadParam, FChn^.ChResult);
+  AssertEquals('LAT=256 named', 'LAT=256', FChn^.ChParamError);
+end;
+
+{ Where the driver has the timer (ftdi_sio: <sysfs tty>/ttyUSB0/device/
+  latency_timer), LAT= writes it and reads it back. A folder of the test
+  stands in for /sys/class/tty, named after this pty (/dev/pts/N: N). }
+procedure TTestChnComPty.TestLatencyWrittenWhereTheDriverHasIt;
+var
+  Root, F: string;
+  T: Text;
+  Line: string;
+  Saved: ShortString;
+begin
+  Root := GetTempDir(False) + 'chn-sysfs-' + IntToStr(FpGetPid) + '-' + Drv + '/';
+  F := Root + ExtractFileName(FPty.SlavePath) + '/device/latency_timer';
+  ForceDirectories(ExtractFilePath(F));
+  AssignFile(T, F);
+  Rewrite(T);
+  WriteLn(T, '16');                 { ftdi_sio's default }
+  CloseFile(T);
+  Saved := PortSysfsTty;
+  PortSysfsTty := Root;
+  try
+    AssertEquals('LAT=2 open', res_Ok, OpenCom('LAT=2'));
+    AssertEquals('no token', '', FChn^.ChParamError);
+    AssignFile(T, F);
+    Reset(T);
+    ReadLn(T, Line);
+    CloseFile(T);
+    AssertEquals('written', '2', Trim(Line));
+    if FpGetUid <> 0 then
+    begin
+      FpChmod(F, &444);
+      AssertEquals('read-only timer', res_NoPermission, OpenCom('LAT=1'));
+      AssertEquals('the token', 'LAT=1', FChn^.ChParamError);
+    end;
+  finally
+    PortSysfsTty := Saved;
+    DeleteFile(F);
+    RemoveDir(ExtractFilePath(F));
+    RemoveDir(Root + ExtractFileName(FPty.SlavePath));
+    RemoveDir(Root);
   end;
 end;
 

@@ -62,6 +62,7 @@ type
     function SetDtr(On: Boolean): tChResult; override;
     function GetLines(out Lines: tPortLines): tChResult; override;
     function SetKernelRs485(On: Boolean): tChResult; override;
+    function SetLatency(Ms: LongInt): tChResult; override;
     function OsOverruns(out N: LongWord): tChResult; override;
     function WaitSource(out Kind: tChnWaitKind; out Os: PtrInt;
       out Rearm: tChnWaitRearm; out Data: Pointer): Boolean; override;
@@ -568,6 +569,17 @@ begin
     Result := res_Ok;
 end;
 {$ENDIF}
+
+function TChnPortUnix.SetLatency(Ms: LongInt): tChResult;
+var
+  E: cint;
+begin
+  if not FOpen then
+    Exit(res_WrongState);
+  Result := PortSetLatency(FDevice, Ms, E);
+  if Result <> res_Ok then
+    FOSError := E;
+end;
 
 { OS count of lost received bytes (UART overrun + tty buffer overrun). }
 function TChnPortUnix.Counters(out N: LongWord): Boolean;
