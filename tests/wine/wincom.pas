@@ -191,7 +191,7 @@ var
   Frame: array[0..FrameLen - 1] of Byte;
   I, J: Integer;
 begin
-  C := OpenCom('COM' + EchoCom, R);
+  C := OpenCom('COM=' + EchoCom, R);
   Check(C <> nil, 'open for the count: ' + ResName(R));
   if C = nil then
     Exit;
@@ -199,7 +199,7 @@ begin
   Dispose(C, Done);
   for I := 1 to Frames do
   begin
-    C := OpenCom('COM' + EchoCom, R);
+    C := OpenCom('COM=' + EchoCom, R);
     if C = nil then
     begin
       Check(False, 'open ' + IntToStr(I) + ': ' + ResName(R));
@@ -212,7 +212,7 @@ begin
       C^.ChClose;
     Dispose(C, Done);
   end;
-  C := OpenCom('COM' + EchoCom, R);
+  C := OpenCom('COM=' + EchoCom, R);
   Check(C <> nil, 'open after the frames: ' + ResName(R));
   if C = nil then
     Exit;
