@@ -107,7 +107,7 @@ fetch_source() {
   fi
   rm -rf "$dest"
   # dpkg-source applies debian/patches (a "3.0 (quilt)" package)
-  dpkg-source --no-check -x "$dsc" "$dest" >/dev/null || return 1
+  dpkg-source --no-check --no-copy -x "$dsc" "$dest" >/dev/null || return 1
   grep -qx 'glibc2.34.patch' "$dest/debian/patches/series" ||
     { echo "cross.sh: the source has no glibc2.34.patch: this recipe is for fpc 3.2.2 of Debian 12" >&2; return 1; }
 }
@@ -126,13 +126,17 @@ toolchain() {
   flock -u 9
   echo "== fpc cross compiler for $ARCH ($CPU-linux), log in $LOG"
   pp=$("$HOSTFPC" -PB)
-  # (Debian's build writes version.inc and generates the Makefiles too)
+  # (Debian's build writes version.inc and generates the Makefiles too).
+  # Run from make cross, the environment carries the project's make
+  # variables (MAKEFLAGS has ARCH=...), which FPC's Makefiles would take
+  # as their own: ARCH there is the host CPU of the compiler's first cycle.
+  local clean="env -u MAKEFLAGS -u MAKELEVEL -u MFLAGS -u ARCH -u BUILD -u T"
   { cd "$src/fpcsrc" &&
     echo "'$(dpkg-query -W -f='${source:Version}' fp-compiler)'" >compiler/version.inc &&
     fpcmake -r -Tall -q Makefile.fpc &&
-    $NICE make -j"$JOBS" crossall CPU_TARGET=$CPU OS_TARGET=linux BINUTILSPREFIX=$TRIPLE- \
+    $clean $NICE make -j"$JOBS" crossall CPU_TARGET=$CPU OS_TARGET=linux BINUTILSPREFIX=$TRIPLE- \
       PP="$pp" ${COMPOPT:+OPT="$COMPOPT"} ${RTLOPT:+CROSSOPT="$RTLOPT"} &&
-    $NICE make crossinstall CPU_TARGET=$CPU OS_TARGET=linux BINUTILSPREFIX=$TRIPLE- \
+    $clean $NICE make crossinstall CPU_TARGET=$CPU OS_TARGET=linux BINUTILSPREFIX=$TRIPLE- \
       PP="$pp" ${COMPOPT:+OPT="$COMPOPT"} ${RTLOPT:+CROSSOPT="$RTLOPT"} \
       INSTALL_PREFIX="$PREFIX" && cd - >/dev/null; } >"$LOG" 2>&1 || { tail -n 30 "$LOG" >&2; echo "cross.sh: the cross compiler did not build (log: $LOG)" >&2; return 1; }
   # (Debian's patches put it under lib/<multiarch>/fpc/<version>)
