@@ -53,10 +53,14 @@
   pulled) makes ChResult, ChReceiveResult and ChSendResult answer
   res_DeviceLost (or res_IOError) from the next poll on; the layer stops
   touching the device, bytes already received can still be taken, and
-  ChClose + ChOpen starts again.
+  ChClose + ChOpen starts again - or, with RECON=, the layer reopens it by
+  itself (res_Reconnecting meanwhile, see ComReopen).
 
-  Differences from the SofCon original: DEV=, FLW=, RS485=, IDL=, DRV= are
-  additions of the port; IRQ and port addresses mean nothing here. }
+  Closing: ChClose (and Done) first let what was sent leave the driver,
+  bounded by the line time of the pending bytes (ComDrainTx).
+
+  Differences from the SofCon original: DEV=, FLW=, RS485=, IDL=, DRV=,
+  RECON=, LAT= are additions of the port; IRQ and port addresses mean nothing here. }
 unit ChnCom;
 
 {$I chn.inc}
