@@ -30,7 +30,7 @@
 # project's build folder, default build/ARCH), T (crosstest: only tests and
 # legacy programs whose name contains it), ARM_OPT (armhf code generation,
 # default "-CpARMV7A -CfVFPV3").
-# Needs (Debian packages): dpkg-dev fpc fpc-source make qemu-user
+# Needs (Debian packages): dpkg-dev fp-utils fpc fpc-source make qemu-user
 # binutils-aarch64-linux-gnu libc6-dev-arm64-cross libgcc-12-dev-arm64-cross
 # binutils-arm-linux-gnueabihf libc6-dev-armhf-cross libgcc-12-dev-armhf-cross
 set -u
