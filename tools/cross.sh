@@ -63,17 +63,14 @@ PREFIX=$CROSS_CACHE/$ARCH
 WRAPPER=$PREFIX/bin/fpc-$ARCH
 LOG=$CROSS_CACHE/$ARCH-build.log
 
-# the Debian packages the toolchain needs; as root they are installed
+# the Debian packages the toolchain needs: named with the command that
+# installs them (a build never runs apt-get itself; .ci/run installs them)
 need_debs() {
   local p missing=""
   for p in "$@"; do dpkg -s "$p" >/dev/null 2>&1 || missing="$missing $p"; done
   [ -z "$missing" ] && return 0
-  if [ "$(id -u)" = 0 ]; then
-    apt-get update -q && DEBIAN_FRONTEND=noninteractive apt-get install -y -q $missing || return 1
-  else
-    echo "cross.sh: missing Debian packages:$missing (as root: apt-get install -y$missing)" >&2
-    return 1
-  fi
+  echo "cross.sh: missing Debian packages:$missing (install: sudo apt-get install -y$missing)" >&2
+  return 1
 }
 
 # apt-get with a private configuration in the cache: a deb-src entry for
