@@ -62,10 +62,10 @@ TESTFLAGS := $(COMMON) $(SYNAPSE_FLAGS) -Fusrc -Fusrc/$(OSDIR) -Futools/lib -Fut
 # loses the caller's frame); without fpc-source the prebuilt one is used.
 FPCUNIT_SRC = /usr/share/fpcsrc/$(shell $(FPC) -iV)/packages/fcl-fpcunit/src
 
-# The optional Synapse backend builds only with SYNAPSE_DIR.
-OPTIONAL_UNITS := $(if $(SYNAPSE_DIR),,src/ChnPortSynapse.pas)
-LIBSRC   := $(wildcard src/*.pas src/*.inc src/$(OSDIR)/*.pas src/$(OSDIR)/*.inc)
-UNITS    := $(filter-out $(OPTIONAL_UNITS),$(wildcard src/*.pas src/$(OSDIR)/*.pas))
+# The units: fpmake.pp is the one list (tools/units.sh reads it); its
+# optional ones (the Synapse backend) build only with SYNAPSE_DIR.
+UNITS    := $(shell bash tools/units.sh $(OSDIR)) $(if $(SYNAPSE_DIR),$(shell bash tools/units.sh --optional))
+LIBSRC   := $(UNITS) $(wildcard src/*.inc src/$(OSDIR)/*.inc)
 TOOLLIB  := $(wildcard tools/lib/*.pas)
 EXAMPLES := $(wildcard examples/*.pas)
 TOOLS    := $(wildcard tools/*.pas)
@@ -92,7 +92,7 @@ check-fpc:
 # Every library unit, compiled once by one fpc call on a generated unit
 # that uses them all; fpc itself recompiles only what changed.
 units: $(BUILD)/units.stamp
-$(BUILD)/units.stamp: $(LIBSRC) | check-fpc
+$(BUILD)/units.stamp: $(LIBSRC) fpmake.pp | check-fpc
 	@mkdir -p $(UNITDIR) $(BINDIR)
 	@# compiled units that "fpc -Fusrc prog.pas" left beside the sources
 	@# would be taken as current and never reach $(UNITDIR)
@@ -108,8 +108,8 @@ $(BUILD)/units.stamp: $(LIBSRC) | check-fpc
 	@$(FPC) $(UNITFLAGS) $(BUILD)/chnall.pas
 	@touch $@
 
-# The Lazarus package lists every unit of src/ and its OS folders.
-chn.lpk: $(wildcard src/*.pas src/*/*.pas src/*/*.inc) tools/mklpk.sh
+# The Lazarus package lists every unit of fpmake.pp (all OSes).
+chn.lpk: fpmake.pp $(wildcard src/*.inc src/*/*.inc) tools/mklpk.sh tools/units.sh
 	@bash tools/mklpk.sh
 
 # Which sources each program depends on (from the uses clauses).

@@ -1,15 +1,19 @@
-{ fpmake.pp - the Chn library as a Free Pascal package (FPC's own package
-  build):
+{ fpmake.pp - the Chn library as a Free Pascal package, and the one list
+  of its units: every unit with the OSes it builds on and the units of
+  this package it uses. The Makefile, chn.lpk (tools/mklpk.sh) and make
+  install take the list from here (tools/units.sh); tests/packaging.sh
+  fails when a unit of src/ is missing here or its dependencies here are
+  not those of its uses clauses.
 
     fpc fpmake.pp && ./fpmake build            # units into units/<cpu>-<os>
     ./fpmake install                           # where fpc finds them
     ./fpmake install --prefix=$HOME/.fppkg     # per user (Debian searches it)
 
-  Every unit in src/ belongs to the package; per-OS units and include
-  files are in src/unix (Unix-likes) and src/win (Windows).
-  ChnPortSynapse needs Synapse, which is not part of this package (build
-  it with "make SYNAPSE_DIR=..." instead). Tools, examples and tests are
-  built by the Makefile. }
+  Per-OS units and include files are in src/unix (Unix-likes) and src/win
+  (Windows), as in Free Pascal's own packages. ChnPortSynapse needs
+  Synapse, which is not part of this package: it is listed as
+  "Optional" below and built by "make SYNAPSE_DIR=..." instead. Tools,
+  examples and tests are built by the Makefile. }
 {$mode objfpc}{$H+}
 program fpmake;
 
@@ -19,27 +23,25 @@ uses
 
 const
   Version = '1.0.0';
+  { units of src/ this package does not build (tools/units.sh reads it) }
+  Optional = 'ChnPortSynapse.pas';
 
-procedure AddDir(P: TPackage; const Dir: string; OSes: TOSes);
+{ One unit: its file (found in src/ or this OS's folder), the OSes it
+  builds on, the units of this package it uses on every OS. }
+function AddUnit(P: TPackage; const FileName: string; OSes: TOSes;
+  const Deps: array of string): TTarget;
 var
-  T: TTarget;
-  F: TSearchRec;
+  D: string;
 begin
-  if FindFirst(Dir + PathDelim + '*.pas', faAnyFile, F) = 0 then
-  try
-    repeat
-      if Pos('Synapse', F.Name) > 0 then
-        Continue;                      { optional third-party backend }
-      T := P.Targets.AddUnit(F.Name, OSes);
-      T.Dependencies.AddInclude('chn.inc');
-    until FindNext(F) <> 0;
-  finally
-    FindClose(F);
-  end;
+  Result := P.Targets.AddUnit(FileName, OSes);
+  Result.Dependencies.AddInclude('chn.inc');
+  for D in Deps do
+    Result.Dependencies.AddUnit(D);
 end;
 
 var
   P: TPackage;
+  T: TTarget;
 begin
   with Installer do
   begin
@@ -47,17 +49,70 @@ begin
     P.Version := Version;
     P.Description := 'SofCon Chn serial-communication units (DF1, FT 1.2, ICSlink) ' +
       'for Free Pascal: layered channels driven by polling.';
-    P.License := 'see README.md';
-    P.OSes := AllUnixOSes + [win32, win64];
-    P.Dependencies.Add('rtl-extra');   { serial, termio }
-    P.Dependencies.Add('fcl-base');
+    { no license is stated for the project yet: the field says so }
+    P.License := 'not stated yet (see README.md)';
+    P.OSes := AllUnixOSes + AllWindowsOSes;
+    P.Dependencies.Add('rtl-extra');   { Sockets, WinSock2 (ChnSock) }
+    P.Dependencies.Add('rtl-objpas');  { DateUtils (ChnTrc) }
     P.SourcePath.Add('src');
     P.SourcePath.Add('src/unix', AllUnixOSes);
-    P.SourcePath.Add('src/win', [win32, win64]);
+    P.SourcePath.Add('src/win', AllWindowsOSes);
     P.IncludePath.Add('src');
-    AddDir(P, 'src', AllOSes);
-    AddDir(P, 'src/unix', AllUnixOSes);
-    AddDir(P, 'src/win', [win32, win64]);
+    P.IncludePath.Add('src/unix', AllUnixOSes);
+    P.IncludePath.Add('src/win', AllWindowsOSes);
+
+    { types, tokens, the layer contract }
+    AddUnit(P, 'ChnTypes.pas', AllOSes, []);
+    AddUnit(P, 'uString.pas', AllOSes, []);
+    AddUnit(P, 'ChnRing.pas', AllOSes, []);
+    AddUnit(P, 'ChnVirt.pas', AllOSes, ['ChnTypes', 'uString']);
+    { what the Unix parts share }
+    AddUnit(P, 'ChnUnix.pas', AllUnixOSes, ['ChnTypes']);
+    { the program-wide wait; its OS parts are include files (in the
+      source as unix/chnwait.inc, found here through the OS's include path) }
+    T := AddUnit(P, 'ChnWait.pas', AllOSes, []);
+      T.Dependencies.AddUnit('ChnUnix', [linux]);
+      T.Dependencies.AddInclude('chnwait.inc', AllUnixOSes);
+      T.Dependencies.AddInclude('chnwait.inc', AllWindowsOSes);
+    { the physical base and its port drivers }
+    AddUnit(P, 'ChnPort.pas', AllOSes, ['ChnTypes', 'ChnWait', 'uString']);
+    AddUnit(P, 'ChnPortUnix.pas', AllUnixOSes, ['ChnTypes', 'ChnWait', 'ChnPort', 'ChnUnix']);
+    AddUnit(P, 'ChnPty.pas', AllUnixOSes, ['ChnTypes', 'ChnPort', 'ChnPortUnix', 'ChnUnix']);
+    AddUnit(P, 'ChnPortWin.pas', AllWindowsOSes, ['ChnTypes', 'ChnWait', 'ChnPort']);
+    T := AddUnit(P, 'ChnPorts.pas', AllOSes, []);
+      T.Dependencies.AddUnit('ChnPortUnix', AllUnixOSes);
+      T.Dependencies.AddUnit('ChnPty', AllUnixOSes);
+      T.Dependencies.AddUnit('ChnPortWin', AllWindowsOSes);
+    AddUnit(P, 'ChnCom.pas', AllOSes, ['ChnTypes', 'ChnVirt', 'ChnRing', 'ChnWait', 'ChnPort',
+      'uString', 'ChnPorts']);
+    AddUnit(P, 'ChnLoop.pas', AllOSes, ['ChnTypes', 'ChnVirt', 'ChnRing', 'ChnWait', 'ChnPort',
+      'ChnCom', 'uString']);
+    T := AddUnit(P, 'ChnSock.pas', AllOSes, ['uString']);
+      T.Dependencies.AddUnit('ChnUnix', AllUnixOSes);
+      T.Dependencies.AddInclude('chnsock.inc', AllUnixOSes);
+      T.Dependencies.AddInclude('chnsock.inc', AllWindowsOSes);
+    AddUnit(P, 'ChnTelnet.pas', AllOSes, []);
+    AddUnit(P, 'ChnPortTcp.pas', AllOSes, ['ChnTypes', 'ChnPort', 'ChnWait', 'ChnSock', 'ChnTelnet']);
+    AddUnit(P, 'ChnTcp.pas', AllOSes, ['ChnTypes', 'ChnVirt', 'ChnPort', 'ChnCom', 'ChnPortTcp',
+      'uString']);
+    { middle layers }
+    AddUnit(P, 'ChnNoise.pas', AllOSes, ['ChnTypes', 'ChnVirt', 'uString']);
+    AddUnit(P, 'ChnTrcFormat.pas', AllOSes, ['ChnTypes', 'uString']);
+    AddUnit(P, 'ChnPcap.pas', AllOSes, ['ChnTypes', 'ChnTrcFormat', 'uString']);
+    AddUnit(P, 'ChnTrc.pas', AllOSes, ['ChnTypes', 'ChnVirt', 'ChnTrcFormat', 'ChnPcap', 'uString']);
+    { protocols: codec, layer, link helpers }
+    AddUnit(P, 'ChnDF1Codec.pas', AllOSes, ['ChnTypes']);
+    AddUnit(P, 'ChnDF1.pas', AllOSes, ['ChnTypes', 'ChnVirt', 'ChnDF1Codec']);
+    AddUnit(P, 'ChnPcccNames.pas', AllOSes, []);
+    AddUnit(P, 'ChnDF1Link.pas', AllOSes, ['ChnTypes', 'ChnVirt', 'ChnDF1', 'ChnPcccNames', 'uString']);
+    AddUnit(P, 'ChnPccc.pas', AllOSes, ['ChnTypes', 'ChnDF1Codec', 'uString', 'ChnPcccNames']);
+    AddUnit(P, 'ChnPcccClient.pas', AllOSes, ['ChnTypes', 'ChnVirt', 'ChnDF1Codec', 'ChnDF1Link',
+      'ChnPccc', 'uString']);
+    AddUnit(P, 'ChnFT12Codec.pas', AllOSes, ['ChnTypes']);
+    AddUnit(P, 'ChnFT1_2.pas', AllOSes, ['ChnTypes', 'ChnVirt', 'ChnFT12Codec', 'uString']);
+    AddUnit(P, 'ChnFT12Link.pas', AllOSes, ['ChnTypes', 'ChnVirt', 'ChnFT1_2', 'ChnFT12Codec']);
+    AddUnit(P, 'ChnICSCodec.pas', AllOSes, ['ChnTypes', 'uString']);
+    AddUnit(P, 'ChnICS.pas', AllOSes, ['ChnTypes', 'ChnVirt', 'ChnICSCodec']);
     Run;
   end;
 end.

@@ -802,6 +802,7 @@ end;
 procedure tChnCom.ChSend(Buff: Pointer; Len: Word);
 var
   R: tChResult;
+  Written, Rest: LongInt;
 begin
   if not ChSendAllowed(Buff, Len, True) then
     Exit;
@@ -827,12 +828,6 @@ begin
     CH_SResult := CH_Fault;
     Exit;
   end;
-  if Len > CH_TxCap then
-  begin
-    ReAllocMem(CH_TxBuf, Len);
-    CH_TxCap := Len;
-  end;
-  Move(Buff^, CH_TxBuf^, Len);
   if CH_RtsToggle then
   begin
     R := CH_Port.SetRts(True);
@@ -843,7 +838,23 @@ begin
     end;
     CH_RtsUp := True;
   end;
-  CH_TxLen := Len;
+  { what the port takes now goes straight from the caller's buffer; only
+    the rest is copied, to move on from later polls }
+  R := CH_Port.Write(Buff^, Len, Written);
+  if R <> res_Ok then
+  begin
+    ComFault(R);
+    Exit;
+  end;
+  Rest := Len - Written;
+  if Rest > CH_TxCap then
+  begin
+    ReAllocMem(CH_TxBuf, Rest);
+    CH_TxCap := Rest;
+  end;
+  if Rest > 0 then
+    Move(PByte(Buff)[Written], CH_TxBuf^, Rest);
+  CH_TxLen := Rest;
   CH_TxPos := 0;
   CH_SResult := res_Ok;
   ComPumpTx;

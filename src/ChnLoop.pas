@@ -46,6 +46,9 @@ type
     constructor ChInitParam(const S: tParamStr);
     function  ChSetOneParam(const S: tWordString; var CmdL: tCmd): tChResult; virtual;
     function  ChOwnParams: tParamStr; virtual;
+    procedure ChSend(Buff: Pointer; Len: Word); virtual;
+    { CHS_Sending also while the port still holds part of the message. }
+    function  ChSendReady: tChState; virtual;
   protected
     function  ComOpenPort(out Port: TChnPort): tChResult; virtual;
     function  ComDropsWhenFull: Boolean; virtual;
@@ -53,6 +56,8 @@ type
 
   tLoopDir = record             { bytes flowing towards one end }
     Ring: tByteRing;            { Buf is nil while that end is closed }
+    Pend: PByte;                { sender's message not yet in the ring }
+    PendLen, PendPos: LongInt;
   end;
 
   tLoopPair = record
@@ -69,6 +74,8 @@ type
   private
     FPair: pLoopPair;
     FEnd: Byte;
+    FPendBuf: PByte;            { the rest of the last message, see Write }
+    FPendCap: LongInt;
   public
     PairName: ShortString;      { set before Open }
     EndNo: Byte;
@@ -77,7 +84,12 @@ type
       when that end is open in another stack. }
     function Open(const Path: tWordString): tChResult; override;
     function Read(var Buf; Size: LongInt; out Got: LongInt): tChResult; override;
+    { Takes a whole message or nothing: what does not fit into the other
+      end's ring stays here (OutQueue) and moves on as that end reads, also
+      when this end is not polled; 0 while the last one is still here. }
     function Write(const Buf; Len: LongInt; out Done: LongInt): tChResult; override;
+    { Bytes of the last message not yet in the other end's ring. }
+    function OutQueue(out N: LongInt): tChResult; override;
     { Whether bytes wait; never sleeps (the shared wait does that). }
     function WaitInput(Ms: LongInt): Boolean; override;
     { Whether the other end's ring has room now. }
@@ -87,6 +99,7 @@ type
       out Rearm: tChnWaitRearm; out Data: Pointer): Boolean; override;
     procedure WaitJoined(Src: pChnWaitSource); override;
     procedure Close; override;
+    destructor Destroy; override;
   end;
 
   pAddChnLoop = ^tAddChnLoop;
@@ -106,6 +119,15 @@ var
 function OtherEnd(E: Byte): Byte; inline;
 begin
   Result := 3 - E;
+end;
+
+{ Move what fits of the pending message into the ring. Caller holds Lock. }
+procedure Pump(var D: tLoopDir);
+begin
+  if D.Ring.Buf = nil then
+    D.PendPos := D.PendLen      { nobody listening: the bytes are gone }
+  else if D.PendPos < D.PendLen then
+    Inc(D.PendPos, RingPut(D.Ring, @D.Pend[D.PendPos], D.PendLen - D.PendPos));
 end;
 
 { ---------------------------------------------------------------- port }
@@ -155,6 +177,12 @@ begin
       FPair^.Open[FEnd] := False;
       FPair^.Wait[FEnd] := nil;
       RingFree(FPair^.Dir[FEnd].Ring);
+      with FPair^.Dir[OtherEnd(FEnd)] do
+      begin
+        Pend := nil;                { our buffer may go away now }
+        PendLen := 0;
+        PendPos := 0;
+      end;
       if not FPair^.Open[OtherEnd(FEnd)] then
       begin
         Link := @Pairs;
@@ -171,19 +199,27 @@ begin
   inherited Close;
 end;
 
+destructor TChnPortLoop.Destroy;
+begin
+  inherited Destroy;            { closes: nothing points into FPendBuf }
+  if FPendBuf <> nil then
+    FreeMem(FPendBuf);
+end;
+
 function TChnPortLoop.Read(var Buf; Size: LongInt; out Got: LongInt): tChResult;
 var
-  WasFull: Boolean;
+  Before: LongInt;
 begin
   EnterCriticalSection(Lock);
   try
     with FPair^.Dir[FEnd] do
     begin
-      WasFull := RingRoom(Ring) = 0;
+      Pump(FPair^.Dir[FEnd]);
       Got := RingGet(Ring, @Buf, Size);
-      { room again: the sender's pending rest can go on }
-      if (Got > 0) and WasFull then
-        ChnWaitSignal(FPair^.Wait[OtherEnd(FEnd)]);
+      Before := PendPos;
+      Pump(FPair^.Dir[FEnd]);       { room again for the sender }
+      if PendPos > Before then
+        ChnWaitSignal(FPair^.Wait[OtherEnd(FEnd)]);   { its send went on }
     end;
   finally
     LeaveCriticalSection(Lock);
@@ -192,21 +228,52 @@ begin
 end;
 
 function TChnPortLoop.Write(const Buf; Len: LongInt; out Done: LongInt): tChResult;
+var
+  Put: LongInt;
 begin
+  Done := 0;
   EnterCriticalSection(Lock);
   try
     with FPair^.Dir[OtherEnd(FEnd)] do
+    begin
+      Pump(FPair^.Dir[OtherEnd(FEnd)]);
+      if PendPos < PendLen then
+        Exit(res_Ok);               { the last message is still on its way }
       if Ring.Buf = nil then
-        Done := Len                 { nobody listening: the bytes are gone }
+        Put := Len                  { nobody listening: the bytes are gone }
       else
+        Put := RingPut(Ring, @Buf, Len);
+      if Put < Len then
       begin
-        Done := RingPut(Ring, @Buf, Len);
-        if Done > 0 then
-          ChnWaitSignal(FPair^.Wait[OtherEnd(FEnd)]);
+        if Len - Put > FPendCap then
+        begin
+          ReAllocMem(FPendBuf, Len - Put);
+          FPendCap := Len - Put;
+        end;
+        Move(PByte(@Buf)[Put], FPendBuf^, Len - Put);
+        Pend := FPendBuf;
+        PendLen := Len - Put;
+        PendPos := 0;
       end;
+      Done := Len;
+      if Put > 0 then
+        ChnWaitSignal(FPair^.Wait[OtherEnd(FEnd)]);
+    end;
   finally
     LeaveCriticalSection(Lock);
   end;
+  Result := res_Ok;
+end;
+
+function TChnPortLoop.OutQueue(out N: LongInt): tChResult;
+begin
+  EnterCriticalSection(Lock);
+  with FPair^.Dir[OtherEnd(FEnd)] do
+  begin
+    Pump(FPair^.Dir[OtherEnd(FEnd)]);
+    N := PendLen - PendPos;
+  end;
+  LeaveCriticalSection(Lock);
   Result := res_Ok;
 end;
 
@@ -221,7 +288,7 @@ function TChnPortLoop.WaitOutput(Ms: LongInt): Boolean;
 begin
   EnterCriticalSection(Lock);
   with FPair^.Dir[OtherEnd(FEnd)] do
-    Result := (Ring.Buf = nil) or (RingRoom(Ring) > 0);
+    Result := (Ring.Buf = nil) or (PendPos >= PendLen);
   LeaveCriticalSection(Lock);
 end;
 
@@ -236,13 +303,11 @@ begin
   Result := res_Ok;
 end;
 
+{ wkSignal (TChnPort's answer, but True): the ends signal each other. }
 function TChnPortLoop.WaitSource(out Kind: tChnWaitKind; out Os: PtrInt;
   out Rearm: tChnWaitRearm; out Data: Pointer): Boolean;
 begin
-  Kind := wkSignal;
-  Os := -1;
-  Rearm := nil;
-  Data := nil;
+  inherited WaitSource(Kind, Os, Rearm, Data);
   Result := True;
 end;
 
@@ -330,6 +395,24 @@ begin
     FreeAndNil(P);
   end;
   Port := P;
+end;
+
+procedure tChnLoop.ChSend(Buff: Pointer; Len: Word);
+begin
+  if ChSendReady <> CHS_SendReady then
+    CH_SResult := res_Busy
+  else
+    inherited ChSend(Buff, Len);
+end;
+
+function tChnLoop.ChSendReady: tChState;
+var
+  N: LongInt;
+begin
+  Result := inherited ChSendReady;
+  if (Result = CHS_SendReady) and (CH_Port <> nil) and (ComPortUsable = res_Ok) and
+    (CH_Port.OutQueue(N) = res_Ok) and (N > 0) then
+    Result := CHS_Sending;
 end;
 
 { The sender waits for room: nothing is ever lost on a loop. }

@@ -89,7 +89,6 @@ type
     function SetRts(On: Boolean): tChResult; override;
     function SetDtr(On: Boolean): tChResult; override;
     function GetLines(out Lines: tPortLines): tChResult; override;
-    function SetKernelRs485(On: Boolean): tChResult; override;
     function OsOverruns(out N: LongWord): tChResult; override;
     function OsHandle: PtrInt; override;
     { the program-wide wait (ChnWait): a client's socket on Unix }
@@ -711,10 +710,6 @@ begin
   Result := res_Ok;
 end;
 
-function TChnPortTcp.SetKernelRs485(On: Boolean): tChResult;
-begin
-  Result := res_BadSetting;
-end;
 
 function TChnPortTcp.OsOverruns(out N: LongWord): tChResult;
 begin

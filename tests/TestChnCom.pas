@@ -21,7 +21,7 @@ uses
   SysUtils, Classes, fpcunit, testregistry,
   {$IFDEF UNIX}BaseUnix, Unix, TermIO, Linux, Process, PtyPair, ChnPortUnix, ChnUnix, ChnPty, BinSupport,{$ENDIF}
   {$IFDEF CHN_SYNAPSE}ChnPortSynapse,{$ENDIF}
-  ChnTypes, ChnVirt, ChnPort, ChnCom, ChnDF1, TestSupport;
+  ChnTypes, ChnVirt, ChnPort, ChnCom, ChnDF1, TestSupport, FakePort;
 
 type
   {$IFDEF UNIX}
@@ -1380,167 +1380,12 @@ end;
 
 { --------------------------------------------------- fake port, logic tests }
 
-type
-  TFakePort = class(TChnPort)
-  public
-    class var Log: string;
-    class var KernelOk: Boolean;
-    class var RefuseConfig: Boolean;
-    class var Queue: LongInt;        { OutQueue answers this, then -100 }
-    class var RxData: string;
-    class var OsLost: LongWord;
-    class var LineState: tPortLines; { GetLines answers these }
-    class var ReadFault: tChResult;  { Read answers this when not res_Ok }
-    function Open(const Path: tWordString): tChResult; override;
-    function Configure(const S: tPortSettings): tChResult; override;
-    function Read(var Buf; Size: LongInt; out Got: LongInt): tChResult; override;
-    function WaitInput(Ms: LongInt): Boolean; override;
-    function WaitOutput(Ms: LongInt): Boolean; override;
-    function Write(const Buf; Len: LongInt; out Done: LongInt): tChResult; override;
-    function OutQueue(out N: LongInt): tChResult; override;
-    function Drain: tChResult; override;
-    function Flush(Input, Output: Boolean): tChResult; override;
-    function SetRts(On: Boolean): tChResult; override;
-    function SetDtr(On: Boolean): tChResult; override;
-    function GetLines(out Lines: tPortLines): tChResult; override;
-    function SetKernelRs485(On: Boolean): tChResult; override;
-    function OsOverruns(out N: LongWord): tChResult; override;
-    function OsHandle: PtrInt; override;
-    procedure Close; override;
-  end;
-
-function TFakePort.Open(const Path: tWordString): tChResult;
-begin
-  FDevice := Path;
-  FOpen := True;
-  Log := Log + 'open ' + Path + ';';
-  Result := res_Ok;
-end;
-
-function TFakePort.Configure(const S: tPortSettings): tChResult;
-begin
-  if RefuseConfig then
-  begin
-    FailKey := 'PAR';
-    Exit(res_BadSetting);
-  end;
-  Log := Log + Format('cfg %d %d%s%d;', [S.Baud, S.DataBits, 'NEOMS'[Ord(S.Parity) + 1], S.StopBits]);
-  Result := res_Ok;
-end;
-
-function TFakePort.Read(var Buf; Size: LongInt; out Got: LongInt): tChResult;
-begin
-  if ReadFault <> res_Ok then
-  begin
-    Got := 0;
-    Exit(ReadFault);
-  end;
-  Got := Length(RxData);
-  if Got > Size then
-    Got := Size;
-  if Got > 0 then
-    Move(RxData[1], Buf, Got);
-  Delete(RxData, 1, Got);
-  Result := res_Ok;
-end;
-
-function TFakePort.WaitInput(Ms: LongInt): Boolean;
-begin
-  Result := RxData <> '';
-end;
-
-function TFakePort.WaitOutput(Ms: LongInt): Boolean;
-begin
-  Result := True;
-end;
-
-function TFakePort.Write(const Buf; Len: LongInt; out Done: LongInt): tChResult;
-begin
-  Done := Len;
-  if Done > 100 then
-    Done := 100;
-  Inc(Queue, Done);
-  Log := Log + 'w' + IntToStr(Done) + ';';
-  Result := res_Ok;
-end;
-
-function TFakePort.OutQueue(out N: LongInt): tChResult;
-begin
-  N := Queue;
-  Log := Log + 'q' + IntToStr(N) + ';';
-  Dec(Queue, 100);
-  if Queue < 0 then
-    Queue := 0;
-  Result := res_Ok;
-end;
-
-function TFakePort.Drain: tChResult;
-begin
-  Log := Log + 'drain;';
-  Result := res_Ok;
-end;
-
-function TFakePort.Flush(Input, Output: Boolean): tChResult;
-begin
-  Result := res_Ok;
-end;
-
-function TFakePort.SetRts(On: Boolean): tChResult;
-begin
-  Log := Log + 'rts' + IntToStr(Ord(On)) + ';';
-  Result := res_Ok;
-end;
-
-function TFakePort.SetDtr(On: Boolean): tChResult;
-begin
-  Log := Log + 'dtr' + IntToStr(Ord(On)) + ';';
-  Result := res_Ok;
-end;
-
-function TFakePort.GetLines(out Lines: tPortLines): tChResult;
-begin
-  Lines := LineState;
-  Log := Log + 'lines;';
-  Result := res_Ok;
-end;
-
-function TFakePort.SetKernelRs485(On: Boolean): tChResult;
-begin
-  if not KernelOk then
-    Exit(res_BadSetting);
-  Log := Log + 'k' + IntToStr(Ord(On)) + ';';
-  Result := res_Ok;
-end;
-
-function TFakePort.OsOverruns(out N: LongWord): tChResult;
-begin
-  N := OsLost;
-  Result := res_Ok;
-end;
-
-function TFakePort.OsHandle: PtrInt;
-begin
-  Result := -1;
-end;
-
-procedure TFakePort.Close;
-begin
-  if FOpen then
-    Log := Log + 'close;';
-  FOpen := False;
-end;
+{ the scripted port (DRV=FAKE) is TFakePort of tests/support/FakePort }
 
 procedure TTestChnComLogic.SetUp;
 begin
   RegisterPortDriver('FAKE', TFakePort);
-  TFakePort.Log := '';
-  TFakePort.KernelOk := False;
-  TFakePort.RefuseConfig := False;
-  TFakePort.Queue := 0;
-  TFakePort.RxData := '';
-  TFakePort.OsLost := 0;
-  TFakePort.LineState := [];
-  TFakePort.ReadFault := res_Ok;
+  TFakePort.Reset;
 end;
 
 procedure TTestChnComLogic.TestDefaultParams;

@@ -7,7 +7,7 @@
   MaxPullPerPoll bytes (64 KiB) and returns; the rest waits in the driver
   for the next poll.
 
-  A port driver of this test (DRV=ENDLESS) always has more input: every
+  A port driver (DRV=ENDLESS, tests/support/FakePort) always has more input: every
   Read fills the whole buffer it is given with the next bytes of a
   pattern. A caller that takes what arrives after each poll must get every
   byte, in order, without an overrun. }
@@ -18,7 +18,7 @@ unit TestChnComBurst;
 interface
 
 uses
-  Classes, SysUtils, fpcunit, testregistry, ChnTypes, ChnPort, ChnVirt, ChnCom;
+  Classes, SysUtils, fpcunit, testregistry, ChnTypes, ChnPort, ChnVirt, ChnCom, FakePort;
 
 type
   TTestChnComBurst = class(TTestCase)
@@ -27,131 +27,6 @@ type
   end;
 
 implementation
-
-type
-  TEndlessPort = class(TChnPort)
-  public
-    class var Produced: Int64;
-    function Open(const Path: tWordString): tChResult; override;
-    function Configure(const S: tPortSettings): tChResult; override;
-    function Read(var Buf; Size: LongInt; out Got: LongInt): tChResult; override;
-    function WaitInput(Ms: LongInt): Boolean; override;
-    function WaitOutput(Ms: LongInt): Boolean; override;
-    function Write(const Buf; Len: LongInt; out Done: LongInt): tChResult; override;
-    function OutQueue(out N: LongInt): tChResult; override;
-    function Drain: tChResult; override;
-    function Flush(Input, Output: Boolean): tChResult; override;
-    function SetRts(On: Boolean): tChResult; override;
-    function SetDtr(On: Boolean): tChResult; override;
-    function GetLines(out Lines: tPortLines): tChResult; override;
-    function SetKernelRs485(On: Boolean): tChResult; override;
-    function OsOverruns(out N: LongWord): tChResult; override;
-    function OsHandle: PtrInt; override;
-    procedure Close; override;
-  end;
-
-function Pattern(I: Int64): Byte; inline;
-begin
-  Result := (I * 31 + I shr 11) and $FF;
-end;
-
-function TEndlessPort.Open(const Path: tWordString): tChResult;
-begin
-  FDevice := Path;
-  FOpen := True;
-  Produced := 0;
-  Result := res_Ok;
-end;
-
-function TEndlessPort.Configure(const S: tPortSettings): tChResult;
-begin
-  Result := res_Ok;
-end;
-
-function TEndlessPort.Read(var Buf; Size: LongInt; out Got: LongInt): tChResult;
-var
-  I: LongInt;
-  P: PByte;
-begin
-  { a tty hands out at most 4 KiB per read; there is always more }
-  Got := Size;
-  if Got > 4096 then
-    Got := 4096;
-  P := @Buf;
-  for I := 0 to Got - 1 do
-    P[I] := Pattern(Produced + I);
-  Inc(Produced, Got);
-  Result := res_Ok;
-end;
-
-function TEndlessPort.WaitInput(Ms: LongInt): Boolean;
-begin
-  Result := True;
-end;
-
-function TEndlessPort.WaitOutput(Ms: LongInt): Boolean;
-begin
-  Result := True;
-end;
-
-function TEndlessPort.Write(const Buf; Len: LongInt; out Done: LongInt): tChResult;
-begin
-  Done := Len;
-  Result := res_Ok;
-end;
-
-function TEndlessPort.OutQueue(out N: LongInt): tChResult;
-begin
-  N := 0;
-  Result := res_Ok;
-end;
-
-function TEndlessPort.Drain: tChResult;
-begin
-  Result := res_Ok;
-end;
-
-function TEndlessPort.Flush(Input, Output: Boolean): tChResult;
-begin
-  Result := res_Ok;
-end;
-
-function TEndlessPort.SetRts(On: Boolean): tChResult;
-begin
-  Result := res_Ok;
-end;
-
-function TEndlessPort.SetDtr(On: Boolean): tChResult;
-begin
-  Result := res_Ok;
-end;
-
-function TEndlessPort.GetLines(out Lines: tPortLines): tChResult;
-begin
-  Lines := [];
-  Result := res_Ok;
-end;
-
-function TEndlessPort.SetKernelRs485(On: Boolean): tChResult;
-begin
-  Result := res_BadSetting;
-end;
-
-function TEndlessPort.OsOverruns(out N: LongWord): tChResult;
-begin
-  N := 0;
-  Result := res_Ok;
-end;
-
-function TEndlessPort.OsHandle: PtrInt;
-begin
-  Result := -1;
-end;
-
-procedure TEndlessPort.Close;
-begin
-  FOpen := False;
-end;
 
 procedure TTestChnComBurst.TestEndlessInputLosesNothing;
 var
@@ -184,7 +59,7 @@ begin
       AssertEquals('no overrun at poll ' + IntToStr(Polls) + ', lost ' +
         IntToStr(pChnCom(C)^.ChLostBytes), res_Ok, C^.ChReceiveResult);
       for I := 0 to Len - 1 do
-        if (Bad < 0) and (Buf[I] <> Pattern(Got + I)) then
+        if (Bad < 0) and (Buf[I] <> EndlessPattern(Got + I)) then
           Bad := Got + I;
       Inc(Got, Len);
     end;

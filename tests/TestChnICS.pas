@@ -9,10 +9,10 @@ unit TestChnICS;
 interface
 
 uses
-  SysUtils, fpcunit, testregistry, ChnTypes, ChnVirt, ChnLoop, ChnICS, TestSupport;
+  SysUtils, fpcunit, testregistry, ChnTypes, ChnVirt, ChnLoop, ChnICS, TestSupport, StackCase;
 
 type
-  TTestChnICS = class(TTestCase)
+  TTestChnICS = class(TStackCase)
   private
     Master, Slave, Raw: pChnVirt;
     MRec, SRec: tRecRecord;
@@ -25,7 +25,6 @@ type
     function Receive(Chn, Peer: pChnVirt; var Len: Word): Boolean;
   protected
     procedure SetUp; override;
-    procedure TearDown; override;
   published
     procedure TestConstants;
     procedure TestRecordLayout;
@@ -66,37 +65,19 @@ begin
   FillChar(SRec, SizeOf(SRec), 0);
 end;
 
-procedure TTestChnICS.TearDown;
-begin
-  if Master <> nil then
-    Dispose(Master, Done);
-  if Slave <> nil then
-    Dispose(Slave, Done);
-  if Raw <> nil then
-    Dispose(Raw, Done);
-end;
-
 procedure TTestChnICS.OpenPair(const Pair: string);
-var
-  Err: string;
 begin
-  Master := OpenStack(cName, 'NAM=ICS MAS=MASTER NOD=1 DNO=2 NAM=LOOP PAIR=' + Pair + ' END=1', Err);
-  AssertTrue(Err, Master <> nil);
-  Slave := OpenStack(cName, 'NAM=ICS MAS=SLAVE NOD=2 DNO=1 NAM=LOOP PAIR=' + Pair + ' END=2', Err);
-  AssertTrue(Err, Slave <> nil);
+  Master := Stack(cName, 'NAM=ICS MAS=MASTER NOD=1 DNO=2 NAM=LOOP PAIR=' + Pair + ' END=1');
+  Slave := Stack(cName, 'NAM=ICS MAS=SLAVE NOD=2 DNO=1 NAM=LOOP PAIR=' + Pair + ' END=2');
   Master^.ChReceiveBuffer(@MRec, SizeOf(MRec));
   Slave^.ChReceiveBuffer(@SRec, SizeOf(SRec));
 end;
 
 { An ICS stack (Master) against a bare LOOP end (Raw) that shows the bytes. }
 procedure TTestChnICS.OpenRaw(const Pair, IcsParams: string);
-var
-  Err: string;
 begin
-  Master := OpenStack(cName, IcsParams + ' NAM=LOOP PAIR=' + Pair + ' END=1', Err);
-  AssertTrue(Err, Master <> nil);
-  Raw := OpenStack(ChnLoop.cName, 'PAIR=' + Pair + ' END=2', Err);
-  AssertTrue(Err, Raw <> nil);
+  Master := Stack(cName, IcsParams + ' NAM=LOOP PAIR=' + Pair + ' END=1');
+  Raw := Stack(ChnLoop.cName, 'PAIR=' + Pair + ' END=2');
   Raw^.ChReceiveBuffer(@RawBuf, SizeOf(RawBuf));
   Master^.ChReceiveBuffer(@MRec, SizeOf(MRec));
 end;

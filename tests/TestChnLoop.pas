@@ -7,15 +7,14 @@ unit TestChnLoop;
 interface
 
 uses
-  Classes, SysUtils, fpcunit, testregistry, ChnTypes, ChnVirt, ChnLoop, TestSupport;
+  Classes, SysUtils, fpcunit, testregistry, ChnTypes, ChnVirt, ChnLoop, TestSupport,
+  StackCase;
 
 type
-  TTestChnLoop = class(TTestCase)
+  TTestChnLoop = class(TStackCase)
   private
     A, B: pChnVirt;
     procedure OpenPair(const Pair: string; const Extra: string = '');
-  protected
-    procedure TearDown; override;
   published
     procedure TestBytesBothWays;
     procedure TestBurst64KiBWithoutLoss;
@@ -25,6 +24,7 @@ type
     procedure TestSameEndTwiceCannotOpen;
     procedure TestPairAndEndFixedWhileOpen;
     procedure TestBytesToClosedPeerAreLost;
+    procedure TestReceiverAloneTakesALargeMessage;
     procedure TestReceiveFlush;
     procedure TestTwoThreadsWithIdleWait;
   end;
@@ -32,23 +32,9 @@ type
 implementation
 
 procedure TTestChnLoop.OpenPair(const Pair: string; const Extra: string);
-var
-  Err: string;
 begin
-  A := OpenStack('LOOP', 'PAIR=' + Pair + ' END=1 ' + Extra, Err);
-  AssertNotNull(Err, A);
-  B := OpenStack('LOOP', 'PAIR=' + Pair + ' END=2 ' + Extra, Err);
-  AssertNotNull(Err, B);
-end;
-
-procedure TTestChnLoop.TearDown;
-begin
-  if A <> nil then
-    Dispose(A, Done);
-  if B <> nil then
-    Dispose(B, Done);
-  A := nil;
-  B := nil;
+  A := Stack('LOOP', 'PAIR=' + Pair + ' END=1 ' + Extra);
+  B := Stack('LOOP', 'PAIR=' + Pair + ' END=2 ' + Extra);
 end;
 
 { Read from R until Count bytes arrived (or a deadline), keeping W moving. }
@@ -264,6 +250,37 @@ begin
   B^.ChReceive(Len);
   AssertEquals(0, Len);
   AssertEquals(res_NoMessage, B^.ChReceiveResult);
+end;
+
+{ A message larger than the ring reaches the receiver whole while only the
+  receiver polls: the sender, having sent, may well poll nothing else. }
+procedure TTestChnLoop.TestReceiverAloneTakesALargeMessage;
+var
+  S, D: array[0..2999] of Byte;
+  Buf: array[0..99] of Byte;
+  I, Got: Integer;
+  Len: Word;
+  Deadline: QWord;
+begin
+  OpenPair('ALONE', 'LRB=100');
+  for I := 0 to High(S) do
+    S[I] := I mod 253;
+  A^.ChSend(@S, SizeOf(S));
+  AssertEquals(res_Ok, A^.ChSendResult);
+  B^.ChReceiveBuffer(@Buf, SizeOf(Buf));
+  Got := 0;
+  Deadline := GetTickCount64 + 5000;
+  while (Got < SizeOf(S)) and (GetTickCount64 < Deadline) do
+    if B^.ChReceiveReady = CHS_ReceiveReady then
+    begin
+      B^.ChReceive(Len);
+      AssertTrue('no more than was sent', Got + Len <= SizeOf(S));
+      Move(Buf, D[Got], Len);
+      Inc(Got, Len);
+    end;
+  AssertEquals('all of it, A never polled', SizeOf(S), Got);
+  AssertTrue(CompareMem(@S, @D, SizeOf(S)));
+  AssertEquals(CHS_SendReady, A^.ChSendReady);
 end;
 
 procedure TTestChnLoop.TestReceiveFlush;

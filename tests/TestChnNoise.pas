@@ -8,10 +8,10 @@ unit TestChnNoise;
 interface
 
 uses
-  SysUtils, fpcunit, testregistry, ChnTypes, ChnVirt, ChnLoop, ChnNoise, TestSupport;
+  SysUtils, fpcunit, testregistry, ChnTypes, ChnVirt, ChnLoop, ChnNoise, TestSupport, StackCase;
 
 type
-  TTestChnNoise = class(TTestCase)
+  TTestChnNoise = class(TStackCase)
   private
     FNoise, FRaw: pChnVirt;
     procedure OpenPair(const NoiseParams, Pair: string);
@@ -20,8 +20,6 @@ type
     function Through(const Data: TBytes; Chunk: Integer): TBytes;
     { Data sent by the raw end, received through the noise layer }
     function Received(const Data: TBytes; Chunk: Integer): TBytes;
-  protected
-    procedure TearDown; override;
   published
     procedure TestParameters;
     procedure TestBadParametersNameTheToken;
@@ -58,24 +56,12 @@ begin
   Move(Got[0], R[Length(R) - Length(Got)], Length(Got));
 end;
 
-procedure TTestChnNoise.TearDown;
-begin
-  if FNoise <> nil then Dispose(FNoise, Done);
-  if FRaw <> nil then Dispose(FRaw, Done);
-  FNoise := nil;
-  FRaw := nil;
-end;
-
 procedure TTestChnNoise.OpenPair(const NoiseParams, Pair: string);
-var
-  Err: string;
 begin
-  TearDown;
-  FNoise := OpenStack('NOISE', 'NAM=NOISE ' + NoiseParams + ' NAM=LOOP PAIR=' + Pair +
-    ' END=1 LRB=65000 IDL=0', Err);
-  AssertTrue('noise stack: ' + Err, FNoise <> nil);
-  FRaw := OpenStack('LOOP', 'NAM=LOOP PAIR=' + Pair + ' END=2 LRB=65000 IDL=0', Err);
-  AssertTrue('raw end: ' + Err, FRaw <> nil);
+  CloseStacks;
+  FNoise := Stack('NOISE', 'NAM=NOISE ' + NoiseParams + ' NAM=LOOP PAIR=' + Pair +
+    ' END=1 LRB=65000 IDL=0');
+  FRaw := Stack('LOOP', 'NAM=LOOP PAIR=' + Pair + ' END=2 LRB=65000 IDL=0');
 end;
 
 { everything C has (an in-memory line delivers at once) }
@@ -263,13 +249,11 @@ end;
 
 procedure TTestChnNoise.TestBabblingLine;
 var
-  Err: string;
   Got: TBytes;
   B: Byte;
   I: Integer;
 begin
-  FNoise := OpenStack('NOISE', 'NAM=NOISE BYTE=0 CNT=10', Err);
-  AssertTrue(Err, FNoise <> nil);
+  FNoise := Stack('NOISE', 'NAM=NOISE BYTE=0 CNT=10');
   B := 1;
   FNoise^.ChSend(@B, 1);
   AssertEquals('a send is swallowed', res_Ok, FNoise^.ChSendResult);

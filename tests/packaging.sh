@@ -1,7 +1,9 @@
 #!/usr/bin/env bash
 # tests/packaging.sh - the library as users get it (called by tests/run.sh):
 #  0. no file points outside the repository;
-#  1. chn.lpk lists every unit of src/ and its OS folders;
+#  1. fpmake.pp lists every unit of src/ with its OSes and dependencies
+#     (tests/fpmakecheck.pl), chn.lpk lists every unit of src/ and its OS
+#     folders;
 #  2. every complete program in README.md ("program ...;" in a ```pascal
 #     block) is built outside the tree the three ways the README gives -
 #     -Fu to this checkout, "make install" (per user, found by plain fpc),
@@ -22,9 +24,10 @@ cleanup() {
   rm -rf "$TMP"
 }
 trap cleanup EXIT
-ok() { echo "ok    $1"; }
-bad() { echo "FAIL  $1"; [ -n "${2:-}" ] && [ -f "$2" ] && tail -n 15 "$2"; }
-skip() { echo "skip  $1"; }
+# pass, fail, skip (tests/run.sh counts the lines)
+. tests/support/report.sh
+# a failure, and the end of the log that says why
+bad() { fail "$1"; [ -n "${2:-}" ] && [ -f "$2" ] && tail -n 15 "$2"; }
 
 # 0. the repository stands alone: no file cites the project's outside
 # inputs (the specification, the seed copies of the manuals) or a path
@@ -32,15 +35,18 @@ skip() { echo "skip  $1"; }
 pat='SPEC\.md|SPEC section|seed [0-9]{3}|seeds/|\.\./shared'
 hits=$(grep -rlE "$pat" --exclude-dir=.git --exclude-dir="$(basename "$BUILD")" \
        --exclude=packaging.sh . 2>/dev/null || true)
-if [ -z "$hits" ]; then ok "package: no file points outside the repository"
+if [ -z "$hits" ]; then pass "package: no file points outside the repository"
 else bad "package: files citing SPEC/seeds/../shared: $(echo $hits)"; fi
 
-# 1. chn.lpk
+# 1. fpmake.pp is the one list of units (every unit of src/, its OSes, its
+# real dependencies), and chn.lpk lists them
+perl tests/fpmakecheck.pl
+
 missing=""
 for f in src/*.pas src/*.inc src/unix/*.pas src/unix/*.inc src/win/*.pas src/win/*.inc; do
   grep -q "<Filename Value=\"$f\"/>" chn.lpk || missing="$missing $f"
 done
-if [ -z "$missing" ]; then ok "package: chn.lpk lists every unit of src/ (and src/unix, src/win)"
+if [ -z "$missing" ]; then pass "package: chn.lpk lists every unit of src/ (and src/unix, src/win)"
 else bad "package: chn.lpk misses$missing (make writes it: commit it)"; fi
 
 # 2. README programs, each in its own folder outside the tree
@@ -71,7 +77,7 @@ build_run() {
   fi
   [ "$p" = readn7 ] && { arg=$PTY; want='^N7:0 = 0$'; }
   if timeout 20 "$dir/$p" "$arg" >"$dir/$p.run" 2>&1 && grep -q "$want" "$dir/$p.run"; then
-    ok "package: README program $p built and run ($way)"
+    pass "package: README program $p built and run ($way)"
   else
     bad "package: README program $p ($way) did not print $want" "$dir/$p.run"
     # what the simulator saw, to tell a program's fault from the line's
@@ -87,7 +93,7 @@ done
 
 # the checkout stays clean: a build that follows the README leaves no
 # compiled unit beside the library's sources
-if [ -z "$(ls src/*.ppu src/*.o src/*/*.ppu src/*/*.o 2>/dev/null)" ]; then ok "package: building from the checkout writes nothing into src/"
+if [ -z "$(ls src/*.ppu src/*.o src/*/*.ppu src/*/*.o 2>/dev/null)" ]; then pass "package: building from the checkout writes nothing into src/"
 else bad "package: compiled units were left in src/"; fi
 
 # way 2: make install as a user (PREFIX=$HOME/.fppkg), then plain fpc
@@ -108,7 +114,7 @@ else
   L="$TMP/laz"; mkdir -p "$L/pkg"; cp -r chn.lpk src "$L/pkg/"
   if lazbuild --pcp="$L/cfg" --add-package-link "$L/pkg/chn.lpk" >"$L/link.log" 2>&1 &&
      lazbuild --pcp="$L/cfg" "$L/pkg/chn.lpk" >"$L/pkg.log" 2>&1; then
-    ok "package: lazbuild chn.lpk"
+    pass "package: lazbuild chn.lpk"
     for p in $progs; do
       d="$L/$p"; mkdir -p "$d"; cp "$TMP/readme/$p.pas" "$d/$p.lpr"
       sed "s/@NAME@/$p/g" tests/data/project.lpi.in > "$d/$p.lpi"
@@ -130,7 +136,7 @@ if make -s install BUILD="$BUILD" DESTDIR="$D" >"$TMP/dinstall.log" 2>&1 && [ -f
   build_run "make install DESTDIR= PREFIX=/usr" "$d" "$p" "$FPC" -v0 -Fu"$U" "$p.pas"
   make -s uninstall BUILD="$BUILD" DESTDIR="$D" >/dev/null 2>&1
   if [ -e "$U" ] || [ -e "$D/usr/share/chn" ]; then bad "package: make uninstall left files"
-  else ok "package: make uninstall removes the units and sources"; fi
+  else pass "package: make uninstall removes the units and sources"; fi
 else
   bad "package: make install DESTDIR=... PREFIX=/usr (units in $U)" "$TMP/dinstall.log"
 fi

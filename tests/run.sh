@@ -22,11 +22,8 @@ BUILD=${BUILD:-build}
 export CHN_EXEC=${CHN_EXEC:-}
 FPC=${FPC:-fpc}
 FILTER=${T:-}
-passed=0
-failed=0
-skipped=0
-pass() { passed=$((passed + 1)); echo "ok    $1"; }
-fail() { failed=$((failed + 1)); echo "FAIL  $1"; }
+# pass, fail, skip, report_lines, report_end
+. tests/support/report.sh
 
 # run_with_peer PROGRAM PEERFILE: a socat null-modem of two ptys; the peer
 # the .peer file defines (function "peer DEVICE", variable "expect") on one
@@ -60,8 +57,6 @@ run_with_peer() {
   rm -rf "$tmp"
   return 0
 }
-# a check that cannot run here: counted, and it says why
-skip() { skipped=$((skipped + 1)); echo "skip  $1"; }
 
 heaplog="$BUILD/heaptrc.log"
 rm -f "$heaplog"
@@ -173,14 +168,7 @@ fi
 if [ -n "$CHN_EXEC" ]; then
   echo "note: packaging checks left out: they install for the host (make crosstest)"
 elif [ -z "$FILTER" ] || [[ "packaging" == *"${FILTER,,}"* ]]; then
-  while IFS= read -r line; do
-    case $line in
-      "ok    "*) pass "${line#ok    }" ;;
-      "FAIL  "*) fail "${line#FAIL  }" ;;
-      "skip  "*) skip "${line#skip  }" ;;
-      *) echo "$line" ;;
-    esac
-  done < <(BUILD=$BUILD FPC=$FPC bash tests/packaging.sh 2>&1)
+  report_lines < <(BUILD=$BUILD FPC=$FPC bash tests/packaging.sh 2>&1)
 fi
 
 # a T= filter that selects nothing is a mistake, not a pass (the heap
@@ -191,6 +179,4 @@ fi
 
 # skipped tests (an optional program missing) are listed with their reason
 # by runtests ("skip  Test: why"); the count comes before the last line
-[ "$skipped" = 0 ] || echo "$skipped skipped (an optional program is missing: see the skip lines)"
-echo "$passed passed, $failed failed"
-[ "$failed" = 0 ]
+report_end "an optional program is missing: see the skip lines"

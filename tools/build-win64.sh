@@ -3,9 +3,9 @@
 #
 # Not part of "make test". Builds a win64 RTL and the FCL units the test
 # runner needs (fpcunit, process) from Debian's fpc-source (the RTL copied
-# to a writable folder outside the repository), then compiles
-# src/win/ChnPortWin.pas, src/ChnCom.pas and src/ChnTcp.pas (Winsock) and any
-# program given against it.
+# to a writable folder outside the repository), then compiles every unit
+# fpmake.pp lists for Windows (tools/units.sh win) and any program given
+# against it.
 # tools/wintest.sh ("make wintest") runs the results under Wine.
 #   tools/build-win64.sh                  units only
 #   tools/build-win64.sh prog.pas ...     also these programs (.exe in $OUT/bin)
@@ -81,8 +81,7 @@ if [ -n "${SYNAPSE_DIR:-}" ]; then
   FLAGS="$FLAGS -Fu$SYNAPSE_DIR -Fi$SYNAPSE_DIR -dCHN_SYNAPSE"
   $PPC $FLAGS src/ChnPortSynapse.pas
 fi
-$PPC $FLAGS src/win/ChnPortWin.pas
-$PPC $FLAGS src/ChnCom.pas
-$PPC $FLAGS src/ChnTcp.pas
+# every unit fpmake.pp lists for Windows (tools/units.sh)
+for u in $(bash tools/units.sh win); do $PPC $FLAGS "$u"; done
 for p in "$@"; do $PPC $FLAGS "$p"; done
 echo "win64 build ok: $OUT"

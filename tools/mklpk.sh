@@ -1,20 +1,20 @@
 #!/usr/bin/env bash
 # tools/mklpk.sh - writes chn.lpk, the Lazarus runtime package, listing
-# every unit of src/ and of its OS folders src/unix and src/win (run by
-# make whenever src/ changes; tests/packaging.sh checks the committed file
-# is current). OS-specific units and the optional Synapse backend stay out
+# every unit of fpmake.pp, the one list (through tools/units.sh; run by
+# make whenever fpmake.pp changes; tests/packaging.sh checks the committed
+# file is current). OS-specific units and the optional Synapse backend stay out
 # of the package's uses section: ChnCom pulls in the one its OS needs.
 set -eu
 cd "$(dirname "$0")/.."
-files=$(ls src/*.pas src/unix/*.pas src/win/*.pas | LC_ALL=C sort -f)
+files=$({ bash tools/units.sh all; bash tools/units.sh --optional; } | LC_ALL=C sort -f)
 incs=$(ls src/*.inc src/unix/*.inc src/win/*.inc | LC_ALL=C sort -f)
 n=$(($(echo "$files" | wc -l) + $(echo "$incs" | wc -l)))
 {
 cat <<'HEAD'
 <?xml version="1.0" encoding="UTF-8"?>
 <!-- chn.lpk - the Chn library as a Lazarus runtime package (no LCL).
-     Written by tools/mklpk.sh from the units in src/, src/unix and
-     src/win; do not edit.
+     Written by tools/mklpk.sh from the units fpmake.pp lists; do not
+     edit.
      Add it to a project (Package > Open Package File > chn.lpk, compile,
      then Project Inspector > Add > New Requirement > chn) or from the
      command line: lazbuild -add-package-link chn.lpk; lazbuild your.lpi.

@@ -47,17 +47,11 @@ fi
 WINESERVER=${WINESERVER:-$(dirname "$WINE")/wineserver}
 [ -x "$WINESERVER" ] || WINESERVER=$(command -v wineserver || echo wineserver)
 
-passed=0
-skipped=0
-failed=0
-pass() { passed=$((passed + 1)); echo "ok    $1"; }
-fail() { failed=$((failed + 1)); echo "FAIL  $1"; }
-skip() { skipped=$((skipped + 1)); echo "skip  $1"; }
+# pass, fail, skip, report_end (the protocol of tests/run.sh)
+. tests/support/report.sh
 finish() {
   # tests that skip (an optional program missing) print "skip  X: why"
-  [ "$skipped" = 0 ] || echo "$skipped skipped (each says why in its skip line)"
-  echo "$passed passed, $failed failed"
-  [ "$failed" = 0 ]
+  report_end "each says why in its skip line"
   exit
 }
 # "ok    X" -> "ok    win64 X" (also FAIL, ERROR, note)
