@@ -17,6 +17,11 @@
 #                     processes (SECONDS=10 per scenario, or COUNT=messages;
 #                     SEED=, ONLY=name); docs/reliability.md
 #   make wintest      the suite as win64 programs under Wine (docs/Windows.md)
+#   make cross ARCH=armhf|aarch64      everything for ARM Linux, built by a
+#                     cross compiler made once from Debian's fpc source in
+#                     CROSS_CACHE (docs/ARM.md)
+#   make crosstest ARCH=armhf|aarch64  the suite and the legacy programs
+#                     for ARM under qemu-user
 #   make clean
 # Optional: SYNAPSE_DIR=/path/to/synapse builds the Synapse serial backend.
 #
@@ -75,7 +80,7 @@ PROGBINS := $(addprefix $(BINDIR)/,$(basename $(notdir $(PROGRAMS))))
 BENCHBINS := $(addprefix $(BINDIR)/,$(basename $(notdir $(BENCHES))))
 
 .PHONY: all units examples tools test demo bench fuzz soak wintest clean check-fpc \
-        install uninstall man doc
+        install uninstall man doc cross crosstest
 
 all: units $(PROGBINS) chn.lpk
 examples: $(addprefix $(BINDIR)/,$(basename $(notdir $(EXAMPLES))))
@@ -187,6 +192,15 @@ soak: all
 wintest: all $(BUILD)/testunits.inc
 	@BUILD=$(BUILD) FPC=$(FPC) T="$(T)" SYNAPSE_DIR="$(SYNAPSE_DIR)" bash tools/wintest.sh
 
+# ARM Linux (docs/ARM.md): the cross compiler is built once into
+# CROSS_CACHE (outside the repository; from Debian's fpc source package),
+# the project into $(BUILD)/$(ARCH) with the usual flags.
+ARCH ?=
+CROSS_CACHE ?= $(if $(HOME),$(HOME),/tmp)/.cache/chn-cross
+cross crosstest:
+	@CROSS_CACHE='$(CROSS_CACHE)' BUILD='$(BUILD)/$(ARCH)' T='$(T)' SYNAPSE_DIR='$(SYNAPSE_DIR)' \
+	  bash tools/cross.sh $(if $(filter cross,$@),build,test) '$(ARCH)'
+
 # ---------------------------------------------------------------- install
 # Debian's /etc/fpc.cfg searches /usr/lib/<multiarch>/fpc/<version>/units/
 # <target>/* and, per user, ~/.fppkg/lib/fpc/<version>/units/<target>/*:
@@ -232,6 +246,17 @@ doc:
 	@if grep -E '^(Warning|Error)' $(BUILD)/doc.log; then echo "make doc: pasdoc warnings (above)"; exit 1; fi
 	@echo "API reference: $(BUILD)/doc/index.html ($(words $(DOCSRC)) units)"
 
+# A Synapse build's units use synaser (and what it uses): a program built
+# with plain fpc against the installed units needs them too, so the
+# Synapse units this build compiled (those of $(UNITDIR) that are sources
+# of SYNAPSE_DIR) are installed beside them; uninstall removes them with
+# the folder. Synapse itself is not part of this project (docs/ChnCom.md).
+SYNAPSE_INSTALL = n=0; for p in $(UNITDIR)/*.ppu; do u=$$(basename "$$p" .ppu); \
+	  if [ -f '$(SYNAPSE_DIR)'/"$$u.pas" ] || [ -f '$(SYNAPSE_DIR)'/"$$u.pp" ]; then \
+	    install -m 644 "$$p" "$$d/"; install -m 644 "$(UNITDIR)/$$u.o" "$$d/"; n=$$((n+1)); fi; done; \
+	  if [ "$$n" = 0 ]; then echo "install: no Synapse units in $(UNITDIR) (SYNAPSE_DIR=$(SYNAPSE_DIR)): run make SYNAPSE_DIR=... first" >&2; exit 1; fi; \
+	  echo "installed $$n Synapse units (synaser and what it uses) from $(SYNAPSE_DIR) beside them"
+
 # (a unit without code, such as ChnPorts, has no object file)
 install: units $(addprefix $(BINDIR)/,$(TOOL_PROGRAMS)) man
 	@set -e; d='$(DESTDIR)$(INSTALL_UNITDIR)'; s='$(DESTDIR)$(INSTALL_SRCDIR)'; \
@@ -240,6 +265,7 @@ install: units $(addprefix $(BINDIR)/,$(TOOL_PROGRAMS)) man
 	for u in $(basename $(notdir $(UNITS))); do l=$$(echo $$u | tr A-Z a-z); \
 	  install -m 644 $(UNITDIR)/$$u.ppu "$$d/$$l.ppu"; \
 	  if [ -f $(UNITDIR)/$$u.o ]; then install -m 644 $(UNITDIR)/$$u.o "$$d/$$l.o"; fi; done; \
+	$(if $(SYNAPSE_DIR),$(SYNAPSE_INSTALL);) \
 	for f in $(wildcard src/*.pas src/*.inc src/*/*.pas src/*/*.inc); do \
 	  install -D -m 644 "$$f" "$$s/$$f"; done; install -m 644 chn.lpk "$$s/"; \
 	for p in $(TOOL_PROGRAMS); do install -m 755 $(BINDIR)/$$p "$$b/$$p"; \

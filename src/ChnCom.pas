@@ -19,6 +19,14 @@
               AUTO: KERNEL where supported, else RTS
     LRB=      receive buffer (bytes held between ChReceive calls)
     LSB=      longest message ChSend accepts (res_TooLong above it)
+    RECON=ms  0 (default): a lost device stays lost until ChClose + ChOpen;
+              n: reopen the same device every n ms by itself (a USB
+              adapter plugged back), every setting again; results say
+              res_Reconnecting meanwhile (docs/ChnCom.md)
+    LAT=ms    1..255: the latency timer of a USB adapter (Linux sysfs
+              latency_timer, FTDI and others); refused with LAT= named
+              where the driver has none or it may not be written; 0
+              (default) leaves it as it is
     IDL=ms    when a poll finds nothing, wait on the device at most this long
               for input (returns at the first byte); 0 never waits. Default 1,
               so legacy busy loops do not burn a CPU.
@@ -45,10 +53,14 @@
   pulled) makes ChResult, ChReceiveResult and ChSendResult answer
   res_DeviceLost (or res_IOError) from the next poll on; the layer stops
   touching the device, bytes already received can still be taken, and
-  ChClose + ChOpen starts again.
+  ChClose + ChOpen starts again - or, with RECON=, the layer reopens it by
+  itself (res_Reconnecting meanwhile, see ComReopen).
 
-  Differences from the SofCon original: DEV=, FLW=, RS485=, IDL=, DRV= are
-  additions of the port; IRQ and port addresses mean nothing here. }
+  Closing: ChClose (and Done) first let what was sent leave the driver,
+  bounded by the line time of the pending bytes (ComDrainTx).
+
+  Differences from the SofCon original: DEV=, FLW=, RS485=, IDL=, DRV=,
+  RECON=, LAT= are additions of the port; IRQ and port addresses mean nothing here. }
 unit ChnCom;
 
 {$I chn.inc}
@@ -93,6 +105,9 @@ type
     CH_TxBuf   : PByte;            { copy of the message being sent }
     CH_TxCap, CH_TxLen, CH_TxPos: LongInt;
     CH_Wait    : pChnWaitSource;   { this port in the program-wide wait; nil: none }
+    CH_Reopen  : LongInt;          { RECON= ms between reopen attempts, 0 = off }
+    CH_Lat     : LongInt;          { LAT= USB adapter latency timer ms, 0 = as it is }
+    CH_ReopenAt: QWord;            { next reopen attempt (GetTickCount64) }
     constructor Init;
     constructor ChInitParam(const S: tParamStr);
     destructor  Done; virtual;
@@ -139,7 +154,13 @@ type
       where the line itself holds the sender back (flow control, TCP). }
     function  ComDropsWhenFull: Boolean; virtual;
     procedure ComPull;
+    { RECON=: after a device loss, reopen the device in the polls }
+    procedure ComReopen;
     procedure ComPumpTx;
+    { Before a close: what ChSend was given leaves the driver, bounded }
+    procedure ComDrainTx;
+    { Milliseconds N bytes take on the line at the BD BIT PAR STOP in force }
+    function  ComLineMs(N: LongInt): LongInt;
     procedure ComFreeBuffers;
     { ' LRB=.. LSB=.. IDL=..' for ChOwnParams }
     function  ComBufferText: ShortString;
@@ -194,6 +215,9 @@ begin
   CH_TxLen := 0;
   CH_TxPos := 0;
   CH_Wait := nil;
+  CH_Reopen := 0;
+  CH_ReopenAt := 0;
+  CH_Lat := 0;
 end;
 
 constructor tChnCom.ChInitParam(const S: tParamStr);
@@ -291,6 +315,10 @@ begin
     Result := ParamSetNum(S, 1, 65535, CmdL, CH_LSB)
   else if Key = 'IDL' then
     Result := ParamSetNum(S, 0, 1000, CmdL, CH_Idle)
+  else if Key = 'RECON' then
+    Result := ParamSetNum(S, 0, 3600000, CmdL, CH_Reopen)
+  else if Key = 'LAT' then
+    Result := ParamSetNum(S, 0, 255, CmdL, CH_Lat)
   else if Key = 'IRQ' then
   begin
     Result := res_Ok;             { DOS only: accepted and ignored }
@@ -322,6 +350,10 @@ begin
     R := R + ParamText('COM', CH_Com);
   R := R + ComLineText(CH_Set) + ' RS485=' + Rs485Names[CH_Rs485] +
     ComBufferText;
+  if CH_Reopen <> 0 then
+    R := R + ParamText('RECON', CH_Reopen);
+  if CH_Lat <> 0 then
+    R := R + ParamText('LAT', CH_Lat);
   if CH_Irq <> '' then
     R := R + ' IRQ=' + CH_Irq;
   if CH_DosKey <> '' then
@@ -399,6 +431,11 @@ begin
           R := Port.SetRts(False);
         end;
     end;
+  if (R = res_Ok) and (CH_Lat <> 0) then
+  begin
+    Key := 'LAT';                   { a driver without the timer refuses it }
+    R := Port.SetLatency(CH_Lat);
+  end;
   if R <> res_Ok then
   begin
     CH_ParamErr := ChGetParam(Key);
@@ -493,9 +530,8 @@ begin
   begin
     if CH_Fault = res_Ok then
     begin
-      if CH_TxPos < CH_TxLen then
-        CH_Port.Flush(False, True);  { abandon the unsent rest }
-      if CH_RtsUp then
+      ComDrainTx;                   { nothing sent is lost at a close }
+      if CH_RtsUp and (CH_Fault = res_Ok) then
         CH_Port.SetRts(False);
     end;
     CH_Port.Free;
@@ -602,6 +638,57 @@ begin
     CH_Port.WaitUseful);
 end;
 
+{ RECON=: a lost device (USB adapter pulled) is closed at once - so the
+  kernel can give the adapter its name again when it comes back - and
+  reopened every RECON ms from the polls with every setting (ComOpenPort,
+  as ChOpen); results say res_Reconnecting until that works. An open of a
+  tty does not block (O_NONBLOCK), so a poll never hangs on it, and one
+  attempt per RECON ms never spins. A device that comes back but refuses
+  a setting ends it: res_BadSetting, the token named. Bytes received
+  before the loss can still be taken. }
+procedure tChnCom.ComReopen;
+var
+  Port: TChnPort;
+  R: tChResult;
+  Now: QWord;
+begin
+  if (CH_Reopen = 0) or (CH_Port = nil) or
+    ((CH_Fault <> res_DeviceLost) and (CH_Fault <> res_IOError) and
+     (CH_Fault <> res_Reconnecting)) then
+    Exit;
+  Now := GetTickCount64;
+  if CH_Fault <> res_Reconnecting then
+  begin
+    ComLeaveWait;
+    CH_Port.Close;                  { the object stays until a new port works }
+    ComLatch(res_Reconnecting);
+    CH_ReopenAt := Now + QWord(CH_Reopen);
+  end;
+  if Now >= CH_ReopenAt then
+  begin
+    CH_RtsToggle := False;
+    R := ComOpenPort(Port);         { names the token when it fails }
+    if R = res_Ok then
+    begin
+      ComReplacePort(Port);
+      CH_OsLost := 0;               { the new port counts from 0 }
+      CH_ParamErr := '';
+      Exit;
+    end;
+    if R = res_BadSetting then
+    begin
+      ComLatch(R);                  { back, but not as configured: no retry }
+      Exit;
+    end;
+    CH_ReopenAt := Now + QWord(CH_Reopen);
+  end;
+  if CH_ParamErr = '' then
+    if CH_Dev <> '' then
+      CH_ParamErr := ChGetParam('DEV')
+    else
+      CH_ParamErr := ChGetParam('COM');
+end;
+
 { Hand as much of the pending message to the OS as it takes now; drop RTS
   once an RS-485 transmission has completely left the line. }
 procedure tChnCom.ComPumpTx;
@@ -650,6 +737,68 @@ begin
   end;
 end;
 
+function tChnCom.ComLineMs(N: LongInt): LongInt;
+var
+  Bits: LongInt;
+begin
+  Bits := 1 + CH_Set.DataBits + CH_Set.StopBits;    { start, data, stop }
+  if CH_Set.Parity <> ppNone then
+    Inc(Bits);
+  if CH_Set.Baud <= 0 then
+    Exit(0);
+  Result := (Int64(N) * Bits * 1000 + CH_Set.Baud - 1) div CH_Set.Baud;
+end;
+
+{ A message handed to ChSend just before ChClose (an answer, then exit)
+  must reach the line: the rest of it goes to the OS, the OS queue empties,
+  then Drain waits for the last bit (tcdrain, FlushFileBuffers, synaser's
+  Flush). All of it within 1.5 times the time the pending bytes take at
+  BD, plus 250 ms: a line held by flow control, or a pty nobody reads,
+  cannot keep ChClose for ever; what is left then is discarded, as
+  before. No purge happens before this (a purge is what lost the tail). }
+procedure tChnCom.ComDrainTx;
+var
+  Queued, Left: LongInt;
+  Deadline, Now: QWord;
+begin
+  if (CH_Port = nil) or (CH_Fault <> res_Ok) then
+    Exit;
+  Queued := 0;
+  if CH_Port.OutQueue(Queued) <> res_Ok then
+    Queued := 0;
+  Deadline := GetTickCount64 + QWord(ComLineMs(CH_TxLen - CH_TxPos + Queued)) * 3 div 2 + 250;
+  repeat
+    ComPumpTx;
+    if CH_Fault <> res_Ok then
+      Exit;
+    Now := GetTickCount64;
+    if Now >= Deadline then
+      Break;
+    Left := Deadline - Now;
+    if CH_TxPos < CH_TxLen then
+      CH_Port.WaitOutput(Left)      { returns when the OS takes more }
+    else
+    begin
+      if CH_Port.OutQueue(Queued) <> res_Ok then
+        Queued := 0;
+      if Queued = 0 then
+        Break;
+      { the OS is sending: wait as long as that takes, then look again }
+      if ComLineMs(Queued) + 1 < Left then
+        Left := ComLineMs(Queued) + 1;
+      Sleep(Left);
+    end;
+  until False;
+  if (CH_TxPos >= CH_TxLen) and (CH_Port.OutQueue(Queued) <> res_Ok) then
+    Queued := 0;
+  if (CH_TxPos >= CH_TxLen) and (Queued = 0) then
+    CH_Port.Drain                   { only the UART FIFO is left: short }
+  else
+    CH_Port.Flush(False, True);     { the bound is over: abandon the rest }
+  CH_TxLen := 0;
+  CH_TxPos := 0;
+end;
+
 procedure tChnCom.ChSend(Buff: Pointer; Len: Word);
 var
   R: tChResult;
@@ -657,6 +806,7 @@ var
 begin
   if not ChSendAllowed(Buff, Len, True) then
     Exit;
+  ComReopen;
   if CH_Fault <> res_Ok then
   begin
     CH_SResult := CH_Fault;
@@ -714,6 +864,7 @@ end;
 
 function tChnCom.ChSendReady: tChState;
 begin
+  ComReopen;
   Result := CHS_SendReady;
   if (CH_Port = nil) or (CH_Fault <> res_Ok) then
     Exit;
@@ -742,6 +893,7 @@ var
 begin
   if CH_State <> CHS_Connect then
     Exit(CHS_RecInactive);
+  ComReopen;
   if CH_RCtrl <> CHS_ReceiveReady then
   begin
     ComPumpTx;                    { a long message keeps moving meanwhile }
@@ -780,6 +932,7 @@ end;
 
 procedure tChnCom.ChReceive(var Len: Word);
 begin
+  ComReopen;
   if not ChReceiveAllowed(Len) then
     Exit;
   if CH_RCtrl <> CHS_ReceiveReady then

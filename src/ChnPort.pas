@@ -112,6 +112,11 @@ type
       Windows RTS_CONTROL_TOGGLE). res_BadSetting where not supported (the
       default). }
     function SetKernelRs485(On: Boolean): tChResult; virtual;
+    { The receive latency timer of a USB serial adapter, 1..255 ms (Linux:
+      the driver's latency_timer in sysfs, FTDI's default is 16 ms).
+      res_BadSetting where the driver has none (the default), with OSError
+      saying why; res_NoPermission where it may not be written. }
+    function SetLatency(Ms: LongInt): tChResult; virtual;
     { Receive overruns the OS counted since Open (UART or driver buffer);
       0 where the OS does not count them (the default). }
     function OsOverruns(out N: LongWord): tChResult; virtual;
@@ -246,6 +251,11 @@ begin
 end;
 
 function TChnPort.SetKernelRs485(On: Boolean): tChResult;
+begin
+  Result := res_BadSetting;
+end;
+
+function TChnPort.SetLatency(Ms: LongInt): tChResult;
 begin
   Result := res_BadSetting;
 end;

@@ -46,9 +46,20 @@ uses
   SysUtils, synaser, ChnTypes, ChnWait, ChnPort;
 
 type
+  { synaser's Connect and CloseSocket purge both directions (TCIOFLUSH,
+    PurgeComm with TXABORT): output not yet on the line - and on a pty
+    whatever the other side has not read yet, such as the last frame of
+    the session before - was lost. tChnCom drains (bounded) before it
+    closes; synaser's own purges here discard input only, and
+    TChnPortSynapse.Flush purges the directions it is asked for. }
+  TChnBlockSerial = class(TBlockSerial)
+  public
+    procedure Purge; override;
+  end;
+
   TChnPortSynapse = class(TChnPort)
   private
-    FSer: TBlockSerial;
+    FSer: TChnBlockSerial;
     function Check: tChResult;
     function MapError(E: LongInt): tChResult;
     function Refuse(const Key: ShortString): tChResult;
@@ -68,12 +79,13 @@ type
     function SetKernelRs485(On: Boolean): tChResult; override;
     function OsOverruns(out N: LongWord): tChResult; override;
     {$IFDEF UNIX}
+    function SetLatency(Ms: LongInt): tChResult; override;
     function WaitSource(out Kind: tChnWaitKind; out Os: PtrInt;
       out Rearm: tChnWaitRearm; out Data: Pointer): Boolean; override;
     {$ENDIF}
     function OsHandle: PtrInt; override;
     procedure Close; override;
-    property Serial: TBlockSerial read FSer;
+    property Serial: TChnBlockSerial read FSer;
   end;
 
 implementation
@@ -104,6 +116,22 @@ const
     50, 75, 110, 134, 150, 200, 300, 600, 1200, 1800, 2400, 4800, 9600,
     19200, 38400, 57600, 115200, 230400, 460800, 500000, 576000, 921600,
     1000000, 1152000, 1500000, 2000000, 2500000, 3000000, 3500000, 4000000);
+
+{ LastError as synaser's own Purge leaves it (Connect looks at it) }
+procedure TChnBlockSerial.Purge;
+begin
+  {$IFDEF UNIX}
+  if TCFlush(cint(Handle), TCIFLUSH) = 0 then
+    SetSynaError(sOK)
+  else
+    SetSynaError(FpGetErrno);
+  {$ELSE}
+  if PurgeComm(Handle, PURGE_RXABORT or PURGE_RXCLEAR) then
+    SetSynaError(sOK)
+  else
+    SetSynaError(GetLastError);
+  {$ENDIF}
+end;
 
 function TChnPortSynapse.MapError(E: LongInt): tChResult;
 begin
@@ -176,7 +204,7 @@ begin
   FOSError := 0;
   FailKey := '';
   FVirtual := False;
-  FSer := TBlockSerial.Create;
+  FSer := TChnBlockSerial.Create;
   FSer.RaiseExcept := False;
   {$IFDEF UNIX}
   FSer.LinuxLock := False;
@@ -398,12 +426,33 @@ begin
 end;
 
 function TChnPortSynapse.Flush(Input, Output: Boolean): tChResult;
+var
+  Q: {$IFDEF UNIX}cint{$ELSE}DWORD{$ENDIF};
 begin
   if not FOpen then
     Exit(res_WrongState);
-  if Input or Output then
-    FSer.Purge;                     { synaser purges both directions }
-  Result := Check;
+  { synaser's Purge would take both directions: the OS call directly }
+  {$IFDEF UNIX}
+  if Input and Output then
+    Q := TCIOFLUSH
+  else if Input then
+    Q := TCIFLUSH
+  else if Output then
+    Q := TCOFLUSH
+  else
+    Exit(res_Ok);
+  if TCFlush(cint(FSer.Handle), Q) <> 0 then
+    Exit(MapError(FpGetErrno));
+  {$ELSE}
+  Q := 0;
+  if Input then
+    Q := Q or PURGE_RXCLEAR or PURGE_RXABORT;
+  if Output then
+    Q := Q or PURGE_TXCLEAR or PURGE_TXABORT;
+  if (Q <> 0) and not PurgeComm(FSer.Handle, Q) then
+    Exit(MapError(GetLastError));
+  {$ENDIF}
+  Result := res_Ok;
 end;
 
 function TChnPortSynapse.SetRts(On: Boolean): tChResult;
@@ -460,6 +509,18 @@ begin
 end;
 
 {$IFDEF UNIX}
+{ the adapter's latency timer is the driver's, whichever backend drives it }
+function TChnPortSynapse.SetLatency(Ms: LongInt): tChResult;
+var
+  E: cint;
+begin
+  if not FOpen then
+    Exit(res_WrongState);
+  Result := PortSetLatency(FDevice, Ms, E);
+  if Result <> res_Ok then
+    FOSError := E;
+end;
+
 { synaser's descriptor is an ordinary tty descriptor: it joins the
   program-wide wait as one (see the unit header for Windows) }
 function TChnPortSynapse.WaitSource(out Kind: tChnWaitKind; out Os: PtrInt;

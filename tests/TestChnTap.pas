@@ -128,7 +128,7 @@ begin
   FpFcntl(P1.Master, F_SETFD, 1);   { FD_CLOEXEC }
   FpFcntl(P2.Master, F_SETFD, 1);   { FD_CLOEXEC }
   Tap := TProcess.Create(nil);
-  Tap.Executable := BinPath('chntap');
+  BinExecutable(Tap, BinPath('chntap'));
   for A in Args do
     Tap.Parameters.Add(A);
   Tap.Parameters.Add('NAM=COM DEV=' + P1.SlavePath);

@@ -109,7 +109,7 @@ var
   Code: Integer;
 begin
   AssertTrue(BinPath('df1read') + ' missing (make examples)', FileExists(BinPath('df1read')));
-  Code := RunExe('/bin/sh', ['-c', BinPath('df1read') + ' "" NAM=DF1 NAM=LOOP'], 10000, Output);
+  Code := RunExe('/bin/sh', ['-c', BinShellWord('df1read') + ' "" NAM=DF1 NAM=LOOP'], 10000, Output);
   AssertEquals('empty address: a command-line error, exit 2'#10 + Output, 2, Code);
   AssertTrue('says why:'#10 + Output, Pos('address', Output) > 0);
   Sim := StartSimPty(['--timeout=10', '--quiet'], Pty);

@@ -66,7 +66,7 @@ procedure TTestFT12Examples.Start(const Exe, Params: string; Seconds: Integer;
 begin
   AssertTrue(BinPath(Exe) + ' missing (make examples)', FileExists(BinPath(Exe)));
   FProc := TProcess.Create(nil);
-  FProc.Executable := BinPath(Exe);
+  BinExecutable(FProc, BinPath(Exe));
   FProc.Parameters.Add(Params + ' NAM=COM DEV=' + FPty.SlavePath + ' BD=9600');
   FProc.Parameters.Add(IntToStr(Seconds));
   if Extra <> '' then

@@ -12,7 +12,11 @@
   driver really took (an 8250 falls back to 9600 for a rate it cannot make,
   a driver without CMSPAR clears it), and any difference is res_BadSetting
   with FailKey naming the setting. Rates outside the termios table use
-  termios2/BOTHER on Linux.
+  termios2/BOTHER on Linux; where the device refuses termios2 (TCGETS2
+  fails, as under qemu-user 7.2) the standard rates still work through
+  classic termios and any other is res_BadSetting with FailKey 'BD'. The
+  table's codes above 230400 are this unit's own (the arm-linux RTL lacks
+  them), for Linux's one termios ABI on x86, ARM, AArch64 and RISC-V.
 
   A pseudo terminal (slave /dev/pts/N, master /dev/ptmx, also reached
   through a symlink such as socat's link=) is a virtual line: it carries
@@ -58,6 +62,7 @@ type
     function SetDtr(On: Boolean): tChResult; override;
     function GetLines(out Lines: tPortLines): tChResult; override;
     function SetKernelRs485(On: Boolean): tChResult; override;
+    function SetLatency(Ms: LongInt): tChResult; override;
     function OsOverruns(out N: LongWord): tChResult; override;
     function WaitSource(out Kind: tChnWaitKind; out Os: PtrInt;
       out Rearm: tChnWaitRearm; out Data: Pointer): Boolean; override;
@@ -68,6 +73,16 @@ type
 
 implementation
 
+{ Linux keeps one termios ABI (<asm-generic/termbits.h>) on x86, ARM,
+  AArch64 and RISC-V: rate codes, termios2 and its ioctls below are
+  written out for it, because the RTL of some targets lacks them (arm-linux
+  stops at B460800). Other Linux CPUs (PowerPC, SPARC, MIPS, Alpha) have
+  other values; there only the RTL's codes up to 230400 are used. }
+{$IF DEFINED(LINUX) and (DEFINED(CPUX86_64) or DEFINED(CPUI386) or DEFINED(CPUARM) or
+  DEFINED(CPUAARCH64) or DEFINED(CPURISCV64))}
+  {$DEFINE CHN_TERMBITS}
+{$ENDIF}
+
 type
   tBaudCode = record
     Baud: LongInt;
@@ -75,7 +90,7 @@ type
   end;
 
 const
-  BaudCodes: array[0..{$IFDEF LINUX}29{$ELSE}17{$ENDIF}] of tBaudCode = (
+  BaudCodes: array[0..{$IFDEF CHN_TERMBITS}29{$ELSE}17{$ENDIF}] of tBaudCode = (
     (Baud: 50; Code: B50), (Baud: 75; Code: B75), (Baud: 110; Code: B110),
     (Baud: 134; Code: B134), (Baud: 150; Code: B150), (Baud: 200; Code: B200),
     (Baud: 300; Code: B300), (Baud: 600; Code: B600), (Baud: 1200; Code: B1200),
@@ -83,13 +98,14 @@ const
     (Baud: 9600; Code: B9600), (Baud: 19200; Code: B19200),
     (Baud: 38400; Code: B38400), (Baud: 57600; Code: B57600),
     (Baud: 115200; Code: B115200), (Baud: 230400; Code: B230400)
-    {$IFDEF LINUX}
-    , (Baud: 460800; Code: B460800), (Baud: 500000; Code: B500000),
-    (Baud: 576000; Code: B576000), (Baud: 921600; Code: B921600),
-    (Baud: 1000000; Code: B1000000), (Baud: 1152000; Code: B1152000),
-    (Baud: 1500000; Code: B1500000), (Baud: 2000000; Code: B2000000),
-    (Baud: 2500000; Code: B2500000), (Baud: 3000000; Code: B3000000),
-    (Baud: 3500000; Code: B3500000), (Baud: 4000000; Code: B4000000)
+    {$IFDEF CHN_TERMBITS}
+    { B460800 .. B4000000 of <asm-generic/termbits.h> }
+    , (Baud: 460800; Code: $1004), (Baud: 500000; Code: $1005),
+    (Baud: 576000; Code: $1006), (Baud: 921600; Code: $1007),
+    (Baud: 1000000; Code: $1008), (Baud: 1152000; Code: $1009),
+    (Baud: 1500000; Code: $100A), (Baud: 2000000; Code: $100B),
+    (Baud: 2500000; Code: $100C), (Baud: 3000000; Code: $100D),
+    (Baud: 3500000; Code: $100E), (Baud: 4000000; Code: $100F)
     {$ENDIF}
     );
 
@@ -114,18 +130,23 @@ type
   end;
 
 const
-  TCGETS2 = $802C542A;
-  TIOCSRS485 = $542F;
-  BOTHER = $1000;             { c_cflag speed code: rate in c_ispeed/c_ospeed }        { _IOR('T', 0x2A, struct termios2) }
+  TCGETS2 = $802C542A;        { _IOR('T', 0x2A, struct termios2) }
   TCSETS2 = $402C542B;        { _IOW('T', 0x2B, struct termios2) }
+  BOTHER = $1000;             { c_cflag speed code: rate in c_ispeed/c_ospeed }
+  TIOCSRS485 = $542F;
   SER_RS485_ENABLED = 1;
   SER_RS485_RTS_ON_SEND = 2;  { RTS high while sending, low afterwards }
-  { bits of c_cflag this unit sets and reads back }
-  CheckedCFlags = CBAUD or CSIZE or CSTOPB or PARENB or PARODD or CMSPAR or CRTSCTS;
+  { bits of c_cflag this unit sets and reads back, besides the rate }
+  FramingCFlags = CSIZE or CSTOPB or PARENB or PARODD or CMSPAR or CRTSCTS;
 {$ELSE}
 const
-  CheckedCFlags = CSIZE or CSTOPB or PARENB or PARODD or CRTSCTS;
+  FramingCFlags = CSIZE or CSTOPB or PARENB or PARODD or CRTSCTS;
 {$ENDIF}
+  CheckedCFlags = CBAUD or FramingCFlags;
+  { masks as "all bits but": xor keeps them within 32 bits, where "not"
+    of an untyped constant is a 64-bit value (a range-check warning, fatal
+    under -Sew, on targets whose tcflag_t constants are 32 bits) }
+  AllCFlags = $FFFFFFFF;
 
 constructor TChnPortUnix.Create;
 begin
@@ -149,7 +170,9 @@ begin
         Result := res_CannotOpen;
     ESysEIO, ESysEBADF, ESysEPIPE:
       Result := res_DeviceLost;
-    ESysENOTTY, ESysEINVAL, ESysEOPNOTSUPP:
+    { ENOSYS: qemu-user's answer to an ioctl it does not emulate
+      (TIOCSRS485, TCGETS2): as a driver's ENOTTY, a setting refused }
+    ESysENOTTY, ESysEINVAL, ESysEOPNOTSUPP, ESysENOSYS:
       Result := res_BadSetting;
   else
     Result := res_IOError;
@@ -230,7 +253,7 @@ var
   Flags: Cardinal;
   I: Integer;
   Code: Cardinal;
-  {$IFDEF LINUX}
+  {$IFDEF CHN_TERMBITS}
   T2: tTermios2;
   {$ENDIF}
 begin
@@ -270,7 +293,7 @@ begin
   if FVirtual then
   begin
     { bytes only: raw, 8 bits, no parity, no flow control; nothing to check }
-    T.c_cflag := (T.c_cflag and not (CheckedCFlags and not CBAUD) and not HUPCL) or
+    T.c_cflag := (T.c_cflag and (AllCFlags xor (FramingCFlags or HUPCL))) or
       CS8 or CREAD or CLOCAL;
     if TCSetAttr(FFd, TCSANOW, T) <> 0 then
       Exit(Fail(FpGetErrno));
@@ -296,7 +319,7 @@ begin
   for I := Low(BaudCodes) to High(BaudCodes) do
     if BaudCodes[I].Baud = S.Baud then
       Code := BaudCodes[I].Code;
-  T.c_cflag := (T.c_cflag and not (CheckedCFlags or CREAD or CLOCAL or HUPCL)) or Flags;
+  T.c_cflag := (T.c_cflag and (AllCFlags xor (CheckedCFlags or CREAD or CLOCAL or HUPCL))) or Flags;
   if Code <> 0 then
   begin
     CFSetISpeed(T, Code);
@@ -310,15 +333,21 @@ begin
   end
   else
   begin
-    {$IFDEF LINUX}
-    { a rate without a B constant: termios2 with BOTHER }
+    {$IFDEF CHN_TERMBITS}
+    { a rate without a B constant: termios2 with BOTHER. A device (or an
+      emulator: qemu-user 7.2 does not know TCGETS2) that refuses
+      termios2 can only take the standard rates above: this one is
+      refused, BD= named }
     FillChar(T2, SizeOf(T2), 0);
     if FpIOCtl(FFd, TCGETS2, @T2) <> 0 then
-      Exit(Fail(FpGetErrno));
+    begin
+      FOSError := FpGetErrno;
+      Exit(Refuse('BD'));
+    end;
     T2.c_iflag := T.c_iflag;
     T2.c_oflag := T.c_oflag;
     T2.c_lflag := T.c_lflag;
-    T2.c_cflag := (T.c_cflag and not CBAUD) or BOTHER;
+    T2.c_cflag := (T.c_cflag and (AllCFlags xor CBAUD)) or BOTHER;
     Move(T.c_cc, T2.c_cc, SizeOf(T2.c_cc));
     T2.c_ispeed := S.Baud;
     T2.c_ospeed := S.Baud;
@@ -330,8 +359,7 @@ begin
     { the kernel writes back the rate it set; allow 2 % as UARTs do }
     if Abs(Int64(T2.c_ospeed) - S.Baud) * 50 > S.Baud then
       Exit(Refuse('BD'));
-    if (T2.c_cflag and (CheckedCFlags and not CBAUD)) <>
-       (T.c_cflag and (CheckedCFlags and not CBAUD)) then
+    if (T2.c_cflag and FramingCFlags) <> (T.c_cflag and FramingCFlags) then
       Exit(Refuse(PortCFlagKey(T2.c_cflag, T.c_cflag, CheckedCFlags)));
     {$ELSE}
     Exit(Refuse('BD'));
@@ -541,6 +569,17 @@ begin
     Result := res_Ok;
 end;
 {$ENDIF}
+
+function TChnPortUnix.SetLatency(Ms: LongInt): tChResult;
+var
+  E: cint;
+begin
+  if not FOpen then
+    Exit(res_WrongState);
+  Result := PortSetLatency(FDevice, Ms, E);
+  if Result <> res_Ok then
+    FOSError := E;
+end;
 
 { OS count of lost received bytes (UART overrun + tty buffer overrun). }
 function TChnPortUnix.Counters(out N: LongWord): Boolean;

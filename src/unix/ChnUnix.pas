@@ -31,7 +31,78 @@ function PortIsPty(Fd: cint; const Path: tWordString): Boolean;
   c_cflag bits (within Mask) a driver changed from Want to Got. }
 function PortCFlagKey(Got, Want, Mask: LongWord): ShortString;
 
+{ Linux: set the latency timer of the USB serial adapter behind Path (a
+  device or a symlink to one, /dev/serial/by-id/...) to Ms and read it
+  back: /sys/class/tty/<name>/device/latency_timer, as ftdi_sio and a few
+  other usb-serial drivers offer it. res_BadSetting (Err = ENOENT) when the
+  driver has no such timer (a pty, a UART, CDC-ACM), res_NoPermission when
+  it may not be written (root, or a udev rule, may), res_BadSetting when
+  the value read back differs. Elsewhere res_BadSetting. }
+function PortSetLatency(const Path: tWordString; Ms: LongInt; out Err: cint): tChResult;
+
+var
+  { the sysfs class folder of ttys (a test points it at a folder of its own) }
+  PortSysfsTty: ShortString = '/sys/class/tty/';
+
 implementation
+
+uses
+  SysUtils;
+
+function PortSetLatency(const Path: tWordString; Ms: LongInt; out Err: cint): tChResult;
+{$IFDEF LINUX}
+var
+  Dev, Name, F, Back: string;
+  H: THandle;
+  Buf: array[0..15] of Char;
+  N: LongInt;
+begin
+  Err := 0;
+  { the tty's own name: /dev/ttyUSB0 behind any symlink }
+  Dev := ExpandFileName(Path);
+  N := 0;
+  while (N < 16) and (FpReadLink(Dev) <> '') do
+  begin
+    F := FpReadLink(Dev);
+    if (F <> '') and (F[1] <> '/') then
+      F := ExtractFilePath(Dev) + F;
+    Dev := ExpandFileName(F);
+    Inc(N);
+  end;
+  Name := ExtractFileName(Dev);
+  F := PortSysfsTty + Name + '/device/latency_timer';
+  H := FileOpen(F, fmOpenReadWrite);
+  if H = THandle(-1) then
+  begin
+    Err := FpGetErrno;
+    if (Err = ESysEACCES) or (Err = ESysEPERM) then
+      Exit(res_NoPermission);
+    Exit(res_BadSetting);
+  end;
+  Back := IntToStr(Ms) + #10;
+  N := FileWrite(H, Back[1], Length(Back));
+  if N <> Length(Back) then
+  begin
+    Err := FpGetErrno;
+    FileClose(H);
+    Exit(res_BadSetting);
+  end;
+  FileSeek(H, 0, fsFromBeginning);
+  N := FileRead(H, Buf, SizeOf(Buf));
+  FileClose(H);
+  if N <= 0 then
+    Exit(res_BadSetting);
+  SetString(Back, PChar(@Buf[0]), N);
+  if StrToIntDef(Trim(Back), -1) <> Ms then
+    Exit(res_BadSetting);
+  Result := res_Ok;
+end;
+{$ELSE}
+begin
+  Err := ESysENOENT;
+  Result := res_BadSetting;
+end;
+{$ENDIF}
 
 procedure CloseOnExec(Fd: cint);
 begin

@@ -12,6 +12,14 @@ uses
 
 { $BUILD/bin/Name (BUILD defaults to build; Name.exe on Windows). }
 function BinPath(const Name: string): string;
+{ Make P run Exe: directly, or, when the environment names an emulator in
+  CHN_EXEC (make crosstest: qemu-aarch64, qemu-arm - a process under
+  qemu-user cannot start another target program by itself), programs of
+  $BUILD/bin through it; host programs (sh, socat, tshark) directly.
+  Parameters added afterwards go to Exe. }
+procedure BinExecutable(P: TProcess; const Exe: string);
+{ BinPath(Name) as a /bin/sh command word (with CHN_EXEC in front). }
+function BinShellWord(const Name: string): string;
 { Run a program to its end; its exit code, or -1 when it did not end
   within TimeoutMs (it is killed then). Output gets standard output and
   standard error. }
@@ -38,6 +46,27 @@ begin
   if Result = '' then
     Result := 'build';
   Result := Result + '/bin/' + Name {$IFDEF WINDOWS} + '.exe'{$ENDIF};
+end;
+
+procedure BinExecutable(P: TProcess; const Exe: string);
+var
+  Emu: string;
+begin
+  Emu := GetEnvironmentVariable('CHN_EXEC');
+  if (Emu = '') or (Copy(Exe, 1, Length(BinPath(''))) <> BinPath('')) then
+    P.Executable := Exe
+  else
+  begin
+    P.Executable := Emu;
+    P.Parameters.Add(Exe);
+  end;
+end;
+
+function BinShellWord(const Name: string): string;
+begin
+  Result := BinPath(Name);
+  if GetEnvironmentVariable('CHN_EXEC') <> '' then
+    Result := GetEnvironmentVariable('CHN_EXEC') + ' ' + Result;
 end;
 
 { Move what the pipe holds to Output. }
@@ -71,7 +100,7 @@ begin
   Output := '';
   P := TProcess.Create(nil);
   try
-    P.Executable := Exe;
+    BinExecutable(P, Exe);
     for A in Args do
       P.Parameters.Add(A);
     P.Options := [poUsePipes, poStderrToOutPut];
@@ -104,7 +133,7 @@ var
 begin
   Pty := '';
   Result := TProcess.Create(nil);
-  Result.Executable := BinPath('df1sim');
+  BinExecutable(Result, BinPath('df1sim'));
   Result.Parameters.Add('--pty');
   for A in Args do
     Result.Parameters.Add(A);

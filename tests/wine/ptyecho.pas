@@ -11,6 +11,9 @@
                            rtscts=0 ixon=0' and LF (read with tcgetattr, and
                            TCGETS2 for a non-standard rate, on a descriptor
                            of our own on the slave)
+    ESC 'CHN!COUNT' ESC    then 'count=N' and LF: the bytes that arrived
+                           on the master since the start, this command
+                           included (a close must not lose what was sent)
     ESC 'CHN!HANGUP' ESC   close the master (the COM port's device is gone
                            for the Windows side) and exit 0
   Exits 2 after --timeout=N seconds (default 60) without a hang-up.
@@ -26,8 +29,10 @@ uses
 const
   CmdTermios = #27'CHN!TERMIOS'#27;
   CmdHangup = #27'CHN!HANGUP'#27;
+  CmdCount = #27'CHN!COUNT'#27;
 
 var
+  Received: Int64;            { bytes that arrived on the master }
   Master: cint;
   Slave: string;
   Tail: string;               { the last bytes seen, to find the commands }
@@ -144,6 +149,7 @@ begin
   System.Flush(Output);
   Tail := '';
   Pending := '';
+  Received := 0;
   Deadline := GetTickCount64 + QWord(TimeoutS) * 1000;
   while GetTickCount64 < Deadline do
   begin
@@ -165,9 +171,12 @@ begin
     for I := 0 to N - 1 do
     begin
       Pending := Pending + Buf[I];
+      Inc(Received);
       Tail := Copy(Tail + Buf[I], Length(Tail) + 2 - 16, 16);
       if Copy(Tail, Length(Tail) - Length(CmdTermios) + 1, 255) = CmdTermios then
         Pending := Pending + TermiosLine
+      else if Copy(Tail, Length(Tail) - Length(CmdCount) + 1, 255) = CmdCount then
+        Pending := Pending + 'count=' + IntToStr(Received) + #10
       else if Copy(Tail, Length(Tail) - Length(CmdHangup) + 1, 255) = CmdHangup then
       begin
         Flush;

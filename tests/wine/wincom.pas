@@ -23,6 +23,7 @@ uses
 const
   CmdTermios = #27'CHN!TERMIOS'#27;
   CmdHangup = #27'CHN!HANGUP'#27;
+  CmdCount = #27'CHN!COUNT'#27;
   Big = 65536;
 
 var
@@ -149,6 +150,85 @@ begin
   P := Pos(#10, Result);
   if P > 0 then
     SetLength(Result, P - 1);
+end;
+
+{ The bytes ptyecho has received so far (-1 when no answer came). Echoes
+  of earlier frames may come first: the last 'count=' line counts. }
+function AskCount(C: pChnVirt): Int64;
+var
+  Got: AnsiString;
+  P, Q: Integer;
+  Deadline: QWord;
+begin
+  Got := '';
+  Exchange(C, CmdCount, Length(CmdCount), Got, 3000);
+  Deadline := ChMsTick + 3000;
+  repeat
+    P := Length(Got) - 6;
+    while (P > 0) and (Copy(Got, P, 6) <> 'count=') do
+      Dec(P);
+    Q := P + 6;
+    while (P > 0) and (Q <= Length(Got)) and (Got[Q] <> #10) do
+      Inc(Q);
+    if (P > 0) and (Q <= Length(Got)) then
+      Exit(StrToInt64Def(Copy(Got, P + 6, Q - P - 6), -1));
+    Exchange(C, '', 1, Got, 50);
+  until ChMsTick >= Deadline;
+  Result := -1;
+end;
+
+{ Nothing sent is lost at a close: 50 times open, send a frame, close at
+  once (ChClose, or Dispose with Done every other time); ptyecho's count
+  shows whether every byte left the driver. }
+procedure TestCloseLosesNothing;
+const
+  Frames = 50;
+  FrameLen = 64;
+var
+  C: pChnVirt;
+  R: tChResult;
+  Before, After: Int64;
+  Frame: array[0..FrameLen - 1] of Byte;
+  I, J, N: Integer;
+  Junk: AnsiString;
+begin
+  C := OpenCom('COM=' + EchoCom, R);
+  Check(C <> nil, 'open for the count: ' + ResName(R));
+  if C = nil then
+    Exit;
+  Before := AskCount(C);
+  Dispose(C, Done);
+  for I := 1 to Frames do
+  begin
+    C := OpenCom('COM=' + EchoCom, R);
+    if C = nil then
+    begin
+      Check(False, 'open ' + IntToStr(I) + ': ' + ResName(R));
+      Exit;
+    end;
+    for J := 0 to FrameLen - 1 do
+      Frame[J] := Pattern(I * FrameLen + J);
+    C^.ChSend(@Frame, FrameLen);
+    if Odd(I) then
+      C^.ChClose;
+    Dispose(C, Done);
+  end;
+  C := OpenCom('COM=' + EchoCom, R);
+  Check(C <> nil, 'open after the frames: ' + ResName(R));
+  if C = nil then
+    Exit;
+  After := AskCount(C);
+  { echoes of the frames may still be on their way: take them here, so
+    the next tests start on a quiet line }
+  Junk := '';
+  repeat
+    N := Length(Junk);
+    Exchange(C, '', MaxInt, Junk, 300);
+  until Length(Junk) = N;
+  Dispose(C, Done);
+  Check((Before > 0) and (After - Before = Frames * FrameLen + Length(CmdCount)),
+    Format('%d frames sent and closed at once: the peer got %d of %d bytes',
+      [Frames, After - Before - Length(CmdCount), Frames * FrameLen]));
 end;
 
 type
@@ -463,6 +543,7 @@ begin
   Passed := 0;
   Failed := 0;
   TestMissingAndNotSerial;
+  TestCloseLosesNothing;
   TestEcho;
   WriteLn('RESULT ', Passed, ' ', Failed);
   if Failed > 0 then
