@@ -258,8 +258,9 @@ begin
   if R <> res_Ok then
   begin
     Dispose(Chn, Done);
-    CliUsageError(Cli, ChResultText(R, Iec101Layer) +
-      ': PARAMS must be MAS=MASTER (MS=ON) or PRI=ON (MS=OFF)', Cli.Args[0]);
+    if R = res_BadMessage then      { a slave's string }
+      CliUsageError(Cli, 'PARAMS must be MAS=MASTER (MS=ON) or PRI=ON (MS=OFF)', Cli.Args[0]);
+    CliUsageError(Cli, ChResultText(R, Iec101Layer), Cli.Args[0]);
   end;
   M.TimeoutMs := CliNum(Cli, 'timeout', 1, 60000, FT12LinkTimeoutMs);
   M.Bal.TimeoutMs := M.TimeoutMs;
