@@ -108,7 +108,7 @@ procedure DecodeSplitArg(const Arg: AnsiString; out Key, Value: AnsiString);
 const
   { the protocol options DecodeOption takes, without the leading '--':
     chndecode and chntap offer exactly these }
-  DecodeOptionNames: array[0..10] of string = ('df1', 'crc', 'bcc', 'half',
+  DecodeOptionNames: array[0..10] of ShortString = ('df1', 'crc', 'bcc', 'half',
     'ft12', 'ics', 'adr', 'len', 'cot-size', 'ca-size', 'ioa-size');
 
 function DecodeOption(const Key, Value: AnsiString; var Opt: tDecOptions;
