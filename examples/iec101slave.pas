@@ -15,18 +15,19 @@
   bitstring 500 = 0xAAAA) plus the single command point 5000. Exit codes:
   0 done (N seconds, or SIGINT/SIGTERM), 1 the line cannot be opened or
   failed, 2 a command-line, parameter or points-file error (nothing is
-  opened then). }
+  opened then). The command line is unit ChnCli's (docs/TOOLS.md); the
+  slave is set up on its channel before the channel is opened, so a
+  parameter string that does not make a slave opens nothing either. }
 program iec101slave;
 
 {$MODE OBJFPC}{$H+}
 
 uses
   {$IFDEF UNIX}BaseUnix,{$ENDIF}
-  Classes, SysUtils, CustApp, ChnTypes, ChnVirt, ChnWait, ChnCom, ChnLoop, ChnTrc, ChnTcp,
-  ChnFT1_2, ChnIec101Asdu, ChnIec101Slave, Iec101Print, Iec101Points;
+  Classes, SysUtils, ChnTypes, ChnVirt, ChnWait, ChnLayers, ChnFT1_2, ChnIec101Asdu,
+  ChnIec101Slave, Iec101Print, Iec101Points, ChnCli;
 
 const
-  Version = '1.0';
   DefaultPoints =
     '100 M_ME_NB_1 -1'#10'101 M_ME_NB_1 23'#10'102 M_ME_NB_1 2300'#10 +
     '104 M_SP_NA_1 1'#10'105 M_SP_NA_1 0'#10 +
@@ -34,22 +35,12 @@ const
     '304 M_SP_NA_1 1'#10'305 M_SP_NA_1 0'#10'306 M_SP_NA_1 1'#10'307 M_SP_NA_1 0'#10 +
     '500 M_BO_NA_1 0xAAAA'#10'5000 C_SC_NA_1 0'#10;
 
-type
-  TSlaveApp = class(TCustomApplication)
-  private
-    FJson, FRefuse: Boolean;
-    FSeconds, FCa, FSelectMs: LongInt;
-    FParams: tIecParams;
-    FParamStr, FPointsFile: AnsiString;
-    procedure Usage(ToErr: Boolean);
-    procedure Die(const What: AnsiString; Code: Integer);
-    procedure ParseArgs;
-  protected
-    procedure DoRun; override;
-  end;
-
 var
-  App: TSlaveApp;
+  Cli: tCli;
+  Json, Refuse: Boolean;
+  Seconds, Ca, SelectMs: LongInt;
+  Params: tIecParams;
+  LineParams, PointsFile: AnsiString;
   Stop: Boolean = False;
 
 {$IFDEF UNIX}
@@ -59,133 +50,49 @@ begin
 end;
 {$ENDIF}
 
-procedure TSlaveApp.Usage(ToErr: Boolean);
-var
-  T: Text;
+procedure ParseArgs;
 begin
-  if ToErr then
-    T := StdErr
-  else
-    T := Output;
-  WriteLn(T, 'Usage: iec101slave [OPTION]... ''PARAMS'' [--points FILE] [--seconds N]');
-  WriteLn(T, 'An IEC 60870-5-101 slave: answers interrogations, counter interrogations, reads,');
-  WriteLn(T, 'clock synchronisation and commands from a point table, unbalanced (MS=ON MAS=SLAVE)');
-  WriteLn(T, 'or balanced (MS=OFF) as the FT 1.2 parameter string says; prints every object');
-  WriteLn(T, 'received or sent.');
-  WriteLn(T);
-  WriteLn(T, '  --points FILE    point table, one "IOA TYPE VALUE [QUALITY]" per line');
-  WriteLn(T, '                   (default: the points of lib60870''s cs101_slave example and');
-  WriteLn(T, '                   the single command point 5000)');
-  WriteLn(T, '  --seconds N      stop after N seconds (default: at SIGINT or SIGTERM)');
-  WriteLn(T, '  --ca N           own common address (default 1)');
-  WriteLn(T, '  --cot-size N     octets of the cause of transmission, 1 or 2 (default 2)');
-  WriteLn(T, '  --ca-size N      octets of the common address, 1 or 2 (default 2)');
-  WriteLn(T, '  --ioa-size N     octets of the information object address, 1..3 (default 3)');
-  WriteLn(T, '  --select-ms MS   select-before-operate timeout (default 10000)');
-  WriteLn(T, '  --refuse         refuse every command (negative ACT_CON)');
-  WriteLn(T, '  --json           one JSON object per line on stdout, nothing else');
-  WriteLn(T, '  -h, --help       this text');
-  WriteLn(T, '  --version        the version');
-  WriteLn(T);
-  WriteLn(T, 'Example: iec101slave ''NAM=FT1_2 MS=ON MAS=SLAVE NOD=1 LEN=0 NAM=COM DEV=/dev/ttyUSB0 BD=9600 PAR=E''');
-  WriteLn(T, 'Exit status: 0 done, 1 the line cannot be opened or failed, 2 a usage, parameter');
-  WriteLn(T, 'or points-file error.');
-end;
-
-procedure TSlaveApp.Die(const What: AnsiString; Code: Integer);
-begin
-  WriteLn(StdErr, 'iec101slave: ', What);
-  Halt(Code);
-end;
-
-{ Options take "--opt VALUE" and "--opt=VALUE"; the one positional
-  argument is the parameter string. (CustApp's CheckOptions takes long
-  values only as --opt=VALUE.) }
-procedure TSlaveApp.ParseArgs;
-var
-  I, Eq: Integer;
-  A, Opt, Value: AnsiString;
-  HasValue: Boolean;
-
-  function Num(Min, Max: LongInt): LongInt;
-  begin
-    if not TryStrToInt(Value, Result) or (Result < Min) or (Result > Max) then
-      Die(Format('--%s takes a number %d..%d (%s)', [Opt, Min, Max, Value]), 2);
-  end;
-
-begin
-  FSeconds := 0;
-  FCa := 1;
-  FSelectMs := IecSlaveSelectMs;
-  FParams := IecDefaultParams;
-  if ParamCount = 0 then
-  begin
-    Usage(True);
-    Halt(2);
-  end;
-  I := 1;
-  while I <= ParamCount do
-  begin
-    A := Params[I];
-    Inc(I);
-    if (A = '-h') or (A = '--help') then
-    begin
-      Usage(False);
-      Halt(0);
-    end;
-    if A = '--version' then
-    begin
-      WriteLn('iec101slave (Chn) ', Version);
-      Halt(0);
-    end;
-    if Copy(A, 1, 2) <> '--' then
-    begin
-      if (A <> '') and (A[1] = '-') then
-        Die('unknown option (' + A + ')', 2);
-      if FParamStr <> '' then
-        Die('one parameter string only (' + A + ')', 2);
-      FParamStr := A;
-      Continue;
-    end;
-    Opt := Copy(A, 3, MaxInt);
-    Eq := Pos('=', Opt);
-    HasValue := Eq > 0;
-    Value := '';
-    if HasValue then
-    begin
-      Value := Copy(Opt, Eq + 1, MaxInt);
-      SetLength(Opt, Eq - 1);
-    end;
-    if (Opt = 'json') or (Opt = 'refuse') then
-    begin
-      if HasValue then
-        Die('--' + Opt + ' takes no value (' + A + ')', 2);
-      if Opt = 'json' then FJson := True else FRefuse := True;
-      Continue;
-    end;
-    if (Opt <> 'points') and (Opt <> 'seconds') and (Opt <> 'ca') and (Opt <> 'cot-size') and
-       (Opt <> 'ca-size') and (Opt <> 'ioa-size') and (Opt <> 'select-ms') then
-      Die('unknown option (' + A + ')', 2);
-    if not HasValue then
-    begin
-      if I > ParamCount then
-        Die('--' + Opt + ' needs a value (' + A + ')', 2);
-      Value := Params[I];
-      Inc(I);
-    end;
-    if Opt = 'points' then FPointsFile := Value
-    else if Opt = 'seconds' then FSeconds := Num(1, 1000000)
-    else if Opt = 'ca' then FCa := Num(0, 65535)
-    else if Opt = 'cot-size' then FParams.CotSize := Num(1, 2)
-    else if Opt = 'ca-size' then FParams.CaSize := Num(1, 2)
-    else if Opt = 'ioa-size' then FParams.IoaSize := Num(1, 3)
-    else FSelectMs := Num(1, 3600000);
-  end;
-  if FParamStr = '' then
-    Die('no parameter string (''NAM=FT1_2 ... NAM=COM DEV=...'')', 2);
-  if FCa > IecMaxCa(FParams) then
-    Die(Format('--ca above %d for a %d-octet common address (%d)', [IecMaxCa(FParams),
-      FParams.CaSize, FCa]), 2);
+  CliInit(Cli, 'iec101slave', '[OPTION]... ''PARAMS'' [--points FILE] [--seconds N]',
+    'An IEC 60870-5-101 slave: answers interrogations, counter interrogations, ' +
+    'reads, clock synchronisation and commands from a point table, unbalanced ' +
+    '(MS=ON MAS=SLAVE) or balanced (MS=OFF) as the FT 1.2 parameter string says; ' +
+    'prints every object received or sent, and its counters on standard error at the end.');
+  CliOption(Cli, 'points', #0, 'FILE', 'point table, one "IOA TYPE VALUE [QUALITY]" per line ' +
+    '(default: the points of lib60870''s cs101_slave example and the single command point 5000)');
+  CliOption(Cli, 'seconds', #0, 'N', 'stop after N seconds (default: at SIGINT or SIGTERM)');
+  CliOption(Cli, 'ca', #0, 'N', 'own common address (default 1)');
+  CliOption(Cli, 'cot-size', #0, 'N', 'octets of the cause of transmission, 1 or 2 (default 2)');
+  CliOption(Cli, 'ca-size', #0, 'N', 'octets of the common address, 1 or 2 (default 2)');
+  CliOption(Cli, 'ioa-size', #0, 'N', 'octets of the information object address, 1..3 (default 3)');
+  CliOption(Cli, 'select-ms', #0, 'MS', 'select-before-operate timeout (default ' +
+    IntToStr(IecSlaveSelectMs) + ')');
+  CliOption(Cli, 'refuse', #0, '', 'refuse every command (negative ACT_CON)');
+  CliOption(Cli, 'json', #0, '', 'one JSON object per line on stdout, nothing else');
+  CliEpilog(Cli, 'Example:' + LineEnding +
+    '  iec101slave ''NAM=FT1_2 MS=ON MAS=SLAVE NOD=1 LEN=0 NAM=COM DEV=/dev/ttyUSB0 BD=9600 PAR=E''' +
+    LineEnding);
+  CliExit(Cli, 0, 'done: N seconds, or SIGINT/SIGTERM');
+  CliExit(Cli, 1, 'the line cannot be opened, or failed');
+  CliExit(Cli, 2, 'or a points file that cannot be read or has a bad line: nothing was opened');
+  CliParse(Cli);
+  Json := CliHas(Cli, 'json');
+  Refuse := CliHas(Cli, 'refuse');
+  PointsFile := CliValue(Cli, 'points', '');
+  Seconds := CliNum(Cli, 'seconds', 1, 1000000, 0);
+  Ca := CliNum(Cli, 'ca', 0, 65535, 1);
+  Params := IecDefaultParams;
+  Params.CotSize := CliNum(Cli, 'cot-size', 1, 2, Params.CotSize);
+  Params.CaSize := CliNum(Cli, 'ca-size', 1, 2, Params.CaSize);
+  Params.IoaSize := CliNum(Cli, 'ioa-size', 1, 3, Params.IoaSize);
+  SelectMs := CliNum(Cli, 'select-ms', 1, 3600000, IecSlaveSelectMs);
+  if CliArgCount(Cli) = 0 then
+    CliUsageError(Cli, 'no parameter string (''NAM=FT1_2 ... NAM=COM DEV=...'')', '');
+  if CliArgCount(Cli) > 1 then
+    CliUsageError(Cli, 'one parameter string only', Cli.Args[1]);
+  LineParams := Cli.Args[0];
+  if Ca > IecMaxCa(Params) then
+    CliUsageError(Cli, Format('--ca above %d for a %d-octet common address', [IecMaxCa(Params),
+      Params.CaSize]), IntToStr(Ca));
 end;
 
 var
@@ -212,7 +119,7 @@ begin
   end;
   for I := 0 to H.Count - 1 do
     if IecDecodeObject(Slave.Params, H, A, I, O) = res_Ok then
-      if App.FJson then
+      if Json then
         WriteLn(IecObjectJson(H, O))
       else
         WriteLn(FormatDateTime('hh:nn:ss.zzz ', Now), Arrow, IecObjectText(H, O));
@@ -221,12 +128,12 @@ end;
 
 function OnCommand(Data: Pointer; const H: tIecAsdu; const O: tIecObject): Boolean;
 begin
-  Result := not App.FRefuse;
+  Result := not Refuse;
 end;
 
 procedure OnClock(Data: Pointer; const T: tIecTime; OffsetMs: Int64);
 begin
-  if not App.FJson then
+  if not Json then
     WriteLn(FormatDateTime('hh:nn:ss.zzz ', Now), 'clock synchronised: station clock ',
       FormatDateTime('yyyy-mm-dd hh:nn:ss.zzz', IecSlaveNow(Slave)), ' (offset ', OffsetMs, ' ms)');
 end;
@@ -236,7 +143,6 @@ begin
   WriteLn(StdErr, FormatDateTime('hh:nn:ss.zzz ', Now), 'malformed ASDU: ', Err);
 end;
 
-procedure TSlaveApp.DoRun;
 var
   Chn: pChnVirt;
   E: ShortString;
@@ -249,36 +155,42 @@ begin
   ParseArgs;
   { the table first, in a record of its own: a bad file opens nothing }
   FillChar(Table, SizeOf(Table), 0);
-  Table.Params := FParams;
-  Table.Ca := FCa;
-  if FPointsFile = '' then
+  Table.Params := Params;
+  Table.Ca := Ca;
+  if PointsFile = '' then
   begin
     Text := DefaultPoints;
     TableName := 'built-in table';
   end
   else
   begin
-    if not FileExists(FPointsFile) then
-      Die('cannot read the points file (' + FPointsFile + ')', 2);
+    if not FileExists(PointsFile) then
+      CliUsageError(Cli, 'cannot read the points file', PointsFile);
     L := TStringList.Create;
     try
-      L.LoadFromFile(FPointsFile);
+      L.LoadFromFile(PointsFile);
       Text := L.Text;
     finally
       L.Free;
     end;
-    TableName := FPointsFile;
+    TableName := PointsFile;
   end;
   if not IecLoadPoints(Table, TableName, Text, Err) then
-    Die(Err, 2);
-  Chn := ChnCollection^.ChNewInit(ChnFT1_2.cName);
-  Chn^.ChSetParam(FParamStr);
-  if Chn^.ChResult <> res_Ok then
+    CliUsageError(Cli, Err, '');
+  { the slave on its channel, not yet opened }
+  Chn := CliChannel(Cli, LineParams, ChnFT1_2.cName);
+  if IecSlaveInit(Slave, Chn, Params, Ca, E) <> res_Ok then
   begin
-    Err := Chn^.ChResultStr(Chn^.ChResult) + ' (' + Chn^.ChParamError + ')';
     Dispose(Chn, Done);
-    Die(Err, 2);
+    CliUsageError(Cli, E, LineParams);
   end;
+  for I := 0 to Table.PointCount - 1 do
+    IecSlaveAddPoint(Slave, Table.Points[I].Ti, Table.Points[I].Obj, Table.Points[I].Group, E);
+  Slave.SelectMs := SelectMs;
+  Slave.OnAsdu := @Show;
+  Slave.OnCommand := @OnCommand;
+  Slave.OnClock := @OnClock;
+  Slave.OnBad := @OnBad;
   Chn^.ChOpen;
   if Chn^.ChResult = res_Ok then
     Chn^.ChConnect;
@@ -286,28 +198,16 @@ begin
   begin
     Err := Chn^.ChResultStr(Chn^.ChResult);
     Dispose(Chn, Done);
-    Die(Err + ' (' + FParamStr + ')', 1);
+    CliFail(Cli, Err, LineParams, 1);
   end;
-  if IecSlaveInit(Slave, Chn, FParams, FCa, E) <> res_Ok then
-  begin
-    Dispose(Chn, Done);
-    Die(E + ' (' + FParamStr + ')', 2);
-  end;
-  for I := 0 to Table.PointCount - 1 do
-    IecSlaveAddPoint(Slave, Table.Points[I].Ti, Table.Points[I].Obj, Table.Points[I].Group, E);
-  Slave.SelectMs := FSelectMs;
-  Slave.OnAsdu := @Show;
-  Slave.OnCommand := @OnCommand;
-  Slave.OnClock := @OnClock;
-  Slave.OnBad := @OnBad;
-  WriteLn(StdErr, 'iec101slave: ', Chn^.ChGetParam(''), ', ', Slave.PointCount, ' points, CA ', FCa);
+  WriteLn(StdErr, 'iec101slave: ', Chn^.ChGetParam(''), ', ', Slave.PointCount, ' points, CA ', Ca);
   {$IFDEF UNIX}
   FpSignal(SIGINT, @OnSignal);
   FpSignal(SIGTERM, @OnSignal);
   {$ENDIF}
-  Deadline := ChMsTick + QWord(FSeconds) * 1000;
+  Deadline := ChMsTick + QWord(Seconds) * 1000;
   R := res_Ok;
-  while not Stop and ((FSeconds = 0) or (ChMsTick < Deadline)) do
+  while not Stop and ((Seconds = 0) or (ChMsTick < Deadline)) do
   begin
     if Chn^.ChResult <> res_Ok then
     begin
@@ -326,14 +226,7 @@ begin
   begin
     Err := Chn^.ChResultStr(R);
     Dispose(Chn, Done);
-    Die('line failed: ' + Err, 1);
+    CliFail(Cli, 'line failed: ' + Err, '', 1);
   end;
   Dispose(Chn, Done);
-  Terminate;
-end;
-
-begin
-  App := TSlaveApp.Create(nil);
-  App.Run;
-  App.Free;
 end.

@@ -127,7 +127,7 @@ begin
   AssertEquals('iec101master: dc wants IOA=1|2 (1 off, 2 on) (dc 5000=3)' + LineEnding, FErr);
   FErr := '';
   AssertEquals(2, Run(['--cot-size=3', MasterParams, 'gi'], False));
-  AssertTrue(FErr, Pos('--cot-size wants a number 1..2 (--cot-size=3)', FErr) > 0);
+  AssertTrue(FErr, Pos('iec101master: --cot-size wants a whole number 1..2 (--cot-size=3)', FErr) > 0);
   FErr := '';
   AssertEquals(2, Run(['--jsn', MasterParams, 'gi'], False));
   AssertTrue(FErr, Pos('unknown option (--jsn)', FErr) > 0);

@@ -142,7 +142,7 @@ begin
   AssertEquals(0, Run(['-h'], Output));
   AssertTrue(Output, Pos('--points FILE', Output) > 0);
   AssertEquals(0, Run(['--version'], Output));
-  AssertEquals('iec101slave (Chn) 1.0' + LineEnding, Output);
+  AssertEquals('iec101slave (Chn) 1.0.0' + LineEnding, Output);
   { no arguments: the usage on stderr only, exit 2 }
   AssertEquals(2, RunExe('/bin/sh', ['-c', BinPath('iec101slave') + ' 2>/dev/null'], 10000, Output));
   AssertEquals('nothing on stdout', '', Output);
@@ -151,11 +151,11 @@ begin
   AssertEquals(2, Run(['--bogus', Params], Output));
   AssertEquals('iec101slave: unknown option (--bogus)' + LineEnding, Output);
   AssertEquals(2, Run(['--seconds', 'x', Params], Output));
-  AssertEquals('iec101slave: --seconds takes a number 1..1000000 (x)' + LineEnding, Output);
+  AssertEquals('iec101slave: --seconds wants a whole number 1..1000000 (--seconds x)' + LineEnding, Output);
   AssertEquals(2, Run(['--seconds=0', Params], Output));
-  AssertTrue(Output, Pos('(0)', Output) > 0);
+  AssertTrue(Output, Pos('(--seconds=0)', Output) > 0);
   AssertEquals(2, Run([Params, '--ca'], Output));
-  AssertEquals('iec101slave: --ca needs a value (--ca)' + LineEnding, Output);
+  AssertEquals('iec101slave: --ca wants a value, N (--ca)' + LineEnding, Output);
   AssertEquals(2, Run(['--ca-size', '1', '--ca=256', Params], Output));
   AssertTrue(Output, Pos('(256)', Output) > 0);
   AssertEquals(2, Run(['--json=yes', Params], Output));

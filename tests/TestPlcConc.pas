@@ -19,6 +19,7 @@ type
     procedure TestCommandLine;
     {$IFDEF UNIX}
     procedure TestEightLinesCycleFarBelowTheWaitTimeout;
+    procedure TestExitCodesOfFailedReads;
     {$ENDIF}
   end;
 
@@ -56,18 +57,29 @@ begin
   AssertTrue(BinPath('plcconc') + ' missing (make examples)', FileExists(BinPath('plcconc')));
   Code := RunBin('plcconc', [], 5000, Output);
   AssertEquals('no arguments: usage, exit 2'#10 + Output, 2, Code);
-  AssertTrue('usage text'#10 + Output, Pos('usage: plcconc', Output) > 0);
+  AssertEquals('usage text'#10 + Output, 1, Pos('Usage: plcconc ', Output));
   Code := RunBin('plcconc', ['--help'], 5000, Output);
   AssertEquals('--help: exit 0'#10 + Output, 0, Code);
+  AssertTrue('--help lists the exit codes'#10 + Output, Pos('  4   a read got no answer', Output) > 0);
+  { command-line errors: exit 2, naming the token, nothing opened }
   Code := RunBin('plcconc', ['--cycles', 'x', 'NAM=DF1 NAM=LOOP'], 5000, Output);
-  AssertEquals('bad number: exit 1'#10 + Output, 1, Code);
-  AssertTrue('names the token'#10 + Output, Pos('(--cycles)', Output) + Pos('x', Output) > 0);
+  AssertEquals('bad number: exit 2'#10 + Output, 2, Code);
+  AssertEquals('plcconc: --cycles wants a whole number 0..2147483647 (--cycles x)' + LineEnding, Output);
   Code := RunBin('plcconc', ['--bogus', 'NAM=DF1 NAM=LOOP'], 5000, Output);
-  AssertEquals('unknown option: exit 1'#10 + Output, 1, Code);
-  AssertTrue('names it'#10 + Output, Pos('--bogus', Output) > 0);
-  Code := RunBin('plcconc', ['--cycles=1', 'NAM=DF1 NAM=NOSUCH'], 5000, Output);
+  AssertEquals('unknown option: exit 2'#10 + Output, 2, Code);
+  AssertEquals('plcconc: unknown option (--bogus)' + LineEnding, Output);
+  Code := RunBin('plcconc', ['--addr=Q7:0', 'NAM=DF1 NAM=LOOP'], 5000, Output);
+  AssertEquals('bad address: exit 2'#10 + Output, 2, Code);
+  AssertTrue('names it'#10 + Output, Pos('(Q7:0)', Output) > 0);
+  Code := RunBin('plcconc', ['--cycles=1', 'NAM=DF1 NAM=LOOP', 'NAM=DF1 NAM=NOSUCH'], 5000, Output);
+  AssertEquals('an unknown layer: exit 2'#10 + Output, 2, Code);
+  AssertTrue('names it'#10 + Output, Pos('bad parameter string: ', Output) > 0);
+  AssertTrue('names it'#10 + Output, Pos('(NAM=NOSUCH)', Output) > 0);
+  { a line that cannot be opened: exit 1, which line }
+  Code := RunBin('plcconc', ['--cycles=1', 'NAM=DF1 NAM=LOOP', 'NAM=DF1 NAM=COM DEV=/nonexistent/tty'],
+    5000, Output);
   AssertEquals('a line that cannot be opened: exit 1'#10 + Output, 1, Code);
-  AssertTrue('says which line'#10 + Output, Pos('line 1', Output) > 0);
+  AssertTrue('says which line'#10 + Output, Pos('plcconc: line 2: ', Output) = 1);
 end;
 
 {$IFDEF UNIX}
@@ -109,6 +121,37 @@ begin
           Sims[I].Terminate(0);
         Sims[I].Free;
       end;
+  end;
+end;
+
+{ An error reply is 3, no answer 4; reads failing both ways: 3. A line
+  with nobody on it is a pty nobody reads (DRV=PTY). }
+procedure TTestPlcConc.TestExitCodesOfFailedReads;
+var
+  Sim: TProcess;
+  Pty, Output, Line, Silent: string;
+  Code: Integer;
+begin
+  Sim := StartSimPty(['--timeout=30', '--quiet'], Pty);
+  try
+    AssertTrue('df1sim printed its pty', Pty <> '');
+    Line := 'NAM=DF1 NOD=0 DNO=1 CRC=ON NAM=COM DEV=' + Pty;
+    Silent := 'NAM=DF1 NOD=0 DNO=1 CRC=ON NAM=COM DRV=PTY';
+    Code := RunBin('plcconc', ['--cycles=1', '--addr=N7:0', Line], 10000, Output);
+    AssertEquals('answered'#10 + Output, 0, Code);
+    Code := RunBin('plcconc', ['--cycles=1', '--addr=N200:0', Line], 10000, Output);
+    AssertEquals('an error reply'#10 + Output, 3, Code);
+    AssertTrue(Output, Pos('1 failed reads', Output) > 0);
+    Code := RunBin('plcconc', ['--cycles=1', '--addr=N7:0', Line, Silent], 20000, Output);
+    AssertEquals('no answer on line 2'#10 + Output, 4, Code);
+    AssertTrue(Output, Pos('| N7:0: no ACK', Output) > 0);
+    Code := RunBin('plcconc', ['--cycles=1', '--addr=N200:0', Silent, Line], 20000, Output);
+    AssertEquals('an error reply before no answer'#10 + Output, 3, Code);
+    AssertTrue(Output, Pos('2 failed reads', Output) > 0);
+  finally
+    if Sim.Running then
+      Sim.Terminate(0);
+    Sim.Free;
   end;
 end;
 {$ENDIF}

@@ -445,6 +445,15 @@ begin
   Check('chntap', ['NAM=COM DEV=@DEV', 'NAM=COM DEV=/dev/null XYZ=1']);
   Check('df1sim', ['--dev=@DEV', '--node=999']);
   Check('df1sim', ['NAM=DF1 MAS=SLAVE NAM=COM DEV=@DEV', '--bd=9600']);
+  Check('plcconc', ['NAM=DF1 NOD=0 DNO=1 NAM=COM DEV=@DEV', 'NAM=DF1 NAM=NOSUCH']);
+  Check('plcconc', ['--addr=Q7:0', 'NAM=DF1 NOD=0 DNO=1 NAM=COM DEV=@DEV']);
+  { a parameter string the master or slave refuses, and --slaves for a
+    balanced line: found on the channel before it is opened }
+  Check('iec101master', ['NAM=FT1_2 MS=ON MAS=SLAVE NAM=COM DEV=@DEV', 'gi']);
+  Check('iec101master', ['--slaves=5,7', 'NAM=FT1_2 MS=OFF PRI=ON NAM=COM DEV=@DEV', 'gi']);
+  Check('iec101master', ['NAM=FT1_2 MS=ON MAS=MASTER NAM=COM DEV=@DEV', 'gi', 'sc', '5000=2']);
+  Check('iec101slave', ['NAM=FT1_2 MS=ON MAS=MASTER NAM=COM DEV=@DEV']);
+  Check('iec101slave', ['--ca-size=1', '--ca=300', 'NAM=FT1_2 MS=ON MAS=SLAVE NAM=COM DEV=@DEV']);
 end;
 {$ENDIF}
 
