@@ -54,7 +54,11 @@
   res_DeviceLost (or res_IOError) from the next poll on; the layer stops
   touching the device, bytes already received can still be taken, and
   ChClose + ChOpen starts again - or, with RECON=, the layer reopens it by
-  itself (res_Reconnecting meanwhile, see ComReopen).
+  itself (res_Reconnecting meanwhile, see ComReopen). RECON= is this
+  layer's for every port kind: the timer, the results and the port
+  replacement live here, a descendant supplies only how a new port is
+  started and completed (ComReopenStart, ComReopenPoll; NAM=TCP connects
+  without blocking).
 
   Closing: ChClose (and Done) first let what was sent leave the driver,
   bounded by the line time of the pending bytes (ComDrainTx).
@@ -108,6 +112,7 @@ type
     CH_Reopen  : LongInt;          { RECON= ms between reopen attempts, 0 = off }
     CH_Lat     : LongInt;          { LAT= USB adapter latency timer ms, 0 = as it is }
     CH_ReopenAt: QWord;            { next reopen attempt (GetTickCount64) }
+    CH_ReopenPort: TChnPort;       { a reopen in progress (ComReopenStart said res_Busy) }
     constructor Init;
     constructor ChInitParam(const S: tParamStr);
     destructor  Done; virtual;
@@ -156,6 +161,22 @@ type
     procedure ComPull;
     { RECON=: after a device loss, reopen the device in the polls }
     procedure ComReopen;
+    { RECON=: CH_Fault (a fault, or res_Reconnecting) becomes res_Reconnecting
+      where this port kind mends it; True while reconnecting }
+    function  ComReconnecting: Boolean;
+    { RECON=, the parts a port kind supplies. ComReopenBegins: CH_Fault has
+      just been latched; True when a reconnect mends it - then let go of the
+      lost port as this kind must and set CH_ReopenAt to the first attempt
+      (COM: device lost or I/O error; the device is closed at once, so the
+      kernel can give its name again, first attempt after RECON ms). }
+    function  ComReopenBegins: Boolean; virtual;
+    { Start a new port: res_Ok (Port open and configured), res_Busy (Port
+      on its way, ComReopenPoll completes it), else failed (Port nil, the
+      token named; res_BadSetting ends the retries). COM: ComOpenPort. }
+    function  ComReopenStart(out Port: TChnPort): tChResult; virtual;
+    { A port ComReopenStart left res_Busy: res_Busy still, res_Ok ready,
+      else failed (the caller frees it). COM never gets here. }
+    function  ComReopenPoll(Port: TChnPort): tChResult; virtual;
     procedure ComPumpTx;
     { Before a close: what ChSend was given leaves the driver, bounded }
     procedure ComDrainTx;
@@ -217,6 +238,7 @@ begin
   CH_Wait := nil;
   CH_Reopen := 0;
   CH_ReopenAt := 0;
+  CH_ReopenPort := nil;
   CH_Lat := 0;
 end;
 
@@ -537,6 +559,7 @@ begin
     CH_Port.Free;
     CH_Port := nil;
   end;
+  FreeAndNil(CH_ReopenPort);
   CH_TxLen := 0;
   CH_TxPos := 0;
   CH_RtsUp := False;
@@ -557,6 +580,7 @@ begin
   CH_TxPos := 0;
   CH_RtsUp := False;
   ChnWaitServed(CH_Wait, False);  { nothing more to wait for on it }
+  ComReconnecting;                { RECON=: res_Reconnecting from this poll on }
 end;
 
 procedure tChnCom.ComLatch(R: tChResult);
@@ -645,48 +669,71 @@ end;
   tty does not block (O_NONBLOCK), so a poll never hangs on it, and one
   attempt per RECON ms never spins. A device that comes back but refuses
   a setting ends it: res_BadSetting, the token named. Bytes received
-  before the loss can still be taken. }
+  before the loss can still be taken. A descendant changes only what
+  ComReopenBegins, ComReopenStart and ComReopenPoll do (NAM=TCP: a
+  non-blocking connect bounded by CTO=, at once after the loss). }
 procedure tChnCom.ComReopen;
 var
-  Port: TChnPort;
   R: tChResult;
   Now: QWord;
 begin
-  if (CH_Reopen = 0) or (CH_Port = nil) or
-    ((CH_Fault <> res_DeviceLost) and (CH_Fault <> res_IOError) and
-     (CH_Fault <> res_Reconnecting)) then
+  if not ComReconnecting then
     Exit;
   Now := GetTickCount64;
-  if CH_Fault <> res_Reconnecting then
+  R := res_Busy;                    { not due yet, or on its way }
+  if (CH_ReopenPort = nil) and (Now >= CH_ReopenAt) then
+    R := ComReopenStart(CH_ReopenPort);
+  if (R = res_Busy) and (CH_ReopenPort <> nil) then
+    R := ComReopenPoll(CH_ReopenPort);
+  if R = res_Busy then
+    Exit;
+  if R = res_Ok then
   begin
-    ComLeaveWait;
-    CH_Port.Close;                  { the object stays until a new port works }
+    ComReplacePort(CH_ReopenPort);  { the shared wait follows the new port }
+    CH_ReopenPort := nil;
+    CH_OsLost := 0;                 { the new port counts from 0 }
+    CH_ParamErr := '';
+    Exit;
+  end;
+  FreeAndNil(CH_ReopenPort);
+  if R = res_BadSetting then
+    ComLatch(R)                     { back, but not as configured: no retry }
+  else
+    CH_ReopenAt := Now + QWord(CH_Reopen);
+end;
+
+function tChnCom.ComReconnecting: Boolean;
+begin
+  if (CH_Reopen <> 0) and (CH_Port <> nil) and (CH_Fault <> res_Ok) and
+    (CH_Fault <> res_Reconnecting) and ComReopenBegins then
     ComLatch(res_Reconnecting);
-    CH_ReopenAt := Now + QWord(CH_Reopen);
-  end;
-  if Now >= CH_ReopenAt then
-  begin
-    CH_RtsToggle := False;
-    R := ComOpenPort(Port);         { names the token when it fails }
-    if R = res_Ok then
-    begin
-      ComReplacePort(Port);
-      CH_OsLost := 0;               { the new port counts from 0 }
-      CH_ParamErr := '';
-      Exit;
-    end;
-    if R = res_BadSetting then
-    begin
-      ComLatch(R);                  { back, but not as configured: no retry }
-      Exit;
-    end;
-    CH_ReopenAt := Now + QWord(CH_Reopen);
-  end;
+  Result := CH_Fault = res_Reconnecting;
+end;
+
+function tChnCom.ComReopenBegins: Boolean;
+begin
+  Result := (CH_Fault = res_DeviceLost) or (CH_Fault = res_IOError);
+  if not Result then
+    Exit;
+  ComLeaveWait;
+  CH_Port.Close;                    { the object stays until a new port works }
+  CH_ReopenAt := GetTickCount64 + QWord(CH_Reopen);
   if CH_ParamErr = '' then
     if CH_Dev <> '' then
       CH_ParamErr := ChGetParam('DEV')
     else
       CH_ParamErr := ChGetParam('COM');
+end;
+
+function tChnCom.ComReopenStart(out Port: TChnPort): tChResult;
+begin
+  CH_RtsToggle := False;
+  Result := ComOpenPort(Port);      { names the token when it fails }
+end;
+
+function tChnCom.ComReopenPoll(Port: TChnPort): tChResult;
+begin
+  Result := res_Ok;                 { ComReopenStart never leaves one on its way }
 end;
 
 { Hand as much of the pending message to the OS as it takes now; drop RTS

@@ -14,7 +14,10 @@
     CTO=ms      bound of a connect and of the RFC 2217 answers, default 3000
     RECON=ms    0 (default): a lost connection stays lost until ChClose +
                 ChOpen; n: try again every n ms by itself, results say
-                res_Reconnecting meanwhile
+                res_Reconnecting meanwhile (ignored with LISTEN=). The
+                mechanism is tChnCom's (ComReopen); this layer supplies the
+                new connection: a non-blocking connect bounded by CTO, the
+                first at once after the loss, then BD.. FLW sent again
     RFC2217=OFF|ON  Telnet COM Port Control: BD BIT PAR STOP FLW set the
                 server's serial port, checked against its answers
     BD BIT STOP PAR FLW LRB LSB IDL   as NAM=COM (BD.. FLW only with RFC2217;
@@ -47,20 +50,12 @@ type
     CH_TcpPort : LongInt;          { PORT=, 0 = not given }
     CH_Listen  : tWordString;      { LISTEN= as given, '' = client }
     CH_Cto     : LongInt;          { CTO= }
-    CH_Recon   : LongInt;          { RECON=, 0 = off }
     CH_Rfc     : Boolean;          { RFC2217= }
-    CH_Retry   : TChnPortTcp;      { a reconnect in progress }
-    CH_RetryAt : QWord;            { next reconnect attempt (GetTickCount64) }
-    CH_RetryEnd: QWord;            { the one in progress gives up then }
+    CH_RetryEnd: QWord;            { the reconnect in progress gives up then (CTO=) }
     constructor Init;
     constructor ChInitParam(const S: tParamStr);
     function  ChSetOneParam(const S: tWordString; var CmdL: tCmd): tChResult; virtual;
     function  ChOwnParams: tParamStr; virtual;
-    procedure ChClose; virtual;
-    procedure ChSend(Buff: Pointer; Len: Word); virtual;
-    function  ChSendReady: tChState; virtual;
-    function  ChReceiveReady: tChState; virtual;
-    procedure ChReceive(var Len: Word); virtual;
     { --- additions --- }
     { The local TCP port: with LISTEN=...:0 the one the OS picked. }
     function  ChLocalPort: Word;
@@ -71,9 +66,11 @@ type
   protected
     function  ComOpenPort(out Port: TChnPort): tChResult; virtual;
     function  ComDropsWhenFull: Boolean; virtual;
+    function  ComReopenBegins: Boolean; virtual;
+    function  ComReopenStart(out Port: TChnPort): tChResult; virtual;
+    function  ComReopenPoll(Port: TChnPort): tChResult; virtual;
   private
     function  TcpNewPort: TChnPortTcp;
-    procedure TcpTick;
   end;
 
   pAddChnTcp = ^tAddChnTcp;
@@ -125,10 +122,7 @@ begin
   CH_TcpPort := 0;
   CH_Listen := '';
   CH_Cto := TcpDefaultCto;
-  CH_Recon := 0;
   CH_Rfc := False;
-  CH_Retry := nil;
-  CH_RetryAt := 0;
   CH_RetryEnd := 0;
 end;
 
@@ -166,12 +160,11 @@ begin
   end
   else if Key = 'CTO' then
     Result := ParamSetNum(S, 1, 600000, CmdL, CH_Cto)
-  else if Key = 'RECON' then
-    Result := ParamSetNum(S, 0, 3600000, CmdL, CH_Recon)
   else if Key = 'RFC2217' then
     Result := ParamFlag(S, 'OFF|ON', CmdL, CH_Rfc)
   else if (Key = 'BD') or (Key = 'BIT') or (Key = 'STOP') or (Key = 'PAR') or
-    (Key = 'FLW') or (Key = 'LRB') or (Key = 'LSB') or (Key = 'IDL') then
+    (Key = 'FLW') or (Key = 'LRB') or (Key = 'LSB') or (Key = 'IDL') or
+    (Key = 'RECON') then
     Result := inherited ChSetOneParam(S, CmdL)
   else
     { COM's device keys (COM DEV DRV RS485 IRQ ...) mean nothing here }
@@ -192,7 +185,7 @@ begin
     if CH_TcpPort <> 0 then
       R := R + ParamText('PORT', CH_TcpPort);
   end;
-  Result := R + ParamText('CTO', CH_Cto) + ParamText('RECON', CH_Recon) +
+  Result := R + ParamText('CTO', CH_Cto) + ParamText('RECON', CH_Reopen) +
     FlagText('RFC2217', 'OFF|ON', CH_Rfc) + ComLineText(CH_Set) + ComBufferText;
 end;
 
@@ -268,7 +261,6 @@ begin
     Exit;
   end;
   Port := P;
-  CH_RetryAt := 0;
 end;
 
 { TCP holds the sender back itself: a full ring leaves the bytes in the
@@ -279,76 +271,34 @@ begin
   Result := False;
 end;
 
-procedure tChnTcp.ChClose;
+{ RECON=, the parts tChnCom.ComReopen leaves to the port kind: a server
+  waits for its next client by itself and a refused setting stays; else
+  the first attempt is at once (a reset connection usually has its server
+  still there), the lost socket stays until a new one replaces it. }
+function tChnTcp.ComReopenBegins: Boolean;
 begin
-  FreeAndNil(CH_Retry);
-  inherited ChClose;
+  Result := (CH_Listen = '') and (CH_Fault <> res_BadSetting);
+  if Result then
+    CH_ReopenAt := 0;
 end;
 
-{ RECON=: turn a lost connection into res_Reconnecting and try again every
-  RECON ms without blocking the poll; a new connection replaces the port. }
-procedure tChnTcp.TcpTick;
-var
-  R: tChResult;
-  Now: QWord;
+{ A connect that does not block the poll; CTO= bounds it (ComReopenPoll). }
+function tChnTcp.ComReopenStart(out Port: TChnPort): tChResult;
 begin
-  if (CH_Recon = 0) or (CH_Listen <> '') or (CH_Port = nil) or
-    (CH_Fault = res_Ok) or (CH_Fault = res_BadSetting) then
-    Exit;
-  if CH_Fault <> res_Reconnecting then
-    ComLatch(res_Reconnecting);
-  Now := GetTickCount64;
-  if (CH_Retry = nil) and (Now >= CH_RetryAt) then
-  begin
-    CH_Retry := TcpNewPort;
-    CH_RetryEnd := Now + QWord(CH_Cto);
-    if CH_Retry.StartConnect <> res_Busy then
-    begin
-      FreeAndNil(CH_Retry);
-      CH_RetryAt := Now + QWord(CH_Recon);
-    end;
-  end;
-  if CH_Retry = nil then
-    Exit;
-  R := CH_Retry.ConnectPoll;
-  if R = res_Ok then
-  begin
-    CH_Retry.SendSettings(CH_Set);  { answers are checked as they come }
-    ComReplacePort(CH_Retry);       { the shared wait follows the new socket }
-    CH_Retry := nil;
-  end
-  else if (R <> res_Busy) or (Now >= CH_RetryEnd) then
-  begin
-    FreeAndNil(CH_Retry);
-    CH_RetryAt := Now + QWord(CH_Recon);
-  end;
+  Port := TcpNewPort;
+  CH_RetryEnd := GetTickCount64 + QWord(CH_Cto);
+  Result := TChnPortTcp(Port).StartConnect;   { res_Busy or a failure }
+  if Result <> res_Busy then
+    FreeAndNil(Port);
 end;
 
-procedure tChnTcp.ChSend(Buff: Pointer; Len: Word);
+function tChnTcp.ComReopenPoll(Port: TChnPort): tChResult;
 begin
-  TcpTick;
-  inherited ChSend(Buff, Len);
-  TcpTick;
-end;
-
-function tChnTcp.ChSendReady: tChState;
-begin
-  TcpTick;
-  Result := inherited ChSendReady;
-  TcpTick;
-end;
-
-function tChnTcp.ChReceiveReady: tChState;
-begin
-  TcpTick;
-  Result := inherited ChReceiveReady;
-  TcpTick;
-end;
-
-procedure tChnTcp.ChReceive(var Len: Word);
-begin
-  inherited ChReceive(Len);
-  TcpTick;
+  Result := TChnPortTcp(Port).ConnectPoll;
+  if Result = res_Ok then
+    TChnPortTcp(Port).SendSettings(CH_Set)   { answers are checked as they come }
+  else if (Result = res_Busy) and (GetTickCount64 >= CH_RetryEnd) then
+    Result := res_Timeout;
 end;
 
 function tChnTcp.ChLocalPort: Word;
