@@ -108,6 +108,10 @@ type
 
 const
   AI_PASSIVE = 1;
+  { connections the OS completes before the server takes them: a burst of
+    reconnects must not find the queue full (a dropped SYN is retried only
+    after a second); a server takes them all at its next poll }
+  ListenBacklog = 128;
   {$IFDEF WINDOWS}
   GaiLib = 'ws2_32.dll';
   {$ENDIF}
@@ -426,7 +430,7 @@ begin
   {$ELSE}
   fpSetSockOpt(S, SOL_SOCKET, SO_REUSEADDR, @One, SizeOf(One));
   {$ENDIF}
-  if (fpBind(S, PSockAddr(@A.Data), A.Len) <> 0) or (fpListen(S, 4) <> 0) then
+  if (fpBind(S, PSockAddr(@A.Data), A.Len) <> 0) or (fpListen(S, ListenBacklog) <> 0) then
   begin
     Result := MapError(SocketError);
     SockClose(S);
