@@ -19,7 +19,12 @@
   Answers arriving later (after a reconnect) are checked the same way and
   turn the next Read into res_BadSetting. NOTIFY-MODEMSTATE gives GetLines,
   NOTIFY-LINESTATE overrun bits count in OsOverruns; data bytes are never
-  disturbed by either. }
+  disturbed by either. Data that arrives before the negotiation is done is
+  kept up to EarlyCap bytes; more is dropped and counted in OsOverruns (a
+  server pushing megabytes must not grow the process without bound). A
+  subnegotiation never closed (ChnTelnet's teSubBroken) ends the stream:
+  the data before it is delivered, then every Read answers res_BadStream
+  with FailKey 'RFC2217'. }
 unit ChnPortTcp;
 
 {$I chn.inc}
@@ -51,6 +56,8 @@ type
     FEvent: PtrInt;                 { Windows: the client socket's wait event }
     FDueUntil: QWord;               { ... which must come by then }
     FLastInput: QWord;              { server: when the client last sent a byte }
+    FEarlyLost: LongWord;           { data beyond EarlyCap, dropped }
+    FBroken: Boolean;               { the peer broke the Telnet stream }
     FKicked, FIdleDropped: LongWord;
     function SockResult(E: tSockErr): tChResult;
     function TryNextAddr: tSockErr;
@@ -126,6 +133,7 @@ uses
 const
   OutCap = 8192;           { encoded bytes held before Write says "full" }
   MaxLeftPerRead = 64;     { closed connections one server read works through }
+  EarlyCap = 65536;        { data kept while RFC 2217 is negotiated }
   CtlReserve = 256;        { room kept for control commands }
 
 constructor TChnPortTcp.Create;
@@ -170,6 +178,8 @@ begin
   FBad := '';
   FModem := 0;
   FLineOverruns := 0;
+  FEarlyLost := 0;
+  FBroken := False;
   FillChar(FAsked, SizeOf(FAsked), 0);
   FSettingsDue := False;
   TelnetInit(FDec);
@@ -541,10 +551,15 @@ begin
       teData:
         if Keep then
         begin
-          if FEarlyLen >= Length(FEarly) then
-            SetLength(FEarly, FEarlyLen + 4096);
-          FEarly[FEarlyLen] := Raw[I];
-          Inc(FEarlyLen);
+          if FEarlyLen >= EarlyCap then
+            Inc(FEarlyLost)
+          else
+          begin
+            if FEarlyLen >= Length(FEarly) then
+              SetLength(FEarly, FEarlyLen + 4096);
+            FEarly[FEarlyLen] := Raw[I];
+            Inc(FEarlyLen);
+          end;
         end
         else
         begin
@@ -561,6 +576,12 @@ begin
         end;
       teSub:
         OnSub;
+      teSubBroken:
+        begin
+          FBroken := True;          { what follows is not to be trusted }
+          FailKey := 'RFC2217';
+          Break;
+        end;
     end;
   Result := FlushOut;
 end;
@@ -585,6 +606,8 @@ begin
     end;
     SockWait([FSock], False, 10);
     Result := Take(Dummy, 1, Got, True);
+    if (Result = res_Ok) and FBroken then
+      Result := res_BadStream;
     if Result <> res_Ok then
       Exit;
   end;
@@ -595,6 +618,8 @@ begin
       Break;
     SockWait([FSock], False, 10);
     Result := Take(Dummy, 1, Got, True);
+    if (Result = res_Ok) and FBroken then
+      Result := res_BadStream;
     if Result <> res_Ok then
       Exit;
   end;
@@ -627,8 +652,16 @@ begin
     Move(FEarly[FEarlyPos], Buf, N);
     Inc(FEarlyPos, N);
     Got := N;
+    if FEarlyPos = FEarlyLen then
+    begin
+      FEarlyPos := 0;               { taken: the room is free again }
+      FEarlyLen := 0;
+      SetLength(FEarly, 0);
+    end;
     Exit(res_Ok);
   end;
+  if FBroken then
+    Exit(res_BadStream);
   if FListen <> NoSock then
     Result := ServeRead(Buf, Size, Got)
   else if FSock = NoSock then
@@ -797,7 +830,7 @@ end;
 
 function TChnPortTcp.OsOverruns(out N: LongWord): tChResult;
 begin
-  N := FLineOverruns;
+  N := FLineOverruns + FEarlyLost;
   Result := res_Ok;
 end;
 

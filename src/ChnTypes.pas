@@ -75,7 +75,8 @@ const
   res_HostUnknown  = 22;   { network: host name not resolved }
   res_Refused      = 23;   { network: connection refused }
   res_Reconnecting = 24;   { network: connection lost, reconnecting by itself }
-  res_LastGeneral  = res_Reconnecting;   { the highest general code in use }
+  res_BadStream    = 25;   { network: the peer broke the Telnet protocol }
+  res_LastGeneral  = res_BadStream;   { the highest general code in use }
   res_Proto        = $20;  { first code a protocol unit may use }
 
 type
@@ -157,6 +158,7 @@ begin
     res_HostUnknown:  Result := 'host name not resolved';
     res_Refused:      Result := 'connection refused';
     res_Reconnecting: Result := 'connection lost, reconnecting';
+    res_BadStream:    Result := 'the peer broke the Telnet protocol (subnegotiation never closed)';
   else
     Result := '';
   end;

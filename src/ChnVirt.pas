@@ -79,6 +79,7 @@ const
   res_HostUnknown  = ChnTypes.res_HostUnknown;
   res_Refused      = ChnTypes.res_Refused;
   res_Reconnecting = ChnTypes.res_Reconnecting;
+  res_BadStream    = ChnTypes.res_BadStream;
   res_Proto        = ChnTypes.res_Proto;
 
 const

@@ -48,6 +48,8 @@ type
     procedure TestRfc2217ServerRefusesTheOption;
     procedure TestRfc2217ServerSilent;
     procedure TestRfc2217DataNotifyAndPurgeOnTheWire;
+    procedure TestRfc2217FloodWhileNegotiatingIsCapped;
+    procedure TestRfc2217UnclosedSubnegotiationIsNamed;
     procedure TestClientIsInTheSharedWait;
     {$IFDEF LINUX}
     procedure TestIdlePollingLoopCpu;
@@ -65,7 +67,8 @@ type
   { A scripted RFC 2217 server on a thread: the bytes it expects and sends
     are written here by hand from RFC 854 / RFC 2217, not produced by the
     codec under test. }
-  TScriptMode = (smHonest, smChangeBaud, smRefuse, smSilent);
+  { smFlood: 1 MiB of data before its DO COM-PORT-OPTION }
+  TScriptMode = (smHonest, smChangeBaud, smRefuse, smSilent, smFlood);
   TScriptServer = class(TThread)
   private
     FListen, FConn: tSock;
@@ -130,6 +133,19 @@ begin
   SetLength(Result, Length(B));
   if Length(B) > 0 then
     Move(B[0], Result[1], Length(B));
+end;
+
+const
+  FloodLen = 1 shl 20;
+
+{ What smFlood pushes: no $FF, so it is data byte for byte. }
+function FloodData: AnsiString;
+var
+  I: Integer;
+begin
+  SetLength(Result, FloodLen);
+  for I := 1 to FloodLen do
+    Result[I] := Chr(1 + I mod 200);
 end;
 
 constructor TScriptServer.Create(Mode: TScriptMode);
@@ -218,6 +234,8 @@ begin
       Agreed := True;
       if FMode = smRefuse then
         Put(#$FF#$FE#$2C)                       { DONT COM-PORT-OPTION }
+      else if FMode = smFlood then
+        Put(FloodData + #$FF#$FD#$2C#$FF#$FB#$00#$FF#$FD#$00)
       else
         Put(#$FF#$FD#$2C#$FF#$FB#$00#$FF#$FD#$00);  { DO 44, WILL/DO BINARY }
     end;
@@ -922,6 +940,64 @@ begin
     if Sim.Running then
       Sim.Terminate(0);
     Sim.Free;
+  end;
+end;
+
+{ A server that pushes data while the options are negotiated: before the
+  cap, 29 MiB pushed made 57 MB of resident memory. The first EarlyCap
+  bytes are kept, the rest dropped and counted as lost. }
+procedure TTestChnTcp.TestRfc2217FloodWhileNegotiatingIsCapped;
+const
+  Cap = 65536;
+var
+  Srv2: TScriptServer;
+  Before, Grew: PtrUInt;
+  Got: string;
+  Mark: Integer;
+begin
+  Srv2 := TScriptServer.Create(smFlood);
+  try
+    Before := GetFPCHeapStatus.CurrHeapUsed;
+    AssertEquals(res_Ok, OpenClient(Format('HOST=127.0.0.1 PORT=%d RFC2217=ON CTO=5000', [Srv2.Port])));
+    Grew := GetFPCHeapStatus.CurrHeapUsed - Before;
+    AssertTrue(Format('memory grew by %d bytes for %d pushed', [Grew, FloodLen]), Grew < 4 * Cap);
+    { what was kept is read with the next input from the socket (the
+      shared wait watches the socket, not the port's store) }
+    Srv2.Send('x');
+    Got := Receive(Cli, nil, Cap + 1, 3000);
+    AssertEquals('the first bytes are kept, then the new one', Cap + 1, Length(Got));
+    AssertTrue('unchanged', Got = Copy(FloodData, 1, Cap) + 'x');
+    AssertEquals('the rest is counted as lost', FloodLen - Cap, pChnTcp(Cli)^.ChLostBytes);
+    Mark := Length(Srv2.Seen);
+    SendText(Cli, 'after');
+    AssertEquals('the line works', 'after', SeenAfter(Srv2, Mark, 5));
+  finally
+    Srv2.Free;
+  end;
+end;
+
+{ IAC SB never closed by IAC SE swallowed all data after it without a
+  word; now the data before it arrives and the line says what happened. }
+procedure TTestChnTcp.TestRfc2217UnclosedSubnegotiationIsNamed;
+var
+  Srv2: TScriptServer;
+  Deadline: QWord;
+begin
+  Srv2 := TScriptServer.Create(smHonest);
+  try
+    AssertEquals(res_Ok, OpenClient(Format('HOST=127.0.0.1 PORT=%d RFC2217=ON CTO=2000', [Srv2.Port])));
+    Srv2.Send('head' + #$FF#$FA#$2C#$6B + StringOfChar('A', 300) + 'tail');
+    AssertEquals('the data before it', 'head', Receive(Cli, nil, 4, 3000));
+    Deadline := GetTickCount64 + 3000;
+    while (Cli^.ChResult = res_Ok) and (GetTickCount64 < Deadline) do
+      Cli^.ChReceiveReady;
+    AssertEquals('named', res_BadStream, Cli^.ChResult);
+    AssertEquals(res_BadStream, Cli^.ChReceiveResult);
+    AssertEquals('the peer broke the Telnet protocol (subnegotiation never closed)',
+      Cli^.ChResultStr(Cli^.ChResult));
+    AssertEquals('nothing after it is taken for data', '', Receive(Cli, nil, 1, 200));
+  finally
+    Srv2.Free;
   end;
 end;
 
