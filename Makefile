@@ -13,6 +13,9 @@
 #                     processes (SECONDS=10 per scenario, or COUNT=messages;
 #                     SEED=, ONLY=name); docs/reliability.md
 #   make wintest      the suite as win64 programs under Wine (docs/Windows.md)
+#   make mutate       mutation testing: each mutant of tests/mutants/mutants.txt
+#                     must fail its tests (slow; ONLY=id); make mutate-check
+#                     only checks that every listed line is still there
 #   make clean
 # Optional: SYNAPSE_DIR=/path/to/synapse builds the Synapse serial backend.
 #
@@ -67,7 +70,7 @@ PROGBINS := $(addprefix $(BINDIR)/,$(basename $(notdir $(PROGRAMS))))
 BENCHBINS := $(addprefix $(BINDIR)/,$(basename $(notdir $(BENCHES))))
 
 .PHONY: all units examples tools test demo bench fuzz soak wintest clean check-fpc \
-        install uninstall
+        install uninstall mutate mutate-check
 
 all: units $(PROGBINS) chn.lpk
 examples: $(addprefix $(BINDIR)/,$(basename $(notdir $(EXAMPLES))))
@@ -171,6 +174,15 @@ soak: all
 	@rm -f $(BUILD)/soak-heap.log; HEAPTRC="log=$(BUILD)/soak-heap.log" $(TBINDIR)/soak \
 	  $(if $(COUNT),--count=$(COUNT),--seconds=$(SECONDS)) $(if $(SEED),--seed=$(SEED)) \
 	  $(if $(ONLY),--only=$(ONLY)) --df1sim=$(BINDIR)/df1sim
+
+# Mutation testing (docs/reliability.md): the tree is copied to a scratch
+# folder and built there (with BUILD=build), so the flags are the test
+# build's for that folder; not part of test.
+mutate:
+	@FPC=$(FPC) BUILD=build TESTFLAGS="$(filter-out -B,$(subst $(BUILD)/,build/,$(TESTFLAGS)))" \
+	  ONLY="$(ONLY)" bash tests/mutants/mutate.sh run $(MUTANTS)
+mutate-check:
+	@bash tests/mutants/mutate.sh check $(MUTANTS)
 
 # Cross-built for win64 and run under Wine; not part of test (CI has no Wine).
 wintest: all $(BUILD)/testunits.inc
