@@ -26,7 +26,8 @@
 # run: copies the tree (without $BUILD and .git) to a scratch folder,
 # builds it once, checks that every named test passes unmutated, then for
 # each mutant applies it in the scratch copy (never in the working tree),
-# rebuilds the test runner (and the programs with programs = yes), runs
+# rebuilds the test runner (and the programs with programs = yes; all of
+# it when the unit has inline routines, which its callers copy), runs
 # the named tests and restores the line. A mutant is killed when a named
 # test fails, crashes or hangs (TIMEOUT s, default 600). Reports each one
 # and the kill rate; exit 1 when any survived, was not found or does not
@@ -130,7 +131,9 @@ future() {
   [ "$now" -gt "$stamp" ] && stamp=$now || stamp=$((stamp + 2))
   touch -d "@$stamp" "$1"
 }
-build_runner() { $FPC $TESTFLAGS tests/runtests.pas >>"$log" 2>&1; }
+# a unit with inline routines is compiled into the units that call them:
+# a change to it rebuilds everything (-B), and so does its restoring
+build_runner() { $FPC $TESTFLAGS ${1:+-B} tests/runtests.pas >>"$log" 2>&1; }
 build_programs() { make -s BUILD="$BUILD" all >>"$log" 2>&1; }
 if ! make -s BUILD="$BUILD" all "$BUILD/testunits.inc" "$BUILD/fpcunit/stamp" >>"$log" 2>&1 ||
    ! { mkdir -p "$BUILD/test-units" "$BUILD/test-bin"; build_runner; }; then
@@ -181,7 +184,9 @@ for ((i = 0; i < count; i++)); do
   replace_line "$f" "$at" "${mutants[i]}"
   future "$f"
   t0=$(date +%s)
-  if { [ "${progs[i]}" = yes ] && ! build_programs; } || ! build_runner; then
+  full=
+  grep -qi 'inline;' "$f" && full=1
+  if { [ "${progs[i]}" = yes ] && ! build_programs; } || ! build_runner "$full"; then
     echo "invalid    ${id}  $f:$at: the mutant does not build (see $log with KEEP=1)"
     invalid=$((invalid + 1))
   else
@@ -195,6 +200,7 @@ for ((i = 0; i < count; i++)); do
   mv "$f.orig" "$f"
   future "$f"
   [ "${progs[i]}" = yes ] && build_programs
+  [ -n "$full" ] && build_runner "$full"
 done
 total=$((killed + survived))
 rate=$(awk -v k="$killed" -v t="$total" 'BEGIN { if (t) printf "%.1f", 100 * k / t; else print "-" }')
