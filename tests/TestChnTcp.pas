@@ -926,6 +926,7 @@ begin
       else
         Sleep(2);
     until GetTickCount64 > Deadline;
+    Line := Trim(Line);             { Windows ends it with CR LF }
     AssertTrue('df1sim printed its port: ' + Line, (Copy(Line, 1, 7) = 'LISTEN ') and
       TryStrToInt(Copy(Line, 8, 10), Port));
     Squat := RawConnect(Port, 2000);
