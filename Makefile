@@ -8,7 +8,7 @@
 #   make uninstall    removes what install put there
 #   make demo         a DF1 exchange on this machine, no hardware needed
 #   make bench        codec and channel benchmarks
-#   make fuzz         random-mutation fuzzing of the codecs and ChnPccc (SECONDS=10)
+#   make fuzz         random-mutation fuzzing of the codecs, ChnPccc and every layer's numeric parameters (SECONDS=10)
 #   make soak         every protocol over a noisy pty line between two
 #                     processes (SECONDS=10 per scenario, or COUNT=messages;
 #                     SEED=, ONLY=name); docs/reliability.md
@@ -149,11 +149,12 @@ test: all $(BUILD)/testunits.inc $(BUILD)/fpcunit/stamp
 demo: all
 	@bash tools/demo.sh $(BUILD)
 
-bench: $(BENCHBINS) $(BINDIR)/chntap
+bench: $(BENCHBINS) $(BINDIR)/chntap $(BINDIR)/plcconc $(BINDIR)/df1sim
 	@set -e; for b in $(BENCHBINS); do $$b; done
 
 # Random-mutation fuzzing of the three codecs and of ChnPccc (addresses,
-# plans, requests, reply decoding) with run-time checks on;
+# plans, requests, reply decoding), and every key of every layer with
+# numbers built to break a parser (fuzzparams), with run-time checks on;
 # SECONDS=n for longer runs, SEED=n to repeat one.
 SECONDS ?= 10
 # the soak program: test flags, on the units the test build just made
@@ -162,8 +163,10 @@ fuzz: units
 	@mkdir -p $(TUNITDIR) $(TBINDIR)
 	@$(FPC) $(TESTFLAGS) tests/fuzz/fuzzcodecs.pas >$(BUILD)/fuzz-build.log 2>&1 || { cat $(BUILD)/fuzz-build.log; exit 1; }
 	@$(FPC) $(TESTFLAGS) tests/fuzz/fuzzpccc.pas >>$(BUILD)/fuzz-build.log 2>&1 || { cat $(BUILD)/fuzz-build.log; exit 1; }
+	@$(FPC) $(TESTFLAGS) tests/fuzz/fuzzparams.pas >>$(BUILD)/fuzz-build.log 2>&1 || { cat $(BUILD)/fuzz-build.log; exit 1; }
 	@rm -f $(BUILD)/fuzz-heap.log; HEAPTRC="log=$(BUILD)/fuzz-heap.log" $(TBINDIR)/fuzzcodecs $(SECONDS) $(SEED)
 	@rm -f $(BUILD)/fuzz-heap.log; HEAPTRC="log=$(BUILD)/fuzz-heap.log" $(TBINDIR)/fuzzpccc $(SECONDS) $(SEED)
+	@rm -f $(BUILD)/fuzz-heap.log; HEAPTRC="log=$(BUILD)/fuzz-heap.log" $(TBINDIR)/fuzzparams $(SECONDS) $(SEED)
 
 # The soak (docs/reliability.md): SECONDS per scenario or COUNT messages
 # per scenario; SEED= the first NOISE seed; ONLY= scenarios whose name

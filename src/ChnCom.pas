@@ -437,7 +437,7 @@ begin
   end;
   CH_Port := Port;
   ComJoinWait;
-  RingAlloc(CH_Ring, CH_LRB);
+  RingAlloc(CH_Ring, CH_LRB, True);   { input held here ends ChnWaitAny at once }
   CH_Lost := 0;
   CH_LostShown := 0;
   CH_OsLost := 0;

@@ -3,8 +3,9 @@
 
   Implements the SofCon manual "ChnDF1" v1.20 with the decisions of
   docs/PROTOCOLS.md section 4. The frame work is done by the I/O-free codec
-  ChnDF1Codec; tChnDF1 only glues it to the layer below (ChLowSend /
-  ChLowGetByte) and to the ChnVirt polling API.
+  ChnDF1Codec; the receive loop, ChReceive, the send buffer and the
+  rest of the channel are tChnProto's (ChnProto); tChnDF1 supplies the
+  codec's feed, delivery and encoding.
 
   Parameters: MAS=MASTER|SLAVE, FHD=FULL|HALF, CRC=ON|OFF, LSB=size,
   NOD=n, DNO=n (0..255) and, added by the port, NAK=15|0F (the byte sent as
@@ -16,6 +17,12 @@
   repetition by a master that missed our ACK. The layer ACKs it itself and
   does not deliver it again; CH_DupCount/CH_DupSrc/CH_DupTns tell a link
   helper (ChnDF1Link's station) so it can send its cached reply again.
+
+  Full duplex, a reply (reply bit set) addressed to another station - DST
+  other than NOD, or SRC neither DNO nor a station one of the last
+  commands went to - is not ours: it is counted (CH_ForeignCount, the
+  last one's CH_ForeignSrc/CH_ForeignDst) and dropped, not delivered.
+  Commands are taken from any SRC, as a slave must (SPEC 6).
 
   As in the SofCon design the link dialogue (ACK after a good frame,
   NAK/ENQ/retries, polling) is the application's: it sends tpAckNak, tpEnq,
@@ -35,7 +42,7 @@ unit ChnDF1;
 interface
 
 uses
-  ChnTypes, ChnVirt, ChnDF1Codec;
+  ChnTypes, ChnVirt, ChnProto, ChnDF1Codec;
 
 const
   cVerNo = $0100;                 { BCD: version 1.00 of the port }
@@ -164,11 +171,7 @@ type
   tSlRecRecord  = tRecRecord;    pSlRecRecord  = pRecRecord;
 
   pChnDF1 = ^tChnDF1;
-  tChnDF1 = object(tChnVirt)
-    CH_RTick   : Boolean;     { inside ChReceiveTick (debugging aid) }
-    CH_SBuff   : Pointer;     { send buffer (wire bytes of the last ChSend) }
-    CH_MSBuff  : Word;        { its size }
-    CH_LRMess  : Word;        { Len of the last received message }
+  tChnDF1 = object(tChnProto)
     CH_FlCrc   : Boolean;     { CRC-16, else BCC }
     CH_RSumBcc : tBcc8;       { receiver's running BCC sum }
     CH_SSumBcc : tBcc8;       { BCC of the last frame sent }
@@ -178,7 +181,6 @@ type
     CH_FullDup : Boolean;
     CH_DLE     : Boolean;     { receiver has just seen a DLE }
     CH_NakByte : Byte;        { NAK= : byte sent as NAK ($15 or $0F) }
-    CH_SLen    : Word;        { wire bytes of the last frame in CH_SBuff (tracing) }
     CH_Dec     : tDF1Decoder; { receive automaton }
     CH_Event   : tDF1Event;   { what is waiting while CH_RCtrl = CHS_ReceiveReady }
     CH_DupDetect: Boolean;    { DUP=ON }
@@ -188,6 +190,10 @@ type
     CH_DupTns  : Word;
     CH_DupAck  : Boolean;     { its ACK still waits for the layer below }
     CH_Sent    : tDF1SentLog; { last commands sent, to restore a reply's CF }
+    { full duplex: replies addressed to another station (DST <> NOD, or
+      from a station this layer sent no command to), dropped }
+    CH_ForeignCount: LongInt;
+    CH_ForeignSrc, CH_ForeignDst: Byte;   { SRC and DST of the last of them }
 
     constructor Init;
     constructor ChInitParam(const S: tParamStr);
@@ -196,16 +202,26 @@ type
     function  ChOwnParams: tParamStr; virtual;
     function  ChMaxNode: tNode; virtual;
     procedure ChConnect; virtual;
-    procedure ChDisConnect; virtual;
-    procedure ChSend(Buff: Pointer; Len: Word); virtual;
-    procedure ChReceive(var Len: Word); virtual;
-    procedure ChReceiveFlush; virtual;
-    procedure ChReceiveTick; virtual;
+    { the codec (tChnProto) }
+    procedure ChRxReset; virtual;
+    procedure ChRxBegin; virtual;
+    function  ChRxByte(B: Byte; var Err: tChResult): Boolean; virtual;
+    procedure ChRxEnd; virtual;
+    function  ChRxDeliver(var Len: Word): tChResult; virtual;
+    procedure ChRxTaken; virtual;
+    function  ChSendCheck(Buff: Pointer; Len: Word): tChResult; virtual;
+    function  ChEncode(Buff: Pointer; Len: Word; var N: Word): tChResult; virtual;
+    procedure ChSent(Buff: Pointer); virtual;
     { the codec's view of the current settings }
     function  ChDF1Config: tDF1Config;
     { DUP=ON: True (and the ACK sent) when the message just decoded repeats
       the last command from its source }
     function  ChDuplicate: Boolean;
+    { full duplex: True (and counted) when the reply just decoded is not
+      addressed to this station: DST <> NOD, or SRC is neither DNO nor a
+      station one of the last commands went to. Commands are never
+      foreign: a slave takes them from any SRC (SPEC 6). }
+    function  ChForeignReply: Boolean;
     procedure ChSendDupAck;
   end;
 
@@ -222,18 +238,13 @@ const
 constructor tChnDF1.Init;
 begin
   inherited Init;
-  ChSetType(cName);
-  CH_RTick   := False;
-  CH_SBuff   := nil;
-  CH_MSBuff  := 0;
-  CH_LRMess  := 0;
+  ChProtoSetup(cName, 16, MaxTBuff, DF1DefaultSBuff);
   CH_Master  := True;
   CH_FullDup := True;
   CH_FlCrc   := True;
   CH_DLE     := False;
   IData      := 0;
   CH_NakByte := NAK;
-  CH_SLen    := 0;
   CH_RSumBcc := 0;
   CH_SSumBcc := 0;
   CH_RSumCrc := 0;
@@ -245,6 +256,9 @@ begin
   CH_DupSrc := 0;
   CH_DupTns := 0;
   CH_DupAck := False;
+  CH_ForeignCount := 0;
+  CH_ForeignSrc := 0;
+  CH_ForeignDst := 0;
   DF1SentInit(CH_Sent);
   DF1DecoderInit(CH_Dec, ChDF1Config);
 end;
@@ -258,7 +272,6 @@ end;
 destructor tChnDF1.Done;
 begin
   inherited Done;
-  ChFreeSendBuffer(CH_SBuff, CH_MSBuff);
   if CH_LastCmds <> nil then
     Dispose(CH_LastCmds);
   CH_LastCmds := nil;
@@ -303,8 +316,6 @@ begin
       else
         CH_NakByte := NAKAlt;
   end
-  else if Key = 'LSB' then
-    Result := ChParamSendBuffer(S, 16, MaxTBuff, CmdL, CH_SBuff, CH_MSBuff)
   else
     Result := inherited ChSetOneParam(S, CmdL);
 end;
@@ -319,9 +330,7 @@ begin
     NakText := '15';
   Result := inherited ChOwnParams + FlagText('MAS', MasterChoice, CH_Master) +
     FlagText('FHD', DuplexChoice, CH_FullDup) + FlagText('CRC', OnOffChoice, CH_FlCrc) +
-    ' NAK=' + NakText + FlagText('DUP', OnOffChoice, CH_DupDetect);
-  if CH_MSBuff > 0 then
-    Result := Result + ParamText('LSB', CH_MSBuff);
+    ' NAK=' + NakText + FlagText('DUP', OnOffChoice, CH_DupDetect) + ChLsbText;
 end;
 
 procedure tChnDF1.ChConnect;
@@ -329,9 +338,6 @@ begin
   inherited ChConnect;
   if CH_Result = res_Ok then
   begin
-    DF1DecoderInit(CH_Dec, ChDF1Config);
-    CH_Event := dfNone;
-    CH_DLE := False;
     { a new session: no command seen yet from anybody }
     if CH_LastCmds <> nil then
       FillChar(CH_LastCmds^, SizeOf(CH_LastCmds^), 0);
@@ -339,36 +345,24 @@ begin
   end;
 end;
 
-procedure tChnDF1.ChDisConnect;
+function tChnDF1.ChSendCheck(Buff: Pointer; Len: Word): tChResult;
 begin
-  inherited ChDisConnect;
-  if CH_Result = res_Ok then
-  begin
-    CH_RCtrl := CHS_RecInactive;
-    CH_Event := dfNone;
-  end;
-end;
-
-procedure tChnDF1.ChSend(Buff: Pointer; Len: Word);
-var
-  N: Word;
-  P: PByte;
-begin
-  { Len only counts for data messages: the codec checks it }
-  if not ChSendAllowed(Buff, Len, False) then
-    Exit;
   { DST/STN are one byte: ChDestNode(256) must not go to station 0 }
   if (CH_DNode > 255) and
      (Byte(pSendRecord(Buff)^.MessType) in [Ord(tpDataMess), Ord(tpPoll)]) then
-  begin
-    CH_SResult := res_BadMessage;
+    Result := res_BadMessage
+  else
+    Result := res_Ok;
+end;
+
+function tChnDF1.ChEncode(Buff: Pointer; Len: Word; var N: Word): tChResult;
+var
+  P: PByte;
+begin
+  { Len only counts for data messages: the codec checks it }
+  Result := DF1Encode(ChDF1Config, pSendRecord(Buff)^, Len, CH_SBuff^, CH_MSBuff, N);
+  if Result <> res_Ok then
     Exit;
-  end;
-  ChSendBuffer(CH_SBuff, CH_MSBuff, DF1DefaultSBuff);
-  N := 0;
-  CH_SResult := DF1Encode(ChDF1Config, pSendRecord(Buff)^, Len, CH_SBuff^, CH_MSBuff, N);
-  if CH_SResult <> res_Ok then
-    Exit;                           { nothing is sent }
   { keep the checksum of a data frame for inspection, as the manual's fields }
   P := CH_SBuff;
   if pSendRecord(Buff)^.MessType = tpDataMess then
@@ -376,10 +370,11 @@ begin
       CH_SSumCrc := P[N - 2] or (P[N - 1] shl 8)
     else
       CH_SSumBcc := P[N - 1];
-  CH_SLen := N;
-  ChLowSend(CH_SBuff, N);
-  if CH_SResult = res_Ok then
-    DF1SentNote(CH_Sent, Byte(CH_DNode), pSendRecord(Buff)^);
+end;
+
+procedure tChnDF1.ChSent(Buff: Pointer);
+begin
+  DF1SentNote(CH_Sent, Byte(CH_DNode), pSendRecord(Buff)^);
 end;
 
 const
@@ -426,79 +421,73 @@ begin
   end;
 end;
 
-procedure tChnDF1.ChReceiveTick;
-var
-  B: Byte;
-  Count: Integer;
+function tChnDF1.ChForeignReply: Boolean;
 begin
-  if (CH_State <> CHS_Connect) or (CH_RCtrl = CHS_ReceiveReady) then
-    Exit;
-  CH_RTick := True;
+  Result := CH_FullDup and (CH_Dec.Msg.MessType = tpDataMess) and
+    (CH_Dec.Msg.CF and MskCF_Reply <> 0) and
+    ((CH_Dec.Dst <> Byte(CH_Node)) or
+     ((CH_Dec.Src <> Byte(CH_DNode)) and not DF1SentTo(CH_Sent, CH_Dec.Src)));
+  if Result then
+  begin
+    Inc(CH_ForeignCount);
+    CH_ForeignSrc := CH_Dec.Src;
+    CH_ForeignDst := CH_Dec.Dst;
+  end;
+end;
+
+procedure tChnDF1.ChRxReset;
+begin
+  DF1DecoderInit(CH_Dec, ChDF1Config);
+  CH_Event := dfNone;
+  CH_DLE := False;
+end;
+
+procedure tChnDF1.ChRxBegin;
+begin
   if CH_DupAck then
     ChSendDupAck;              { the layer below was busy last time }
   { settings may have changed (ChSetParam, or fields set directly) }
   CH_Dec.Cfg := ChDF1Config;
-  Count := 0;
-  while (Count < MaxBytesPerTick) and ChLowGetByte(B) do
-  begin
-    Inc(Count);
-    CH_Event := DF1Feed(CH_Dec, B);
-    if (CH_Event = dfMessage) and ChDuplicate then
-      CH_Event := dfNone;      { ACKed, not delivered again }
-    if CH_Event <> dfNone then
-      Break;
-  end;
+end;
+
+function tChnDF1.ChRxByte(B: Byte; var Err: tChResult): Boolean;
+begin
+  CH_Event := DF1Feed(CH_Dec, B);
+  if (CH_Event = dfMessage) and (ChDuplicate or ChForeignReply) then
+    CH_Event := dfNone;        { ACKed and not delivered again, or not ours }
+  if CH_Event = dfError then
+    Err := CH_Dec.Err;
+  Result := CH_Event <> dfNone;
+end;
+
+procedure tChnDF1.ChRxEnd;
+begin
   CH_RSumBcc := Bcc8Final(CH_Dec.Bcc);
   CH_RSumCrc := CH_Dec.Crc;
   CH_DLE := CH_Dec.State in [dsIdleDle, dsStnDle, dsSohStx, dsBodyDle, dsPollStnDle];
-  if CH_Event <> dfNone then
-    CH_RCtrl := CHS_ReceiveReady
-  else if CH_Dec.State = dsIdle then
-    CH_RCtrl := CHS_Receiving
-  else
+  if (CH_RCtrl = CHS_Receiving) and (CH_Dec.State <> dsIdle) then
     CH_RCtrl := CHS_ProtoBase + CH_Dec.State;   { inside a frame }
-  CH_RTick := False;
 end;
 
-procedure tChnDF1.ChReceive(var Len: Word);
+function tChnDF1.ChRxDeliver(var Len: Word): tChResult;
 begin
-  if not ChReceiveAllowed(Len) then
-    Exit;
-  if CH_RCtrl <> CHS_ReceiveReady then
-    ChReceiveTick;
-  if CH_RCtrl <> CHS_ReceiveReady then
+  if CH_Dec.MsgLen > CH_RSize then
+    Exit(res_ErrLen);                 { does not fit: nothing is written }
+  Move(CH_Dec.Msg, CH_RBuff^, CH_Dec.MsgLen);
+  Len := CH_Dec.MsgLen;
+  if CH_Dec.Msg.MessType in [tpDataMess, tpPoll] then
   begin
-    CH_RResult := res_NoMessage;
-    Exit;
+    CH_RSNode := CH_Dec.Src;
+    CH_RDNode := CH_Dec.Dst;
   end;
-  if CH_Event = dfError then
-    CH_RResult := CH_Dec.Err
-  else if CH_Dec.MsgLen > CH_RSize then
-    CH_RResult := res_ErrLen          { does not fit: nothing is written }
-  else
-  begin
-    Move(CH_Dec.Msg, CH_RBuff^, CH_Dec.MsgLen);
-    Len := CH_Dec.MsgLen;
-    if CH_Dec.Msg.MessType in [tpDataMess, tpPoll] then
-    begin
-      CH_RSNode := CH_Dec.Src;
-      CH_RDNode := CH_Dec.Dst;
-    end;
-    if CH_Dec.Msg.MessType = tpDataMess then   { a reply gets its FNC back }
-      pRecRecord(CH_RBuff)^.CF := DF1ReplyCF(CH_Sent, CH_Dec.Src, CH_Dec.Msg);
-    CH_RResult := res_Ok;
-  end;
-  CH_LRMess := Len;
-  CH_Event := dfNone;
-  CH_RCtrl := CHS_Receiving;
+  if CH_Dec.Msg.MessType = tpDataMess then   { a reply gets its FNC back }
+    pRecRecord(CH_RBuff)^.CF := DF1ReplyCF(CH_Sent, CH_Dec.Src, CH_Dec.Msg);
+  Result := res_Ok;
 end;
 
-procedure tChnDF1.ChReceiveFlush;
+procedure tChnDF1.ChRxTaken;
 begin
-  DF1DecoderReset(CH_Dec);
   CH_Event := dfNone;
-  CH_DLE := False;
-  inherited ChReceiveFlush;
 end;
 
 function tAddChnDF1.ChInit: pChnVirt;
@@ -506,9 +495,12 @@ begin
   Result := New(pChnDF1, Init);
 end;
 
+const
+  DF1Texts: array[0..2] of tProtoText = (
+    (Code: res_ErrFrame; Text: 'malformed frame'),
+    (Code: res_ErrSum;   Text: 'checksum (BCC/CRC) error'),
+    (Code: res_ErrLen;   Text: 'message too long (data or receive buffer)'));
+
 initialization
-  ChnCollection^.Insert(New(pAddChnDF1, Init(cName)));
-  ChRegisterResultText(cName, res_ErrFrame, 'malformed frame');
-  ChRegisterResultText(cName, res_ErrSum, 'checksum (BCC/CRC) error');
-  ChRegisterResultText(cName, res_ErrLen, 'message too long (data or receive buffer)');
+  ProtoRegister(New(pAddChnDF1, Init(cName)), DF1Texts);
 end.

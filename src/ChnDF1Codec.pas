@@ -195,6 +195,8 @@ procedure DF1SentNote(var L: tDF1SentLog; Dst: Byte; constref Rec: tSendRecord);
   noted command that command's CF or $4000 (the newest match, one sent to
   Src preferred), else Rec.CF unchanged. }
 function DF1ReplyCF(const L: tDF1SentLog; Src: Byte; constref Rec: tRecRecord): Word;
+{ True when one of the noted commands went to Dst. }
+function DF1SentTo(const L: tDF1SentLog; Dst: Byte): Boolean;
 
 implementation
 
@@ -737,6 +739,16 @@ begin
   end;
   if Found >= 0 then
     Result := L.Items[Found].CF or $4000;
+end;
+
+function DF1SentTo(const L: tDF1SentLog; Dst: Byte): Boolean;
+var
+  I: LongInt;
+begin
+  for I := 0 to L.Count - 1 do
+    if L.Items[I].Dst = Dst then
+      Exit(True);
+  Result := False;
 end;
 
 end.

@@ -38,6 +38,10 @@ uses
 const
   DF1LinkTimeoutMs = 1000;   { the RACOM note's link timeout }
   DF1LinkTries     = 3;
+  { messages one DF1MasterStep takes at most: all that was received, but a
+    peer that never stops (50 ENQs a millisecond) cannot keep the step
+    from running the timers }
+  DF1MaxFramesPerStep = 64;
 
 type
   tDF1Idle = procedure(Data: Pointer);
@@ -115,8 +119,8 @@ function DF1Transact(Chn: pChnVirt; constref Req: tSendRecord; ReqLen: Word;
 
 { The same exchange stepped by the caller's poll loop (a program that must
   keep serving other lines): DF1MasterStart sends the command, then each
-  DF1MasterStep looks at the channel once, without waiting, and returns
-  True when the exchange is over; M.Result is then what DF1Transact would
+  DF1MasterStep takes everything the channel has received, without
+  waiting, runs the timers and returns True when the exchange is over; M.Result is then what DF1Transact would
   return, M.Rep/M.RepLen the reply, M.Naks the NAKs the command got. M
   must stay where it is until then (the channel receives into M.Rep); the
   channel's receive buffer is given back at the end. }
@@ -134,6 +138,9 @@ type
     Naks     : LongInt;
     NaksOut  : LongInt;        { broken replies NAKed (full duplex) }
     Stale    : LongInt;        { replies to other commands, ACKed and ignored }
+    Ignored  : LongInt;        { broken frames and stray symbols while waiting for the ACK }
+    EnqsIn   : LongInt;        { ENQs of the peer, answered with LastAck }
+    LastAck  : Boolean;        { the last ACK/NAK this master sent was an ACK (none: NAK) }
     Acked    : Boolean;        { the command was ACKed (or answered) }
     EnqSent  : Boolean;
     FullDup  : Boolean;
@@ -152,6 +159,10 @@ function DF1MasterStart(var M: tDF1Master; Chn: pChnVirt; constref Req: tSendRec
   ReqLen: Word; TimeoutMs: LongInt; Log: tDF1LogProc = nil; LogWire: Boolean = False): Boolean;
 { One look at the channel; True when the exchange is over (M.State = dmDone). }
 function DF1MasterStep(var M: tDF1Master): Boolean;
+{ The tick (ChMsTick) at which M's next timer runs out: how long a
+  caller with nothing else to do may wait (ChnWaitUntil) before the next
+  DF1MasterStep. }
+function DF1MasterWaitEnd(const M: tDF1Master): QWord;
 { Abandon an exchange under way (M.Result res_Timeout): the channel's
   receive buffer is given back; a reply that comes later is the caller's. }
 procedure DF1MasterCancel(var M: tDF1Master);
@@ -174,11 +185,14 @@ function DF1OpenStack(const Params: AnsiString; TimeoutMs: LongInt; out Err: Ans
 implementation
 
 uses
-  SysUtils, uString;
+  SysUtils, uString, ChnWait;
+
+var
+  DF1NumName: Word;    { ChNumName(ChnDF1.cName), the registry's number of DF1 }
 
 function IsDF1Channel(Chn: pChnVirt): Boolean;
 begin
-  Result := (Chn <> nil) and (Chn^.CH_Type = ChnDF1.cName);
+  Result := (Chn <> nil) and (Chn^.CH_NumName = DF1NumName);
 end;
 
 function DF1WireText(Chn: pChnVirt): AnsiString;
@@ -192,8 +206,9 @@ end;
 { Wait until Chn reaches Want, an error result or the deadline. }
 function WaitState(Chn: pChnVirt; Want: tChState; Deadline: QWord): Boolean;
 begin
+  { a state change need not end the program-wide wait: look every 10 ms }
   while (Chn^.ChReady <> Want) and (Chn^.ChResult = res_Ok) and (ChMsTick <= Deadline) do
-    Sleep(1);
+    ChnWaitUntil(Deadline + 1, 10);
   Result := Chn^.ChReady = Want;
 end;
 
@@ -201,11 +216,13 @@ function DF1OpenStack(const Params: AnsiString; TimeoutMs: LongInt; out Err: Ans
 var
   Step: AnsiString;
   R: tChResult;
+  Why: ShortString;
 begin
   Err := '';
-  if Length(Params) > High(tParamStr) then
+  Why := '';
+  if ParamLengthCheck(Length(Params), Why) <> res_Ok then
   begin
-    Err := 'parameter string longer than ' + IntToStr(High(tParamStr)) + ' characters';
+    Err := 'parameter string too long: ' + Why;   { refused, never cut }
     Exit(nil);
   end;
   Result := ChnCollection^.ChNewInit(ChnDF1.cName);
@@ -483,8 +500,7 @@ procedure MasterFinish(var M: tDF1Master; R: tChResult);
 begin
   M.Result := R;
   M.State := dmDone;
-  M.Chn^.CH_RBuff := M.OldBuf;
-  M.Chn^.CH_RSize := M.OldSize;
+  M.Chn^.ChReceiveBuffer(M.OldBuf, M.OldSize);
 end;
 
 function MasterSend(var M: tDF1Master; constref R: tSendRecord; Len: Word): Boolean;
@@ -514,6 +530,7 @@ begin
   begin
     Link.FlAck := Ack;
     Len := 2;
+    M.LastAck := Ack;           { what a peer's ENQ gets again }
   end;
   Result := MasterSend(M, Link, Len);
 end;
@@ -602,8 +619,7 @@ begin
   M.FullDup := pChnDF1(Chn)^.CH_FullDup;
   { the caller's receive buffer comes back at the end: M.Rep is often a
     local of the caller, the channel must not keep pointing at it }
-  M.OldBuf := Chn^.CH_RBuff;
-  M.OldSize := Chn^.CH_RSize;
+  Chn^.ChGetReceiveBuffer(M.OldBuf, M.OldSize);
   Chn^.ChReceiveBuffer(@M.Rep, SizeOf(M.Rep));
   MasterTry(M);
   Result := M.State <> dmDone;
@@ -618,44 +634,42 @@ begin
   end;
 end;
 
-function DF1MasterStep(var M: tDF1Master): Boolean;
-var
-  Got: Boolean;
+{ One message from the channel is in M.Rep (Got: good): act on it. }
+procedure MasterTake(var M: tDF1Master; Got: Boolean);
 begin
-  Result := True;
-  if M.State = dmDone then
-    Exit;
-  if M.Chn^.ChReceiveReady = CHS_ReceiveReady then
+  if Got and (M.Rep.MessType = tpDataMess) then
+    MasterReply(M)                     { in dmWaitAck: the reply overtook the ACK }
+  else if Got and (M.Rep.MessType = tpEnq) then
   begin
-    M.RepLen := 0;
-    M.Chn^.ChReceive(M.RepLen);
-    Got := M.Chn^.ChReceiveResult = res_Ok;
-    if Got then
-      MasterSay(M, '<- ' + DF1Describe(M.Rep, M.RepLen))
-    else
-      MasterSay(M, '<- broken frame: ' + M.Chn^.ChResultStr(M.Chn^.ChReceiveResult));
-    if Got and (M.Rep.MessType = tpDataMess) then
-      MasterReply(M)                   { in dmWaitAck: the reply overtook the ACK }
-    else if not Got and (M.State = dmWaitReply) and M.FullDup then
-    begin
-      Inc(M.NaksOut);                  { a broken reply: ask for it again }
-      MasterLink(M, tpAckNak, False);
-    end
-    else if M.State = dmWaitAck then
-    begin
-      if Got and (M.Rep.MessType = tpAckNak) and M.Rep.FlAck then
-        MasterAcked(M)
-      else
-      begin
-        if Got and (M.Rep.MessType = tpAckNak) then
-          Inc(M.Naks);
-        MasterTry(M);                  { NAK, or anything else: again }
-      end;
-    end
-    else if not M.FullDup then
-      MasterPoll(M);                   { half duplex: EOT, a stray ACK ... }
+    Inc(M.EnqsIn);                     { the peer missed our ACK/NAK: again }
+    MasterLink(M, tpAckNak, M.LastAck);
   end
-  else if M.Chn^.ChResult <> res_Ok then
+  else if not Got and (M.State = dmWaitReply) and M.FullDup then
+  begin
+    Inc(M.NaksOut);                    { a broken reply: ask for it again }
+    MasterLink(M, tpAckNak, False);
+  end
+  else if M.State = dmWaitAck then
+  begin
+    if Got and (M.Rep.MessType = tpAckNak) and M.Rep.FlAck then
+      MasterAcked(M)
+    else if Got and (M.Rep.MessType = tpAckNak) then
+    begin
+      Inc(M.Naks);
+      MasterTry(M);                    { NAK: the next try }
+    end
+    else
+      Inc(M.Ignored);                  { noise, EOT ...: no try is used up; the
+                                         timeout (ENQ, then again) still runs }
+  end
+  else if not M.FullDup then
+    MasterPoll(M);                     { half duplex: EOT, a stray ACK ... }
+end;
+
+{ Nothing (more) received: the line and the timers. }
+procedure MasterTimers(var M: tDF1Master);
+begin
+  if M.Chn^.ChResult <> res_Ok then
   begin
     MasterSay(M, '-- line lost: ' + M.Chn^.ChResultStr(M.Chn^.ChResult));
     MasterFinish(M, M.Chn^.ChResult);  { no answer can come any more }
@@ -681,7 +695,43 @@ begin
       M.Until_ := ChMsTick + QWord(M.TimeoutMs)
     else
       MasterPoll(M);
+end;
+
+function DF1MasterStep(var M: tDF1Master): Boolean;
+var
+  Got: Boolean;
+  N: LongInt;
+begin
+  { everything already received, in one step: the ACK and the reply often
+    come in one chunk, and the program's wait would not wake for the
+    second. After the first look only while the channel holds input it
+    has pulled in: a look may wait IDL ms for new input }
+  N := 0;
+  while (M.State <> dmDone) and (N < DF1MaxFramesPerStep) and
+        ((N = 0) or M.Chn^.ChHoldsInput) and (M.Chn^.ChReceiveReady = CHS_ReceiveReady) do
+  begin
+    Inc(N);
+    M.RepLen := 0;
+    M.Chn^.ChReceive(M.RepLen);
+    Got := M.Chn^.ChReceiveResult = res_Ok;
+    if Got then
+      MasterSay(M, '<- ' + DF1Describe(M.Rep, M.RepLen))
+    else
+      MasterSay(M, '<- broken frame: ' + M.Chn^.ChResultStr(M.Chn^.ChReceiveResult));
+    MasterTake(M, Got);
+  end;
+  if M.State <> dmDone then
+    MasterTimers(M);                   { also on a line that never stops babbling }
   Result := M.State = dmDone;
+end;
+
+{ When what M waits for now runs out (the next timer). }
+function DF1MasterWaitEnd(const M: tDF1Master): QWord;
+begin
+  Result := M.Until_;
+  if (M.State = dmWaitReply) and (M.Deadline < Result) then
+    Result := M.Deadline;
+  Inc(Result);                         { the timers fire after it }
 end;
 
 function DF1Transact(Chn: pChnVirt; constref Req: tSendRecord; ReqLen: Word;
@@ -697,11 +747,13 @@ begin
       if Assigned(Idle) then
         Idle(IdleData)
       else
-        Sleep(1);
+        ChnWaitUntil(DF1MasterWaitEnd(M));  { the program-wide wait, to the next timer }
     until DF1MasterStep(M);
   Rep := M.Rep;
   RepLen := M.RepLen;
   Result := M.Result;
 end;
 
+initialization
+  DF1NumName := ChNumName(ChnDF1.cName);
 end.

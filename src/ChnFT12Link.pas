@@ -17,6 +17,9 @@
       - an FCV = 1 service to a link not reset (new record, or after a
         service failed) is preceded by a reset of remote link;
       - SEND/NO REPLY (FC 4) and the broadcast address expect no reply.
+    FT12PrimaryStart / FT12PrimaryStep are the same service stepped by the
+    program's own loop (many lines, one ChnWaitAny); FT12Transact is them
+    with the program-wide wait (or the caller's Idle) between the steps.
   * tFT12Station / FT12StationStep, the secondary (slave): answers the
     unbalanced functions, and when an FCV = 1 frame carries the same FCB
     as the last one it accepted it sends the last reply again without
@@ -35,6 +38,22 @@
     repeats half a timeout later than station A, so the two do not meet
     again (docs/ChnFT1_2.md, balanced mode).
 
+  Late answers (both primaries). An answer carries nothing that says which
+  transmission it answers, so after a repetition the answer to the first
+  transmission, held up on the line longer than the timeout, and the
+  answer to the repetition may both arrive - the second while the next
+  request is out, where it would confirm a frame the secondary never got
+  (issue 24). The primary therefore keeps count: after a request that was
+  sent more than once (or not answered at all) answers to it may still
+  come (Suspect), and before its next request it sends a fence, request
+  status of link (FC 9). Its answer, status of link (FC 11), fits no other
+  request, and on a line that keeps order it arrives after every answer
+  the secondary sent before; every other answer meanwhile is late and
+  ignored (Stale). Status answers owed by earlier FC 9 transmissions are
+  counted too (OwedStatus; forgotten after 4 timeouts without one) and
+  skipped by the next FC 9. A fresh answer to any other request proves
+  that nothing older is still on the way.
+
   Not covered: DFC flow control beyond holding back after DFC = 1, the
   "link service not functioning" (FC 14) state. }
 unit ChnFT12Link;
@@ -49,6 +68,9 @@ uses
 const
   FT12LinkTimeoutMs = 1000;
   FT12LinkRetries   = 3;
+  { frames one step takes at most: all that was received, but a peer that
+    never stops sending cannot keep a step from running the timers }
+  FT12MaxFramesPerStep = 64;
 
   { secondary function codes of IEC 60870-5-2 that the manual does not name }
   FCS_NotFunctioning  = 14;  { link service not functioning }
@@ -66,6 +88,12 @@ type
     Dfc     : Boolean;   { DFC of the last reply: secondary cannot take more }
     Repeats : LongInt;   { repetitions sent after a missing reply }
     Ignored : LongInt;   { frames ignored while waiting (other address, broken) }
+    { late answers (unit header): }
+    Suspect   : Boolean; { answers to earlier transmissions may still come: fence first }
+    OwedStatus: LongInt; { status of link answers (FC 11) that may still come }
+    StatusAt  : QWord;   { when a status request last went out }
+    Fences    : LongInt; { fences (FC 9) sent before a service }
+    Stale     : LongInt; { late answers recognised and ignored }
   end;
 
   { Secondary callbacks; Data is tFT12Station.Data.
@@ -121,6 +149,55 @@ procedure FT12LinkInit(var Link: tFT12Link; Addr: Word);
 function FT12Transact(Chn: pChnVirt; var Link: tFT12Link; constref Req: tSendRecord;
   ReqLen: Word; var Rep: tRecRecord; var RepLen: Word; TimeoutMs: LongInt;
   Retries: LongInt; Idle: tFT12Idle = nil; IdleData: Pointer = nil): tChResult;
+
+{ The same service stepped by the caller's loop (a program that must keep
+  serving other lines): FT12PrimaryStart checks and sends (False: nothing
+  sent, P.Result says why - the results of FT12Transact), then each
+  FT12PrimaryStep takes everything the channel has received, without
+  waiting, runs the timer and returns True when the service is over;
+  P.Result, P.Rep/P.RepLen are then what FT12Transact returns. P and Link
+  must stay where they are until then (the channel receives into P.Rep);
+  the channel's receive buffer and DNO are given back at the end. }
+type
+  tFT12PrimaryState = (fpWaiting, fpDraining, fpDone);
+  tFT12Primary = record
+    Chn      : pChnVirt;
+    Link     : ^tFT12Link;
+    Req      : tSendRecord;
+    ReqLen   : Word;
+    Out      : tSendRecord;     { what goes on the line: the reset or the service }
+    OutLen   : Word;
+    Rep      : tRecRecord;
+    RepLen   : Word;
+    State    : tFT12PrimaryState;
+    Result   : tChResult;
+    Fcv      : Boolean;
+    NoReply  : Boolean;
+    Resetting: Boolean;         { the reset in front of an FCV = 1 service is out }
+    Fencing  : Boolean;         { the fence in front of them is out (FC 9) }
+    StatusSkip: LongInt;        { status answers owed from before: not this one's }
+    Try_     : LongInt;         { repetitions of Out so far }
+    Retries  : LongInt;
+    TimeoutMs: LongInt;
+    Until_   : QWord;           { end of the wait for this transmission }
+    OldBuf   : Pointer;
+    OldSize  : Word;
+    OldDNode : tNode;
+  end;
+
+function FT12PrimaryStart(var P: tFT12Primary; Chn: pChnVirt; var Link: tFT12Link;
+  constref Req: tSendRecord; ReqLen: Word; TimeoutMs: LongInt; Retries: LongInt): Boolean;
+function FT12PrimaryStep(var P: tFT12Primary): Boolean;
+{ The tick (ChMsTick) at which P's timer runs out: how long a caller with
+  nothing else to do may wait (ChnWaitUntil) before the next step. }
+function FT12PrimaryWaitEnd(const P: tFT12Primary): QWord;
+{ Abandon a service under way (P.Result res_Timeout; the link counts as
+  not reset). }
+procedure FT12PrimaryCancel(var P: tFT12Primary);
+
+{ True when Chn is the top of a tChnFT1_2 stack (by the registry's number
+  of the layer type). }
+function IsFT12Channel(Chn: pChnVirt): Boolean;
 
 { Reset of remote link (FC 0) as a fixed frame. }
 function FT12ResetLink(Chn: pChnVirt; var Link: tFT12Link; TimeoutMs: LongInt;
@@ -208,6 +285,15 @@ type
     Ignored    : LongInt;     { answers that do not fit, or from another address }
     BadDir     : LongInt;     { frames with the DIR of this station's side }
     Broken     : LongInt;     { other broken frames (checksum, length, ...) }
+    { answers that may still come for earlier transmissions (see "Late
+      answers" in the unit header) }
+    Suspect    : Boolean;     { other than status of link: fence first }
+    OwedStatus : LongInt;     { status of link answers (FC 11) }
+    StatusSkip : LongInt;     { of those, to skip for the request now out }
+    StatusAt   : QWord;       { when a status request last went out }
+    Fencing    : Boolean;     { Out is a fence: FC 9 to flush late answers }
+    Fences     : LongInt;     { fences sent }
+    Stale      : LongInt;     { late answers recognised and ignored }
   end;
 
 { Bind B to a balanced tChnFT1_2 and set the defaults; the channel's
@@ -219,8 +305,8 @@ function FT12BalancedInit(var B: tFT12Balanced; Chn: pChnVirt): tChResult;
   is full, res_TooLong above MaxDataLen, res_BadLen for 0. }
 function FT12BalancedSend(var B: tFT12Balanced; Buf: PByte; Len: Word;
   Confirm: Boolean): tChResult;
-{ Take at most one frame and act on it, then run the primary's timers.
-  True when a frame was taken. }
+{ Take every frame already received (at most FT12MaxFramesPerStep) and act
+  on each, then run the primary's timers. True when a frame was taken. }
 function FT12BalancedStep(var B: tFT12Balanced): Boolean;
 { Nothing queued and no request outstanding. }
 function FT12BalancedQuiet(const B: tFT12Balanced): Boolean;
@@ -229,7 +315,15 @@ function FT12BalStateName(S: tFT12BalState): ShortString;
 implementation
 
 uses
-  SysUtils, ChnFT12Codec;
+  SysUtils, ChnFT12Codec, ChnWait;
+
+var
+  FT12NumName: Word;   { ChNumName(ChnFT1_2.cName) }
+
+function IsFT12Channel(Chn: pChnVirt): Boolean;
+begin
+  Result := (Chn <> nil) and (Chn^.CH_NumName = FT12NumName);
+end;
 
 function FT12FcvOf(FC: Byte): Boolean;
 begin
@@ -278,156 +372,335 @@ begin
     Result := True;
 end;
 
-function Exchange(Chn: pChnVirt; var Link: tFT12Link; constref Req: tSendRecord;
-  ReqLen: Word; var Rep: tRecRecord; var RepLen: Word; TimeoutMs: LongInt;
-  Retries: LongInt; Idle: tFT12Idle; IdleData: Pointer): tChResult;
-var
-  F: pChnFT1_2;
-  Out: tSendRecord;
-  Fcv, NoReply: Boolean;
-  Try_: Integer;
-  Until_: QWord;
-  Len: Word;
-  Junk: tRecRecord;
+procedure PrimaryPhaseEnd(var P: tFT12Primary; R: tChResult); forward;
+
+{ Requests answered by status of link (FC 11). }
+function IsStatusRequest(FC: Byte): Boolean;
 begin
-  F := pChnFT1_2(Chn);
-  RepLen := 0;
-  Fcv := FT12FcvOf(Req.FC);
-  NoReply := (Req.FC = FCM_UserDataNoRep) or
-    ((F^.CH_AdrLen > 0) and (Link.Addr = FT12Broadcast(F^.CH_AdrLen)));
-  if NoReply and (Req.FC <> FCM_UserDataNoRep) then
-    Exit(res_BadMessage);               { broadcast is SEND/NO REPLY only }
-  if Fcv and not Link.Reset then
+  Result := FC in [FCM_ReqReplyAcces, FCM_ReqLinkState];
+end;
+
+{ The phase that starts now: Out built from the service (or the reset in
+  front of it), sent for the first time. }
+procedure PrimarySendOut(var P: tFT12Primary);
+var
+  R: tChResult;
+begin
+  if P.Try_ > 0 then
+    Inc(P.Link^.Repeats);
+  if IsStatusRequest(P.Out.FC) then
   begin
-    { the secondary's FCB memory is unknown: reset it first }
-    FillChar(Out, SizeOf(Out), 0);
-    Out.MessType := tpShortM;
-    Out.FC := FCM_1stSetTransmit;
-    Result := Exchange(Chn, Link, Out, FixedLen(Chn), Rep, RepLen, TimeoutMs,
-      Retries, Idle, IdleData);
-    if Result <> res_Ok then
-      Exit;
-    RepLen := 0;
+    Inc(P.Link^.OwedStatus);            { the status answer it may bring }
+    P.Link^.StatusAt := ChMsTick;
   end;
-  FillChar(Out, SizeOf(Out), 0);
-  Move(Req, Out, ReqLen);
-  Out.FCV_DFC := Fcv;
-  Out.FCB_ACD := Fcv and Link.Fcb;      { FCB = 0 whenever FCV = 0 }
-  Chn^.CH_DNode := Link.Addr;
+  R := SendNow(P.Chn, P.Out, P.OutLen);   { a repetition: same FCB }
+  if R <> res_Ok then
+  begin
+    PrimaryPhaseEnd(P, R);
+    Exit;
+  end;
+  P.Until_ := ChMsTick + QWord(P.TimeoutMs);
+  if P.NoReply and not P.Resetting and not P.Fencing then
+    P.State := fpDraining
+  else
+    P.State := fpWaiting;
+end;
+
+procedure PrimaryFinish(var P: tFT12Primary; R: tChResult);
+begin
+  P.Result := R;
+  P.State := fpDone;
+  P.Chn^.ChReceiveBuffer(P.OldBuf, P.OldSize);   { the caller's again }
+  P.Chn^.ChDestNode(P.OldDNode);
+end;
+
+{ Build Out for the reset in front of the service (Resetting) or for the
+  service, drop what came late for an earlier service, send. }
+procedure PrimaryBegin(var P: tFT12Primary);
+var
+  Len: Word;
+begin
+  FillChar(P.Out, SizeOf(P.Out), 0);
+  if P.Fencing then
+  begin
+    Inc(P.Link^.Fences);
+    P.Out.MessType := tpShortM;
+    P.Out.FC := FCM_ReqLinkState;
+    P.OutLen := FixedLen(P.Chn);
+  end
+  else if P.Resetting then
+  begin
+    P.Out.MessType := tpShortM;
+    P.Out.FC := FCM_1stSetTransmit;
+    P.OutLen := FixedLen(P.Chn);
+  end
+  else
+  begin
+    Move(P.Req, P.Out, P.ReqLen);
+    P.OutLen := P.ReqLen;
+    P.Out.FCV_DFC := P.Fcv;
+    P.Out.FCB_ACD := P.Fcv and P.Link^.Fcb;   { FCB = 0 whenever FCV = 0 }
+  end;
+  P.Chn^.ChDestNode(P.Link^.Addr);
   { a late frame from before is no answer to this service }
-  Chn^.ChReceiveBuffer(@Junk, SizeOf(Junk));
-  while Chn^.ChReceiveReady = CHS_ReceiveReady do
+  P.Chn^.ChReceiveBuffer(@P.Rep, SizeOf(P.Rep));
+  while P.Chn^.ChReceiveReady = CHS_ReceiveReady do
   begin
     Len := 0;
-    Chn^.ChReceive(Len);
-  end;
-  Chn^.ChReceiveBuffer(@Rep, SizeOf(Rep));
-  for Try_ := 0 to Retries do
-  begin
-    if Try_ > 0 then
-      Inc(Link.Repeats);
-    Result := SendNow(Chn, Out, ReqLen);   { a repetition: same FCB }
-    if Result <> res_Ok then
-      Break;
-    if NoReply then
+    P.Chn^.ChReceive(Len);
+    if (P.Chn^.ChReceiveResult = res_Ok) and (P.Rep.MessType in [tpShortM, tpLongM]) and
+       (P.Chn^.CH_RSNode = P.Link^.Addr) then
     begin
-      { hand the frame to the line before returning }
-      Until_ := ChMsTick + QWord(TimeoutMs);
-      while (Chn^.ChSendReady <> CHS_SendReady) and (Chn^.ChResult = res_Ok) and
-            (ChMsTick <= Until_) do
-        if Assigned(Idle) then
-          Idle(IdleData);
-      Exit(Chn^.ChResult);
+      Inc(P.Link^.Stale);
+      if (P.Rep.FC = FCS_LinkSAccesReq) and (P.Link^.OwedStatus > 0) then
+        Dec(P.Link^.OwedStatus);        { one status answer less on the way }
     end;
-    Until_ := ChMsTick + QWord(TimeoutMs);
-    Result := res_Timeout;
-    repeat
-      if Assigned(Idle) then
-        Idle(IdleData);
-      if Chn^.ChReceiveReady = CHS_ReceiveReady then
-      begin
-        Len := 0;
-        Chn^.ChReceive(Len);
-        if (Chn^.ChReceiveResult <> res_Ok) or
-           ((Rep.MessType in [tpShortM, tpLongM]) and (F^.CH_AdrLen > 0) and
-            (Chn^.CH_RSNode <> Link.Addr)) then
-          Inc(Link.Ignored)             { garbled, or another station's }
-        else
-        begin
-          RepLen := Len;
-          if not ReplyFits(Out.FC, Rep.MessType, Rep.FC) or
-             { a refused reset leaves the link not reset }
-             ((Out.FC = FCM_1stSetTransmit) and (Rep.MessType <> tpSACK) and
-              (Rep.FC <> FCS_Ack)) then
-            Result := res_BadMessage
-          else
-            Result := res_Ok;
-          Break;
-        end;
-      end
-      else if Chn^.ChResult <> res_Ok then
-      begin
-        Result := Chn^.ChResult;        { the line is gone: no reply can come }
-        Break;
-      end
-      else if not Assigned(Idle) then
-        Sleep(1);
-    until ChMsTick > Until_;
-    if Result <> res_Timeout then
-      Break;
   end;
-  if Result = res_Ok then
+  P.RepLen := 0;
+  P.Try_ := 0;
+  if IsStatusRequest(P.Out.FC) then
   begin
-    if Rep.MessType in [tpShortM, tpLongM] then
+    { status answers of earlier transmissions may still come: the first
+      that many to arrive are not this request's }
+    if ChMsTick - P.Link^.StatusAt > QWord(4 * P.TimeoutMs) then
+      P.Link^.OwedStatus := 0;
+    P.StatusSkip := P.Link^.OwedStatus;
+  end;
+  PrimarySendOut(P);
+end;
+
+{ The phase (reset or service) is over with R: keep what the reply says
+  in Link, then the service after its reset, or the end. }
+procedure PrimaryPhaseEnd(var P: tFT12Primary; R: tChResult);
+var
+  Fcv: Boolean;
+begin
+  if (R <> res_Ok) and (R <> res_BadMessage) and not IsStatusRequest(P.Out.FC) then
+    P.Link^.Suspect := True;            { no answer came: it may still be on the way }
+  if P.Fencing then
+  begin
+    P.Fencing := False;
+    if R = res_Ok then
+      PrimaryBegin(P)                   { late answers flushed: the reset or service }
+    else
     begin
-      Link.Acd := Rep.FCB_ACD;
-      Link.Dfc := Rep.FCV_DFC;
+      if P.Fcv or P.Resetting then
+        P.Link^.Reset := False;
+      PrimaryFinish(P, R);
+    end;
+    Exit;
+  end;
+  Fcv := P.Out.FCV_DFC;
+  if R = res_Ok then
+  begin
+    if P.Rep.MessType in [tpShortM, tpLongM] then
+    begin
+      P.Link^.Acd := P.Rep.FCB_ACD;
+      P.Link^.Dfc := P.Rep.FCV_DFC;
     end
     else
     begin
-      Link.Acd := False;                { E5: nothing waiting }
-      Link.Dfc := False;
+      P.Link^.Acd := False;             { E5: nothing waiting }
+      P.Link^.Dfc := False;
     end;
-    if Out.FC = FCM_1stSetTransmit then
+    if P.Out.FC = FCM_1stSetTransmit then
     begin
-      Link.Reset := True;
-      Link.Fcb := True;                 { first FCV = 1 frame after a reset }
+      P.Link^.Reset := True;
+      P.Link^.Fcb := True;              { first FCV = 1 frame after a reset }
     end
     else if Fcv then
-      Link.Fcb := not Link.Fcb;
+      P.Link^.Fcb := not P.Link^.Fcb;
   end
-  else if Fcv or (Out.FC = FCM_1stSetTransmit) then
-    Link.Reset := False;                { FCB state unknown: reset next time }
+  else if Fcv or (P.Out.FC = FCM_1stSetTransmit) then
+    P.Link^.Reset := False;             { FCB state unknown: reset next time }
+  if (R = res_Ok) and P.Resetting then
+  begin
+    P.Resetting := False;               { the link is reset: now the service }
+    PrimaryBegin(P);
+  end
+  else
+  begin
+    if P.Resetting then
+      P.RepLen := 0;
+    PrimaryFinish(P, R);
+  end;
+end;
+
+function FT12PrimaryStart(var P: tFT12Primary; Chn: pChnVirt; var Link: tFT12Link;
+  constref Req: tSendRecord; ReqLen: Word; TimeoutMs: LongInt; Retries: LongInt): Boolean;
+var
+  F: pChnFT1_2;
+  R: tChResult;
+begin
+  FillChar(P, SizeOf(P), 0);
+  P.State := fpDone;
+  R := res_Ok;
+  if (Retries < 0) or (TimeoutMs < 1) then
+    R := res_BadParam
+  else if not IsFT12Channel(Chn) then
+    R := res_WrongLayer
+  else if not pChnFT1_2(Chn)^.CH_MaSl or not pChnFT1_2(Chn)^.CH_Master then
+    R := res_BadMessage
+  else if (ReqLen = 0) or (ReqLen > SizeOf(tSendRecord)) or
+     (PByte(@Req)^ > Ord(tpLongM)) or (Req.MessType in [tpSACK, tpSNAK]) then
+    R := res_BadMessage;
+  if R = res_Ok then
+  begin
+    F := pChnFT1_2(Chn);
+    P.Fcv := FT12FcvOf(Req.FC);
+    P.NoReply := (Req.FC = FCM_UserDataNoRep) or
+      ((F^.CH_AdrLen > 0) and (Link.Addr = FT12Broadcast(F^.CH_AdrLen)));
+    if P.NoReply and (Req.FC <> FCM_UserDataNoRep) then
+      R := res_BadMessage;              { broadcast is SEND/NO REPLY only }
+  end;
+  if R <> res_Ok then
+  begin
+    P.Result := R;
+    Exit(False);
+  end;
+  P.Chn := Chn;
+  P.Link := @Link;
+  P.Req := Req;
+  P.ReqLen := ReqLen;
+  P.TimeoutMs := TimeoutMs;
+  P.Retries := Retries;
+  { the caller's receive buffer and DNO come back at the end }
+  Chn^.ChGetReceiveBuffer(P.OldBuf, P.OldSize);
+  P.OldDNode := Chn^.ChGetDestNode;
+  { the secondary's FCB memory is unknown: reset it first }
+  P.Resetting := P.Fcv and not Link.Reset;
+  { answers to earlier transmissions may still come: a fence before
+    anything that an ACK, E5 or user data would answer }
+  P.Fencing := Link.Suspect and not P.NoReply and
+    (P.Resetting or not IsStatusRequest(Req.FC));
+  PrimaryBegin(P);
+  Result := P.State <> fpDone;
+end;
+
+{ A good frame is in P.Rep: the answer of this phase, or one to ignore. }
+function PrimaryTake(var P: tFT12Primary; Len: Word): Boolean;
+var
+  F: pChnFT1_2;
+  Status: Boolean;
+begin
+  F := pChnFT1_2(P.Chn);
+  if (P.Chn^.ChReceiveResult <> res_Ok) or
+     ((P.Rep.MessType in [tpShortM, tpLongM]) and (F^.CH_AdrLen > 0) and
+      (P.Chn^.CH_RSNode <> P.Link^.Addr)) then
+  begin
+    Inc(P.Link^.Ignored);               { garbled, or another station's }
+    Exit(False);
+  end;
+  Status := (P.Rep.MessType in [tpShortM, tpLongM]) and (P.Rep.FC = FCS_LinkSAccesReq);
+  if Status and (P.Link^.OwedStatus > 0) then
+    Dec(P.Link^.OwedStatus);
+  { "not functioning" / "not implemented" answer anything }
+  if (Status <> IsStatusRequest(P.Out.FC)) and not ((P.Rep.MessType in [tpShortM, tpLongM]) and
+     (P.Rep.FC in [FCS_NotFunctioning, FCS_NotImplemented])) then
+  begin
+    Inc(P.Link^.Stale);                 { late: the answer to an earlier request }
+    Exit(False);
+  end;
+  if Status and (P.StatusSkip > 0) then
+  begin
+    Dec(P.StatusSkip);                  { owed by an earlier FC 9 }
+    Inc(P.Link^.Stale);
+    Exit(False);
+  end;
+  { a fresh answer: everything the secondary answered before it has arrived }
+  if Status then
+  begin
+    P.Link^.Suspect := False;
+    P.Link^.OwedStatus := P.Try_;       { this request's other transmissions }
+  end
+  else
+  begin
+    P.Link^.OwedStatus := 0;
+    if P.Try_ > 0 then
+      P.Link^.Suspect := True;          { the answer to another transmission may follow }
+  end;
+  P.RepLen := Len;
+  if not ReplyFits(P.Out.FC, P.Rep.MessType, P.Rep.FC) or
+     { a refused reset leaves the link not reset }
+     ((P.Out.FC = FCM_1stSetTransmit) and (P.Rep.MessType <> tpSACK) and
+      (P.Rep.FC <> FCS_Ack)) then
+    PrimaryPhaseEnd(P, res_BadMessage)
+  else
+    PrimaryPhaseEnd(P, res_Ok);
+  Result := True;
+end;
+
+function FT12PrimaryStep(var P: tFT12Primary): Boolean;
+var
+  Len: Word;
+  N: LongInt;
+begin
+  if P.State = fpDraining then
+  begin
+    { SEND/NO REPLY: done once the frame is on the line }
+    if (P.Chn^.ChSendReady = CHS_SendReady) or (P.Chn^.ChResult <> res_Ok) or
+       (ChMsTick > P.Until_) then
+      PrimaryFinish(P, P.Chn^.ChResult);
+  end;
+  { everything already received, in one step }
+  N := 0;
+  while (P.State = fpWaiting) and (N < FT12MaxFramesPerStep) and
+        ((N = 0) or P.Chn^.ChHoldsInput) and (P.Chn^.ChReceiveReady = CHS_ReceiveReady) do
+  begin
+    Inc(N);
+    Len := 0;
+    P.Chn^.ChReceive(Len);
+    PrimaryTake(P, Len);
+  end;
+  if P.State = fpWaiting then
+    if P.Chn^.ChResult <> res_Ok then
+      PrimaryPhaseEnd(P, P.Chn^.ChResult)   { the line is gone: no reply can come }
+    else if ChMsTick > P.Until_ then
+    begin
+      if P.Try_ < P.Retries then
+      begin
+        Inc(P.Try_);
+        PrimarySendOut(P);
+      end
+      else
+        PrimaryPhaseEnd(P, res_Timeout);
+    end;
+  Result := P.State = fpDone;
+end;
+
+function FT12PrimaryWaitEnd(const P: tFT12Primary): QWord;
+begin
+  Result := P.Until_ + 1;
+end;
+
+procedure FT12PrimaryCancel(var P: tFT12Primary);
+begin
+  if P.State <> fpDone then
+  begin
+    if P.Fcv or P.Resetting then
+      P.Link^.Reset := False;           { FCB state unknown: reset next time }
+    PrimaryFinish(P, res_Timeout);
+  end;
 end;
 
 function FT12Transact(Chn: pChnVirt; var Link: tFT12Link; constref Req: tSendRecord;
   ReqLen: Word; var Rep: tRecRecord; var RepLen: Word; TimeoutMs: LongInt;
   Retries: LongInt; Idle: tFT12Idle; IdleData: Pointer): tChResult;
 var
-  OldBuf: Pointer;
-  OldSize: Word;
-  OldDNode: tNode;
+  P: tFT12Primary;
 begin
   RepLen := 0;
-  if (Retries < 0) or (TimeoutMs < 1) then
-    Exit(res_BadParam);
-  if (Chn = nil) or (Chn^.CH_Type <> ChnFT1_2.cName) then
-    Exit(res_WrongLayer);
-  if not pChnFT1_2(Chn)^.CH_MaSl or not pChnFT1_2(Chn)^.CH_Master then
-    Exit(res_BadMessage);
-  if (ReqLen = 0) or (ReqLen > SizeOf(tSendRecord)) or
-     (PByte(@Req)^ > Ord(tpLongM)) or (Req.MessType in [tpSACK, tpSNAK]) then
-    Exit(res_BadMessage);
-  { Rep is often a local of the caller: the channel must not keep pointing
-    at it afterwards }
-  OldBuf := Chn^.CH_RBuff;
-  OldSize := Chn^.CH_RSize;
-  OldDNode := Chn^.CH_DNode;
-  Result := Exchange(Chn, Link, Req, ReqLen, Rep, RepLen, TimeoutMs, Retries,
-    Idle, IdleData);
-  Chn^.CH_RBuff := OldBuf;
-  Chn^.CH_RSize := OldSize;
-  Chn^.CH_DNode := OldDNode;
+  if FT12PrimaryStart(P, Chn, Link, Req, ReqLen, TimeoutMs, Retries) then
+    repeat
+      if Assigned(Idle) then
+        Idle(IdleData)
+      else
+        ChnWaitUntil(FT12PrimaryWaitEnd(P));   { the program-wide wait }
+    until FT12PrimaryStep(P);
+  if P.RepLen > 0 then
+    Move(P.Rep, Rep, SizeOf(Rep));
+  RepLen := P.RepLen;
+  Result := P.Result;
 end;
 
 { A fixed frame with function FC and the channel's LEN= zero octets. }
@@ -438,7 +711,7 @@ var
   Req: tSendRecord;
 begin
   RepLen := 0;
-  if (Chn = nil) or (Chn^.CH_Type <> ChnFT1_2.cName) then
+  if not IsFT12Channel(Chn) then
     Exit(res_WrongLayer);
   FillChar(Req, SizeOf(Req), 0);
   Req.MessType := tpShortM;
@@ -538,7 +811,7 @@ var
   F: pChnFT1_2;
 begin
   Result := False;
-  if (S.Chn = nil) or (S.Chn^.CH_Type <> ChnFT1_2.cName) then
+  if not IsFT12Channel(S.Chn) then
     Exit;                       { only a tChnFT1_2 has the fields used below }
   if S.Chn^.ChReceiveReady <> CHS_ReceiveReady then
     Exit;
@@ -628,7 +901,7 @@ end;
 function FT12BalancedInit(var B: tFT12Balanced; Chn: pChnVirt): tChResult;
 begin
   FillChar(B, SizeOf(B), 0);
-  if (Chn = nil) or (Chn^.CH_Type <> ChnFT1_2.cName) then
+  if not IsFT12Channel(Chn) then
     Exit(res_WrongLayer);
   if pChnFT1_2(Chn)^.CH_MaSl then
     Exit(res_BadMessage);
@@ -673,9 +946,20 @@ var
 begin
   Deadline := ChMsTick + QWord(FT12LinkTimeoutMs);
   while (B.Chn^.ChSendReady <> CHS_SendReady) and (ChMsTick <= Deadline) do
-    Sleep(1);
+    ChnWaitUntil(Deadline + 1, 10);    { as ChSendWhenFree }
   pChnFT1_2(B.Chn)^.ChSendAs(Primary, @R, Len);
   Result := B.Chn^.ChSendResult;
+end;
+
+{ Send Out (again), counting the status answer it may bring. }
+procedure BalTransmit(var B: tFT12Balanced);
+begin
+  if B.Out.FC = FCM_ReqLinkState then
+  begin
+    Inc(B.OwedStatus);
+    B.StatusAt := ChMsTick;
+  end;
+  SendDir(B, True, B.Out, B.OutLen);
 end;
 
 { Start a request: FCV from the function, FCB alternating for FCV = 1. }
@@ -701,14 +985,25 @@ begin
   B.SentAt := ChMsTick;
   B.LastRequest := B.SentAt;
   B.Pending := FC <> FCM_UserDataNoRep;
-  SendDir(B, True, B.Out, B.OutLen);
+  if FC = FCM_ReqLinkState then
+  begin
+    { status answers of earlier FC 9 transmissions may still come: the
+      first that many to arrive are not this request's }
+    if B.SentAt - B.StatusAt > QWord(4 * B.TimeoutMs) then
+      B.OwedStatus := 0;
+    B.StatusSkip := B.OwedStatus;
+  end;
+  BalTransmit(B);
 end;
 
 procedure LinkLost(var B: tFT12Balanced);
 begin
   Inc(B.LinkLost);
+  if B.Out.FC <> FCM_ReqLinkState then
+    B.Suspect := True;            { its answers may still be on the way }
   B.State := bsIdle;
   B.Pending := False;
+  B.Fencing := False;
 end;
 
 procedure Dequeue(var B: tFT12Balanced);
@@ -721,20 +1016,48 @@ end;
 procedure TakeAnswer(var B: tFT12Balanced);
 var
   F: pChnFT1_2;
-  Nack: Boolean;
+  Nack, Status: Boolean;
 begin
   F := pChnFT1_2(B.Chn);
+  if (B.RMess.MessType in [tpShortM, tpLongM]) and (F^.CH_AdrLen > 0) and
+     (B.Chn^.CH_RSNode <> B.Chn^.ChGetDestNode) then
+  begin
+    Inc(B.Ignored);               { another station's }
+    Exit;
+  end;
+  Status := (B.RMess.MessType in [tpShortM, tpLongM]) and (B.RMess.FC = FCS_LinkSAccesReq);
+  if Status and (B.OwedStatus > 0) then
+    Dec(B.OwedStatus);
   if not B.Pending then
   begin
     Inc(B.Unexpected);            { nothing of ours is waiting for it }
     Exit;
   end;
-  if ((B.RMess.MessType in [tpShortM, tpLongM]) and (F^.CH_AdrLen > 0) and
-      (B.Chn^.CH_RSNode <> B.Chn^.CH_DNode)) or
-     not ReplyFits(B.Out.FC, B.RMess.MessType, B.RMess.FC) then
+  if not ReplyFits(B.Out.FC, B.RMess.MessType, B.RMess.FC) then
   begin
-    Inc(B.Ignored);
+    if Status or (B.Out.FC = FCM_ReqLinkState) then
+      Inc(B.Stale)                { late: the answer to an earlier request }
+    else
+      Inc(B.Ignored);
     Exit;
+  end;
+  if (B.Out.FC = FCM_ReqLinkState) and (B.StatusSkip > 0) then
+  begin
+    Dec(B.StatusSkip);            { owed by an earlier FC 9 }
+    Inc(B.Stale);
+    Exit;
+  end;
+  { a fresh answer: everything the peer answered before it has arrived }
+  if B.Out.FC = FCM_ReqLinkState then
+  begin
+    B.Suspect := False;
+    B.OwedStatus := B.Tries - 1;  { this request's other transmissions }
+  end
+  else
+  begin
+    B.OwedStatus := 0;
+    if B.Tries > 1 then
+      B.Suspect := True;          { the answer to another transmission may follow }
   end;
   B.Pending := False;
   B.PeerDfc := (B.RMess.MessType in [tpShortM, tpLongM]) and B.RMess.FCV_DFC;
@@ -746,6 +1069,9 @@ begin
     B.HoldUntil := ChMsTick + QWord(B.TimeoutMs);
   case B.Out.FC of
     FCM_ReqLinkState:
+      if B.Fencing then
+        B.Fencing := False        { late answers flushed: the data can go }
+      else
       begin
         { status of link: reset the peer's secondary }
         B.State := bsResetting;
@@ -856,7 +1182,7 @@ begin
     Inc(B.Tries);
     Inc(B.Retransmits);
     B.SentAt := Now;
-    SendDir(B, True, B.Out, B.OutLen);   { a repetition: the same FCB }
+    BalTransmit(B);               { a repetition: the same FCB }
     Exit;
   end;
   if Now < B.HoldUntil then
@@ -868,7 +1194,15 @@ begin
         StartRequest(B, tpShortM, FCM_ReqLinkState, nil, 0);
       end;
     bsAvailable:
-      if B.QCount > 0 then
+      if B.Suspect and ((B.QCount > 0) or
+         ((B.TestMs > 0) and (Now - B.LastRequest >= QWord(B.TestMs)))) then
+      begin
+        { late answers may still come: flush them before the next request }
+        Inc(B.Fences);
+        B.Fencing := True;
+        StartRequest(B, tpShortM, FCM_ReqLinkState, nil, 0);
+      end
+      else if B.QCount > 0 then
       begin
         Q := @B.Queue[B.QHead];
         if Q^.Confirm then
@@ -889,12 +1223,20 @@ function FT12BalancedStep(var B: tFT12Balanced): Boolean;
 var
   Len: Word;
   R: tChResult;
+  N: LongInt;
 begin
   Result := False;
   if (B.Chn = nil) or (B.Chn^.CH_State <> CHS_Connect) then
     Exit;
-  if B.Chn^.ChReceiveReady = CHS_ReceiveReady then
+  { everything already received: after the first look only while the
+    channel holds input it has pulled in (a look may wait IDL ms for new
+    input), and a bounded number of frames, so a peer that never stops
+    cannot hold the timers and the application up }
+  N := 0;
+  while (N < FT12MaxFramesPerStep) and ((N = 0) or B.Chn^.ChHoldsInput) and
+        (B.Chn^.ChReceiveReady = CHS_ReceiveReady) do
   begin
+    Inc(N);
     Result := True;
     Inc(B.Frames);
     Len := 0;
@@ -908,8 +1250,13 @@ begin
       TakeRequest(B, Len)
     else
       TakeAnswer(B);
+    { the next request goes out before the next look, which may wait IDL }
+    RunPrimary(B);
   end;
-  RunPrimary(B);
+  if not Result then
+    RunPrimary(B);
 end;
 
+initialization
+  FT12NumName := ChNumName(ChnFT1_2.cName);
 end.

@@ -3,7 +3,8 @@
 
   tChnFT1_2 is a protocol layer: it encodes tSendRecord into FT 1.2 frames
   and decodes received frames into tRecRecord through ChnFT12Codec, and
-  moves the bytes through the layer below (COM, LOOP, ...).
+  moves the bytes through the layer below (COM, LOOP, ...); the receive
+  loop, ChReceive and the send buffer are tChnProto's (ChnProto).
 
     'NAM=FT1_2 MS=ON MAS=MASTER LSB=500 NOD=1 DNO=2 LEN=0 NAM=COM ...'
 
@@ -28,7 +29,7 @@ unit ChnFT1_2;
 interface
 
 uses
-  ChnTypes, ChnVirt, ChnFT12Codec;
+  ChnTypes, ChnVirt, ChnProto, ChnFT12Codec;
 
 const
   cVerNo = $0100;                 { BCD }
@@ -103,11 +104,7 @@ type
   pSlRecRecord  = pRecRecord;   tSlRecRecord  = tRecRecord;
 
   pChnFT1_2 = ^tChnFT1_2;
-  tChnFT1_2 = object(tChnVirt)
-    CH_RTick    : Boolean;   { the receive automaton is running (debugging) }
-    CH_SBuff    : Pointer;   { send buffer }
-    CH_MSBuff   : Word;      { and its size }
-    CH_LRMess   : Word;      { length of the last received message }
+  tChnFT1_2 = object(tChnProto)
     CH_RSum     : tSum8;     { receiver checksum }
     CH_SSum     : tSum8;     { checksum of the last frame sent }
     CH_MaSl     : Boolean;   { True: unbalanced (MS=ON) }
@@ -120,11 +117,6 @@ type
     CH_Dir      : Boolean;   { DIR= }
     CH_Gap      : Word;      { GAP= in character times }
     CH_Rx       : tFT12Rx;   { receive automaton }
-    CH_RErr     : tChResult; { result of the frame waiting for ChReceive }
-    { noted when ChSetParam peeks at the string (cmd_Peek), so that NOD=/
-      DNO= are checked against the ADR= in force after it, in any order }
-    CH_AdrNext  : Byte;
-    CH_NodGiven, CH_DnoGiven: Boolean;
     { direction of the frame the last ChReceive gave (False after a broken
       frame): PRM (True = a request from the peer's primary; single
       characters count as secondary) and the DIR bit it carried }
@@ -133,25 +125,34 @@ type
     { BD= of the stack below for GAP= (9600 if none), taken when the stack
       is built (ChSetParam) and at ChConnect, not on every send }
     CH_LowBaud  : LongInt;
+    CH_SPrimary : Boolean;   { direction of the frame ChSend is encoding }
+    CH_RNow     : QWord;     { time stamp of the bytes of this receive tick }
 
     constructor Init;
     constructor ChInitParam(const S: tParamStr);
-    destructor  Done; virtual;
-    procedure ChSetParam(const S: tParamStr); virtual;
+    procedure ChSetParam(const S: tParamStr); virtual; overload;
     function  ChSetOneParam(const S: tWordString; var CmdL: tCmd): tChResult; virtual;
     function  ChOwnParams: tParamStr; virtual;
     function  ChMaxNode: tNode; virtual;
+    { NOD=/DNO= against the ADR= in force after the string, in any order }
+    function  ChCheckParams(const L: tParamList; var Culprit: tWordString): tChResult; virtual;
     procedure ChConnect; virtual;
-    procedure ChDisConnect; virtual;
     procedure ChSend(Buff: Pointer; Len: Word); virtual;
     { ChSend with the PRM bit chosen per frame: Primary = True sends a
       request (address DNO), False an answer (address NOD). Balanced mode
       only; unbalanced, a direction other than the role is res_BadMessage.
       ChSend = ChSendAs(CH_Master, ...). }
     procedure ChSendAs(Primary: Boolean; Buff: Pointer; Len: Word);
-    procedure ChReceive(var Len: Word); virtual;
-    procedure ChReceiveFlush; virtual;
-    procedure ChReceiveTick; virtual;
+    { the codec (tChnProto) }
+    procedure ChRxReset; virtual;
+    procedure ChRxBegin; virtual;
+    function  ChRxByte(B: Byte; var Err: tChResult): Boolean; virtual;
+    procedure ChRxEnd; virtual;
+    function  ChRxDeliver(var Len: Word): tChResult; virtual;
+    procedure ChRxTaken; virtual;
+    function  ChSendNeedsLen(Buff: Pointer): Boolean; virtual;
+    function  ChSendCheck(Buff: Pointer; Len: Word): tChResult; virtual;
+    function  ChEncode(Buff: Pointer; Len: Word; var N: Word): tChResult; virtual;
     { codec settings from the parameters now in force (Primary = the role,
       CH_Master) }
     function  ChCodecConfig: tFT12Config;
@@ -178,11 +179,7 @@ const
 constructor tChnFT1_2.Init;
 begin
   inherited Init;
-  ChSetType(cName);
-  CH_RTick := False;
-  CH_SBuff := nil;
-  CH_MSBuff := 0;
-  CH_LRMess := 0;
+  ChProtoSetup(cName, 1, MaxTBuf, cFT12MaxFrame);   { no LSB=: room for any frame }
   CH_RSum := 0;
   CH_SSum := 0;
   CH_MaSl := True;
@@ -194,13 +191,11 @@ begin
   CH_AdrLen := 1;
   CH_Dir := False;
   CH_Gap := 0;
-  CH_RErr := res_Ok;
-  CH_AdrNext := CH_AdrLen;
-  CH_NodGiven := False;
-  CH_DnoGiven := False;
   CH_RPrm := False;
   CH_RDir := False;
   CH_LowBaud := cDefaultBaud;
+  CH_SPrimary := True;
+  CH_RNow := 0;
   FillChar(CH_Rx, SizeOf(CH_Rx), 0);
   CH_Rx.Cfg := ChCodecConfig;
   FT12RxReset(CH_Rx);
@@ -210,12 +205,6 @@ constructor tChnFT1_2.ChInitParam(const S: tParamStr);
 begin
   Init;
   ChSetParam(S);
-end;
-
-destructor tChnFT1_2.Done;
-begin
-  inherited Done;
-  ChFreeSendBuffer(CH_SBuff, CH_MSBuff);
 end;
 
 procedure tChnFT1_2.ChTakeLowBaud;
@@ -264,16 +253,8 @@ end;
 
 procedure tChnFT1_2.ChSetParam(const S: tParamStr);
 begin
-  { ChSetOneParam notes ADR=, NOD=, DNO= of this string when peeked at, so
-    that NOD=/DNO= are checked against the ADR= in force after it }
-  CH_AdrNext := CH_AdrLen;
-  CH_NodGiven := False;
-  CH_DnoGiven := False;
   inherited ChSetParam(S);
   ChTakeLowBaud;                  { the stack below may be new }
-  CH_AdrNext := CH_AdrLen;
-  CH_NodGiven := False;
-  CH_DnoGiven := False;
   { new settings: a half-received frame starts afresh with them; a whole
     frame waiting for ChReceive is kept }
   CH_Rx.Cfg := ChCodecConfig;
@@ -283,7 +264,44 @@ end;
 
 function tChnFT1_2.ChMaxNode: tNode;
 begin
-  Result := FT12MaxAddr(CH_AdrNext);
+  { the widest a token may give; ChCheckParams narrows it by ADR= }
+  Result := FT12MaxAddr(2);
+end;
+
+function tChnFT1_2.ChCheckParams(const L: tParamList; var Culprit: tWordString): tChResult;
+var
+  Adr: LongInt;
+
+  { a NOD=/DNO= of the string must fit the ADR= in force after it; a kept
+    one that no longer fits is the ADR= token's fault }
+  function Fits(const Key: ShortString; Kept: LongInt): Boolean;
+  var
+    I, V: LongInt;
+  begin
+    I := ParamFind(L, Key);
+    V := Kept;
+    if I >= 0 then
+      ParamNum(L.Items[I].Text, 0, High(LongInt), V)
+    else
+      I := ParamFind(L, 'ADR');
+    Result := V <= FT12MaxAddr(Adr);
+    if not Result and (I >= 0) then   { (fields written directly: no token) }
+      Culprit := L.Items[I].Text;
+  end;
+
+begin
+  Result := res_Ok;
+  Adr := CH_AdrLen;
+  if ParamFind(L, 'ADR') >= 0 then
+    ParamNum(L.Items[ParamFind(L, 'ADR')].Text, 0, 2, Adr);
+  { the first of NOD=/DNO= in the string is named first, as a token check would }
+  if ParamFind(L, 'DNO') < ParamFind(L, 'NOD') then
+  begin
+    if not Fits('DNO', CH_DNode) or not Fits('NOD', CH_Node) then
+      Result := res_BadParam;
+  end
+  else if not Fits('NOD', CH_Node) or not Fits('DNO', CH_DNode) then
+    Result := res_BadParam;
 end;
 
 function tChnFT1_2.ChSetOneParam(const S: tWordString; var CmdL: tCmd): tChResult;
@@ -293,25 +311,12 @@ var
 begin
   Key := ParamKey(S);
   N := 0;
-  if CmdL = cmd_Peek then
-  begin
-    { note what the checks of NOD=/DNO=/ADR= in this string depend on }
-    if (Key = 'ADR') and (ParamNum(S, 0, 2, N) = res_Ok) then
-      CH_AdrNext := N
-    else if Key = 'NOD' then
-      CH_NodGiven := True
-    else if Key = 'DNO' then
-      CH_DnoGiven := True;
-    Result := res_Ok;
-  end
-  else if Key = 'MS' then
+  if Key = 'MS' then
     Result := ParamFlag(S, OnOffChoice, CmdL, CH_MaSl)
   else if Key = 'MAS' then
     Result := ParamFlag(S, MasterChoice, CmdL, CH_MasParam)
   else if Key = 'PRI' then
     Result := ParamFlag(S, OnOffChoice, CmdL, CH_PriParam)
-  else if Key = 'LSB' then
-    Result := ChParamSendBuffer(S, 1, MaxTBuf, CmdL, CH_SBuff, CH_MSBuff)
   else if Key = 'LEN' then
   begin
     Result := ParamNum(S, 0, MaxDataLen, N);
@@ -320,12 +325,7 @@ begin
   end
   else if Key = 'ADR' then
   begin
-    Result := ParamNum(S, 0, 2, N);
-    { addresses kept from before must still fit the new length }
-    if (Result = res_Ok) and
-       ((not CH_NodGiven and (CH_Node > FT12MaxAddr(N))) or
-        (not CH_DnoGiven and (CH_DNode > FT12MaxAddr(N)))) then
-      Result := res_BadParam;
+    Result := ParamNum(S, 0, 2, N);   { with NOD=/DNO=: ChCheckParams }
     if (Result = res_Ok) and (CmdL = cmd_Set) then
       CH_AdrLen := N;
   end
@@ -356,30 +356,16 @@ end;
 function tChnFT1_2.ChOwnParams: tParamStr;
 begin
   Result := inherited ChOwnParams + FlagText('MS', OnOffChoice, CH_MaSl) +
-    FlagText('MAS', MasterChoice, CH_MasParam) + FlagText('PRI', OnOffChoice, CH_PriParam);
-  if CH_MSBuff > 0 then
-    Result := Result + ParamText('LSB', CH_MSBuff);
-  Result := Result + ParamText('LEN', CH_LenShortM) + ParamText('ADR', CH_AdrLen) +
+    FlagText('MAS', MasterChoice, CH_MasParam) + FlagText('PRI', OnOffChoice, CH_PriParam) +
+    ChLsbText + ParamText('LEN', CH_LenShortM) + ParamText('ADR', CH_AdrLen) +
     ParamText('DIR', Ord(CH_Dir)) + ParamText('GAP', CH_Gap);
 end;
 
 procedure tChnFT1_2.ChConnect;
 begin
-  inherited ChConnect;
-  if CH_Result = res_Ok then
-  begin
+  if (CH_State = CHS_Open) or (CH_State = CHS_DisConnect) then
     ChTakeLowBaud;                { BD= may have changed below since }
-    CH_Rx.Cfg := ChCodecConfig;
-    FT12RxReset(CH_Rx);
-    CH_RErr := res_Ok;
-  end;
-end;
-
-procedure tChnFT1_2.ChDisConnect;
-begin
-  inherited ChDisConnect;
-  if CH_Result = res_Ok then
-    CH_RCtrl := CHS_RecInactive;
+  inherited ChConnect;            { resets the automaton with it }
 end;
 
 procedure tChnFT1_2.ChSend(Buff: Pointer; Len: Word);
@@ -388,105 +374,85 @@ begin
 end;
 
 procedure tChnFT1_2.ChSendAs(Primary: Boolean; Buff: Pointer; Len: Word);
-var
-  Addr: tNode;
-  N: Word;
-  R: tChResult;
-  Cfg: tFT12Config;
+begin
+  CH_SPrimary := Primary;
+  inherited ChSend(Buff, Len);
+end;
+
+function tChnFT1_2.ChSendNeedsLen(Buff: Pointer): Boolean;
 begin
   { Len is ignored for single characters (the manual), so 0 is fine there }
-  if not ChSendAllowed(Buff, Len, not ((Buff <> nil) and
-    (PByte(Buff)^ in [Ord(tpSACK), Ord(tpSNAK)]))) then
-    Exit;
-  if CH_MaSl and (Primary <> CH_Master) then
-  begin
-    CH_SResult := res_BadMessage;   { unbalanced: the role is fixed }
-    Exit;
-  end;
-  ChSendBuffer(CH_SBuff, CH_MSBuff, cFT12MaxFrame);   { no LSB=: room for any frame }
+  Result := not (PByte(Buff)^ in [Ord(tpSACK), Ord(tpSNAK)]);
+end;
+
+function tChnFT1_2.ChSendCheck(Buff: Pointer; Len: Word): tChResult;
+begin
+  if CH_MaSl and (CH_SPrimary <> CH_Master) then
+    Result := res_BadMessage      { unbalanced: the role is fixed }
+  else
+    Result := res_Ok;
+end;
+
+function tChnFT1_2.ChEncode(Buff: Pointer; Len: Word; var N: Word): tChResult;
+var
+  Addr: tNode;
+  Cfg: tFT12Config;
+begin
   { one address field: the destination from a master/primary, the own
     address (SNO) from a slave/secondary }
-  if Primary then
+  if CH_SPrimary then
     Addr := CH_DNode
   else
     Addr := CH_Node;
   Cfg := ChCodecConfig;
-  Cfg.Primary := Primary;
-  N := 0;
-  R := FT12Encode(Cfg, pSendRecord(Buff)^, Len, Addr, CH_SBuff, CH_MSBuff, N);
-  if R <> res_Ok then
-  begin
-    CH_SResult := R;
-    Exit;
-  end;
-  if N > 1 then
+  Cfg.Primary := CH_SPrimary;
+  Result := FT12Encode(Cfg, pSendRecord(Buff)^, Len, Addr, CH_SBuff, CH_MSBuff, N);
+  if (Result = res_Ok) and (N > 1) then
     CH_SSum := PByte(CH_SBuff)[N - 2];
-  ChLowSend(CH_SBuff, N);
 end;
 
-procedure tChnFT1_2.ChReceiveTick;
-var
-  B: Byte;
-  Now: QWord;
-  Count: Integer;
+procedure tChnFT1_2.ChRxReset;
 begin
-  if (CH_State <> CHS_Connect) or (CH_RCtrl <> CHS_Receiving) then
-    Exit;
-  CH_RTick := True;
-  Now := ChMsTick;     { one time stamp for the bytes pulled in this tick }
-  Count := 0;
-  while (Count < MaxBytesPerTick) and ChLowGetByte(B) do
-  begin
-    Inc(Count);
-    case FT12Feed(CH_Rx, B, Now) of
-      fe_Frame:
-        begin
-          CH_RErr := res_Ok;
-          CH_RCtrl := CHS_ReceiveReady;
-          Break;        { the rest stays below for the next frame }
-        end;
-      fe_Error:
-        begin
-          CH_RErr := CH_Rx.Err;
-          CH_RCtrl := CHS_ReceiveReady;
-          Break;
-        end;
-    end;
-  end;
-  CH_RSum := CH_Rx.Sum;
-  CH_RTick := False;
+  CH_Rx.Cfg := ChCodecConfig;
+  FT12RxReset(CH_Rx);
 end;
 
-procedure tChnFT1_2.ChReceive(var Len: Word);
+procedure tChnFT1_2.ChRxBegin;
+begin
+  CH_RNow := ChMsTick;     { one time stamp for the bytes pulled in this tick }
+end;
+
+function tChnFT1_2.ChRxByte(B: Byte; var Err: tChResult): Boolean;
+begin
+  case FT12Feed(CH_Rx, B, CH_RNow) of
+    fe_Frame: Result := True;
+    fe_Error:
+      begin
+        Err := CH_Rx.Err;
+        Result := True;
+      end;
+  else
+    Result := False;
+  end;
+end;
+
+procedure tChnFT1_2.ChRxEnd;
+begin
+  CH_RSum := CH_Rx.Sum;
+end;
+
+function tChnFT1_2.ChRxDeliver(var Len: Word): tChResult;
 var
   Addr: tNode;
 begin
-  if not ChReceiveAllowed(Len) then
-    Exit;
-  if CH_RCtrl <> CHS_ReceiveReady then
-  begin
-    CH_RResult := res_NoMessage;
-    Exit;
-  end;
-  CH_RCtrl := CHS_Receiving;
-  CH_RPrm := False;
-  CH_RDir := False;
-  if CH_RErr <> res_Ok then
-  begin
-    CH_RResult := CH_RErr;     { broken frame: the application answers }
-    CH_RErr := res_Ok;
-    CH_LRMess := 0;
-    Exit;
-  end;
-  CH_RResult := FT12GetRecord(CH_Rx, CH_RBuff, CH_RSize, Len);
-  CH_LRMess := Len;
-  if CH_RResult <> res_Ok then
+  Result := FT12GetRecord(CH_Rx, CH_RBuff, CH_RSize, Len);
+  if Result <> res_Ok then
     Exit;
   CH_RPrm := FT12FramePrm(CH_Rx);
   CH_RDir := (CH_Rx.Kind in [tpShortM, tpLongM]) and (CH_Rx.Code and cBitDirRes <> 0);
   { one address on the line: report it on the side it belongs to; with no
     address field (ADR=0, single characters) the configured peer }
-  if FT12FramePrm(CH_Rx) then
+  if CH_RPrm then
   begin
     if CH_AdrLen > 0 then
       Addr := CH_Rx.Addr
@@ -506,12 +472,22 @@ begin
   end;
 end;
 
-procedure tChnFT1_2.ChReceiveFlush;
+procedure tChnFT1_2.ChRxTaken;
 begin
-  FT12RxReset(CH_Rx);
-  CH_RErr := res_Ok;
-  inherited ChReceiveFlush;
+  if CH_RResult <> res_Ok then
+  begin
+    CH_RPrm := False;              { a broken frame has no direction }
+    CH_RDir := False;
+  end;
 end;
+
+const
+  FT12Texts: array[0..4] of tProtoText = (
+    (Code: res_ErrSum;   Text: 'checksum error'),
+    (Code: res_ErrLen;   Text: 'bad frame length'),
+    (Code: res_ErrCode;  Text: 'PRM bit does not fit this station''s role'),
+    (Code: res_ErrFrame; Text: 'frame error (start or end character)'),
+    (Code: res_ErrDir;   Text: 'DIR bit says the frame came from this station''s own side'));
 
 function tAddChnFT1_2.ChInit: pChnVirt;
 begin
@@ -519,10 +495,5 @@ begin
 end;
 
 initialization
-  ChnCollection^.Insert(New(pAddChnFT1_2, Init(cName)));
-  ChRegisterResultText(cName, res_ErrSum, 'checksum error');
-  ChRegisterResultText(cName, res_ErrLen, 'bad frame length');
-  ChRegisterResultText(cName, res_ErrCode, 'PRM bit does not fit this station''s role');
-  ChRegisterResultText(cName, res_ErrFrame, 'frame error (start or end character)');
-  ChRegisterResultText(cName, res_ErrDir, 'DIR bit says the frame came from this station''s own side');
+  ProtoRegister(New(pAddChnFT1_2, Init(cName)), FT12Texts);
 end.

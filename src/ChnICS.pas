@@ -3,8 +3,9 @@
 
   Implements the SofCon manual ChnICS v1.20 and docs/PROTOCOLS.md
   section 8. The frame format lives in the I/O-free unit ChnICSCodec; this
-  unit declares the manual's constants and types and glues the codec to
-  ChnVirt (docs/LAYERS.md).
+  unit declares the manual's constants and types and supplies the codec's
+  feed, delivery and encoding to the protocol base tChnProto
+  (docs/LAYERS.md).
 
   Differences from the manual:
   * tData is SmallInt (Borland "integer"), so Len = 4 + 2 * count as in
@@ -28,7 +29,7 @@ unit ChnICS;
 interface
 
 uses
-  ChnTypes, ChnVirt, ChnICSCodec;
+  ChnTypes, ChnVirt, ChnProto, ChnICSCodec;
 
 const
   cVerNo = $0120;                 { BCD, port of manual v1.20 }
@@ -73,11 +74,7 @@ type
   tRecRecord  = tICSRecord;
 
   pChnICS = ^tChnICS;
-  tChnICS = object(tChnVirt)
-    CH_RTick  : Boolean;     { the receive automaton is running (debugging) }
-    CH_SBuff  : Pointer;     { send buffer }
-    CH_MSBuff : Word;        { its size }
-    CH_LRMess : Word;        { Len of the last received message }
+  tChnICS = object(tChnProto)
     CH_RSum   : tXor8;       { receiver's running checksum }
     CH_SSum   : tXor8;       { checksum of the last frame sent }
     CH_Master : Boolean;     { MAS=MASTER }
@@ -87,16 +84,16 @@ type
     CH_Event  : tICSEvent;   { what the automaton last reported }
     constructor Init;
     constructor ChInitParam(const S: tParamStr);
-    destructor  Done; virtual;
     function  ChSetOneParam(const S: tWordString; var CmdL: tCmd): tChResult; virtual;
     function  ChOwnParams: tParamStr; virtual;
     function  ChMaxNode: tNode; virtual;
-    procedure ChConnect; virtual;
-    procedure ChDisConnect; virtual;
-    procedure ChSend(Buff: Pointer; Len: Word); virtual;
-    procedure ChReceive(var Len: Word); virtual;
-    procedure ChReceiveFlush; virtual;
-    procedure ChReceiveTick; virtual;
+    { the codec (tChnProto) }
+    procedure ChRxReset; virtual;
+    function  ChRxByte(B: Byte; var Err: tChResult): Boolean; virtual;
+    procedure ChRxEnd; virtual;
+    function  ChRxDeliver(var Len: Word): tChResult; virtual;
+    procedure ChRxTaken; virtual;
+    function  ChEncode(Buff: Pointer; Len: Word; var N: Word): tChResult; virtual;
   end;
 
   pAddChnICS = ^tAddChnICS;
@@ -109,11 +106,7 @@ implementation
 constructor tChnICS.Init;
 begin
   inherited Init;
-  ChSetType(cName);
-  CH_RTick := False;
-  CH_SBuff := nil;
-  CH_MSBuff := 0;
-  CH_LRMess := 0;
+  ChProtoSetup(cName, 0, MaxTBuf, ICSMaxFrame);   { LSB=0: the longest frame }
   CH_RSum := 0;
   CH_SSum := 0;
   CH_Master := True;
@@ -129,12 +122,6 @@ begin
   ChSetParam(S);
 end;
 
-destructor tChnICS.Done;
-begin
-  inherited Done;                { closes the layers below first }
-  ChFreeSendBuffer(CH_SBuff, CH_MSBuff);
-end;
-
 function tChnICS.ChMaxNode: tNode;
 begin
   Result := ICSMaxNode;
@@ -147,132 +134,82 @@ begin
   Key := ParamKey(S);
   if Key = 'MAS' then
     Result := ParamFlag(S, MasterChoice, CmdL, CH_Master)
-  else if Key = 'LSB' then
-    Result := ChParamSendBuffer(S, 0, MaxTBuf, CmdL, CH_SBuff, CH_MSBuff)
   else
-    Result := inherited ChSetOneParam(S, CmdL);   { NOD=, DNO= 0..207 }
+    Result := inherited ChSetOneParam(S, CmdL);   { LSB=, NOD=, DNO= 0..207 }
 end;
 
 function tChnICS.ChOwnParams: tParamStr;
 begin
   Result := inherited ChOwnParams + FlagText('MAS', MasterChoice, CH_Master) +
-    ParamText('LSB', CH_MSBuff);
+    ChLsbText;
 end;
 
-procedure tChnICS.ChConnect;
+procedure tChnICS.ChRxReset;
 begin
-  inherited ChConnect;
-  if CH_Result = res_Ok then
-  begin
-    ICSReset(CH_Codec);
-    CH_Event := icsNone;
-  end;
+  ICSReset(CH_Codec);
+  CH_Event := icsNone;
 end;
 
-procedure tChnICS.ChDisConnect;
-begin
-  inherited ChDisConnect;
-  if CH_Result = res_Ok then
-  begin
-    ICSReset(CH_Codec);
-    CH_Event := icsNone;
-  end;
-end;
-
-procedure tChnICS.ChSend(Buff: Pointer; Len: Word);
-var
-  N: Word;
-  R: tChResult;
+function tChnICS.ChEncode(Buff: Pointer; Len: Word; var N: Word): tChResult;
 begin
   { Len = 4 (no numbers) is valid: the codec checks it }
-  if not ChSendAllowed(Buff, Len, False) then
-    Exit;
-  ChSendBuffer(CH_SBuff, CH_MSBuff, ICSMaxFrame);
-  N := 0;
-  R := ICSEncode(pICSRecord(Buff)^, Len, CH_DNode, CH_Node, CH_SBuff^,
+  Result := ICSEncode(pICSRecord(Buff)^, Len, CH_DNode, CH_Node, CH_SBuff^,
     CH_MSBuff, N);
-  if R <> res_Ok then
-  begin
-    CH_SResult := R;
-    Exit;
-  end;
-  CH_SSum := PByte(CH_SBuff)[N - 2];
-  ChLowSend(CH_SBuff, N);
+  if Result = res_Ok then
+    CH_SSum := PByte(CH_SBuff)[N - 2];
 end;
 
-procedure tChnICS.ChReceiveTick;
-var
-  B: Byte;
-  Count: Integer;
+function tChnICS.ChRxByte(B: Byte; var Err: tChResult): Boolean;
 begin
-  if (CH_State <> CHS_Connect) or (CH_RCtrl <> CHS_Receiving) then
-    Exit;
-  CH_RTick := True;
-  Count := 0;
-  while (Count < MaxBytesPerTick) and ChLowGetByte(B) do
-  begin
-    Inc(Count);
-    CH_Event := ICSFeed(CH_Codec, B);
-    if CH_Event <> icsNone then
-    begin
-      { stop here: the bytes after the frame stay for the next one }
-      CH_RCtrl := CHS_ReceiveReady;
-      Break;
-    end;
-  end;
+  CH_Event := ICSFeed(CH_Codec, B);
+  if CH_Event = icsError then
+    Err := CH_Codec.Error;
+  Result := CH_Event <> icsNone;
+end;
+
+procedure tChnICS.ChRxEnd;
+begin
   CH_RSum := CH_Codec.Sum;
   CH_DataI := CH_Codec.Count;
   CH_PomS := CH_Codec.NumText;
-  CH_RTick := False;
 end;
 
-procedure tChnICS.ChReceive(var Len: Word);
+function tChnICS.ChRxDeliver(var Len: Word): tChResult;
 var
   Need: LongInt;
   Rec: pICSRecord;
 begin
-  if not ChReceiveAllowed(Len) then
-    Exit;
-  if CH_RCtrl <> CHS_ReceiveReady then
-  begin
-    CH_RResult := res_NoMessage;
-    Exit;
-  end;
-  if CH_Event = icsError then
-    CH_RResult := CH_Codec.Error
+  Rec := @CH_Codec.Rec;
+  { the application's buffer must hold the header, the numbers and, when
+    a text came, the Text field up to its last character }
+  Need := ICSRecLen(CH_Codec);
+  if Rec^.Text <> '' then
+    Need := PtrUInt(@Rec^.Text) - PtrUInt(Rec) + 1 + Length(Rec^.Text);
+  if Need > CH_RSize then
+    Exit(res_ErrLen);
+  if CH_RSize < SizeOf(tICSRecord) then
+    Move(Rec^, CH_RBuff^, CH_RSize)
   else
-  begin
-    Rec := @CH_Codec.Rec;
-    { the application's buffer must hold the header, the numbers and, when
-      a text came, the Text field up to its last character }
-    Need := ICSRecLen(CH_Codec);
-    if Rec^.Text <> '' then
-      Need := PtrUInt(@Rec^.Text) - PtrUInt(Rec) + 1 + Length(Rec^.Text);
-    if Need > CH_RSize then
-      CH_RResult := res_ErrLen
-    else
-    begin
-      if CH_RSize < SizeOf(tICSRecord) then
-        Move(Rec^, CH_RBuff^, CH_RSize)
-      else
-        Move(Rec^, CH_RBuff^, SizeOf(tICSRecord));
-      Len := ICSRecLen(CH_Codec);
-      CH_LRMess := Len;
-      CH_RSNode := CH_Codec.SNode;
-      CH_RDNode := CH_Codec.DNode;
-      CH_RResult := res_Ok;
-    end;
-  end;
-  CH_Event := icsNone;
-  CH_RCtrl := CHS_Receiving;
+    Move(Rec^, CH_RBuff^, SizeOf(tICSRecord));
+  Len := ICSRecLen(CH_Codec);
+  CH_RSNode := CH_Codec.SNode;
+  CH_RDNode := CH_Codec.DNode;
+  Result := res_Ok;
 end;
 
-procedure tChnICS.ChReceiveFlush;
+procedure tChnICS.ChRxTaken;
 begin
-  ICSReset(CH_Codec);
   CH_Event := icsNone;
-  inherited ChReceiveFlush;
 end;
+
+const
+  ICSTexts: array[0..5] of tProtoText = (
+    (Code: res_ErrFrame; Text: 'frame format error'),
+    (Code: res_ErrSum;   Text: 'checksum error'),
+    (Code: res_ErrLen;   Text: 'too many numbers or text too long'),
+    (Code: res_ErrVal;   Text: 'bad number (malformed or outside 16 bits)'),
+    (Code: res_ErrETX;   Text: 'ETX missing'),
+    (Code: res_ErrEOT;   Text: 'EOT missing after the checksum'));
 
 function tAddChnICS.ChInit: pChnVirt;
 begin
@@ -280,11 +217,5 @@ begin
 end;
 
 initialization
-  ChnCollection^.Insert(New(pAddChnICS, Init(cName)));
-  ChRegisterResultText(cName, res_ErrFrame, 'frame format error');
-  ChRegisterResultText(cName, res_ErrSum, 'checksum error');
-  ChRegisterResultText(cName, res_ErrLen, 'too many numbers or text too long');
-  ChRegisterResultText(cName, res_ErrVal, 'bad number (malformed or outside 16 bits)');
-  ChRegisterResultText(cName, res_ErrETX, 'ETX missing');
-  ChRegisterResultText(cName, res_ErrEOT, 'EOT missing after the checksum');
+  ProtoRegister(New(pAddChnICS, Init(cName)), ICSTexts);
 end.

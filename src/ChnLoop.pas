@@ -207,7 +207,7 @@ begin
       Exit;
     end;
     P^.Open[CH_End] := True;
-    RingAlloc(P^.Dir[CH_End].Ring, CH_LRB);
+    RingAlloc(P^.Dir[CH_End].Ring, CH_LRB, True);   { held input ends ChnWaitAny }
     P^.Wait[CH_End] := ChnWaitJoin(wkSignal, -1, nil, nil);
     CH_PairRef := P;
   finally

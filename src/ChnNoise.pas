@@ -16,6 +16,18 @@
              from the clock. ChGetParam reports the seed in use, so the
              parameters of a failing run replay it.
   Rates are plain or exponent numbers ('0.001', '1E-3'); 0 disables.
+  Faults of whole chunks (a chunk sent is one ChSend of the layer above,
+  i.e. one frame), for link procedures:
+    LOS=p    probability of a sent chunk being lost whole
+    STL=p    probability of the line stalling before a sent chunk: for
+             STM= ms nothing passes in either direction; then what was
+             held goes on, in order (a relay or a radio that stops)
+    STM=ms   length of a stall, 1..600000 (default 1500)
+    ROR=p    probability of a sent chunk being held back and going after
+             the next one (at the latest STM ms later): reordering
+  A stall or a held chunk ends at the first call into the layer after its
+  time (the layer has no clock of its own to wake a wait); input held
+  after a stall counts as held for ChnWaitAny.
 
   Replay: what happens to a byte depends only on the seed, the direction
   and the byte's position in that direction's stream since ChConnect (a
@@ -61,6 +73,21 @@ type
     CH_PendLen, CH_PendPos: Byte;
     CH_TxBuf   : PByte;       { sent bytes after the damage }
     CH_TxSize  : LongInt;
+    { chunk faults: LOS= STL= STM= ROR= }
+    CH_Los, CH_Stl, CH_Ror: Double;
+    CH_LosT, CH_StlT, CH_RorT: LongWord;
+    CH_StallMs : LongInt;
+    CH_Chunk   : QWord;       { chunks sent since ChConnect }
+    CH_StallEnd: QWord;       { 0: no stall now }
+    CH_OutQ    : PByte;       { bytes for the layer below, in order }
+    CH_OutLen, CH_OutCap: LongInt;
+    CH_RorBuf  : PByte;       { a chunk held back to go after the next }
+    CH_RorLen, CH_RorCap: LongInt;
+    CH_RorEnd  : QWord;
+    CH_RxQ     : PByte;       { input held by a stall, then handed up first }
+    CH_RxLen, CH_RxPos, CH_RxCap: LongInt;
+    CH_RxHeld  : Boolean;     { ChnWaitHeld's flag }
+    CH_ChunksLost, CH_Stalls, CH_Reordered: QWord;
     constructor Init;
     constructor ChInitParam(const S: tParamStr);
     destructor  Done; virtual;
@@ -68,6 +95,7 @@ type
     function  ChOwnParams: tParamStr; virtual;
     procedure ChOpen; virtual;
     procedure ChConnect; virtual;
+    procedure ChClose; virtual;
     procedure ChSend(Buff: Pointer; Len: Word); virtual;
     function  ChReceiveReady: tChState; virtual;
     procedure ChReceive(var Len: Word); virtual;
@@ -75,6 +103,13 @@ type
     { What the line makes of byte B at the next position of direction Dir:
       0, 1 or 2 bytes in Out (garbage first). }
     function  ChDamage(Dir: tNoiseDir; B: Byte; var Out: array of Byte): LongInt;
+    function  ChSendReady: tChState; virtual;
+  private
+    function  ChunkFaults: Boolean;
+    procedure ChunkPump;
+    procedure ChunkSend(P: PByte; N: LongInt);
+    function  NextRaw(var B: Byte): Boolean;
+    procedure ChunkReset;
   end;
 
   pAddChnNoise = ^tAddChnNoise;
@@ -88,7 +123,34 @@ function NoiseHash(Seed: LongInt; Dir: tNoiseDir; Pos: QWord; K: Byte): QWord;
 implementation
 
 uses
-  SysUtils, uString;
+  SysUtils, uString, ChnWait;
+
+const
+  MaxStallHold = 65536;     { input kept during a stall; more is lost }
+  StallChoice = 1500;       { STM= default }
+
+{ Append N bytes at Src to the buffer Buf (Len used, Cap allocated). }
+procedure Append(var Buf: PByte; var Len, Cap: LongInt; Src: PByte; N: LongInt);
+begin
+  if N <= 0 then
+    Exit;
+  if Len + N > Cap then
+  begin
+    Cap := 2 * (Len + N);
+    ReAllocMem(Buf, Cap);
+  end;
+  Move(Src^, Buf[Len], N);
+  Inc(Len, N);
+end;
+
+procedure FreeBuf(var Buf: PByte; var Len, Cap: LongInt);
+begin
+  if Buf <> nil then
+    FreeMem(Buf);
+  Buf := nil;
+  Len := 0;
+  Cap := 0;
+end;
 
 const
   DirChoice = 'BOTH|RX|TX';
@@ -144,6 +206,15 @@ begin
   CH_Pos[ndRx] := 0; CH_Pos[ndTx] := 0;
   CH_Passed[ndRx] := 0; CH_Passed[ndTx] := 0;
   CH_Flipped := 0; CH_Dropped := 0; CH_Inserted := 0;
+  CH_Los := 0; CH_Stl := 0; CH_Ror := 0;
+  CH_LosT := 0; CH_StlT := 0; CH_RorT := 0;
+  CH_StallMs := StallChoice;
+  CH_OutQ := nil; CH_OutLen := 0; CH_OutCap := 0;
+  CH_RorBuf := nil; CH_RorLen := 0; CH_RorCap := 0;
+  CH_RxQ := nil; CH_RxLen := 0; CH_RxCap := 0; CH_RxPos := 0;
+  CH_RxHeld := False;
+  CH_ChunksLost := 0; CH_Stalls := 0; CH_Reordered := 0;
+  ChunkReset;
 end;
 
 constructor tChnNoise.ChInitParam(const S: tParamStr);
@@ -158,42 +229,53 @@ begin
   if CH_TxBuf <> nil then
     FreeMem(CH_TxBuf, CH_TxSize);
   CH_TxBuf := nil;
+  ChunkReset;
+  FreeBuf(CH_OutQ, CH_OutLen, CH_OutCap);
+  FreeBuf(CH_RorBuf, CH_RorLen, CH_RorCap);
+  FreeBuf(CH_RxQ, CH_RxLen, CH_RxCap);
+end;
+
+{ A probability 0..1 (BER= DRP= INS= LOS= STL= ROR=) and its threshold of
+  2^32, set only when CmdL = cmd_Set. }
+function RateParam(const S: tWordString; CmdL: tCmd; var Rate: Double;
+  var T: LongWord): tChResult;
+var
+  P: Double;
+begin
+  P := 0;
+  if not StrToReal(ParamValue(S), 0, MaxRate, P) then
+    Exit(res_BadParam);
+  if CmdL = cmd_Set then
+  begin
+    Rate := P;
+    T := Threshold(P);
+  end;
+  Result := res_Ok;
 end;
 
 function tChnNoise.ChSetOneParam(const S: tWordString; var CmdL: tCmd): tChResult;
 var
   Key: string;
-  P: Double;
   N: LongInt;
   I: Integer;
 begin
   Key := ParamKey(S);
-  P := 0;
   N := 0;
   I := 0;
-  if (Key = 'BER') or (Key = 'DRP') or (Key = 'INS') then
-  begin
-    if StrToReal(ParamValue(S), 0, MaxRate, P) then
-      Result := res_Ok
-    else
-      Result := res_BadParam;
-    if (Result = res_Ok) and (CmdL = cmd_Set) then
-      if Key = 'BER' then
-      begin
-        CH_Ber := P;
-        CH_BerT := Threshold(P);
-      end
-      else if Key = 'DRP' then
-      begin
-        CH_Drop := P;
-        CH_DropT := Threshold(P);
-      end
-      else
-      begin
-        CH_Ins := P;
-        CH_InsT := Threshold(P);
-      end;
-  end
+  if Key = 'BER' then
+    Result := RateParam(S, CmdL, CH_Ber, CH_BerT)
+  else if Key = 'DRP' then
+    Result := RateParam(S, CmdL, CH_Drop, CH_DropT)
+  else if Key = 'INS' then
+    Result := RateParam(S, CmdL, CH_Ins, CH_InsT)
+  else if Key = 'LOS' then
+    Result := RateParam(S, CmdL, CH_Los, CH_LosT)
+  else if Key = 'STL' then
+    Result := RateParam(S, CmdL, CH_Stl, CH_StlT)
+  else if Key = 'ROR' then
+    Result := RateParam(S, CmdL, CH_Ror, CH_RorT)
+  else if Key = 'STM' then
+    Result := ParamSetNum(S, 1, 600000, CmdL, CH_StallMs)
   else if Key = 'BYTE' then
   begin
     if UpStr(ParamValue(S)) = 'RND' then
@@ -233,8 +315,18 @@ end;
 
 function tChnNoise.ChOwnParams: tParamStr;
 var
-  G, Dir: string;
+  G, Dir, ChunkText: string;
 begin
+  { the chunk faults only when used: the string stays short }
+  ChunkText := '';
+  if CH_Los > 0 then
+    ChunkText := RateText('LOS', CH_Los);
+  if CH_Stl > 0 then
+    ChunkText := ChunkText + RateText('STL', CH_Stl);
+  if CH_Ror > 0 then
+    ChunkText := ChunkText + RateText('ROR', CH_Ror);
+  if (CH_Stl > 0) or (CH_Ror > 0) or (CH_StallMs <> StallChoice) then
+    ChunkText := ChunkText + ParamText('STM', CH_StallMs);
   if CH_DirRx and CH_DirTx then
     Dir := 'BOTH'
   else if CH_DirRx then
@@ -246,7 +338,8 @@ begin
   else
     G := NumStr(CH_Garbage);
   Result := inherited ChOwnParams + RateText('BER', CH_Ber) + RateText('DRP', CH_Drop) +
-    RateText('INS', CH_Ins) + ' BYTE=' + G + ParamText('CNT', CH_Limit) +
+    RateText('INS', CH_Ins) + ChunkText +
+    ' BYTE=' + G + ParamText('CNT', CH_Limit) +
     ' DIR=' + Dir + ParamText('SEED', CH_Seed);
 end;
 
@@ -274,7 +367,134 @@ begin
     CH_Pos[ndTx] := 0;
     CH_PendLen := 0;
     CH_PendPos := 0;
+    ChunkReset;
   end;
+end;
+
+procedure tChnNoise.ChClose;
+begin
+  inherited ChClose;
+  ChunkReset;                    { what a stall held is gone with the line }
+end;
+
+{ ------------------------------------------------------- chunk faults }
+
+function tChnNoise.ChunkFaults: Boolean;
+begin
+  Result := (CH_Low <> nil) and ((CH_LosT > 0) or (CH_StlT > 0) or (CH_RorT > 0) or
+    (CH_OutLen > 0) or (CH_RorLen > 0) or (CH_RxPos < CH_RxLen) or (CH_StallEnd <> 0));
+end;
+
+procedure tChnNoise.ChunkReset;
+begin
+  CH_Chunk := 0;
+  CH_StallEnd := 0;
+  CH_OutLen := 0;
+  CH_RorLen := 0;
+  CH_RxLen := 0;
+  CH_RxPos := 0;
+  ChnWaitHeld(CH_RxHeld, False);
+end;
+
+{ Time up for a stall or a held chunk; hand what may go to the layer
+  below; take input during a stall off the line (so no ring below holds
+  it and keeps a program's wait awake). }
+procedure tChnNoise.ChunkPump;
+var
+  Now: QWord;
+  B: Byte;
+begin
+  Now := GetTickCount64;
+  if (CH_StallEnd <> 0) and (Now >= CH_StallEnd) then
+    CH_StallEnd := 0;
+  if (CH_RorLen > 0) and (Now >= CH_RorEnd) then
+  begin
+    Append(CH_OutQ, CH_OutLen, CH_OutCap, CH_RorBuf, CH_RorLen);   { nothing came after it }
+    CH_RorLen := 0;
+  end;
+  if CH_StallEnd <> 0 then
+  begin
+    while (CH_State = CHS_Connect) and (CH_Low^.ChReceiveReady = CHS_ReceiveReady) and
+          ChLowGetByte(B) do
+      if CH_RxLen < MaxStallHold then
+        Append(CH_RxQ, CH_RxLen, CH_RxCap, @B, 1)
+      else
+        Inc(CH_Dropped);
+  end
+  else if (CH_OutLen > 0) and (CH_Low^.ChSendReady = CHS_SendReady) then
+  begin
+    ChLowSend(CH_OutQ, CH_OutLen);
+    if CH_SResult = res_Ok then
+      CH_OutLen := 0;
+  end;
+  if CH_RxPos >= CH_RxLen then
+  begin
+    CH_RxLen := 0;
+    CH_RxPos := 0;
+  end;
+  ChnWaitHeld(CH_RxHeld, (CH_StallEnd = 0) and (CH_RxPos < CH_RxLen));
+end;
+
+{ A damaged chunk from the layer above: lost, held back, or queued. }
+procedure tChnNoise.ChunkSend(P: PByte; N: LongInt);
+var
+  K: QWord;
+begin
+  K := CH_Chunk;
+  Inc(CH_Chunk);
+  CH_SResult := res_Ok;
+  if LongWord(NoiseHash(CH_Seed, ndTx, K, 10)) < CH_LosT then
+  begin
+    Inc(CH_ChunksLost);
+    ChunkPump;
+    Exit;
+  end;
+  if (CH_StallEnd = 0) and (LongWord(NoiseHash(CH_Seed, ndTx, K, 11)) < CH_StlT) then
+  begin
+    Inc(CH_Stalls);
+    CH_StallEnd := GetTickCount64 + QWord(CH_StallMs);
+  end;
+  if (CH_RorLen = 0) and (LongWord(NoiseHash(CH_Seed, ndTx, K, 12)) < CH_RorT) then
+  begin
+    Inc(CH_Reordered);
+    Append(CH_RorBuf, CH_RorLen, CH_RorCap, P, N);
+    CH_RorEnd := GetTickCount64 + QWord(CH_StallMs);
+  end
+  else
+  begin
+    Append(CH_OutQ, CH_OutLen, CH_OutCap, P, N);
+    if CH_RorLen > 0 then
+    begin
+      Append(CH_OutQ, CH_OutLen, CH_OutCap, CH_RorBuf, CH_RorLen);   { after this one }
+      CH_RorLen := 0;
+    end;
+  end;
+  ChunkPump;
+  CH_SResult := res_Ok;          { on the line, as far as the sender can tell }
+end;
+
+{ The next received byte before the damage: held by a stall first. }
+function tChnNoise.NextRaw(var B: Byte): Boolean;
+begin
+  if CH_RxPos < CH_RxLen then
+  begin
+    B := CH_RxQ[CH_RxPos];
+    Inc(CH_RxPos);
+    Result := True;
+  end
+  else
+    Result := ChLowGetByte(B);
+end;
+
+function tChnNoise.ChSendReady: tChState;
+begin
+  if ChunkFaults then
+  begin
+    ChunkPump;
+    if (CH_OutLen > 0) and (CH_StallEnd = 0) then
+      Exit(CHS_Sending);         { the layer below is still busy }
+  end;
+  Result := inherited ChSendReady;
 end;
 
 function tChnNoise.ChDamage(Dir: tNoiseDir; B: Byte; var Out: array of Byte): LongInt;
@@ -329,7 +549,10 @@ begin
     Exit;
   if not CH_DirTx or (Len = 0) then
   begin
-    ChLowSend(Buff, Len);
+    if ChunkFaults and (Len > 0) then
+      ChunkSend(Buff, Len)
+    else
+      ChLowSend(Buff, Len);
     Exit;
   end;
   Need := 2 * LongInt(Len);
@@ -353,7 +576,9 @@ begin
   end;
   if N > High(Word) then
     N := High(Word);             { the chunk API carries at most 65535 bytes }
-  if N = 0 then
+  if ChunkFaults then
+    ChunkSend(CH_TxBuf, N)
+  else if N = 0 then
     CH_SResult := res_Ok          { every byte lost on the way }
   else
     ChLowSend(CH_TxBuf, N);
@@ -361,9 +586,13 @@ end;
 
 function tChnNoise.ChReceiveReady: tChState;
 begin
+  if ChunkFaults then
+    ChunkPump;
   if CH_State <> CHS_Connect then
     CH_RCtrl := CHS_RecInactive
-  else if (CH_PendPos < CH_PendLen) or (CH_LowPos < CH_LowLen) then
+  else if CH_StallEnd <> 0 then
+    CH_RCtrl := CHS_Receiving     { the line stalls: nothing arrives }
+  else if (CH_PendPos < CH_PendLen) or (CH_LowPos < CH_LowLen) or (CH_RxPos < CH_RxLen) then
     CH_RCtrl := CHS_ReceiveReady
   else if CH_Low = nil then
   begin
@@ -416,9 +645,11 @@ begin
       Continue;
     end;
     { only what the layer below already has: never wait for more }
-    if (CH_LowPos >= CH_LowLen) and (Len > 0) then
+    if (CH_LowPos >= CH_LowLen) and (CH_RxPos >= CH_RxLen) and (Len > 0) then
       Break;
-    if not ChLowGetByte(B) then
+    if CH_StallEnd <> 0 then
+      Break;                     { a stall: nothing arrives }
+    if not NextRaw(B) then
       Break;
     if CH_DirRx then
       CH_PendLen := ChDamage(ndRx, B, CH_Pend)
@@ -431,12 +662,17 @@ begin
   if (Len = 0) and (CH_RResult = res_Ok) then
     CH_RResult := res_NoMessage;
   CH_RCtrl := CHS_Receiving;
+  if ChunkFaults then
+    ChunkPump;
 end;
 
 procedure tChnNoise.ChReceiveFlush;
 begin
   CH_PendLen := 0;
   CH_PendPos := 0;
+  CH_RxLen := 0;
+  CH_RxPos := 0;
+  ChnWaitHeld(CH_RxHeld, False);
   inherited ChReceiveFlush;
 end;
 

@@ -35,7 +35,7 @@ type
     TimeoutMs: LongInt;      { link timeout, default DF1LinkTimeoutMs }
     MaxBytes : Word;         { data bytes per request, 2..244 (default 244) }
     Tns      : Word;         { TNS of the next request }
-    Idle     : tDF1Idle;     { blocking calls: called while waiting (nil: sleep) }
+    Idle     : tDF1Idle;     { blocking calls: called while waiting (nil: the program-wide wait) }
     IdleData : Pointer;
     Log      : tDF1LogProc;  { nil: quiet }
     LogWire  : Boolean;
@@ -68,8 +68,10 @@ type
 { A client on an open DF1 stack (it stays the caller's). }
 procedure PcccClientInit(var C: tPcccClient; Chn: pChnVirt);
 { A client on a new DF1 stack built from Params (DF1OpenStack); res_Ok, or
-  res_CannotOpen with C.Err saying why. }
-function PcccOpen(var C: tPcccClient; const Params: ShortString): tChResult;
+  res_CannotOpen with C.Err saying why; a string longer than the legacy
+  255 characters is res_ParamTooLong (C.Err: its length and the limit),
+  never cut to another device name. }
+function PcccOpen(var C: tPcccClient; const Params: AnsiString): tChResult;
 { Disconnect and dispose of a stack PcccOpen built. }
 procedure PcccClose(var C: tPcccClient);
 
@@ -101,7 +103,9 @@ function PcccStartWriteString(var R: tPcccRequest; var C: tPcccClient; const Add
   ('12', '$FF', '-1.5e3', a whole string for ST). }
 function PcccStartWriteText(var R: tPcccRequest; var C: tPcccClient; const Addr: ShortString;
   const Values: array of ShortString): Boolean;
-{ Look at the line once; True when the request is done. }
+{ Take everything the line has received for R, without waiting; True
+  when the request is done. A program with many requests in flight waits
+  in ChnWaitAny and steps each of them after every wait. }
 function PcccStep(var R: tPcccRequest): Boolean;
 { Abandon a request under way (R.Result res_Timeout, 'cancelled'); the
   client takes a new one at once. A client runs one request at a time: a
@@ -120,7 +124,7 @@ function PcccItemText(const R: tPcccRequest; Item: LongInt): ShortString;
 implementation
 
 uses
-  SysUtils, Math, uString;
+  SysUtils, Math, uString, ChnWait;
 
 procedure PcccClientInit(var C: tPcccClient; Chn: pChnVirt);
 begin
@@ -134,11 +138,20 @@ begin
   C.Tns := Word(ChMsTick xor (QWord(GetProcessID) * 40503));
 end;
 
-function PcccOpen(var C: tPcccClient; const Params: ShortString): tChResult;
+function PcccOpen(var C: tPcccClient; const Params: AnsiString): tChResult;
 var
   Chn: pChnVirt;
   E: AnsiString;
+  Why: ShortString;
 begin
+  Why := '';
+  Result := ParamLengthCheck(Length(Params), Why);
+  if Result <> res_Ok then
+  begin
+    PcccClientInit(C, nil);
+    C.Err := 'parameter string too long: ' + Why;
+    Exit;
+  end;
   Chn := DF1OpenStack(Params, 3000, E);
   PcccClientInit(C, Chn);
   if Chn = nil then
@@ -379,7 +392,6 @@ var
   Floats: array of Single;
   I: LongInt;
   D: Double;
-  Code: Integer;
   Res: tChResult;
 begin
   Res := PcccParseAddress(Addr, A, E);
@@ -403,8 +415,8 @@ begin
         SetLength(Floats, Length(Values));
         for I := 0 to High(Values) do
         begin
-          Val(Values[I], D, Code);
-          if (Code <> 0) or (Abs(D) > 3.4e38) then
+          { the shared parser: 2e308 is refused, never EOverflow }
+          if not StrToReal(Values[I], -3.4e38, 3.4e38, D) then
           begin
             Prepare(R, C, Addr, Length(Values), poWrite);
             Exit(Fail(R, res_PcccValue, '"' + Values[I] + '" is no float'));
@@ -507,7 +519,7 @@ begin
     if Assigned(R.Client^.Idle) then
       R.Client^.Idle(R.Client^.IdleData)
     else
-      Sleep(1);
+      ChnWaitUntil(DF1MasterWaitEnd(R.Master));   { the program-wide wait }
   Result := R.Result;
 end;
 

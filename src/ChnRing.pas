@@ -1,6 +1,9 @@
 { ChnRing - a byte ring buffer, the receive queue of the physical layers
   (ChnLoop, ChnCom). A plain record and procedures: no locking, no I/O;
-  the caller holds whatever lock its threads need. }
+  the caller holds whatever lock its threads need. A ring allocated with
+  ReportHeld tells the program-wide wait (ChnWaitHeld) while it holds
+  bytes: input a layer has pulled in that the program has not taken, for
+  which ChnWaitAny returns at once. }
 unit ChnRing;
 
 {$I chn.inc}
@@ -13,10 +16,12 @@ type
     Cap  : LongInt;
     Head : LongInt;   { index of the oldest byte }
     Count: LongInt;   { bytes held }
+    Report: Boolean;  { tell ChnWaitHeld while Count > 0 }
+    Held : Boolean;   { the flag ChnWaitHeld keeps for this ring }
   end;
 
-{ (Re)allocate for Cap bytes and empty the ring. }
-procedure RingAlloc(var R: tByteRing; Cap: LongInt);
+{ (Re)allocate for Cap bytes and empty the ring; ReportHeld as above. }
+procedure RingAlloc(var R: tByteRing; Cap: LongInt; ReportHeld: Boolean = False);
 { Free the memory; the ring holds nothing afterwards. }
 procedure RingFree(var R: tByteRing);
 procedure RingClear(var R: tByteRing);
@@ -33,11 +38,21 @@ procedure RingCommit(var R: tByteRing; N: LongInt);
 
 implementation
 
-procedure RingAlloc(var R: tByteRing; Cap: LongInt);
+uses
+  ChnWait;
+
+procedure NoteHeld(var R: tByteRing); inline;
+begin
+  if R.Report or R.Held then
+    ChnWaitHeld(R.Held, R.Report and (R.Count > 0));
+end;
+
+procedure RingAlloc(var R: tByteRing; Cap: LongInt; ReportHeld: Boolean);
 begin
   ReAllocMem(R.Buf, Cap);
   R.Cap := Cap;
   RingClear(R);
+  R.Report := ReportHeld;
 end;
 
 procedure RingFree(var R: tByteRing);
@@ -53,6 +68,7 @@ procedure RingClear(var R: tByteRing);
 begin
   R.Head := 0;
   R.Count := 0;
+  NoteHeld(R);
 end;
 
 function RingRoom(const R: tByteRing): LongInt;
@@ -78,6 +94,7 @@ end;
 procedure RingCommit(var R: tByteRing; N: LongInt);
 begin
   Inc(R.Count, N);
+  NoteHeld(R);
 end;
 
 function RingPut(var R: tByteRing; Src: PByte; N: LongInt): LongInt;
@@ -118,6 +135,7 @@ begin
   end;
   if R.Count = 0 then
     R.Head := 0;          { keeps the next read in one piece }
+  NoteHeld(R);
 end;
 
 end.

@@ -24,10 +24,10 @@ type
 const
   { tCmd: ChSetParam validates the whole string first (cmd_Check, no side
     effects), then applies it (cmd_Set); so a bad token changes nothing.
-    Before both it shows every token once with cmd_Peek: a layer whose
-    checks depend on another key of the same string (FT 1.2: the NOD range
-    on ADR=) notes that value then; the result of a peek is ignored and a
-    layer that needs no look-ahead treats cmd_Peek like cmd_Check. }
+    Checks that depend on several keys of one string are the layer's
+    whole-string check (tChnVirt.ChCheckParams). cmd_Peek was a pass
+    before the checks; it is no longer sent and stays for sources that
+    name it. }
   cmd_Set   = 0;
   cmd_Check = 1;
   cmd_Peek  = 2;
@@ -75,7 +75,8 @@ const
   res_HostUnknown  = 22;   { network: host name not resolved }
   res_Refused      = 23;   { network: connection refused }
   res_Reconnecting = 24;   { network: connection lost, reconnecting by itself }
-  res_BadStream    = 25;   { network: the peer broke the Telnet protocol }
+  res_ParamTooLong = 25;   { a parameter string longer than tParamStr: refused, not cut }
+  res_BadStream    = 26;   { network: the peer broke the Telnet protocol }
   res_LastGeneral  = res_BadStream;   { the highest general code in use }
   res_Proto        = $20;  { first code a protocol unit may use }
 
@@ -158,6 +159,7 @@ begin
     res_HostUnknown:  Result := 'host name not resolved';
     res_Refused:      Result := 'connection refused';
     res_Reconnecting: Result := 'connection lost, reconnecting';
+    res_ParamTooLong: Result := 'parameter string too long';
     res_BadStream:    Result := 'the peer broke the Telnet protocol (subnegotiation never closed)';
   else
     Result := '';

@@ -79,6 +79,7 @@ const
   res_HostUnknown  = ChnTypes.res_HostUnknown;
   res_Refused      = ChnTypes.res_Refused;
   res_Reconnecting = ChnTypes.res_Reconnecting;
+  res_ParamTooLong = ChnTypes.res_ParamTooLong;
   res_BadStream    = ChnTypes.res_BadStream;
   res_Proto        = ChnTypes.res_Proto;
 
@@ -90,6 +91,23 @@ const
   MaxChnManagers = 32;
 
 type
+  { One token of a parameter string, split once by ParamSplit. }
+  tParamToken = record
+    Text : tWordString;   { KEY=VALUE as given }
+    Key  : string[31];    { upper-cased KEY ('' when there is no '=') }
+    Ok   : Boolean;       { of the form KEY=VALUE, VALUE not empty, one '=' }
+    Start: LongInt;       { where it begins in the string }
+  end;
+  { A parameter string as tokens; while ChSetParam checks a layer's tokens,
+    Items[OwnFirst .. OwnEnd - 1] are that layer's own (OwnEnd: the NAM=
+    of the layer below, or Count). }
+  tParamList = record
+    Count   : LongInt;
+    Items   : array of tParamToken;
+    OwnFirst: LongInt;
+    OwnEnd  : LongInt;
+  end;
+
   pChnVirt = ^tChnVirt;
   tChnVirt = object
     CH_Type    : string[15];   { layer type, the registry name ('DF1') }
@@ -117,7 +135,11 @@ type
     constructor ChInitParam(const S: tParamStr);
     destructor  Done; virtual;
 
-    procedure ChSetParam(const S: tParamStr); virtual;
+    procedure ChSetParam(const S: tParamStr); virtual; overload;
+    { The same for a long string (an AnsiString of new code): more than
+      the legacy limit of 255 characters is refused with res_ParamTooLong
+      (ChParamError says how long and the limit), never cut. }
+    procedure ChSetParam(const S: AnsiString); overload;
     function  ChSetOneParam(const S: tWordString; var CmdL: tCmd): tChResult; virtual;
     { '' : the whole configuration (cut after the last whole token that
       fits 255 characters); a key: only the tokens with that key }
@@ -145,6 +167,18 @@ type
     procedure ChGetNode(var SNode, DNode: tNode); virtual;
 
     { --- additions of the port (not in the SofCon manuals) --- }
+    { The receive buffer ChReceiveBuffer gave last (nil, 0: none) and the
+      destination ChDestNode set: what a helper that borrows the channel
+      for an exchange gives back afterwards, through ChReceiveBuffer and
+      ChDestNode. }
+    procedure ChGetReceiveBuffer(var Buff: Pointer; var Size: Word);
+    function  ChGetDestNode: tNode;
+    { True while the layer holds input it has already pulled in: a
+      message waiting for ChReceive, or bytes from below not yet fed to
+      its automaton. A stepped client takes more messages in the same
+      step only while this is True, so a step never waits for new input
+      (a poll of a layer with IDL= may). }
+    function  ChHoldsInput: Boolean; virtual;
     { The token that made the last ChSetParam fail ('' after success). }
     function  ChParamError: tWordString; virtual;
     { Readable text of a result code of this layer (protocol codes included). }
@@ -152,6 +186,17 @@ type
     { Own parameters as ' KEY=VALUE' tokens, for ChGetParam; descendants
       append theirs to inherited ChOwnParams. }
     function  ChOwnParams: tParamStr; virtual;
+    { The whole-string check: called once every own token of the string
+      passed its own check (ChSetOneParam with cmd_Check), before anything
+      is applied, with the string's tokens (L.Items[L.OwnFirst ..
+      L.OwnEnd - 1] this layer's). A layer whose keys depend on each other
+      (FT 1.2: NOD=/DNO= on ADR=, in any order) checks them here; on an
+      error it names the token at fault in Culprit. Default: res_Ok. }
+    function  ChCheckParams(const L: tParamList; var Culprit: tWordString): tChResult; virtual;
+    { ChSetParam's steps: check the own tokens; build the layer below }
+    function  ChCheckOwn(const L: tParamList; var ErrTok: tWordString): tChResult;
+    function  ChBuildLow(const S: tParamStr; const L: tParamList;
+      var ErrTok: tWordString; var NewLow: pChnVirt): tChResult;
     { False for a physical layer, which cannot have a layer below. }
     function  ChHasLow: Boolean; virtual;
     { Highest station address NOD=/DNO= accept; 0: the layer has none. }
@@ -159,6 +204,10 @@ type
     { Next byte received by the lower layer, False if none is waiting now.
       Lower-layer errors are copied to CH_RResult. }
     function  ChLowGetByte(var B: Byte): Boolean;
+    { True when bytes pulled from below wait in CH_LowBuf[CH_LowPos ..
+      CH_LowLen - 1]; pulls the next chunk when none is left (errors as
+      ChLowGetByte). For a loop that reads CH_LowBuf itself (tChnProto). }
+    function  ChLowFill: Boolean;
     { Hand Len bytes to the lower layer's ChSend; result in CH_SResult. }
     procedure ChLowSend(Buff: Pointer; Len: Word);
     { Discard bytes pulled from the lower layer but not consumed yet. }
@@ -243,6 +292,17 @@ function ChSendWhenFree(Chn: pChnVirt; Buff: Pointer; Len: Word;
 procedure ChSendBuffer(var Buf: Pointer; var Size: Word; Default: Word);
 procedure ChFreeSendBuffer(var Buf: Pointer; var Size: Word);
 
+{ Split a parameter string into tokens, once (ChSetParam). }
+procedure ParamSplit(const S: ShortString; var L: tParamList);
+{ Index of the first of a layer's own tokens with Key (upper case) while
+  ChCheckParams runs, -1 when the string does not give it. }
+function ParamFind(const L: tParamList; const Key: ShortString): LongInt;
+{ res_Ok when a parameter string of Len characters fits the legacy
+  tParamStr, else res_ParamTooLong and Why = 'N characters, the limit is
+  255' - for every entry point that takes a long string. }
+function ParamLengthCheck(Len: LongInt; var Why: ShortString): tChResult; overload;
+function ParamLengthCheck(Len: LongInt; var Why: AnsiString): tChResult; overload;
+
 { Helpers for ChSetOneParam/ChOwnParams of every layer, so that number
   parsing, range checks and ON/OFF live in one place. }
 { A routine that returns a number by reference comes for LongInt and SmallInt
@@ -277,7 +337,7 @@ var
 implementation
 
 uses
-  SysUtils;
+  SysUtils, ChnWait;
 
 function ChNumName(const Name: ShortString): Word;
 var
@@ -304,6 +364,10 @@ begin
       Exit(Chn^.ChResult);
     if ChMsTick > Deadline then
       Exit(res_Timeout);
+    { the program-wide wait ends when the transmitter can take more; at
+      most 10 ms, for a transmitter that cannot end it (an RS-485 line
+      draining with RTS raised) }
+    ChnWaitUntil(Deadline + 1, 10);
   end;
   Chn^.ChSend(Buff, Len);
   Result := Chn^.ChSendResult;
@@ -324,6 +388,64 @@ begin
     FreeMem(Buf);
   Buf := nil;
   Size := 0;
+end;
+
+procedure ParamSplit(const S: ShortString; var L: tParamList);
+var
+  P, Start: LongInt;
+  Tok, K, V: ShortString;
+begin
+  L.Count := 0;
+  L.OwnFirst := 0;
+  L.OwnEnd := 0;
+  P := 1;
+  Start := 1;
+  while NextTokenAt(S, P, Tok, Start) do
+  begin
+    if L.Count >= Length(L.Items) then
+      SetLength(L.Items, 8 + 2 * L.Count);
+    with L.Items[L.Count] do
+    begin
+      Text := Tok;
+      K := '';
+      V := '';
+      Ok := SplitKeyValue(Tok, K, V) and (V <> '');
+      if Pos('=', Tok) > 1 then
+        Key := K
+      else
+        Key := '';
+    end;
+    L.Items[L.Count].Start := Start;
+    Inc(L.Count);
+  end;
+end;
+
+function ParamFind(const L: tParamList; const Key: ShortString): LongInt;
+var
+  I: LongInt;
+begin
+  for I := L.OwnFirst to L.OwnEnd - 1 do
+    if L.Items[I].Key = Key then
+      Exit(I);
+  Result := -1;
+end;
+
+function ParamLengthCheck(Len: LongInt; var Why: AnsiString): tChResult;
+var
+  W: ShortString;
+begin
+  W := '';
+  Result := ParamLengthCheck(Len, W);
+  if Result <> res_Ok then
+    Why := W;
+end;
+
+function ParamLengthCheck(Len: LongInt; var Why: ShortString): tChResult;
+begin
+  if Len <= High(tParamStr) then
+    Exit(res_Ok);
+  Why := NumStr(Len) + ' characters, the limit is ' + NumStr(High(tParamStr));
+  Result := res_ParamTooLong;
 end;
 
 function ParamKey(const S: tWordString): ShortString;
@@ -468,113 +590,95 @@ begin
   CH_Low := nil;
 end;
 
-procedure tChnVirt.ChSetParam(const S: tParamStr);
-const
-  MaxOwn = 128;
+{ ChSetParam's check of this layer's own tokens (no side effects): the
+  form, duplicates, then ChSetOneParam(cmd_Check) of each, then the
+  whole-string check. ErrTok names the token at fault. }
+function tChnVirt.ChCheckOwn(const L: tParamList; var ErrTok: tWordString): tChResult;
 var
-  OwnStart: array[1..MaxOwn] of Integer;   { where each own token begins }
-  OwnCount, I, J, P, Pos, TokStart, RestStart, Start: Integer;
-  Tok, Prev, ErrTok: tWordString;
-  Key, Value: string;
+  I, J: LongInt;
+  Cmd: tCmd;
+begin
+  Result := res_Ok;
+  for I := L.OwnFirst to L.OwnEnd - 1 do
+  begin
+    ErrTok := L.Items[I].Text;
+    if not L.Items[I].Ok then
+      Exit(res_BadParam);
+    for J := L.OwnFirst to I - 1 do
+      if L.Items[J].Key = L.Items[I].Key then
+        Exit(res_DupParam);
+    Cmd := cmd_Check;
+    Result := ChSetOneParam(L.Items[I].Text, Cmd);
+    if Result <> res_Ok then
+      Exit;
+  end;
+  ErrTok := '';
+  Result := ChCheckParams(L, ErrTok);
+end;
+
+{ ChSetParam's layer below, from the NAM= token Items[L.OwnEnd] on: built
+  completely through its own (virtual) ChSetParam before anything changes
+  here; NewLow nil when it fails (ErrTok: the token at fault). }
+function tChnVirt.ChBuildLow(const S: tParamStr; const L: tParamList;
+  var ErrTok: tWordString; var NewLow: pChnVirt): tChResult;
+var
+  Nam: tParamToken;
+begin
+  NewLow := nil;
+  Nam := L.Items[L.OwnEnd];
+  ErrTok := Nam.Text;
+  if not Nam.Ok or not ChHasLow then
+    Exit(res_BadParam);                 { a physical layer has nothing below }
+  if CH_State <> CHS_Close then
+    Exit(res_WrongState);               { cannot swap the stack while open }
+  NewLow := ChnCollection^.ChNewInit(ParamValue(Nam.Text));
+  if NewLow = nil then
+    Exit(res_UnknownLayer);
+  NewLow^.ChSetParam(Copy(S, Nam.Start, Length(S) - Nam.Start + 1));
+  Result := NewLow^.ChResult;
+  if Result <> res_Ok then
+  begin
+    ErrTok := NewLow^.ChParamError;
+    Dispose(NewLow, Done);
+    NewLow := nil;
+  end;
+end;
+
+procedure tChnVirt.ChSetParam(const S: tParamStr);
+var
+  L: tParamList;
+  I: LongInt;
+  ErrTok: tWordString;
   Cmd: tCmd;
   R: tChResult;
   NewLow: pChnVirt;
 begin
   CH_ParamErr := '';
-  FillChar(OwnStart, SizeOf(OwnStart), 0);
-  OwnCount := 0;
-  RestStart := 0;
-  Pos := 1;
-  R := res_Ok;
-  ErrTok := '';
+  ParamSplit(S, L);
   { a leading NAM=<this layer's type> names this layer itself; any later
     NAM= starts the layer below (so 'NAM=TSTP NAM=TSTP' is two layers) }
-  Start := 1;
-  if NextToken(S, Pos, Tok) and SplitKeyValue(Tok, Key, Value) and
-     (Key = 'NAM') and (UpStr(Value) = UpStr(CH_Type)) then
-    Start := Pos;
-  { pass 0: let the layer peek at its tokens (see cmd_Peek) }
-  Pos := Start;
-  while NextTokenAt(S, Pos, Tok, TokStart) do
-  begin
-    if SplitKeyValue(Tok, Key, Value) and (Key = 'NAM') then
-      Break;
-    Cmd := cmd_Peek;
-    ChSetOneParam(Tok, Cmd);
-  end;
-  Pos := Start;
-  { pass 1: check this layer's tokens and find where the lower layer starts }
-  while (R = res_Ok) and NextTokenAt(S, Pos, Tok, TokStart) do
-  begin
-    ErrTok := Tok;
-    if not SplitKeyValue(Tok, Key, Value) or (Value = '') then
-      R := res_BadParam
-    else if Key = 'NAM' then
-    begin
-      RestStart := TokStart;
-      Break;
-    end
-    else
-    begin
-      for J := 1 to OwnCount do
-      begin
-        P := OwnStart[J];
-        if NextToken(S, P, Prev) and (ParamKey(Prev) = Key) then
-          R := res_DupParam;
-      end;
-      if R = res_Ok then
-      begin
-        Cmd := cmd_Check;
-        R := ChSetOneParam(Tok, Cmd);
-      end;
-      if (R = res_Ok) and (OwnCount >= MaxOwn) then
-        R := res_TooLong;
-      if R = res_Ok then
-      begin
-        Inc(OwnCount);
-        OwnStart[OwnCount] := TokStart;
-      end;
-    end;
-  end;
-  { build the new lower layer completely before changing anything }
+  L.OwnFirst := 0;
+  if (L.Count > 0) and (L.Items[0].Key = 'NAM') and
+     (UpStr(ParamValue(L.Items[0].Text)) = UpStr(CH_Type)) then
+    L.OwnFirst := 1;
+  L.OwnEnd := L.OwnFirst;
+  while (L.OwnEnd < L.Count) and (L.Items[L.OwnEnd].Key <> 'NAM') do
+    Inc(L.OwnEnd);
+  ErrTok := '';
   NewLow := nil;
-  if (R = res_Ok) and (RestStart > 0) then
-  begin
-    if not ChHasLow then
-      R := res_BadParam                 { a physical layer has nothing below }
-    else if CH_State <> CHS_Close then
-      R := res_WrongState               { cannot swap the stack while open }
-    else
-    begin
-      NewLow := ChnCollection^.ChNewInit(Value);
-      if NewLow = nil then
-        R := res_UnknownLayer
-      else
-      begin
-        NewLow^.ChSetParam(Copy(S, RestStart, Length(S) - RestStart + 1));
-        R := NewLow^.ChResult;
-        if R <> res_Ok then
-        begin
-          ErrTok := NewLow^.ChParamError;
-          Dispose(NewLow, Done);
-          NewLow := nil;
-        end;
-      end;
-    end;
-  end;
+  R := ChCheckOwn(L, ErrTok);
+  if (R = res_Ok) and (L.OwnEnd < L.Count) then
+    R := ChBuildLow(S, L, ErrTok, NewLow);
   if R <> res_Ok then
   begin
     CH_Result := R;
-    CH_ParamErr := ErrTok;
+    CH_ParamErr := ErrTok;              { nothing is applied }
     Exit;
   end;
-  { pass 2: apply }
-  for I := 1 to OwnCount do
+  for I := L.OwnFirst to L.OwnEnd - 1 do
   begin
-    P := OwnStart[I];
-    NextToken(S, P, Tok);
     Cmd := cmd_Set;
-    ChSetOneParam(Tok, Cmd);
+    ChSetOneParam(L.Items[I].Text, Cmd);
   end;
   if NewLow <> nil then
   begin
@@ -583,6 +687,23 @@ begin
     CH_Low := NewLow;
   end;
   CH_Result := res_Ok;
+end;
+
+procedure tChnVirt.ChSetParam(const S: AnsiString);
+var
+  Why: ShortString;
+begin
+  Why := '';
+  CH_Result := ParamLengthCheck(Length(S), Why);
+  if CH_Result <> res_Ok then
+    CH_ParamErr := Why                  { nothing is applied }
+  else
+    ChSetParam(tParamStr(S));         { the virtual one: a layer's override runs }
+end;
+
+function tChnVirt.ChCheckParams(const L: tParamList; var Culprit: tWordString): tChResult;
+begin
+  Result := res_Ok;
 end;
 
 function tChnVirt.ChSetOneParam(const S: tWordString; var CmdL: tCmd): tChResult;
@@ -616,11 +737,18 @@ end;
 function tChnVirt.ChGetParam(const S: tParamStr): tParamStr;
 var
   All: AnsiString;   { a deep stack may pass 255 characters }
+  Own: tParamStr;
   Tok: string;
   P, Start: Integer;
   Want: string;
 begin
-  All := 'NAM=' + CH_Type + ChOwnParams;
+  Own := ChOwnParams;
+  { a full ShortString may have been cut inside its last token by the
+    descendant's concatenation: keep whole tokens only, so it parses }
+  if Length(Own) = High(tParamStr) then
+    while (Length(Own) > 0) and (Own[Length(Own)] <> ' ') do
+      SetLength(Own, Length(Own) - 1);
+  All := 'NAM=' + CH_Type + Own;
   if CH_Low <> nil then
     All := All + ' ' + CH_Low^.ChGetParam('');
   Want := UpStr(S);
@@ -924,6 +1052,22 @@ procedure tChnVirt.ChReceiveTick;
 begin
 end;
 
+procedure tChnVirt.ChGetReceiveBuffer(var Buff: Pointer; var Size: Word);
+begin
+  Buff := CH_RBuff;
+  Size := CH_RSize;
+end;
+
+function tChnVirt.ChGetDestNode: tNode;
+begin
+  Result := CH_DNode;
+end;
+
+function tChnVirt.ChHoldsInput: Boolean;
+begin
+  Result := (CH_RCtrl = CHS_ReceiveReady) or (CH_LowPos < CH_LowLen);
+end;
+
 procedure tChnVirt.ChDestNode(DNode: tNode);
 begin
   CH_DNode := DNode;
@@ -935,38 +1079,43 @@ begin
   DNode := CH_RDNode;
 end;
 
-function tChnVirt.ChLowGetByte(var B: Byte): Boolean;
+function tChnVirt.ChLowFill: Boolean;
 var
   N: Word;
   R: tChResult;
 begin
-  if CH_LowPos >= CH_LowLen then
+  if CH_LowPos < CH_LowLen then
+    Exit(True);
+  CH_LowPos := 0;
+  CH_LowLen := 0;
+  if CH_Low = nil then
+    Exit(False);
+  if CH_Low^.ChReceiveReady <> CHS_ReceiveReady then
   begin
-    CH_LowPos := 0;
-    CH_LowLen := 0;
-    if CH_Low = nil then
-      Exit(False);
-    if CH_Low^.ChReceiveReady <> CHS_ReceiveReady then
-    begin
-      R := CH_Low^.ChReceiveResult;
-      if R <> res_Ok then
-        CH_RResult := R;
-      Exit(False);
-    end;
-    N := 0;
-    CH_Low^.ChReceive(N);
     R := CH_Low^.ChReceiveResult;
     if R <> res_Ok then
-      CH_RResult := R;          { e.g. res_Overrun: report, keep the bytes }
-    if N > SizeOf(CH_LowBuf) then
-      N := SizeOf(CH_LowBuf);
-    CH_LowLen := N;
-    if N = 0 then
-      Exit(False);
+      CH_RResult := R;
+    Exit(False);
   end;
-  B := CH_LowBuf[CH_LowPos];
-  Inc(CH_LowPos);
-  Result := True;
+  N := 0;
+  CH_Low^.ChReceive(N);
+  R := CH_Low^.ChReceiveResult;
+  if R <> res_Ok then
+    CH_RResult := R;          { e.g. res_Overrun: report, keep the bytes }
+  if N > SizeOf(CH_LowBuf) then
+    N := SizeOf(CH_LowBuf);
+  CH_LowLen := N;
+  Result := N > 0;
+end;
+
+function tChnVirt.ChLowGetByte(var B: Byte): Boolean;
+begin
+  Result := ChLowFill;
+  if Result then
+  begin
+    B := CH_LowBuf[CH_LowPos];
+    Inc(CH_LowPos);
+  end;
 end;
 
 procedure tChnVirt.ChLowDiscard;

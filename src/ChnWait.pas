@@ -118,6 +118,22 @@ function  ChnWaitCount: LongInt;
 procedure ChnWaitHeld(var Held: Boolean; Holds: Boolean);
 { Number of layers that hold input not yet taken. }
 function  ChnWaitHeldCount: LongInt;
+{ For a helper that blocks on its own channel (DF1Transact, FT12Transact,
+  PcccFinish, ChSendWhenFree) after it has taken everything that channel
+  holds: the program-wide wait of ChnWaitAny, but input that other layers
+  hold does not end it at once - the blocked helper could not take it (it
+  stays held for the program's next ChnWaitAny), and waking for it would
+  make the helper spin until its deadline. Where the system has no shared
+  set (ChnWaitShared False) it sleeps 1 ms at most. }
+function  ChnWaitNew(TimeoutMs: LongInt): Boolean;
+{ Milliseconds from now to Deadline (a ChMsTick-style GetTickCount64
+  value), 0 when it has passed: the wait a helper gives ChnWaitNew. }
+function  ChnWaitLeft(Deadline: QWord): LongInt;
+{ ChnWaitNew until Deadline, at most MaxMs: the one wait of every helper
+  loop (step, then ChnWaitUntil, until done or the deadline). MaxMs bounds
+  the wait for what cannot end it (a state change such as a TCP connect,
+  a peer stepped by nobody's input). }
+function  ChnWaitUntil(Deadline: QWord; MaxMs: LongInt = High(LongInt)): Boolean;
 
 implementation
 
@@ -696,13 +712,43 @@ function ChnWaitAny(TimeoutMs: LongInt): Boolean;
 begin
   if HeldCount > 0 then
     Exit(True);                      { input is waiting in a layer: take it }
+  Result := ChnWaitNew(TimeoutMs);
+end;
+
+function ChnWaitNew(TimeoutMs: LongInt): Boolean;
+begin
   if not ChnWaitShared then
   begin
+    { nothing can wake a wait here: a short nap, so the helper polls its
+      channel again soon instead of going deaf until its deadline }
     if TimeoutMs > 0 then
-      Sleep(TimeoutMs);
+      Sleep(1);
     Exit(False);
   end;
   Result := WaitSet(nil, TimeoutMs);
+end;
+
+function ChnWaitLeft(Deadline: QWord): LongInt;
+var
+  Now: QWord;
+begin
+  Now := GetTickCount64;
+  if Now >= Deadline then
+    Result := 0
+  else if Deadline - Now > High(LongInt) then
+    Result := High(LongInt)
+  else
+    Result := LongInt(Deadline - Now);
+end;
+
+function ChnWaitUntil(Deadline: QWord; MaxMs: LongInt): Boolean;
+var
+  Ms: LongInt;
+begin
+  Ms := ChnWaitLeft(Deadline);
+  if Ms > MaxMs then
+    Ms := MaxMs;
+  Result := ChnWaitNew(Ms);
 end;
 
 procedure FreeSlots;

@@ -69,6 +69,9 @@ function NumStr(N: LongInt): ShortString;
 
 implementation
 
+uses
+  Math;
+
 function UpStr(const S: ShortString): ShortString;
 var
   I: LongInt;
@@ -247,17 +250,57 @@ end;
 function StrToReal(const S: ShortString; Min, Max: Double; var D: Double): Boolean;
 var
   V: Double;
-  Code, I: LongInt;
+  Code, I, Digits: LongInt;
+  Masked: TFPUExceptionMask;
+
+  { skip an optional sign (Signed) and the digits at I; how many digits }
+  function Skip(Signed: Boolean): LongInt;
+  begin
+    if Signed and (I <= Length(S)) and (S[I] in ['+', '-']) then
+      Inc(I);
+    Result := 0;
+    while (I <= Length(S)) and (S[I] in ['0'..'9']) do
+    begin
+      Inc(I);
+      Inc(Result);
+    end;
+  end;
+
 begin
   Result := False;
-  if S = '' then
+  { strict form: [+-] digits [. digits] [e|E [+-] digits], at least one
+    digit before the exponent; Val would take blanks, '$', 'Inf', 'NaN' }
+  I := 1;
+  Digits := Skip(True);
+  if (I <= Length(S)) and (S[I] = '.') then
+  begin
+    Inc(I);
+    Inc(Digits, Skip(False));
+  end;
+  if Digits = 0 then
     Exit;
-  for I := 1 to Length(S) do
-    if not (S[I] in ['0'..'9', '.', 'e', 'E', '+', '-']) then
-      Exit;                     { Val would take blanks, '$' and 'Inf' }
-  V := 0;
-  Code := 0;
-  Val(S, V, Code);
+  if (I <= Length(S)) and (S[I] in ['e', 'E']) then
+  begin
+    Inc(I);
+    if Skip(True) = 0 then
+      Exit;
+  end;
+  if I <= Length(S) then
+    Exit;
+  { 2e308, 1E400, 300 digits: with the FPU's overflow exception unmasked
+    Val raises EOverflow (run-time error 217 in a program without
+    SysUtils' handler); masked, it gives Inf or 0, which the range check
+    below refuses or takes }
+  Masked := GetExceptionMask;
+  SetExceptionMask(Masked + [exInvalidOp, exDenormalized, exZeroDivide,
+    exOverflow, exUnderflow, exPrecision]);
+  try
+    V := 0;
+    Code := 0;
+    Val(S, V, Code);
+  finally
+    SetExceptionMask(Masked);
+  end;
   if (Code <> 0) or not (V >= Min) or not (V <= Max) then
     Exit;
   D := V;

@@ -10,7 +10,7 @@ unit TestChnDF1;
 interface
 
 uses
-  SysUtils, fpcunit, testregistry, ChnTypes, ChnVirt, ChnLoop, ChnDF1, TestSupport;
+  SysUtils, fpcunit, testregistry, ChnTypes, ChnVirt, ChnLoop, ChnDF1, ChnDF1Codec, TestSupport;
 
 type
   { the test's DF1 slave: answers commands like a small PLC }
@@ -60,6 +60,7 @@ type
     procedure TestSendHandsWireBytesDown;
     procedure TestReceiveByteByByte;
     procedure TestDuplicateDetectionComparesCmdAndFnc;
+    procedure TestReplyForAnotherStationIsDropped;
     procedure TestBrokenFramesThenRecovery;
     procedure TestReceiveBufferTooSmall;
     procedure TestRefusedSendsSendNothing;
@@ -68,7 +69,6 @@ type
     procedure TestManualExchangesFullDuplex;
     procedure TestHalfDuplexTwoSlavesFourWire;
     procedure TestHalfDuplexTwoSlavesTwoWire;
-    procedure TestBabblingLineDoesNotStallAPoll;
   end;
 
 implementation
@@ -997,19 +997,80 @@ begin
   HalfDuplexSession(True, 'HD2');
 end;
 
-{ A line that never stops sending bytes that start no frame (zeros, never a DLE):
-  one ChReceiveReady must return after a bounded number of bytes, not hang
-  the caller's polling loop for as long as the babble goes on. }
-procedure TTestChnDF1.TestBabblingLineDoesNotStallAPoll;
+{ Full duplex, a reply addressed to another station (DST <> NOD, or from
+  a station we sent no command to) is counted and dropped; commands come
+  from any SRC (a slave must take them, SPEC 6). }
+procedure TTestChnDF1.TestReplyForAnotherStationIsDropped;
 var
-  State: tChState;
-  N: LongInt;
+  M, Raw: pChnVirt;
+  R: tRecRecord;
+  Len: Word;
+
+  { a frame with DST, SRC, CMD on the line from the raw end }
+  procedure Arrive(Dst, Src: Byte; CF, Tns: Word);
+  var
+    Cfg: tDF1Config;
+    Rec: tSendRecord;
+    Wire: array[0..63] of Byte;
+    N: Word;
+  begin
+    FillChar(Cfg, SizeOf(Cfg), 0);
+    Cfg.FullDup := True;
+    Cfg.Crc := True;
+    Cfg.Node := Src;
+    Cfg.DNode := Dst;
+    Cfg.NakByte := NAK;
+    FillChar(Rec, SizeOf(Rec), 0);
+    Rec.MessType := tpDataMess;
+    Rec.CF := CF;
+    Rec.Tns := Tns;
+    N := 0;
+    AssertEquals('encode', res_Ok, DF1Encode(Cfg, Rec, cSizeHeadSndMsg, Wire, SizeOf(Wire), N));
+    Raw^.ChSend(@Wire, N);
+    AssertEquals('raw send', res_Ok, Raw^.ChSendResult);
+  end;
+
+  function Delivered: Boolean;
+  begin
+    Result := WaitReceive(M, 300);
+    if Result then
+    begin
+      M^.ChReceive(Len);
+      AssertEquals('taken', res_Ok, M^.ChReceiveResult);
+    end;
+  end;
+
 begin
-  State := CHS_Close;
-  N := NoiseOnePoll('NAM=DF1 NAM=NOISE BYTE=0 CNT=1000000', State);
-  AssertTrue('stack opened', N >= 0);
-  AssertEquals('no message', CHS_Receiving, State);
-  AssertTrue('one poll took ' + IntToStr(N) + ' bytes', N <= 65536);
+  M := Open('NAM=DF1 NOD=1 DNO=2 NAM=LOOP PAIR=DF1FOR END=1 IDL=0');
+  Raw := OpenRaw('DF1FOR');
+  M^.ChReceiveBuffer(@R, SizeOf(R));
+  Arrive(1, 2, CF_Echo or MskCF_Reply, 1);
+  AssertTrue('a reply from DNO to NOD is ours', Delivered);
+  AssertEquals(0, pChnDF1(M)^.CH_ForeignCount);
+  Arrive(3, 2, CF_Echo or MskCF_Reply, 2);
+  AssertFalse('DST 3 is not NOD 1', Delivered);
+  AssertEquals(1, pChnDF1(M)^.CH_ForeignCount);
+  AssertEquals(3, pChnDF1(M)^.CH_ForeignDst);
+  Arrive(1, 5, CF_Echo or MskCF_Reply, 3);
+  AssertFalse('SRC 5: no command went there', Delivered);
+  AssertEquals(2, pChnDF1(M)^.CH_ForeignCount);
+  AssertEquals(5, pChnDF1(M)^.CH_ForeignSrc);
+  { after a command to station 5, its reply is ours }
+  FillChar(R, SizeOf(R), 0);
+  R.MessType := tpDataMess;
+  R.CF := CF_Echo;
+  R.Tns := 4;
+  M^.ChDestNode(5);
+  SendRec(M, R, cSizeHeadSndMsg);
+  M^.ChDestNode(2);
+  Arrive(1, 5, CF_Echo or MskCF_Reply, 4);
+  AssertTrue('a reply from a station we sent to', Delivered);
+  { a command from any SRC: a slave must take it }
+  Arrive(1, 9, CF_Echo, 5);
+  AssertTrue('a command from SRC 9', Delivered);
+  Arrive(1, 2, CF_Echo or MskCF_Reply, 6);
+  AssertTrue('the line goes on', Delivered);
+  AssertEquals(2, pChnDF1(M)^.CH_ForeignCount);
 end;
 
 initialization

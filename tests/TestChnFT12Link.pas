@@ -44,6 +44,8 @@ type
     procedure TestLostReplyIsRepeatedWithSameFcb;
     procedure TestLostAckOfUserDataNotExecutedTwice;
     procedure TestTimeoutAfterRetriesThenResetAgain;
+    procedure TestLateAnswerToARepetitionConfirmsNothingElse;
+    procedure TestOneStepTakesEverythingReceived;
     procedure TestReplyFromWrongAddressOrGarbledIgnored;
     procedure TestReplyNotFittingTheFunction;
     procedure TestBroadcastAndNoReply;
@@ -289,12 +291,15 @@ begin
   AssertEquals(1, FSt.Repeats);
   AssertEquals(1, FLink.Repeats);
   AssertEquals('one item left in the queue', 1, Length(FClass1));
-  { the next request is new (FCB 0: $5A, sum $5F) and gets the next item:
-    68 03 03 68 08 05 03 10 16, ACD 0 now }
+  { the request was sent twice, so the answer to the other transmission
+    may still come: first a fence, request status of link ($49, sum $4E;
+    answer 10 2B 05 30 16, ACD set), then the next request, new (FCB 0: $5A, sum
+    $5F), which gets the next item: 68 03 03 68 08 05 03 10 16, ACD 0 now }
   FTap.Log.Clear;
   AssertEquals(res_Ok, ClassReq(1, Rep));
-  AssertEquals('10 5A 05 5F 16', FTap.Lines('A'));
-  AssertEquals('68 03 03 68 08 05 03 10 16', FTap.Lines('B'));
+  AssertEquals('10 49 05 4E 16 | 10 5A 05 5F 16', FTap.Lines('A'));
+  AssertEquals('10 2B 05 30 16 | 68 03 03 68 08 05 03 10 16', FTap.Lines('B'));
+  AssertEquals('one fence', 1, FLink.Fences);
   AssertFalse(FLink.Acd);
   AssertEquals(2, FSt.Executed);
 end;
@@ -336,13 +341,96 @@ begin
   AssertFalse('a failed service leaves the link not reset', FLink.Reset);
   AssertEquals(1, FSt.Executed);
   AssertEquals(2, FSt.Repeats);
-  { line good again: the next FCV = 1 service resets first }
+  { line good again: the answers of the failed service may still come, so
+    a fence (request status of link) goes first; then the next FCV = 1
+    service resets the link }
   FTap.DropB := 0;
   Settle;
   FTap.Log.Clear;
   AssertEquals(res_Ok, ClassReq(2, Rep));
-  AssertEquals('10 40 05 45 16 | 10 7B 05 80 16', FTap.Lines('A'));
+  AssertEquals('10 49 05 4E 16 | 10 40 05 45 16 | 10 7B 05 80 16', FTap.Lines('A'));
   AssertEquals(2, FSt.Executed);
+end;
+
+{ Issue 24 on the unbalanced link, stepped (FT12PrimaryStart/Step): the
+  line stalls longer than the timeout, the primary repeats AA; when the
+  stall ends it gets the answer to the first transmission, and the next
+  service (BB) is lost on the line; the answer to the repetition arrives
+  while BB is out. Taken for BB's, it confirmed BB, which the secondary
+  never got. Now a fence goes before BB: the late answer is ignored, BB
+  is confirmed only after the secondary took it. }
+procedure TTestChnFT12Link.TestLateAnswerToARepetitionConfirmsNothingElse;
+var
+  P: tFT12Primary;
+  Req: tSendRecord;
+  Until_: QWord;
+
+  procedure Data(B: Byte);
+  begin
+    FillChar(Req, SizeOf(Req), 0);
+    Req.MessType := tpLongM;
+    Req.FC := FCM_UserDataReply;
+    Req.Data[1] := B;
+  end;
+
+begin
+  SetUpPair;
+  AssertEquals(res_Ok, FT12ResetLink(FM, FLink, TimeoutMs, 2, @Idle, Self));
+  Settle;
+  Data($AA);
+  AssertTrue(FT12PrimaryStart(P, FM, FLink, Req, 5, TimeoutMs, 2));
+  FTap.Pump;                           { AA reaches the secondary }
+  FTap.HoldA := True;                  { the line stalls both ways }
+  FTap.HoldB := True;
+  FT12StationStep(FSt);                { executes AA and answers: held }
+  FTap.Pump;
+  Sleep(TimeoutMs + 20);
+  FT12PrimaryStep(P);                  { no answer: AA again, same FCB: held }
+  FTap.Pump;
+  AssertEquals('AA repeated', 1, FLink.Repeats);
+  FTap.HoldA := False;
+  FTap.HoldB := False;
+  FTap.Release;                        { the answer to the master, the repetition to the secondary }
+  AssertTrue('AA answered', FT12PrimaryStep(P));
+  AssertEquals(res_Ok, P.Result);
+  Data($BB);
+  AssertTrue(FT12PrimaryStart(P, FM, FLink, Req, 5, TimeoutMs, 2));
+  FTap.DropA := 1;                     { what goes out now is lost }
+  FTap.Pump;
+  FT12StationStep(FSt);                { the repetition of AA: the cached answer }
+  FTap.Pump;
+  AssertFalse('a late answer confirms nothing', FT12PrimaryStep(P));
+  AssertEquals('the late answer is recognised', 1, FLink.Stale);
+  Until_ := GetTickCount64 + 3000;
+  while not FT12PrimaryStep(P) and (GetTickCount64 < Until_) do
+  begin
+    Idle(Self);
+    Sleep(1);
+  end;
+  AssertEquals('BB confirmed', res_Ok, P.Result);
+  AssertEquals('only once the secondary took it; each once', 'AA | BB', FUserData);
+  AssertEquals(1, FLink.Fences);
+end;
+
+{ Another station's frame and the answer in one chunk: one step of the
+  stepped primary takes both and is done. }
+procedure TTestChnFT12Link.TestOneStepTakesEverythingReceived;
+var
+  P: tFT12Primary;
+  Req: tSendRecord;
+begin
+  SetUpPair;
+  FillChar(Req, SizeOf(Req), 0);
+  Req.MessType := tpShortM;
+  Req.FC := FCM_ReqLinkState;
+  AssertTrue(FT12PrimaryStart(P, FM, FLink, Req, 4, 1000, 0));
+  FTap.Pump;
+  { status of link from station 6 ($0B+$06 = $11), then from 5 }
+  FTap.InjectToA('10 0B 06 11 16 10 0B 05 10 16');
+  AssertTrue('done in one step', FT12PrimaryStep(P));
+  AssertEquals(res_Ok, P.Result);
+  AssertEquals(FCS_LinkSAccesReq, P.Rep.FC);
+  AssertEquals(1, FLink.Ignored);
 end;
 
 procedure TTestChnFT12Link.TestReplyFromWrongAddressOrGarbledIgnored;
@@ -355,8 +443,9 @@ begin
   FInject := '10 0B 06 11 16';
   AssertEquals(res_Timeout, Fixed(FCM_ReqLinkState, Rep, 0));
   AssertTrue(FLink.Ignored >= 1);
-  { wrong station, a garbled frame (sum $11 for $10), then station 5 }
-  FLink.Ignored := 0;
+  { wrong station, a garbled frame (sum $11 for $10), then station 5; on
+    a new link record (the old one waits for the first request's answer) }
+  FT12LinkInit(FLink, 5);
   FInject := '10 0B 06 11 16 10 0B 05 11 16 10 0B 05 10 16';
   AssertEquals(res_Ok, Fixed(FCM_ReqLinkState, Rep, 0));
   AssertEquals(4, FRepLen);
@@ -370,9 +459,12 @@ var
 begin
   SetUpPair;
   FStepSlave := False;
-  { status of link asked, ACK (10 00 05 05 16) comes }
+  { status of link asked, ACK (10 00 05 05 16) comes: a late answer to an
+    earlier request, not the answer to this one }
   FInject := '10 00 05 05 16';
-  AssertEquals(res_BadMessage, Fixed(FCM_ReqLinkState, Rep, 0));
+  AssertEquals(res_Timeout, Fixed(FCM_ReqLinkState, Rep, 0));
+  AssertEquals('taken for a late answer', 1, FLink.Stale);
+  FT12LinkInit(FLink, 5);              { the status answer it waited for is not coming }
   { a reset answered by user data: not a reset, the link stays not reset }
   FInject := '68 03 03 68 08 05 03 10 16';
   AssertEquals(res_BadMessage, FT12ResetLink(FM, FLink, TimeoutMs, 0, @Idle, Self));

@@ -46,6 +46,8 @@ type
     procedure TestUserDataCollisionBothConfirmed;
     procedure TestLostAckRepeatedWithSameFcbExecutedOnce;
     procedure TestAnswerFromAnotherAddressIgnored;
+    procedure TestLateAnswerToARepetitionConfirmsNothingElse;
+    procedure TestOneStepTakesEverythingReceived;
     procedure TestTestFunctionWhenIdle;
     procedure TestBadInputNeverStopsTheLink;
     procedure TestLinkLostIsEstablishedAgain;
@@ -201,14 +203,15 @@ begin
   SetUpPair;
   BringUp;
   { A: request status of link to 2 (C9+02 = CB); reset of remote link to 2
-    (C0+02 = C2); status of link from 1 to B's request (80+0B = 8B, +01 =
-    8C); ACK from 1 to B's reset (80+01 = 81) }
-  AssertEquals('10 C9 02 CB 16 | 10 C0 02 C2 16 | 10 8B 01 8C 16 | 10 80 01 81 16',
+    (C0+02 = C2) and, in the same step (one chunk for the tap: a step
+    takes every frame received), status of link from 1 to B's request
+    (80+0B = 8B, +01 = 8C); ACK from 1 to B's reset (80+01 = 81) }
+  AssertEquals('10 C9 02 CB 16 | 10 C0 02 C2 16 10 8B 01 8C 16 | 10 80 01 81 16',
     FTap.Lines('A'));
   { B: status of link from 2 (0B+02 = 0D) answering A first, then its own
     request status (49+01 = 4A) in the same step (one chunk for the tap),
-    ACK from 2 (00+02), reset to 1 (40+01) }
-  AssertEquals('10 0B 02 0D 16 10 49 01 4A 16 | 10 00 02 02 16 | 10 40 01 41 16',
+    ACK from 2 (00+02) and reset to 1 (40+01), again in one step }
+  AssertEquals('10 0B 02 0D 16 10 49 01 4A 16 | 10 00 02 02 16 10 40 01 41 16',
     FTap.Lines('B'));
   AssertTrue(FLa.PeerReset and FLb.PeerReset);
   AssertTrue('first FCB after a reset is 1', FLa.Fcb and FLb.Fcb);
@@ -264,6 +267,73 @@ begin
   AssertEquals(1, FLb.Repeats);
   AssertEquals(1, FLa.Retransmits);
   AssertEquals(1, FLa.Confirmed);
+end;
+
+{ Issue 24, on the wire: the line stalls longer than the timeout, so A
+  repeats its user data; the stall ends and A gets the answer to the first
+  transmission, and sends the next user data at once - which the line
+  loses. The answer to the repetition comes after it: taken for the new
+  frame's, it confirmed data B never got (and B then took the frame after
+  it for a repetition). Now A first asks for the status of link (its
+  answer, FC 11, cannot be mistaken for an ACK, and comes after every
+  earlier answer), then sends the data: confirmed only once B took it. }
+procedure TTestChnFT12LinkBalanced.TestLateAnswerToARepetitionConfirmsNothingElse;
+var
+  Until_: QWord;
+begin
+  SetUpPair(40);
+  BringUp;
+  FTap.Log.Clear;
+  Queue(FLa, 'AA');
+  Queue(FLa, 'BB');
+  FT12BalancedStep(FLa);          { AA goes out }
+  FTap.Pump;
+  FTap.HoldA := True;             { the line stalls both ways }
+  FTap.HoldB := True;
+  FT12BalancedStep(FLb);          { B takes AA and ACKs: held }
+  FTap.Pump;
+  Sleep(60);
+  FT12BalancedStep(FLa);          { no answer: AA again, same FCB: held }
+  FTap.Pump;
+  AssertEquals('AA repeated', 1, FLa.Retransmits);
+  FTap.HoldA := False;
+  FTap.HoldB := False;
+  FTap.Release;                   { the stall ends: ACK to A, repetition to B }
+  FT12BalancedStep(FLa);          { AA confirmed; the next frame goes out ... }
+  AssertEquals('AA confirmed', 1, FLa.Confirmed);
+  FTap.DropA := 1;                { ... and is lost }
+  FTap.Pump;
+  FT12BalancedStep(FLb);          { the repetition of AA: the cached ACK again }
+  FTap.Pump;
+  FT12BalancedStep(FLa);          { that late ACK }
+  AssertEquals('a late answer confirms nothing', 1, FLa.Confirmed);
+  Until_ := GetTickCount64 + 3000;
+  while (FLa.Confirmed < 2) and (GetTickCount64 < Until_) do
+  begin
+    Run(1);
+    Sleep(1);
+  end;
+  Run(3);
+  AssertEquals('both confirmed', 2, FLa.Confirmed);
+  AssertEquals('and both delivered, once each', 'AA | BB', FSinkB.Text);
+end;
+
+{ Two frames in one chunk (an answer and a request of B): one step takes
+  both, so a program stepping from ChnWaitAny never waits for the second. }
+procedure TTestChnFT12LinkBalanced.TestOneStepTakesEverythingReceived;
+var
+  Frames: LongInt;
+begin
+  SetUpPair;
+  BringUp;
+  FTap.Log.Clear;
+  Frames := FLa.Frames;
+  { status of link from 2 (0B+02 = 0D), request status of link to 1 (49+01 = 4A) }
+  FTap.InjectToA('10 0B 02 0D 16 10 49 01 4A 16');
+  AssertTrue(FT12BalancedStep(FLa));
+  AssertEquals('both frames in one step', Frames + 2, FLa.Frames);
+  FTap.Pump;
+  AssertEquals('and B''s request answered (8B+01 = 8C)', '10 8B 01 8C 16', FTap.Lines('A'));
 end;
 
 { While A's user data waits for its answer, an ACK from link address 3

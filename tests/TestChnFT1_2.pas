@@ -48,7 +48,6 @@ type
     procedure TestFlushAndDisConnect;
     procedure TestChInitParam;
     procedure TestResultTexts;
-    procedure TestBabblingLineDoesNotStallAPoll;
   end;
 
 implementation
@@ -1087,21 +1086,6 @@ begin
   finally
     Dispose(C, Done);
   end;
-end;
-
-{ A line that never stops sending bytes that start no frame (zeros, never a start character):
-  one ChReceiveReady must return after a bounded number of bytes, not hang
-  the caller's polling loop for as long as the babble goes on. }
-procedure TTestChnFT1_2.TestBabblingLineDoesNotStallAPoll;
-var
-  State: tChState;
-  N: LongInt;
-begin
-  State := CHS_Close;
-  N := NoiseOnePoll('NAM=FT1_2 NAM=NOISE BYTE=0 CNT=1000000', State);
-  AssertTrue('stack opened', N >= 0);
-  AssertEquals('no message', CHS_Receiving, State);
-  AssertTrue('one poll took ' + IntToStr(N) + ' bytes', N <= 65536);
 end;
 
 initialization

@@ -48,7 +48,6 @@ type
     procedure TestReadData;
     procedure TestReadParams;
     procedure TestWriteData;
-    procedure TestBabblingLineDoesNotStallAPoll;
   end;
 
 implementation
@@ -697,21 +696,6 @@ begin
   AssertEquals(4, Len);
   AssertEquals(OCS_WriteData, MRec.OpCode);
   AssertEquals(1, MRec.BlockNum);
-end;
-
-{ A line that never stops sending bytes that start no frame (letters, never an SOH):
-  one ChReceiveReady must return after a bounded number of bytes, not hang
-  the caller's polling loop for as long as the babble goes on. }
-procedure TTestChnICS.TestBabblingLineDoesNotStallAPoll;
-var
-  State: tChState;
-  N: LongInt;
-begin
-  State := CHS_Close;
-  N := NoiseOnePoll('NAM=ICS NAM=NOISE BYTE=65 CNT=1000000', State);
-  AssertTrue('stack opened', N >= 0);
-  AssertEquals('no message', CHS_Receiving, State);
-  AssertTrue('one poll took ' + IntToStr(N) + ' bytes', N <= 65536);
 end;
 
 initialization

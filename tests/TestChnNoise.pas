@@ -8,7 +8,7 @@ unit TestChnNoise;
 interface
 
 uses
-  SysUtils, fpcunit, testregistry, ChnTypes, ChnVirt, ChnLoop, ChnNoise, TestSupport;
+  SysUtils, fpcunit, testregistry, ChnTypes, ChnVirt, ChnLoop, ChnNoise, ChnWait, TestSupport;
 
 type
   TTestChnNoise = class(TTestCase)
@@ -32,6 +32,10 @@ type
     procedure TestReceiveDirection;
     procedure TestOneDirectionOnly;
     procedure TestBabblingLine;
+    procedure TestLostChunks;
+    procedure TestStallHoldsBothDirectionsInOrder;
+    procedure TestReorderSwapsTwoChunks;
+    procedure TestChunkFaultsParameters;
   end;
 
 implementation
@@ -312,6 +316,115 @@ begin
   for I := 0 to 9 do
     AssertEquals('BYTE=0', 0, Got[I]);
   AssertFalse('then silence', FNoise^.ChReceiveReady = CHS_ReceiveReady);
+end;
+
+{ text of the bytes, for messages }
+function Txt(const B: TBytes): string;
+var
+  I: Integer;
+begin
+  Result := '';
+  for I := 0 to High(B) do
+    Result := Result + Chr(B[I]);
+end;
+
+function Bytes(const S: string): TBytes;
+begin
+  SetLength(Result, Length(S));
+  if S <> '' then
+    Move(S[1], Result[0], Length(S));
+end;
+
+procedure TTestChnNoise.TestLostChunks;
+var
+  Got: TBytes;
+  I: Integer;
+begin
+  OpenPair('LOS=1 SEED=5', 'NZLOS1');
+  Got := Through(Bytes('frame one'), 100);
+  AssertEquals('a lost chunk is lost whole', 0, Length(Got));
+  AssertEquals(1, pChnNoise(FNoise)^.CH_ChunksLost);
+  { a quarter of 400 chunks, each whole or not at all }
+  OpenPair('LOS=0.25 SEED=6', 'NZLOS2');
+  for I := 1 to 400 do
+  begin
+    Got := Through(Bytes('abcd'), 100);
+    AssertTrue('whole or nothing', (Length(Got) = 0) or (Txt(Got) = 'abcd'));
+  end;
+  I := pChnNoise(FNoise)^.CH_ChunksLost;
+  AssertTrue(Format('about 25 %% lost: %d of 400', [I]), (I > 60) and (I < 140));
+end;
+
+procedure TTestChnNoise.TestStallHoldsBothDirectionsInOrder;
+var
+  Got, Back: TBytes;
+  T0: QWord;
+  Len: Word;
+  Buf: array[0..63] of Byte;
+begin
+  OpenPair('STL=1 STM=150 SEED=7', 'NZSTL');
+  T0 := GetTickCount64;
+  Got := Through(Bytes('first'), 100);     { the line stalls before it }
+  AssertEquals('held by the stall', 0, Length(Got));
+  Got := Through(Bytes('second'), 100);
+  AssertEquals('still held', 0, Length(Got));
+  SendAll(FRaw, FNoise, Bytes('reply'), 100);
+  FNoise^.ChReceiveBuffer(@Buf, SizeOf(Buf));
+  AssertTrue('nothing arrives during a stall',
+    FNoise^.ChReceiveReady <> CHS_ReceiveReady);
+  while GetTickCount64 - T0 < 170 do
+    Sleep(5);
+  { the stall is over: what was held goes on, in order; the next chunk
+    after the stall may stall again (STL=1), so look before sending more }
+  Back := Drain(FNoise);
+  AssertEquals('input held by the stall comes after it', 'reply', Txt(Back));
+  FNoise^.ChSendReady;
+  Got := Drain(FRaw);
+  AssertEquals('sent chunks go on in order', 'firstsecond', Txt(Got));
+  AssertTrue(pChnNoise(FNoise)^.CH_Stalls >= 1);
+  Len := 0;
+  FNoise^.ChReceive(Len);
+  AssertEquals('nothing held any more', 0, ChnWaitHeldCount);
+end;
+
+procedure TTestChnNoise.TestReorderSwapsTwoChunks;
+var
+  Got: TBytes;
+begin
+  OpenPair('ROR=1 STM=5000 SEED=8', 'NZROR');
+  Got := Through(Bytes('A'), 100);
+  AssertEquals('held back', 0, Length(Got));
+  Got := Through(Bytes('B'), 100);        { goes, then the held one }
+  AssertEquals('B then A', 'BA', Txt(Got));
+  AssertEquals(1, pChnNoise(FNoise)^.CH_Reordered);
+  { a chunk held back with nothing after it goes at the latest STM later }
+  OpenPair('ROR=1 STM=50 SEED=8', 'NZROR2');
+  Got := Through(Bytes('C'), 100);
+  AssertEquals(0, Length(Got));
+  Sleep(70);
+  FNoise^.ChSendReady;
+  AssertEquals('C', Txt(Drain(FRaw)));
+end;
+
+procedure TTestChnNoise.TestChunkFaultsParameters;
+var
+  C: pChnVirt;
+begin
+  C := ChnCollection^.ChNewInit('NOISE');
+  try
+    C^.ChSetParam('LOS=0.1 STL=0.01 STM=1300 ROR=0.02');
+    AssertEquals(res_Ok, C^.ChResult);
+    AssertEquals('reported when used', 'NAM=NOISE BER=0 DRP=0 INS=0 LOS=0.1 STL=0.01 ROR=0.02 STM=1300 ' +
+      'BYTE=RND CNT=0 DIR=BOTH SEED=1', C^.ChGetParam(''));
+    C^.ChSetParam('STM=0');
+    AssertEquals(res_BadParam, C^.ChResult);
+    AssertEquals('STM=0', C^.ChParamError);
+    C^.ChSetParam('ROR=2');
+    AssertEquals(res_BadParam, C^.ChResult);
+    AssertEquals('ROR=2', C^.ChParamError);
+  finally
+    Dispose(C, Done);
+  end;
 end;
 
 initialization

@@ -357,6 +357,10 @@ begin
   AssertTrue(R2.Err, Pos('"12x"', R2.Err) > 0);
   AssertFalse(PcccStartWriteText(R2, C, 'ST10:0', ['a', 'b']));
   AssertEquals(res_PcccCount, R2.Result);
+  { a float beyond Double is refused, not EOverflow inside Val }
+  AssertFalse(PcccStartWriteText(R2, C, 'F8:0', ['2e308']));
+  AssertEquals(res_PcccValue, R2.Result);
+  AssertTrue(R2.Err, Pos('"2e308"', R2.Err) > 0);
 end;
 
 procedure TTestChnPcccClient.TestOneRequestAtATime;

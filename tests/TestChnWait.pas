@@ -31,8 +31,10 @@ type
     procedure TestJoinAndLeaveCount;
     procedure TestWaitAnyTimesOutAndZeroOnlyLooks;
     procedure TestHeldInputEndsWaitAnyAtOnce;
+    procedure TestBytesInARingEndWaitAnyUntilTaken;
+    procedure TestHelpersWaitIsNotEndedByOthersHeldInput;
     procedure TestLoopPeerInOtherThreadEndsIdleWait;
-    procedure TestLoopSendInOneThreadEndsWaitAnyAtOnce;
+    procedure TestLoopSendInOneThreadEndsTheWaitAtOnce;
     {$IFDEF WINDOWS}
     procedure TestMoreHandlesThanOneWaitTakes;
     {$ENDIF}
@@ -208,6 +210,74 @@ begin
   AssertFalse('flag cleared', Held or Other);
 end;
 
+procedure TTestChnWait.TestBytesInARingEndWaitAnyUntilTaken;
+var
+  Err: string;
+  B: array[0..7] of Byte;
+  Len: Word;
+  T0: QWord;
+begin
+  SetLength(FChn, 2);
+  FChn[0] := OpenStack('LOOP', 'PAIR=WAITHELD END=1', Err);
+  AssertNotNull(Err, FChn[0]);
+  FChn[1] := OpenStack('LOOP', 'PAIR=WAITHELD END=2', Err);
+  AssertNotNull(Err, FChn[1]);
+  FillChar(B, SizeOf(B), 7);
+  AssertEquals(res_Ok, ChSendWhenFree(FChn[0], @B, 5, 1000));
+  AssertEquals('the bytes wait in end 2''s ring', 1, ChnWaitHeldCount);
+  T0 := GetTickCount64;
+  AssertTrue('held bytes end ChnWaitAny', ChnWaitAny(1000));
+  AssertTrue('at once', GetTickCount64 - T0 < 200);
+  FChn[1]^.ChReceiveBuffer(@B, 2);
+  FChn[1]^.ChReceive(Len);
+  AssertEquals('two taken', 2, Len);
+  AssertEquals('three still held', 1, ChnWaitHeldCount);
+  FChn[1]^.ChReceiveBuffer(@B, SizeOf(B));
+  FChn[1]^.ChReceive(Len);
+  AssertEquals('the rest taken', 3, Len);
+  AssertEquals('an empty ring holds nothing', 0, ChnWaitHeldCount);
+  AssertEquals(res_Ok, ChSendWhenFree(FChn[0], @B, 5, 1000));
+  CloseAll;
+  AssertEquals('closing lets go of what the ring held', 0, ChnWaitHeldCount);
+end;
+
+{ A helper blocked on its own channel (ChnWaitNew, ChnWaitUntil) could not
+  take input another layer holds: that input does not end its wait, which
+  would make it spin to its deadline; ChnWaitAny still returns at once. }
+procedure TTestChnWait.TestHelpersWaitIsNotEndedByOthersHeldInput;
+var
+  Held: Boolean;
+  T0, Took: QWord;
+  Err: string;
+begin
+  SetLength(FChn, 1);
+  FChn[0] := OpenStack('LOOP', 'PAIR=WAITNEW END=1', Err);   { a set to wait on }
+  AssertNotNull(Err, FChn[0]);
+  ChnWaitAny(0);
+  Held := False;
+  ChnWaitHeld(Held, True);
+  try
+    T0 := GetTickCount64;
+    AssertTrue(ChnWaitAny(500));
+    AssertTrue('ChnWaitAny at once', GetTickCount64 - T0 < 200);
+    T0 := GetTickCount64;
+    ChnWaitNew(150);
+    Took := GetTickCount64 - T0;
+    AssertTrue('ChnWaitNew sleeps its time: ' + IntToStr(Took), Took >= 120);
+    T0 := GetTickCount64;
+    ChnWaitUntil(GetTickCount64 + 5000, 100);
+    Took := GetTickCount64 - T0;
+    AssertTrue('ChnWaitUntil: at most MaxMs: ' + IntToStr(Took), (Took >= 80) and (Took < 1000));
+    T0 := GetTickCount64;
+    ChnWaitUntil(GetTickCount64 + 60);
+    Took := GetTickCount64 - T0;
+    AssertTrue('ChnWaitUntil: to the deadline: ' + IntToStr(Took), (Took >= 40) and (Took < 1000));
+    AssertEquals('a deadline passed: 0 ms left', 0, ChnWaitLeft(GetTickCount64 - 10));
+  finally
+    ChnWaitHeld(Held, False);
+  end;
+end;
+
 procedure TTestChnWait.TestWaitAnyTimesOutAndZeroOnlyLooks;
 var
   T0, Took: QWord;
@@ -244,11 +314,12 @@ begin
   AssertTrue('returned on the byte, not after IDL=1000 (' + IntToStr(Took) + ' ms)', Took < 700);
 end;
 
-{ One thread: LOOP end 1 sends to end 2, then ChnWaitAny must return at
-  once (the signal gives the waits a budget to reach the reader), not
-  sleep its whole timeout. First every earlier budget is used up, so a
-  signal that gave none would show. }
-procedure TTestChnWait.TestLoopSendInOneThreadEndsWaitAnyAtOnce;
+{ One thread: LOOP end 1 sends to end 2, then the wait must return at once
+  (the signal gives the waits a budget to reach the reader), not sleep its
+  whole timeout. ChnWaitNew, the wait input held in rings does not end
+  (ChnWaitAny would return at once for that alone). First every earlier
+  budget is used up, so a signal that gave none would show. }
+procedure TTestChnWait.TestLoopSendInOneThreadEndsTheWaitAtOnce;
 var
   B: Byte;
   Err: string;
@@ -268,7 +339,7 @@ begin
   B := 1;
   FChn[0]^.ChSend(@B, 1);
   I := 0;
-  while ChnWaitAny(0) and (I < 10000) do
+  while ChnWaitNew(0) and (I < 10000) do
     Inc(I);
   AssertTrue('the budget ends', I < 10000);
   AssertEquals(CHS_ReceiveReady, FChn[1]^.ChReceiveReady);
@@ -279,7 +350,7 @@ begin
   B := 2;
   FChn[0]^.ChSend(@B, 1);
   T0 := GetTickCount64;
-  Woke := ChnWaitAny(1000);
+  Woke := ChnWaitNew(1000);
   Took := GetTickCount64 - T0;
   AssertTrue('woken', Woke);
   AssertTrue('at once, not after the timeout (' + IntToStr(Took) + ' ms)', Took < 300);
@@ -448,8 +519,9 @@ end;
 
 { A ring filled by polling alone (flow control: the rest stays in the OS,
   the descriptor stays readable) takes the port out of the OS wait at
-  once: ChnWaitAny then sleeps its time, with no wake-up for input that
-  cannot be taken. }
+  once: a wait then sleeps its time, with no wake-up for input that
+  cannot be taken. ChnWaitNew, the wait input held in rings does not end
+  (ChnWaitAny returns at once while the full ring holds input). }
 procedure TTestChnWait.TestFullRingStaysOutOfTheWait;
 var
   B: array[0..199] of Byte;
@@ -461,9 +533,9 @@ begin
   FPty[0].MasterWrite(B, SizeOf(B));
   Sleep(50);
   AssertEquals('the ring is full', CHS_ReceiveReady, FChn[0]^.ChReceiveReady);
-  ChnWaitAny(0);
+  ChnWaitNew(0);
   T0 := GetTickCount64;
-  AssertFalse('nothing it could take', ChnWaitAny(200));
+  AssertFalse('nothing it could take', ChnWaitNew(200));
   Took := GetTickCount64 - T0;
   AssertTrue('slept its time (' + IntToStr(Took) + ' ms)', Took >= 150);
   Wakes := 0;
@@ -472,7 +544,7 @@ begin
   while GetTickCount64 - T0 < 600 do
   begin
     Inc(Waits);
-    if ChnWaitAny(100) then
+    if ChnWaitNew(100) then
       Inc(Wakes);
   end;
   AssertEquals(Format('no wake-ups in %d waits', [Waits]), 0, Wakes);
@@ -481,12 +553,21 @@ end;
 procedure TTestChnWait.TestWaitAnyWakesOnInput;
 var
   T0, Took: QWord;
+  Buf: array[0..63] of Byte;
+  Len: Word;
 begin
   OpenComs(4, 'IDL=0');
   AssertEquals('woken by a channel', CHS_ReceiveReady, PollDuringLateSend(nil, nil, FPty[2], Took));
   AssertTrue('at the byte (' + IntToStr(Took) + ' ms)', Took < 700);
   AssertEquals('channel 2 has it', CHS_ReceiveReady, FChn[2]^.ChReceiveReady);
-  { read, nothing new: the next wait sleeps its time }
+  { held in the ring, not taken: the wait returns at once }
+  T0 := GetTickCount64;
+  AssertTrue('input held in a ring ends the wait', ChnWaitAny(200));
+  AssertTrue('at once', GetTickCount64 - T0 < 100);
+  { taken, nothing new: the next wait sleeps its time }
+  FChn[2]^.ChReceiveBuffer(@Buf, SizeOf(Buf));
+  FChn[2]^.ChReceive(Len);
+  AssertEquals('the byte is taken', 0, ChnWaitHeldCount);
   T0 := GetTickCount64;
   AssertFalse('nothing new', ChnWaitAny(200));
   AssertTrue('slept', GetTickCount64 - T0 >= 150);

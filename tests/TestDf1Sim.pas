@@ -739,7 +739,7 @@ begin
   AssertEquals('open failed: ' + Err, 'open "', Copy(Err, 1, 6));
   Long := 'NAM=DF1 NOD=0 DNO=1 NAM=LOOP PAIR=SIMOS3 END=1' + StringOfChar(' ', 250);
   AssertTrue('too long: nil', DF1OpenStack(Long, 1000, Err) = nil);
-  AssertTrue('too long: says so: ' + Err, Pos('longer than 255', Err) > 0);
+  AssertTrue('too long: says so: ' + Err, Pos('too long: 296 characters, the limit is 255', Err) > 0);
 end;
 
 initialization

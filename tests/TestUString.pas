@@ -6,7 +6,7 @@ unit TestUString;
 interface
 
 uses
-  fpcunit, testregistry, uString;
+  SysUtils, fpcunit, testregistry, uString, ChnTypes, ChnVirt, ChnNoise;
 
 type
   TTestUString = class(TTestCase)
@@ -16,6 +16,8 @@ type
     procedure TestTokenStartPositions;
     procedure TestSplitKeyValue;
     procedure TestFusedTokenIsRefused;
+    procedure TestStrToRealNeverRaises;
+    procedure TestNumbersOfEveryLayerNeverRaise;
     procedure TestStrToNumAccepts;
     procedure TestStrToNumRefusesMalformed;
     procedure TestStrToNumRange;
@@ -178,6 +180,58 @@ begin
   S := HexBytes(@B[0], 300);
   AssertEquals('300 bytes, no truncation at 255 characters', 899, Length(S));
   AssertEquals('2B', Copy(S, 898, 2));
+end;
+
+{ 2e308, 1E400 and friends ended a program with EOverflow (run-time error
+  217) inside Val: now they are refused like any other bad number. }
+procedure TTestUString.TestStrToRealNeverRaises;
+const
+  Bad: array[0..13] of string = ('2e308', '1E400', '-1E400', 'NaN', 'Inf', '-Inf',
+    '1e', '1e+', '.', '+', '1..2', '1e1e1', ' 1', '$10');
+var
+  D: Double;
+  I: Integer;
+  Digits: string;
+begin
+  for I := 0 to High(Bad) do
+  begin
+    D := 42;
+    AssertFalse(Bad[I], StrToReal(Bad[I], 0, 1e300, D));
+    AssertEquals(Bad[I] + ' leaves D', 42, D, 0);
+  end;
+  Digits := StringOfChar('9', 250);
+  AssertFalse('250 digits above Max', StrToReal(Digits, 0, 1, D));
+  AssertTrue('250 digits within a huge Max', StrToReal(Digits, 0, 1e300, D));
+  AssertTrue('1e-400 is 0 (underflow, no exception)', StrToReal('1e-400', 0, 1, D));
+  AssertEquals(0, D, 0);
+  AssertTrue(StrToReal('0.5', 0, 1, D));
+  AssertEquals(0.5, D, 0);
+  AssertTrue(StrToReal('1E-5', 0, 1, D));
+  AssertTrue(StrToReal('-2.5e+2', -1000, 0, D));
+  AssertEquals(-250, D, 0);
+end;
+
+{ The layer that parses reals: each bad number is res_BadParam naming the
+  token (make fuzz tries every key of every layer). }
+procedure TTestUString.TestNumbersOfEveryLayerNeverRaise;
+const
+  Tokens: array[0..5] of string = ('BER=2e308', 'DRP=1E400', 'INS=-1E400', 'BER=NaN',
+    'CNT=99999999999999999999', 'BER=1' + '00000000000000000000000000000000000000');
+var
+  C: pChnVirt;
+  I: Integer;
+begin
+  C := ChnCollection^.ChNewInit('NOISE');
+  try
+    for I := 0 to High(Tokens) do
+    begin
+      C^.ChSetParam(Tokens[I]);
+      AssertEquals(Tokens[I], res_BadParam, C^.ChResult);
+      AssertEquals(Tokens[I], C^.ChParamError);
+    end;
+  finally
+    Dispose(C, Done);
+  end;
 end;
 
 initialization

@@ -135,7 +135,7 @@ if [ -z "$FILTER" ] || [[ "soak" == *"${FILTER,,}"* ]]; then
     skip "soak: no pseudo terminals (/dev/ptmx) on this machine"
   else
     # five groups at once: the scenarios mostly wait on timeouts
-    groups="df1-full-crc df1-full-bcc df1-half ft12 ics"
+    groups="df1-full-crc df1-full-bcc df1-half ft12- ft12bal ics"
     for g in $groups; do
       rm -f "$BUILD/soak-heap-$g.log"
       HEAPTRC="log=$BUILD/soak-heap-$g.log" timeout 600 "$BUILD/test-bin/soak" --seconds=2 \

@@ -123,6 +123,10 @@ begin
   Check((ParamSetNum('IDL=20', 0, 1000, cmd_Check, L) = res_Ok) and (L = 1), 'ParamSetNum check');
   V := FlagText('CRC', OnOffChoice, True);
   Check(V = ' CRC=ON', 'FlagText');
+  V := '';
+  Check(ParamLengthCheck(255, V) = res_Ok, 'ParamLengthCheck 255');
+  Check((ParamLengthCheck(300, V) = res_ParamTooLong) and
+    (V = '300 characters, the limit is 255'), 'ParamLengthCheck 300');
 
   { ChnVirt: registry and the methods that take or return text and numbers }
   S := ChnLoop.cName;

@@ -4,7 +4,13 @@
   program is the master, with NAM=NOISE between its protocol layer and
   NAM=COM; the peer is tools/df1sim (DF1 full duplex) or this program
   started again with --serve=... (DF1 half duplex with three stations on one
-  line, FT 1.2 secondary, ICS slave), which creates the pty itself.
+  line, FT 1.2 secondary, FT 1.2 balanced station B, ICS slave), which
+  creates the pty itself. The FT 1.2 link procedures (unbalanced and
+  balanced) also run over faults of whole frames (FrameFaults: a stall
+  longer than the timeout, drops with stalls, reordering; NAM=NOISE LOS=
+  STL= STM= ROR=); the balanced scenario sends numbered user data both
+  ways and fails when a message was confirmed to its sender but not
+  delivered, or delivered twice beyond what link resets explain.
 
     soak [--seconds=N | --count=N] [--seed=N] [--only=TEXT] [--df1sim=PATH]
 
@@ -31,7 +37,8 @@ program soak;
 uses
   BaseUnix, SysUtils, Classes, Process,
   ChnTypes, ChnVirt, ChnCom, ChnLoop, ChnNoise, ChnPty, uString,
-  ChnDF1, ChnDF1Link, ChnPccc, ChnSlc, ChnFT1_2, ChnFT12Link, ChnICS, TestSupport;
+  ChnDF1, ChnDF1Link, ChnPccc, ChnSlc, ChnFT1_2, ChnFT12Link, ChnICS, ChnWait, Math,
+  TestSupport;
 
 const
   DF1Timeout = 300;     { ms; the line is a pty, the machine is shared }
@@ -68,6 +75,12 @@ const
     (Name: 'ber1e-5';  Params: 'BER=1E-5'),
     (Name: 'ber1e-3';  Params: 'BER=1E-3'),
     (Name: 'drop1%';   Params: 'DRP=0.01'));
+  { faults of whole frames for the FT 1.2 link procedures (issue 24): a
+    stall longer than the 300 ms timeout, drops with stalls, reordering }
+  FrameFaults: array[0..2] of TNoise = (
+    (Name: 'stall';     Params: 'STL=0.05 STM=450'),
+    (Name: 'dropstall'; Params: 'LOS=0.06 STL=0.03 STM=450'),
+    (Name: 'reorder';   Params: 'ROR=0.05 STM=450'));
 
 var
   Parent: TPid;         { a peer ends when the master is gone }
@@ -549,6 +562,30 @@ begin
   end;
 end;
 
+{ The start every scenario with a peer of this program shares: St
+  cleared, the peer started with --serve=Serve, the master's stack
+  (Layer, its Params, then the noisy line to the peer's pty) opened. False
+  when the peer did not come up (the scenario is reported); Chn = nil with
+  St.Note saying why when the stack did not open. }
+function ScenarioStart(const Name, Serve, Layer, Params: string; const Noise: TNoise;
+  ASeed: LongInt; var St: TStats; var Peer: TPeer; out Chn: pChnVirt; out T0: QWord): Boolean;
+var
+  Err: string;
+begin
+  FillChar(St, SizeOf(St), 0);
+  St.Note := '';
+  Chn := nil;
+  T0 := ChMsTick;
+  PeerStart(Peer, ParamStr(0), ['--serve=' + Serve], Err);
+  if not PeerUp(Peer, Err, Name, St, ASeed) then
+    Exit(False);
+  T0 := ChMsTick;
+  Chn := OpenStack(Layer, Params + ' ' + NoisyLine(Noise, ASeed, Peer.Pty), Err);
+  if Chn = nil then
+    St.Note := Err + ';';
+  Result := True;
+end;
+
 procedure RunDF1(const Name: string; Half, Crc: Boolean; const Noise: TNoise; ASeed: LongInt);
 var
   Peer: TPeer;
@@ -735,6 +772,33 @@ const
   FT12MasterParams = 'NAM=FT1_2 MS=ON MAS=MASTER LEN=0 NOD=1 DNO=2';
   FT12Retries = 10;
 
+{ A peer's stack on a pty of its own (DRV=PTY); a peer that cannot open
+  it says why and ends. }
+function ServeOpen(const Layer, Params: string): pChnVirt;
+var
+  Err: string;
+begin
+  Result := OpenStack(Layer, Params + ' NAM=COM DRV=PTY', Err);
+  if Result = nil then
+  begin
+    WriteLn('soak: ', Err);
+    Halt(1);
+  end;
+end;
+
+{ A balanced station of the soak: the soak's timeout and retries, no test
+  function, user data counted in P. }
+procedure BalInit(var B: tFT12Balanced; Chn: pChnVirt; var P: TFT12Peer);
+begin
+  FillChar(P, SizeOf(P), 0);
+  FT12BalancedInit(B, Chn);
+  B.TimeoutMs := FT12Timeout;
+  B.Retries := FT12Retries;
+  B.TestMs := 0;
+  B.Data := @P;
+  B.OnUserData := @FT12OnUserData;
+end;
+
 procedure ServeFT12;
 var
   Chn: pChnVirt;
@@ -742,12 +806,7 @@ var
   P: TFT12Peer;
   Err: string;
 begin
-  Chn := OpenStack('FT1_2', FT12SlaveParams + ' NAM=COM DRV=PTY', Err);
-  if Chn = nil then
-  begin
-    WriteLn('soak: ', Err);
-    Halt(1);
-  end;
+  Chn := ServeOpen('FT1_2', FT12SlaveParams);
   FillChar(P, SizeOf(P), 0);
   FT12StationInit(S, Chn);
   S.Data := @P;
@@ -757,7 +816,7 @@ begin
   Flush(Output);
   while not Stop and not Orphaned and (Chn^.ChResult = res_Ok) do
     if not FT12StationStep(S) then
-      Sleep(1);
+      ChnWaitAny(20);
   WriteLn(Format('STATS delivered=%d dups=%d gaps=%d repeats=%d', [P.Delivered, P.Dups, P.Gaps, S.Repeats]));
   Flush(Output);
   Dispose(Chn, Done);
@@ -801,16 +860,9 @@ var
   end;
 
 begin
-  FillChar(St, SizeOf(St), 0);
-  St.Note := '';
-  PeerStart(Peer, ParamStr(0), ['--serve=ft12'], Err);
-  if not PeerUp(Peer, Err, Name, St, ASeed) then
+  if not ScenarioStart(Name, 'ft12', 'FT1_2', FT12MasterParams, Noise, ASeed, St, Peer, Chn, T0) then
     Exit;
-  T0 := ChMsTick;
-  Chn := OpenStack('FT1_2', FT12MasterParams + ' ' + NoisyLine(Noise, ASeed, Peer.Pty), Err);
-  if Chn = nil then
-    St.Note := Err + ';'
-  else
+  if Chn <> nil then
   begin
     FT12LinkInit(Link, 2);
     Seq := 0;
@@ -892,6 +944,152 @@ begin
   Report(Name, St, ASeed, ChMsTick - T0, False);
 end;
 
+{ ----------------------------------------------------- FT 1.2 balanced }
+
+const
+  FT12BalAParams = 'NAM=FT1_2 MS=OFF PRI=ON DIR=1 LEN=0 NOD=1 DNO=2';
+  FT12BalBParams = 'NAM=FT1_2 MS=OFF PRI=OFF DIR=0 LEN=0 NOD=2 DNO=1';
+  FT12BalQueued = 2;       { user data kept queued by each station }
+  FT12BalDrainMs = 4000;   { at the end: until both are quiet, at most }
+
+{ Queue user data with the next sequence number while the queue is short. }
+procedure BalFeed(var B: tFT12Balanced; var Seq: LongInt);
+var
+  D: array[0..3] of Byte;
+begin
+  while B.QCount < FT12BalQueued do
+  begin
+    PutLong(D, 0, Seq + 1);
+    if FT12BalancedSend(B, @D[0], 4, True) <> res_Ok then
+      Exit;
+    Inc(Seq);
+  end;
+end;
+
+{ Step B once; wait on the program-wide wait when it took nothing. }
+procedure BalStep(var B: tFT12Balanced);
+begin
+  if not FT12BalancedStep(B) then
+    ChnWaitAny(20);
+end;
+
+{ The peer: station B, sending its own numbered user data to A and
+  counting A's. On SIGTERM it stops queueing, runs until its queue is
+  empty (or FT12BalDrainMs), and prints what it saw. }
+procedure ServeFT12Bal;
+var
+  Chn: pChnVirt;
+  B: tFT12Balanced;
+  P: TFT12Peer;
+  Err: string;
+  Seq: LongInt;
+  Until_: QWord;
+begin
+  Chn := ServeOpen('FT1_2', FT12BalBParams);
+  BalInit(B, Chn, P);
+  Seq := 0;
+  WriteLn('PTY ', PtyLastSlave);
+  Flush(Output);
+  while not Stop and not Orphaned and (Chn^.ChResult = res_Ok) do
+  begin
+    BalFeed(B, Seq);
+    BalStep(B);
+  end;
+  Until_ := ChMsTick + FT12BalDrainMs;
+  while not FT12BalancedQuiet(B) and (ChMsTick < Until_) and not Orphaned and
+        (Chn^.ChResult = res_Ok) do
+    BalStep(B);
+  WriteLn(Format('STATS delivered=%d dups=%d gaps=%d confirmed=%d sent=%d linklost=%d stale=%d',
+    [P.Delivered, P.Dups, P.Gaps, B.Confirmed, Seq, B.LinkLost, B.Stale]));
+  Flush(Output);
+  Dispose(Chn, Done);
+end;
+
+procedure RunFT12Bal(const Name: string; const Noise: TNoise; ASeed: LongInt);
+var
+  Peer: TPeer;
+  Err: string;
+  Chn: pChnVirt;
+  St: TStats;
+  T0, Start, Until_: QWord;
+  A: tFT12Balanced;
+  P: TFT12Peer;
+  Seq: LongInt;
+  BDelivered, BDups, BGaps, BConfirmed, BLinkLost: Int64;
+begin
+  if not ScenarioStart(Name, 'ft12bal', 'FT1_2', FT12BalAParams, Noise, ASeed, St, Peer, Chn, T0) then
+    Exit;
+  if Chn <> nil then
+  begin
+    BalInit(A, Chn, P);
+    Seq := 0;
+    Start := ChMsTick;
+    while not Done_(St, Start) do
+    begin
+      BalFeed(A, Seq);
+      BalStep(A);
+      St.Messages := A.Confirmed + P.Delivered;
+      if (St.Messages >= WarmUp) and (St.RssStart = 0) then
+        TakeStart(St, Peer.Proc.ProcessID);
+      if Chn^.ChResult <> res_Ok then
+      begin
+        St.Note := St.Note + ' ' + Chn^.ChResultStr(Chn^.ChResult) + ';';
+        Break;
+      end;
+    end;
+    if St.RssStart = 0 then
+      TakeStart(St, Peer.Proc.ProcessID);
+    TakeEnd(St, Peer.Proc.ProcessID);
+    { the end: both stop queueing and run until their queues are empty }
+    FpKill(Peer.Proc.ProcessID, SIGTERM);
+    Until_ := ChMsTick + FT12BalDrainMs + 2000;
+    while Peer.Proc.Running and (ChMsTick < Until_) do
+    begin
+      BalStep(A);
+      PeerRead(Peer);
+    end;
+    BDelivered := -1;
+    PeerStop(Peer);
+    BDelivered := PeerStat(Peer, 'delivered');
+    BDups := PeerStat(Peer, 'dups');
+    BGaps := PeerStat(Peer, 'gaps');
+    BConfirmed := PeerStat(Peer, 'confirmed');
+    BLinkLost := PeerStat(Peer, 'linklost');
+    St.Messages := A.Confirmed + P.Delivered;
+    St.Retries := A.Retransmits;
+    St.Timeouts := A.LinkLost;
+    St.Stale := A.Stale;
+    if BDelivered < 0 then
+    begin
+      St.Note := St.Note + ' the peer reported nothing: ' + Peer.Out_ + ';';
+      Inc(St.Losses);
+    end
+    else
+    begin
+      { confirmed to the sender only once the peer took it; never twice }
+      if BDelivered < A.Confirmed then
+      begin
+        St.Note := St.Note + Format(' B got %d of %d confirmed;', [BDelivered, A.Confirmed]);
+        Inc(St.Losses, A.Confirmed - BDelivered);
+      end;
+      if P.Delivered < BConfirmed then
+      begin
+        St.Note := St.Note + Format(' A got %d of %d confirmed;', [P.Delivered, BConfirmed]);
+        Inc(St.Losses, BConfirmed - P.Delivered);
+      end;
+      Inc(St.Losses, BGaps + P.Gaps);
+      St.Dups := BDups + P.Dups;
+      { after a link reset the secondary forgets its FCB: a message whose
+        ACK was lost is sent again and taken twice (IEC 60870-5-2 cannot
+        tell); one per link loss of its sender is reported, not failed }
+      St.DupsAfterReset := Min(BDups, A.LinkLost) + Min(P.Dups, BLinkLost);
+    end;
+    Dispose(Chn, Done);
+  end;
+  PeerStop(Peer);
+  Report(Name, St, ASeed, ChMsTick - T0, False);
+end;
+
 { ---------------------------------------------------------------- ICS }
 
 const
@@ -911,12 +1109,7 @@ var
   Answered: LongInt;
   Err: string;
 begin
-  Chn := OpenStack('ICS', ICSSlaveParams + ' NAM=COM DRV=PTY', Err);
-  if Chn = nil then
-  begin
-    WriteLn('soak: ', Err);
-    Halt(1);
-  end;
+  Chn := ServeOpen('ICS', ICSSlaveParams);
   Answered := 0;
   Chn^.ChReceiveBuffer(@Req, SizeOf(Req));
   WriteLn('PTY ', PtyLastSlave);
@@ -959,16 +1152,9 @@ var
   Seq, Tries: LongInt;
   Got: Boolean;
 begin
-  FillChar(St, SizeOf(St), 0);
-  St.Note := '';
-  PeerStart(Peer, ParamStr(0), ['--serve=ics'], Err);
-  if not PeerUp(Peer, Err, Name, St, ASeed) then
+  if not ScenarioStart(Name, 'ics', 'ICS', ICSMasterParams, Noise, ASeed, St, Peer, Chn, T0) then
     Exit;
-  T0 := ChMsTick;
-  Chn := OpenStack('ICS', ICSMasterParams + ' ' + NoisyLine(Noise, ASeed, Peer.Pty), Err);
-  if Chn = nil then
-    St.Note := Err + ';'
-  else
+  if Chn <> nil then
   begin
     Chn^.ChReceiveBuffer(@Ans, SizeOf(Ans));
     Seq := 0;
@@ -1084,6 +1270,8 @@ begin
     ServeDF1HD(CrcArg)
   else if Serve = 'ft12' then
     ServeFT12
+  else if Serve = 'ft12bal' then
+    ServeFT12Bal
   else if Serve = 'ics' then
     ServeICS
   else if Serve <> '' then
@@ -1118,8 +1306,20 @@ begin
       if Selected('ics-' + Noises[I].Name) then
         RunICS('ics-' + Noises[I].Name, Noises[I], Seed);
       Inc(K);
+      if Selected('ft12bal-' + Noises[I].Name) then
+        RunFT12Bal('ft12bal-' + Noises[I].Name, Noises[I], Seed);
+      Inc(K);
       if Stop then
         Break;
+    end;
+    for I := Low(FrameFaults) to High(FrameFaults) do
+    begin
+      if Stop then
+        Break;
+      if Selected('ft12-' + FrameFaults[I].Name) then
+        RunFT12('ft12-' + FrameFaults[I].Name, FrameFaults[I], Seed);
+      if Selected('ft12bal-' + FrameFaults[I].Name) then
+        RunFT12Bal('ft12bal-' + FrameFaults[I].Name, FrameFaults[I], Seed);
     end;
     WriteLn(Format('soak: %d failed, %d scenarios run', [Failed, Ran]));
     if Failed > 0 then

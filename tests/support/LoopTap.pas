@@ -8,7 +8,9 @@
   ChSend, so a chunk is a frame as long as Pump runs between two sends.
   DropA/DropB lose the next chunks from that side (logged with 'lost'),
   as a noisy line loses a frame. Inject puts bytes on the line towards a
-  side, as a third station would. }
+  side, as a third station would. HoldA/HoldB keep the chunks from that
+  side back (a stalled line; logged with 'held'); Release sends what was
+  held on, in order (logged with 'released'). }
 unit LoopTap;
 
 {$MODE OBJFPC}{$H+}
@@ -19,14 +21,22 @@ uses
   Classes, SysUtils, ChnTypes, ChnVirt, ChnLoop, uString;
 
 type
+  TBytesArray = array of TBytes;
+
   TLoopTap = class
   private
     FA, FB: pChnVirt;
     FBuf: array[0..4095] of Byte;
-    function MoveFrom(Src, Dst: pChnVirt; const Tag: string; var Drop: Integer): Boolean;
+    FHeldA, FHeldB: TBytesArray;
+    function MoveFrom(Src, Dst: pChnVirt; const Tag: string; var Drop: Integer;
+      Hold: Boolean; var Held: TBytesArray): Boolean;
+    procedure SendHeld(Dst: pChnVirt; const Tag: string; var Held: TBytesArray);
   public
     Log: TStringList;
     DropA, DropB: Integer;   { chunks still to lose from A resp. B }
+    HoldA, HoldB: Boolean;   { keep the chunks from A resp. B back }
+    { send the held chunks on (both sides), in order }
+    procedure Release;
     constructor Create(const PairA, PairB: string);
     destructor Destroy; override;
     function Ok: Boolean;
@@ -86,7 +96,8 @@ begin
   Result := (FA <> nil) and (FB <> nil);
 end;
 
-function TLoopTap.MoveFrom(Src, Dst: pChnVirt; const Tag: string; var Drop: Integer): Boolean;
+function TLoopTap.MoveFrom(Src, Dst: pChnVirt; const Tag: string; var Drop: Integer;
+  Hold: Boolean; var Held: TBytesArray): Boolean;
 var
   N: Word;
 begin
@@ -103,6 +114,13 @@ begin
       Dec(Drop);
       Log.Add(Tag + '> ' + HexBytes(@FBuf[0], N) + ' lost');
     end
+    else if Hold then
+    begin
+      Log.Add(Tag + '> ' + HexBytes(@FBuf[0], N) + ' held');
+      SetLength(Held, Length(Held) + 1);
+      SetLength(Held[High(Held)], N);
+      Move(FBuf[0], Held[High(Held)][0], N);
+    end
     else
     begin
       Log.Add(Tag + '> ' + HexBytes(@FBuf[0], N));
@@ -113,9 +131,27 @@ end;
 
 function TLoopTap.Pump: Boolean;
 begin
-  Result := MoveFrom(FA, FB, 'A', DropA);
-  if MoveFrom(FB, FA, 'B', DropB) then
+  Result := MoveFrom(FA, FB, 'A', DropA, HoldA, FHeldA);
+  if MoveFrom(FB, FA, 'B', DropB, HoldB, FHeldB) then
     Result := True;
+end;
+
+procedure TLoopTap.SendHeld(Dst: pChnVirt; const Tag: string; var Held: TBytesArray);
+var
+  I: Integer;
+begin
+  for I := 0 to High(Held) do
+  begin
+    Log.Add(Tag + '> ' + HexBytes(@Held[I][0], Length(Held[I])) + ' released');
+    Dst^.ChSend(@Held[I][0], Length(Held[I]));
+  end;
+  Held := nil;
+end;
+
+procedure TLoopTap.Release;
+begin
+  SendHeld(FB, 'A', FHeldA);
+  SendHeld(FA, 'B', FHeldB);
 end;
 
 procedure TLoopTap.InjectToA(const Hex: string);
