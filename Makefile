@@ -8,7 +8,8 @@
 #   make uninstall    removes what install put there
 #   make demo         a DF1 exchange on this machine, no hardware needed
 #   make bench        codec and channel benchmarks
-#   make fuzz         random-mutation fuzzing of the codecs, ChnPccc and every layer's numeric parameters (SECONDS=10)
+#   make fuzz         random-mutation fuzzing of the codecs, ChnPccc, the IEC 101 ASDUs and every
+#                     layer's numeric parameters (SECONDS=10)
 #   make soak         every protocol over a noisy pty line between two
 #                     processes (SECONDS=10 per scenario, or COUNT=messages;
 #                     SEED=, ONLY=name); docs/reliability.md
@@ -126,7 +127,8 @@ $(PROGBINS) $(BENCHBINS): src/chn.inc | $(BUILD)/units.stamp
 # test unit needs no edit anywhere else. Units that need Unix as a whole
 # (ptys) are listed here and built only there; single Unix-only tests are
 # {$IFDEF UNIX} in their unit.
-UNIX_TESTS := TestChnPty TestChnTcpSer2net TestFT12Examples TestFaultCycling
+UNIX_TESTS := TestChnPty TestChnTcpSer2net TestFT12Examples TestFaultCycling TestIec101Examples \
+              TestIec101SlaveTool TestIec101Docs
 comma := ,
 uses_entry = $(if $(filter $(1),$(UNIX_TESTS)),'{$$IFDEF UNIX}$(1)$(comma){$$ENDIF}','$(1)$(comma)')
 $(BUILD)/testunits.inc: $(TESTUNITS)
@@ -152,21 +154,22 @@ demo: all
 bench: $(BENCHBINS) $(BINDIR)/chntap $(BINDIR)/plcconc $(BINDIR)/df1sim
 	@set -e; for b in $(BENCHBINS); do $$b; done
 
-# Random-mutation fuzzing of the three codecs and of ChnPccc (addresses,
-# plans, requests, reply decoding), and every key of every layer with
-# numbers built to break a parser (fuzzparams), with run-time checks on;
+# Random-mutation fuzzing of the three codecs, of ChnPccc (addresses,
+# plans, requests, reply decoding), of ChnIec101Asdu, and every key of
+# every layer with numbers built to break a parser (fuzzparams), with
+# run-time checks on;
 # SECONDS=n for longer runs, SEED=n to repeat one.
 SECONDS ?= 10
+FUZZERS := fuzzcodecs fuzzpccc fuzzasdu fuzzparams
 # the soak program: test flags, on the units the test build just made
 SOAKFLAGS = $(filter-out -B,$(TESTFLAGS))
 fuzz: units
 	@mkdir -p $(TUNITDIR) $(TBINDIR)
-	@$(FPC) $(TESTFLAGS) tests/fuzz/fuzzcodecs.pas >$(BUILD)/fuzz-build.log 2>&1 || { cat $(BUILD)/fuzz-build.log; exit 1; }
-	@$(FPC) $(TESTFLAGS) tests/fuzz/fuzzpccc.pas >>$(BUILD)/fuzz-build.log 2>&1 || { cat $(BUILD)/fuzz-build.log; exit 1; }
-	@$(FPC) $(TESTFLAGS) tests/fuzz/fuzzparams.pas >>$(BUILD)/fuzz-build.log 2>&1 || { cat $(BUILD)/fuzz-build.log; exit 1; }
-	@rm -f $(BUILD)/fuzz-heap.log; HEAPTRC="log=$(BUILD)/fuzz-heap.log" $(TBINDIR)/fuzzcodecs $(SECONDS) $(SEED)
-	@rm -f $(BUILD)/fuzz-heap.log; HEAPTRC="log=$(BUILD)/fuzz-heap.log" $(TBINDIR)/fuzzpccc $(SECONDS) $(SEED)
-	@rm -f $(BUILD)/fuzz-heap.log; HEAPTRC="log=$(BUILD)/fuzz-heap.log" $(TBINDIR)/fuzzparams $(SECONDS) $(SEED)
+	@rm -f $(BUILD)/fuzz-build.log
+	@set -e; for f in $(FUZZERS); do \
+	  $(FPC) $(TESTFLAGS) tests/fuzz/$$f.pas >>$(BUILD)/fuzz-build.log 2>&1 || { cat $(BUILD)/fuzz-build.log; exit 1; }; done
+	@set -e; for f in $(FUZZERS); do rm -f $(BUILD)/fuzz-heap.log; \
+	  HEAPTRC="log=$(BUILD)/fuzz-heap.log" $(TBINDIR)/$$f $(SECONDS) $(SEED); done
 
 # The soak (docs/reliability.md): SECONDS per scenario or COUNT messages
 # per scenario; SEED= the first NOISE seed; ONLY= scenarios whose name

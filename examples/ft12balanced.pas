@@ -27,7 +27,7 @@ program ft12balanced;
 
 uses
   SysUtils, uString, ChnTypes, ChnVirt, ChnLoop, ChnCom, ChnTrc, ChnFT1_2,
-  ChnFT12Link, Iec101Asdu;
+  ChnFT12Link, ChnIec101Asdu, Iec101Print;
 
 var
   Chn: pChnVirt;
@@ -46,6 +46,15 @@ begin
   Result := FormatDateTime('hh:nn:ss.zzz', Now) + ' ';
 end;
 
+{ The ASDU at Buf as one line (Iec101Print, lib60870's sizes 2/2/3). }
+function AsduText(Buf: PByte; Len: Word): string;
+begin
+  if Len = 0 then
+    Result := 'empty ASDU'
+  else
+    Result := IecAsduText(IecDefaultParams, PByteArray(Buf)^[0..Len - 1], Len);
+end;
+
 procedure Queue(Buf: PByte; Len: Word);
 begin
   if FT12BalancedSend(L, Buf, Len, True) <> res_Ok then
@@ -54,24 +63,41 @@ begin
     WriteLn(Stamp, '-> ', AsduText(Buf, Len));
 end;
 
+{ A scaled measured value (IOA 110, CA 1) into Out; its length. }
+function Measured(Cot: Byte; var Out: array of Byte): Word;
+var
+  O: tIecObject;
+  E: ShortString;
+begin
+  O := IecObject(110);
+  O.Int := Value;
+  IecEncodeOne(IecDefaultParams, M_ME_NB_1, Cot, 1, O, Out, Result, E);
+end;
+
 { The secondary's user data (FC 3 / FC 4): one ASDU. True = ACK. }
 function OnUserData(Data: Pointer; Buf: PByte; Len: Word; Confirm: Boolean): Boolean;
 var
   Out: array[0..MaxDataLen - 1] of Byte;
   N: Word;
+  H: tIecAsdu;
+  E: ShortString;
 begin
   WriteLn(Stamp, '<- ', AsduText(Buf, Len));
   { room for the answers first, else NACK: the peer sends it again }
   Result := L.QCount + 3 <= FT12BalQueueLen;
-  if not Result or (Len < AsduHeadLen) or (Buf[2] and $3F <> CotActivation) then
+  if not Result or (Len = 0) or (Len > SizeOf(Out))
+    or (IecDecodeHeader(IecDefaultParams, PByteArray(Buf)^[0..Len - 1], Len, H, E) <> res_Ok)
+    or (H.Cot <> Cot_Activation) then
     Exit;
-  AsduMirror(Buf, @Out, Len, CotActCon);
+  Move(Buf^, Out, Len);
+  IecSetCot(Out, Len, Cot_ActCon, False);
   Queue(@Out, Len);
-  if Buf[0] = C_IC_NA_1 then
+  if H.Ti = C_IC_NA_1 then
   begin
-    N := AsduMeasuredScaled(@Out, CotInterrogated, 1, 110, Value);
+    N := Measured(Cot_Interrogated, Out);
     Queue(@Out, N);
-    AsduMirror(Buf, @Out, Len, CotActTerm);
+    Move(Buf^, Out, Len);
+    IecSetCot(Out, Len, Cot_ActTerm, False);
     Queue(@Out, Len);
   end;
 end;
@@ -95,6 +121,8 @@ var
   Asked: Boolean = False;
   Out: array[0..15] of Byte;
   N: Word;
+  Obj: tIecObject;
+  Err: ShortString;
 begin
   if ParamCount < 2 then
   begin
@@ -133,7 +161,9 @@ begin
       if (Shown = bsAvailable) and pChnFT1_2(Chn)^.CH_Dir and not Asked then
       begin
         Asked := True;
-        N := AsduInterrogation(@Out, 1);
+        Obj := IecObject(0);
+        Obj.Int := Qoi_Station;
+        IecEncodeOne(IecDefaultParams, C_IC_NA_1, Cot_Activation, 1, Obj, Out, N, Err);
         Queue(@Out, N);
       end;
     end;
@@ -143,7 +173,7 @@ begin
       if L.State = bsAvailable then
       begin
         Inc(Value);
-        N := AsduMeasuredScaled(@Out, CotSpontaneous, 1, 110, Value);
+        N := Measured(Cot_Spontaneous, Out);
         Queue(@Out, N);
       end;
     end;

@@ -32,7 +32,7 @@ uses
   ChnCom, ChnTcp,
   ChnFT12Codec,
   ChnFT1_2,
-  Iec101Asdu;
+  ChnIec101Asdu;
 
 const
   DefaultParams: tParamStr =
@@ -47,6 +47,9 @@ var
   HaveAns: Boolean;
   NextFcb: Boolean;       { FCB the next new request must carry }
   Counter: SmallInt;
+  Obj: tIecObject;
+  AsduLen: Word;
+  AsduErr: ShortString;
   Params: tParamStr;
   Seconds: LongInt;
   Code: Integer;
@@ -140,8 +143,10 @@ begin
         FCM_ReqUserData2:
           begin
             Inc(Counter);
-            Answer(tpLongM, FCS_UserData, 12);
-            AsduMeasuredScaled(@Ans.Data[1], CotPeriodic, 1, 110, Counter);
+            Obj := IecObject(110);
+            Obj.Int := Counter;
+            IecEncodeOne(IecDefaultParams, M_ME_NB_1, Cot_Periodic, 1, Obj, Ans.Data, AsduLen, AsduErr);
+            Answer(tpLongM, FCS_UserData, AsduLen);
           end;
       else
         Answer(tpShortM, FCS_NackBusy, 0);

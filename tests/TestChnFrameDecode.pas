@@ -35,6 +35,7 @@ type
     procedure TestShortChunkReported;
     procedure TestHexText;
     procedure TestFT12;
+    procedure TestFT12AsduDecoded;
     procedure TestICS;
     procedure TestTraceLogReadsBack;
   end;
@@ -294,6 +295,32 @@ begin
   AssertTrue(Has('rx FT1.2 single character ACK ($E5)'));
   AssertEquals('errors', 1, Stats.Errors);
   AssertTrue(Has('FT1.2 ERROR $20'));
+end;
+
+{ A variable frame's user data is an ASDU, decoded with the field sizes of
+  the options: lib60870's interrogation (CODE $73 ADDR 1, SUM = 73 + 01 +
+  64 + 01 + 06 + 01 + 14 = F4) and the same with COT 1, CA 1, IOA 2
+  (64 01 06 01 00 00 14, SUM = 73+01+64+01+06+01+14 = F4 again). }
+procedure TTestChnFrameDecode.TestFT12AsduDecoded;
+var
+  Opt: tDecOptions;
+  Err: AnsiString;
+begin
+  DecodeDefaults(Opt);
+  Opt.Proto := dpFT12;
+  RunHex(Opt, '68 0C 0C 68 73 01 64 01 06 00 01 00 00 00 00 14 F4 16');
+  AssertTrue(Has('rx FT1.2 variable frame L=12 CODE=$73 (PRM=1 FCB/ACD=1 FCV/DFC=1 FC=3) ADDR=1, '
+    + '10 data bytes: C_IC_NA_1 ACTIVATION CA 1: IOA 0 = 20, checksum ok'));
+  AssertTrue(DecodeOption('--cot-size', '1', Opt, Err) and (Err = ''));
+  AssertTrue(DecodeOption('--ca-size', '1', Opt, Err) and (Err = ''));
+  AssertTrue(DecodeOption('--ioa-size', '2', Opt, Err) and (Err = ''));
+  RunHex(Opt, '68 09 09 68 73 01 64 01 06 01 00 00 14 F4 16');
+  AssertTrue(Has('7 data bytes: C_IC_NA_1 ACTIVATION CA 1: IOA 0 = 20, checksum ok'));
+  { a malformed ASDU is said so, with its octets }
+  RunHex(Opt, '68 06 06 68 73 01 64 01 06 01 E0 16');
+  AssertTrue(Has('4 data bytes: bad ASDU: C_IC_NA_1 with 1 object(s) needs 7 octets, got 4: 64 01 06 01'));
+  AssertTrue(DecodeOption('--ioa-size', '4', Opt, Err));
+  AssertEquals('--ioa-size wants 1, 2 or 3', Err);
 end;
 
 procedure TTestChnFrameDecode.TestICS;

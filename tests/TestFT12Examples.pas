@@ -200,7 +200,7 @@ begin
   AssertTrue(FLine, Expect('68 0C 0C 68 73 02 64 01 0A 00 01 00 00 00 00 14 F9 16'));
   Say('10 80 02 82 16');
   Out := Finish;
-  AssertTrue(Out, Pos('<- C_IC_NA_1 (100) COT 6 CA 1: IOA 0 = 20', Out) > 0);
+  AssertTrue(Out, Pos('<- C_IC_NA_1 ACTIVATION CA 1: IOA 0 = 20', Out) > 0);
   AssertTrue(Out, Pos('link AVAILABLE', Out) > 0);
 end;
 

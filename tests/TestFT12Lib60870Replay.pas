@@ -22,20 +22,9 @@ interface
 
 uses
   SysUtils, fpcunit, testregistry, ChnTypes, ChnVirt, ChnLoop, ChnFT1_2,
-  ChnFT12Codec, ChnFT12Link, ChnTrcFormat, TestSupport, TestTempDir;
+  ChnFT12Codec, ChnFT12Link, ChnTrcFormat, TestSupport, TestTempDir, Ft12Capture;
 
 type
-  TCapFrame = record
-    Tx    : Boolean;       { sent by our station }
-    TimeMs: LongInt;
-    Prm   : Boolean;
-    Kind  : tMessType;
-    FC    : Byte;
-    Data  : TBytes;        { user data octets }
-    Hex   : string;        { the frame as on the line }
-  end;
-  TCapFrames = array of TCapFrame;
-
   TTestFT12Lib60870Replay = class(TTestCase)
   private
     FUs, FRaw: pChnVirt;
@@ -76,49 +65,6 @@ begin
     Result := 'FC ' + IntToStr(FC);
 end;
 
-{ Split one direction's bytes into frames (a line monitor: both PRM
-  values, any DIR, every address). }
-procedure Split(const B: TBytes; Tx: Boolean; const Times: array of LongInt;
-  var F: TCapFrames);
-var
-  S: tFT12Rx;
-  I, N, Len: Integer;
-begin
-  FillChar(S, SizeOf(S), 0);
-  S.Cfg.AddrLen := 1;
-  S.Cfg.FixedLen := 0;
-  S.Cfg.Balanced := True;
-  FT12RxReset(S);
-  for I := 0 to High(B) do
-    case FT12Feed(S, B[I], 0) of
-      fe_Frame:
-        begin
-          N := Length(F);
-          SetLength(F, N + 1);
-          F[N].Tx := Tx;
-          if Length(Times) > I then
-            F[N].TimeMs := Times[I]
-          else
-            F[N].TimeMs := 0;
-          F[N].Prm := FT12FramePrm(S);
-          F[N].Kind := S.Kind;
-          F[N].FC := S.Code and cMaskFC;
-          SetLength(F[N].Data, S.DataLen);
-          if S.DataLen > 0 then
-            Move(S.Data[0], F[N].Data[0], S.DataLen);
-          case S.Kind of
-            tpSACK, tpSNAK: Len := 1;
-            tpShortM: Len := 5;
-          else
-            Len := S.L + 6;
-          end;
-          F[N].Hex := BytesToHex(B[I - Len + 1], Len);
-        end;
-      fe_Error:
-        raise Exception.CreateFmt('broken frame in the capture at byte %d', [I]);
-    end;
-end;
-
 procedure TTestFT12Lib60870Replay.SetUp;
 begin
   FUs := nil;
@@ -136,62 +82,10 @@ begin
 end;
 
 function TTestFT12Lib60870Replay.Load(const Name: string): TCapFrames;
-var
-  T: tTrcFrames;
-  Tx, Rx: TBytes;
-  TxT, RxT: array of LongInt;
-  I, J, N: Integer;
-  A, B: TCapFrames;
 begin
-  T := nil;
   AssertTrue(DataDir + Name + ' missing', FileExists(DataDir + Name));
-  AssertTrue('chunks', TrcReadText(ReadFileText(DataDir + Name), T) > 10);
-  Tx := nil; Rx := nil; TxT := nil; RxT := nil;
-  for I := 0 to High(T) do
-  begin
-    AssertEquals('whole chunk, line ' + IntToStr(T[I].Line), res_Ok, T[I].Status);
-    for J := 0 to High(T[I].Data) do
-      if T[I].Dir = trcTx then
-      begin
-        N := Length(Tx);
-        SetLength(Tx, N + 1);
-        SetLength(TxT, N + 1);
-        Tx[N] := T[I].Data[J];
-        TxT[N] := T[I].TimeMs;
-      end
-      else
-      begin
-        N := Length(Rx);
-        SetLength(Rx, N + 1);
-        SetLength(RxT, N + 1);
-        Rx[N] := T[I].Data[J];
-        RxT[N] := T[I].TimeMs;
-      end;
-  end;
-  A := nil;
-  B := nil;
-  Split(Tx, True, TxT, A);
-  Split(Rx, False, RxT, B);
-  { one list, in time order (stable: ours first at equal times does not
-    matter, the replays look at one side's order only) }
-  Result := nil;
-  I := 0;
-  J := 0;
-  while (I < Length(A)) or (J < Length(B)) do
-  begin
-    N := Length(Result);
-    SetLength(Result, N + 1);
-    if (J >= Length(B)) or ((I < Length(A)) and (A[I].TimeMs <= B[J].TimeMs)) then
-    begin
-      Result[N] := A[I];
-      Inc(I);
-    end
-    else
-    begin
-      Result[N] := B[J];
-      Inc(J);
-    end;
-  end;
+  Result := CapLoad(DataDir + Name);
+  AssertTrue('frames', Length(Result) > 10);
 end;
 
 function TTestFT12Lib60870Replay.Answers(const F: TCapFrames; FromUs: Boolean;
@@ -242,7 +136,7 @@ begin
   AssertEquals('broken', 0, FL.Broken);
   AssertEquals('wrong DIR', 0, FL.BadDir);
   Ans := nil;
-  Split(Got, True, [], Ans);
+  CapSplit(Got, True, [], Ans);
   for I := 0 to High(Ans) do
     if not Ans[I].Prm then
     begin

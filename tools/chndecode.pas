@@ -7,7 +7,7 @@
                 --hex      hex text ('10 02 03 00 ...'), one received stream
                 --bin      a binary file, one received stream
       protocol  --df1 [--crc|--bcc] [--half [--master=tx|rx]]   (default --df1 --crc)
-                --ft12 [--adr=0..2] [--len=N]
+                --ft12 [--adr=0..2] [--len=N] [--cot-size=1|2] [--ca-size=1|2] [--ioa-size=1..3]
                 --ics
       options   --lines=A-B   only chunks whose header is on lines A..B
                               (pcap: records A..B)
@@ -34,7 +34,7 @@ uses
 procedure Usage(const Why: string);
 begin
   WriteLn(StdErr, 'chndecode: ', Why);
-  WriteLn(StdErr, 'usage: chndecode [--capture|--pcap|--hex|--bin] [--df1 [--crc|--bcc] [--half [--master=tx|rx]] | --ft12 [--adr=N] [--len=N] | --ics] [--lines=A-B]');
+  WriteLn(StdErr, 'usage: chndecode [--capture|--pcap|--hex|--bin] [--df1 [--crc|--bcc] [--half [--master=tx|rx]] | --ft12 [--adr=N] [--len=N] [--cot-size=N] [--ca-size=N] [--ioa-size=N] | --ics] [--lines=A-B]');
   WriteLn(StdErr, '                 [--to-pcap=OUT [--date=YYYY-MM-DD] | --to-text | --svg=OUT [--gap=MS] [--title=T]] FILE');
   Halt(2);
 end;

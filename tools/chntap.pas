@@ -7,7 +7,7 @@
       A, B      parameter strings of the two sides, e.g.
                 'NAM=COM DEV=/dev/ttyUSB0 BD=19200 PAR=E'
       protocol  --df1 [--crc|--bcc] [--half [--master=A|B]]  (default)
-                --ft12 [--adr=0..2] [--len=N]
+                --ft12 [--adr=0..2] [--len=N] [--cot-size=1|2] [--ca-size=1|2] [--ioa-size=1..3]
                 --ics
                 --raw     decode nothing, only forward (and trace)
       --pcap=FILE   pcap of link type 250 (NAM=TRC MOD=PCAP)
@@ -79,7 +79,7 @@ end;
 procedure Usage(const Why: string);
 begin
   WriteLn(StdErr, 'chntap: ', Why);
-  WriteLn(StdErr, 'usage: chntap [--df1 [--crc|--bcc] [--half [--master=A|B]] | --ft12 [--adr=N] [--len=N] | --ics | --raw]');
+  WriteLn(StdErr, 'usage: chntap [--df1 [--crc|--bcc] [--half [--master=A|B]] | --ft12 [--adr=N] [--len=N] [--cot-size=N] [--ca-size=N] [--ioa-size=N] | --ics | --raw]');
   WriteLn(StdErr, '              [--pcap=FILE] [--trace=FILE] [--quiet] ''NAM=COM DEV=... (side A)'' ''NAM=COM DEV=... (side B)''');
   Halt(2);
 end;

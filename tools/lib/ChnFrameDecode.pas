@@ -24,7 +24,7 @@ unit ChnFrameDecode;
 interface
 
 uses
-  Classes, ChnTypes, ChnTrcFormat, ChnDF1Codec, ChnFT12Codec, ChnICSCodec;
+  Classes, ChnTypes, ChnTrcFormat, ChnDF1Codec, ChnFT12Codec, ChnICSCodec, ChnIec101Asdu;
 
 type
   tDecProto = (dpDF1, dpFT12, dpICS);
@@ -36,6 +36,8 @@ type
     MasterDir: tTrcDir;   { DF1 half duplex: direction of the master's bytes }
     AddrLen  : Byte;      { FT1.2: link address octets 0..2 }
     FixedLen : Byte;      { FT1.2: data octets of a fixed frame }
+    Asdu     : tIecParams; { FT1.2: the ASDU of a variable frame, decoded
+                            (--cot-size --ca-size --ioa-size, default 2 2 3) }
     FirstLine: LongInt;   { only chunks whose header line lies in }
     LastLine : LongInt;   { FirstLine..LastLine; 0 = no limit }
   end;
@@ -100,7 +102,8 @@ procedure DecodeDefaults(var Opt: tDecOptions);
 { '--key=value' -> '--key', 'value'; without '=' Value is ''. }
 procedure DecodeSplitArg(const Arg: AnsiString; out Key, Value: AnsiString);
 { The protocol options the programs share: --df1 --crc --bcc --half --ft12
-  --adr=0..2 --len=0..247 --ics. True when Key is one of them; Err is ''
+  --adr=0..2 --len=0..247 --cot-size=1|2 --ca-size=1|2 --ioa-size=1..3
+  (the ASDU of FT 1.2 variable frames) --ics. True when Key is one of them; Err is ''
   or says what is wrong with Value. (--master differs per program.) }
 function DecodeOption(const Key, Value: AnsiString; var Opt: tDecOptions;
   out Err: AnsiString): Boolean;
@@ -127,7 +130,7 @@ procedure DecodeRun(const Opt: tDecOptions; const Frames: tTrcFrames; Count: Lon
 implementation
 
 uses
-  SysUtils, uString, ChnDF1, ChnFT1_2, ChnICS, ChnPcccNames;
+  SysUtils, uString, ChnDF1, ChnFT1_2, ChnICS, ChnPcccNames, Iec101Print;
 
 procedure DecodeSplitArg(const Arg: AnsiString; out Key, Value: AnsiString);
 begin
@@ -168,6 +171,27 @@ begin
     else
       Err := '--len wants 0..247';
   end
+  else if Key = '--cot-size' then
+  begin
+    if StrToNum(Value, 1, 2, N) then
+      Opt.Asdu.CotSize := N
+    else
+      Err := '--cot-size wants 1 or 2';
+  end
+  else if Key = '--ca-size' then
+  begin
+    if StrToNum(Value, 1, 2, N) then
+      Opt.Asdu.CaSize := N
+    else
+      Err := '--ca-size wants 1 or 2';
+  end
+  else if Key = '--ioa-size' then
+  begin
+    if StrToNum(Value, 1, 3, N) then
+      Opt.Asdu.IoaSize := N
+    else
+      Err := '--ioa-size wants 1, 2 or 3';
+  end
   else
     Result := False;
 end;
@@ -179,6 +203,7 @@ begin
   Opt.Crc := True;
   Opt.MasterDir := trcTx;
   Opt.AddrLen := 1;
+  Opt.Asdu := IecDefaultParams;
 end;
 
 
@@ -433,7 +458,11 @@ begin
             if Dec.Dirs[Dir].FT.Cfg.AddrLen > 0 then
               T := T + Format(' ADDR=%d', [Dec.Dirs[Dir].FT.Addr]);
             T := T + Format(', %d data bytes', [Dec.Dirs[Dir].FT.DataLen]);
-            if Dec.Dirs[Dir].FT.DataLen > 0 then
+            { the user data of a variable frame is an ASDU (IEC 60870-5-101) }
+            if (Dec.Dirs[Dir].FT.Kind = tpLongM) and (Dec.Dirs[Dir].FT.DataLen > 0) then
+              T := T + ': ' + IecAsduText(Dec.Opt.Asdu, Dec.Dirs[Dir].FT.Data,
+                Dec.Dirs[Dir].FT.DataLen)
+            else if Dec.Dirs[Dir].FT.DataLen > 0 then
               T := T + ': ' + HexBytes(@Dec.Dirs[Dir].FT.Data[0], Dec.Dirs[Dir].FT.DataLen);
             T := T + ', checksum ok';
           end;

@@ -1,0 +1,986 @@
+{ ChnIec101Master - an IEC 60870-5-101 controlling station (master) on a
+  tChnFT1_2 channel, unbalanced (MS=ON, several slaves on one line) or
+  balanced (MS=OFF, one peer).
+
+  Unbalanced: the slaves get their turns round-robin. A slave whose link
+  is not up gets request status of link (FC 9) and reset of remote link
+  (FC 0); an online slave is polled for class 1 data (FC 10) whenever the
+  last reply had ACD set, else for class 2 data (FC 11), at most once per
+  CycleMs. A slave that stops answering is marked dead and tried again
+  after DeadMinMs, doubling up to DeadMaxMs, with a single transmission, so
+  it costs the others one timeout per back-off. Commands go as SEND/CONFIRM
+  user data (FC 3) when their slave is online. The link procedures (FCB,
+  repetitions, the reset in front of FCV = 1 services) are ChnFT12Link's.
+  Balanced: ChnFT12Link's tFT12Balanced runs the link; commands are
+  queued as user data; the peer's user data are taken as they come.
+
+  Every ASDU received reaches OnObject object by object, typed
+  (ChnIec101Asdu), whatever type and cause (lib60870's slaves answer an
+  interrogation with time-tagged types: they are passed on as they are).
+  A malformed ASDU is counted (BadAsdus, per slave too), its text kept in
+  LastBad and given to OnBad; it never stops the master.
+
+  One command at a time: IecStart* checks it, refuses what cannot be sent
+  (a value out of range, an IOA too large for the IOA size: the encoder's
+  result, nothing sent) and starts it; IecMasterStep, called from the
+  program's poll loop (with ChnWaitAny between steps), runs the line and
+  ends the command on its confirmation: res_Ok (positive ACT_CON; also
+  ACT_TERM for interrogations; the answer with COT 5 for a read),
+  res_IecNegative (negative ACT_CON), res_IecUnknownType, ..Cot, ..Ca,
+  ..Ioa (COT 44..47), res_Timeout (no confirmation in CommandMs, or the
+  slave died), res_IecNoSlave; Cmd.Err names the command and the slave.
+  The blocking forms (IecInterrogation ...) start and step to the end.
+
+  Link dependency: the one place that drives an FT 1.2 primary service is
+  LinkStart/LinkStep below, on ChnFT12Link's stepped primary: a step never
+  waits, so the master serves its line from the program's poll loop (Idle,
+  when set, runs between steps of the blocking forms instead of the wait). }
+unit ChnIec101Master;
+
+{$I chn.inc}
+
+interface
+
+uses
+  ChnTypes, ChnVirt, ChnFT1_2, ChnFT12Link, ChnIec101Asdu;
+
+const
+  res_IecNegative    = res_Proto + 8;    { negative confirmation (P/N = 1) }
+  res_IecUnknownType = res_Proto + 9;    { COT 44 }
+  res_IecUnknownCot  = res_Proto + 10;   { COT 45 }
+  res_IecUnknownCa   = res_Proto + 11;   { COT 46 }
+  res_IecUnknownIoa  = res_Proto + 12;   { COT 47 }
+  res_IecNoSlave     = res_Proto + 13;   { no such slave on this master }
+  res_IecBusy        = res_Proto + 14;   { a command is under way }
+
+  IecMaxSlaves = 32;
+
+type
+  tIecSlaveState = (isOffline, isLinkStatus, isOnline, isDead);
+
+  { What the master keeps per slave (link address). }
+  tIecSlave = record
+    Addr     : Word;
+    Link     : tFT12Link;
+    State    : tIecSlaveState;
+    NextPoll : QWord;      { no class 2 poll before (ChMsTick) }
+    RetryAt  : QWord;      { dead: next attempt }
+    BackoffMs: LongInt;    { dead: the wait after the next failure }
+    { counters }
+    Class1, Class2: LongInt;   { polls answered }
+    Commands : LongInt;    { user data (commands) confirmed by the link }
+    Asdus    : LongInt;    { ASDUs received }
+    Objects  : LongInt;    { information objects passed to OnObject }
+    BadAsdus : LongInt;    { malformed ASDUs }
+    Failures : LongInt;    { services without an answer }
+    Deaths   : LongInt;    { times marked dead }
+    Resets   : LongInt;    { link resets acknowledged }
+  end;
+
+  tIecObjectFunc = procedure(Data: Pointer; Addr: Word; const H: tIecAsdu; const O: tIecObject);
+  tIecBadFunc = procedure(Data: Pointer; Addr: Word; const Err: ShortString);
+
+  tIecCmdPhase = (cpNone, cpSend, cpConfirm, cpTerm, cpDone);
+  { what the link service under way is for }
+  tIecLinkJob = (ljNone, ljStatus, ljReset, ljCommand, ljClass1, ljClass2);
+  tIecCmdStage = (stDelayAct, stDelaySend, stSelect, stMain);
+
+  { The command under way. }
+  tIecCommand = record
+    Phase   : tIecCmdPhase;
+    Stage   : tIecCmdStage;
+    Slave   : LongInt;     { index in Slaves }
+    Ti      : Byte;        { type of the main command }
+    Ca      : Word;
+    Obj     : tIecObject;  { its object (IOA, value, qualifier) }
+    Sbo     : Boolean;     { select before operate }
+    WaitTerm: Boolean;     { ends on ACT_TERM (interrogations) }
+    Delay   : Boolean;     { clock sync: delay acquisition first }
+    SentAt  : QWord;       { the current stage left }
+    Deadline: QWord;
+    DelayMs : LongInt;     { the delay measured (clock sync with delay) }
+    Result  : tChResult;
+    Err     : ShortString;
+  end;
+
+  tIecMaster = record
+    Chn      : pChnVirt;
+    Params   : tIecParams;
+    Balanced : Boolean;
+    Slaves   : array[0..IecMaxSlaves - 1] of tIecSlave;
+    SlaveCount: LongInt;
+    Turn     : LongInt;    { the slave whose turn it is }
+    Bal      : tFT12Balanced;
+    { settings }
+    TimeoutMs: LongInt;    { link answer (FT12LinkTimeoutMs) }
+    Retries  : LongInt;    { link repetitions (FT12LinkRetries) }
+    CycleMs  : LongInt;    { class 2 polls of one slave at most this often (100) }
+    DeadMinMs, DeadMaxMs: LongInt;   { back-off of a dead slave (1000, 30000) }
+    CommandMs: LongInt;    { confirmation of a command (10000) }
+    OnObject : tIecObjectFunc;
+    OnSent   : tIecObjectFunc;   { each command object as it goes out (nil: none) }
+    OnBad    : tIecBadFunc;
+    Data     : Pointer;
+    Idle     : tFT12Idle;  { blocking forms: called instead of waiting (tests: the slave) }
+    IdleData : Pointer;
+    Cmd      : tIecCommand;
+    { counters and the last trouble }
+    Asdus, Objects, BadAsdus: LongInt;
+    LastBad  : ShortString;
+    LineResult: tChResult; { the channel failed (res_DeviceLost ...), else res_Ok }
+    { the link service under way (unbalanced) }
+    Job      : tIecLinkJob;
+    JobSlave : LongInt;
+    LinkResult: tChResult;
+    Prim     : tFT12Primary;
+    Rep      : tRecRecord;
+    RepLen   : Word;
+  end;
+  pIecMaster = ^tIecMaster;
+
+{ A master on an open tChnFT1_2 stack (it stays the caller's), with the
+  application parameters P; unbalanced or balanced as the channel is.
+  res_WrongLayer (no tChnFT1_2), res_AsduParam, res_BadMessage (a slave
+  or secondary channel). M must not move afterwards (the channel
+  receives into it). Balanced: the peer is slave DNO of the channel. }
+function IecMasterInit(var M: tIecMaster; Chn: pChnVirt; const P: tIecParams): tChResult;
+{ Add a slave link address (unbalanced); res_Busy when IecMaxSlaves are
+  there, res_BadParam for an address twice or above 255 (ADR=1). }
+function IecMasterAddSlave(var M: tIecMaster; Addr: Word): tChResult;
+{ Index of a slave, -1 when not added. }
+function IecMasterSlave(const M: tIecMaster; Addr: Word): LongInt;
+{ One step: at most one link service (unbalanced) or one frame
+  (balanced), the command's timer. True when something was done; False:
+  nothing is due before IecMasterWaitEnd (wait with ChnWaitAny). }
+function IecMasterStep(var M: tIecMaster): Boolean;
+function IecMasterWaitEnd(const M: tIecMaster): QWord;
+function IecSlaveStateName(S: tIecSlaveState): ShortString;
+
+{ Stepped commands to slave Addr, common address Ca: False when refused
+  (M.Cmd.Result, M.Cmd.Err say why; nothing sent). Then step until
+  IecCommandDone. }
+function IecStartInterrogation(var M: tIecMaster; Addr, Ca: Word; Qoi: Byte): Boolean;
+function IecStartCounterInterrogation(var M: tIecMaster; Addr, Ca: Word; Qcc: Byte): Boolean;
+function IecStartRead(var M: tIecMaster; Addr, Ca: Word; Ioa: LongWord): Boolean;
+{ T: the time to set (IecTimeFromDateTime(Now)); Delay: acquire the
+  transmission delay first (C_CD_NA_1) and send it to the slave. }
+function IecStartClockSync(var M: tIecMaster; Addr, Ca: Word; const T: tIecTime; Delay: Boolean): Boolean;
+function IecStartTest(var M: tIecMaster; Addr, Ca: Word): Boolean;
+function IecStartResetProcess(var M: tIecMaster; Addr, Ca: Word; Qrp: Byte): Boolean;
+{ A command of types 45..51 or 58..64 with its object (Obj.Select is
+  set here); Sbo: select, then execute after the positive ACT_CON. }
+function IecStartCommand(var M: tIecMaster; Addr, Ca: Word; Ti: Byte; const Obj: tIecObject;
+  Sbo: Boolean): Boolean;
+function IecCommandDone(const M: tIecMaster): Boolean;
+{ Step a started command to its end (Idle, or ChnWaitAny); its result. }
+function IecFinish(var M: tIecMaster): tChResult;
+
+{ Blocking forms: start and finish. }
+function IecInterrogation(var M: tIecMaster; Addr, Ca: Word; Qoi: Byte): tChResult;
+function IecCounterInterrogation(var M: tIecMaster; Addr, Ca: Word; Qcc: Byte): tChResult;
+function IecRead(var M: tIecMaster; Addr, Ca: Word; Ioa: LongWord): tChResult;
+function IecClockSync(var M: tIecMaster; Addr, Ca: Word; const T: tIecTime; Delay: Boolean): tChResult;
+function IecTestCommand(var M: tIecMaster; Addr, Ca: Word): tChResult;
+function IecResetProcess(var M: tIecMaster; Addr, Ca: Word; Qrp: Byte): tChResult;
+function IecCommand(var M: tIecMaster; Addr, Ca: Word; Ti: Byte; const Obj: tIecObject;
+  Sbo: Boolean): tChResult;
+{ Step for Ms milliseconds (polling, objects to OnObject). }
+procedure IecPollFor(var M: tIecMaster; Ms: LongInt);
+
+implementation
+
+uses
+  SysUtils, ChnWait;
+
+function IecSlaveStateName(S: tIecSlaveState): ShortString;
+begin
+  case S of
+    isOffline: Result := 'OFFLINE';
+    isLinkStatus: Result := 'LINK_STATUS';
+    isOnline: Result := 'ONLINE';
+  else
+    Result := 'DEAD';
+  end;
+end;
+
+procedure SlaveInit(var S: tIecSlave; Addr: Word; BackoffMs: LongInt);
+begin
+  FillChar(S, SizeOf(S), 0);
+  S.Addr := Addr;
+  FT12LinkInit(S.Link, Addr);
+  S.BackoffMs := BackoffMs;
+end;
+
+function OnBalancedData(Data: Pointer; Buf: PByte; Len: Word; Confirm: Boolean): Boolean; forward;
+
+function IecMasterInit(var M: tIecMaster; Chn: pChnVirt; const P: tIecParams): tChResult;
+var
+  E: ShortString;
+begin
+  FillChar(M, SizeOf(M), 0);
+  M.Chn := Chn;
+  M.Params := P;
+  M.TimeoutMs := FT12LinkTimeoutMs;
+  M.Retries := FT12LinkRetries;
+  M.CycleMs := 100;
+  M.DeadMinMs := 1000;
+  M.DeadMaxMs := 30000;
+  M.CommandMs := 10000;
+  M.Cmd.Slave := -1;
+  Result := IecCheckParams(P, E);
+  if Result <> res_Ok then
+    Exit;
+  if (Chn = nil) or (Chn^.CH_Type <> ChnFT1_2.cName) then
+    Exit(res_WrongLayer);
+  M.Balanced := not pChnFT1_2(Chn)^.CH_MaSl;
+  if M.Balanced then
+  begin
+    Result := FT12BalancedInit(M.Bal, Chn);
+    if Result <> res_Ok then
+      Exit;
+    M.Bal.OnUserData := @OnBalancedData;
+    M.Bal.Data := @M;
+    SlaveInit(M.Slaves[0], Chn^.CH_DNode, M.DeadMinMs);
+    M.SlaveCount := 1;
+  end
+  else if not pChnFT1_2(Chn)^.CH_Master then
+    Result := res_BadMessage;
+end;
+
+function IecMasterSlave(const M: tIecMaster; Addr: Word): LongInt;
+var
+  I: Integer;
+begin
+  for I := 0 to M.SlaveCount - 1 do
+    if M.Slaves[I].Addr = Addr then
+      Exit(I);
+  Result := -1;
+end;
+
+function IecMasterAddSlave(var M: tIecMaster; Addr: Word): tChResult;
+begin
+  if M.Balanced then
+    Exit(res_BadParam);
+  if (IecMasterSlave(M, Addr) >= 0) or (Addr > $FFFF shr (8 * (2 - pChnFT1_2(M.Chn)^.CH_AdrLen))) then
+    Exit(res_BadParam);
+  if M.SlaveCount >= IecMaxSlaves then
+    Exit(res_Busy);
+  SlaveInit(M.Slaves[M.SlaveCount], Addr, M.DeadMinMs);
+  Inc(M.SlaveCount);
+  Result := res_Ok;
+end;
+
+{ ------------------------------------------------------------ commands }
+
+function CmdName(const M: tIecMaster): ShortString;
+begin
+  Result := IecTypeName(M.Cmd.Ti);
+  if IecTypeKind(M.Cmd.Ti) in [ikSingleCmd, ikDoubleCmd, ikStepCmd, ikSetNormal, ikSetScaled,
+    ikSetFloat, ikBitsCmd, ikRead] then
+    Result := Result + ' IOA ' + IntToStr(M.Cmd.Obj.Ioa);
+  if M.Cmd.Slave >= 0 then
+    Result := Result + ' to slave ' + IntToStr(M.Slaves[M.Cmd.Slave].Addr);
+end;
+
+procedure Finish(var M: tIecMaster; R: tChResult; const Text: ShortString);
+begin
+  M.Cmd.Phase := cpDone;
+  M.Cmd.Result := R;
+  if R = res_Ok then
+    M.Cmd.Err := ''
+  else
+    M.Cmd.Err := CmdName(M) + ': ' + Text;
+end;
+
+{ The type, cause and object the current stage sends. }
+procedure StageAsdu(var M: tIecMaster; out Ti, Cot: Byte; out O: tIecObject);
+begin
+  O := M.Cmd.Obj;
+  Ti := M.Cmd.Ti;
+  Cot := Cot_Activation;
+  case M.Cmd.Stage of
+    stDelayAct:
+      begin
+        Ti := C_CD_NA_1;
+        O := IecObject(0);
+        O.Elapsed := ChMsTick mod 60000;   { SDT: when it leaves }
+      end;
+    stDelaySend:
+      begin
+        Ti := C_CD_NA_1;
+        Cot := Cot_Spontaneous;
+        O := IecObject(0);
+        O.Elapsed := M.Cmd.DelayMs;
+      end;
+    stSelect: O.Select := True;
+    stMain:
+      begin
+        O.Select := False;
+        if Ti = C_RD_NA_1 then
+          Cot := Cot_Request;
+      end;
+  end;
+end;
+
+function StageEncode(var M: tIecMaster; var Buf: array of Byte; out Len: Word; out Err: ShortString): tChResult;
+var
+  Ti, Cot: Byte;
+  O: tIecObject;
+begin
+  StageAsdu(M, Ti, Cot, O);
+  Result := IecEncodeOne(M.Params, Ti, Cot, M.Cmd.Ca, O, Buf, Len, Err);
+end;
+
+function Start(var M: tIecMaster; Addr, Ca: Word; Ti: Byte; const Obj: tIecObject;
+  Sbo, WaitTerm, Delay: Boolean): Boolean;
+var
+  Buf: array[0..IecMaxAsdu - 1] of Byte;
+  Len: Word;
+  E: ShortString;
+  R: tChResult;
+  First: tIecCmdStage;
+begin
+  if not IecCommandDone(M) then
+  begin
+    { keep the command under way; say why this one was refused }
+    M.Cmd.Err := IecTypeName(Ti) + ': a command is under way (' + CmdName(M) + ')';
+    Exit(False);
+  end;
+  FillChar(M.Cmd, SizeOf(M.Cmd), 0);
+  M.Cmd.Ti := Ti;
+  M.Cmd.Ca := Ca;
+  M.Cmd.Obj := Obj;
+  M.Cmd.Sbo := Sbo;
+  M.Cmd.WaitTerm := WaitTerm;
+  M.Cmd.Delay := Delay;
+  M.Cmd.Slave := IecMasterSlave(M, Addr);
+  if Sbo then
+    M.Cmd.Stage := stSelect
+  else if Delay then
+    M.Cmd.Stage := stDelayAct
+  else
+    M.Cmd.Stage := stMain;
+  if M.Cmd.Slave < 0 then
+  begin
+    Finish(M, res_IecNoSlave, 'no slave with link address ' + IntToStr(Addr));
+    Exit(False);
+  end;
+  { every stage this command will send must encode: refuse now }
+  R := StageEncode(M, Buf, Len, E);
+  if (R = res_Ok) and (M.Cmd.Stage <> stMain) then
+  begin
+    First := M.Cmd.Stage;
+    M.Cmd.Stage := stMain;
+    R := StageEncode(M, Buf, Len, E);
+    M.Cmd.Stage := First;
+  end;
+  if R <> res_Ok then
+  begin
+    Finish(M, R, E);
+    Exit(False);
+  end;
+  M.Cmd.Result := res_Ok;
+  M.Cmd.Phase := cpSend;
+  M.Cmd.Deadline := ChMsTick + QWord(M.CommandMs);
+  Result := True;
+end;
+
+{ A command whose element is one number (a qualifier, the test pattern). }
+function StartWith(var M: tIecMaster; Addr, Ca: Word; Ti: Byte; Value: LongInt;
+  WaitTerm: Boolean): Boolean;
+var
+  O: tIecObject;
+begin
+  O := IecObject(0);
+  O.Int := Value;
+  Result := Start(M, Addr, Ca, Ti, O, False, WaitTerm, False);
+end;
+
+function IecStartInterrogation(var M: tIecMaster; Addr, Ca: Word; Qoi: Byte): Boolean;
+begin
+  Result := StartWith(M, Addr, Ca, C_IC_NA_1, Qoi, True);
+end;
+
+function IecStartCounterInterrogation(var M: tIecMaster; Addr, Ca: Word; Qcc: Byte): Boolean;
+begin
+  Result := StartWith(M, Addr, Ca, C_CI_NA_1, Qcc, True);
+end;
+
+function IecStartRead(var M: tIecMaster; Addr, Ca: Word; Ioa: LongWord): Boolean;
+begin
+  Result := Start(M, Addr, Ca, C_RD_NA_1, IecObject(Ioa), False, False, False);
+end;
+
+function IecStartClockSync(var M: tIecMaster; Addr, Ca: Word; const T: tIecTime; Delay: Boolean): Boolean;
+var
+  O: tIecObject;
+begin
+  O := IecObject(0);
+  O.Time := T;
+  Result := Start(M, Addr, Ca, C_CS_NA_1, O, False, False, Delay);
+end;
+
+function IecStartTest(var M: tIecMaster; Addr, Ca: Word): Boolean;
+begin
+  Result := StartWith(M, Addr, Ca, C_TS_NA_1, Fbp_Test, False);
+end;
+
+function IecStartResetProcess(var M: tIecMaster; Addr, Ca: Word; Qrp: Byte): Boolean;
+begin
+  Result := StartWith(M, Addr, Ca, C_RP_NA_1, Qrp, False);
+end;
+
+function IecStartCommand(var M: tIecMaster; Addr, Ca: Word; Ti: Byte; const Obj: tIecObject;
+  Sbo: Boolean): Boolean;
+begin
+  if not (IecTypeKind(Ti) in [ikSingleCmd, ikDoubleCmd, ikStepCmd, ikSetNormal, ikSetScaled,
+    ikSetFloat, ikBitsCmd]) then
+  begin
+    if (M.Cmd.Phase = cpNone) or (M.Cmd.Phase = cpDone) then
+    begin
+      M.Cmd.Phase := cpDone;
+      M.Cmd.Result := res_AsduType;
+      M.Cmd.Err := 'type ' + IntToStr(Ti) + ' (' + IecTypeName(Ti) + ') is no command of 45..51, 58..64';
+    end;
+    Exit(False);
+  end;
+  { C_BO has no S/E bit: no select stage }
+  Result := Start(M, Addr, Ca, Ti, Obj, Sbo and (IecTypeKind(Ti) <> ikBitsCmd), False, False);
+end;
+
+function IecCommandDone(const M: tIecMaster): Boolean;
+begin
+  Result := M.Cmd.Phase in [cpNone, cpDone];
+end;
+
+{ The stage answered positively: on to the next, or done. }
+procedure StageConfirmed(var M: tIecMaster);
+begin
+  case M.Cmd.Stage of
+    stDelayAct:
+      begin
+        M.Cmd.DelayMs := (ChMsTick - M.Cmd.SentAt) div 2;
+        M.Cmd.Stage := stDelaySend;
+        M.Cmd.Phase := cpSend;
+      end;
+    stDelaySend, stSelect:
+      begin
+        M.Cmd.Stage := stMain;
+        M.Cmd.Phase := cpSend;
+        if M.Cmd.Ti = C_CS_NA_1 then
+          { the time leaves now: the slave adds the delay it was sent }
+          M.Cmd.Obj.Time := IecTimeFromDateTime(Now);
+      end;
+  else
+    if M.Cmd.WaitTerm then
+      M.Cmd.Phase := cpTerm
+    else
+      Finish(M, res_Ok, '');
+  end;
+end;
+
+{ An ASDU from slave index S: does it answer the command? }
+procedure MatchCommand(var M: tIecMaster; S: Integer; const H: tIecAsdu; const O: tIecObject);
+var
+  Ti, Cot: Byte;
+  Want: tIecObject;
+  What: ShortString;
+begin
+  if (M.Cmd.Slave <> S) or not (M.Cmd.Phase in [cpConfirm, cpTerm]) then
+    Exit;
+  StageAsdu(M, Ti, Cot, Want);
+  if H.Ca <> M.Cmd.Ca then
+    Exit;
+  if (M.Cmd.Ti = C_RD_NA_1) and (M.Cmd.Stage = stMain) and (H.Cot = Cot_Request)
+    and (O.Ioa = Want.Ioa) and (H.Ti <> C_RD_NA_1) then
+  begin
+    Finish(M, res_Ok, '');
+    Exit;
+  end;
+  if (H.Ti <> Ti) or (O.Ioa <> Want.Ioa) then
+    Exit;
+  What := 'COT ' + IntToStr(H.Cot) + ' ' + IecCotName(H.Cot);
+  case H.Cot of
+    Cot_ActCon:
+      if H.Negative then
+        Finish(M, res_IecNegative, 'negative ACT_CON')
+      else if M.Cmd.Phase = cpConfirm then
+        StageConfirmed(M);
+    Cot_ActTerm:
+      if H.Negative then
+        Finish(M, res_IecNegative, 'negative ACT_TERM')
+      else
+        Finish(M, res_Ok, '');
+    Cot_UnknownType: Finish(M, res_IecUnknownType, 'the slave does not know the type (' + What + ')');
+    Cot_UnknownCause: Finish(M, res_IecUnknownCot, 'the slave does not know the cause (' + What + ')');
+    Cot_UnknownCa: Finish(M, res_IecUnknownCa, 'the slave does not know common address '
+      + IntToStr(H.Ca) + ' (' + What + ')');
+    Cot_UnknownIoa: Finish(M, res_IecUnknownIoa, 'the slave does not know IOA '
+      + IntToStr(O.Ioa) + ' (' + What + ')');
+  end;
+end;
+
+{ An ASDU received from slave index S. }
+procedure TakeAsdu(var M: tIecMaster; S: Integer; const Buf: array of Byte; Len: Word);
+var
+  H: tIecAsdu;
+  O: tIecObject;
+  E: ShortString;
+  I: Integer;
+begin
+  Inc(M.Asdus);
+  Inc(M.Slaves[S].Asdus);
+  if IecDecodeHeader(M.Params, Buf, Len, H, E) <> res_Ok then
+  begin
+    Inc(M.BadAsdus);
+    Inc(M.Slaves[S].BadAsdus);
+    M.LastBad := 'slave ' + IntToStr(M.Slaves[S].Addr) + ': ' + E;
+    if Assigned(M.OnBad) then
+      M.OnBad(M.Data, M.Slaves[S].Addr, M.LastBad);
+    Exit;
+  end;
+  for I := 0 to H.Count - 1 do
+  begin
+    IecDecodeObject(M.Params, H, Buf, I, O);
+    Inc(M.Objects);
+    Inc(M.Slaves[S].Objects);
+    if Assigned(M.OnObject) then
+      M.OnObject(M.Data, M.Slaves[S].Addr, H, O);
+    if I = 0 then
+      MatchCommand(M, S, H, O);
+  end;
+end;
+
+{ The current stage went out to slave index S: tell OnSent. }
+procedure StageSent(var M: tIecMaster; S: Integer);
+var
+  H: tIecAsdu;
+  O: tIecObject;
+  Ti, Cot: Byte;
+begin
+  if not Assigned(M.OnSent) then
+    Exit;
+  StageAsdu(M, Ti, Cot, O);
+  FillChar(H, SizeOf(H), 0);
+  H.Ti := Ti;
+  H.Count := 1;
+  H.Cot := Cot;
+  H.Ca := M.Cmd.Ca;
+  M.OnSent(M.Data, M.Slaves[S].Addr, H, O);
+end;
+
+{ ------------------------------------------------------------ unbalanced }
+
+{ The one place that drives an FT 1.2 primary service. LinkStart starts
+  FC with Len octets of user data (an ASDU) to slave S for Job; LinkStep
+  takes what has arrived, without waiting, and is True once the service is
+  over (M.LinkResult, the reply in M.Rep/M.RepLen): ChnFT12Link's stepped
+  primary (FT12PrimaryStart/Step). }
+procedure LinkStart(var M: tIecMaster; S: LongInt; Job: tIecLinkJob; FC: Byte;
+  const Asdu: array of Byte; Len: Word; Retries: LongInt);
+var
+  Req: tSendRecord;
+begin
+  FillChar(Req, SizeOf(Req), 0);
+  if Len > 0 then
+  begin
+    Req.MessType := tpLongM;
+    Move(Asdu[0], Req.Data[1], Len);
+  end
+  else
+  begin
+    Req.MessType := tpShortM;
+    Len := pChnFT1_2(M.Chn)^.CH_LenShortM;   { a fixed frame: LEN= zero octets }
+  end;
+  Req.FC := FC;
+  M.Job := Job;
+  M.JobSlave := S;
+  { False: nothing sent, the service is over at once (Prim.Result says why) }
+  FT12PrimaryStart(M.Prim, M.Chn, M.Slaves[S].Link, Req, cSizeHeadSndMsg + Len, M.TimeoutMs, Retries);
+end;
+
+function LinkStep(var M: tIecMaster): Boolean;
+begin
+  Result := (M.Job <> ljNone) and FT12PrimaryStep(M.Prim);
+  if Result then
+  begin
+    M.LinkResult := M.Prim.Result;
+    M.RepLen := M.Prim.RepLen;
+    if M.RepLen > 0 then
+      M.Rep := M.Prim.Rep;
+  end;
+end;
+
+procedure SlaveFailed(var M: tIecMaster; S: Integer; R: tChResult);
+var
+  Sl: ^tIecSlave;
+begin
+  Sl := @M.Slaves[S];
+  Inc(Sl^.Failures);
+  if (R <> res_Timeout) and (R <> res_BadMessage) then
+    M.LineResult := R;                   { the channel itself failed }
+  if R = res_BadMessage then
+  begin
+    Sl^.State := isOffline;              { an answer that does not fit: set the link up again }
+    Exit;
+  end;
+  if Sl^.State <> isDead then
+    Inc(Sl^.Deaths)
+  else if Sl^.BackoffMs < M.DeadMaxMs then
+    Sl^.BackoffMs := Sl^.BackoffMs * 2;
+  if Sl^.BackoffMs > M.DeadMaxMs then
+    Sl^.BackoffMs := M.DeadMaxMs;
+  Sl^.State := isDead;
+  Sl^.RetryAt := ChMsTick + QWord(Sl^.BackoffMs);
+  if (M.Cmd.Slave = S) and not IecCommandDone(M) then
+    Finish(M, res_Timeout, 'slave does not answer (' + ChResultText(R) + ')');
+end;
+
+procedure SlaveAnswered(var M: tIecMaster; S: Integer);
+begin
+  if M.Slaves[S].State = isDead then
+    M.Slaves[S].State := isOffline;     { back: set its link up again }
+  M.Slaves[S].BackoffMs := M.DeadMinMs;
+end;
+
+{ Is slave S due for a service now? }
+function Due(const M: tIecMaster; S: Integer; Now_: QWord): Boolean;
+begin
+  with M.Slaves[S] do
+    case State of
+      isDead: Result := Now_ >= RetryAt;
+      isOnline: Result := Link.Acd or (Now_ >= NextPoll)
+        or ((M.Cmd.Slave = S) and (M.Cmd.Phase = cpSend));
+    else
+      Result := True;
+    end;
+end;
+
+{ Start the service slave S is due for. }
+procedure Serve(var M: tIecMaster; S: LongInt);
+var
+  R: tChResult;
+  Buf: array[0..IecMaxAsdu - 1] of Byte;
+  Len: Word;
+  E: ShortString;
+  Sl: ^tIecSlave;
+  Retries: LongInt;
+begin
+  Sl := @M.Slaves[S];
+  Buf[0] := 0;                          { fixed frames carry none of it }
+  Retries := M.Retries;
+  if Sl^.State = isDead then
+    Retries := 0;                       { one try: the others wait one timeout only }
+  case Sl^.State of
+    isOffline, isDead: LinkStart(M, S, ljStatus, FCM_ReqLinkState, Buf, 0, Retries);
+    isLinkStatus: LinkStart(M, S, ljReset, FCM_1stSetTransmit, Buf, 0, Retries);
+  else
+    if (M.Cmd.Slave = S) and (M.Cmd.Phase = cpSend) then
+    begin
+      R := StageEncode(M, Buf, Len, E);
+      if R <> res_Ok then
+        Finish(M, R, E)                 { cannot happen: checked at the start }
+      else
+      begin
+        M.Cmd.SentAt := ChMsTick;
+        LinkStart(M, S, ljCommand, FCM_UserDataReply, Buf, Len, Retries);
+      end;
+    end
+    else if Sl^.Link.Acd then
+      LinkStart(M, S, ljClass1, FCM_ReqUserData1, Buf, 0, Retries)
+    else
+    begin
+      Sl^.NextPoll := ChMsTick + QWord(M.CycleMs);
+      LinkStart(M, S, ljClass2, FCM_ReqUserData2, Buf, 0, Retries);
+    end;
+  end;
+end;
+
+{ The service under way is over: act on its answer. }
+procedure Complete(var M: tIecMaster);
+var
+  S: LongInt;
+  Sl: ^tIecSlave;
+  Job: tIecLinkJob;
+begin
+  S := M.JobSlave;
+  Sl := @M.Slaves[S];
+  Job := M.Job;
+  M.Job := ljNone;
+  if M.LinkResult <> res_Ok then
+  begin
+    SlaveFailed(M, S, M.LinkResult);
+    M.Turn := (S + 1) mod M.SlaveCount;
+    Exit;
+  end;
+  case Job of
+    ljStatus:
+      begin
+        SlaveAnswered(M, S);
+        Sl^.State := isLinkStatus;
+      end;
+    ljReset:
+      begin
+        Inc(Sl^.Resets);
+        Sl^.State := isOnline;
+        Sl^.NextPoll := 0;
+      end;
+    ljCommand:
+      if (M.Cmd.Slave = S) and (M.Cmd.Phase = cpSend)
+        and ((M.Rep.MessType = tpSACK) or (M.Rep.FC = FCS_Ack)) then
+      begin
+        Inc(Sl^.Commands);
+        StageSent(M, S);
+        if M.Cmd.Stage = stDelaySend then
+          StageConfirmed(M)             { the delay is no activation: nothing confirms it }
+        else
+        begin
+          M.Cmd.Phase := cpConfirm;
+          M.Cmd.Deadline := ChMsTick + QWord(M.CommandMs);
+        end;
+      end;
+      { a NACK (busy): sent again at the next turn }
+    ljClass1, ljClass2:
+      begin
+        if Job = ljClass1 then
+          Inc(Sl^.Class1)
+        else
+          Inc(Sl^.Class2);
+        if (M.Rep.MessType = tpLongM) and (M.Rep.FC = FCS_UserData) and (M.RepLen > cSizeHeadRecMsg) then
+          TakeAsdu(M, S, M.Rep.Data, M.RepLen - cSizeHeadRecMsg);
+      end;
+  end;
+  { a slave with class 1 data waiting keeps its turn }
+  if not ((Sl^.State = isOnline) and Sl^.Link.Acd) then
+    M.Turn := (S + 1) mod M.SlaveCount;
+end;
+
+function StepUnbalanced(var M: tIecMaster): Boolean;
+var
+  I, S: LongInt;
+  T: QWord;
+begin
+  Result := False;
+  if M.Job <> ljNone then
+  begin
+    { a service under way: done yet? }
+    if LinkStep(M) then
+    begin
+      Complete(M);
+      Result := True;
+    end;
+    Exit;
+  end;
+  if M.SlaveCount = 0 then
+    Exit;
+  T := ChMsTick;
+  { the command's slave first while it has something to send }
+  S := -1;
+  if (M.Cmd.Phase = cpSend) and (M.Cmd.Slave >= 0) and Due(M, M.Cmd.Slave, T) then
+    S := M.Cmd.Slave
+  else
+    for I := 0 to M.SlaveCount - 1 do
+      if Due(M, (M.Turn + I) mod M.SlaveCount, T) then
+      begin
+        S := (M.Turn + I) mod M.SlaveCount;
+        Break;
+      end;
+  if S < 0 then
+    Exit;
+  Serve(M, S);
+  if (M.Job <> ljNone) and LinkStep(M) then
+    Complete(M);
+  Result := True;
+end;
+
+{ ------------------------------------------------------------ balanced }
+
+function OnBalancedData(Data: Pointer; Buf: PByte; Len: Word; Confirm: Boolean): Boolean;
+var
+  M: pIecMaster;
+begin
+  M := pIecMaster(Data);
+  if Len > 0 then
+    TakeAsdu(M^, 0, PByteArray(Buf)^[0..Len - 1], Len)
+  else
+    TakeAsdu(M^, 0, M^.Rep.Data, 0);
+  Result := True;
+end;
+
+function StepBalanced(var M: tIecMaster): Boolean;
+var
+  Buf: array[0..IecMaxAsdu - 1] of Byte;
+  Len: Word;
+  E: ShortString;
+  R: tChResult;
+begin
+  Result := FT12BalancedStep(M.Bal);
+  if M.Chn^.ChResult <> res_Ok then
+    M.LineResult := M.Chn^.ChResult;
+  if M.Bal.State = bsAvailable then
+    M.Slaves[0].State := isOnline
+  else
+    M.Slaves[0].State := isOffline;
+  if (M.Cmd.Phase = cpSend) and (M.Bal.State = bsAvailable) and (M.Bal.QCount < FT12BalQueueLen) then
+  begin
+    R := StageEncode(M, Buf, Len, E);
+    if R = res_Ok then
+      R := FT12BalancedSend(M.Bal, @Buf, Len, True);
+    if R = res_Ok then
+    begin
+      Inc(M.Slaves[0].Commands);
+      StageSent(M, 0);
+      M.Cmd.SentAt := ChMsTick;
+      if M.Cmd.Stage = stDelaySend then
+        StageConfirmed(M)
+      else
+      begin
+        M.Cmd.Phase := cpConfirm;
+        M.Cmd.Deadline := ChMsTick + QWord(M.CommandMs);
+      end;
+    end
+    else
+      Finish(M, R, E);
+    Result := True;
+  end;
+end;
+
+{ ------------------------------------------------------------ stepping }
+
+function IecMasterStep(var M: tIecMaster): Boolean;
+begin
+  if M.Balanced then
+    Result := StepBalanced(M)
+  else
+    Result := StepUnbalanced(M);
+  if (M.Cmd.Phase in [cpSend, cpConfirm, cpTerm]) and (ChMsTick > M.Cmd.Deadline) then
+    if M.Cmd.Phase = cpSend then
+      Finish(M, res_Timeout, 'not sent in ' + IntToStr(M.CommandMs) + ' ms (slave '
+        + IecSlaveStateName(M.Slaves[M.Cmd.Slave].State) + ')')
+    else if M.Cmd.Phase = cpConfirm then
+      Finish(M, res_Timeout, 'no ACT_CON in ' + IntToStr(M.CommandMs) + ' ms')
+    else
+      Finish(M, res_Timeout, 'no ACT_TERM in ' + IntToStr(M.CommandMs) + ' ms');
+end;
+
+function IecMasterWaitEnd(const M: tIecMaster): QWord;
+var
+  I: Integer;
+  T: QWord;
+begin
+  Result := ChMsTick + 50;               { the balanced link's timers }
+  if not M.Balanced then
+  begin
+    Result := ChMsTick + QWord(M.DeadMaxMs);
+    for I := 0 to M.SlaveCount - 1 do
+    begin
+      with M.Slaves[I] do
+        if State = isDead then
+          T := RetryAt
+        else if State = isOnline then
+          T := NextPoll
+        else
+          T := 0;
+      if T < Result then
+        Result := T;
+    end;
+  end;
+  if (M.Cmd.Phase in [cpSend, cpConfirm, cpTerm]) and (M.Cmd.Deadline + 1 < Result) then
+    Result := M.Cmd.Deadline + 1;
+  if (M.Job <> ljNone) and (FT12PrimaryWaitEnd(M.Prim) < Result) then
+    Result := FT12PrimaryWaitEnd(M.Prim);
+end;
+
+{ Wait for the line or the next due service, or run Idle (one thread). }
+procedure WaitABit(var M: tIecMaster; Limit: QWord);
+var
+  T, Until_: QWord;
+begin
+  if Assigned(M.Idle) then
+  begin
+    M.Idle(M.IdleData);
+    Exit;
+  end;
+  T := ChMsTick;
+  Until_ := IecMasterWaitEnd(M);
+  if Limit < Until_ then
+    Until_ := Limit;
+  if Until_ > T + 1000 then
+    Until_ := T + 1000;
+  if Until_ > T then
+    ChnWaitAny(Until_ - T);
+end;
+
+function IecFinish(var M: tIecMaster): tChResult;
+begin
+  while not IecCommandDone(M) do
+    if not IecMasterStep(M) then
+      WaitABit(M, M.Cmd.Deadline + 1);
+  Result := M.Cmd.Result;
+end;
+
+procedure IecPollFor(var M: tIecMaster; Ms: LongInt);
+var
+  Until_: QWord;
+begin
+  Until_ := ChMsTick + QWord(Ms);
+  while ChMsTick < Until_ do
+    if not IecMasterStep(M) then
+      WaitABit(M, Until_);
+end;
+
+function Blocking(var M: tIecMaster; Started: Boolean): tChResult;
+begin
+  if Started then
+    Result := IecFinish(M)
+  else if M.Cmd.Phase = cpDone then
+    Result := M.Cmd.Result
+  else
+    Result := res_IecBusy;
+end;
+
+function IecInterrogation(var M: tIecMaster; Addr, Ca: Word; Qoi: Byte): tChResult;
+begin
+  Result := Blocking(M, IecStartInterrogation(M, Addr, Ca, Qoi));
+end;
+
+function IecCounterInterrogation(var M: tIecMaster; Addr, Ca: Word; Qcc: Byte): tChResult;
+begin
+  Result := Blocking(M, IecStartCounterInterrogation(M, Addr, Ca, Qcc));
+end;
+
+function IecRead(var M: tIecMaster; Addr, Ca: Word; Ioa: LongWord): tChResult;
+begin
+  Result := Blocking(M, IecStartRead(M, Addr, Ca, Ioa));
+end;
+
+function IecClockSync(var M: tIecMaster; Addr, Ca: Word; const T: tIecTime; Delay: Boolean): tChResult;
+begin
+  Result := Blocking(M, IecStartClockSync(M, Addr, Ca, T, Delay));
+end;
+
+function IecTestCommand(var M: tIecMaster; Addr, Ca: Word): tChResult;
+begin
+  Result := Blocking(M, IecStartTest(M, Addr, Ca));
+end;
+
+function IecResetProcess(var M: tIecMaster; Addr, Ca: Word; Qrp: Byte): tChResult;
+begin
+  Result := Blocking(M, IecStartResetProcess(M, Addr, Ca, Qrp));
+end;
+
+function IecCommand(var M: tIecMaster; Addr, Ca: Word; Ti: Byte; const Obj: tIecObject;
+  Sbo: Boolean): tChResult;
+begin
+  Result := Blocking(M, IecStartCommand(M, Addr, Ca, Ti, Obj, Sbo));
+end;
+
+initialization
+  ChRegisterResultText(Iec101Layer, res_IecNegative, 'negative confirmation');
+  ChRegisterResultText(Iec101Layer, res_IecUnknownType, 'unknown type identification (COT 44)');
+  ChRegisterResultText(Iec101Layer, res_IecUnknownCot, 'unknown cause of transmission (COT 45)');
+  ChRegisterResultText(Iec101Layer, res_IecUnknownCa, 'unknown common address (COT 46)');
+  ChRegisterResultText(Iec101Layer, res_IecUnknownIoa, 'unknown information object address (COT 47)');
+  ChRegisterResultText(Iec101Layer, res_IecNoSlave, 'no such slave');
+  ChRegisterResultText(Iec101Layer, res_IecBusy, 'a command is under way');
+end.

@@ -1,0 +1,835 @@
+{ ChnIec101Slave - an IEC 60870-5-101 controlled station (slave) on a
+  tChnFT1_2 channel: unbalanced (MS=ON, MAS=SLAVE; ChnFT12Link's
+  tFT12Station answers the link functions) or balanced (MS=OFF;
+  ChnFT12Link's tFT12Balanced runs both link procedures).
+
+  The program fills a point table (IOA, type, value, quality, time; a
+  group 1..16 for group interrogations, 1..4 for counters) and steps the
+  slave from its poll loop (IecSlaveStep, ChnWaitAny between steps). The
+  slave then answers, on its own:
+  * station and group interrogation (C_IC_NA_1): ACT_CON in class 1, the
+    points of the table (every monitoring type but integrated totals, each
+    with its own type, as lib60870's slaves do) in class 2 with COT 20 (+
+    group), ACT_TERM in class 1 once the last of them has been taken;
+  * counter interrogation (C_CI_NA_1): FRZ 0 reads the counters (the
+    frozen values once frozen), COT 37 (+ group); FRZ 1 freezes, 2
+    freezes and resets, 3 resets; ACT_CON and ACT_TERM in class 1;
+  * spontaneous changes (IecSlaveUpdate): class 1 events with COT 3, ACD
+    set in every reply while one waits; a time-tagged type takes the time
+    of the change (the station clock: PC clock + the offset of the last
+    clock synchronisation);
+  * commands (types 45..51, 58..64) to command points of the table:
+    handed to OnCommand (True accepts: positive ACT_CON, False: negative);
+    a select (S/E = 1) is remembered for SelectMs, the execute that
+    follows it in time is passed on, one after the timeout is refused
+    (negative ACT_CON, OnCommand not called); deactivation (COT 8) ends a
+    selection (DEACT_CON);
+  * clock synchronisation (C_CS_NA_1): the difference to the PC clock is
+    kept as the station clock's offset, OnClock told, ACT_CON with the
+    time received;
+  * read (C_RD_NA_1): the point in class 1 with COT 5;
+  * test (C_TS_NA_1, C_TS_TA_1), reset process (C_RP_NA_1: QRP 2 drops
+    the queued events), delay acquisition (C_CD_NA_1: COT 6 confirmed,
+    COT 3 kept as the delay): ACT_CON;
+  * anything else is mirrored as a negative answer with COT 44 (unknown
+    type), 45 (a cause the type does not take), 46 (another common
+    address, or the broadcast address with a read or a command) or 47 (an
+    IOA the table does not have for that type).
+  A malformed ASDU (too short, wrong length for its type and count) is
+  counted in BadAsdus, described in LastBad and given to OnBad; it is not
+  answered and never stops the slave.
+
+  Balanced mode has no classes: class 1 goes first, then class 2, each
+  ASDU as SEND/CONFIRM user data as soon as the link queue has room.
+
+  Nothing here waits: IecSlaveStep takes at most one frame (the link
+  helpers send the answer at once) and returns. }
+unit ChnIec101Slave;
+
+{$I chn.inc}
+
+interface
+
+uses
+  ChnTypes, ChnVirt, ChnFT1_2, ChnFT12Link, ChnIec101Asdu;
+
+const
+  IecSlaveMaxPoints = 1024;
+  IecSlaveQueueLen  = 64;        { ASDUs waiting per class }
+  IecSlaveSelectMs  = 10000;     { default select-before-operate timeout }
+
+type
+  { One entry of the point table. }
+  tIecPoint = record
+    Ti    : Byte;         { monitoring type (1..21, 30..40) or command type (45..51, 58..64) }
+    Group : Byte;         { interrogation group 1..16 (counters 1..4), 0 = station only }
+    Obj   : tIecObject;   { IOA, value, quality, time (see ChnIec101Asdu.tIecKind) }
+    Frozen: tIecObject;   { counters: the value of the last freeze }
+    HasFrozen: Boolean;
+  end;
+  pIecPoint = ^tIecPoint;
+
+  tIecQueued = record
+    Len : Word;
+    Data: array[0..MaxDataLen - 1] of Byte;
+  end;
+
+  tIecQueue = record
+    Items: array[0..IecSlaveQueueLen - 1] of tIecQueued;
+    Head, Count: LongInt;
+  end;
+
+  { A command for the program: H the ASDU's identifier (Ti, Cot, Ca ...),
+    O its object (O.Select for a select). True accepts it. }
+  tIecSlaveCommandFunc = function(Data: Pointer; const H: tIecAsdu; const O: tIecObject): Boolean;
+  { Clock synchronisation: T the time received, OffsetMs what the station
+    clock now adds to the PC clock. }
+  tIecSlaveClockFunc = procedure(Data: Pointer; const T: tIecTime; OffsetMs: Int64);
+  { Every ASDU received (Sent = False, before it is answered) and every
+    ASDU handed to the link (Sent = True). }
+  tIecSlaveAsduFunc = procedure(Data: Pointer; Sent: Boolean; Buf: PByte; Len: Word);
+  tIecSlaveBadFunc = procedure(Data: Pointer; const Err: ShortString);
+
+  tIecSlaveStation = record
+    Chn      : pChnVirt;
+    Params   : tIecParams;
+    Ca       : Word;          { own common address (IecSlaveInit: 1) }
+    Balanced : Boolean;
+    Station  : tFT12Station;  { unbalanced link }
+    Bal      : tFT12Balanced; { balanced link }
+    Points   : array[0..IecSlaveMaxPoints - 1] of tIecPoint;
+    PointCount: LongInt;
+    Class1, Class2: tIecQueue;
+    { interrogation under way (station/group or counters) }
+    GiActive : Boolean;
+    GiQoi    : Byte;
+    GiNext   : LongInt;       { next point index to look at }
+    GiAsdu   : tIecQueued;    { its ACT_CON, the mirror for ACT_TERM }
+    { select before operate }
+    SelActive: Boolean;
+    SelTi    : Byte;
+    SelIoa   : LongWord;
+    SelUntil : QWord;
+    SelectMs : LongInt;
+    { station clock: PC clock + ClockOffsetMs; delay from C_CD_NA_1 }
+    ClockOffsetMs: Int64;
+    DelayMs  : LongInt;
+    OnCommand: tIecSlaveCommandFunc;
+    OnClock  : tIecSlaveClockFunc;
+    OnAsdu   : tIecSlaveAsduFunc;
+    OnBad    : tIecSlaveBadFunc;
+    Data     : Pointer;
+    { counters }
+    Asdus, BadAsdus, Commands, Refused, ClockSyncs, Interrogations,
+      CounterInterrogations, Reads, Events, Negatives, Overflows: LongInt;
+    LastBad  : ShortString;
+  end;
+  pIecSlaveStation = ^tIecSlaveStation;
+
+{ A slave on an open tChnFT1_2 stack (it stays the caller's) with the
+  application parameters P and common address Ca. res_WrongLayer (no
+  tChnFT1_2), res_AsduParam (Err), res_BadParam (Ca above the CA size),
+  res_BadMessage (an unbalanced master channel). S must not move
+  afterwards (the channel receives into it). }
+function IecSlaveInit(var S: tIecSlaveStation; Chn: pChnVirt; const P: tIecParams; Ca: Word;
+  out Err: ShortString): tChResult;
+{ Add a point; Obj.Ioa is its address. res_AsduType (not a monitoring or
+  command type, or end of initialisation), res_AsduIoa (above the IOA
+  size), res_BadParam (IOA twice, group above 16 / 4 for counters),
+  res_Busy (table full), res_AsduValue (a value its type cannot carry);
+  Err names the point and what is wrong. }
+function IecSlaveAddPoint(var S: tIecSlaveStation; Ti: Byte; const Obj: tIecObject; Group: Byte;
+  out Err: ShortString): tChResult;
+{ Index of the point with this IOA, -1 when there is none. }
+function IecSlaveFind(const S: tIecSlaveStation; Ioa: LongWord): LongInt;
+{ New value and quality of point Ioa (the value fields of Obj; its IOA,
+  and a counter's sequence number, are the table's); a time-tagged type
+  takes the station clock's time. With
+  Spontaneous the change goes out as a class 1 event (COT 3).
+  res_AsduIoa (no such point), res_AsduValue (Err), res_Busy (event
+  queue full: the table has the new value, the event is lost). }
+function IecSlaveUpdate(var S: tIecSlaveStation; Ioa: LongWord; const Obj: tIecObject;
+  Spontaneous: Boolean; out Err: ShortString): tChResult;
+{ The station clock (PC clock + ClockOffsetMs). }
+function IecSlaveNow(const S: tIecSlaveStation): TDateTime;
+{ Take at most one frame and act on it; move waiting ASDUs to a balanced
+  link. True when a frame was taken. (A selection whose time is up stays
+  until its execute, which is refused, or the next select.) }
+function IecSlaveStep(var S: tIecSlaveStation): Boolean;
+{ ms the caller may wait (ChnWaitAny) before the next step when
+  IecSlaveStep returned False: short while a balanced link has work. }
+function IecSlaveWaitMs(const S: tIecSlaveStation): LongInt;
+{ ASDUs waiting in class 1 and class 2 (and an interrogation's rest). }
+function IecSlavePending(const S: tIecSlaveStation): Boolean;
+
+implementation
+
+uses
+  SysUtils, DateUtils;
+
+{ ---------------------------------------------------------------- queues }
+
+function QueuePut(var Q: tIecQueue; const Buf: array of Byte; Len: Word): Boolean;
+var
+  Slot: Integer;
+begin
+  Result := (Q.Count < IecSlaveQueueLen) and (Len <= MaxDataLen);
+  if not Result then
+    Exit;
+  Slot := (Q.Head + Q.Count) mod IecSlaveQueueLen;
+  Q.Items[Slot].Len := Len;
+  Move(Buf[0], Q.Items[Slot].Data[0], Len);
+  Inc(Q.Count);
+end;
+
+procedure QueueDrop(var Q: tIecQueue);
+begin
+  Q.Head := (Q.Head + 1) mod IecSlaveQueueLen;
+  Dec(Q.Count);
+end;
+
+procedure Queue1(var S: tIecSlaveStation; const Buf: array of Byte; Len: Word);
+begin
+  if not QueuePut(S.Class1, Buf, Len) then
+    Inc(S.Overflows);
+end;
+
+{ ---------------------------------------------------------------- points }
+
+function IsCounter(Ti: Byte): Boolean;
+begin
+  Result := IecTypeKind(Ti) = ikCounter;
+end;
+
+function IsCommand(Ti: Byte): Boolean;
+begin
+  Result := Ti in [C_SC_NA_1..C_BO_NA_1, C_SC_TA_1..C_BO_TA_1];
+end;
+
+function IecSlaveNow(const S: tIecSlaveStation): TDateTime;
+begin
+  Result := IncMilliSecond(Now, S.ClockOffsetMs);
+end;
+
+function IecSlaveFind(const S: tIecSlaveStation; Ioa: LongWord): LongInt;
+var
+  I: Integer;
+begin
+  for I := 0 to S.PointCount - 1 do
+    if S.Points[I].Obj.Ioa = Ioa then
+      Exit(I);
+  Result := -1;
+end;
+
+{ Can Obj be sent as type Ti? (the encoder's own checks) }
+function CheckObject(const S: tIecSlaveStation; Ti: Byte; const Obj: tIecObject; out Err: ShortString): tChResult;
+var
+  Buf: array[0..MaxDataLen - 1] of Byte;
+  Len: Word;
+begin
+  Result := IecEncodeOne(S.Params, Ti, Cot_Spontaneous, S.Ca, Obj, Buf, Len, Err);
+end;
+
+function IecSlaveAddPoint(var S: tIecSlaveStation; Ti: Byte; const Obj: tIecObject; Group: Byte;
+  out Err: ShortString): tChResult;
+var
+  P: pIecPoint;
+  O: tIecObject;
+begin
+  Err := '';
+  if not ((IecIsMonitor(Ti) and (Ti <> M_EI_NA_1)) or IsCommand(Ti)) then
+  begin
+    Err := 'point ' + IntToStr(Obj.Ioa) + ': type ' + IntToStr(Ti) +
+      ' is no monitoring (1..21, 30..40) or command type (45..51, 58..64)';
+    Exit(res_AsduType);
+  end;
+  if Obj.Ioa > IecMaxIoa(S.Params) then
+  begin
+    Err := 'point ' + IntToStr(Obj.Ioa) + ': IOA above ' + IntToStr(IecMaxIoa(S.Params)) +
+      ' (IOA size ' + IntToStr(S.Params.IoaSize) + ')';
+    Exit(res_AsduIoa);
+  end;
+  if IecSlaveFind(S, Obj.Ioa) >= 0 then
+  begin
+    Err := 'point ' + IntToStr(Obj.Ioa) + ': IOA twice';
+    Exit(res_BadParam);
+  end;
+  if (Group > 16) or (IsCounter(Ti) and (Group > 4)) then
+  begin
+    Err := 'point ' + IntToStr(Obj.Ioa) + ': group ' + IntToStr(Group);
+    Exit(res_BadParam);
+  end;
+  if S.PointCount >= IecSlaveMaxPoints then
+  begin
+    Err := 'point ' + IntToStr(Obj.Ioa) + ': table full (' + IntToStr(IecSlaveMaxPoints) + ' points)';
+    Exit(res_Busy);
+  end;
+  O := Obj;
+  if IecTypeTime(Ti) <> tkNone then
+    O.Time := IecTimeFromDateTime(IecSlaveNow(S));
+  Result := CheckObject(S, Ti, O, Err);
+  if Result <> res_Ok then
+  begin
+    Err := 'point ' + IntToStr(Obj.Ioa) + ': ' + Err;
+    Exit;
+  end;
+  P := @S.Points[S.PointCount];
+  FillChar(P^, SizeOf(P^), 0);
+  P^.Ti := Ti;
+  P^.Group := Group;
+  P^.Obj := O;
+  Inc(S.PointCount);
+end;
+
+{ Encode one object of type Ti with cause Cot into the class 1 queue. }
+function QueueObject(var S: tIecSlaveStation; Ti, Cot: Byte; const O: tIecObject): tChResult;
+var
+  Buf: array[0..MaxDataLen - 1] of Byte;
+  Len: Word;
+  Err: ShortString;
+begin
+  Result := IecEncodeOne(S.Params, Ti, Cot, S.Ca, O, Buf, Len, Err);
+  if Result <> res_Ok then
+    Exit;
+  if not QueuePut(S.Class1, Buf, Len) then
+  begin
+    Inc(S.Overflows);
+    Result := res_Busy;
+  end;
+end;
+
+function IecSlaveUpdate(var S: tIecSlaveStation; Ioa: LongWord; const Obj: tIecObject;
+  Spontaneous: Boolean; out Err: ShortString): tChResult;
+var
+  I: Integer;
+  O: tIecObject;
+begin
+  Err := '';
+  I := IecSlaveFind(S, Ioa);
+  if I < 0 then
+  begin
+    Err := 'no point with IOA ' + IntToStr(Ioa);
+    Exit(res_AsduIoa);
+  end;
+  O := Obj;
+  O.Ioa := Ioa;
+  if IsCounter(S.Points[I].Ti) then
+    O.Seq := S.Points[I].Obj.Seq;           { the freezes count it, not the program }
+  if IecTypeTime(S.Points[I].Ti) <> tkNone then
+    O.Time := IecTimeFromDateTime(IecSlaveNow(S));
+  Result := CheckObject(S, S.Points[I].Ti, O, Err);
+  if Result <> res_Ok then
+  begin
+    Err := 'point ' + IntToStr(Ioa) + ': ' + Err;
+    Exit;
+  end;
+  S.Points[I].Obj := O;
+  if Spontaneous then
+  begin
+    Result := QueueObject(S, S.Points[I].Ti, Cot_Spontaneous, O);
+    if Result = res_Ok then
+      Inc(S.Events);
+    if Result = res_Busy then
+      Err := 'point ' + IntToStr(Ioa) + ': class 1 queue full, event lost';
+  end;
+end;
+
+{ ---------------------------------------------------------- interrogation }
+
+{ Does point P answer the interrogation under way? }
+function GiWants(const S: tIecSlaveStation; const P: tIecPoint): Boolean;
+var
+  Grp: Byte;
+begin
+  if IsCommand(P.Ti) then
+    Exit(False);
+  if S.GiAsdu.Data[0] = C_CI_NA_1 then
+  begin
+    Grp := S.GiQoi and $3F;           { RQT: 1..4 a group, 5 all }
+    Result := IsCounter(P.Ti) and ((Grp = Qcc_General) or (P.Group = Grp));
+  end
+  else
+    Result := not IsCounter(P.Ti) and ((S.GiQoi = Qoi_Station) or (P.Group = S.GiQoi - Qoi_Station));
+end;
+
+{ The next answer ASDU of the interrogation: consecutive points of one
+  type, as many as fit; False when none is left (then ACT_TERM is queued). }
+function GiNextAsdu(var S: tIecSlaveStation; var Out: tIecQueued): Boolean;
+var
+  Objs: array[0..IecMaxObjects - 1] of tIecObject;
+  H: tIecAsdu;
+  N, Room, Size: Integer;
+  Ti, Cot: Byte;
+  Err: ShortString;
+  Counter: Boolean;
+begin
+  Result := False;
+  if not S.GiActive then
+    Exit;
+  Counter := S.GiAsdu.Data[0] = C_CI_NA_1;
+  while (S.GiNext < S.PointCount) and not GiWants(S, S.Points[S.GiNext]) do
+    Inc(S.GiNext);
+  if S.GiNext >= S.PointCount then
+  begin
+    { all sent: ACT_TERM, in class 1 }
+    S.GiActive := False;
+    IecSetCot(S.GiAsdu.Data, S.GiAsdu.Len, Cot_ActTerm, False);
+    Queue1(S, S.GiAsdu.Data, S.GiAsdu.Len);
+    Exit;
+  end;
+  Ti := S.Points[S.GiNext].Ti;
+  Size := S.Params.IoaSize + IecElementSize(Ti);
+  Room := (MaxDataLen - IecHeadLen(S.Params)) div Size;
+  if Room > IecMaxObjects then
+    Room := IecMaxObjects;
+  N := 0;
+  while (S.GiNext < S.PointCount) and (N < Room) and (S.Points[S.GiNext].Ti = Ti) do
+  begin
+    if GiWants(S, S.Points[S.GiNext]) then
+    begin
+      if Counter and S.Points[S.GiNext].HasFrozen then
+        Objs[N] := S.Points[S.GiNext].Frozen
+      else
+        Objs[N] := S.Points[S.GiNext].Obj;
+      Inc(N);
+    end;
+    Inc(S.GiNext);
+  end;
+  if Counter then
+    Cot := Cot_CounterReq + (S.GiQoi and $3F) mod Qcc_General
+  else
+    Cot := Cot_Interrogated + (S.GiQoi - Qoi_Station);
+  FillChar(H, SizeOf(H), 0);
+  H.Ti := Ti;
+  H.Count := N;
+  H.Cot := Cot;
+  H.Oa := S.GiAsdu.Data[3] * Ord(S.Params.CotSize = 2);
+  H.Ca := S.Ca;
+  Result := IecEncodeAsdu(S.Params, H, Objs[0..N - 1], Out.Data, Out.Len, Err) = res_Ok;
+end;
+
+{ Freeze / reset the counters of the group of a C_CI_NA_1. }
+procedure CounterAction(var S: tIecSlaveStation; Qcc: Byte);
+var
+  I: Integer;
+  Grp: Byte;
+  P: pIecPoint;
+begin
+  Grp := Qcc and $3F;
+  for I := 0 to S.PointCount - 1 do
+  begin
+    P := @S.Points[I];
+    if not IsCounter(P^.Ti) or not ((Grp = Qcc_General) or (P^.Group = Grp)) then
+      Continue;
+    if Qcc and $C0 in [Qcc_Freeze, Qcc_FreezeReset] then
+    begin
+      { each freeze is a new reading: the next sequence number }
+      P^.Obj.Seq := (P^.Obj.Seq + 1) and 31;
+      P^.Frozen := P^.Obj;
+      P^.HasFrozen := True;
+    end;
+    if Qcc and $C0 in [Qcc_FreezeReset, Qcc_Reset] then
+      P^.Obj.Int := 0;
+  end;
+end;
+
+{ ---------------------------------------------------------------- answers }
+
+procedure Bad(var S: tIecSlaveStation; const Err: ShortString);
+begin
+  Inc(S.BadAsdus);
+  S.LastBad := Err;
+  if Assigned(S.OnBad) then
+    S.OnBad(S.Data, Err);
+end;
+
+{ The received ASDU mirrored with Cot (negative or not) into class 1. }
+procedure Answer(var S: tIecSlaveStation; const Buf: array of Byte; Len: Word; Cot: Byte; Negative: Boolean);
+var
+  Out: array[0..MaxDataLen - 1] of Byte;
+begin
+  if (Len = 0) or (Len > MaxDataLen) then
+    Exit;
+  Move(Buf[0], Out[0], Len);
+  IecSetCot(Out, Len, Cot, Negative);
+  if Negative then
+    Inc(S.Negatives);
+  Queue1(S, Out, Len);
+end;
+
+{ A command of types 45..51 / 58..64 with cause 6 or 8. }
+procedure TakeCommand(var S: tIecSlaveStation; const Buf: array of Byte; Len: Word;
+  const H: tIecAsdu; const O: tIecObject);
+var
+  I: Integer;
+  Ok, Select: Boolean;
+begin
+  I := IecSlaveFind(S, O.Ioa);
+  if (I < 0) or (S.Points[I].Ti <> H.Ti) then
+  begin
+    Answer(S, Buf, Len, Cot_UnknownIoa, True);
+    Exit;
+  end;
+  Select := O.Select and (IecTypeKind(H.Ti) <> ikBitsCmd);
+  if H.Cot = Cot_Deactivation then
+  begin
+    { ends a selection of this object }
+    Ok := S.SelActive and (S.SelTi = H.Ti) and (S.SelIoa = O.Ioa);
+    if Ok then
+      S.SelActive := False;
+    Answer(S, Buf, Len, Cot_DeactCon, not Ok);
+    Exit;
+  end;
+  if not Select and S.SelActive and (S.SelTi = H.Ti) and (S.SelIoa = O.Ioa) and
+     (ChMsTick > S.SelUntil) then
+  begin
+    { the execute of a selection whose time is up }
+    S.SelActive := False;
+    Inc(S.Refused);
+    Answer(S, Buf, Len, Cot_ActCon, True);
+    Exit;
+  end;
+  Ok := not Assigned(S.OnCommand) or S.OnCommand(S.Data, H, O);
+  if Ok then
+  begin
+    Inc(S.Commands);
+    if Select then
+    begin
+      S.SelActive := True;
+      S.SelTi := H.Ti;
+      S.SelIoa := O.Ioa;
+      S.SelUntil := ChMsTick + QWord(S.SelectMs);
+    end
+    else
+    begin
+      if S.SelActive and (S.SelTi = H.Ti) and (S.SelIoa = O.Ioa) then
+        S.SelActive := False;
+      { the command point keeps the last value executed }
+      S.Points[I].Obj.Int := O.Int;
+      S.Points[I].Obj.Bits := O.Bits;
+      S.Points[I].Obj.Number := O.Number;
+      S.Points[I].Obj.Qu := O.Qu;
+    end;
+  end
+  else
+    Inc(S.Refused);
+  Answer(S, Buf, Len, Cot_ActCon, not Ok);
+end;
+
+procedure TakeClock(var S: tIecSlaveStation; const Buf: array of Byte; Len: Word; const O: tIecObject);
+var
+  DT: TDateTime;
+begin
+  if not IecTimeToDateTime(O.Time, DT) then
+  begin
+    Answer(S, Buf, Len, Cot_ActCon, True);     { no date: refused }
+    Exit;
+  end;
+  { the time the master sent plus the transmission delay it measured }
+  S.ClockOffsetMs := Round((IncMilliSecond(DT, S.DelayMs) - Now) * MSecsPerDay);
+  Inc(S.ClockSyncs);
+  if Assigned(S.OnClock) then
+    S.OnClock(S.Data, O.Time, S.ClockOffsetMs);
+  Answer(S, Buf, Len, Cot_ActCon, False);      { ACT_CON with the time received }
+end;
+
+procedure TakeRead(var S: tIecSlaveStation; const Buf: array of Byte; Len: Word; const O: tIecObject);
+var
+  I: Integer;
+begin
+  I := IecSlaveFind(S, O.Ioa);
+  if (I < 0) or IsCommand(S.Points[I].Ti) then
+  begin
+    Answer(S, Buf, Len, Cot_UnknownIoa, True);
+    Exit;
+  end;
+  Inc(S.Reads);
+  QueueObject(S, S.Points[I].Ti, Cot_Request, S.Points[I].Obj);
+end;
+
+procedure TakeInterrogation(var S: tIecSlaveStation; const Buf: array of Byte; Len: Word;
+  const H: tIecAsdu; const O: tIecObject);
+var
+  Q: Byte;
+begin
+  Q := O.Int;
+  if (H.Ti = C_IC_NA_1) and not (Q in [Qoi_Station..Qoi_Station + 16]) then
+  begin
+    Answer(S, Buf, Len, Cot_ActCon, True);     { a QOI we do not know }
+    Exit;
+  end;
+  if (H.Ti = C_CI_NA_1) and not ((Q and $3F) in [1..Qcc_General]) then
+  begin
+    Answer(S, Buf, Len, Cot_ActCon, True);
+    Exit;
+  end;
+  if S.GiActive then
+  begin
+    Answer(S, Buf, Len, Cot_ActCon, True);     { one at a time }
+    Exit;
+  end;
+  Answer(S, Buf, Len, Cot_ActCon, False);
+  S.GiAsdu.Len := Len;
+  Move(Buf[0], S.GiAsdu.Data[0], Len);
+  S.GiQoi := Q;
+  S.GiNext := 0;
+  if H.Ti = C_CI_NA_1 then
+  begin
+    Inc(S.CounterInterrogations);
+    if Q and $C0 <> Qcc_Read then
+    begin
+      { freeze / reset: confirmed and terminated, no values }
+      CounterAction(S, Q);
+      IecSetCot(S.GiAsdu.Data, Len, Cot_ActTerm, False);
+      Queue1(S, S.GiAsdu.Data, Len);
+      Exit;
+    end;
+  end
+  else
+    Inc(S.Interrogations);
+  S.GiActive := True;
+end;
+
+{ Does type Ti take cause Cot in control direction? }
+function CotFits(Ti, Cot: Byte): Boolean;
+begin
+  case Ti of
+    C_RD_NA_1: Result := Cot = Cot_Request;
+    C_CS_NA_1, C_TS_NA_1, C_RP_NA_1, C_TS_TA_1: Result := Cot = Cot_Activation;
+    C_IC_NA_1, C_CI_NA_1: Result := Cot in [Cot_Activation];
+    C_CD_NA_1: Result := Cot in [Cot_Activation, Cot_Spontaneous];
+  else
+    Result := Cot in [Cot_Activation, Cot_Deactivation];   { commands }
+  end;
+end;
+
+{ One ASDU from the master. }
+procedure TakeAsdu(var S: tIecSlaveStation; Buf: PByte; Len: Word);
+var
+  A: array[0..MaxDataLen - 1] of Byte;
+  H: tIecAsdu;
+  O: tIecObject;
+  R: tChResult;
+  Err: ShortString;
+  Ca: Word;
+  HeadLen: Word;
+begin
+  if Len > MaxDataLen then
+    Len := MaxDataLen;
+  Move(Buf^, A[0], Len);
+  Inc(S.Asdus);
+  if Assigned(S.OnAsdu) then
+    S.OnAsdu(S.Data, False, @A[0], Len);
+  R := IecDecodeHeader(S.Params, A, Len, H, Err);
+  HeadLen := IecHeadLen(S.Params);
+  if R = res_AsduType then
+  begin
+    { a type we do not know: its identifier is there, answer COT 44 }
+    Answer(S, A, Len, Cot_UnknownType, True);
+    Exit;
+  end;
+  if R <> res_Ok then
+  begin
+    Bad(S, Err);
+    Exit;
+  end;
+  Ca := A[HeadLen - S.Params.CaSize];
+  if S.Params.CaSize = 2 then
+    Ca := Ca or (A[HeadLen - 1] shl 8);
+  { the broadcast address is for the station-wide requests only (a read
+    or a command to every station at once is refused, as lib60870 does) }
+  if ((Ca <> S.Ca) and (Ca <> IecMaxCa(S.Params))) or
+     ((Ca = IecMaxCa(S.Params)) and (Ca <> S.Ca) and
+      not (H.Ti in [C_IC_NA_1, C_CI_NA_1, C_CS_NA_1, C_TS_NA_1, C_RP_NA_1, C_CD_NA_1, C_TS_TA_1])) then
+  begin
+    Answer(S, A, Len, Cot_UnknownCa, True);
+    Exit;
+  end;
+  if IecIsMonitor(H.Ti) or (H.Ti >= P_ME_NA_1) or (H.Count <> 1) then
+  begin
+    { monitoring types, parameters, several objects: not taken here }
+    Answer(S, A, Len, Cot_UnknownType, True);
+    Exit;
+  end;
+  if not CotFits(H.Ti, H.Cot) then
+  begin
+    Answer(S, A, Len, Cot_UnknownCause, True);
+    Exit;
+  end;
+  R := IecDecodeObject(S.Params, H, A, 0, O);
+  if R <> res_Ok then
+  begin
+    Bad(S, 'object of ' + IecTypeName(H.Ti) + ': ' + ChResultText(R, Iec101Layer));
+    Exit;
+  end;
+  case H.Ti of
+    C_IC_NA_1, C_CI_NA_1: TakeInterrogation(S, A, Len, H, O);
+    C_RD_NA_1: TakeRead(S, A, Len, O);
+    C_CS_NA_1: TakeClock(S, A, Len, O);
+    C_TS_NA_1, C_TS_TA_1, C_RP_NA_1:
+      begin
+        if (H.Ti = C_RP_NA_1) and (O.Int = Qrp_Events) then
+          S.Class1.Count := 0;                  { pending events dropped }
+        Answer(S, A, Len, Cot_ActCon, False);
+      end;
+    C_CD_NA_1:
+      if H.Cot = Cot_Spontaneous then
+        S.DelayMs := O.Elapsed                  { the delay: no answer }
+      else
+        Answer(S, A, Len, Cot_ActCon, False);
+  else
+    TakeCommand(S, A, Len, H, O);
+  end;
+end;
+
+{ ------------------------------------------------------------- link glue }
+
+function OnUserData(Data: Pointer; Buf: PByte; Len: Word; Confirm: Boolean): Boolean;
+var
+  S: pIecSlaveStation;
+begin
+  S := pIecSlaveStation(Data);
+  { no room for the answers: NACK, the master sends it again }
+  Result := S^.Class1.Count + 3 <= IecSlaveQueueLen;
+  if Result then
+    TakeAsdu(S^, Buf, Len);
+end;
+
+procedure Sent(var S: tIecSlaveStation; const Q: tIecQueued);
+begin
+  if Assigned(S.OnAsdu) then
+    S.OnAsdu(S.Data, True, @Q.Data[0], Q.Len);
+end;
+
+function OnClassData(Data: Pointer; ClassNo: Byte; var Rep: tSendRecord; var Len: Word): Boolean;
+var
+  S: pIecSlaveStation;
+  Q: ^tIecQueue;
+  G: tIecQueued;
+begin
+  S := pIecSlaveStation(Data);
+  if ClassNo = 1 then
+    Q := @S^.Class1
+  else
+    Q := @S^.Class2;
+  if (ClassNo = 2) and (Q^.Count = 0) and S^.GiActive then
+    if GiNextAsdu(S^, G) then
+      QueuePut(Q^, G.Data, G.Len);
+  Result := Q^.Count > 0;
+  if not Result then
+    Exit;
+  Len := Q^.Items[Q^.Head].Len;
+  Move(Q^.Items[Q^.Head].Data[0], Rep.Data[1], Len);
+  Sent(S^, Q^.Items[Q^.Head]);
+  QueueDrop(Q^);
+end;
+
+function OnClass1(Data: Pointer): Boolean;
+begin
+  Result := pIecSlaveStation(Data)^.Class1.Count > 0;
+end;
+
+function IecSlaveInit(var S: tIecSlaveStation; Chn: pChnVirt; const P: tIecParams; Ca: Word;
+  out Err: ShortString): tChResult;
+begin
+  FillChar(S, SizeOf(S), 0);
+  S.Params := P;
+  S.Ca := Ca;
+  S.SelectMs := IecSlaveSelectMs;
+  Result := IecCheckParams(P, Err);
+  if Result <> res_Ok then
+    Exit;
+  if (Chn = nil) or (Chn^.CH_Type <> ChnFT1_2.cName) then
+  begin
+    Err := 'the channel is no FT 1.2 stack';
+    Exit(res_WrongLayer);
+  end;
+  if Ca > IecMaxCa(P) then
+  begin
+    Err := 'common address ' + IntToStr(Ca) + ' above ' + IntToStr(IecMaxCa(P));
+    Exit(res_BadParam);
+  end;
+  S.Chn := Chn;
+  S.Balanced := not pChnFT1_2(Chn)^.CH_MaSl;
+  if S.Balanced then
+  begin
+    Result := FT12BalancedInit(S.Bal, Chn);
+    if Result <> res_Ok then
+      Exit;
+    S.Bal.OnUserData := @OnUserData;
+    S.Bal.Data := @S;
+  end
+  else
+  begin
+    if pChnFT1_2(Chn)^.CH_Master then
+    begin
+      Err := 'an unbalanced slave needs MAS=SLAVE';
+      Exit(res_BadMessage);
+    end;
+    FT12StationInit(S.Station, Chn);
+    S.Station.OnUserData := @OnUserData;
+    S.Station.OnClassData := @OnClassData;
+    S.Station.OnClass1 := @OnClass1;
+    S.Station.Data := @S;
+  end;
+end;
+
+{ Balanced: hand waiting ASDUs to the link while its queue has room, class
+  1 first. }
+procedure FeedBalanced(var S: tIecSlaveStation);
+var
+  G: tIecQueued;
+  Q: ^tIecQueue;
+begin
+  while (S.Bal.State = bsAvailable) and (S.Bal.QCount < FT12BalQueueLen) do
+  begin
+    if S.Class1.Count > 0 then
+      Q := @S.Class1
+    else
+    begin
+      if (S.Class2.Count = 0) and S.GiActive and GiNextAsdu(S, G) then
+        QueuePut(S.Class2, G.Data, G.Len);
+      if S.Class1.Count > 0 then
+        Continue;                                { ACT_TERM came first }
+      if S.Class2.Count = 0 then
+        Exit;
+      Q := @S.Class2;
+    end;
+    if FT12BalancedSend(S.Bal, @Q^.Items[Q^.Head].Data[0], Q^.Items[Q^.Head].Len, True) <> res_Ok then
+      Exit;
+    Sent(S, Q^.Items[Q^.Head]);
+    QueueDrop(Q^);
+  end;
+end;
+
+function IecSlaveStep(var S: tIecSlaveStation): Boolean;
+begin
+  Result := False;
+  if S.Chn = nil then
+    Exit;
+  if S.Balanced then
+  begin
+    Result := FT12BalancedStep(S.Bal);
+    FeedBalanced(S);
+  end
+  else
+    Result := FT12StationStep(S.Station);
+end;
+
+function IecSlavePending(const S: tIecSlaveStation): Boolean;
+begin
+  Result := (S.Class1.Count > 0) or (S.Class2.Count > 0) or S.GiActive;
+end;
+
+function IecSlaveWaitMs(const S: tIecSlaveStation): LongInt;
+begin
+  if S.Balanced and (IecSlavePending(S) or not FT12BalancedQuiet(S.Bal) or
+     (S.Bal.State <> bsAvailable)) then
+    Result := 10           { the balanced link's timers }
+  else if S.Balanced then
+    Result := 100          { test function timer }
+  else
+    Result := 1000;        { unbalanced: only the master's frames wake us }
+end;
+
+end.

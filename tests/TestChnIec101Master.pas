@@ -1,0 +1,500 @@
+{ Tests of ChnIec101Master against slaves written here: tFT12Station
+  secondaries on one LOOP bus (LoopHub), whose application answers with
+  ASDUs given as octets, worked out by hand from IEC 60870-5-101 (COT 2,
+  CA 2, IOA 3): the interrogation answer is that of lib60870's cs101_slave
+  example (scaled IOA 100..102 = -1, 23, 2300, single points 104, 105,
+  a CP56-tagged single point 300). A balanced peer runs on a
+  tFT12Balanced. Everything runs in one thread: the master's Idle steps
+  the bus and the slaves while a link service waits. }
+unit TestChnIec101Master;
+
+{$MODE OBJFPC}{$H+}
+
+interface
+
+uses
+  Classes, SysUtils, fpcunit, testregistry, ChnTypes, ChnVirt, ChnLoop, ChnFT1_2,
+  ChnFT12Link, ChnWait, ChnIec101Asdu, ChnIec101Master, TestSupport, LoopHub, Iec101Sim;
+
+type
+  TTestChnIec101Master = class(TTestCase)
+  private
+    FHub: TLoopHub;
+    FChn: pChnVirt;
+    FSims: array of TSim;
+    procedure Open(const MasterParams: string; const Slaves: array of Word; Balanced: Boolean = False);
+    function Sim(Addr: Word): TSim;
+  protected
+    procedure SetUp; override;
+    procedure TearDown; override;
+  public
+    M: tIecMaster;
+    Objects: TStringList;
+    Bad: TStringList;
+    procedure Pump;
+  published
+    procedure TestLayouts;
+    procedure TestInitRefusesOtherChannels;
+    procedure TestInterrogationGetsEveryObjectOfItsSlave;
+    procedure TestCommandsAreConfirmed;
+    procedure TestSelectBeforeOperate;
+    procedure TestSystemCommands;
+    procedure TestClockSyncWithDelayAcquisition;
+    procedure TestNegativeAndUnknownConfirmations;
+    procedure TestImpossibleCommandsNeverSent;
+    procedure TestClass1WhenAcdAndMalformedCounted;
+    procedure TestDeadSlaveDoesNotStarveTheOther;
+    procedure TestSteppedFormAndOneCommandAtATime;
+    procedure TestBalancedPeer;
+    procedure TestStepNeverWaitsForADeadSlave;
+  end;
+
+implementation
+
+const
+  LinkMs = 40;
+
+{ ------------------------------------------------------------ the master }
+
+procedure OnObj(Data: Pointer; Addr: Word; const H: tIecAsdu; const O: tIecObject);
+var
+  T: TTestChnIec101Master;
+  S: string;
+begin
+  T := TTestChnIec101Master(Data);
+  S := Format('%d %s %d %d', [Addr, IecTypeName(H.Ti), H.Cot, O.Ioa]);
+  case IecTypeKind(H.Ti) of
+    ikSingle, ikScaled, ikCounter, ikSingleCmd, ikDoubleCmd, ikSetScaled, ikQualifier:
+      S := S + ' = ' + IntToStr(O.Int);
+  end;
+  if H.Negative then
+    S := S + ' negative';
+  if IecTypeTime(H.Ti) = tkCP56 then
+    S := S + Format(' %.2d:%.2d', [O.Time.Hour, O.Time.Minute]);
+  T.Objects.Add(S);
+end;
+
+procedure OnBadAsdu(Data: Pointer; Addr: Word; const Err: ShortString);
+begin
+  TTestChnIec101Master(Data).Bad.Add(Err);
+end;
+
+procedure Idle(Data: Pointer);
+begin
+  TTestChnIec101Master(Data).Pump;
+end;
+
+procedure TTestChnIec101Master.Pump;
+var
+  I: Integer;
+begin
+  FHub.Pump;
+  for I := 0 to High(FSims) do
+    FSims[I].Step;
+  FHub.Pump;
+end;
+
+procedure TTestChnIec101Master.SetUp;
+begin
+  FHub := TLoopHub.Create;
+  FChn := nil;
+  SetLength(FSims, 0);
+  Objects := TStringList.Create;
+  Bad := TStringList.Create;
+end;
+
+procedure TTestChnIec101Master.TearDown;
+var
+  I: Integer;
+begin
+  if FChn <> nil then
+    Dispose(FChn, Done);
+  for I := 0 to High(FSims) do
+    FSims[I].Free;
+  FHub.Free;
+  Objects.Free;
+  Bad.Free;
+end;
+
+{ The master on PAIR=IMM; a slave per address on PAIR=IMS<addr> (a
+  negative address: on the bus list, no station: a dead slave). }
+procedure TTestChnIec101Master.Open(const MasterParams: string; const Slaves: array of Word;
+  Balanced: Boolean);
+var
+  Err: string;
+  I: Integer;
+begin
+  FChn := OpenStack(ChnFT1_2.cName, MasterParams + ' NAM=LOOP PAIR=IMM END=1', Err);
+  AssertTrue(Err, FChn <> nil);
+  AssertTrue(FHub.AddPort('IMM'));
+  AssertEquals(res_Ok, IecMasterInit(M, FChn, IecDefaultParams));
+  M.TimeoutMs := LinkMs;
+  M.Bal.TimeoutMs := LinkMs;
+  M.CommandMs := 2000;
+  M.CycleMs := 5;
+  M.DeadMinMs := 200;
+  M.DeadMaxMs := 800;
+  M.OnObject := @OnObj;
+  M.OnBad := @OnBadAsdu;
+  M.Data := Self;
+  M.Idle := @Idle;
+  M.IdleData := Self;
+  SetLength(FSims, Length(Slaves));
+  for I := 0 to High(Slaves) do
+  begin
+    if Balanced then
+      FSims[I] := TSim.Create('NAM=FT1_2 MS=OFF PRI=OFF DIR=0 LEN=0 NOD=' + IntToStr(Slaves[I])
+        + ' DNO=1 NAM=LOOP PAIR=IMS' + IntToStr(Slaves[I]) + ' END=1', True)
+    else
+    begin
+      FSims[I] := TSim.Create('NAM=FT1_2 MS=ON MAS=SLAVE LEN=0 NOD=' + IntToStr(Slaves[I])
+        + ' NAM=LOOP PAIR=IMS' + IntToStr(Slaves[I]) + ' END=1', False);
+      AssertEquals(res_Ok, IecMasterAddSlave(M, Slaves[I]));
+    end;
+    AssertTrue(FHub.AddPort('IMS' + IntToStr(Slaves[I])));
+  end;
+end;
+
+function TTestChnIec101Master.Sim(Addr: Word): TSim;
+var
+  I: Integer;
+begin
+  for I := 0 to High(FSims) do
+    if FSims[I].Chn^.CH_Node = Addr then
+      Exit(FSims[I]);
+  Result := nil;
+end;
+
+{ The records programs read, packed (chn.inc): offsets by hand from the
+  field sizes. tFT12Link is ChnFT12Link's, taken as it is. }
+procedure TTestChnIec101Master.TestLayouts;
+var
+  C: tIecCommand;
+  S: tIecSlave;
+  L: LongInt;
+begin
+  AssertEquals('SizeOf(tIecCommand)', 327, SizeOf(tIecCommand));
+  AssertEquals('Slave@2', 2, PtrUInt(@C.Slave) - PtrUInt(@C));
+  AssertEquals('Obj@9', 9, PtrUInt(@C.Obj) - PtrUInt(@C));
+  AssertEquals('SentAt@49', 49, PtrUInt(@C.SentAt) - PtrUInt(@C));
+  AssertEquals('Result@69', 69, PtrUInt(@C.Result) - PtrUInt(@C));
+  AssertEquals('Err@71', 71, PtrUInt(@C.Err) - PtrUInt(@C));
+  L := SizeOf(tFT12Link);
+  AssertEquals('State after Addr and Link', 2 + L, LongInt(PtrUInt(@S.State) - PtrUInt(@S)));
+  AssertEquals('Class1', 2 + L + 1 + 8 + 8 + 4, LongInt(PtrUInt(@S.Class1) - PtrUInt(@S)));
+  AssertEquals('SizeOf(tIecSlave)', 2 + L + 1 + 8 + 8 + 4 + 9 * 4, SizeOf(tIecSlave));
+end;
+
+procedure TTestChnIec101Master.TestInitRefusesOtherChannels;
+var
+  Err: string;
+  C: pChnVirt;
+  P: tIecParams;
+begin
+  C := OpenStack(ChnFT1_2.cName, 'NAM=FT1_2 MS=ON MAS=SLAVE LEN=0 NOD=5 NAM=LOOP PAIR=IMX END=1', Err);
+  AssertTrue(Err, C <> nil);
+  try
+    AssertEquals('a slave channel', res_BadMessage, IecMasterInit(M, C, IecDefaultParams));
+    P := IecDefaultParams;
+    P.IoaSize := 4;
+    AssertEquals(res_AsduParam, IecMasterInit(M, C, P));
+    AssertEquals(res_WrongLayer, IecMasterInit(M, C^.CH_Low, IecDefaultParams));
+    AssertEquals(res_WrongLayer, IecMasterInit(M, nil, IecDefaultParams));
+  finally
+    Dispose(C, Done);
+  end;
+  Open('NAM=FT1_2 MS=ON MAS=MASTER LEN=0 NOD=0 DNO=5', [5]);
+  AssertEquals('twice', res_BadParam, IecMasterAddSlave(M, 5));
+  AssertEquals('above 255 with ADR=1', res_BadParam, IecMasterAddSlave(M, 256));
+end;
+
+procedure TTestChnIec101Master.TestInterrogationGetsEveryObjectOfItsSlave;
+begin
+  Open('NAM=FT1_2 MS=ON MAS=MASTER LEN=0 NOD=0 DNO=5', [5, 6]);
+  AssertEquals(M.Cmd.Err, res_Ok, IecInterrogation(M, 5, 1, Qoi_Station));
+  AssertEquals('64 01 06 00 01 00 00 00 00 14', Sim(5).Got.Text.Trim);
+  AssertEquals('slave 6 got nothing', 0, Sim(6).Got.Count);
+  AssertEquals(
+    '5 C_IC_NA_1 7 0 = 20'#10 +
+    '5 M_ME_NB_1 20 100 = -1'#10'5 M_ME_NB_1 20 101 = 23'#10'5 M_ME_NB_1 20 102 = 2300'#10 +
+    '5 M_SP_NA_1 20 104 = 1'#10'5 M_SP_NA_1 20 105 = 0'#10 +
+    '5 M_SP_TB_1 20 300 = 1 22:15'#10 +
+    '5 C_IC_NA_1 10 0 = 20'#10, StringReplace(Objects.Text, #13, '', [rfReplaceAll]));
+  AssertTrue('link reset of slave 5', M.Slaves[0].Resets = 1);
+  AssertTrue('slave 6 polled too', M.Slaves[1].Class2 > 0);
+  AssertEquals(0, M.BadAsdus);
+  { a group interrogation: QOI 20 + 2 }
+  Objects.Clear;
+  AssertEquals(M.Cmd.Err, res_Ok, IecInterrogation(M, 6, 1, Qoi_Station + 2));
+  AssertEquals('64 01 06 00 01 00 00 00 00 16', Sim(6).Got[0]);
+end;
+
+procedure TTestChnIec101Master.TestCommandsAreConfirmed;
+var
+  O: tIecObject;
+begin
+  Open('NAM=FT1_2 MS=ON MAS=MASTER LEN=0 NOD=0 DNO=5', [5]);
+  O := IecObject(5000);
+  O.Int := 1;
+  AssertEquals(M.Cmd.Err, res_Ok, IecCommand(M, 5, 1, C_SC_NA_1, O, False));
+  AssertEquals('2D 01 06 00 01 00 88 13 00 01', Sim(5).Got[0]);
+  O.Int := 2;
+  AssertEquals(M.Cmd.Err, res_Ok, IecCommand(M, 5, 1, C_DC_NA_1, O, False));
+  AssertEquals('2E 01 06 00 01 00 88 13 00 02', Sim(5).Got[1]);
+  O.Int := -300;
+  AssertEquals(M.Cmd.Err, res_Ok, IecCommand(M, 5, 1, C_SE_NB_1, O, False));
+  AssertEquals('31 01 06 00 01 00 88 13 00 D4 FE 00', Sim(5).Got[2]);
+  { the confirmations reached the program as objects too }
+  IecPollFor(M, 50);
+  AssertTrue(Objects.Text, Objects.IndexOf('5 C_SC_NA_1 7 5000 = 1') >= 0);
+  AssertTrue(Objects.Text, Objects.IndexOf('5 C_SC_NA_1 10 5000 = 1') >= 0);
+  AssertTrue(Objects.Text, Objects.IndexOf('5 C_SE_NB_1 7 5000 = -300') >= 0);
+end;
+
+procedure TTestChnIec101Master.TestSelectBeforeOperate;
+var
+  O: tIecObject;
+begin
+  Open('NAM=FT1_2 MS=ON MAS=MASTER LEN=0 NOD=0 DNO=5', [5]);
+  O := IecObject(5000);
+  O.Int := 1;
+  AssertEquals(M.Cmd.Err, res_Ok, IecCommand(M, 5, 1, C_SC_NA_1, O, True));
+  AssertEquals('select, then execute', '2D 01 06 00 01 00 88 13 00 81'#10'2D 01 06 00 01 00 88 13 00 01',
+    Sim(5).Got[0] + #10 + Sim(5).Got[1]);
+  { a refused select: no execute follows }
+  O := IecObject(77);
+  O.Int := 0;
+  AssertEquals(res_IecUnknownIoa, IecCommand(M, 5, 1, C_SC_NA_1, O, True));
+  AssertEquals(3, Sim(5).Got.Count);
+  AssertTrue(M.Cmd.Err, Pos('C_SC_NA_1 IOA 77 to slave 5: the slave does not know IOA 77', M.Cmd.Err) > 0);
+end;
+
+procedure TTestChnIec101Master.TestSystemCommands;
+var
+  T: tIecTime;
+begin
+  Open('NAM=FT1_2 MS=ON MAS=MASTER LEN=0 NOD=0 DNO=5', [5]);
+  AssertEquals(M.Cmd.Err, res_Ok, IecCounterInterrogation(M, 5, 1, Qcc_General));
+  AssertEquals('65 01 06 00 01 00 00 00 00 05', Sim(5).Got[0]);
+  AssertTrue(Objects.Text, Objects.IndexOf('5 M_IT_NA_1 37 500 = 1000') >= 0);
+  AssertEquals(M.Cmd.Err, res_Ok, IecRead(M, 5, 1, 100));
+  AssertEquals('66 01 05 00 01 00 64 00 00', Sim(5).Got[1]);
+  AssertTrue(Objects.Text, Objects.IndexOf('5 M_ME_NB_1 5 100 = -1') >= 0);
+  AssertEquals(res_IecUnknownIoa, IecRead(M, 5, 1, 101));
+  AssertEquals(M.Cmd.Err, res_Ok, IecTestCommand(M, 5, 1));
+  AssertEquals('68 01 06 00 01 00 00 00 00 AA 55', Sim(5).Got[3]);
+  AssertEquals(M.Cmd.Err, res_Ok, IecResetProcess(M, 5, 1, Qrp_General));
+  AssertEquals('69 01 06 00 01 00 00 00 00 01', Sim(5).Got[4]);
+  T := IecTimeFromDateTime(EncodeDate(2026, 12, 1) + EncodeTime(22, 15, 30, 250));
+  AssertEquals(M.Cmd.Err, res_Ok, IecClockSync(M, 5, 1, T, False));
+  AssertEquals('67 01 06 00 01 00 00 00 00 2A 76 0F 16 41 0C 1A', Sim(5).Got[5]);
+end;
+
+procedure TTestChnIec101Master.TestClockSyncWithDelayAcquisition;
+var
+  T: tIecTime;
+  B: TBytes;
+begin
+  Open('NAM=FT1_2 MS=ON MAS=MASTER LEN=0 NOD=0 DNO=5', [5]);
+  T := IecTimeFromDateTime(Now);
+  AssertEquals(M.Cmd.Err, res_Ok, IecClockSync(M, 5, 1, T, True));
+  AssertEquals(3, Sim(5).Got.Count);
+  { C_CD_NA_1 activation, C_CD_NA_1 spontaneous with the delay, C_CS_NA_1 }
+  AssertEquals('6A 01 06', Copy(Sim(5).Got[0], 1, 8));
+  AssertEquals('6A 01 03', Copy(Sim(5).Got[1], 1, 8));
+  B := HexToBytes(Sim(5).Got[1]);
+  AssertEquals('delay = half the round trip', M.Cmd.DelayMs, B[9] or (B[10] shl 8));
+  AssertTrue('a round trip on LOOP takes less than a link timeout', M.Cmd.DelayMs < LinkMs);
+  AssertEquals('67 01 06', Copy(Sim(5).Got[2], 1, 8));
+end;
+
+procedure TTestChnIec101Master.TestNegativeAndUnknownConfirmations;
+var
+  O: tIecObject;
+begin
+  Open('NAM=FT1_2 MS=ON MAS=MASTER LEN=0 NOD=0 DNO=5', [5]);
+  O := IecObject(5000);
+  O.Number := 1.5;
+  AssertEquals(res_IecNegative, IecCommand(M, 5, 1, C_SE_NC_1, O, False));
+  AssertTrue(M.Cmd.Err, Pos('C_SE_NC_1 IOA 5000 to slave 5: negative ACT_CON', M.Cmd.Err) > 0);
+  O.Int := 1;
+  AssertEquals(res_IecUnknownType, IecCommand(M, 5, 1, C_RC_NA_1, O, False));
+  AssertTrue(M.Cmd.Err, Pos('does not know the type', M.Cmd.Err) > 0);
+  AssertEquals(res_IecUnknownCa, IecCommand(M, 5, 9, C_SC_NA_1, O, False));
+  AssertTrue(M.Cmd.Err, Pos('common address 9', M.Cmd.Err) > 0);
+  AssertEquals(res_IecNoSlave, IecCommand(M, 8, 1, C_SC_NA_1, O, False));
+  AssertTrue(M.Cmd.Err, Pos('no slave with link address 8', M.Cmd.Err) > 0);
+  AssertTrue('texts', Pos('COT 47', ChResultText(res_IecUnknownIoa, Iec101Layer)) > 0);
+end;
+
+procedure TTestChnIec101Master.TestImpossibleCommandsNeverSent;
+var
+  O: tIecObject;
+  Before: LongInt;
+begin
+  Open('NAM=FT1_2 MS=ON MAS=MASTER LEN=0 NOD=0 DNO=5', [5]);
+  M.Params.IoaSize := 2;
+  Before := FHub.Copied;
+  O := IecObject(70000);
+  O.Int := 1;
+  AssertEquals(res_AsduIoa, IecCommand(M, 5, 1, C_SC_NA_1, O, False));
+  AssertTrue(M.Cmd.Err, Pos('IOA 70000 too large for 2 octet(s)', M.Cmd.Err) > 0);
+  O := IecObject(1);
+  O.Int := 2;
+  AssertEquals(res_AsduValue, IecCommand(M, 5, 1, C_SC_NA_1, O, True));
+  AssertTrue(M.Cmd.Err, Pos('value 2 out of range (0..1)', M.Cmd.Err) > 0);
+  O.Int := 40000;
+  AssertEquals(res_AsduValue, IecCommand(M, 5, 1, C_SE_NB_1, O, False));
+  AssertEquals(res_AsduType, IecCommand(M, 5, 1, M_SP_NA_1, O, False));
+  AssertTrue(M.Cmd.Err, Pos('no command', M.Cmd.Err) > 0);
+  M.Params.CaSize := 1;
+  AssertEquals(res_AsduValue, IecInterrogation(M, 5, 300, Qoi_Station));
+  AssertTrue(M.Cmd.Err, Pos('common address 300 too large for 1', M.Cmd.Err) > 0);
+  AssertEquals('nothing went on the line', Before, FHub.Copied);
+end;
+
+procedure TTestChnIec101Master.TestClass1WhenAcdAndMalformedCounted;
+begin
+  Open('NAM=FT1_2 MS=ON MAS=MASTER LEN=0 NOD=0 DNO=5', [5]);
+  IecPollFor(M, 30);
+  AssertEquals('online', Ord(isOnline), Ord(M.Slaves[0].State));
+  Sim(5).Send('1E 01 03 00 01 00 68 00 00 01 2A 76 0F 16 41 0C 1A', True);
+  Sim(5).Send('0B 01 03 00 01 00 6E 00 00 FE FF', False);        { one octet short }
+  Sim(5).Send('0B 01 03 00 01 00 6E 00 00 FE FF 00', False);
+  IecPollFor(M, 100);
+  AssertTrue('class 1 polled', M.Slaves[0].Class1 >= 1);
+  AssertTrue(Objects.Text, Objects.IndexOf('5 M_SP_TB_1 3 104 = 1 22:15') >= 0);
+  AssertTrue(Objects.Text, Objects.IndexOf('5 M_ME_NB_1 3 110 = -2') >= 0);
+  AssertEquals(1, M.BadAsdus);
+  AssertEquals(1, M.Slaves[0].BadAsdus);
+  AssertEquals(1, Bad.Count);
+  AssertTrue(M.LastBad, Pos('slave 5: M_ME_NB_1 with 1 object(s) needs 12 octets, got 11', M.LastBad) > 0);
+end;
+
+procedure TTestChnIec101Master.TestDeadSlaveDoesNotStarveTheOther;
+var
+  T0: QWord;
+  Polls: LongInt;
+begin
+  Open('NAM=FT1_2 MS=ON MAS=MASTER LEN=0 NOD=0 DNO=5', [5, 7]);
+  Sim(7).Alive := False;
+  T0 := ChMsTick;
+  IecPollFor(M, 1000);
+  Polls := M.Slaves[0].Class2;
+  AssertEquals('slave 7 dead', Ord(isDead), Ord(M.Slaves[1].State));
+  AssertEquals('once', 1, M.Slaves[1].Deaths);
+  { first: 1 + 3 retries of FC 9; then single tries after 200, 400, 800 ms }
+  AssertTrue('slave 7 tried a few times: ' + IntToStr(M.Slaves[1].Failures),
+    (M.Slaves[1].Failures >= 2) and (M.Slaves[1].Failures <= 4));
+  AssertTrue('slave 5 polled all along: ' + IntToStr(Polls), Polls > 50);
+  AssertEquals(Ord(isOnline), Ord(M.Slaves[0].State));
+  { slave 7 comes back: it is set up again within the back-off }
+  Sim(7).Alive := True;
+  IecPollFor(M, 900);
+  AssertEquals('slave 7 back', Ord(isOnline), Ord(M.Slaves[1].State));
+  AssertEquals(1, M.Slaves[1].Resets);
+  AssertTrue(ChMsTick - T0 >= 1900);
+  { a command to a dead slave fails }
+  Sim(7).Alive := False;
+  AssertEquals(res_Timeout, IecInterrogation(M, 7, 1, Qoi_Station));
+  AssertTrue(M.Cmd.Err, Pos('to slave 7: slave does not answer', M.Cmd.Err) > 0);
+end;
+
+procedure TTestChnIec101Master.TestSteppedFormAndOneCommandAtATime;
+var
+  Steps: Integer;
+  O: tIecObject;
+  Until_: QWord;
+begin
+  Open('NAM=FT1_2 MS=ON MAS=MASTER LEN=0 NOD=0 DNO=5', [5]);
+  M.Idle := nil;                        { the stepped form: the test runs the slave }
+  M.TimeoutMs := 40;
+  AssertTrue(IecStartInterrogation(M, 5, 1, Qoi_Station));
+  AssertFalse(IecCommandDone(M));
+  O := IecObject(5000);
+  AssertFalse('one at a time', IecStartCommand(M, 5, 1, C_SC_NA_1, O, False));
+  AssertTrue(M.Cmd.Err, Pos('under way (C_IC_NA_1 to slave 5)', M.Cmd.Err) > 0);
+  AssertEquals(res_IecBusy, IecCommand(M, 5, 1, C_SC_NA_1, O, False));
+  Steps := 0;
+  Until_ := ChMsTick + 3000;
+  while not IecCommandDone(M) and (ChMsTick < Until_) do
+  begin
+    if IecMasterStep(M) then
+      Inc(Steps)
+    else
+      ChnWaitAny(2);
+    Pump;
+  end;
+  AssertTrue('done', IecCommandDone(M));
+  AssertEquals(M.Cmd.Err, res_Ok, M.Cmd.Result);
+  AssertTrue('steps: ' + IntToStr(Steps), Steps >= 5);
+  AssertEquals(8, Objects.Count);
+  { a command not confirmed in time }
+  M.CommandMs := 100;
+  Sim(5).Alive := False;
+  AssertTrue(IecStartTest(M, 5, 1));
+  AssertEquals(res_Timeout, IecFinish(M));
+end;
+
+procedure TTestChnIec101Master.TestBalancedPeer;
+var
+  O: tIecObject;
+  I: Integer;
+begin
+  Open('NAM=FT1_2 MS=OFF PRI=ON DIR=1 LEN=0 NOD=1 DNO=5', [5], True);
+  AssertTrue(M.Balanced);
+  I := 0;
+  while (M.Bal.State <> bsAvailable) and (I < 2000) do
+  begin
+    IecMasterStep(M);
+    Pump;
+    Inc(I);
+  end;
+  AssertEquals(M.Cmd.Err, res_Ok, IecInterrogation(M, 5, 1, Qoi_Station));
+  AssertEquals('64 01 06 00 01 00 00 00 00 14', Sim(5).Got[0]);
+  AssertEquals(8, Objects.Count);
+  AssertEquals('5 M_ME_NB_1 20 102 = 2300', Objects[3]);
+  O := IecObject(5000);
+  O.Int := 1;
+  AssertEquals(M.Cmd.Err, res_Ok, IecCommand(M, 5, 1, C_SC_NA_1, O, True));
+  { spontaneous data from the peer }
+  Sim(5).Send('0B 01 03 00 01 00 6E 00 00 FE FF 00', False);
+  IecPollFor(M, 100);
+  AssertTrue(Objects.Text, Objects.IndexOf('5 M_ME_NB_1 3 110 = -2') >= 0);
+end;
+
+{ The stepped form on the stepped FT 1.2 primary: with a dead slave on the
+  line (link timeout 200 ms) no step takes anywhere near a timeout, and the
+  live slave's data keep coming. }
+procedure TTestChnIec101Master.TestStepNeverWaitsForADeadSlave;
+var
+  T0, T1, Until_, Longest: QWord;
+  Steps: LongInt;
+begin
+  Open('NAM=FT1_2 MS=ON MAS=MASTER LEN=0 NOD=0 DNO=5', [5, 7]);
+  Sim(7).Alive := False;
+  M.Idle := nil;
+  M.TimeoutMs := 200;
+  Longest := 0;
+  Steps := 0;
+  Until_ := ChMsTick + 1500;
+  while ChMsTick < Until_ do
+  begin
+    T0 := ChMsTick;
+    if IecMasterStep(M) then
+      Inc(Steps)
+    else
+      ChnWaitAny(2);
+    T1 := ChMsTick;
+    if T1 - T0 > Longest then
+      Longest := T1 - T0;
+    Pump;
+  end;
+  AssertTrue('longest step ' + IntToStr(Longest) + ' ms', Longest < 50);
+  AssertEquals('slave 7 dead', Ord(isDead), Ord(M.Slaves[1].State));
+  AssertTrue('slave 5 polled: ' + IntToStr(M.Slaves[0].Class2), M.Slaves[0].Class2 > 20);
+end;
+
+initialization
+  RegisterTest(TTestChnIec101Master);
+end.

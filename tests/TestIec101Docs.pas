@@ -1,0 +1,222 @@
+{ The complete programs of docs/ChnIec101.md, as printed there: each is
+  cut out of the document, built with fpc against the library's units
+  (build/units) outside the tree, and run on a pty against the other
+  helper in the test - the master program against a ChnIec101Slave with
+  lib60870's example points, the slave program against a ChnIec101Master.
+  What they must print is written out from the document. Unix only. }
+unit TestIec101Docs;
+
+{$MODE OBJFPC}{$H+}
+
+interface
+
+uses
+  SysUtils, Classes, Process, fpcunit, testregistry, ChnTypes, ChnVirt, ChnCom, ChnPty,
+  ChnFT1_2, ChnIec101Asdu, ChnIec101Slave, ChnIec101Master, Iec101Points, BinSupport,
+  TestTempDir;
+
+type
+  TTestIec101Docs = class(TTestCase)
+  private
+    FDir: string;
+    function Build(const Name: string): string;
+  protected
+    procedure SetUp; override;
+    procedure TearDown; override;
+  public
+    Objects: TStringList;
+    S: tIecSlaveStation;
+  published
+    procedure TestMasterProgram;
+    procedure TestSlaveProgram;
+  end;
+
+implementation
+
+procedure TTestIec101Docs.SetUp;
+begin
+  FDir := MakeTempDir('iec101docs');
+  Objects := TStringList.Create;
+end;
+
+procedure TTestIec101Docs.TearDown;
+begin
+  Objects.Free;
+  RemoveTempDir(FDir);
+end;
+
+{ Cut program Name out of the document, build it; the executable. }
+function TTestIec101Docs.Build(const Name: string): string;
+var
+  Doc, Prog: TStringList;
+  I: Integer;
+  Inside: Boolean;
+  Output, Fpc: string;
+begin
+  Doc := TStringList.Create;
+  Prog := TStringList.Create;
+  try
+    Doc.LoadFromFile('docs/ChnIec101.md');
+    Inside := False;
+    for I := 0 to Doc.Count - 1 do
+      if Inside then
+      begin
+        if Doc[I] = '```' then
+          Break;
+        Prog.Add(Doc[I]);
+      end
+      else if (Doc[I] = '```pascal') and (I < Doc.Count - 1) and
+        (Pos('program ' + Name + ';', Doc[I + 1]) = 1) then
+        Inside := True;
+    AssertTrue('program ' + Name + ' in docs/ChnIec101.md', Prog.Count > 10);
+    Prog.SaveToFile(FDir + '/' + Name + '.pas');
+  finally
+    Doc.Free;
+    Prog.Free;
+  end;
+  Fpc := ExeSearch('fpc', GetEnvironmentVariable('PATH'));
+  AssertTrue('fpc', Fpc <> '');
+  AssertEquals(Name + ' builds: ', 0, RunExe(Fpc, ['-v0', '-Fubuild/units', '-Fisrc',
+    '-FU' + FDir, '-FE' + FDir, FDir + '/' + Name + '.pas'], 120000, Output));
+  Result := FDir + '/' + Name;
+  AssertTrue(Output, FileExists(Result));
+end;
+
+function ReadAll(P: TProcess): string;
+var
+  Buf: array[0..4095] of Char;
+  N: Integer;
+begin
+  Result := '';
+  while P.Output.NumBytesAvailable > 0 do
+  begin
+    N := P.Output.Read(Buf, SizeOf(Buf));
+    Result := Result + Copy(Buf, 0, N);
+  end;
+end;
+
+procedure TTestIec101Docs.TestMasterProgram;
+var
+  Exe, Out, Err: string;
+  Chn: pChnVirt;
+  P: TProcess;
+  Deadline: QWord;
+  E: AnsiString;
+  Es: ShortString;
+begin
+  Exe := Build('iecgi');
+  Chn := ChnCollection^.ChNewInit(ChnFT1_2.cName);
+  Chn^.ChSetParam('NAM=FT1_2 MS=ON MAS=SLAVE LEN=0 NOD=1 NAM=COM DRV=PTY');
+  Chn^.ChOpen;
+  Chn^.ChConnect;
+  AssertEquals(res_Ok, Chn^.ChResult);
+  P := TProcess.Create(nil);
+  try
+    AssertEquals(res_Ok, IecSlaveInit(S, Chn, IecDefaultParams, 1, Es));
+    AssertTrue(E, IecLoadPoints(S, 'table', '100 M_ME_NB_1 -1'#10'101 M_ME_NB_1 23'#10 +
+      '102 M_ME_NB_1 2300'#10'104 M_SP_NA_1 1'#10'500 M_BO_NA_1 0xAAAA'#10, E));
+    P.Executable := Exe;
+    P.Parameters.Add('NAM=FT1_2 MS=ON MAS=MASTER LEN=0 NOD=0 DNO=1 NAM=COM DEV=' + PtyLastSlave +
+      ' BD=9600 PAR=E');
+    P.Options := [poUsePipes, poStderrToOutPut];
+    P.Execute;
+    Out := '';
+    Deadline := ChMsTick + 15000;
+    while P.Running and (ChMsTick < Deadline) do
+    begin
+      if not IecSlaveStep(S) then
+        Sleep(1);
+      Out := Out + ReadAll(P);
+    end;
+    Out := Out + ReadAll(P);
+    AssertFalse('ended', P.Running);
+    Err := 'C_IC_NA_1 ACTIVATION_CON IOA 0 = 20' + LineEnding +
+      'M_ME_NB_1 INTERROGATED_BY_STATION IOA 100 = -1' + LineEnding +
+      'M_ME_NB_1 INTERROGATED_BY_STATION IOA 101 = 23' + LineEnding +
+      'M_ME_NB_1 INTERROGATED_BY_STATION IOA 102 = 2300' + LineEnding +
+      'M_SP_NA_1 INTERROGATED_BY_STATION IOA 104 = 1' + LineEnding +
+      'M_BO_NA_1 INTERROGATED_BY_STATION IOA 500 = 0x0000AAAA' + LineEnding +
+      'C_IC_NA_1 ACTIVATION_TERMINATION IOA 0 = 20' + LineEnding + 'Ok' + LineEnding;
+    AssertEquals(Err, Out);
+    AssertEquals(0, P.ExitCode);
+  finally
+    if P.Running then
+    begin
+      P.Terminate(255);
+      P.WaitOnExit;
+    end;
+    P.Free;
+    Dispose(Chn, Done);
+  end;
+end;
+
+procedure OnObj(Data: Pointer; Addr: Word; const H: tIecAsdu; const O: tIecObject);
+begin
+  TTestIec101Docs(Data).Objects.Add(Format('%s %d %d = %d', [IecTypeName(H.Ti), H.Cot, O.Ioa, O.Int]));
+end;
+
+procedure TTestIec101Docs.TestSlaveProgram;
+var
+  Exe, Out: string;
+  Chn: pChnVirt;
+  P: TProcess;
+  M: tIecMaster;
+  O: tIecObject;
+  Deadline: QWord;
+begin
+  Exe := Build('iecrtu');
+  Chn := ChnCollection^.ChNewInit(ChnFT1_2.cName);
+  Chn^.ChSetParam('NAM=FT1_2 MS=ON MAS=MASTER LEN=0 NOD=0 DNO=1 NAM=COM DRV=PTY');
+  Chn^.ChOpen;
+  Chn^.ChConnect;
+  AssertEquals(res_Ok, Chn^.ChResult);
+  P := TProcess.Create(nil);
+  try
+    P.Executable := Exe;
+    P.Parameters.Add('NAM=FT1_2 MS=ON MAS=SLAVE LEN=0 NOD=1 NAM=COM DEV=' + PtyLastSlave +
+      ' BD=9600 PAR=E');
+    P.Parameters.Add('4');
+    P.Options := [poUsePipes, poStderrToOutPut];
+    P.Execute;
+    AssertEquals(res_Ok, IecMasterInit(M, Chn, IecDefaultParams));
+    AssertEquals(res_Ok, IecMasterAddSlave(M, 1));
+    M.OnObject := @OnObj;
+    M.Data := Self;
+    M.CycleMs := 20;
+    AssertEquals(M.Cmd.Err, res_Ok, IecInterrogation(M, 1, 1, Qoi_Station));
+    AssertEquals('C_IC_NA_1 7 0 = 20', Objects[0]);
+    AssertTrue(Objects.Text, Pos('M_ME_NB_1 20 100 = ', Objects[1]) = 1);
+    AssertEquals('M_SP_NA_1 20 104 = 1', Objects[2]);
+    AssertEquals('C_IC_NA_1 10 0 = 20', Objects[3]);
+    O := IecObject(5000);
+    O.Int := 1;
+    AssertEquals(M.Cmd.Err, res_Ok, IecCommand(M, 1, 1, C_SC_NA_1, O, True));
+    IecPollFor(M, 2200);
+    { the changes every second, as events }
+    AssertTrue(Objects.Text, Pos('M_ME_NB_1 3 100 = ', Objects.Text) > 0);
+    Out := '';
+    Deadline := ChMsTick + 10000;
+    while P.Running and (ChMsTick < Deadline) do
+    begin
+      IecMasterStep(M);
+      Sleep(5);
+      Out := Out + ReadAll(P);
+    end;
+    Out := Out + ReadAll(P);
+    AssertFalse('ended', P.Running);
+    AssertEquals('C_SC_NA_1 IOA 5000 = 1 select TRUE' + LineEnding +
+      'C_SC_NA_1 IOA 5000 = 1 select FALSE' + LineEnding + 'Ok' + LineEnding, Out);
+  finally
+    if P.Running then
+    begin
+      P.Terminate(255);
+      P.WaitOnExit;
+    end;
+    P.Free;
+    Dispose(Chn, Done);
+  end;
+end;
+
+initialization
+  RegisterTest(TTestIec101Docs);
+end.
