@@ -22,6 +22,9 @@
 #                     CROSS_CACHE (docs/ARM.md)
 #   make crosstest ARCH=armhf|aarch64  the suite and the legacy programs
 #                     for ARM under qemu-user
+#   make mutate       mutation testing: each mutant of tests/mutants/mutants.txt
+#                     must fail its tests (slow; ONLY=id); make mutate-check
+#                     only checks that every listed line is still there
 #   make clean
 # Optional: SYNAPSE_DIR=/path/to/synapse builds the Synapse serial backend.
 #
@@ -80,7 +83,7 @@ PROGBINS := $(addprefix $(BINDIR)/,$(basename $(notdir $(PROGRAMS))))
 BENCHBINS := $(addprefix $(BINDIR)/,$(basename $(notdir $(BENCHES))))
 
 .PHONY: all units examples tools test demo bench fuzz soak wintest clean check-fpc \
-        install uninstall man doc cross crosstest
+        install uninstall man doc cross crosstest mutate mutate-check
 
 all: units $(PROGBINS) chn.lpk
 examples: $(addprefix $(BINDIR)/,$(basename $(notdir $(EXAMPLES))))
@@ -187,6 +190,15 @@ soak: all
 	@rm -f $(BUILD)/soak-heap.log; HEAPTRC="log=$(BUILD)/soak-heap.log" $(TBINDIR)/soak \
 	  $(if $(COUNT),--count=$(COUNT),--seconds=$(SECONDS)) $(if $(SEED),--seed=$(SEED)) \
 	  $(if $(ONLY),--only=$(ONLY)) --df1sim=$(BINDIR)/df1sim
+
+# Mutation testing (docs/reliability.md): the tree is copied to a scratch
+# folder and built there (with BUILD=build), so the flags are the test
+# build's for that folder; not part of test.
+mutate:
+	@FPC=$(FPC) BUILD=build TESTFLAGS="$(filter-out -B,$(subst $(BUILD)/,build/,$(TESTFLAGS)))" \
+	  ONLY="$(ONLY)" bash tests/mutants/mutate.sh run $(MUTANTS)
+mutate-check:
+	@bash tests/mutants/mutate.sh check $(MUTANTS)
 
 # Cross-built for win64 and run under Wine; not part of test (CI has no Wine).
 wintest: all $(BUILD)/testunits.inc

@@ -12,7 +12,8 @@ unit ChnPcccNames;
 interface
 
 const
-  { STS (high nibble: the remote node's verdict) }
+  { STS: the high nibble is the remote node's verdict, the low nibble the
+    local node's (the interface that could not deliver the command) }
   sts_Ok         = $00;
   sts_IllegalCmd = $10;   { illegal command or format }
   sts_Address    = $50;   { addressing problem or memory protect rungs }
@@ -25,7 +26,8 @@ const
 { 'Echo', 'Protected Typed Logical Read (3 addr)' ...; '' when unknown.
   Cmd is the command byte (the reply bit $40 is ignored). }
 function PcccCommandName(Cmd, Fnc: Byte): ShortString;
-{ The meaning of an STS byte (its high nibble). }
+{ The meaning of an STS byte: its local nibble (1..8 in use, 9..F not),
+  its remote nibble, or both as 'local: ...; remote: ...'. }
 function PcccStsText(Sts: Byte): ShortString;
 { The meaning of an EXT STS byte; 'EXT STS $xx' when unknown. }
 function PcccExtStsText(Ext: Byte): ShortString;
@@ -65,9 +67,28 @@ begin
   end;
 end;
 
-function PcccStsText(Sts: Byte): ShortString;
+{ 1770-6.5.16 chapter 8, "Local STS Error Codes": found by the local node
+  (the interface that turned the command around). }
+function LocalStsText(Code: Byte): ShortString;
 begin
-  case Sts and $F0 of
+  case Code of
+    $01: Result := 'DST node is out of buffer space';
+    $02: Result := 'cannot guarantee delivery: the remote node does not ACK the command';
+    $03: Result := 'duplicate token holder detected';
+    $04: Result := 'local port is disconnected';
+    $05: Result := 'application layer timed out waiting for a response';
+    $06: Result := 'duplicate node detected';
+    $07: Result := 'station is offline';
+    $08: Result := 'hardware fault';
+  else
+    Result := 'unused local STS code';    { 09..0F are not used }
+  end;
+end;
+
+{ "Remote STS Error Codes": found by the remote node. }
+function RemoteStsText(Code: Byte): ShortString;
+begin
+  case Code of
     $00: Result := 'success';
     $10: Result := 'illegal command or format';
     $20: Result := 'host has a problem and will not communicate';
@@ -83,6 +104,16 @@ begin
   else
     Result := 'unknown STS';
   end;
+end;
+
+function PcccStsText(Sts: Byte): ShortString;
+begin
+  if Sts and $0F = 0 then
+    Result := RemoteStsText(Sts and $F0)
+  else if Sts and $F0 = 0 then
+    Result := LocalStsText(Sts and $0F)
+  else
+    Result := 'local: ' + LocalStsText(Sts and $0F) + '; remote: ' + RemoteStsText(Sts and $F0);
 end;
 
 function PcccExtStsText(Ext: Byte): ShortString;

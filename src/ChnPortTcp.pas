@@ -5,8 +5,11 @@
 
   Client: Connect (bounded by a timeout) or StartConnect + ConnectPoll (for
   reconnecting without blocking a poll). Server: Listen; one client at a
-  time - a further connection is accepted and closed at once; a client that
-  leaves is an idle line, not a fault, and the next one is taken.
+  time - a further connection is accepted and closed at once, or with Kick
+  takes the line from the one served (ser2net's kickolduser); with IdleMs a
+  client that sends nothing for that long is closed, so no squatter holds
+  the line for ever; a client that leaves is an idle line, not a fault, and
+  the next one is taken.
 
   With Rfc2217 the stream is Telnet: BINARY both ways, COM-PORT-OPTION
   used by us. Configure sends the line settings and waits for the server's
@@ -16,7 +19,12 @@
   Answers arriving later (after a reconnect) are checked the same way and
   turn the next Read into res_BadSetting. NOTIFY-MODEMSTATE gives GetLines,
   NOTIFY-LINESTATE overrun bits count in OsOverruns; data bytes are never
-  disturbed by either. }
+  disturbed by either. Data that arrives before the negotiation is done is
+  kept up to EarlyCap bytes; more is dropped and counted in OsOverruns (a
+  server pushing megabytes must not grow the process without bound). A
+  subnegotiation never closed (ChnTelnet's teSubBroken) ends the stream:
+  the data before it is delivered, then every Read answers res_BadStream
+  with FailKey 'RFC2217'. }
 unit ChnPortTcp;
 
 {$I chn.inc}
@@ -47,6 +55,10 @@ type
     FSettingsDue: Boolean;          { SendSettings before the server's DO }
     FEvent: PtrInt;                 { Windows: the client socket's wait event }
     FDueUntil: QWord;               { ... which must come by then }
+    FLastInput: QWord;              { server: when the client last sent a byte }
+    FEarlyLost: LongWord;           { data beyond EarlyCap, dropped }
+    FBroken: Boolean;               { the peer broke the Telnet stream }
+    FKicked, FIdleDropped: LongWord;
     function SockResult(E: tSockErr): tChResult;
     function TryNextAddr: tSockErr;
     function Resolve(Passive: Boolean): tSockErr;
@@ -58,7 +70,11 @@ type
     procedure OnSub;
     function Answered: Boolean;
     function SettingsOverdue: tChResult;
-    procedure TakeClient;
+    function AcceptOne: Boolean;
+    procedure TurnAway;
+    procedure DropClient;
+    procedure DropIdleClient;
+    function ServeRead(var Buf; Size: LongInt; out Got: LongInt): tChResult;
   public
     { set before Open/Connect/Listen }
     Host       : ShortString;
@@ -68,6 +84,10 @@ type
     { FailKey (TChnPort) after a failure: 'HOST', 'BD', ... }
     { Open ignores Path: Connect, or Listen when IsServer }
     IsServer   : Boolean;
+    { server only: a new connection takes the line from the old one }
+    Kick       : Boolean;
+    { server only: close a client that sent nothing for IdleMs (0 = never) }
+    IdleMs     : LongInt;
     constructor Create; override;
     function Open(const Path: tWordString): tChResult; override;
     function Connect: tChResult;
@@ -98,6 +118,9 @@ type
     function LocalPort: Word;
     function HasClient: Boolean;
     function ListenHandle: tSock;
+    { server: clients closed by Kick, and for IdleMs without input }
+    property Kicked: LongWord read FKicked;
+    property IdleDropped: LongWord read FIdleDropped;
     procedure Close; override;
   end;
 
@@ -108,6 +131,8 @@ uses
 
 const
   OutCap = 8192;           { encoded bytes held before Write says "full" }
+  MaxLeftPerRead = 64;     { closed connections one server read works through }
+  EarlyCap = 65536;        { data kept while RFC 2217 is negotiated }
   CtlReserve = 256;        { room kept for control commands }
 
 constructor TChnPortTcp.Create;
@@ -152,6 +177,8 @@ begin
   FBad := '';
   FModem := 0;
   FLineOverruns := 0;
+  FEarlyLost := 0;
+  FBroken := False;
   FillChar(FAsked, SizeOf(FAsked), 0);
   FSettingsDue := False;
   TelnetInit(FDec);
@@ -275,21 +302,83 @@ begin
   Result := res_Ok;
 end;
 
-procedure TChnPortTcp.TakeClient;
+{ Server, line free: take the oldest waiting connection; False if none. }
+function TChnPortTcp.AcceptOne: Boolean;
 var
   S: tSock;
 begin
-  if FListen = NoSock then
+  Result := (FListen <> NoSock) and (FSock = NoSock) and (SockAccept(FListen, S) = seOk);
+  if not Result then
     Exit;
-  while SockAccept(FListen, S) = seOk do
-    if FSock = NoSock then
+  FSock := S;
+  FOutLen := 0;
+  FLastInput := GetTickCount64;
+  TelnetInit(FDec);
+end;
+
+{ Server, line held by a client just read from (so one that left is
+  already gone): one client at a time, a further connection is closed at
+  once - or, with Kick, takes the line from the one served. }
+procedure TChnPortTcp.TurnAway;
+var
+  S: tSock;
+begin
+  while (FSock <> NoSock) and (SockAccept(FListen, S) = seOk) do
+    if Kick then
     begin
+      DropClient;
+      Inc(FKicked);
       FSock := S;
-      FOutLen := 0;
+      FLastInput := GetTickCount64;
       TelnetInit(FDec);
     end
     else
-      SockClose(S);                 { one client at a time }
+      SockClose(S);
+end;
+
+{ With IdleMs, a client that sent nothing for that long is closed. }
+procedure TChnPortTcp.DropIdleClient;
+begin
+  if (FSock <> NoSock) and (IdleMs > 0) and
+    (GetTickCount64 - FLastInput >= QWord(IdleMs)) then
+  begin
+    DropClient;
+    Inc(FIdleDropped);
+  end;
+end;
+
+procedure TChnPortTcp.DropClient;
+begin
+  SockClose(FSock);
+  FOutLen := 0;
+end;
+
+{ Server: read from the client served. One that left is closed and the
+  next waiting connection taken at once (a burst of short connections is
+  worked through in one poll, so a client behind them is not turned away
+  by a dead one holding the line); then the idle and one-client rules. }
+function TChnPortTcp.ServeRead(var Buf; Size: LongInt; out Got: LongInt): tChResult;
+var
+  Left: LongInt;
+begin
+  Got := 0;
+  Result := res_Ok;
+  Left := 0;
+  repeat
+    if (FSock = NoSock) and not AcceptOne then
+      Break;
+    Result := Take(Buf, Size, Got, False);
+    if Result <> res_DeviceLost then
+      Break;
+    SockClose(FSock);               { the client left: wait for the next }
+    Result := res_Ok;
+    Inc(Left);
+  until Left >= MaxLeftPerRead;
+  if Result = res_Ok then
+  begin
+    DropIdleClient;
+    TurnAway;
+  end;
 end;
 
 function TChnPortTcp.ListenHandle: tSock;
@@ -448,6 +537,8 @@ begin
   E := SockRecv(FSock, Raw, Size, N);
   if E <> seOk then
     Exit(SockResult(E));
+  if N > 0 then
+    FLastInput := GetTickCount64;
   if not Rfc2217 then
   begin
     Move(Raw, Buf, N);
@@ -459,10 +550,15 @@ begin
       teData:
         if Keep then
         begin
-          if FEarlyLen >= Length(FEarly) then
-            SetLength(FEarly, FEarlyLen + 4096);
-          FEarly[FEarlyLen] := Raw[I];
-          Inc(FEarlyLen);
+          if FEarlyLen >= EarlyCap then
+            Inc(FEarlyLost)
+          else
+          begin
+            if FEarlyLen >= Length(FEarly) then
+              SetLength(FEarly, FEarlyLen + 4096);
+            FEarly[FEarlyLen] := Raw[I];
+            Inc(FEarlyLen);
+          end;
         end
         else
         begin
@@ -479,6 +575,12 @@ begin
         end;
       teSub:
         OnSub;
+      teSubBroken:
+        begin
+          FBroken := True;          { what follows is not to be trusted }
+          FailKey := 'RFC2217';
+          Break;
+        end;
     end;
   Result := FlushOut;
 end;
@@ -503,6 +605,8 @@ begin
     end;
     SockWait([FSock], False, 10);
     Result := Take(Dummy, 1, Got, True);
+    if (Result = res_Ok) and FBroken then
+      Result := res_BadStream;
     if Result <> res_Ok then
       Exit;
   end;
@@ -513,6 +617,8 @@ begin
       Break;
     SockWait([FSock], False, 10);
     Result := Take(Dummy, 1, Got, True);
+    if (Result = res_Ok) and FBroken then
+      Result := res_BadStream;
     if Result <> res_Ok then
       Exit;
   end;
@@ -545,17 +651,22 @@ begin
     Move(FEarly[FEarlyPos], Buf, N);
     Inc(FEarlyPos, N);
     Got := N;
+    if FEarlyPos = FEarlyLen then
+    begin
+      FEarlyPos := 0;               { taken: the room is free again }
+      FEarlyLen := 0;
+      SetLength(FEarly, 0);
+    end;
     Exit(res_Ok);
   end;
-  TakeClient;
-  if FSock = NoSock then
-    Exit(res_Ok);
-  Result := Take(Buf, Size, Got, False);
-  if (Result = res_DeviceLost) and (FListen <> NoSock) then
-  begin
-    SockClose(FSock);               { the client left: wait for the next }
-    Result := res_Ok;
-  end;
+  if FBroken then
+    Exit(res_BadStream);
+  if FListen <> NoSock then
+    Result := ServeRead(Buf, Size, Got)
+  else if FSock = NoSock then
+    Exit(res_Ok)
+  else
+    Result := Take(Buf, Size, Got, False);
   if (Result = res_Ok) and FSettingsDue then
     Result := SettingsOverdue;
   if (Result = res_Ok) and (FBad <> '') then
@@ -599,7 +710,8 @@ begin
   Done := 0;
   if not FOpen then
     Exit(res_WrongState);
-  TakeClient;
+  if FSock = NoSock then
+    AcceptOne;
   if FSock = NoSock then
   begin
     Done := Len;                    { no client: as a line with no cable }
@@ -713,7 +825,7 @@ end;
 
 function TChnPortTcp.OsOverruns(out N: LongWord): tChResult;
 begin
-  N := FLineOverruns;
+  N := FLineOverruns + FEarlyLost;
   Result := res_Ok;
 end;
 

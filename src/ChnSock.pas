@@ -89,6 +89,10 @@ uses
 
 const
   AI_PASSIVE = 1;
+  { connections the OS completes before the server takes them: a burst of
+    reconnects must not find the queue full (a dropped SYN is retried only
+    after a second); a server takes them all at its next poll }
+  ListenBacklog = 128;
 
 { the OS part: struct addrinfo, error codes, non-blocking mode, waiting,
   event handles, keep-alive timing }
@@ -220,7 +224,7 @@ begin
     Exit;
   One := 1;
   fpSetSockOpt(S, SOL_SOCKET, ListenReuse, @One, SizeOf(One));
-  if (fpBind(S, PSockAddr(@A.Data), A.Len) <> 0) or (fpListen(S, 4) <> 0) then
+  if (fpBind(S, PSockAddr(@A.Data), A.Len) <> 0) or (fpListen(S, ListenBacklog) <> 0) then
   begin
     Result := MapError(SocketError);
     SockClose(S);

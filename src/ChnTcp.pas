@@ -11,6 +11,9 @@
     LISTEN=[addr:]port   serve instead: one client at a time; without addr
                 the loopback interface only ([::1]:port for IPv6; 0.0.0.0
                 or [::] for every interface must be written out)
+    KICK=OFF|ON (server) ON: a new connection takes the line from the
+                client served (ser2net's kickolduser); OFF: it is closed
+    IDLE=ms     (server) close a client that sent nothing for ms, 0 = never
     CTO=ms      bound of a connect and of the RFC 2217 answers, default 3000
     RECON=ms    0 (default): a lost connection stays lost until ChClose +
                 ChOpen; n: try again every n ms by itself, results say
@@ -51,6 +54,8 @@ type
     CH_Listen  : tWordString;      { LISTEN= as given, '' = client }
     CH_Cto     : LongInt;          { CTO= }
     CH_Rfc     : Boolean;          { RFC2217= }
+    CH_Kick    : Boolean;          { KICK= (server) }
+    CH_IdleDrop: LongInt;          { IDLE= ms (server), 0 = off }
     CH_RetryEnd: QWord;            { the reconnect in progress gives up then (CTO=) }
     constructor Init;
     constructor ChInitParam(const S: tParamStr);
@@ -123,6 +128,8 @@ begin
   CH_Listen := '';
   CH_Cto := TcpDefaultCto;
   CH_Rfc := False;
+  CH_Kick := False;
+  CH_IdleDrop := 0;
   CH_RetryEnd := 0;
 end;
 
@@ -162,6 +169,10 @@ begin
     Result := ParamSetNum(S, 1, 600000, CmdL, CH_Cto)
   else if Key = 'RFC2217' then
     Result := ParamFlag(S, 'OFF|ON', CmdL, CH_Rfc)
+  else if Key = 'KICK' then
+    Result := ParamFlag(S, 'OFF|ON', CmdL, CH_Kick)
+  else if Key = 'IDLE' then
+    Result := ParamSetNum(S, 0, 3600000, CmdL, CH_IdleDrop)
   else if (Key = 'BD') or (Key = 'BIT') or (Key = 'STOP') or (Key = 'PAR') or
     (Key = 'FLW') or (Key = 'LRB') or (Key = 'LSB') or (Key = 'IDL') or
     (Key = 'RECON') then
@@ -177,7 +188,8 @@ var
 begin
   R := tChnVirt.ChOwnParams;
   if CH_Listen <> '' then
-    R := R + ' LISTEN=' + CH_Listen
+    R := R + ' LISTEN=' + CH_Listen + FlagText('KICK', 'OFF|ON', CH_Kick) +
+      ParamText('IDLE', CH_IdleDrop)
   else
   begin
     if CH_Host <> '' then
@@ -203,6 +215,8 @@ begin
     if H = '' then
       H := '127.0.0.1';             { never every interface by default }
     Result.IsServer := True;
+    Result.Kick := CH_Kick;
+    Result.IdleMs := CH_IdleDrop;
     Result.Host := H;
     Result.Port := N;
   end
@@ -230,12 +244,20 @@ begin
   else if CH_Host = '' then
     Key := 'HOST'
   else if CH_TcpPort = 0 then
-    Key := 'PORT';
+    Key := 'PORT'
+  else if CH_Kick then
+    Key := 'KICK'                   { a client has no line to give away }
+  else if CH_IdleDrop <> 0 then
+    Key := 'IDLE';
   if Key <> '' then
   begin
     CH_ParamErr := Key + '=';
     if Key = 'HOST' then
-      CH_ParamErr := ChGetParam(Key);
+      CH_ParamErr := ChGetParam(Key)
+    else if Key = 'KICK' then
+      CH_ParamErr := 'KICK=ON'      { reported for a server only }
+    else if Key = 'IDLE' then
+      CH_ParamErr := 'IDLE=' + IntToStr(CH_IdleDrop);
     if CH_ParamErr = '' then
       CH_ParamErr := Key + '=';
     Exit(res_BadSetting);

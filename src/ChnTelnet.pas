@@ -6,7 +6,9 @@
   each completed: a data byte (IAC IAC gives one $FF), an option request
   (IAC WILL/WONT/DO/DONT opt), a subnegotiation (IAC SB opt ... IAC SE, with
   doubled IACs undone) or nothing yet. A subnegotiation longer than
-  TelnetMaxSub is cut and flagged, never overruns.
+  TelnetMaxSub is cut and flagged, never overruns; one still not closed
+  after TelnetSubLimit bytes is teSubBroken (a peer that never sends IAC SE
+  would otherwise swallow the whole data stream after it).
 
   Negotiation: TelnetAnswer decides the reply to an option request with the
   loop avoidance of RFC 1143 (answer only a request that changes the
@@ -66,9 +68,12 @@ const
   CPM_CTS = $10; CPM_DSR = $20; CPM_RI = $40; CPM_CD = $80;
 
   TelnetMaxSub = 64;      { longest subnegotiation kept (RFC 2217 needs 6) }
+  TelnetSubLimit = 256;   { bytes of one subnegotiation before it is broken }
 
 type
-  tTelnetEvent = (teNone, teData, teOption, teSub);
+  { teSubBroken: TelnetSubLimit bytes after IAC SB without IAC SE; the
+    decoder is back in data mode, the bytes in between are not data }
+  tTelnetEvent = (teNone, teData, teOption, teSub, teSubBroken);
 
   tTelnetDecoder = record
     St      : Byte;           { automaton state, private }
@@ -77,6 +82,7 @@ type
     Sub     : array[0..TelnetMaxSub - 1] of Byte;  { teSub: data after opt }
     SubLen  : Word;
     SubCut  : Boolean;        { teSub: longer than TelnetMaxSub, cut }
+    SubSeen : Word;           { bytes since IAC SB opt, private }
   end;
 
   { What each side has agreed for one option (RFC 1143 "Q method" reduced
@@ -123,6 +129,25 @@ begin
 end;
 
 function TelnetFeed(var D: tTelnetDecoder; B: Byte): tTelnetEvent;
+
+  { one byte of a subnegotiation's value: kept while there is room }
+  procedure SubByte(V: Byte);
+  begin
+    if D.SubLen < TelnetMaxSub then
+    begin
+      D.Sub[D.SubLen] := V;
+      Inc(D.SubLen);
+    end
+    else
+      D.SubCut := True;
+    Inc(D.SubSeen);
+    if D.SubSeen >= TelnetSubLimit then
+    begin
+      D.St := stData;                    { never closed: give up, say so }
+      Result := teSubBroken;
+    end;
+  end;
+
 begin
   Result := teNone;
   case D.St of
@@ -159,29 +184,19 @@ begin
         D.Opt := B;
         D.SubLen := 0;
         D.SubCut := False;
+        D.SubSeen := 0;
         D.St := stSub;
       end;
     stSub:
       if B = TN_IAC then
         D.St := stSubIac
-      else if D.SubLen < TelnetMaxSub then
-      begin
-        D.Sub[D.SubLen] := B;
-        Inc(D.SubLen);
-      end
       else
-        D.SubCut := True;
+        SubByte(B);
     stSubIac:
       if B = TN_IAC then
       begin
         D.St := stSub;                   { a doubled $FF inside the value }
-        if D.SubLen < TelnetMaxSub then
-        begin
-          D.Sub[D.SubLen] := TN_IAC;
-          Inc(D.SubLen);
-        end
-        else
-          D.SubCut := True;
+        SubByte(TN_IAC);
       end
       else
       begin

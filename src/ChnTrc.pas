@@ -207,8 +207,12 @@ begin
   else
   begin
     {$IFDEF UNIX}
-    { O_APPEND: several layers (both ends of a test) may share one file }
-    CH_Handle := FpOpen(CH_File, O_WRONLY or O_CREAT or O_APPEND, &666);
+    { O_APPEND: several layers (both ends of a test) may share one file.
+      O_NONBLOCK: a FIFO nobody reads would block open(2) for ever; so it
+      fails at once (ENXIO), and writes block again as for any file }
+    CH_Handle := FpOpen(CH_File, O_WRONLY or O_CREAT or O_APPEND or O_NONBLOCK, &666);
+    if CH_Handle <> THandle(-1) then
+      FpFcntl(CH_Handle, F_SETFL, FpFcntl(CH_Handle, F_GETFL) and not O_NONBLOCK);
     {$ELSE}
     { shared like the Unix file: FileCreate alone would open it exclusively
       and lock out a second layer on the same log and any reader }
@@ -220,6 +224,7 @@ begin
     if CH_Handle = THandle(-1) then
     begin
       CH_Result := res_CannotOpen;
+      CH_ParamErr := 'FILE=' + CH_File;
       Exit;
     end;
     CH_OwnHandle := True;

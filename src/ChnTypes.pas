@@ -76,7 +76,8 @@ const
   res_Refused      = 23;   { network: connection refused }
   res_Reconnecting = 24;   { network: connection lost, reconnecting by itself }
   res_ParamTooLong = 25;   { a parameter string longer than tParamStr: refused, not cut }
-  res_LastGeneral  = res_ParamTooLong;   { the highest general code in use }
+  res_BadStream    = 26;   { network: the peer broke the Telnet protocol }
+  res_LastGeneral  = res_BadStream;   { the highest general code in use }
   res_Proto        = $20;  { first code a protocol unit may use }
 
 type
@@ -159,6 +160,7 @@ begin
     res_Refused:      Result := 'connection refused';
     res_Reconnecting: Result := 'connection lost, reconnecting';
     res_ParamTooLong: Result := 'parameter string too long';
+    res_BadStream:    Result := 'the peer broke the Telnet protocol (subnegotiation never closed)';
   else
     Result := '';
   end;

@@ -80,6 +80,7 @@ const
   res_Refused      = ChnTypes.res_Refused;
   res_Reconnecting = ChnTypes.res_Reconnecting;
   res_ParamTooLong = ChnTypes.res_ParamTooLong;
+  res_BadStream    = ChnTypes.res_BadStream;
   res_Proto        = ChnTypes.res_Proto;
 
 const

@@ -59,6 +59,7 @@ type
     procedure TestParameterErrorsChangeNothing;
     procedure TestSendHandsWireBytesDown;
     procedure TestReceiveByteByByte;
+    procedure TestDuplicateDetectionComparesCmdAndFnc;
     procedure TestReplyForAnotherStationIsDropped;
     procedure TestBrokenFramesThenRecovery;
     procedure TestReceiveBufferTooSmall;
@@ -524,6 +525,43 @@ begin
   S^.ChReceive(Len);
   AssertEquals(0, Len);
   AssertEquals(res_NoMessage, S^.ChReceiveResult);
+end;
+
+{ DUP=ON: a command is a repetition only with the same SRC, CMD, FNC and
+  TNS as the last one from that SRC. Same TNS from SRC 0, BCC frames by
+  hand (BCC = two's complement of the sum DST..DATA): Echo 06/00 'A'
+  (sum $4D, BCC $B3); 0F/00 'A' (another CMD only: sum $56, BCC $AA);
+  0F/A2 02 07 89 00 00 (another FNC only: sum $149, BCC $B7); that again. }
+procedure TTestChnDF1.TestDuplicateDetectionComparesCmdAndFnc;
+var
+  S, Raw: pChnVirt;
+  R: tRecRecord;
+  Len: Word;
+
+  procedure Delivered(const Frame: string; CF: Word);
+  begin
+    SendRaw(Raw, Frame);
+    AssertTrue(Format('CF $%.4x delivered', [CF]), WaitReceive(S, TimeoutMs));
+    Len := 0;
+    S^.ChReceive(Len);
+    AssertEquals(res_Ok, S^.ChReceiveResult);
+    AssertEquals(Format('CF $%.4x', [CF]), CF, R.CF);
+    AssertEquals(5, R.Tns);
+    AssertEquals(Format('after CF $%.4x: no repetition counted', [CF]), 0, pChnDF1(S)^.CH_DupCount);
+  end;
+
+begin
+  S := Open('NAM=DF1 NOD=1 DNO=0 MAS=SLAVE CRC=OFF DUP=ON NAM=LOOP PAIR=DF1DUP END=1');
+  Raw := OpenRaw('DF1DUP');
+  S^.ChReceiveBuffer(@R, SizeOf(R));
+  Delivered('10 02 01 00 06 00 05 00 00 41 10 03 B3', $0600);
+  Delivered('10 02 01 00 0F 00 05 00 00 41 10 03 AA', $0F00);
+  Delivered('10 02 01 00 0F 00 05 00 A2 02 07 89 00 00 10 03 B7', $0FA2);
+  { the same command again: a repetition, ACKed by the layer, not delivered }
+  SendRaw(Raw, '10 02 01 00 0F 00 05 00 A2 02 07 89 00 00 10 03 B7');
+  AssertFalse('a repetition is not delivered', WaitReceive(S, 200));
+  AssertEquals('counted', 1, pChnDF1(S)^.CH_DupCount);
+  AssertEquals('and ACKed', '10 06', ReadRaw(Raw));
 end;
 
 procedure TTestChnDF1.TestBrokenFramesThenRecovery;

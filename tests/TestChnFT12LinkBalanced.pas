@@ -45,6 +45,7 @@ type
     procedure TestLinkComesUpInBothDirections;
     procedure TestUserDataCollisionBothConfirmed;
     procedure TestLostAckRepeatedWithSameFcbExecutedOnce;
+    procedure TestAnswerFromAnotherAddressIgnored;
     procedure TestLateAnswerToARepetitionConfirmsNothingElse;
     procedure TestOneStepTakesEverythingReceived;
     procedure TestTestFunctionWhenIdle;
@@ -333,6 +334,34 @@ begin
   AssertEquals('both frames in one step', Frames + 2, FLa.Frames);
   FTap.Pump;
   AssertEquals('and B''s request answered (8B+01 = 8C)', '10 8B 01 8C 16', FTap.Lines('A'));
+end;
+
+{ While A's user data waits for its answer, an ACK from link address 3
+  (00+03 = 03) is no answer of station 2: counted as ignored, the request
+  stays pending and is repeated, and only B's own ACK confirms it. }
+procedure TTestChnFT12LinkBalanced.TestAnswerFromAnotherAddressIgnored;
+begin
+  SetUpPair(40);
+  BringUp;
+  FTap.Log.Clear;
+  Queue(FLa, 'AA');
+  FTap.DropB := 1;              { B's ACK is lost }
+  FT12BalancedStep(FLa);
+  FTap.Pump;
+  FT12BalancedStep(FLb);
+  FTap.Pump;
+  AssertEquals('B took it', 'AA', FSinkB.Text);
+  FTap.InjectToA('10 00 03 03 16');
+  FT12BalancedStep(FLa);
+  AssertEquals('counted as ignored', 1, FLa.Ignored);
+  AssertEquals('nothing confirmed', 0, FLa.Confirmed);
+  AssertTrue('still pending', FLa.Pending);
+  RunUntil(FLa.Confirmed, 1);
+  Run(2);
+  AssertEquals('confirmed by B''s own ACK', 1, FLa.Confirmed);
+  AssertEquals('after a repetition', 1, FLa.Retransmits);
+  AssertEquals('executed once', 'AA', FSinkB.Text);
+  AssertEquals(1, FLb.Repeats);
 end;
 
 procedure TTestChnFT12LinkBalanced.TestTestFunctionWhenIdle;

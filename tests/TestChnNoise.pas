@@ -26,6 +26,7 @@ type
     procedure TestBadParametersNameTheToken;
     procedure TestCleanLineChangesNothing;
     procedure TestRatesAsAsked;
+    procedure TestBitErrorsFlipOneBitEach;
     procedure TestSeedReplaysWhateverTheChunks;
     procedure TestReceiveDirection;
     procedure TestOneDirectionOnly;
@@ -202,6 +203,39 @@ begin
   AssertTrue('bits flipped ' + IntToStr(Z^.CH_Flipped),
     (Z^.CH_Flipped > N * 8 * 0.0008) and (Z^.CH_Flipped < N * 8 * 0.0012));
   AssertEquals('what arrived', Int64(N - Z^.CH_Dropped + Z^.CH_Inserted), Int64(Length(Got)));
+end;
+
+{ BER is per bit: each of a byte's 8 bits flips on its own, so at 1E-3
+  about N * 8 * BER bytes are damaged, nearly all of them in exactly one
+  bit. (The flip count alone cannot tell: 8 bits flipping together as
+  often as one flips alone gives the same count, in 8 times fewer bytes.) }
+procedure TTestChnNoise.TestBitErrorsFlipOneBitEach;
+const
+  N = 200000;
+  Ber = 1E-3;
+var
+  D, Got: TBytes;
+  I, Damaged, OneBit: Integer;
+  X: Byte;
+begin
+  OpenPair('SEED=23 BER=1E-3', 'NZB');
+  D := Pattern(N);
+  Got := Through(D, 4000);
+  AssertEquals('no byte lost or added', N, Length(Got));
+  Damaged := 0;
+  OneBit := 0;
+  for I := 0 to N - 1 do
+    if Got[I] <> D[I] then
+    begin
+      Inc(Damaged);
+      X := Got[I] xor D[I];
+      if X and (X - 1) = 0 then
+        Inc(OneBit);
+    end;
+  AssertTrue(Format('%d damaged bytes, about %d expected', [Damaged, Round(N * 8 * Ber)]),
+    (Damaged > N * 8 * Ber * 0.85) and (Damaged < N * 8 * Ber * 1.15));
+  AssertTrue(Format('%d of %d damaged bytes differ in one bit', [OneBit, Damaged]),
+    OneBit >= Damaged * 0.98);
 end;
 
 procedure TTestChnNoise.TestSeedReplaysWhateverTheChunks;

@@ -30,6 +30,7 @@ type
     procedure TestRecordBytes;
     procedure TestReadOwnFile;
     procedure TestReadBigEndianAndNano;
+    procedure TestReadBigEndianNano;
     procedure TestReadOtherEventsAndShortRecords;
     procedure TestReadDamagedFiles;
     procedure TestDf1TextTraceRoundTrip;
@@ -181,6 +182,21 @@ begin
   AssertFalse(Info.Swapped);
   AssertEquals('01:00:00.002', TrcTimeText(F[0].TimeMs));
   AssertTrue(F[0].Dir = trcTx);
+end;
+
+{ The fourth magic: big-endian nanoseconds, A1 B2 3C 4D on disk; the
+  fraction 2,500,000 ns (00 26 25 A0) is 2 ms, not 2,500 s. }
+procedure TTestChnPcap.TestReadBigEndianNano;
+var
+  F: tTrcFrames;
+  Info: tPcapInfo;
+begin
+  AssertEquals(res_Ok, PcapReadBytes(Bytes('A1B23C4D 0002 0004 00000000 00000000 00010000 000000FA' +
+    '00000E10 002625A0 0000000D 0000000D  00000E10 00000007 02 1F 0000 E5'), 0, F, Info));
+  AssertTrue(Info.Swapped);
+  AssertEquals(1, Length(F));
+  AssertEquals('01:00:00.002', TrcTimeText(F[0].TimeMs));
+  AssertEquals('E5', HexBytes(@F[0].Data[0], 1));
 end;
 
 procedure TTestChnPcap.TestReadOtherEventsAndShortRecords;

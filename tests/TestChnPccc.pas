@@ -37,6 +37,7 @@ type
     procedure TestDecodeRefusesWrongLength;
     procedure TestStrings;
     procedure TestCheckReply;
+    procedure TestLocalStsTexts;
     procedure TestSameRequestsAsPythonClient;
   end;
 
@@ -454,6 +455,39 @@ begin
   AssertEquals('STS $10: illegal command or format', Err);
   AssertEquals('texts', 'PCCC: bad PLC address', ChResultText(res_PcccAddress, PcccLayer));
   AssertEquals('texts', 'PCCC: command refused (NAK) on every try', ChResultText(res_PcccNak, PcccLayer));
+end;
+
+{ 1770-6.5.16 chapter 8: the low nibble of STS holds the local node's
+  errors (01..08; 09..0F not used); they were named "success". }
+procedure TTestChnPccc.TestLocalStsTexts;
+var
+  Rep: tRecRecord;
+  Err: ShortString;
+  C: Integer;
+begin
+  AssertEquals('success', PcccStsText($00));
+  AssertEquals('DST node is out of buffer space', PcccStsText($01));
+  AssertEquals('cannot guarantee delivery: the remote node does not ACK the command', PcccStsText($02));
+  AssertEquals('duplicate token holder detected', PcccStsText($03));
+  AssertEquals('local port is disconnected', PcccStsText($04));
+  AssertEquals('application layer timed out waiting for a response', PcccStsText($05));
+  AssertEquals('duplicate node detected', PcccStsText($06));
+  AssertEquals('station is offline', PcccStsText($07));
+  AssertEquals('hardware fault', PcccStsText($08));
+  for C := $09 to $0F do
+    AssertEquals('unused local STS code', PcccStsText(C));
+  for C := $01 to $0F do
+    AssertTrue(IntToHex(C, 2) + ' is not success', Pos('success', PcccStsText(C)) = 0);
+  AssertEquals('remote codes unchanged', 'processor is in Program mode', PcccStsText($70));
+  AssertEquals('both nibbles', 'local: station is offline; remote: illegal command or format',
+    PcccStsText($17));
+  { and in the text of a refused reply }
+  FillChar(Rep, SizeOf(Rep), 0);
+  Rep.MessType := tpDataMess;
+  Rep.CF := $4F00;
+  Rep.Sts := $02;
+  AssertEquals(res_PcccStatus, PcccCheckReply(Rep, 8, 4, Err));
+  AssertEquals('STS $02: cannot guarantee delivery: the remote node does not ACK the command', Err);
 end;
 
 procedure TTestChnPccc.TestSameRequestsAsPythonClient;

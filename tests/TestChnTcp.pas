@@ -11,7 +11,7 @@ interface
 
 uses
   SysUtils, Classes, fpcunit, testregistry, ChnTypes, ChnVirt, {$IFDEF LINUX}BaseUnix, Linux,{$ENDIF} ChnPort, ChnPortTcp, ChnTcp, ChnLoop, ChnSock, Sockets,
-  TestSupport;
+  Process, TestSupport, BinSupport;
 
 type
   TTestChnTcp = class(TTestCase)
@@ -37,11 +37,19 @@ type
     procedure TestPeerResetIsDeviceLostNextTick;
     procedure TestReconnectsByItself;
     procedure TestSecondClientIsTurnedAway;
+    procedure TestKickAndIdleParameters;
+    procedure TestKickTakesTheLineFromASilentSquatter;
+    procedure TestIdleClosesASilentSquatter;
+    procedure TestIdleClosesATricklingSquatter;
+    procedure TestRapidReconnectsAreNotDelayed;
+    procedure TestDf1simListenOutlivesASquatter;
     procedure TestFullRingHoldsTheSenderBack;
     procedure TestRfc2217ServerChangesTheRate;
     procedure TestRfc2217ServerRefusesTheOption;
     procedure TestRfc2217ServerSilent;
     procedure TestRfc2217DataNotifyAndPurgeOnTheWire;
+    procedure TestRfc2217FloodWhileNegotiatingIsCapped;
+    procedure TestRfc2217UnclosedSubnegotiationIsNamed;
     procedure TestClientIsInTheSharedWait;
     {$IFDEF LINUX}
     procedure TestIdlePollingLoopCpu;
@@ -59,7 +67,8 @@ type
   { A scripted RFC 2217 server on a thread: the bytes it expects and sends
     are written here by hand from RFC 854 / RFC 2217, not produced by the
     codec under test. }
-  TScriptMode = (smHonest, smChangeBaud, smRefuse, smSilent);
+  { smFlood: 1 MiB of data before its DO COM-PORT-OPTION }
+  TScriptMode = (smHonest, smChangeBaud, smRefuse, smSilent, smFlood);
   TScriptServer = class(TThread)
   private
     FListen, FConn: tSock;
@@ -124,6 +133,19 @@ begin
   SetLength(Result, Length(B));
   if Length(B) > 0 then
     Move(B[0], Result[1], Length(B));
+end;
+
+const
+  FloodLen = 1 shl 20;
+
+{ What smFlood pushes: no $FF, so it is data byte for byte. }
+function FloodData: AnsiString;
+var
+  I: Integer;
+begin
+  SetLength(Result, FloodLen);
+  for I := 1 to FloodLen do
+    Result[I] := Chr(1 + I mod 200);
 end;
 
 constructor TScriptServer.Create(Mode: TScriptMode);
@@ -212,6 +234,8 @@ begin
       Agreed := True;
       if FMode = smRefuse then
         Put(#$FF#$FE#$2C)                       { DONT COM-PORT-OPTION }
+      else if FMode = smFlood then
+        Put(FloodData + #$FF#$FD#$2C#$FF#$FB#$00#$FF#$FD#$00)
       else
         Put(#$FF#$FD#$2C#$FF#$FB#$00#$FF#$FD#$00);  { DO 44, WILL/DO BINARY }
     end;
@@ -646,6 +670,340 @@ begin
   AssertEquals('the second is closed at once', res_DeviceLost, Cli2^.ChResult);
   SendText(Cli, 'two');
   AssertEquals('the first keeps its line', 'two', Receive(Srv, nil, 3, 3000));
+end;
+
+{ A plain socket connected to Port (a squatter, or a client of a burst),
+  NoSock when no connection came within Ms. }
+function RawConnect(Port: Word; Ms: Integer): tSock;
+var
+  A: tSockAddrs;
+  N: LongInt;
+  E: tSockErr;
+begin
+  Result := NoSock;
+  if SockResolve('127.0.0.1', Port, False, A, N) <> seOk then
+    Exit;
+  E := SockConnectStart(A[0], Result);
+  if E = seWouldBlock then
+    E := SockConnectDone(Result, Ms);
+  if E <> seOk then
+    SockClose(Result);
+end;
+
+{ True once the server closed S (end of stream), polling Srv meanwhile so
+  it runs (and taking what it received); anything S receives is discarded. }
+function ClosedByServer(S: tSock; Srv: pChnVirt; Ms: Integer): Boolean;
+var
+  Deadline: QWord;
+  Buf: array[0..255] of Byte;
+  Got: LongInt;
+  Len: Word;
+begin
+  Deadline := GetTickCount64 + QWord(Ms);
+  repeat
+    if Srv^.ChReceiveReady = CHS_ReceiveReady then
+      Srv^.ChReceive(Len);
+    if SockWait([S], False, 5) and (SockRecv(S, Buf, SizeOf(Buf), Got) = seLost) then
+      Exit(True);
+  until GetTickCount64 > Deadline;
+  Result := False;
+end;
+
+function ServerPort(Srv: pChnVirt): TChnPortTcp;
+begin
+  Result := TChnPortTcp(pChnTcp(Srv)^.CH_Port);
+end;
+
+{ Polls Srv until it has taken a client (2 s at most). }
+procedure AwaitClient(Srv: pChnVirt);
+var
+  Deadline: QWord;
+begin
+  Deadline := GetTickCount64 + 2000;
+  while not pChnTcp(Srv)^.ChHasClient and (GetTickCount64 < Deadline) do
+    Srv^.ChReceiveReady;
+end;
+
+procedure TTestChnTcp.TestKickAndIdleParameters;
+var
+  C: pChnVirt;
+begin
+  C := ChnCollection^.ChNewInit('TCP');
+  try
+    C^.ChSetParam('LISTEN=0 KICK=ON IDLE=30000');
+    AssertEquals(res_Ok, C^.ChResult);
+    AssertEquals('NAM=TCP LISTEN=0 KICK=ON IDLE=30000 CTO=3000 RECON=0 RFC2217=OFF ' +
+      'BD=9600 BIT=8 STOP=1 PAR=N FLW=NONE LRB=4096 LSB=65535 IDL=1', C^.ChGetParam(''));
+    AssertEquals('KICK=ON', C^.ChGetParam('KICK'));
+    AssertEquals('IDLE=30000', C^.ChGetParam('IDLE'));
+    C^.ChSetParam(C^.ChGetParam(''));
+    AssertEquals('taken back', res_Ok, C^.ChResult);
+    C^.ChSetParam('KICK=MAYBE');
+    AssertEquals(res_BadParam, C^.ChResult);
+    AssertEquals('KICK=MAYBE', C^.ChParamError);
+    C^.ChSetParam('IDLE=-1');
+    AssertEquals(res_BadParam, C^.ChResult);
+    AssertEquals('IDLE=-1', C^.ChParamError);
+    C^.ChSetParam('IDLE=3600001');
+    AssertEquals(res_BadParam, C^.ChResult);
+    Dispose(C, Done);
+    C := ChnCollection^.ChNewInit('TCP');
+    C^.ChSetParam('LISTEN=0');
+    AssertEquals('the defaults', 'KICK=OFF IDLE=0', C^.ChGetParam('KICK') + ' ' + C^.ChGetParam('IDLE'));
+  finally
+    Dispose(C, Done);
+  end;
+  { a client has no line to give away: ChOpen names the token }
+  AssertEquals(res_BadSetting, OpenClient('HOST=127.0.0.1 PORT=4001 KICK=ON'));
+  AssertEquals('KICK=ON', Cli^.ChParamError);
+  Dispose(Cli, Done);
+  Cli := nil;
+  AssertEquals(res_BadSetting, OpenClient('HOST=127.0.0.1 PORT=4001 IDLE=500'));
+  AssertEquals('IDLE=500', Cli^.ChParamError);
+end;
+
+{ A client that connects and sends nothing holds a one-client line for
+  ever; with KICK=ON the next connection takes the line from it. }
+procedure TTestChnTcp.TestKickTakesTheLineFromASilentSquatter;
+var
+  Port: Word;
+  Squat: tSock;
+begin
+  Port := OpenServer('0 KICK=ON');
+  Squat := RawConnect(Port, 2000);
+  try
+    AssertTrue('the squatter is connected', Squat <> NoSock);
+    AwaitClient(Srv);
+    AssertTrue('the server took the squatter', pChnTcp(Srv)^.ChHasClient);
+    AssertEquals(res_Ok, OpenClient('HOST=127.0.0.1 PORT=' + IntToStr(Port)));
+    SendText(Cli, 'read N7:0');
+    AssertEquals('the new client has the line', 'read N7:0', Receive(Srv, nil, 9, 3000));
+    SendText(Srv, 'reply');
+    AssertEquals('and gets the answer', 'reply', Receive(Cli, nil, 5, 3000));
+    AssertTrue('the squatter was closed', ClosedByServer(Squat, Srv, 2000));
+    AssertEquals('counted', 1, ServerPort(Srv).Kicked);
+    AssertEquals(res_Ok, Srv^.ChResult);
+  finally
+    SockClose(Squat);
+  end;
+end;
+
+procedure TTestChnTcp.TestIdleClosesASilentSquatter;
+var
+  Port: Word;
+  Squat: tSock;
+  T0, Took: QWord;
+begin
+  Port := OpenServer('0 IDLE=300');
+  Squat := RawConnect(Port, 2000);
+  try
+    AssertTrue(Squat <> NoSock);
+    AwaitClient(Srv);
+    T0 := GetTickCount64;
+    AssertTrue('the silent client is closed', ClosedByServer(Squat, Srv, 3000));
+    Took := GetTickCount64 - T0;
+    AssertTrue(Format('after IDLE=300 (%d ms)', [Took]), (Took >= 250) and (Took < 1500));
+    AssertEquals(1, ServerPort(Srv).IdleDropped);
+    AssertFalse(pChnTcp(Srv)^.ChHasClient);
+    AssertEquals(res_Ok, OpenClient('HOST=127.0.0.1 PORT=' + IntToStr(Port)));
+    SendText(Cli, 'legit');
+    AssertEquals('the line is free again', 'legit', Receive(Srv, nil, 5, 3000));
+  finally
+    SockClose(Squat);
+  end;
+end;
+
+{ A byte now and then (the attack sent one every 5 s) does not hold the
+  line longer than IDLE between bytes; a client that talks keeps it. }
+procedure TTestChnTcp.TestIdleClosesATricklingSquatter;
+var
+  Port: Word;
+  Squat: tSock;
+  B: Byte;
+  Done: LongInt;
+  Deadline: QWord;
+  Closed: Boolean;
+  Got: string;
+  I: Integer;
+begin
+  Port := OpenServer('0 IDLE=400');
+  Squat := RawConnect(Port, 2000);
+  try
+    AssertTrue(Squat <> NoSock);
+    AwaitClient(Srv);
+    B := 0;
+    Closed := False;
+    Deadline := GetTickCount64 + 3000;
+    while not Closed and (GetTickCount64 < Deadline) do
+    begin
+      SockSend(Squat, B, 1, Done);
+      Closed := ClosedByServer(Squat, Srv, 600);   { a byte every 600 ms }
+    end;
+    AssertTrue('the trickling client is closed', Closed);
+    AssertEquals(1, ServerPort(Srv).IdleDropped);
+    { a client sending every 100 ms for three IDLE periods keeps the line }
+    AssertEquals(res_Ok, OpenClient('HOST=127.0.0.1 PORT=' + IntToStr(Port)));
+    Got := '';
+    for I := 1 to 12 do
+    begin
+      SendText(Cli, 'x');
+      Got := Got + Receive(Srv, nil, 1, 100);
+      Deadline := GetTickCount64 + 100;
+      while GetTickCount64 < Deadline do
+        Srv^.ChReceiveReady;
+      Got := Got + Receive(Srv, nil, 1, 0);
+    end;
+    Got := Got + Receive(Srv, nil, 12 - Length(Got), 1000);
+    AssertEquals(StringOfChar('x', 12), Got);
+    AssertTrue('still served', pChnTcp(Srv)^.ChHasClient);
+    AssertEquals('not dropped', 1, ServerPort(Srv).IdleDropped);
+  finally
+    SockClose(Squat);
+  end;
+end;
+
+{ A burst of connections while the server is busy (not polling) must not
+  wait for the OS's SYN retry: the listen backlog holds them all. }
+procedure TTestChnTcp.TestRapidReconnectsAreNotDelayed;
+const
+  Burst = 12;
+var
+  Port: Word;
+  S: tSock;
+  I: Integer;
+  T0, Took, Worst: QWord;
+begin
+  Port := OpenServer('0');
+  Worst := 0;
+  for I := 1 to Burst do
+  begin
+    T0 := GetTickCount64;
+    S := RawConnect(Port, 3000);
+    Took := GetTickCount64 - T0;
+    AssertTrue(Format('connect %d came through', [I]), S <> NoSock);
+    SockClose(S);
+    if Took > Worst then
+      Worst := Took;
+  end;
+  AssertTrue(Format('the slowest of %d connects took %d ms', [Burst, Worst]), Worst < 300);
+  { a client behind them: one poll of the server works through the closed
+    ones and takes its bytes }
+  AssertEquals(res_Ok, OpenClient('HOST=127.0.0.1 PORT=' + IntToStr(Port)));
+  SendText(Cli, 'after');
+  Sleep(100);
+  AssertEquals('served at the first poll', CHS_ReceiveReady, Srv^.ChReceiveReady);
+  AssertEquals('after', Receive(Srv, nil, 5, 3000));
+end;
+
+{ The attack of issue 24: one client that connects and sends nothing held
+  df1sim --listen's only line, and every legitimate read failed. df1sim
+  serves with KICK=ON: each df1read takes the line. }
+procedure TTestChnTcp.TestDf1simListenOutlivesASquatter;
+var
+  Sim: TProcess;
+  Line, Output: string;
+  C: Char;
+  Deadline: QWord;
+  Port, I, Code: Integer;
+  Squat: tSock;
+begin
+  Squat := NoSock;
+  Sim := TProcess.Create(nil);
+  try
+    Sim.Executable := BinPath('df1sim');
+    Sim.Parameters.AddStrings(['--listen=0', '--quiet', '--timeout=20']);
+    Sim.Options := [poUsePipes];
+    Sim.Execute;
+    Line := '';
+    Deadline := GetTickCount64 + 5000;
+    repeat
+      if Sim.Output.NumBytesAvailable > 0 then
+      begin
+        Sim.Output.Read(C, 1);
+        if C = #10 then
+          Break;
+        Line := Line + C;
+      end
+      else
+        Sleep(2);
+    until GetTickCount64 > Deadline;
+    Line := Trim(Line);             { Windows ends it with CR LF }
+    AssertTrue('df1sim printed its port: ' + Line, (Copy(Line, 1, 7) = 'LISTEN ') and
+      TryStrToInt(Copy(Line, 8, 10), Port));
+    Squat := RawConnect(Port, 2000);
+    AssertTrue('the squatter is connected', Squat <> NoSock);
+    Sleep(200);                     { df1sim has taken it as its client }
+    for I := 1 to 3 do
+    begin
+      Code := RunBin('df1read', ['N7:0', '3', 'NAM=DF1', 'NOD=0', 'DNO=1', 'CRC=ON',
+        'NAM=TCP', 'HOST=127.0.0.1', 'PORT=' + IntToStr(Port)], 10000, Output);
+      AssertEquals(Format('read %d past the squatter:'#10'%s', [I, Output]), 0, Code);
+      AssertTrue(Output, Pos('N7:2 = 20', Output) > 0);
+    end;
+  finally
+    SockClose(Squat);
+    if Sim.Running then
+      Sim.Terminate(0);
+    Sim.Free;
+  end;
+end;
+
+{ A server that pushes data while the options are negotiated: before the
+  cap, 29 MiB pushed made 57 MB of resident memory. The first EarlyCap
+  bytes are kept, the rest dropped and counted as lost. }
+procedure TTestChnTcp.TestRfc2217FloodWhileNegotiatingIsCapped;
+const
+  Cap = 65536;
+var
+  Srv2: TScriptServer;
+  Before, Grew: PtrUInt;
+  Got: string;
+  Mark: Integer;
+begin
+  Srv2 := TScriptServer.Create(smFlood);
+  try
+    Before := GetFPCHeapStatus.CurrHeapUsed;
+    AssertEquals(res_Ok, OpenClient(Format('HOST=127.0.0.1 PORT=%d RFC2217=ON CTO=5000', [Srv2.Port])));
+    Grew := GetFPCHeapStatus.CurrHeapUsed - Before;
+    AssertTrue(Format('memory grew by %d bytes for %d pushed', [Grew, FloodLen]), Grew < 4 * Cap);
+    { what was kept is read with the next input from the socket (the
+      shared wait watches the socket, not the port's store) }
+    Srv2.Send('x');
+    Got := Receive(Cli, nil, Cap + 1, 3000);
+    AssertEquals('the first bytes are kept, then the new one', Cap + 1, Length(Got));
+    AssertTrue('unchanged', Got = Copy(FloodData, 1, Cap) + 'x');
+    AssertEquals('the rest is counted as lost', FloodLen - Cap, pChnTcp(Cli)^.ChLostBytes);
+    Mark := Length(Srv2.Seen);
+    SendText(Cli, 'after');
+    AssertEquals('the line works', 'after', SeenAfter(Srv2, Mark, 5));
+  finally
+    Srv2.Free;
+  end;
+end;
+
+{ IAC SB never closed by IAC SE swallowed all data after it without a
+  word; now the data before it arrives and the line says what happened. }
+procedure TTestChnTcp.TestRfc2217UnclosedSubnegotiationIsNamed;
+var
+  Srv2: TScriptServer;
+  Deadline: QWord;
+begin
+  Srv2 := TScriptServer.Create(smHonest);
+  try
+    AssertEquals(res_Ok, OpenClient(Format('HOST=127.0.0.1 PORT=%d RFC2217=ON CTO=2000', [Srv2.Port])));
+    Srv2.Send('head' + #$FF#$FA#$2C#$6B + StringOfChar('A', 300) + 'tail');
+    AssertEquals('the data before it', 'head', Receive(Cli, nil, 4, 3000));
+    Deadline := GetTickCount64 + 3000;
+    while (Cli^.ChResult = res_Ok) and (GetTickCount64 < Deadline) do
+      Cli^.ChReceiveReady;
+    AssertEquals('named', res_BadStream, Cli^.ChResult);
+    AssertEquals(res_BadStream, Cli^.ChReceiveResult);
+    AssertEquals('the peer broke the Telnet protocol (subnegotiation never closed)',
+      Cli^.ChResultStr(Cli^.ChResult));
+    AssertEquals('nothing after it is taken for data', '', Receive(Cli, nil, 1, 200));
+  finally
+    Srv2.Free;
+  end;
 end;
 
 procedure TTestChnTcp.TestRfc2217ServerChangesTheRate;

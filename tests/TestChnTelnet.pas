@@ -20,6 +20,7 @@ type
     procedure TestOptionRequests;
     procedure TestSubnegotiationWithDoubledIac;
     procedure TestOverlongSubnegotiationIsCut;
+    procedure TestUnclosedSubnegotiationIsBroken;
     procedure TestEscapeStopsAtCapacity;
     procedure TestComPortCommands;
     procedure TestNegotiationPolicy;
@@ -95,7 +96,7 @@ begin
   TelnetFeed(D, $FF);
   TelnetFeed(D, $FA);
   TelnetFeed(D, 44);
-  for I := 1 to 1000 do
+  for I := 1 to TelnetSubLimit - 1 do
     AssertTrue('no event inside', TelnetFeed(D, $41) = teNone);
   TelnetFeed(D, $FF);
   E := TelnetFeed(D, $F0);
@@ -103,6 +104,48 @@ begin
   AssertTrue('flagged as cut', D.SubCut);
   AssertEquals(TelnetMaxSub, D.SubLen);
   AssertTrue('data again', TelnetFeed(D, $42) = teData);
+end;
+
+{ A server that opens IAC SB and never sends IAC SE would swallow every
+  data byte after it: after TelnetSubLimit bytes the decoder says so and
+  the bytes after are data again. }
+procedure TTestChnTelnet.TestUnclosedSubnegotiationIsBroken;
+var
+  D: tTelnetDecoder;
+  I: Integer;
+  E: tTelnetEvent;
+begin
+  TelnetInit(D);
+  AssertTrue(TelnetFeed(D, $FF) = teNone);
+  AssertTrue(TelnetFeed(D, $FA) = teNone);
+  AssertTrue(TelnetFeed(D, 44) = teNone);
+  AssertTrue(TelnetFeed(D, 107) = teNone);      { NOTIFY-MODEMSTATE ... }
+  for I := 2 to TelnetSubLimit - 1 do
+    AssertTrue('no event inside', TelnetFeed(D, $41) = teNone);
+  E := TelnetFeed(D, $41);
+  AssertTrue('the limit is named', E = teSubBroken);
+  AssertTrue('data again', TelnetFeed(D, $42) = teData);
+  { a doubled IAC counts as one byte of the value }
+  TelnetInit(D);
+  TelnetFeed(D, $FF);
+  TelnetFeed(D, $FA);
+  TelnetFeed(D, 44);
+  for I := 1 to TelnetSubLimit - 1 do
+  begin
+    AssertTrue(TelnetFeed(D, $FF) = teNone);
+    AssertTrue(TelnetFeed(D, $FF) = teNone);
+  end;
+  TelnetFeed(D, $FF);
+  AssertTrue('doubled IACs too', TelnetFeed(D, $FF) = teSubBroken);
+  { a subnegotiation closed just below the limit is one }
+  TelnetInit(D);
+  TelnetFeed(D, $FF);
+  TelnetFeed(D, $FA);
+  TelnetFeed(D, 44);
+  for I := 1 to TelnetSubLimit - 1 do
+    TelnetFeed(D, $41);
+  TelnetFeed(D, $FF);
+  AssertTrue(TelnetFeed(D, $F0) = teSub);
 end;
 
 procedure TTestChnTelnet.TestEscapeStopsAtCapacity;

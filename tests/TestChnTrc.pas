@@ -11,7 +11,7 @@ interface
 
 uses
   {$IFDEF UNIX}BaseUnix,{$ENDIF}
-  SysUtils, fpcunit, testregistry, ChnTypes, ChnVirt, ChnLoop, ChnTestLayer,
+  SysUtils, Classes, fpcunit, testregistry, ChnTypes, ChnVirt, ChnLoop, ChnTestLayer,
   ChnDF1, ChnTrc, ChnTrcFormat, TestSupport, TestTempDir;
 
 type
@@ -34,6 +34,9 @@ type
     procedure TestParamRoundTripInStack;
     procedure TestBadParams;
     procedure TestLogFileCannotBeOpened;
+    {$IFDEF UNIX}
+    procedure TestFifoWithoutReaderIsRefused;
+    {$ENDIF}
     procedure TestFileCannotChangeWhileOpen;
     procedure TestTransparentUnderProtocolLayer;
     procedure TestTransparentAsTopLayer;
@@ -58,6 +61,19 @@ type
   end;
 
 implementation
+
+type
+  { ChOpen of a channel on its own thread, so a test sees an open that
+    blocks instead of hanging with it. }
+  TOpenThread = class(TThread)
+    Chn: pChnVirt;
+    procedure Execute; override;
+  end;
+
+procedure TOpenThread.Execute;
+begin
+  Chn^.ChOpen;
+end;
 
 type
   { A broken physical layer (NAM=TLIE, tests only): always has data, fills
@@ -333,6 +349,69 @@ begin
   end;
   AssertFalse(DirectoryExists(Dir + 'nodir'));
 end;
+
+{$IFDEF UNIX}
+{ open(2) of a FIFO for writing waits for a reader: FILE= a FIFO nobody
+  reads blocked ChOpen for ever. It is refused at once; with a reader it
+  is a log like a pipe. }
+procedure TTestChnTrc.TestFifoWithoutReaderIsRefused;
+var
+  Fifo: string;
+  Th: TOpenThread;
+  Deadline: QWord;
+  Rd: cint;
+  Buf: array[0..4095] of Char;
+  N: TSsize;
+  Seen: AnsiString;
+begin
+  Fifo := Dir + 'trace.fifo';
+  AssertEquals('mkfifo', 0, FpMkfifo(Fifo, &600));
+  A := ChnCollection^.ChNewInit('TRC');
+  A^.ChSetParam('FILE=' + Fifo + ' NAM=LOOP PAIR=FIFO END=1');
+  AssertEquals(res_Ok, A^.ChResult);
+  Rd := -1;
+  Th := TOpenThread.Create(True);
+  try
+    Th.Chn := A;
+    Th.Start;
+    Deadline := GetTickCount64 + 2000;
+    while not Th.Finished and (GetTickCount64 < Deadline) do
+      Sleep(10);
+    if not Th.Finished then
+      Rd := FpOpen(Fifo, O_RDONLY or O_NONBLOCK);   { releases the blocked open }
+    Th.WaitFor;
+    AssertTrue('ChOpen returned at once', Rd < 0);
+  finally
+    Th.Free;
+    if Rd >= 0 then
+      FpClose(Rd);
+  end;
+  AssertEquals('refused', res_CannotOpen, A^.ChResult);
+  AssertEquals('names the token', 'FILE=' + Fifo, A^.ChParamError);
+  AssertEquals('the layer below was not opened', CHS_Close, A^.CH_Low^.ChReady);
+  { with a reader it opens, and the log goes there }
+  Rd := FpOpen(Fifo, O_RDONLY or O_NONBLOCK);
+  AssertTrue('reader', Rd >= 0);
+  try
+    A^.ChOpen;
+    AssertEquals(res_Ok, A^.ChResult);
+    A^.ChConnect;
+    B := Stack('LOOP', 'PAIR=FIFO END=2');
+    Seen := '';
+    AssertTrue(Transfer(A, B, [$10, $02], 100, Seen));
+    Deadline := GetTickCount64 + 2000;
+    repeat
+      N := FpRead(Rd, Buf, SizeOf(Buf));
+      if N <= 0 then
+        Sleep(5);
+    until (N > 0) or (GetTickCount64 > Deadline);
+    AssertTrue('the log came through the FIFO', N > 0);
+    AssertTrue(Copy(Buf, 0, N), Pos('tx   2 | TRC', Copy(Buf, 0, N)) > 0);
+  finally
+    FpClose(Rd);
+  end;
+end;
+{$ENDIF}
 
 procedure TTestChnTrc.TestFileCannotChangeWhileOpen;
 var

@@ -130,6 +130,9 @@ begin
   AssertEquals(1 xor Ord('1') xor 2 xor Ord('0') xor Ord('R') xor Ord('D') xor
     Ord('0') xor Ord(',') xor 3, Xor8Block(S[1], Length(S)));
   AssertEquals($5A xor $A5, Xor8Add($5A, $A5));
+  { bits both have cancel ($5A or $A5 would look the same as xor) }
+  AssertEquals($55, Xor8Add($5A, $0F));
+  AssertEquals(0, Xor8Add($3C, $3C));
 end;
 
 procedure TTestChnTypes.TestEveryGeneralResultHasText;

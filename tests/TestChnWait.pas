@@ -34,6 +34,7 @@ type
     procedure TestBytesInARingEndWaitAnyUntilTaken;
     procedure TestHelpersWaitIsNotEndedByOthersHeldInput;
     procedure TestLoopPeerInOtherThreadEndsIdleWait;
+    procedure TestLoopSendInOneThreadEndsTheWaitAtOnce;
     {$IFDEF WINDOWS}
     procedure TestMoreHandlesThanOneWaitTakes;
     {$ENDIF}
@@ -42,6 +43,7 @@ type
     procedure TestRoundRobinReachesLineWithoutIdleWaits;
     procedure TestUnreadChannelDoesNotSpin;
     procedure TestFullRingDoesNotSpin;
+    procedure TestFullRingStaysOutOfTheWait;
     procedure TestWaitAnyWakesOnInput;
     procedure TestThreadsKeepTheirOwnWakeUps;
     procedure TestLoopSendEndsSerialIdleWait;
@@ -312,6 +314,49 @@ begin
   AssertTrue('returned on the byte, not after IDL=1000 (' + IntToStr(Took) + ' ms)', Took < 700);
 end;
 
+{ One thread: LOOP end 1 sends to end 2, then the wait must return at once
+  (the signal gives the waits a budget to reach the reader), not sleep its
+  whole timeout. ChnWaitNew, the wait input held in rings does not end
+  (ChnWaitAny would return at once for that alone). First every earlier
+  budget is used up, so a signal that gave none would show. }
+procedure TTestChnWait.TestLoopSendInOneThreadEndsTheWaitAtOnce;
+var
+  B: Byte;
+  Err: string;
+  I: Integer;
+  Woke: Boolean;
+  T0, Took: QWord;
+  Len: Word;
+  Buf: array[0..15] of Byte;
+begin
+  SetLength(FChn, 2);
+  FChn[0] := OpenStack('LOOP', 'PAIR=WAITONE END=1', Err);
+  AssertNotNull(Err, FChn[0]);
+  FChn[1] := OpenStack('LOOP', 'PAIR=WAITONE END=2', Err);
+  AssertNotNull(Err, FChn[1]);
+  FChn[1]^.ChReceiveBuffer(@Buf, SizeOf(Buf));
+  { a byte nobody reads, and waits until its budget is gone }
+  B := 1;
+  FChn[0]^.ChSend(@B, 1);
+  I := 0;
+  while ChnWaitNew(0) and (I < 10000) do
+    Inc(I);
+  AssertTrue('the budget ends', I < 10000);
+  AssertEquals(CHS_ReceiveReady, FChn[1]^.ChReceiveReady);
+  FChn[1]^.ChReceive(Len);
+  AssertEquals(1, Len);
+  AssertTrue(FChn[1]^.ChReceiveReady <> CHS_ReceiveReady);
+  { now the test: send, then wait in the same thread }
+  B := 2;
+  FChn[0]^.ChSend(@B, 1);
+  T0 := GetTickCount64;
+  Woke := ChnWaitNew(1000);
+  Took := GetTickCount64 - T0;
+  AssertTrue('woken', Woke);
+  AssertTrue('at once, not after the timeout (' + IntToStr(Took) + ' ms)', Took < 300);
+  AssertEquals('the byte is there', CHS_ReceiveReady, FChn[1]^.ChReceiveReady);
+end;
+
 {$IFDEF WINDOWS}
 { One WaitForMultipleObjects takes 64 handles: with 70 sources each wait
   takes a rotating window, so any signalled one is seen within two waits;
@@ -470,6 +515,39 @@ begin
   Cpu := PollFor(FChn, 0, 3, 1500);    { the line's ring is never read }
   WriteLn(Format('info  wait: 4 lines, one with a full ring nobody reads: %.2f %% of a core', [Cpu]));
   AssertTrue(Format('no busy loop: %.1f %% of a core', [Cpu]), Cpu < 15);
+end;
+
+{ A ring filled by polling alone (flow control: the rest stays in the OS,
+  the descriptor stays readable) takes the port out of the OS wait at
+  once: a wait then sleeps its time, with no wake-up for input that
+  cannot be taken. ChnWaitNew, the wait input held in rings does not end
+  (ChnWaitAny returns at once while the full ring holds input). }
+procedure TTestChnWait.TestFullRingStaysOutOfTheWait;
+var
+  B: array[0..199] of Byte;
+  T0, Took: QWord;
+  Wakes, Waits: Integer;
+begin
+  OpenComs(1, 'LRB=16 FLW=RTSCTS IDL=0');
+  FillChar(B, SizeOf(B), $33);
+  FPty[0].MasterWrite(B, SizeOf(B));
+  Sleep(50);
+  AssertEquals('the ring is full', CHS_ReceiveReady, FChn[0]^.ChReceiveReady);
+  ChnWaitNew(0);
+  T0 := GetTickCount64;
+  AssertFalse('nothing it could take', ChnWaitNew(200));
+  Took := GetTickCount64 - T0;
+  AssertTrue('slept its time (' + IntToStr(Took) + ' ms)', Took >= 150);
+  Wakes := 0;
+  Waits := 0;
+  T0 := GetTickCount64;
+  while GetTickCount64 - T0 < 600 do
+  begin
+    Inc(Waits);
+    if ChnWaitNew(100) then
+      Inc(Wakes);
+  end;
+  AssertEquals(Format('no wake-ups in %d waits', [Waits]), 0, Wakes);
 end;
 
 procedure TTestChnWait.TestWaitAnyWakesOnInput;

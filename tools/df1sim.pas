@@ -11,7 +11,8 @@
                         --dev, --listen or a parameter string is needed:
                         df1sim never opens a device nobody named
       --listen=[ADDR:]PORT  serve over TCP instead (NAM=TCP LISTEN=..., raw),
-                        one client at a time, on the loopback interface
+                        one client at a time (a new one takes the line:
+                        KICK=ON), on the loopback interface
                         unless ADDR is given; the first line on standard
                         output is "LISTEN <port>" (PORT 0: a free one)
       --bd=N            baud rate (default 19200), --par=N|E|O (default N);
@@ -191,7 +192,7 @@ begin
     if UsePty then
       Params := Params + Format(' NAM=COM DRV=PTY BD=%d PAR=%s', [Bd, Par])
     else if Listen <> '' then
-      Params := Params + ' NAM=TCP LISTEN=' + Listen
+      Params := Params + ' NAM=TCP KICK=ON LISTEN=' + Listen
     else
       Params := Params + Format(' NAM=COM DEV=%s BD=%d PAR=%s', [Dev, Bd, Par]);
   end
