@@ -387,6 +387,8 @@ begin
   AssertTrue('slave 7 tried a few times: ' + IntToStr(M.Slaves[1].Failures),
     (M.Slaves[1].Failures >= 2) and (M.Slaves[1].Failures <= 4));
   AssertTrue('slave 5 polled all along: ' + IntToStr(Polls), Polls > 50);
+  AssertTrue('the back-off of a slave that stays dead grows: ' + IntToStr(M.Slaves[1].BackoffMs),
+    M.Slaves[1].BackoffMs >= 2 * M.DeadMinMs);
   AssertEquals(Ord(isOnline), Ord(M.Slaves[0].State));
   { slave 7 comes back: it is set up again within the back-off }
   Sim(7).Alive := True;
