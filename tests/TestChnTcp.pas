@@ -910,7 +910,7 @@ begin
   Squat := NoSock;
   Sim := TProcess.Create(nil);
   try
-    Sim.Executable := BinPath('df1sim');
+    BinExecutable(Sim, BinPath('df1sim'));
     Sim.Parameters.AddStrings(['--listen=0', '--quiet', '--timeout=20']);
     Sim.Options := [poUsePipes];
     Sim.Execute;

@@ -80,7 +80,7 @@ begin
   AssertTrue(BinPath('iec101master') + ' missing (make examples)', FileExists(BinPath('iec101master')));
   P := TProcess.Create(nil);
   try
-    P.Executable := BinPath('iec101master');
+    BinExecutable(P, BinPath('iec101master'));
     for I := 0 to High(Args) do
       P.Parameters.Add(Args[I]);
     P.Options := [poUsePipes];

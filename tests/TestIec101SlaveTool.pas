@@ -144,9 +144,9 @@ begin
   AssertEquals(0, Run(['--version'], Output));
   AssertEquals('iec101slave (Chn) 1.0.0' + LineEnding, Output);
   { no arguments: the usage on stderr only, exit 2 }
-  AssertEquals(2, RunExe('/bin/sh', ['-c', BinPath('iec101slave') + ' 2>/dev/null'], 10000, Output));
+  AssertEquals(2, RunExe('/bin/sh', ['-c', BinShellWord('iec101slave') + ' 2>/dev/null'], 10000, Output));
   AssertEquals('nothing on stdout', '', Output);
-  AssertEquals(2, RunExe('/bin/sh', ['-c', BinPath('iec101slave') + ' 2>&1 >/dev/null'], 10000, Output));
+  AssertEquals(2, RunExe('/bin/sh', ['-c', BinShellWord('iec101slave') + ' 2>&1 >/dev/null'], 10000, Output));
   AssertTrue(Output, Pos('Usage: iec101slave', Output) = 1);
   AssertEquals(2, Run(['--bogus', Params], Output));
   AssertEquals('iec101slave: unknown option (--bogus)' + LineEnding, Output);
@@ -224,7 +224,7 @@ begin
     Lst.Add('600 M_IT_NA_1 77');
     Lst.Add('5000 C_SC_NA_1 0');
     Lst.SaveToFile(FDir + '/rtu.txt');
-    P.Executable := BinPath('iec101slave');
+    BinExecutable(P, BinPath('iec101slave'));
     P.Parameters.Add('--json');
     P.Parameters.Add('--points');
     P.Parameters.Add(FDir + '/rtu.txt');

@@ -72,7 +72,7 @@ begin
   FErr := '';
   P := TProcess.Create(nil);
   try
-    P.Executable := BinPath(Prog);
+    BinExecutable(P, BinPath(Prog));
     for A in Args do
       P.Parameters.Add(A);
     P.Options := [poUsePipes];

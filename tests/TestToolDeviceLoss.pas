@@ -51,7 +51,7 @@ begin
   P := TProcess.Create(nil);
   try
     FpFcntl(Pty.Master, F_SETFD, 1);   { FD_CLOEXEC: closing it here hangs up }
-    P.Executable := BinPath(Prog);
+    BinExecutable(P, BinPath(Prog));
     for A in Args do
       P.Parameters.Add(StringReplace(A, '@DEV', Pty.SlavePath, [rfReplaceAll]));
     P.Options := [poUsePipes, poStderrToOutPut];
