@@ -279,7 +279,7 @@ install: units $(addprefix $(BINDIR)/,$(TOOL_PROGRAMS)) man
 	  if [ -f $(UNITDIR)/$$u.o ]; then install -m 644 $(UNITDIR)/$$u.o "$$d/$$l.o"; fi; done; \
 	$(if $(SYNAPSE_DIR),$(SYNAPSE_INSTALL);) \
 	for f in $(wildcard src/*.pas src/*.inc src/*/*.pas src/*/*.inc); do \
-	  install -D -m 644 "$$f" "$$s/$$f"; done; install -m 644 chn.lpk "$$s/"; \
+	  install -D -m 644 "$$f" "$$s/$$f"; done; install -m 644 chn.lpk COPYING COPYING.LGPL "$$s/"; \
 	for p in $(TOOL_PROGRAMS); do install -m 755 $(BINDIR)/$$p "$$b/$$p"; \
 	  if [ -f $(MANDIR)/$$p.1 ]; then mkdir -p "$$m"; install -m 644 $(MANDIR)/$$p.1 "$$m/$$p.1"; fi; done; \
 	echo "installed units in $$d, sources in $$s, tools in $$b, man pages in $$m"

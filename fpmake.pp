@@ -49,8 +49,8 @@ begin
     P.Version := Version;
     P.Description := 'SofCon Chn serial-communication units (DF1, FT 1.2, ICSlink) ' +
       'for Free Pascal: layered channels driven by polling.';
-    { no license is stated for the project yet: the field says so }
-    P.License := 'not stated yet (see README.md)';
+    { as the FPC RTL and packages: COPYING, COPYING.LGPL }
+    P.License := 'LGPL-2.1-or-later with the static linking exception (modified LGPL, as the FPC RTL)';
     P.OSes := AllUnixOSes + AllWindowsOSes;
     P.Dependencies.Add('rtl-extra');   { Sockets, WinSock2 (ChnSock) }
     P.Dependencies.Add('rtl-objpas');  { DateUtils (ChnTrc) }

@@ -51,6 +51,14 @@ done
 if [ -z "$missing" ]; then pass "package: chn.lpk lists every unit of src/ (and src/unix, src/win)"
 else bad "package: chn.lpk misses$missing (make writes it: commit it)"; fi
 
+# the license: stated once in COPYING, the same words in fpmake.pp and chn.lpk
+lic=$(sed -n "s/^ *P\.License := '\(.*\)';/\1/p" fpmake.pp)
+if [ -f COPYING ] && [ -f COPYING.LGPL ] && grep -q "Lesser General Public License" COPYING &&
+   case "$lic" in LGPL-2.1-or-later*) true;; *) false;; esac &&
+   grep -qF "<License Value=\"$lic: COPYING\"/>" chn.lpk; then
+  pass "package: the license is stated (COPYING, COPYING.LGPL) and fpmake.pp and chn.lpk say the same"
+else bad "package: license: COPYING/COPYING.LGPL missing or fpmake.pp ($lic) and chn.lpk differ"; fi
+
 # 2. README programs, each in its own folder outside the tree
 mkdir -p "$TMP/readme"
 awk -v dir="$TMP/readme" '
@@ -159,7 +167,8 @@ D="$TMP/dest"
 MA=$(gcc -print-multiarch 2>/dev/null || dpkg-architecture -qDEB_HOST_MULTIARCH)
 U="$D/usr/lib/$MA/fpc/$($FPC -iV)/units/$($FPC -iTP)-$($FPC -iTO)/chn"
 if make -s install BUILD="$BUILD" DESTDIR="$D" >"$TMP/dinstall.log" 2>&1 && [ -f "$U/chnvirt.ppu" ] &&
-   [ -f "$D/usr/share/chn/src/ChnVirt.pas" ] && [ -f "$D/usr/share/chn/chn.lpk" ]; then
+   [ -f "$D/usr/share/chn/src/ChnVirt.pas" ] && [ -f "$D/usr/share/chn/chn.lpk" ] &&
+   [ -f "$D/usr/share/chn/COPYING" ] && [ -f "$D/usr/share/chn/COPYING.LGPL" ]; then
   p=$(echo $progs | cut -d' ' -f1)
   d="$TMP/destdir"; mkdir -p "$d"; cp "$TMP/readme/$p.pas" "$d/"
   build_run "make install DESTDIR= PREFIX=/usr" "$d" "$p" "$FPC" -v0 -Fu"$U" "$p.pas"

@@ -34,6 +34,7 @@ cat <<'HEAD'
       </SearchPaths>
     </CompilerOptions>
     <Description Value="SofCon Chn serial-communication units (DF1, FT 1.2, ICSlink): layered channels driven by polling."/>
+    <License Value="LGPL-2.1-or-later with the static linking exception (modified LGPL, as the FPC RTL): COPYING"/>
     <Version Major="1"/>
 HEAD
 echo "    <Files Count=\"$n\">"
