@@ -38,8 +38,8 @@
               reported back, ignored
 
   Receive buffer: every poll moves what the OS holds into the LRB ring (at
-  most MaxPullPerPoll bytes, so a sender that never pauses cannot keep one
-  poll reading until the ring overflows). When
+  most MaxPullPerPoll bytes, in reads of at most that, so a sender that
+  never pauses cannot fill the ring in one poll and overflow it). When
   the ring is full, with FLW=NONE further bytes are lost as on the original
   interrupt-driven UART, counted, and the next ChReceive answers
   res_Overrun (the kept bytes are delivered); with flow control reading
@@ -614,6 +614,10 @@ begin
   while (RingRoom(CH_Ring) > 0) and (Pulled < MaxPullPerPoll) do
   begin
     Room := RingTailSpan(CH_Ring, Tail);
+    { the bound holds for one read too: a socket with megabytes queued, or
+      a pty fed from the other CPU, fills all the room a read is given }
+    if Room > MaxPullPerPoll - Pulled then
+      Room := MaxPullPerPoll - Pulled;
     R := CH_Port.Read(Tail^, Room, Got);
     if R <> res_Ok then
     begin

@@ -7,8 +7,10 @@
                  refuse Configure (RefuseConfig, FailKey PAR), kernel RS-485
                  (KernelOk False) and fail reads (ReadFault).
     TEndlessPort DRV=ENDLESS: input that never pauses - every Read fills
-                 the buffer (4 KiB at most, as a tty) with the next bytes of
-                 EndlessPattern; writes vanish.
+                 the buffer (at most MaxRead bytes, 4 KiB as a tty; 0: all
+                 it is given, as a socket with a full buffer or a pty whose
+                 writer keeps feeding it from the other CPU) with the next
+                 bytes of EndlessPattern; writes vanish.
 
   Test units register the one they use (RegisterPortDriver). }
 unit FakePort;
@@ -51,6 +53,7 @@ type
   TEndlessPort = class(TChnPort)
   public
     class var Produced: Int64;       { bytes handed out since Open }
+    class var MaxRead: LongInt;      { bytes a Read gives at most, 0: no bound }
     function Open(const Path: tWordString): tChResult; override;
     function Read(var Buf; Size: LongInt; out Got: LongInt): tChResult; override;
     function WaitInput(Ms: LongInt): Boolean; override;
@@ -198,10 +201,10 @@ var
   I: LongInt;
   P: PByte;
 begin
-  { a tty hands out at most 4 KiB per read; there is always more }
+  { there is always more; a tty hands out 4 KiB a read (MaxRead) }
   Got := Size;
-  if Got > 4096 then
-    Got := 4096;
+  if (MaxRead > 0) and (Got > MaxRead) then
+    Got := MaxRead;
   P := @Buf;
   for I := 0 to Got - 1 do
     P[I] := EndlessPattern(Produced + I);
