@@ -945,6 +945,8 @@ begin
   if CH_State <> CHS_Connect then
     Exit(CHS_RecInactive);
   ComReopen;
+  if (CH_Port <> nil) and (CH_Fault = res_Ok) then
+    CH_Port.PollTimers;
   if CH_RCtrl <> CHS_ReceiveReady then
   begin
     ComPumpTx;                    { a long message keeps moving meanwhile }

@@ -141,6 +141,11 @@ type
       caller the shared wait watches need not read again to find EAGAIN.
       False (the default) for a port that buffers or decodes internally. }
     function ShortReadDrains: Boolean; virtual;
+    { Duties on a timer that must not wait for input (a server closing a
+      client silent for too long): called at every receive poll, which the
+      program-wide wait does not turn into a Read while nothing arrives.
+      Default: nothing. }
+    procedure PollTimers; virtual;
     { The OS handle (file descriptor, HANDLE), for tests and special calls;
       -1 when closed or when there is none (the default). }
     function OsHandle: PtrInt; virtual;
@@ -298,6 +303,10 @@ end;
 function TChnPort.ShortReadDrains: Boolean;
 begin
   Result := False;
+end;
+
+procedure TChnPort.PollTimers;
+begin
 end;
 
 procedure RegisterPortDriver(const Name: ShortString; Cls: TChnPortClass);

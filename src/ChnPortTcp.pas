@@ -59,6 +59,12 @@ type
     FEarlyLost: LongWord;           { data beyond EarlyCap, dropped }
     FBroken: Boolean;               { the peer broke the Telnet stream }
     FKicked, FIdleDropped: LongWord;
+    { server on Linux: the program-wide wait watches the listening socket
+      and the client served through this one descriptor (SockGroupCreate) }
+    FGroup: tSock;
+    FGroupSock: tSock;              { the client socket in FGroup }
+    procedure GroupTakeClient;
+    procedure GroupLoseClient;
     function SockResult(E: tSockErr): tChResult;
     function TryNextAddr: tSockErr;
     function Resolve(Passive: Boolean): tSockErr;
@@ -111,7 +117,12 @@ type
     function GetLines(out Lines: tPortLines): tChResult; override;
     function OsOverruns(out N: LongWord): tChResult; override;
     function OsHandle: PtrInt; override;
-    { the program-wide wait (ChnWait): a client's socket on Unix }
+    { server: IdleMs is checked at every poll, input or not }
+    procedure PollTimers; override;
+    { the program-wide wait (ChnWait): a client's socket on Unix; a
+      server's listening and client socket together on Linux (one epoll
+      descriptor), so a connection ends the wait too; Windows: a client's
+      socket event, a server not at all (it waits on its own sockets) }
     function WaitSource(out Kind: tChnWaitKind; out Os: PtrInt;
       out Rearm: tChnWaitRearm; out Data: Pointer): Boolean; override;
     { the local port (a server on port 0 gets a free one) }
@@ -140,6 +151,8 @@ begin
   inherited Create;
   FSock := NoSock;
   FListen := NoSock;
+  FGroup := NoSock;
+  FGroupSock := NoSock;
   ConnectMs := 3000;
   SetLength(FOut, OutCap + CtlReserve);
 end;
@@ -299,6 +312,8 @@ begin
     Exit;
   end;
   Started;
+  FGroup := SockGroupCreate;        { NoSock where there is none: see WaitSource }
+  SockGroupAdd(FGroup, FListen);
   Result := res_Ok;
 end;
 
@@ -314,6 +329,7 @@ begin
   FOutLen := 0;
   FLastInput := GetTickCount64;
   TelnetInit(FDec);
+  GroupTakeClient;
 end;
 
 { Server, line held by a client just read from (so one that left is
@@ -331,9 +347,16 @@ begin
       FSock := S;
       FLastInput := GetTickCount64;
       TelnetInit(FDec);
+      GroupTakeClient;
     end
     else
       SockClose(S);
+end;
+
+procedure TChnPortTcp.PollTimers;
+begin
+  if FOpen and (FListen <> NoSock) then
+    DropIdleClient;
 end;
 
 { With IdleMs, a client that sent nothing for that long is closed. }
@@ -349,8 +372,28 @@ end;
 
 procedure TChnPortTcp.DropClient;
 begin
+  GroupLoseClient;                  { out of the group before its number is free }
   SockClose(FSock);
   FOutLen := 0;
+end;
+
+{ FGroup holds FListen and the client served now: GroupTakeClient when a
+  client is taken, GroupLoseClient before one is closed. }
+procedure TChnPortTcp.GroupTakeClient;
+begin
+  GroupLoseClient;
+  if (FGroup <> NoSock) and (FSock <> NoSock) then
+  begin
+    SockGroupAdd(FGroup, FSock);
+    FGroupSock := FSock;
+  end;
+end;
+
+procedure TChnPortTcp.GroupLoseClient;
+begin
+  if FGroupSock <> NoSock then
+    SockGroupRemove(FGroup, FGroupSock);
+  FGroupSock := NoSock;
 end;
 
 { Server: read from the client served. One that left is closed and the
@@ -370,7 +413,7 @@ begin
     Result := Take(Buf, Size, Got, False);
     if Result <> res_DeviceLost then
       Break;
-    SockClose(FSock);               { the client left: wait for the next }
+    DropClient;                     { the client left: wait for the next }
     Result := res_Ok;
     Inc(Left);
   until Left >= MaxLeftPerRead;
@@ -738,7 +781,7 @@ begin
     end;
   if (Result = res_DeviceLost) and (FListen <> NoSock) then
   begin
-    SockClose(FSock);
+    DropClient;
     Done := Len;
     Result := res_Ok;
   end;
@@ -851,10 +894,20 @@ begin
   Result := FOpen and (FListen = NoSock) and (FSock <> NoSock) and (FEvent <> 0);
   {$ELSE}
   Kind := wkDescriptor;
-  Os := FSock;
   Rearm := nil;
   Data := nil;
-  Result := FOpen and (FListen = NoSock) and (FSock <> NoSock);
+  if FListen <> NoSock then
+  begin
+    { a server: the group of its listening socket and its client, so a
+      connection, a client's input and its leaving all end the wait }
+    Os := FGroup;
+    Result := FOpen and (FGroup <> NoSock);
+  end
+  else
+  begin
+    Os := FSock;
+    Result := FOpen and (FSock <> NoSock);
+  end;
   {$ENDIF}
 end;
 
@@ -877,8 +930,10 @@ procedure TChnPortTcp.Close;
 begin
   if FOutLen > 0 then
     FlushOut;                       { a last command (purge ...) still leaves }
+  GroupLoseClient;
   SockClose(FSock);
   SockClose(FListen);
+  SockClose(FGroup);
   SockEventFree(FEvent);
   FConnecting := False;
   FOpen := False;

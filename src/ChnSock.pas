@@ -79,13 +79,21 @@ function  SockEventCreate(S: tSock): PtrInt;
   after the owner has read, so no signal is lost). }
 procedure SockEventRearm(S: tSock; Ev: PtrInt);
 procedure SockEventFree(var Ev: PtrInt);
+{ A descriptor the program-wide wait can watch for several sockets at once
+  (a server's listening socket and the client it serves, whose descriptor
+  changes with each client): on Linux an epoll descriptor, readable while
+  one of its sockets is; NoSock on other systems. Remove a socket before
+  closing it (a new socket may get its number). }
+function  SockGroupCreate: tSock;
+procedure SockGroupAdd(G, S: tSock);
+procedure SockGroupRemove(G, S: tSock);
 { The OS error code of the last failing call, for messages. }
 function  SockLastOsError: LongInt;
 
 implementation
 
 uses
-  {$IFDEF WINDOWS}WinSock2,{$ELSE}BaseUnix, Unix, ChnUnix,{$ENDIF} Sockets, SysUtils, uString;
+  {$IFDEF WINDOWS}WinSock2,{$ELSE}BaseUnix, Unix, {$IFDEF LINUX}Linux, {$ENDIF}ChnUnix,{$ENDIF} Sockets, SysUtils, uString;
 
 const
   AI_PASSIVE = 1;

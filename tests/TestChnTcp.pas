@@ -10,7 +10,7 @@ unit TestChnTcp;
 interface
 
 uses
-  SysUtils, Classes, fpcunit, testregistry, ChnTypes, ChnVirt, {$IFDEF LINUX}BaseUnix, Linux,{$ENDIF} ChnPort, ChnPortTcp, ChnTcp, ChnLoop, ChnSock, Sockets,
+  SysUtils, Classes, fpcunit, testregistry, ChnTypes, ChnVirt, {$IFDEF LINUX}BaseUnix, Linux,{$ENDIF} ChnPort, ChnPortTcp, ChnTcp, ChnLoop, ChnSock, ChnWait, Sockets,
   Process, TestSupport, BinSupport;
 
 type
@@ -52,6 +52,7 @@ type
     procedure TestRfc2217UnclosedSubnegotiationIsNamed;
     procedure TestClientIsInTheSharedWait;
     {$IFDEF LINUX}
+    procedure TestServerIsInTheSharedWait;
     procedure TestIdlePollingLoopCpu;
     procedure TestNoDelayAndKeepAlive;
     {$ENDIF}
@@ -88,6 +89,44 @@ type
   end;
 
 implementation
+
+function RawConnect(Port: Word; Ms: Integer): tSock; forward;
+
+type
+  { after DelayMs: connect to Port and send Text (Sock is then that
+    connection), or - with Sock set - send Text on it, or close it when
+    Text is '' }
+  TRawLater = class(TThread)
+    Port: Word;
+    Sock: tSock;
+    Text: AnsiString;
+    DelayMs: Integer;
+    procedure Execute; override;
+  end;
+
+procedure TRawLater.Execute;
+var
+  Done: LongInt;
+begin
+  Sleep(DelayMs);
+  if Sock = NoSock then
+    Sock := RawConnect(Port, 2000);
+  if Text = '' then
+    SockClose(Sock)
+  else if Sock <> NoSock then
+    SockSend(Sock, Text[1], Length(Text), Done);
+end;
+
+{ A TRawLater, started. }
+function RawLater(Port: Word; Sock: tSock; const Text: AnsiString): TRawLater;
+begin
+  Result := TRawLater.Create(True);
+  Result.Port := Port;
+  Result.Sock := Sock;
+  Result.Text := Text;
+  Result.DelayMs := 100;
+  Result.Start;
+end;
 
 procedure TSendLater.Execute;
 var
@@ -1227,6 +1266,90 @@ begin
     Dispose(L2, Done);
   end;
 end;
+
+{$IFDEF LINUX}
+{ A server's listening socket and its client are one source of the
+  program-wide wait: ChnWaitAny ends at a connection, at the client's input
+  and at its leaving, each while blocked - and sleeps its time when there is
+  nothing, also after a second client was turned away and after the first
+  one left (neither leaves a descriptor that wakes it for nothing). }
+procedure TTestChnTcp.TestServerIsInTheSharedWait;
+
+  { ChnWaitAny(Ms): whether it ended early, and how long it took }
+  function WaitTook(Ms: Integer; out Took: QWord): Boolean;
+  var
+    T0: QWord;
+  begin
+    T0 := GetTickCount64;
+    Result := ChnWaitAny(Ms);
+    Took := GetTickCount64 - T0;
+  end;
+
+  procedure AssertSleeps(const What: string);
+  var
+    Took: QWord;
+  begin
+    AssertFalse(What + ': nothing ends the wait', WaitTook(300, Took));
+    AssertTrue(Format('%s: the wait slept its 300 ms (%d ms)', [What, Took]), Took >= 250);
+  end;
+
+  procedure AssertWakes(const What: string; L: TRawLater);
+  var
+    Took: QWord;
+    Woke: Boolean;
+  begin
+    Woke := WaitTook(3000, Took);
+    L.WaitFor;
+    AssertTrue(Format('%s ends the blocked wait (%d ms, not 3000)', [What, Took]),
+      Woke and (Took < 1500));
+  end;
+
+var
+  Port: Word;
+  L: TRawLater;
+  A, B: tSock;
+  Deadline: QWord;
+begin
+  Port := OpenServer('0');
+  A := NoSock;
+  B := NoSock;
+  L := nil;
+  try
+    AssertSleeps('no client');
+    L := RawLater(Port, NoSock, 'x');
+    AssertWakes('a connection with a byte', L);
+    A := L.Sock;
+    FreeAndNil(L);
+    AssertTrue('connected', A <> NoSock);
+    AssertEquals('x', Receive(Srv, nil, 1, 2000));
+    AssertTrue('the server has its client', pChnTcp(Srv)^.ChHasClient);
+    AssertSleeps('a silent client');
+    L := RawLater(Port, NoSock, 'z');
+    AssertWakes('a second connection', L);
+    B := L.Sock;
+    FreeAndNil(L);
+    AssertTrue('turned away', ClosedByServer(B, Srv, 2000));
+    AssertSleeps('after a client was turned away');
+    L := RawLater(Port, A, 'y');
+    AssertWakes('the client''s byte', L);
+    FreeAndNil(L);
+    AssertEquals('y', Receive(Srv, nil, 1, 2000));
+    L := RawLater(Port, A, '');
+    AssertWakes('the client leaving', L);
+    A := NoSock;                     { closed by the thread }
+    FreeAndNil(L);
+    Deadline := GetTickCount64 + 2000;
+    while pChnTcp(Srv)^.ChHasClient and (GetTickCount64 < Deadline) do
+      Srv^.ChReceiveReady;
+    AssertFalse('the server let the client go', pChnTcp(Srv)^.ChHasClient);
+    AssertSleeps('after the client left');
+  finally
+    L.Free;
+    SockClose(A);
+    SockClose(B);
+  end;
+end;
+{$ENDIF}
 
 initialization
   RegisterTest(TTestChnTcp);
