@@ -950,7 +950,8 @@ begin
   if CH_RCtrl <> CHS_ReceiveReady then
   begin
     ComPumpTx;                    { a long message keeps moving meanwhile }
-    Waited := (CH_Idle > 0) and (CH_Ring.Count = 0) and ChnWaitWatching(CH_Wait);
+    Waited := (CH_Idle > 0) and (CH_Ring.Count = 0) and ChnWaitWatching(CH_Wait) and
+      not CH_Port.HoldsInput;
     if Waited then
     begin
       { the shared wait watches this port: input that came would end the

@@ -146,6 +146,12 @@ type
       program-wide wait does not turn into a Read while nothing arrives.
       Default: nothing. }
     procedure PollTimers; virtual;
+    { True while the driver keeps input aside that its next Read returns
+      but the OS no longer shows (so the wait would not end for it):
+      tChnCom then reads without waiting. The driver reports such input to
+      the program-wide wait itself (ChnWaitHeld), so ChnWaitAny ends at
+      once. Default False. }
+    function HoldsInput: Boolean; virtual;
     { The OS handle (file descriptor, HANDLE), for tests and special calls;
       -1 when closed or when there is none (the default). }
     function OsHandle: PtrInt; virtual;
@@ -307,6 +313,11 @@ end;
 
 procedure TChnPort.PollTimers;
 begin
+end;
+
+function TChnPort.HoldsInput: Boolean;
+begin
+  Result := False;
 end;
 
 procedure RegisterPortDriver(const Name: ShortString; Cls: TChnPortClass);

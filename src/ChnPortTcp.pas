@@ -63,6 +63,8 @@ type
       and the client served through this one descriptor (SockGroupCreate) }
     FGroup: tSock;
     FGroupSock: tSock;              { the client socket in FGroup }
+    FHeld: Boolean;                 { FEarly counted in ChnWaitHeld }
+    procedure NoteEarly;
     procedure GroupTakeClient;
     procedure GroupLoseClient;
     function SockResult(E: tSockErr): tChResult;
@@ -119,6 +121,8 @@ type
     function OsHandle: PtrInt; override;
     { server: IdleMs is checked at every poll, input or not }
     procedure PollTimers; override;
+    { data kept while negotiating, which the socket no longer shows }
+    function HoldsInput: Boolean; override;
     { the program-wide wait (ChnWait): a client's socket on Unix; a
       server's listening and client socket together on Linux (one epoll
       descriptor), so a connection ends the wait too; Windows: a client's
@@ -187,6 +191,7 @@ begin
   FOutLen := 0;
   FEarlyLen := 0;
   FEarlyPos := 0;
+  NoteEarly;
   FBad := '';
   FModem := 0;
   FLineOverruns := 0;
@@ -351,6 +356,19 @@ begin
     end
     else
       SockClose(S);
+end;
+
+{ Data kept aside (while RFC 2217 is negotiated, by Configure or Write)
+  is input the socket no longer shows: held, so ChnWaitAny ends at once
+  and tChnCom reads it without waiting. }
+procedure TChnPortTcp.NoteEarly;
+begin
+  ChnWaitHeld(FHeld, FEarlyPos < FEarlyLen);
+end;
+
+function TChnPortTcp.HoldsInput: Boolean;
+begin
+  Result := FEarlyPos < FEarlyLen;
 end;
 
 procedure TChnPortTcp.PollTimers;
@@ -625,6 +643,8 @@ begin
           Break;
         end;
     end;
+  if Keep then
+    NoteEarly;
   Result := FlushOut;
 end;
 
@@ -700,6 +720,7 @@ begin
       FEarlyLen := 0;
       SetLength(FEarly, 0);
     end;
+    NoteEarly;
     Exit(res_Ok);
   end;
   if FBroken then
@@ -813,6 +834,7 @@ begin
   begin
     FEarlyLen := 0;
     FEarlyPos := 0;
+    NoteEarly;
     Rounds := 0;
     repeat
       Result := Take(Scratch, SizeOf(Scratch), Got, False);
@@ -935,6 +957,9 @@ begin
   SockClose(FListen);
   SockClose(FGroup);
   SockEventFree(FEvent);
+  FEarlyLen := 0;
+  FEarlyPos := 0;
+  NoteEarly;
   FConnecting := False;
   FOpen := False;
 end;

@@ -50,6 +50,7 @@ type
     procedure TestRfc2217DataNotifyAndPurgeOnTheWire;
     procedure TestRfc2217FloodWhileNegotiatingIsCapped;
     procedure TestRfc2217UnclosedSubnegotiationIsNamed;
+    procedure TestRfc2217DataKeptWhileNegotiatingEndsTheWait;
     procedure TestClientIsInTheSharedWait;
     {$IFDEF LINUX}
     procedure TestServerIsInTheSharedWait;
@@ -1005,8 +1006,7 @@ begin
     AssertEquals(res_Ok, OpenClient(Format('HOST=127.0.0.1 PORT=%d RFC2217=ON CTO=5000', [Srv2.Port])));
     Grew := GetFPCHeapStatus.CurrHeapUsed - Before;
     AssertTrue(Format('memory grew by %d bytes for %d pushed', [Grew, FloodLen]), Grew < 4 * Cap);
-    { what was kept is read with the next input from the socket (the
-      shared wait watches the socket, not the port's store) }
+    { what was kept, then a byte sent after it }
     Srv2.Send('x');
     Got := Receive(Cli, nil, Cap + 1, 3000);
     AssertEquals('the first bytes are kept, then the new one', Cap + 1, Length(Got));
@@ -1015,6 +1015,41 @@ begin
     Mark := Length(Srv2.Seen);
     SendText(Cli, 'after');
     AssertEquals('the line works', 'after', SeenAfter(Srv2, Mark, 5));
+  finally
+    Srv2.Free;
+  end;
+end;
+
+{ Data the server sent before its DO COM-PORT-OPTION is kept by the port
+  while it negotiates; the socket then shows nothing, so the wait used to
+  sleep on it until the next byte came. Now it is held input: ChnWaitAny
+  ends at once, a poll with IDL= takes it without waiting, and once taken
+  the wait sleeps again. }
+procedure TTestChnTcp.TestRfc2217DataKeptWhileNegotiatingEndsTheWait;
+const
+  Cap = 65536;
+var
+  Srv2: TScriptServer;
+  Got: string;
+  T0, Took: QWord;
+  Woke: Boolean;
+begin
+  Srv2 := TScriptServer.Create(smFlood);
+  try
+    AssertEquals(res_Ok, OpenClient(Format('HOST=127.0.0.1 PORT=%d RFC2217=ON CTO=5000 IDL=50', [Srv2.Port])));
+    T0 := GetTickCount64;
+    Woke := ChnWaitAny(2000);
+    Took := GetTickCount64 - T0;
+    AssertTrue(Format('the kept data ends the wait at once (%d ms)', [Took]), Woke and (Took < 500));
+    Got := Receive(Cli, nil, Cap, 3000);
+    AssertEquals('all of it, no new byte needed', Cap, Length(Got));
+    AssertTrue('unchanged', Got = Copy(FloodData, 1, Cap));
+    T0 := GetTickCount64;
+    Woke := ChnWaitAny(300);
+    Took := GetTickCount64 - T0;
+    AssertFalse('taken: nothing is held any more', Woke);
+    AssertTrue(Format('the wait slept its 300 ms (%d ms)', [Took]), Took >= 250);
+    AssertEquals('no byte held anywhere', 0, ChnWaitHeldCount);
   finally
     Srv2.Free;
   end;
