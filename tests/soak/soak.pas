@@ -67,6 +67,7 @@ type
     RssStart, RssEnd, FdStart, FdEnd: LongInt;        { master }
     PRssStart, PRssEnd, PFdStart, PFdEnd: LongInt;    { peer }
     Note: string;
+    Faults: string;         { what NAM=NOISE did to whole frames }
   end;
 
 const
@@ -307,7 +308,7 @@ begin
     '%d bad, %d stale; RSS %d->%d KiB, fds %d->%d; peer RSS %d->%d KiB, fds %d->%d; %.1f s, SEED=%d',
     [Name, St.Messages, St.Retries, St.Timeouts, St.Losses, St.Dups, St.Bad, St.Stale,
      St.RssStart, St.RssEnd, St.FdStart, St.FdEnd, St.PRssStart, St.PRssEnd,
-     St.PFdStart, St.PFdEnd, Ms / 1000, ASeed]);
+     St.PFdStart, St.PFdEnd, Ms / 1000, ASeed]) + St.Faults;
   Inc(Ran);
   if BadAllowed and (St.Dups + St.Bad > 0) and (Why = '') then
     Line := Line + ' (BCC let damage through: reported, not failed)'
@@ -321,6 +322,29 @@ begin
     Inc(Failed);
   end;
   Flush(Output);
+end;
+
+{ The frame faults NAM=NOISE made on the line of Chn, for the report; a
+  fault the scenario asks for that never happened is a note (the scenario
+  then proves nothing). }
+procedure NoteFrameFaults(var St: TStats; Chn: pChnVirt; const Noise: TNoise);
+var
+  L: pChnVirt;
+  N: pChnNoise;
+begin
+  L := Chn;
+  while (L <> nil) and (L^.CH_NumName <> ChNumName(ChnNoise.cName)) do
+    L := L^.CH_Low;
+  if L = nil then
+    Exit;
+  N := pChnNoise(L);
+  if (N^.CH_LosT = 0) and (N^.CH_StlT = 0) and (N^.CH_RorT = 0) then
+    Exit;
+  St.Faults := Format(' line: %d frames lost, %d stalls, %d reordered;',
+    [N^.CH_ChunksLost, N^.CH_Stalls, N^.CH_Reordered]);
+  if ((N^.CH_LosT > 0) and (N^.CH_ChunksLost = 0)) or ((N^.CH_StlT > 0) and (N^.CH_Stalls = 0)) or
+     ((N^.CH_RorT > 0) and (N^.CH_Reordered = 0)) then
+    St.Note := St.Note + ' the line never made the fault asked for (' + Noise.Params + ');';
 end;
 
 { ------------------------------------------------------------- DF1 master }
@@ -938,6 +962,7 @@ begin
       Inc(St.Losses);
     Inc(St.Retries, Link.Repeats);
     TakeEnd(St, Peer.Proc.ProcessID);
+    NoteFrameFaults(St, Chn, Noise);
     Dispose(Chn, Done);
   end;
   PeerStop(Peer);
@@ -1084,6 +1109,7 @@ begin
         tell); one per link loss of its sender is reported, not failed }
       St.DupsAfterReset := Min(BDups, A.LinkLost) + Min(P.Dups, BLinkLost);
     end;
+    NoteFrameFaults(St, Chn, Noise);
     Dispose(Chn, Done);
   end;
   PeerStop(Peer);
