@@ -171,6 +171,17 @@ elif [ -z "$FILTER" ] || [[ "packaging" == *"${FILTER,,}"* ]]; then
   report_lines < <(BUILD=$BUILD FPC=$FPC bash tests/packaging.sh 2>&1)
 fi
 
+# the mutant list still fits the code: every record's line is found (a
+# refactor that moves a line shows here, not only in the slow make mutate)
+if [ -z "$FILTER" ] || [[ "mutants" == *"${FILTER,,}"* ]]; then
+  if out=$(bash tests/mutants/mutate.sh check tests/mutants/mutants.txt 2>&1); then
+    pass "mutants: every record of tests/mutants/mutants.txt finds its line (make mutate-check)"
+  else
+    fail "mutants: records that no longer find their line (make mutate-check):"
+    echo "$out" | grep -v '^ok ' | tail -n 15 | sed 's/^/    /'
+  fi
+fi
+
 # a T= filter that selects nothing is a mistake, not a pass (the heap
 # check always runs, so it alone means nothing was selected)
 if [ -n "$FILTER" ] && [ "$passed" -le 1 ] && [ "$failed" = 0 ] && [ "$skipped" = 0 ]; then
