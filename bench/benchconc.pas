@@ -18,7 +18,7 @@ program benchconc;
 {$MODE OBJFPC}{$H+}
 
 uses
-  Classes, SysUtils, BaseUnix, Unix, Process;
+  Classes, SysUtils, BaseUnix, Unix, Process, ChildLine;
 
 type
   tSims = array of TProcess;
@@ -35,8 +35,6 @@ end;
 function StartSim(out Pty: string): TProcess;
 var
   Line: string;
-  C: Char;
-  Deadline: QWord;
 begin
   Pty := '';
   Result := TProcess.Create(nil);
@@ -45,19 +43,7 @@ begin
   Result.Parameters.Add('--quiet');
   Result.Options := [poUsePipes];
   Result.Execute;
-  Line := '';
-  Deadline := GetTickCount64 + 3000;
-  repeat
-    if Result.Output.NumBytesAvailable > 0 then
-    begin
-      Result.Output.Read(C, 1);
-      if C = #10 then
-        Break;
-      Line := Line + C;
-    end
-    else
-      Sleep(2);          { the bench's own start-up, not a library wait }
-  until GetTickCount64 > Deadline;
+  Line := ReadFirstLine(Result, 3000);
   if Copy(Line, 1, 4) = 'PTY ' then
     Pty := Copy(Line, 5, 255);
 end;

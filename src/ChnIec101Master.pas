@@ -25,7 +25,8 @@
   result, nothing sent) and starts it; IecMasterStep, called from the
   program's poll loop (with ChnWaitAny between steps), runs the line and
   ends the command on its confirmation: res_Ok (positive ACT_CON; also
-  ACT_TERM for interrogations; the answer with COT 5 for a read),
+  ACT_TERM after it for interrogations - one before it is the last
+  command's; the answer with COT 5 for a read),
   res_IecNegative (negative ACT_CON), res_IecUnknownType, ..Cot, ..Ca,
   ..Ioa (COT 44..47), res_Timeout (no confirmation in CommandMs, or the
   slave died), res_IecNoSlave; Cmd.Err names the command and the slave.
@@ -507,7 +508,11 @@ begin
       else if M.Cmd.Phase = cpConfirm then
         StageConfirmed(M);
     Cot_ActTerm:
-      if H.Negative then
+      { before this command's ACT_CON a termination is the last one's (it
+        follows its confirmation in the slave's queue): not an answer }
+      if M.Cmd.Phase <> cpTerm then
+        Exit
+      else if H.Negative then
         Finish(M, res_IecNegative, 'negative ACT_TERM')
       else
         Finish(M, res_Ok, '');

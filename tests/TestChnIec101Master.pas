@@ -38,6 +38,7 @@ type
     procedure TestInterrogationGetsEveryObjectOfItsSlave;
     procedure TestCommandsAreConfirmed;
     procedure TestSelectBeforeOperate;
+    procedure TestTerminationOfTheLastCommandConfirmsNotTheNext;
     procedure TestSystemCommands;
     procedure TestClockSyncWithDelayAcquisition;
     procedure TestNegativeAndUnknownConfirmations;
@@ -269,6 +270,24 @@ begin
   AssertTrue(M.Cmd.Err, Pos('C_SC_NA_1 IOA 77 to slave 5: the slave does not know IOA 77', M.Cmd.Err) > 0);
 end;
 
+{ A command ends on its ACT_CON; its ACT_TERM comes later, behind it in the
+  slave's class 1 queue. The same command sent again at once must not take
+  that termination for its own confirmation: here the slave refuses it. }
+procedure TTestChnIec101Master.TestTerminationOfTheLastCommandConfirmsNotTheNext;
+var
+  O: tIecObject;
+begin
+  Open('NAM=FT1_2 MS=ON MAS=MASTER LEN=0 NOD=0 DNO=5', [5]);
+  O := IecObject(5000);
+  O.Int := 1;
+  AssertEquals(M.Cmd.Err, res_Ok, IecCommand(M, 5, 1, C_SC_NA_1, O, False));
+  AssertEquals('the termination still queued', 1, Sim(5).Class1.Count);
+  Sim(5).RefuseNext := True;
+  AssertEquals(res_IecNegative, IecCommand(M, 5, 1, C_SC_NA_1, O, False));
+  AssertTrue(M.Cmd.Err, Pos('negative ACT_CON', M.Cmd.Err) > 0);
+  AssertTrue(Objects.Text, Objects.IndexOf('5 C_SC_NA_1 10 5000 = 1') >= 0);
+end;
+
 procedure TTestChnIec101Master.TestSystemCommands;
 var
   T: tIecTime;
@@ -386,7 +405,10 @@ begin
   { first: 1 + 3 retries of FC 9; then single tries after 200, 400, 800 ms }
   AssertTrue('slave 7 tried a few times: ' + IntToStr(M.Slaves[1].Failures),
     (M.Slaves[1].Failures >= 2) and (M.Slaves[1].Failures <= 4));
-  AssertTrue('slave 5 polled all along: ' + IntToStr(Polls), Polls > 50);
+  { one class 2 poll each CycleMs = 5 ms, less the ~300 ms the dead slave's
+    tries hold the line: ~150 natively, 45 under Wine; a master retrying the
+    dead slave every cycle (160 ms a round) would get about 6 }
+  AssertTrue('slave 5 polled all along: ' + IntToStr(Polls), Polls > 25);
   AssertTrue('the back-off of a slave that stays dead grows: ' + IntToStr(M.Slaves[1].BackoffMs),
     M.Slaves[1].BackoffMs >= 2 * M.DeadMinMs);
   AssertEquals(Ord(isOnline), Ord(M.Slaves[0].State));

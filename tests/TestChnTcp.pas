@@ -11,7 +11,7 @@ interface
 
 uses
   SysUtils, Classes, fpcunit, testregistry, ChnTypes, ChnVirt, {$IFDEF LINUX}BaseUnix, Linux,{$ENDIF} ChnPort, ChnPortTcp, ChnTcp, ChnLoop, ChnSock, ChnWait, Sockets,
-  Process, TestSupport, BinSupport;
+  Process, TestSupport, BinSupport, ChildLine;
 
 type
   TTestChnTcp = class(TTestCase)
@@ -942,8 +942,6 @@ procedure TTestChnTcp.TestDf1simListenOutlivesASquatter;
 var
   Sim: TProcess;
   Line, Output: string;
-  C: Char;
-  Deadline: QWord;
   Port, I, Code: Integer;
   Squat: tSock;
 begin
@@ -954,20 +952,7 @@ begin
     Sim.Parameters.AddStrings(['--listen=0', '--quiet', '--timeout=20']);
     Sim.Options := [poUsePipes];
     Sim.Execute;
-    Line := '';
-    Deadline := GetTickCount64 + 5000;
-    repeat
-      if Sim.Output.NumBytesAvailable > 0 then
-      begin
-        Sim.Output.Read(C, 1);
-        if C = #10 then
-          Break;
-        Line := Line + C;
-      end
-      else
-        Sleep(2);
-    until GetTickCount64 > Deadline;
-    Line := Trim(Line);             { Windows ends it with CR LF }
+    Line := ReadFirstLine(Sim, 5000);
     AssertTrue('df1sim printed its port: ' + Line, (Copy(Line, 1, 7) = 'LISTEN ') and
       TryStrToInt(Copy(Line, 8, 10), Port));
     Squat := RawConnect(Port, 2000);

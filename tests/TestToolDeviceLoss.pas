@@ -124,5 +124,5 @@ end;
 {$ENDIF}
 
 initialization
-  RegisterTest(TTestToolDeviceLoss);
+  {$IFDEF UNIX}RegisterTest(TTestToolDeviceLoss);{$ENDIF}   { ptys }
 end.

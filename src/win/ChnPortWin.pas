@@ -53,6 +53,7 @@ type
     FWaitHas: Boolean;         { it completed with FWaitByte, not yet delivered }
     FWaitErr: DWORD;           { it failed with this error (device lost ...) }
     function Fail(E: DWORD): tChResult;
+    function EscapeLine(Code: DWORD): tChResult;
     procedure ArmWait;
     procedure CollectWait(Block: Boolean);
     function IoResult(Ok: BOOL; out N: DWORD): Boolean;
@@ -539,34 +540,31 @@ begin
   Result := res_Ok;
 end;
 
-function TChnPortWin.SetRts(On: Boolean): tChResult;
-var
-  F: DWORD;
+{ One modem line by its EscapeCommFunction code. The codes are written
+  Windows.SETRTS ...: inside the class, SETRTS names the method SetRts. }
+function TChnPortWin.EscapeLine(Code: DWORD): tChResult;
 begin
   if not FOpen then
     Exit(res_WrongState);
-  if On then
-    F := SETRTS
-  else
-    F := CLRRTS;
-  if not EscapeCommFunction(FH, F) then
+  if not EscapeCommFunction(FH, Code) then
     Exit(Fail(GetLastError));       { RTS under handshake: res_BadSetting }
   Result := res_Ok;
 end;
 
-function TChnPortWin.SetDtr(On: Boolean): tChResult;
-var
-  F: DWORD;
+function TChnPortWin.SetRts(On: Boolean): tChResult;
 begin
-  if not FOpen then
-    Exit(res_WrongState);
   if On then
-    F := SETDTR
+    Result := EscapeLine(Windows.SETRTS)
   else
-    F := CLRDTR;
-  if not EscapeCommFunction(FH, F) then
-    Exit(Fail(GetLastError));
-  Result := res_Ok;
+    Result := EscapeLine(Windows.CLRRTS);
+end;
+
+function TChnPortWin.SetDtr(On: Boolean): tChResult;
+begin
+  if On then
+    Result := EscapeLine(Windows.SETDTR)
+  else
+    Result := EscapeLine(Windows.CLRDTR);
 end;
 
 function TChnPortWin.GetLines(out Lines: tPortLines): tChResult;

@@ -38,7 +38,7 @@ function StartSimPty(const Args: array of string; out Pty: string): TProcess;
 implementation
 
 uses
-  ChnVirt;
+  ChnVirt, ChildLine;
 
 function BinPath(const Name: string): string;
 begin
@@ -128,8 +128,6 @@ end;
 function StartSimPty(const Args: array of string; out Pty: string): TProcess;
 var
   A, Line: string;
-  C: Char;
-  Deadline: QWord;
 begin
   Pty := '';
   Result := TProcess.Create(nil);
@@ -139,19 +137,7 @@ begin
     Result.Parameters.Add(A);
   Result.Options := [poUsePipes];
   Result.Execute;
-  Line := '';
-  Deadline := ChMsTick + 3000;
-  repeat
-    if Result.Output.NumBytesAvailable > 0 then
-    begin
-      Result.Output.Read(C, 1);
-      if C = #10 then
-        Break;
-      Line := Line + C;
-    end
-    else
-      Sleep(2);
-  until ChMsTick > Deadline;
+  Line := ReadFirstLine(Result, 3000);
   if Copy(Line, 1, 4) = 'PTY ' then
     Pty := Copy(Line, 5, 255);
 end;

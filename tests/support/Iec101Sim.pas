@@ -32,6 +32,7 @@ type
     Ca: Word;
     Class1, Class2: TStringList;   { hex ASDUs to send }
     Got: TStringList;              { hex ASDUs received }
+    RefuseNext: Boolean;           { the next command gets a negative ACT_CON }
     constructor Create(const Params: string; IsBalanced: Boolean; LinkMs: LongInt = 40);
     destructor Destroy; override;
     procedure Take(const Hex: string);
@@ -155,6 +156,12 @@ begin
   if (B[4] or (B[5] shl 8)) <> Ca then
   begin
     Send(Mirror(Cot_UnknownCa, True), True);
+    Exit;
+  end;
+  if RefuseNext and (Ti in [C_SC_NA_1..C_BO_NA_1, C_SC_TA_1..C_BO_TA_1]) then
+  begin
+    RefuseNext := False;
+    Send(Mirror(Cot_ActCon, True), True);
     Exit;
   end;
   case Ti of
