@@ -88,7 +88,9 @@ begin
   CliOption(Cli, 'json', #0, '', 'one JSON object per line on standard output, nothing else');
   CliEpilog(Cli, 'Commands:' + LineEnding +
     '  gi                      station interrogation' + LineEnding +
+    '  gi-group N              interrogation of group N (1..16)' + LineEnding +
     '  ci                      counter interrogation (general, read)' + LineEnding +
+    '  ci-group N              counter interrogation of group N (1..4)' + LineEnding +
     '  read IOA                read one information object' + LineEnding +
     '  clock                   clock synchronisation with the PC clock' + LineEnding +
     '  test                    test command' + LineEnding +
@@ -149,6 +151,25 @@ begin
     C.Token := W;
     if W = 'gi' then C.Kind := ckGi
     else if W = 'ci' then C.Kind := ckCi
+    else if (W = 'gi-group') or (W = 'ci-group') then
+    begin
+      V := Next('a group');
+      N := 0;
+      if W = 'gi-group' then
+      begin
+        C.Kind := ckGi;
+        if not StrToNum(V, 1, 16, N) then
+          CliUsageError(Cli, 'gi-group wants a group 1..16', V);
+      end
+      else
+      begin
+        C.Kind := ckCi;
+        if not StrToNum(V, 1, 4, N) then
+          CliUsageError(Cli, 'ci-group wants a counter group 1..4', V);
+      end;
+      C.Int := N;
+      C.Token := W + ' ' + V;
+    end
     else if W = 'clock' then C.Kind := ckClock
     else if W = 'test' then C.Kind := ckTest
     else if W = 'read' then
@@ -298,8 +319,12 @@ begin
   O.Int := C.Int;
   O.Number := C.Num;
   case C.Kind of
-    ckGi: R := IecInterrogation(M, Addr, Ca, Qoi_Station);
-    ckCi: R := IecCounterInterrogation(M, Addr, Ca, Qcc_General);
+    ckGi: R := IecInterrogation(M, Addr, Ca, Qoi_Station + C.Int);      { C.Int: the group, 0 = station }
+    ckCi:
+      if C.Int = 0 then
+        R := IecCounterInterrogation(M, Addr, Ca, Qcc_General)
+      else
+        R := IecCounterInterrogation(M, Addr, Ca, C.Int);
     ckRead: R := IecRead(M, Addr, Ca, C.Ioa);
     ckClock: R := IecClockSync(M, Addr, Ca, IecTimeFromDateTime(Now), Delay);
     ckTest: R := IecTestCommand(M, Addr, Ca);

@@ -57,7 +57,7 @@ begin
     'reads, clock synchronisation and commands from a point table, unbalanced ' +
     '(MS=ON MAS=SLAVE) or balanced (MS=OFF) as the FT 1.2 parameter string says; ' +
     'prints every object received or sent, and its counters on standard error at the end.');
-  CliOption(Cli, 'points', #0, 'FILE', 'point table, one "IOA TYPE VALUE [QUALITY]" per line ' +
+  CliOption(Cli, 'points', #0, 'FILE', 'point table, one "IOA TYPE VALUE [QUALITY] [GROUP=N]" per line ' +
     '(default: the points of lib60870''s cs101_slave example and the single command point 5000)');
   CliOption(Cli, 'seconds', #0, 'N', 'stop after N seconds (default: at SIGINT or SIGTERM)');
   CliOption(Cli, 'ca', #0, 'N', 'own common address (default 1)');

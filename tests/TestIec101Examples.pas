@@ -27,6 +27,7 @@ type
   published
     procedure TestUsageAndBadArguments;
     procedure TestInterrogationAndCommandAsJson;
+    procedure TestGroupInterrogations;
     procedure TestReadableLinesAndSelect;
     procedure TestNegativeAndUnknownAnswers;
     procedure TestSlaveThatDoesNotAnswer;
@@ -126,6 +127,15 @@ begin
   AssertEquals(2, Run([MasterParams, 'dc', '5000=3'], False));
   AssertEquals('iec101master: dc wants IOA=1|2 (1 off, 2 on) (dc 5000=3)' + LineEnding, FErr);
   FErr := '';
+  AssertEquals(2, Run([MasterParams, 'gi', 'gi-group', '17'], False));
+  AssertEquals('iec101master: gi-group wants a group 1..16 (17)' + LineEnding, FErr);
+  FErr := '';
+  AssertEquals(2, Run([MasterParams, 'ci-group', '5'], False));
+  AssertEquals('iec101master: ci-group wants a counter group 1..4 (5)' + LineEnding, FErr);
+  FErr := '';
+  AssertEquals(2, Run([MasterParams, 'gi-group'], False));
+  AssertTrue(FErr, Pos('gi-group wants a group', FErr) > 0);
+  FErr := '';
   AssertEquals(2, Run(['--cot-size=3', MasterParams, 'gi'], False));
   AssertTrue(FErr, Pos('iec101master: --cot-size wants a whole number 1..2 (--cot-size=3)', FErr) > 0);
   FErr := '';
@@ -167,6 +177,16 @@ begin
   AssertEquals('nothing on stderr with --json', '', FErr);
   AssertEquals('64 01 06 00 01 00 00 00 00 14', FSim.Got[0]);
   AssertEquals('2D 01 06 00 01 00 88 13 00 01', FSim.Got[1]);
+end;
+
+{ gi-group N sends QOI 20+N, ci-group N the QCC with RQT N (freeze 0). }
+procedure TTestIec101Examples.TestGroupInterrogations;
+begin
+  AssertEquals(FErr, 0, Run(['--timeout=200', MasterParams, 'gi-group', '2', 'ci-group', '3', 'gi']));
+  AssertEquals(3, FSim.Got.Count);
+  AssertEquals('QOI 22', '64 01 06 00 01 00 00 00 00 16', FSim.Got[0]);
+  AssertEquals('RQT 3', '65 01 06 00 01 00 00 00 00 03', FSim.Got[1]);
+  AssertEquals('QOI 20', '64 01 06 00 01 00 00 00 00 14', FSim.Got[2]);
 end;
 
 procedure TTestIec101Examples.TestReadableLinesAndSelect;

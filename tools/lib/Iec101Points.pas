@@ -1,8 +1,9 @@
 { Iec101Points - the point table of examples/iec101slave as a text file,
   one point per line:
 
-    IOA TYPE VALUE [QUALITY]      e.g.  100 M_ME_NB_1 -1
-                                        104 M_SP_NA_1 1
+    IOA TYPE VALUE [QUALITY] [GROUP=N]
+                                  e.g.  100 M_ME_NB_1 -1
+                                        104 M_SP_NA_1 1 GROUP=2
                                         500 M_BO_NA_1 0xAAAA
                                         700 M_ME_TF_1 12.5 IV+NT
 
@@ -17,7 +18,11 @@
   -32768..32767 for scaled values, a number for short floats, a 32-bit
   signed counter for integrated totals, the event state 0..3 for protection
   events. QUALITY is the quality octet as a number, or names joined by "+"
-  (IV NT SB BL OV EI; CY CA for counters). A time-tagged type takes the
+  (IV NT SB BL OV EI; CY CA for counters). GROUP=N puts the point into
+  interrogation group N, 1..16 (integrated totals: counter group 1..4):
+  a group interrogation (QOI 20+N, QCC RQT N) answers with the points of
+  its group; every point answers the station interrogation (without
+  GROUP=, only that). A time-tagged type takes the
   time the point is loaded (the time of the change). "#" starts a comment;
   blank lines are skipped. A tool unit, not part of the library. }
 unit Iec101Points;
@@ -191,15 +196,56 @@ begin
   end;
 end;
 
+function Fail(out Err: AnsiString; const Msg: AnsiString): Boolean;
+begin
+  Err := Msg;
+  Result := False;
+end;
+
+{ The optional fields after VALUE: QUALITY and GROUP=N, in any order,
+  each at most once. }
+function OptionalFields(F: TStringList; var O: tIecObject; out Group: Byte;
+  out Err: AnsiString): Boolean;
+var
+  I: Integer;
+  V: LongInt;
+  Q: Byte;
+  HasQ, HasG: Boolean;
+begin
+  Result := False;
+  Group := 0;
+  HasQ := False;
+  HasG := False;
+  for I := 3 to F.Count - 1 do
+    if UpperCase(Copy(F[I], 1, 6)) = 'GROUP=' then
+    begin
+      if HasG then
+        Exit(Fail(Err, 'GROUP= twice (' + F[I] + ')'));
+      if not IntIn(Copy(F[I], 7, MaxInt), 1, 16, V) then
+        Exit(Fail(Err, 'GROUP= takes an interrogation group 1..16 (' + F[I] + ')'));
+      Group := V;
+      HasG := True;
+    end
+    else if HasQ then
+      Exit(Fail(Err, 'too many fields (' + F[I] + ')'))
+    else if not IecParseQuality(F[I], Q) then
+      Exit(Fail(Err, 'quality: a number 0..255 or IV+NT+SB+BL+OV+EI (' + F[I] + ')'))
+    else
+    begin
+      O.Quality := Q;
+      HasQ := True;
+    end;
+  Result := True;
+end;
+
 function IecPointLine(var S: tIecSlaveStation; const Line: AnsiString; out Err: AnsiString): Boolean;
 var
   F: TStringList;
   T: AnsiString;
   P: Integer;
   Ioa: LongInt;
-  Ti: Byte;
+  Ti, Group: Byte;
   O: tIecObject;
-  Q: Byte;
   E: ShortString;
 begin
   Err := '';
@@ -218,9 +264,9 @@ begin
     if not IntIn(F[0], 0, $FFFFFF, Ioa) then
       Err := 'IOA 0..' + IntToStr(IecMaxIoa(S.Params)) + ' expected (' + F[0] + ')'
     else if F.Count < 3 then
-      Err := 'IOA TYPE VALUE [QUALITY] expected (' + Trim(T) + ')'
-    else if F.Count > 4 then
-      Err := 'too many fields (' + F[4] + ')'
+      Err := 'IOA TYPE VALUE [QUALITY] [GROUP=N] expected (' + Trim(T) + ')'
+    else if F.Count > 5 then
+      Err := 'too many fields (' + F[5] + ')'
     else
     begin
       Ti := IecTypeByName(F[1]);
@@ -229,18 +275,12 @@ begin
         Err := 'unknown type (' + F[1] + ')'
       else if not IecParseValue(Ti, F[2], O) then
         Err := 'no value for ' + IecTypeName(Ti) + ' (' + F[2] + ')'
-      else if (F.Count = 4) and not IecParseQuality(F[3], Q) then
-        Err := 'quality: a number 0..255 or IV+NT+SB+BL+OV+EI (' + F[3] + ')'
-      else
-      begin
-        if F.Count = 4 then
-          O.Quality := Q;
-        case IecSlaveAddPoint(S, Ti, O, 0, E) of
+      else if OptionalFields(F, O, Group, Err) then
+        case IecSlaveAddPoint(S, Ti, O, Group, E) of
           0: Exit(True);
         else
           Err := E + ' (' + Trim(T) + ')';
         end;
-      end;
     end;
   finally
     F.Free;
