@@ -905,15 +905,31 @@ begin
     SockEventRearm(FSock, FEvent);
 end;
 
+procedure TcpGroupRearm(Data: Pointer);
+begin
+  with TChnPortTcp(Data) do
+    SockGroupRearm(FGroup, [FListen, FSock]);
+end;
+
 function TChnPortTcp.WaitSource(out Kind: tChnWaitKind; out Os: PtrInt;
   out Rearm: tChnWaitRearm; out Data: Pointer): Boolean;
 begin
   {$IFDEF WINDOWS}
   Kind := wkHandle;
-  Os := FEvent;
-  Rearm := @TcpRearm;
   Data := Self;
-  Result := FOpen and (FListen = NoSock) and (FSock <> NoSock) and (FEvent <> 0);
+  if FListen <> NoSock then
+  begin
+    { a server: one event for its listening socket and its client }
+    Os := FGroup;
+    Rearm := @TcpGroupRearm;
+    Result := FOpen and (FGroup <> NoSock);
+  end
+  else
+  begin
+    Os := FEvent;
+    Rearm := @TcpRearm;
+    Result := FOpen and (FSock <> NoSock) and (FEvent <> 0);
+  end;
   {$ELSE}
   Kind := wkDescriptor;
   Rearm := nil;
@@ -955,7 +971,7 @@ begin
   GroupLoseClient;
   SockClose(FSock);
   SockClose(FListen);
-  SockClose(FGroup);
+  SockGroupFree(FGroup);
   SockEventFree(FEvent);
   FEarlyLen := 0;
   FEarlyPos := 0;

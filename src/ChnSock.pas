@@ -79,14 +79,21 @@ function  SockEventCreate(S: tSock): PtrInt;
   after the owner has read, so no signal is lost). }
 procedure SockEventRearm(S: tSock; Ev: PtrInt);
 procedure SockEventFree(var Ev: PtrInt);
-{ A descriptor the program-wide wait can watch for several sockets at once
-  (a server's listening socket and the client it serves, whose descriptor
+{ What the program-wide wait watches for several sockets at once (a
+  server's listening socket and the client it serves, whose descriptor
   changes with each client): on Linux an epoll descriptor, readable while
-  one of its sockets is; NoSock on other systems. Remove a socket before
+  one of its sockets is; on Windows an event that WSAEventSelect sets on a
+  connection, input or a close of any of them (wait kind wkHandle; re-arm
+  it with SockGroupRearm); NoSock on other systems. Remove a socket before
   closing it (a new socket may get its number). }
 function  SockGroupCreate: tSock;
 procedure SockGroupAdd(G, S: tSock);
 procedure SockGroupRemove(G, S: tSock);
+{ Windows: reset the group's event, and set it again at once when one of
+  Socks is still readable (a connection waiting, input, a close: Winsock
+  signals each only once until it is taken). Nothing elsewhere. }
+procedure SockGroupRearm(G: tSock; const Socks: array of tSock);
+procedure SockGroupFree(var G: tSock);
 { The OS error code of the last failing call, for messages. }
 function  SockLastOsError: LongInt;
 

@@ -52,8 +52,10 @@ type
     procedure TestRfc2217UnclosedSubnegotiationIsNamed;
     procedure TestRfc2217DataKeptWhileNegotiatingEndsTheWait;
     procedure TestClientIsInTheSharedWait;
+    {$IF DEFINED(LINUX) OR DEFINED(WINDOWS)}
+    procedure TestServerIsInTheSharedWait;   { epoll / one WSA event }
+    {$ENDIF}
     {$IFDEF LINUX}
-    procedure TestServerIsInTheSharedWait;
     procedure TestIdlePollingLoopCpu;
     procedure TestNoDelayAndKeepAlive;
     {$ENDIF}
@@ -1288,7 +1290,7 @@ begin
   end;
 end;
 
-{$IFDEF LINUX}
+{$IF DEFINED(LINUX) OR DEFINED(WINDOWS)}
 { A server's listening socket and its client are one source of the
   program-wide wait: ChnWaitAny ends at a connection, at the client's input
   and at its leaving, each while blocked - and sleeps its time when there is
