@@ -82,6 +82,14 @@ PROGRAMS := $(EXAMPLES) $(TOOLS)
 PROGBINS := $(addprefix $(BINDIR)/,$(basename $(notdir $(PROGRAMS))))
 BENCHBINS := $(addprefix $(BINDIR)/,$(basename $(notdir $(BENCHES))))
 
+# The flags the library was compiled with: when they change (SYNAPSE_DIR
+# given or not) the units and programs start afresh - fpc does not see a
+# changed -d, and a current units.stamp would keep the other build's units.
+ifneq ($(UNITFLAGS),$(shell cat $(BUILD)/units.flags 2>/dev/null))
+  $(shell rm -rf $(UNITDIR) $(TOOLUNITDIR) $(BUILD)/units.stamp $(PROGBINS) $(BENCHBINS); \
+    mkdir -p $(BUILD); echo '$(UNITFLAGS)' > $(BUILD)/units.flags)
+endif
+
 .PHONY: all units examples tools test demo bench fuzz soak wintest clean check-fpc \
         install uninstall man doc cross crosstest mutate mutate-check
 
