@@ -111,6 +111,10 @@ type
     Data    : array[0..MaxDataLen - 1] of Byte;
     { counters for diagnostics }
     Frames, Errors, Ignored, GapDrops: LongWord;
+    { garbage or a broken frame since the last whole frame: a single
+      character is taken only after FT12SuspectIdleMs of line idle }
+    Suspect : Boolean;
+    Suspects: LongWord;   { single characters dropped so }
   end;
 
 { Broadcast address for the given address length (255 or 65535). }
@@ -132,6 +136,14 @@ function FT12Code(const Cfg: tFT12Config; const Rec: tFT12Record): Byte;
 function FT12Encode(const Cfg: tFT12Config; constref Rec: tFT12Record;
   Len: Word; Addr: Word; Dest: PByte; DestSize: Word; var DestLen: Word): tChResult;
 
+const
+  { A single character (E5, A2) has no check of its own: met while hunting
+    after a broken frame or a skipped byte, it may be a byte of the broken
+    frame - an ACK nobody sent. It counts only once the line has been idle
+    this long (or GapMs, when longer; USB adapters deliver in bursts up to
+    about 16 ms apart) or a whole frame came in between. }
+  FT12SuspectIdleMs = 50;
+
 { Start hunting for a frame; Cfg is kept, counters are cleared. }
 procedure FT12RxReset(var S: tFT12Rx);
 
@@ -140,8 +152,9 @@ procedure FT12RxReset(var S: tFT12Rx);
   S.Cfg.GapMs > 0: a frame whose previous byte came more than GapMs earlier
   is discarded silently and B starts the hunt anew.
   After an error the byte that showed it is dropped and the automaton hunts
-  for the next start character. Frames that Cfg.Filter rejects are ignored
-  (fe_None). }
+  for the next start character; a single character met then is dropped
+  (counted in Suspects) until the line was idle (FT12SuspectIdleMs).
+  Frames that Cfg.Filter rejects are ignored (fe_None). }
 function FT12Feed(var S: tFT12Rx; B: Byte; Now: QWord): tFT12Event;
 
 { Copy the frame of the last fe_Frame into a record buffer of Size bytes.
@@ -297,6 +310,7 @@ var
   Prm, Single, Foreign: Boolean;
 begin
   S.Phase := rxHunt;
+  S.Suspect := False;           { a whole frame: the line is in step again }
   Prm := FT12FramePrm(S);
   Single := S.Kind in [tpSACK, tpSNAK];
   Foreign := (S.Addr <> S.Cfg.OwnAddr) and (S.Addr <> FT12Broadcast(S.Cfg.AddrLen));
@@ -331,6 +345,7 @@ end;
 function Fail(var S: tFT12Rx; R: tChResult): tFT12Event;
 begin
   S.Phase := rxHunt;
+  S.Suspect := True;
   S.Err := R;
   Inc(S.Errors);
   Result := fe_Error;
@@ -346,14 +361,22 @@ begin
 end;
 
 function FT12Feed(var S: tFT12Rx; B: Byte; Now: QWord): tFT12Event;
+var
+  IdleMs: QWord;
 begin
   Result := fe_None;
   if (S.Phase <> rxHunt) and (S.Cfg.GapMs > 0) and
      (Now > S.LastTime) and (Now - S.LastTime > S.Cfg.GapMs) then
   begin
     S.Phase := rxHunt;          { the line was idle inside a frame }
+    S.Suspect := True;
     Inc(S.GapDrops);
   end;
+  IdleMs := FT12SuspectIdleMs;
+  if S.Cfg.GapMs > IdleMs then
+    IdleMs := S.Cfg.GapMs;
+  if S.Suspect and (Now > S.LastTime) and (Now - S.LastTime >= IdleMs) then
+    S.Suspect := False;         { idle long enough: no broken frame goes on }
   S.LastTime := Now;
   case S.Phase of
     rxHunt:
@@ -371,6 +394,9 @@ begin
         SD2:
           S.Phase := rxL1;
         SACK, SNAK:
+          if S.Suspect then
+            Inc(S.Suspects)     { maybe a byte of the frame just broken }
+          else
           begin
             if B = SACK then
               S.Kind := tpSACK
@@ -382,7 +408,7 @@ begin
             Result := Complete(S);
           end;
       else
-        { not a start character: skip while hunting }
+        S.Suspect := True;      { not a start character: garbage, skipped }
       end;
     rxL1:
       begin

@@ -30,6 +30,7 @@ type
     procedure TestDecodeHandWorkedFrames;
     procedure TestReceiveErrorTable;
     procedure TestResyncOnNextStartCharacter;
+    procedure TestSingleCharacterAfterGarbageNeedsIdle;
     procedure TestSlaveFilterOwnAndBroadcast;
     procedure TestSlaveIgnoresSingleCharacters;
     procedure TestGapDiscardsHalfFrame;
@@ -467,6 +468,37 @@ begin
   AssertEquals(2, S.Frames);
 end;
 
+{ A single character has no check: met right after a broken frame or a
+  skipped byte it may be a byte of that frame, and is dropped until the
+  line was idle FT12SuspectIdleMs (or GapMs, when longer) or a whole frame
+  came. A master's view (secondary answers). }
+procedure TTestChnFT12Codec.TestSingleCharacterAfterGarbageNeedsIdle;
+var
+  S: tFT12Rx;
+begin
+  S := NewRx(Cfg(True, 1, 0));
+  AssertEquals('at first', 'F', FeedAll(S, 'E5', 1000));
+  { L1 <> L2: the E5 after it is a byte of the broken frame }
+  AssertEquals('..E.', FeedAll(S, '68 07 08 E5', 2000));
+  AssertEquals(1, S.Suspects);
+  AssertEquals('49 ms later still', '.', FeedAll(S, 'E5', 2049));
+  AssertEquals('idle 50 ms', 'F', FeedAll(S, 'E5', 2099));
+  AssertTrue(S.Kind = tpSACK);
+  { a skipped byte, then A2 and E5 in the same instant }
+  AssertEquals('...', FeedAll(S, '33 A2 E5', 3000));
+  AssertEquals('two so far and these two', 4, S.Suspects);
+  { a whole frame puts the line in step: an E5 right after it counts }
+  AssertEquals('....F' + 'F', FeedAll(S, '10 0B 01 0C 16' + ' E5', 3000));
+  { a checksum error, the E5 in the same chunk }
+  AssertEquals('...E.' + '.', FeedAll(S, '10 0B 01 0D 16' + ' E5', 4000));
+  { GapMs longer than 50 ms is the idle needed }
+  S.Cfg.GapMs := 200;
+  AssertEquals('..E', FeedAll(S, '68 07 08', 5000));
+  AssertEquals('.', FeedAll(S, 'E5', 5100));
+  AssertEquals('F', FeedAll(S, 'E5', 5300));
+  AssertEquals(6, S.Suspects);
+end;
+
 procedure TTestChnFT12Codec.TestSlaveFilterOwnAndBroadcast;
 var
   S: tFT12Rx;
@@ -652,14 +684,15 @@ begin
       R.Data[I] := Random(256);
     Addr := Random(FT12MaxAddr(C.AddrLen) + 1);
     AssertEquals('encode', res_Ok, FT12Encode(C, R, 4 + N, Addr, @Buf, SizeOf(Buf), BLen));
-    { the peer has the opposite role; noise before the frame }
+    { the peer has the opposite role; noise before the frame, then the
+      line idle (without it a single character would be suspect) }
     C.Primary := not C.Primary;
     S := NewRx(C);
     FT12Feed(S, $00, 0);
     FT12Feed(S, $16, 0);
     Frames := 0;
     for I := 0 to BLen - 1 do
-      if FT12Feed(S, Buf[I], 0) = fe_Frame then
+      if FT12Feed(S, Buf[I], 1000) = fe_Frame then
       begin
         Inc(Frames);
         AssertEquals('frame ends at the last byte', BLen - 1, I);

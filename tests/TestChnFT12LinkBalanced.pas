@@ -48,6 +48,7 @@ type
     procedure TestAnswerFromAnotherAddressIgnored;
     procedure TestLateAnswerToARepetitionConfirmsNothingElse;
     procedure TestOneStepTakesEverythingReceived;
+    procedure TestSingleCharacterInsideABrokenFrameConfirmsNothing;
     procedure TestTestFunctionWhenIdle;
     procedure TestBadInputNeverStopsTheLink;
     procedure TestLinkLostIsEstablishedAgain;
@@ -362,6 +363,29 @@ begin
   AssertEquals('after a repetition', 1, FLa.Retransmits);
   AssertEquals('executed once', 'AA', FSinkB.Text);
   AssertEquals(1, FLb.Repeats);
+end;
+
+{ A single character met while hunting after a broken frame may be a byte of
+  that frame: in '68 07 08 E5' (L1 <> L2) the E5 is no ACK of B. It must
+  not confirm A's user data, which B never got (soak ft12bal-ber1e-5 lost
+  two confirmed messages so); the repetition then gets B's real ACK. }
+procedure TTestChnFT12LinkBalanced.TestSingleCharacterInsideABrokenFrameConfirmsNothing;
+begin
+  SetUpPair(40);
+  BringUp;
+  Queue(FLa, 'AA');
+  FTap.DropA := 1;              { A's user data is lost }
+  FT12BalancedStep(FLa);
+  FTap.Pump;
+  FTap.InjectToA('68 07 08 E5');
+  FT12BalancedStep(FLa);
+  AssertEquals('nothing confirmed', 0, FLa.Confirmed);
+  AssertTrue('still pending', FLa.Pending);
+  RunUntil(FLa.Confirmed, 1);
+  Run(2);
+  AssertEquals('confirmed by B''s own ACK', 1, FLa.Confirmed);
+  AssertEquals('after a repetition', 1, FLa.Retransmits);
+  AssertEquals('B took it', 'AA', FSinkB.Text);
 end;
 
 procedure TTestChnFT12LinkBalanced.TestTestFunctionWhenIdle;
