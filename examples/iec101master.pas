@@ -141,6 +141,17 @@ var
     Result := Cli.Args[I];
   end;
 
+  { The number after W (What names it when it is missing), Min..Max, else
+    the usage error Msg; the command's token becomes "W NUMBER". }
+  function NumberArg(const What: string; Min, Max: LongInt; const Msg: string): LongInt;
+  begin
+    V := Next(What);
+    Result := 0;
+    if not StrToNum(V, Min, Max, Result) then
+      CliUsageError(Cli, Msg, V);
+    C.Token := W + ' ' + V;
+  end;
+
 begin
   SetLength(Cmds, 0);
   I := 1;
@@ -151,36 +162,22 @@ begin
     C.Token := W;
     if W = 'gi' then C.Kind := ckGi
     else if W = 'ci' then C.Kind := ckCi
-    else if (W = 'gi-group') or (W = 'ci-group') then
+    else if W = 'gi-group' then
     begin
-      V := Next('a group');
-      N := 0;
-      if W = 'gi-group' then
-      begin
-        C.Kind := ckGi;
-        if not StrToNum(V, 1, 16, N) then
-          CliUsageError(Cli, 'gi-group wants a group 1..16', V);
-      end
-      else
-      begin
-        C.Kind := ckCi;
-        if not StrToNum(V, 1, 4, N) then
-          CliUsageError(Cli, 'ci-group wants a counter group 1..4', V);
-      end;
-      C.Int := N;
-      C.Token := W + ' ' + V;
+      C.Kind := ckGi;
+      C.Int := NumberArg('a group', 1, 16, 'gi-group wants a group 1..16');
+    end
+    else if W = 'ci-group' then
+    begin
+      C.Kind := ckCi;
+      C.Int := NumberArg('a group', 1, 4, 'ci-group wants a counter group 1..4');
     end
     else if W = 'clock' then C.Kind := ckClock
     else if W = 'test' then C.Kind := ckTest
     else if W = 'read' then
     begin
       C.Kind := ckRead;
-      V := Next('an IOA');
-      N := 0;
-      if not StrToNum(V, 0, MaxLongInt, N) or (LongWord(N) > IecMaxIoa(Params)) then
-        CliUsageError(Cli, 'read wants an IOA 0..' + IntToStr(IecMaxIoa(Params)), V);
-      C.Ioa := N;
-      C.Token := W + ' ' + V;
+      C.Ioa := NumberArg('an IOA', 0, LongInt(IecMaxIoa(Params)), 'read wants an IOA 0..' + IntToStr(IecMaxIoa(Params)));
     end
     else if (W = 'sc') or (W = 'dc') or (W = 'setpoint-scaled') then
     begin
@@ -220,12 +217,7 @@ begin
     else if W = 'poll' then
     begin
       C.Kind := ckPoll;
-      V := Next('SECONDS');
-      N := 0;
-      if not StrToNum(V, 0, 86400, N) then
-        CliUsageError(Cli, 'poll wants SECONDS 0..86400', V);
-      C.Int := N;
-      C.Token := W + ' ' + V;
+      C.Int := NumberArg('SECONDS', 0, 86400, 'poll wants SECONDS 0..86400');
     end
     else
       CliUsageError(Cli, 'unknown command', W);

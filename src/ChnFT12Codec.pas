@@ -362,20 +362,19 @@ end;
 
 function FT12Feed(var S: tFT12Rx; B: Byte; Now: QWord): tFT12Event;
 var
-  IdleMs: QWord;
+  Idle: QWord;                  { ms since the previous byte }
 begin
   Result := fe_None;
-  if (S.Phase <> rxHunt) and (S.Cfg.GapMs > 0) and
-     (Now > S.LastTime) and (Now - S.LastTime > S.Cfg.GapMs) then
+  Idle := 0;
+  if Now > S.LastTime then
+    Idle := Now - S.LastTime;
+  if (S.Phase <> rxHunt) and (S.Cfg.GapMs > 0) and (Idle > S.Cfg.GapMs) then
   begin
     S.Phase := rxHunt;          { the line was idle inside a frame }
     S.Suspect := True;
     Inc(S.GapDrops);
   end;
-  IdleMs := FT12SuspectIdleMs;
-  if S.Cfg.GapMs > IdleMs then
-    IdleMs := S.Cfg.GapMs;
-  if S.Suspect and (Now > S.LastTime) and (Now - S.LastTime >= IdleMs) then
+  if S.Suspect and (Idle >= FT12SuspectIdleMs) and (Idle >= S.Cfg.GapMs) then
     S.Suspect := False;         { idle long enough: no broken frame goes on }
   S.LastTime := Now;
   case S.Phase of
