@@ -75,7 +75,8 @@ begin
       T.Dependencies.AddInclude('chnwait.inc', AllUnixOSes);
       T.Dependencies.AddInclude('chnwait.inc', AllWindowsOSes);
     { the physical base and its port drivers }
-    AddUnit(P, 'ChnPort.pas', AllOSes, ['ChnTypes', 'ChnWait', 'uString']);
+    T := AddUnit(P, 'ChnPort.pas', AllOSes, ['ChnTypes', 'ChnWait', 'uString']);
+      T.Dependencies.AddUnit('ChnUnix', AllUnixOSes);
     AddUnit(P, 'ChnPortUnix.pas', AllUnixOSes, ['ChnTypes', 'ChnWait', 'ChnPort', 'ChnUnix']);
     AddUnit(P, 'ChnPty.pas', AllUnixOSes, ['ChnTypes', 'ChnPort', 'ChnPortUnix', 'ChnUnix']);
     AddUnit(P, 'ChnPortWin.pas', AllWindowsOSes, ['ChnTypes', 'ChnWait', 'ChnPort']);
