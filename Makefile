@@ -77,7 +77,7 @@ FPCUNIT_SRC = /usr/share/fpcsrc/$(shell $(FPC) -iV)/packages/fcl-fpcunit/src
 # The units: fpmake.pp is the one list (tools/units.sh reads it); its
 # optional ones (the Synapse backend) build only with SYNAPSE_DIR.
 UNITS    := $(shell bash tools/units.sh $(OSDIR)) $(if $(SYNAPSE_DIR),$(shell bash tools/units.sh --optional))
-LIBSRC   := $(UNITS) $(wildcard src/*.inc src/*/$(OSDIR)/*.inc)
+LIBSRC   := $(UNITS) $(wildcard src/*.inc src/*/*.inc src/*/$(OSDIR)/*.inc)
 TOOLLIB  := $(wildcard tools/lib/*.pas)
 EXAMPLES := $(wildcard examples/*.pas)
 TOOLS    := $(wildcard tools/*.pas)
@@ -129,7 +129,7 @@ $(BUILD)/units.stamp: $(LIBSRC) fpmake.pp | check-fpc
 	@touch $@
 
 # The Lazarus package lists every unit of fpmake.pp (all OSes).
-chn.lpk: fpmake.pp $(wildcard src/*.inc src/*/*/*.inc) tools/mklpk.sh tools/units.sh
+chn.lpk: fpmake.pp $(wildcard src/*.inc src/*/*.inc src/*/*/*.inc) tools/mklpk.sh tools/units.sh
 	@bash tools/mklpk.sh
 
 # Which sources each program depends on (from the uses clauses).
@@ -291,7 +291,7 @@ install: units $(addprefix $(BINDIR)/,$(TOOL_PROGRAMS)) man
 	  install -m 644 $(UNITDIR)/$$u.ppu "$$d/$$l.ppu"; \
 	  if [ -f $(UNITDIR)/$$u.o ]; then install -m 644 $(UNITDIR)/$$u.o "$$d/$$l.o"; fi; done; \
 	$(if $(SYNAPSE_DIR),$(SYNAPSE_INSTALL);) \
-	for f in $(wildcard src/*.inc src/README.md src/*/*.pas src/*/*/*.pas src/*/*/*.inc); do \
+	for f in $(wildcard src/*.inc src/README.md src/*/*.pas src/*/*.inc src/*/*/*.pas src/*/*/*.inc); do \
 	  install -D -m 644 "$$f" "$$s/$$f"; done; install -m 644 chn.lpk COPYING COPYING.LGPL "$$s/"; \
 	for p in $(TOOL_PROGRAMS); do install -m 755 $(BINDIR)/$$p "$$b/$$p"; \
 	  if [ -f $(MANDIR)/$$p.1 ]; then mkdir -p "$$m"; install -m 644 $(MANDIR)/$$p.1 "$$m/$$p.1"; fi; done; \

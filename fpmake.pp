@@ -76,7 +76,12 @@ begin
     AddUnit(P, 'ChnTypes.pas', AllOSes, []);
     AddUnit(P, 'uString.pas', AllOSes, []);
     AddUnit(P, 'ChnRing.pas', AllOSes, ['ChnWait']);
-    AddUnit(P, 'ChnVirt.pas', AllOSes, ['ChnTypes', 'uString', 'ChnWait']);
+    { the parameter-string parser }
+    AddUnit(P, 'ChnParam.pas', AllOSes, ['ChnTypes', 'uString']);
+    { the layer contract and registry; the names legacy programs find in
+      it are an include file }
+    T := AddUnit(P, 'ChnVirt.pas', AllOSes, ['ChnTypes', 'uString', 'ChnParam', 'ChnWait']);
+      T.Dependencies.AddInclude('chnvirtnames.inc');
     { the program-wide wait; its OS parts are include files (in the
       source as unix/chnwait.inc, found here through the OS's include path) }
     T := AddUnit(P, 'ChnWait.pas', AllOSes, []);
