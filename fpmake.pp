@@ -145,13 +145,21 @@ begin
     Part(P, 'iec');
     AddUnit(P, 'ChnFT12Codec.pas', AllOSes, ['ChnTypes']);
     AddUnit(P, 'ChnFT1_2.pas', AllOSes, ['ChnTypes', 'ChnVirt', 'ChnProto', 'ChnFT12Codec', 'uString']);
-    AddUnit(P, 'ChnFT12Link.pas', AllOSes, ['ChnTypes', 'ChnVirt', 'ChnFT1_2', 'ChnFT12Codec', 'ChnWait']);
+    { the link procedures: what they share, then the primary, the
+      secondary and the balanced station }
+    AddUnit(P, 'ChnFT12Link.pas', AllOSes, ['ChnTypes', 'ChnVirt', 'ChnFT1_2', 'ChnFT12Codec']);
+    AddUnit(P, 'ChnFT12Primary.pas', AllOSes, ['ChnTypes', 'ChnVirt', 'ChnFT1_2', 'ChnFT12Link',
+      'ChnFT12Codec', 'ChnWait']);
+    AddUnit(P, 'ChnFT12Station.pas', AllOSes, ['ChnTypes', 'ChnVirt', 'ChnFT1_2', 'ChnFT12Link',
+      'ChnFT12Codec']);
+    AddUnit(P, 'ChnFT12Balanced.pas', AllOSes, ['ChnTypes', 'ChnVirt', 'ChnFT1_2', 'ChnFT12Link',
+      'ChnFT12Codec', 'ChnWait']);
     { IEC 60870-5-101 application layer on the FT 1.2 link helpers }
     AddUnit(P, 'ChnIec101Asdu.pas', AllOSes, ['ChnTypes']);
     AddUnit(P, 'ChnIec101Master.pas', AllOSes, ['ChnTypes', 'ChnVirt', 'ChnFT1_2', 'ChnFT12Link',
-      'ChnIec101Asdu', 'ChnWait']);
-    AddUnit(P, 'ChnIec101Slave.pas', AllOSes, ['ChnTypes', 'ChnVirt', 'ChnFT1_2', 'ChnFT12Link',
-      'ChnIec101Asdu']);
+      'ChnFT12Primary', 'ChnFT12Balanced', 'ChnIec101Asdu', 'ChnWait']);
+    AddUnit(P, 'ChnIec101Slave.pas', AllOSes, ['ChnTypes', 'ChnVirt', 'ChnFT1_2', 'ChnFT12Station',
+      'ChnFT12Balanced', 'ChnIec101Asdu']);
     { src/ics: ICSlink }
     Part(P, 'ics');
     AddUnit(P, 'ChnICSCodec.pas', AllOSes, ['ChnTypes', 'uString']);

@@ -27,7 +27,7 @@ program ft12balanced;
 {$MODE OBJFPC}{$H-}
 
 uses
-  SysUtils, uString, ChnTypes, ChnVirt, ChnLayers, ChnFT1_2, ChnFT12Link,
+  SysUtils, uString, ChnTypes, ChnVirt, ChnLayers, ChnFT1_2, ChnFT12Balanced,
   ChnIec101Asdu, Iec101Print, ChnFT12Gap, ChnCli;
 
 var

@@ -11,7 +11,7 @@ interface
 
 uses
   SysUtils, fpcunit, testregistry, ChnTypes, ChnVirt, ChnLoop, ChnFT1_2,
-  ChnFT12Link, TestSupport, LoopTap;
+  ChnFT12Link, ChnFT12Primary, ChnFT12Station, TestSupport, LoopTap;
 
 type
   TTestChnFT12Link = class(TTestCase)

@@ -13,7 +13,7 @@ interface
 
 uses
   SysUtils, fpcunit, testregistry, ChnTypes, ChnVirt, ChnLoop, ChnFT1_2,
-  ChnFT12Link, TestSupport, LoopTap;
+  ChnFT12Balanced, TestSupport, LoopTap;
 
 type
   PSink = ^TSink;

@@ -43,7 +43,7 @@ unit ChnIec101Master;
 interface
 
 uses
-  ChnTypes, ChnVirt, ChnFT1_2, ChnFT12Link, ChnIec101Asdu;
+  ChnTypes, ChnVirt, ChnFT1_2, ChnFT12Link, ChnFT12Primary, ChnFT12Balanced, ChnIec101Asdu;
 
 const
   res_IecNegative    = res_Proto + 8;    { negative confirmation (P/N = 1) }

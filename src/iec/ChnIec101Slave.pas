@@ -51,7 +51,7 @@ unit ChnIec101Slave;
 interface
 
 uses
-  ChnTypes, ChnVirt, ChnFT1_2, ChnFT12Link, ChnIec101Asdu;
+  ChnTypes, ChnVirt, ChnFT1_2, ChnFT12Station, ChnFT12Balanced, ChnIec101Asdu;
 
 const
   IecSlaveMaxPoints = 1024;

@@ -37,7 +37,7 @@ program soak;
 uses
   BaseUnix, SysUtils, Classes, Process,
   ChnTypes, ChnVirt, ChnCom, ChnLoop, ChnNoise, ChnPty, uString,
-  ChnDF1, ChnDF1Link, ChnPccc, ChnSlc, ChnFT1_2, ChnFT12Link, ChnICS, ChnWait, Math,
+  ChnDF1, ChnDF1Link, ChnPccc, ChnSlc, ChnFT1_2, ChnFT12Link, ChnFT12Primary, ChnFT12Station, ChnFT12Balanced, ChnICS, ChnWait, Math,
   TestSupport;
 
 const
