@@ -164,7 +164,7 @@ begin
     begin
       Shown := L.State;
       WriteLn(Stamp, 'link ', FT12BalStateName(Shown));
-      if (Shown = bsAvailable) and pChnFT1_2(Chn)^.CH_Dir and not Asked then
+      if (Shown = bsAvailable) and pChnFT1_2(Chn)^.ChFT12Config.Dir and not Asked then
       begin
         Asked := True;
         Obj := IecObject(0);

@@ -230,12 +230,13 @@ function ChMsTick: QWord;
   helpers above a channel (the DF1 and FT 1.2 link procedures). }
 function ChSendWhenFree(Chn: pChnVirt; Buff: Pointer; Len: Word;
   TimeoutMs: LongInt): tChResult;
-
+{ The wait of ChSendWhenFree alone: res_Ok once Chn^.ChSendReady says
+  CHS_SendReady, res_Timeout after TimeoutMs, a channel fault at once. }
+function ChWaitSendReady(Chn: pChnVirt; TimeoutMs: LongInt): tChResult;
 { A protocol layer's send buffer: allocated with Default bytes when none is
   there yet (no LSB=, or LSB=0), freed by Done. }
 procedure ChSendBuffer(var Buf: Pointer; var Size: Word; Default: Word);
 procedure ChFreeSendBuffer(var Buf: Pointer; var Size: Word);
-
 
 var
   ChnCollection: pChnCollection;
@@ -287,6 +288,15 @@ end;
 
 function ChSendWhenFree(Chn: pChnVirt; Buff: Pointer; Len: Word;
   TimeoutMs: LongInt): tChResult;
+begin
+  Result := ChWaitSendReady(Chn, TimeoutMs);
+  if Result <> res_Ok then
+    Exit;
+  Chn^.ChSend(Buff, Len);
+  Result := Chn^.ChSendResult;
+end;
+
+function ChWaitSendReady(Chn: pChnVirt; TimeoutMs: LongInt): tChResult;
 var
   Deadline: QWord;
 begin
@@ -302,8 +312,7 @@ begin
       draining with RTS raised) }
     ChnWaitUntil(Deadline + 1, 10);
   end;
-  Chn^.ChSend(Buff, Len);
-  Result := Chn^.ChSendResult;
+  Result := res_Ok;
 end;
 
 procedure ChSendBuffer(var Buf: Pointer; var Size: Word; Default: Word);

@@ -129,7 +129,7 @@ begin
   FillChar(B, SizeOf(B), 0);
   if not IsFT12Channel(Chn) then
     Exit(res_WrongLayer);
-  if pChnFT1_2(Chn)^.CH_MaSl then
+  if not pChnFT1_2(Chn)^.ChFT12Config.Balanced then
     Exit(res_BadMessage);
   B.Chn := Chn;
   B.TimeoutMs := FT12LinkTimeoutMs;
@@ -164,19 +164,6 @@ begin
   Result := (B.QCount = 0) and not B.Pending;
 end;
 
-{ Send R in the given direction once the transmitter is free (bounded). }
-function SendDir(var B: tFT12Balanced; Primary: Boolean; constref R: tSendRecord;
-  Len: Word): tChResult;
-var
-  Deadline: QWord;
-begin
-  Deadline := ChMsTick + QWord(FT12LinkTimeoutMs);
-  while (B.Chn^.ChSendReady <> CHS_SendReady) and (ChMsTick <= Deadline) do
-    ChnWaitUntil(Deadline + 1, 10);    { as ChSendWhenFree }
-  pChnFT1_2(B.Chn)^.ChSendAs(Primary, @R, Len);
-  Result := B.Chn^.ChSendResult;
-end;
-
 { Send Out (again), counting the status answer it may bring. }
 procedure BalTransmit(var B: tFT12Balanced);
 begin
@@ -185,7 +172,7 @@ begin
     Inc(B.OwedStatus);
     B.StatusAt := ChMsTick;
   end;
-  SendDir(B, True, B.Out, B.OutLen);
+  pChnFT1_2(B.Chn)^.ChSendAsWhenFree(True, @B.Out, B.OutLen, FT12LinkTimeoutMs);
 end;
 
 { Start a request: FCV from the function, FCB alternating for FCV = 1. }
@@ -349,7 +336,7 @@ begin
   begin
     { the same FCB as the last accepted frame: the peer lost our answer }
     Inc(B.Repeats);
-    SendDir(B, False, B.Reply, B.ReplyLen);
+    pChnFT1_2(B.Chn)^.ChSendAsWhenFree(False, @B.Reply, B.ReplyLen, FT12LinkTimeoutMs);
     Exit;
   end;
   case B.RMess.FC of
@@ -379,7 +366,7 @@ begin
     B.HasReply := True;
     B.LastFcb := B.RMess.FCB_ACD;
   end;
-  SendDir(B, False, B.Reply, B.ReplyLen);
+  pChnFT1_2(B.Chn)^.ChSendAsWhenFree(False, @B.Reply, B.ReplyLen, FT12LinkTimeoutMs);
 end;
 
 { The primary's timers: repetitions, establishing the link, user data and
@@ -396,7 +383,7 @@ begin
       station A before each repetition, so the two repeat at different
       times }
     Wait := QWord(B.TimeoutMs);
-    if not pChnFT1_2(B.Chn)^.CH_Dir then
+    if not pChnFT1_2(B.Chn)^.ChFT12Config.Dir then
       Inc(Wait, QWord(B.TimeoutMs) div 2);
     if Now - B.SentAt <= Wait then
       Exit;
@@ -472,7 +459,7 @@ begin
       Inc(B.BadDir)               { an echo or a twin: never answered }
     else if R <> res_Ok then
       Inc(B.Broken)               { garbled: the peer repeats }
-    else if pChnFT1_2(B.Chn)^.CH_RPrm then
+    else if pChnFT1_2(B.Chn)^.ChReceivedPrm then
       TakeRequest(B, Len)
     else
       TakeAnswer(B);

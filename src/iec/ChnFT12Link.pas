@@ -163,7 +163,7 @@ end;
 { Octets of a fixed frame on this channel (LEN=), as a record length. }
 function FT12FixedLen(Chn: pChnVirt): Word;
 begin
-  Result := cSizeHeadSndMsg + pChnFT1_2(Chn)^.CH_LenShortM;
+  Result := cSizeHeadSndMsg + pChnFT1_2(Chn)^.ChFT12Config.FixedLen;
 end;
 
 { Send once the transmitter is free (bounded wait). }

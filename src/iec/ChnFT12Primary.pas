@@ -260,7 +260,7 @@ begin
     R := res_BadParam
   else if not IsFT12Channel(Chn) then
     R := res_WrongLayer
-  else if not pChnFT1_2(Chn)^.CH_MaSl or not pChnFT1_2(Chn)^.CH_Master then
+  else if pChnFT1_2(Chn)^.ChFT12Config.Balanced or not pChnFT1_2(Chn)^.ChFT12Config.Primary then
     R := res_BadMessage
   else if (ReqLen = 0) or (ReqLen > SizeOf(tSendRecord)) or
      (PByte(@Req)^ > Ord(tpLongM)) or (Req.MessType in [tpSACK, tpSNAK]) then

@@ -233,7 +233,7 @@ begin
     Exit;
   if (Chn = nil) or (Chn^.CH_Type <> ChnFT1_2.cName) then
     Exit(res_WrongLayer);
-  M.Balanced := not pChnFT1_2(Chn)^.CH_MaSl;
+  M.Balanced := pChnFT1_2(Chn)^.ChFT12Config.Balanced;
   if M.Balanced then
   begin
     Result := FT12BalancedInit(M.Bal, Chn);
@@ -244,7 +244,7 @@ begin
     SlaveInit(M.Slaves[0], Chn^.CH_DNode, M.DeadMinMs);
     M.SlaveCount := 1;
   end
-  else if not pChnFT1_2(Chn)^.CH_Master then
+  else if not pChnFT1_2(Chn)^.ChFT12Config.Primary then
     Result := res_BadMessage;
 end;
 
@@ -262,7 +262,7 @@ function IecMasterAddSlave(var M: tIecMaster; Addr: Word): tChResult;
 begin
   if M.Balanced then
     Exit(res_BadParam);
-  if (IecMasterSlave(M, Addr) >= 0) or (Addr > $FFFF shr (8 * (2 - pChnFT1_2(M.Chn)^.CH_AdrLen))) then
+  if (IecMasterSlave(M, Addr) >= 0) or (Addr > $FFFF shr (8 * (2 - pChnFT1_2(M.Chn)^.ChFT12Config.AddrLen))) then
     Exit(res_BadParam);
   if M.SlaveCount >= IecMaxSlaves then
     Exit(res_Busy);
@@ -595,7 +595,7 @@ begin
   else
   begin
     Req.MessType := tpShortM;
-    Len := pChnFT1_2(M.Chn)^.CH_LenShortM;   { a fixed frame: LEN= zero octets }
+    Len := pChnFT1_2(M.Chn)^.ChFT12Config.FixedLen;   { a fixed frame: LEN= zero octets }
   end;
   Req.FC := FC;
   M.Job := Job;

@@ -750,7 +750,7 @@ begin
     Exit(res_BadParam);
   end;
   S.Chn := Chn;
-  S.Balanced := not pChnFT1_2(Chn)^.CH_MaSl;
+  S.Balanced := pChnFT1_2(Chn)^.ChFT12Config.Balanced;
   if S.Balanced then
   begin
     Result := FT12BalancedInit(S.Bal, Chn);
@@ -761,7 +761,7 @@ begin
   end
   else
   begin
-    if pChnFT1_2(Chn)^.CH_Master then
+    if pChnFT1_2(Chn)^.ChFT12Config.Primary then
     begin
       Err := 'an unbalanced slave needs MAS=SLAVE';
       Exit(res_BadMessage);
