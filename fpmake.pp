@@ -94,7 +94,8 @@ begin
     Part(P, 'phys');
     { what the Unix parts share }
     AddUnit(P, 'ChnUnix.pas', AllUnixOSes, ['ChnTypes']);
-    AddUnit(P, 'ChnPort.pas', AllOSes, ['ChnTypes', 'ChnWait', 'uString']);
+    T := AddUnit(P, 'ChnPort.pas', AllOSes, ['ChnTypes', 'ChnWait', 'uString']);
+      T.Dependencies.AddUnit('ChnUnix', AllUnixOSes);
     AddUnit(P, 'ChnPortUnix.pas', AllUnixOSes, ['ChnTypes', 'ChnWait', 'ChnPort', 'ChnUnix']);
     AddUnit(P, 'ChnPty.pas', AllUnixOSes, ['ChnTypes', 'ChnPort', 'ChnPortUnix', 'ChnUnix']);
     AddUnit(P, 'ChnPortWin.pas', AllWindowsOSes, ['ChnTypes', 'ChnWait', 'ChnPort']);
@@ -136,6 +137,8 @@ begin
     AddUnit(P, 'ChnPccc.pas', AllOSes, ['ChnTypes', 'ChnDF1Codec', 'uString', 'ChnPcccNames']);
     AddUnit(P, 'ChnPcccClient.pas', AllOSes, ['ChnTypes', 'ChnVirt', 'ChnDF1Codec', 'ChnDF1Link',
       'ChnPccc', 'uString', 'ChnWait']);
+    AddUnit(P, 'ChnPcccTags.pas', AllOSes, ['ChnTypes', 'ChnVirt', 'ChnDF1Codec', 'ChnDF1Link',
+      'ChnPccc', 'ChnPcccClient', 'ChnWait']);
     { src/iec: FT 1.2 and IEC 60870-5-101 }
     Part(P, 'iec');
     AddUnit(P, 'ChnFT12Codec.pas', AllOSes, ['ChnTypes']);

@@ -349,6 +349,7 @@ begin
   CH_Set.InQueue := CH_LRB;
   CH_RtsToggle := False;
   CH_ParamErr := '';
+  CH_ErrWhy := '';
   R := ComOpenPort(Port);
   if R <> res_Ok then
   begin
