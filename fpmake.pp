@@ -108,17 +108,20 @@ begin
       T.Dependencies.AddUnit('ChnPortUnix', AllUnixOSes);
       T.Dependencies.AddUnit('ChnPty', AllUnixOSes);
       T.Dependencies.AddUnit('ChnPortWin', AllWindowsOSes);
-    AddUnit(P, 'ChnCom.pas', AllOSes, ['ChnTypes', 'ChnVirt', 'ChnRing', 'ChnWait', 'ChnPort',
-      'uString', 'ChnPorts']);
+    { the physical base: ring, transmit pump, drain, reconnect, wait }
+    AddUnit(P, 'ChnPhys.pas', AllOSes, ['ChnTypes', 'ChnVirt', 'ChnRing', 'ChnWait', 'ChnPort',
+      'uString']);
+    AddUnit(P, 'ChnCom.pas', AllOSes, ['ChnTypes', 'ChnVirt', 'ChnPort', 'ChnPhys', 'uString',
+      'ChnPorts']);
     AddUnit(P, 'ChnLoop.pas', AllOSes, ['ChnTypes', 'ChnVirt', 'ChnRing', 'ChnWait', 'ChnPort',
-      'ChnCom', 'uString']);
+      'ChnPhys', 'uString']);
     T := AddUnit(P, 'ChnSock.pas', AllOSes, ['uString']);
       T.Dependencies.AddUnit('ChnUnix', AllUnixOSes);
       T.Dependencies.AddInclude('chnsock.inc', AllUnixOSes);
       T.Dependencies.AddInclude('chnsock.inc', AllWindowsOSes);
     AddUnit(P, 'ChnTelnet.pas', AllOSes, []);
     AddUnit(P, 'ChnPortTcp.pas', AllOSes, ['ChnTypes', 'ChnPort', 'ChnWait', 'ChnSock', 'ChnTelnet']);
-    AddUnit(P, 'ChnTcp.pas', AllOSes, ['ChnTypes', 'ChnVirt', 'ChnPort', 'ChnCom', 'ChnPortTcp',
+    AddUnit(P, 'ChnTcp.pas', AllOSes, ['ChnTypes', 'ChnVirt', 'ChnPort', 'ChnPhys', 'ChnPortTcp',
       'uString']);
 
     { ---- src/trace: middle layers (fault injection, trace, capture files) }

@@ -2,9 +2,9 @@
 
   Two channel stacks in one process talk to each other with no OS device:
     'NAM=DF1 NOD=1 NAM=LOOP PAIR=A END=1'   and   '... NAM=LOOP PAIR=A END=2'
-  Each end is a tChnLoop: a tChnCom whose port is TChnPortLoop, so the
-  receive ring, LRB=, IDL=, the transmit buffer and the program-wide wait
-  are COM's. The ends of one PAIR share two byte rings in the drivers, one
+  Each end is a tChnLoop: a tChnPhys (the physical base, unit ChnPhys)
+  whose port is TChnPortLoop, so the receive ring, LRB=, IDL=, the transmit
+  buffer and the program-wide wait are the base's. The ends of one PAIR share two byte rings in the drivers, one
   per direction, each of the receiving end's LRB bytes. A message larger
   than the free space stays pending at the sender (COM's transmit buffer)
   and moves on as the receiver reads, so the transfer is flow-controlled
@@ -17,8 +17,8 @@
   size (default 4096, taken at the next ChOpen), IDL=ms to wait in
   ChReceiveReady when nothing is waiting (default 0: the peer usually runs
   in the same thread, where waiting only adds latency; give IDL when the
-  peer runs in another thread). COM's device and line keys mean nothing
-  here. Each open end is a wkSignal source of the program-wide wait (unit
+  peer runs in another thread). The line's keys (BD= ...), LSB= and
+  RECON= mean nothing here. Each open end is a wkSignal source of the program-wide wait (unit
   ChnWait): bytes put into its ring, or room made for its pending send,
   wake the waits of the process. Safe for two threads when the program
   uses cthreads. }
@@ -29,7 +29,7 @@ unit ChnLoop;
 interface
 
 uses
-  ChnTypes, ChnVirt, ChnRing, ChnWait, ChnPort, ChnCom;
+  ChnTypes, ChnVirt, ChnRing, ChnWait, ChnPort, ChnPhys;
 
 const
   cName = 'LOOP';
@@ -39,7 +39,7 @@ type
   pLoopPair = ^tLoopPair;
 
   pChnLoop = ^tChnLoop;
-  tChnLoop = object(tChnCom)
+  tChnLoop = object(tChnPhys)
     CH_Pair   : string[31];   { PAIR= }
     CH_End    : Byte;         { END=, 1 or 2 }
     constructor Init;
@@ -54,6 +54,8 @@ type
     function  ChReceiveReady: tChState; virtual;
     procedure ChReceive(var Len: Word); virtual;
   protected
+    { LRB= IDL= of the base }
+    function  PhysKeys: ShortString; virtual;
     function  ComOpenPort(out Port: TChnPort): tChResult; virtual;
     function  ComDropsWhenFull: Boolean; virtual;
   end;
@@ -377,18 +379,18 @@ begin
     if (Result = res_Ok) and (CmdL = cmd_Set) then
       CH_End := N;
   end
-  else if Key = 'LRB' then         { COM's ranges, without its key chain }
-    Result := ParamSetNum(S, 1, 1 shl 24, CmdL, CH_LRB)
-  else if Key = 'IDL' then
-    Result := ParamSetNum(S, 0, 1000, CmdL, CH_Idle)
   else
-    { COM's device and line keys mean nothing on an in-memory line }
-    Result := tChnVirt.ChSetOneParam(S, CmdL);
+    Result := inherited ChSetOneParam(S, CmdL);   { LRB= IDL= }
+end;
+
+function tChnLoop.PhysKeys: ShortString;
+begin
+  Result := 'LRB IDL';              { an in-memory line is never lost, its messages never too long }
 end;
 
 function tChnLoop.ChOwnParams: tParamStr;
 begin
-  Result := tChnVirt.ChOwnParams + ' PAIR=' + CH_Pair + ParamText('END', CH_End) +
+  Result := inherited ChOwnParams + ' PAIR=' + CH_Pair + ParamText('END', CH_End) +
     ParamText('LRB', CH_LRB) + ParamText('IDL', CH_Idle);
 end;
 

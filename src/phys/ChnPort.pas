@@ -1,4 +1,4 @@
-{ ChnPort - the small serial-port interface under tChnCom (docs/PROTOCOLS.md section 3).
+{ ChnPort - the small serial-port interface under the physical layers (tChnPhys) (docs/PROTOCOLS.md section 3).
 
   One abstract class, TChnPort, in the spirit of Synapse's TBlockSerial: open
   a device, configure it, move bytes without blocking, wait for input for a
@@ -124,11 +124,11 @@ type
       this port: a descriptor or an event handle, and for a handle the
       procedure that arms it again after it fired; or wkSignal for a
       device that signals its input itself (WaitJoined). False: nothing;
-      tChnCom then waits with WaitInput on this port alone. The default
+      tChnPhys then waits with WaitInput on this port alone. The default
       is False. }
     function WaitSource(out Kind: tChnWaitKind; out Os: PtrInt;
       out Rearm: tChnWaitRearm; out Data: Pointer): Boolean; virtual;
-    { The source tChnCom made of WaitSource in the program-wide wait, or
+    { The source tChnPhys made of WaitSource in the program-wide wait, or
       nil before it leaves it: a wkSignal port calls ChnWaitSignal on it
       when input arrives. Default: ignored. }
     procedure WaitJoined(Src: pChnWaitSource); virtual;
@@ -148,7 +148,7 @@ type
     procedure PollTimers; virtual;
     { True while the driver keeps input aside that its next Read returns
       but the OS no longer shows (so the wait would not end for it):
-      tChnCom then reads without waiting. The driver reports such input to
+      tChnPhys then reads without waiting. The driver reports such input to
       the program-wide wait itself (ChnWaitHeld), so ChnWaitAny ends at
       once. Default False. }
     function HoldsInput: Boolean; virtual;
@@ -175,7 +175,7 @@ type
   end;
 
 const
-  { Defaults of a new port and of tChnCom: 9600 8N1, no flow control }
+  { Defaults of a new port and of tChnPhys: 9600 8N1, no flow control }
   DefaultPortSettings: tPortSettings = (
     Baud: 9600; DataBits: 8; StopBits: 1; Parity: ppNone; Flow: flowNone;
     InQueue: 4096);
