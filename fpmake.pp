@@ -121,9 +121,13 @@ begin
       'ChnIec101Asdu', 'ChnWait']);
     AddUnit(P, 'ChnIec101Slave.pas', AllOSes, ['ChnTypes', 'ChnVirt', 'ChnFT1_2', 'ChnFT12Link',
       'ChnIec101Asdu']);
+    { IEC 60870-5-104: the APCI codec and the layer over NAM=TCP }
+    AddUnit(P, 'ChnIec104Codec.pas', AllOSes, ['ChnTypes']);
+    AddUnit(P, 'ChnIec104.pas', AllOSes, ['ChnTypes', 'ChnVirt', 'ChnProto', 'ChnIec104Codec',
+      'uString', 'ChnTcp']);
     { every layer at once, for programs that take any parameter string }
     T := AddUnit(P, 'ChnLayers.pas', AllOSes, ['ChnCom', 'ChnTcp', 'ChnLoop', 'ChnTrc', 'ChnNoise',
-      'ChnDF1', 'ChnFT1_2', 'ChnICS']);
+      'ChnDF1', 'ChnFT1_2', 'ChnICS', 'ChnIec104']);
       T.Dependencies.AddUnit('ChnPty', AllUnixOSes);
     Run;
   end;
