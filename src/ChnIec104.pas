@@ -553,6 +553,8 @@ end;
 function tChnIec104.ChRxByte(B: Byte; var Err: tChResult): Boolean;
 begin
   Result := False;
+  if CH_Feed.Pos = 0 then
+    SyncSession;                    { the bytes are the connection's now in use }
   case Apci104Feed(CH_Feed, B) of
     fe104Error:
       if CH_Feed.Error = res_ApciStart then
@@ -561,7 +563,6 @@ begin
         Broken(res_ApciLength, 'length octet ' + IntToStr(B) + ' (4..253)');
     fe104Apdu:
       begin
-        SyncSession;                { the bytes are the connection's now in use }
         Result := TakeApdu;
         Apci104FeedReset(CH_Feed);
       end;
