@@ -146,7 +146,8 @@ type
   receives into it). Balanced: the peer is slave DNO of the channel. }
 function IecMasterInit(var M: tIecMaster; Chn: pChnVirt; const P: tIecParams): tChResult;
 { Add a slave link address (unbalanced); res_Busy when IecMaxSlaves are
-  there, res_BadParam for an address twice or above 255 (ADR=1). }
+  there, res_BadParam for an address twice, above 255 (ADR=1) or the
+  broadcast address (255, ADR=2: 65535), which no station answers. }
 function IecMasterAddSlave(var M: tIecMaster; Addr: Word): tChResult;
 { Index of a slave, -1 when not added. }
 function IecMasterSlave(const M: tIecMaster; Addr: Word): LongInt;
@@ -191,7 +192,7 @@ procedure IecPollFor(var M: tIecMaster; Ms: LongInt);
 implementation
 
 uses
-  SysUtils, ChnWait;
+  SysUtils, ChnWait, ChnFT12Codec;
 
 function IecSlaveStateName(S: tIecSlaveState): ShortString;
 begin
@@ -259,10 +260,15 @@ begin
 end;
 
 function IecMasterAddSlave(var M: tIecMaster; Addr: Word): tChResult;
+var
+  AdrLen: Byte;
 begin
   if M.Balanced then
     Exit(res_BadParam);
-  if (IecMasterSlave(M, Addr) >= 0) or (Addr > $FFFF shr (8 * (2 - pChnFT1_2(M.Chn)^.CH_AdrLen))) then
+  { the broadcast address is no station: it never answers (SEND/NO REPLY only) }
+  AdrLen := pChnFT1_2(M.Chn)^.CH_AdrLen;
+  if (IecMasterSlave(M, Addr) >= 0) or (Addr > $FFFF shr (8 * (2 - AdrLen))) or
+     ((AdrLen > 0) and (Addr = FT12Broadcast(AdrLen))) then
     Exit(res_BadParam);
   if M.SlaveCount >= IecMaxSlaves then
     Exit(res_Busy);
@@ -480,6 +486,12 @@ begin
   end;
 end;
 
+{ Does a command of type Ti carry the S/E bit? }
+function HasSelectBit(Ti: Byte): Boolean;
+begin
+  Result := IecTypeKind(Ti) in [ikSingleCmd, ikDoubleCmd, ikStepCmd, ikSetNormal, ikSetScaled, ikSetFloat];
+end;
+
 { An ASDU from slave index S: does it answer the command? }
 procedure MatchCommand(var M: tIecMaster; S: Integer; const H: tIecAsdu; const O: tIecObject);
 var
@@ -499,6 +511,11 @@ begin
     Exit;
   end;
   if (H.Ti <> Ti) or (O.Ioa <> Want.Ioa) then
+    Exit;
+  { a confirmation mirrors the command: the S/E bit of this stage (an
+    execute's ACT_CON confirms no select), and T = 0 (this master sends no
+    test-mode commands) }
+  if H.Test or (HasSelectBit(Ti) and (O.Select <> Want.Select)) then
     Exit;
   What := 'COT ' + IntToStr(H.Cot) + ' ' + IecCotName(H.Cot);
   case H.Cot of

@@ -48,6 +48,8 @@ type
     procedure TestSteppedFormAndOneCommandAtATime;
     procedure TestBalancedPeer;
     procedure TestStepNeverWaitsForADeadSlave;
+    procedure TestBroadcastAddressIsNoSlave;
+    procedure TestConfirmationMustMirrorTheCommand;
   end;
 
 implementation
@@ -517,6 +519,57 @@ begin
   AssertTrue('longest step ' + IntToStr(Longest) + ' ms', Longest < 50);
   AssertEquals('slave 7 dead', Ord(isDead), Ord(M.Slaves[1].State));
   AssertTrue('slave 5 polled: ' + IntToStr(M.Slaves[0].Class2), M.Slaves[0].Class2 > 20);
+end;
+
+{ Link address 255 (ADR=1; 65535 with ADR=2) is the broadcast address of
+  IEC 60870-5-2: SEND/NO REPLY only, no station answers it. As a slave it
+  could never come up (the master once retried it without pause). }
+procedure TTestChnIec101Master.TestBroadcastAddressIsNoSlave;
+var
+  Err: string;
+  C: pChnVirt;
+  M2: tIecMaster;
+begin
+  Open('NAM=FT1_2 MS=ON MAS=MASTER LEN=0 NOD=0 DNO=5', [5]);
+  AssertEquals(res_BadParam, IecMasterAddSlave(M, 255));
+  AssertEquals(res_Ok, IecMasterAddSlave(M, 254));
+  AssertEquals(res_BadParam, IecMasterAddSlave(M, 256));
+  C := OpenStack(ChnFT1_2.cName, 'NAM=FT1_2 MS=ON MAS=MASTER LEN=0 ADR=2 NOD=0 DNO=5 NAM=LOOP PAIR=IMB END=1', Err);
+  AssertTrue(Err, C <> nil);
+  try
+    AssertEquals(res_Ok, IecMasterInit(M2, C, IecDefaultParams));
+    AssertEquals(res_BadParam, IecMasterAddSlave(M2, 65535));
+    AssertEquals(res_Ok, IecMasterAddSlave(M2, 65534));
+    AssertEquals(res_Ok, IecMasterAddSlave(M2, 255));
+  finally
+    Dispose(C, Done);
+  end;
+end;
+
+{ A confirmation mirrors its command (IEC 60870-5-101 7.2.6.x, -5 6.8):
+  the ACT_CON of an execute (S/E = 0) confirms no select, and one with
+  T = 1 (test) confirms no command sent without it: the master waits for
+  the right one (here in vain) and never executes on a wrong one. }
+procedure TTestChnIec101Master.TestConfirmationMustMirrorTheCommand;
+var
+  O: tIecObject;
+begin
+  Open('NAM=FT1_2 MS=ON MAS=MASTER LEN=0 NOD=0 DNO=5', [5]);
+  M.CommandMs := 300;
+  O := IecObject(5000);
+  O.Int := 1;
+  Sim(5).SelectConfirmedAsExecute := True;
+  AssertEquals(res_Timeout, IecCommand(M, 5, 1, C_SC_NA_1, O, True));
+  AssertEquals('the select only', 1, Sim(5).Got.Count);
+  AssertEquals('2D 01 06 00 01 00 88 13 00 81', Sim(5).Got[0]);
+  AssertTrue(M.Cmd.Err, Pos('no ACT_CON', M.Cmd.Err) > 0);
+  Sim(5).SelectConfirmedAsExecute := False;
+  Sim(5).ConfirmInTest := True;
+  AssertEquals(res_Timeout, IecCommand(M, 5, 1, C_SC_NA_1, O, False));
+  AssertEquals(2, Sim(5).Got.Count);
+  Sim(5).ConfirmInTest := False;
+  AssertEquals(M.Cmd.Err, res_Ok, IecCommand(M, 5, 1, C_SC_NA_1, O, True));
+  AssertEquals('select, execute', 4, Sim(5).Got.Count);
 end;
 
 initialization

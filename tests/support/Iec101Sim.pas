@@ -33,6 +33,8 @@ type
     Class1, Class2: TStringList;   { hex ASDUs to send }
     Got: TStringList;              { hex ASDUs received }
     RefuseNext: Boolean;           { the next command gets a negative ACT_CON }
+    { hostile: a select's ACT_CON with S/E = 0; every ACT_CON with T = 1 }
+    SelectConfirmedAsExecute, ConfirmInTest: Boolean;
     constructor Create(const Params: string; IsBalanced: Boolean; LinkMs: LongInt = 40);
     destructor Destroy; override;
     procedure Take(const Hex: string);
@@ -144,6 +146,10 @@ var
   begin
     C := Copy(B);
     C[2] := NewCot or (Ord(Negative) shl 6);
+    if (NewCot = Cot_ActCon) and ConfirmInTest then
+      C[2] := C[2] or $80;
+    if (NewCot = Cot_ActCon) and SelectConfirmedAsExecute and (Ti in [C_SC_NA_1, C_DC_NA_1, C_SE_NB_1]) then
+      C[Length(C) - 1] := C[Length(C) - 1] and $7F;
     Result := BytesToHex(C, Length(C));
   end;
 
