@@ -2,13 +2,21 @@
   tChnFT1_2 channel, unbalanced (MS=ON, several slaves on one line) or
   balanced (MS=OFF, one peer).
 
-  Unbalanced: the slaves get their turns round-robin. A slave whose link
-  is not up gets request status of link (FC 9) and reset of remote link
-  (FC 0); an online slave is polled for class 1 data (FC 10) whenever the
-  last reply had ACD set, else for class 2 data (FC 11), at most once per
-  CycleMs. A slave that stops answering is marked dead and tried again
-  after DeadMinMs, doubling up to DeadMaxMs, with a single transmission, so
-  it costs the others one timeout per back-off. Commands go as SEND/CONFIRM
+  Unbalanced: the slaves get their turns round-robin, and the line is
+  never idle while a slave has data. A slave whose link is not up gets
+  request status of link (FC 9) and reset of remote link (FC 0); an
+  online slave is polled for class 1 data (FC 10) whenever the last reply
+  had ACD set, else for class 2 data (FC 11). After an answer with data
+  (ACD set, or class 2 user data) the slave is polled again at once; one
+  that had nothing waits CycleMs. A slave keeps the turn for at most
+  PollBurst services in a row while it has data, then the next slave
+  that is due gets it: one that always has data (ACD stuck, a stream of
+  events) cannot starve the others. A slave that stops answering is
+  marked dead and tried again after DeadMinMs, doubling up to DeadMaxMs,
+  with a single transmission; its back-off is reset only by an answered
+  class poll or command, not by a status or reset answer alone, so a
+  slave that answers FC 9 and FC 0 but never a poll costs the others one
+  timeout per back-off too. Commands go as SEND/CONFIRM
   user data (FC 3) when their slave is online. The link procedures (FCB,
   repetitions, the reset in front of FCV = 1 services) are ChnFT12Link's.
   Balanced: ChnFT12Link's tFT12Balanced runs the link; commands are
@@ -76,6 +84,8 @@ type
     Failures : LongInt;    { services without an answer }
     Deaths   : LongInt;    { times marked dead }
     Resets   : LongInt;    { link resets acknowledged }
+    Probation: Boolean;    { died, and no class poll or command answered since }
+    PolledAt : QWord;      { the last class poll left (ChMsTick) }
   end;
 
   tIecObjectFunc = procedure(Data: Pointer; Addr: Word; const H: tIecAsdu; const O: tIecObject);
@@ -115,7 +125,8 @@ type
     { settings }
     TimeoutMs: LongInt;    { link answer (FT12LinkTimeoutMs) }
     Retries  : LongInt;    { link repetitions (FT12LinkRetries) }
-    CycleMs  : LongInt;    { class 2 polls of one slave at most this often (100) }
+    CycleMs  : LongInt;    { class 2 polls of a slave that had no data at most this often (100) }
+    PollBurst: LongInt;    { services in a row for a slave with data before the turn passes (3) }
     DeadMinMs, DeadMaxMs: LongInt;   { back-off of a dead slave (1000, 30000) }
     CommandMs: LongInt;    { confirmation of a command (10000) }
     OnObject : tIecObjectFunc;
@@ -136,6 +147,7 @@ type
     Prim     : tFT12Primary;
     Rep      : tRecRecord;
     RepLen   : Word;
+    Run      : LongInt;    { services in a row of the slave whose turn it is }
   end;
   pIecMaster = ^tIecMaster;
 
@@ -225,6 +237,7 @@ begin
   M.TimeoutMs := FT12LinkTimeoutMs;
   M.Retries := FT12LinkRetries;
   M.CycleMs := 100;
+  M.PollBurst := 3;
   M.DeadMinMs := 1000;
   M.DeadMaxMs := 30000;
   M.CommandMs := 10000;
@@ -646,10 +659,13 @@ begin
     Sl^.State := isOffline;              { an answer that does not fit: set the link up again }
     Exit;
   end;
-  if Sl^.State <> isDead then
+  { a slave that failed again before it answered a poll (dead, or set up
+    again after it) waits twice as long; a healthy one just died }
+  if not Sl^.Probation then
     Inc(Sl^.Deaths)
   else if Sl^.BackoffMs < M.DeadMaxMs then
     Sl^.BackoffMs := Sl^.BackoffMs * 2;
+  Sl^.Probation := True;
   if Sl^.BackoffMs > M.DeadMaxMs then
     Sl^.BackoffMs := M.DeadMaxMs;
   Sl^.State := isDead;
@@ -658,10 +674,12 @@ begin
     Finish(M, res_Timeout, 'slave does not answer (' + ChResultText(R) + ')');
 end;
 
-procedure SlaveAnswered(var M: tIecMaster; S: Integer);
+{ A class poll or a command was answered: the slave serves again. (A
+  status or reset answer alone does not count: a slave may answer those
+  and never a poll.) }
+procedure SlaveServes(var M: tIecMaster; S: Integer);
 begin
-  if M.Slaves[S].State = isDead then
-    M.Slaves[S].State := isOffline;     { back: set its link up again }
+  M.Slaves[S].Probation := False;
   M.Slaves[S].BackoffMs := M.DeadMinMs;
 end;
 
@@ -671,8 +689,7 @@ begin
   with M.Slaves[S] do
     case State of
       isDead: Result := Now_ >= RetryAt;
-      isOnline: Result := Link.Acd or (Now_ >= NextPoll)
-        or ((M.Cmd.Slave = S) and (M.Cmd.Phase = cpSend));
+      isOnline: Result := (Now_ >= NextPoll) or ((M.Cmd.Slave = S) and (M.Cmd.Phase = cpSend));
     else
       Result := True;
     end;
@@ -691,7 +708,7 @@ begin
   Sl := @M.Slaves[S];
   Buf[0] := 0;                          { fixed frames carry none of it }
   Retries := M.Retries;
-  if Sl^.State = isDead then
+  if Sl^.Probation then
     Retries := 0;                       { one try: the others wait one timeout only }
   case Sl^.State of
     isOffline, isDead: LinkStart(M, S, ljStatus, FCM_ReqLinkState, Buf, 0, Retries);
@@ -708,14 +725,22 @@ begin
         LinkStart(M, S, ljCommand, FCM_UserDataReply, Buf, Len, Retries);
       end;
     end
-    else if Sl^.Link.Acd then
-      LinkStart(M, S, ljClass1, FCM_ReqUserData1, Buf, 0, Retries)
     else
     begin
-      Sl^.NextPoll := ChMsTick + QWord(M.CycleMs);
-      LinkStart(M, S, ljClass2, FCM_ReqUserData2, Buf, 0, Retries);
+      Sl^.PolledAt := ChMsTick;
+      if Sl^.Link.Acd then
+        LinkStart(M, S, ljClass1, FCM_ReqUserData1, Buf, 0, Retries)
+      else
+        LinkStart(M, S, ljClass2, FCM_ReqUserData2, Buf, 0, Retries);
     end;
   end;
+end;
+
+{ The turn goes to the slave after S. }
+procedure PassTurn(var M: tIecMaster; S: LongInt);
+begin
+  M.Turn := (S + 1) mod M.SlaveCount;
+  M.Run := 0;
 end;
 
 { The service under way is over: act on its answer. }
@@ -724,6 +749,7 @@ var
   S: LongInt;
   Sl: ^tIecSlave;
   Job: tIecLinkJob;
+  Data: Boolean;
 begin
   S := M.JobSlave;
   Sl := @M.Slaves[S];
@@ -732,15 +758,14 @@ begin
   if M.LinkResult <> res_Ok then
   begin
     SlaveFailed(M, S, M.LinkResult);
-    M.Turn := (S + 1) mod M.SlaveCount;
+    if Job <> ljCommand then
+      PassTurn(M, S);
     Exit;
   end;
+  Data := False;
   case Job of
     ljStatus:
-      begin
-        SlaveAnswered(M, S);
-        Sl^.State := isLinkStatus;
-      end;
+      Sl^.State := isLinkStatus;        { dead or not: set its link up (again) }
     ljReset:
       begin
         Inc(Sl^.Resets);
@@ -751,6 +776,7 @@ begin
       if (M.Cmd.Slave = S) and (M.Cmd.Phase = cpSend)
         and ((M.Rep.MessType = tpSACK) or (M.Rep.FC = FCS_Ack)) then
       begin
+        SlaveServes(M, S);
         Inc(Sl^.Commands);
         StageSent(M, S);
         if M.Cmd.Stage = stDelaySend then
@@ -764,17 +790,38 @@ begin
       { a NACK (busy): sent again at the next turn }
     ljClass1, ljClass2:
       begin
+        SlaveServes(M, S);
         if Job = ljClass1 then
           Inc(Sl^.Class1)
         else
           Inc(Sl^.Class2);
-        if (M.Rep.MessType = tpLongM) and (M.Rep.FC = FCS_UserData) and (M.RepLen > cSizeHeadRecMsg) then
+        Data := (M.Rep.MessType = tpLongM) and (M.Rep.FC = FCS_UserData) and (M.RepLen > cSizeHeadRecMsg);
+        if Data then
           TakeAsdu(M, S, M.Rep.Data, M.RepLen - cSizeHeadRecMsg);
+        { more data (ACD, or class 2 had some): polled again at once;
+          none: not before CycleMs after this poll }
+        Data := Data or Sl^.Link.Acd;
+        if Data then
+          Sl^.NextPoll := 0
+        else
+          Sl^.NextPoll := Sl^.PolledAt + QWord(M.CycleMs);
       end;
   end;
-  { a slave with class 1 data waiting keeps its turn }
-  if not ((Sl^.State = isOnline) and Sl^.Link.Acd) then
-    M.Turn := (S + 1) mod M.SlaveCount;
+  if Sl^.Link.Acd then
+    Sl^.NextPoll := 0;                  { class 1 waits (a command's ACT_CON ...) }
+  { a command jumps the queue: the turn stays where it was }
+  if Job = ljCommand then
+    Exit;
+  { a slave with data keeps the turn for PollBurst services at most; the
+    link set up (status, reset) takes a turn each }
+  if S <> M.Turn then
+  begin
+    M.Turn := S;                        { the ones before it had nothing due }
+    M.Run := 0;
+  end;
+  Inc(M.Run);
+  if not Data or (M.Run >= M.PollBurst) then
+    PassTurn(M, S);
 end;
 
 function StepUnbalanced(var M: tIecMaster): Boolean;
