@@ -116,6 +116,9 @@ procedure PcccCancel(var R: tPcccRequest);
   (ChnWaitUntil: it ends at the first input or at the timer) - no sleep,
   no busy loop. }
 function PcccFinish(var R: tPcccRequest): tChResult;
+{ Why the link exchange M on Chn failed, in words ('no ACK after 3 tries',
+  'NAK on each of 3 tries', 'no reply', ...); M.Result <> res_Ok. }
+function PcccMasterFailure(const M: tDF1Master; Chn: pChnVirt): ShortString;
 { A program's exit code for a request's result, in the tools' one scheme
   (docs/TOOLS.md): 0 res_Ok; 1 the line failed (cannot be opened, lost, any
   other error); 2 the request cannot be made (address, count, value, kind,
@@ -447,6 +450,20 @@ begin
 end;
 
 { The exchange of request R.Index is over: check, decode, go on. }
+function PcccMasterFailure(const M: tDF1Master; Chn: pChnVirt): ShortString;
+begin
+  if (M.Result = res_Timeout) and not M.Acked and (M.Naks >= M.Tries) then
+    Result := Format('NAK on each of %d tries', [M.Tries])
+  else if (M.Result = res_Timeout) and not M.Acked then
+    Result := Format('no ACK after %d tries', [M.Tries])
+  else if M.Result = res_Timeout then
+    Result := 'no reply'
+  else if M.Result = res_BadMessage then
+    Result := 'the reply is not the one to this command'
+  else
+    Result := Chn^.ChResultStr(M.Result);
+end;
+
 procedure Exchanged(var R: tPcccRequest);
 var
   E: ShortString;
@@ -458,15 +475,9 @@ begin
   if M^.Result <> res_Ok then
   begin
     if (M^.Result = res_Timeout) and not M^.Acked and (M^.Naks >= M^.Tries) then
-      Fail(R, res_PcccNak, Format('NAK on each of %d tries', [M^.Tries]))
-    else if (M^.Result = res_Timeout) and not M^.Acked then
-      Fail(R, res_Timeout, Format('no ACK after %d tries', [M^.Tries]))
-    else if M^.Result = res_Timeout then
-      Fail(R, res_Timeout, 'no reply')
-    else if M^.Result = res_BadMessage then
-      Fail(R, res_BadMessage, 'the reply is not the one to this command')
+      Fail(R, res_PcccNak, PcccMasterFailure(M^, R.Client^.Chn))
     else
-      Fail(R, M^.Result, R.Client^.Chn^.ChResultStr(M^.Result));
+      Fail(R, M^.Result, PcccMasterFailure(M^, R.Client^.Chn));
     Exit;
   end;
   Res := PcccCheckReply(M^.Rep, M^.RepLen, R.Expect, E);
