@@ -30,7 +30,7 @@
 
   Parameters: PAIR=name (default A), END=1..32 (default 1; PAIR= and END=
   cannot change while the end is open: res_WrongState), BD=50..4000000 or
-  0 (default 0: no speed), BIT=5..8, STOP=1|2, PAR=N|E|O|M|S, LRB=receive
+  0 (default 0: no speed; reported with the character only when given), BIT=5..8, STOP=1|2, PAR=N|E|O|M|S, LRB=receive
   ring size (default 4096, taken at the next ChOpen), IDL=ms to wait in
   ChReceiveReady when nothing is waiting (default 0: the peer usually runs
   in the same thread, where waiting only adds latency; give IDL when the
@@ -196,9 +196,10 @@ begin
   LeaveCriticalSection(Lock);
 end;
 
-{ Hand N characters of end E's wire to every other open end (a garbled
-  one inverted); at a full ring they are lost there (Overruns). }
-procedure Deliver(P: pLoopPair; E: LongInt; N: LongInt);
+{ Hand N > 0 characters of end E's wire to every other open end (a
+  garbled one inverted); at a full ring they are lost there (Overruns).
+  Caller: the end whose call this is (it needs no wake-up). }
+procedure Deliver(P: pLoopPair; E, N, Caller: LongInt);
 var
   L, I: LongInt;
   B: Byte;
@@ -230,16 +231,20 @@ begin
       LastEnd := WireAt;
     end;
   end;
-  if N > 0 then
-    for L := 1 to LoopMaxEnds do
-      if P^.Ends[L].Open then
-        ChnWaitSignal(P^.Ends[L].Wait);   { input for them, room for E }
+  { input for the others; for E, room (no speed) or its send done - not
+    for the end whose own call moved them }
+  for L := 1 to LoopMaxEnds do
+    if (L <> Caller) and P^.Ends[L].Open and
+      ((L <> E) or (P^.Ends[E].CharUs = 0) or (P^.Ends[E].WireLen = 0)) then
+      ChnWaitSignal(P^.Ends[L].Wait);
 end;
 
 { Move what has reached the other ends by Now (with a speed), or what
   fits into every other end's ring (without), and tell the shared wait
-  when the next characters fall due. Caller holds Lock. }
-procedure Pump(P: pLoopPair; Now: QWord);
+  when the next characters fall due: the receivers when the next ones
+  (up to LoopWakeChars) arrive, the sender when its last one has left.
+  Caller: the end whose call this is. Caller holds Lock. }
+procedure Pump(P: pLoopPair; Now: QWord; Caller: LongInt);
 var
   E, L: LongInt;
   N, Room: LongInt;
@@ -270,15 +275,16 @@ begin
           N := WireLen - WirePos;
       end;
       if N > 0 then
-        Deliver(P, E, N);
+        Deliver(P, E, N, Caller);
       if (WirePos < WireLen) and (CharUs > 0) then
       begin
+        ChnWaitDue(Wait, WireAt + QWord(WireLen - WirePos) * QWord(CharUs));
         N := WireLen - WirePos;
         if N > LoopWakeChars then
           N := LoopWakeChars;
         Due := WireAt + QWord(N) * QWord(CharUs);
         for L := 1 to LoopMaxEnds do
-          if P^.Ends[L].Open then
+          if (L <> E) and P^.Ends[L].Open then
             ChnWaitDue(P^.Ends[L].Wait, Due);
       end;
     end;
@@ -369,10 +375,10 @@ function TChnPortLoop.Read(var Buf; Size: LongInt; out Got: LongInt): tChResult;
 begin
   EnterCriticalSection(Lock);
   try
-    Pump(FPair, ChnClockUs);
+    Pump(FPair, ChnClockUs, FEnd);
     Got := RingGet(FPair^.Ends[FEnd].Ring, @Buf, Size);
     if Got > 0 then
-      Pump(FPair, ChnClockUs);       { room again for a held sender }
+      Pump(FPair, ChnClockUs, FEnd);       { room again for a held sender }
   finally
     LeaveCriticalSection(Lock);
   end;
@@ -417,7 +423,7 @@ begin
   EnterCriticalSection(Lock);
   try
     Now := ChnClockUs;
-    Pump(FPair, Now);
+    Pump(FPair, Now, FEnd);
     with FPair^.Ends[FEnd] do
     begin
       Idle := WirePos >= WireLen;
@@ -446,7 +452,7 @@ begin
     Done := Len;
     if FPair^.Ends[FEnd].CharUs > 0 then
       Collide(FPair, FEnd);
-    Pump(FPair, Now);
+    Pump(FPair, Now, FEnd);
   finally
     LeaveCriticalSection(Lock);
   end;
@@ -455,7 +461,7 @@ end;
 function TChnPortLoop.OutQueue(out N: LongInt): tChResult;
 begin
   EnterCriticalSection(Lock);
-  Pump(FPair, ChnClockUs);
+  Pump(FPair, ChnClockUs, FEnd);
   with FPair^.Ends[FEnd] do
     N := WireLen - WirePos;
   LeaveCriticalSection(Lock);
@@ -465,7 +471,7 @@ end;
 function TChnPortLoop.WaitInput(Ms: LongInt): Boolean;
 begin
   EnterCriticalSection(Lock);
-  Pump(FPair, ChnClockUs);
+  Pump(FPair, ChnClockUs, FEnd);
   Result := FPair^.Ends[FEnd].Ring.Count > 0;
   LeaveCriticalSection(Lock);
 end;
@@ -473,7 +479,7 @@ end;
 function TChnPortLoop.WaitOutput(Ms: LongInt): Boolean;
 begin
   EnterCriticalSection(Lock);
-  Pump(FPair, ChnClockUs);
+  Pump(FPair, ChnClockUs, FEnd);
   with FPair^.Ends[FEnd] do
     Result := (CharUs > 0) or (WirePos >= WireLen);
   LeaveCriticalSection(Lock);
@@ -510,7 +516,7 @@ procedure TChnPortLoop.WaitJoined(Src: pChnWaitSource);
 begin
   EnterCriticalSection(Lock);
   FPair^.Ends[FEnd].Wait := Src;
-  Pump(FPair, ChnClockUs);          { characters already on their way }
+  Pump(FPair, ChnClockUs, FEnd);          { characters already on their way }
   LeaveCriticalSection(Lock);
 end;
 
@@ -585,8 +591,10 @@ end;
 
 function tChnLoop.ChOwnParams: tParamStr;
 begin
-  Result := tChnVirt.ChOwnParams + ' PAIR=' + CH_Pair + ParamText('END', CH_End) +
-    ParamText('BD', CH_LoopBaud) + ComCharText(CH_Set) + ParamText('LRB', CH_LRB) + ParamText('IDL', CH_Idle);
+  Result := tChnVirt.ChOwnParams + ' PAIR=' + CH_Pair + ParamText('END', CH_End);
+  if CH_LoopBaud > 0 then          { a line without speed reads as before }
+    Result := Result + ParamText('BD', CH_LoopBaud) + ComCharText(CH_Set);
+  Result := Result + ParamText('LRB', CH_LRB) + ParamText('IDL', CH_Idle);
 end;
 
 function tChnLoop.ComOpenPort(out Port: TChnPort): tChResult;

@@ -390,6 +390,7 @@ begin
   AssertEquals('BD=49', res_BadParam, A^.ChResult);
   A^.ChSetParam('BD=0');
   AssertEquals('BD=0: no speed', res_Ok, A^.ChResult);
+  AssertEquals('no speed, no line keys', '', A^.ChGetParam('BD'));
   A^.ChSetParam('PAR=X');
   AssertEquals('PAR=X', res_BadParam, A^.ChResult);
 end;
