@@ -26,6 +26,7 @@ type
     procedure TestConfigValues;
     procedure TestConfigErrors;
     procedure TestDefaultTable;
+    procedure TestFreeRunningClock;
     procedure TestExampleConfigLoads;
     procedure TestEchoAndTns;
     procedure TestTypedReadIntegerAndFloat;
@@ -116,6 +117,30 @@ begin
     Result := 'ok'
   else
     Result := IntToStr(Line);
+end;
+
+{ S:4 of an SLC counts every 10 ms and wraps at 65535 }
+procedure TTestChnSlc.TestFreeRunningClock;
+var
+  Small: tSlcTable;
+  Line: Integer;
+  Err: string;
+begin
+  SlcLoadDefault(T);
+  SlcClock(T, 0);
+  AssertEquals('S2:4 at start', 0, SlcGetWord(T, 2, 4));
+  SlcClock(T, 12349);
+  AssertEquals('S2:4 after 12.349 s', 1234, SlcGetWord(T, 2, 4));
+  SlcClock(T, 655359);
+  AssertEquals('S2:4 just before the wrap', 65535, SlcGetWord(T, 2, 4));
+  SlcClock(T, 655360 + 25);
+  AssertEquals('S2:4 wrapped', 2, SlcGetWord(T, 2, 4));
+  AssertEquals('S2:3 untouched', 0, SlcGetWord(T, 2, 3));
+  AssertEquals('S2:5 untouched', 0, SlcGetWord(T, 2, 5));
+  { a table whose S2 has no element 4 is left alone }
+  AssertTrue(Err, SlcLoadConfig(Small, 'S2 4'#10'N7 2'#10, Line, Err));
+  SlcClock(Small, 5000);
+  AssertEquals('S2:3 of a short S2', 0, SlcGetWord(Small, 2, 3));
 end;
 
 procedure TTestChnSlc.TestDefaultTable;

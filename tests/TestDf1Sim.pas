@@ -13,7 +13,7 @@ interface
 uses
   {$IFDEF UNIX}BaseUnix,{$ENDIF}
   SysUtils, Classes, Process, fpcunit, testregistry, ChnTypes, ChnVirt,
-  ChnLoop, ChnCom, ChnDF1, ChnSlc, ChnDF1Link, TestSupport, BinSupport, Df1Pair
+  ChnLoop, ChnCom, ChnDF1, ChnSlc, ChnDF1Link, ChnWait, ChnPcccClient, TestSupport, BinSupport, Df1Pair
   {$IFDEF UNIX}, PtyPair{$ENDIF};
 
 type
@@ -42,6 +42,7 @@ type
     {$IFDEF UNIX}
     procedure TestBinaryOverPty;   { df1sim --pty: a Unix pty }
     procedure TestPtyTakesBdAndPar;
+    procedure TestFreeRunningClockOverPty;
     {$ENDIF}
     procedure TestLogLines;
     procedure TestLogNoAck;
@@ -413,6 +414,32 @@ end;
 {$ENDIF}
 
 {$IFDEF UNIX}
+{ S2:4 counts every 10 ms, as on an SLC: two reads 300 ms apart differ by
+  about 30 (at least 25: the reads themselves take time, at most 200 under
+  any load the suite meets) }
+procedure TTestDf1Sim.TestFreeRunningClockOverPty;
+var
+  PtyPath: string;
+  C: tPcccClient;
+  A, B: array[0..0] of LongInt;
+  Deadline: QWord;
+  Steps: LongInt;
+begin
+  Proc := StartSimPty(['--timeout=10', '--quiet'], PtyPath);
+  AssertEquals('open', res_Ok, PcccOpen(C, 'NAM=DF1 NOD=0 DNO=1 FHD=FULL CRC=ON NAM=COM DEV=' + PtyPath));
+  try
+    AssertEquals('first read: ' + C.Err, res_Ok, PcccReadInts(C, 'S2:4', 1, A));
+    Deadline := ChMsTick + 300;
+    while ChMsTick < Deadline do
+      ChnWaitAny(ChnWaitLeft(Deadline));
+    AssertEquals('second read: ' + C.Err, res_Ok, PcccReadInts(C, 'S2:4', 1, B));
+    Steps := (B[0] - A[0]) and $FFFF;
+    AssertTrue(Format('S2:4 went from %d to %d in 300 ms', [A[0], B[0]]), (Steps >= 25) and (Steps <= 200));
+  finally
+    PcccClose(C);
+  end;
+end;
+
 procedure TTestDf1Sim.TestPtyTakesBdAndPar;
 var
   Out: string;

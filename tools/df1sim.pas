@@ -112,7 +112,7 @@ var
   Params, Dev, Par, ConfigName, Err, Listen: string;
   UsePty, Half, Crc, Dup, LineGiven: Boolean;
   Node, DNo, Bd, Count, TimeoutS, ErrLine: LongInt;
-  LastMsg, CountReached: QWord;
+  LastMsg, CountReached, Started: QWord;
 
 begin
   CliInit(Cli, 'df1sim', '[OPTION]... [PARAMETER-STRING...]',
@@ -224,9 +224,12 @@ begin
   SlcStationInit(Station, Chn, @Table);
   Station.Log := @LogLine;
   LastMsg := ChMsTick;
+  Started := LastMsg;
   CountReached := 0;
   while not Stop do
   begin
+    { S:4, the free-running clock, as of now for the command about to be answered }
+    SlcClock(Table, ChMsTick - Started);
     if DF1StationStep(Station) then
       LastMsg := ChMsTick
     else if Chn^.ChResult <> res_Ok then

@@ -138,6 +138,11 @@ function SlcGetWord(const T: tSlcTable; Num: Byte; Elem: LongInt; Sub: LongInt =
 procedure SlcSetWord(var T: tSlcTable; Num: Byte; Elem: LongInt; V: Word);
 function SlcGetFloat(const T: tSlcTable; Num: Byte; Elem: LongInt): Single;
 
+{ The free-running clock of an SLC: S:4 counts up by one every 10 ms and
+  wraps at 65535. Ms is the time since the processor started; S2:4 gets
+  Ms div 10 (nothing when the table has no S2 file with element 4). }
+procedure SlcClock(var T: tSlcTable; Ms: QWord);
+
 { Answer one command. Req/ReqLen as received (Len = 8 + data bytes); Rep
   gets the reply, RepLen its Len. Replies to replies are not made: the
   function returns False for a message with the reply bit set. }
@@ -463,6 +468,12 @@ var
 begin
   if not SlcLoadConfig(T, SlcDefaultConfig, ErrLine, Err) then
     SlcClear(T);   { not reached; TestChnSlc.TestDefaultTable checks it }
+end;
+
+procedure SlcClock(var T: tSlcTable; Ms: QWord);
+begin
+  if (T.Files[2].FType = pft_Status) and (T.Files[2].Elems > 4) then
+    SlcSetWord(T, 2, 4, Word((Ms div 10) and $FFFF));
 end;
 
 { ------------------------------------------------------------- commands }
