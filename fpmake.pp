@@ -94,7 +94,8 @@ begin
     Part(P, 'phys');
     { what the Unix parts share }
     AddUnit(P, 'ChnUnix.pas', AllUnixOSes, ['ChnTypes']);
-    AddUnit(P, 'ChnPort.pas', AllOSes, ['ChnTypes', 'ChnWait', 'uString']);
+    T := AddUnit(P, 'ChnPort.pas', AllOSes, ['ChnTypes', 'ChnWait', 'uString']);
+      T.Dependencies.AddUnit('ChnUnix', AllUnixOSes);
     AddUnit(P, 'ChnPortUnix.pas', AllUnixOSes, ['ChnTypes', 'ChnWait', 'ChnPort', 'ChnUnix']);
     AddUnit(P, 'ChnPty.pas', AllUnixOSes, ['ChnTypes', 'ChnPort', 'ChnPortUnix', 'ChnUnix']);
     AddUnit(P, 'ChnPortWin.pas', AllWindowsOSes, ['ChnTypes', 'ChnWait', 'ChnPort']);
