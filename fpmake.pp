@@ -134,6 +134,8 @@ begin
     AddUnit(P, 'ChnPccc.pas', AllOSes, ['ChnTypes', 'ChnDF1Codec', 'uString', 'ChnPcccNames']);
     AddUnit(P, 'ChnPcccClient.pas', AllOSes, ['ChnTypes', 'ChnVirt', 'ChnDF1Codec', 'ChnDF1Link',
       'ChnPccc', 'uString', 'ChnWait']);
+    AddUnit(P, 'ChnPcccTags.pas', AllOSes, ['ChnTypes', 'ChnVirt', 'ChnDF1Codec', 'ChnDF1Link',
+      'ChnPccc', 'ChnPcccClient', 'ChnWait']);
     { src/iec: FT 1.2 and IEC 60870-5-101 }
     Part(P, 'iec');
     AddUnit(P, 'ChnFT12Codec.pas', AllOSes, ['ChnTypes']);
