@@ -297,7 +297,7 @@ begin
       if IecMasterAddSlave(M, Slaves[I]) <> res_Ok then
       begin
         Dispose(Chn, Done);
-        CliUsageError(Cli, 'slave address twice or too large for ADR=', IntToStr(Slaves[I]));
+        CliUsageError(Cli, 'slave address twice, too large for ADR= or the broadcast address', IntToStr(Slaves[I]));
       end;
 end;
 

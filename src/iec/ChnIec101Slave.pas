@@ -22,17 +22,19 @@
     handed to OnCommand (True accepts: positive ACT_CON, False: negative);
     a select (S/E = 1) is remembered for SelectMs, the execute that
     follows it in time is passed on, one after the timeout is refused
-    (negative ACT_CON, OnCommand not called); deactivation (COT 8) ends a
-    selection (DEACT_CON);
+    (negative ACT_CON, OnCommand not called), and so is an execute with
+    another value or qualifier than the one selected; deactivation (COT 8)
+    ends a selection (DEACT_CON); a command with T = 1 (test) is never
+    executed: negative confirmation, T kept;
   * clock synchronisation (C_CS_NA_1): the difference to the PC clock is
     kept as the station clock's offset, OnClock told, ACT_CON with the
     time received;
   * read (C_RD_NA_1): the point in class 1 with COT 5;
   * test (C_TS_NA_1, C_TS_TA_1), reset process (C_RP_NA_1: QRP 2 drops
-    the queued events), delay acquisition (C_CD_NA_1: COT 6 confirmed,
+    the queued time-tagged events, never a confirmation), delay acquisition (C_CD_NA_1: COT 6 confirmed,
     COT 3 kept as the delay): ACT_CON;
   * anything else is mirrored as a negative answer with COT 44 (unknown
-    type), 45 (a cause the type does not take), 46 (another common
+    type), 45 (a cause the type does not take, or P/N = 1), 46 (another common
     address, or the broadcast address with a read or a command) or 47 (an
     IOA the table does not have for that type).
   A malformed ASDU (too short, wrong length for its type and count) is
@@ -111,6 +113,7 @@ type
     SelIoa   : LongWord;
     SelUntil : QWord;
     SelectMs : LongInt;
+    SelObj   : tIecObject;    { the object selected: its execute must carry the same }
     { station clock: PC clock + ClockOffsetMs; delay from C_CD_NA_1 }
     ClockOffsetMs: Int64;
     DelayMs  : LongInt;
@@ -186,6 +189,23 @@ procedure QueueDrop(var Q: tIecQueue);
 begin
   Q.Head := (Q.Head + 1) mod IecSlaveQueueLen;
   Dec(Q.Count);
+end;
+
+{ Reset of pending information with time tag (QRP 2): the queued
+  spontaneous ASDUs of time-tagged types go; confirmations, terminations,
+  answers to reads and untagged events stay, in their order. }
+procedure QueueDropTaggedEvents(var Q: tIecQueue);
+var
+  Old: tIecQueue;
+  I: Integer;
+begin
+  Old := Q;
+  Q.Head := 0;
+  Q.Count := 0;
+  for I := 0 to Old.Count - 1 do
+    with Old.Items[(Old.Head + I) mod IecSlaveQueueLen] do
+      if (Len < 3) or (Data[2] and $3F <> Cot_Spontaneous) or (IecTypeTime(Data[0]) = tkNone) then
+        QueuePut(Q, Data, Len);
 end;
 
 procedure Queue1(var S: tIecSlaveStation; const Buf: array of Byte; Len: Word);
@@ -457,6 +477,21 @@ begin
   Queue1(S, Out, Len);
 end;
 
+{ Does an execute carry what was selected (value, qualifier)? }
+function SameCommand(const Sel, O: tIecObject): Boolean;
+begin
+  Result := (Sel.Int = O.Int) and (Sel.Bits = O.Bits) and (Sel.Number = O.Number) and (Sel.Qu = O.Qu);
+end;
+
+{ The confirmation cause of an activation (7) or deactivation (9). }
+function ActOrDeact(Cot: Byte): Byte;
+begin
+  if Cot = Cot_Deactivation then
+    Result := Cot_DeactCon
+  else
+    Result := Cot_ActCon;
+end;
+
 { A command of types 45..51 / 58..64 with cause 6 or 8. }
 procedure TakeCommand(var S: tIecSlaveStation; const Buf: array of Byte; Len: Word;
   const H: tIecAsdu; const O: tIecObject);
@@ -471,6 +506,14 @@ begin
     Exit;
   end;
   Select := O.Select and (IecTypeKind(H.Ti) <> ikBitsCmd);
+  if H.Test then
+  begin
+    { T = 1: generated under test conditions, not meant to change the
+      process - never executed, refused (negative, T kept) }
+    Inc(S.Refused);
+    Answer(S, Buf, Len, ActOrDeact(H.Cot), True);
+    Exit;
+  end;
   if H.Cot = Cot_Deactivation then
   begin
     { ends a selection of this object }
@@ -481,9 +524,10 @@ begin
     Exit;
   end;
   if not Select and S.SelActive and (S.SelTi = H.Ti) and (S.SelIoa = O.Ioa) and
-     (ChMsTick > S.SelUntil) then
+     ((ChMsTick > S.SelUntil) or not SameCommand(S.SelObj, O)) then
   begin
-    { the execute of a selection whose time is up }
+    { the execute of a selection whose time is up, or with another value
+      or qualifier than the one selected }
     S.SelActive := False;
     Inc(S.Refused);
     Answer(S, Buf, Len, Cot_ActCon, True);
@@ -499,6 +543,7 @@ begin
       S.SelTi := H.Ti;
       S.SelIoa := O.Ioa;
       S.SelUntil := ChMsTick + QWord(S.SelectMs);
+      S.SelObj := O;
     end
     else
     begin
@@ -651,7 +696,8 @@ begin
     Answer(S, A, Len, Cot_UnknownType, True);
     Exit;
   end;
-  if not CotFits(H.Ti, H.Cot) then
+  { P/N is the confirmation's: in control direction no cause carries it }
+  if not CotFits(H.Ti, H.Cot) or H.Negative then
   begin
     Answer(S, A, Len, Cot_UnknownCause, True);
     Exit;
@@ -669,7 +715,7 @@ begin
     C_TS_NA_1, C_TS_TA_1, C_RP_NA_1:
       begin
         if (H.Ti = C_RP_NA_1) and (O.Int = Qrp_Events) then
-          S.Class1.Count := 0;                  { pending events dropped }
+          QueueDropTaggedEvents(S.Class1);
         Answer(S, A, Len, Cot_ActCon, False);
       end;
     C_CD_NA_1:
