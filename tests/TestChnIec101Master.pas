@@ -134,7 +134,7 @@ begin
   AssertTrue(FHub.AddPort('IMM'));
   AssertEquals(res_Ok, IecMasterInit(M, FChn, IecDefaultParams));
   M.TimeoutMs := LinkMs;
-  M.Bal.TimeoutMs := LinkMs;
+  M.Link.Bal.TimeoutMs := LinkMs;
   M.CommandMs := 2000;
   M.CycleMs := 5;
   M.DeadMinMs := 200;
@@ -474,7 +474,7 @@ begin
   Open('NAM=FT1_2 MS=OFF PRI=ON DIR=1 LEN=0 NOD=1 DNO=5', [5], True);
   AssertTrue(M.Balanced);
   I := 0;
-  while (M.Bal.State <> bsAvailable) and (I < 2000) do
+  while (M.Link.Bal.State <> bsAvailable) and (I < 2000) do
   begin
     IecMasterStep(M);
     Pump;

@@ -368,10 +368,10 @@ var
 
 const
   { every layer name of the library and the unit that registers it }
-  LayerUnits: array[0..7, 0..1] of string[8] = (
+  LayerUnits: array[0..8, 0..1] of string[9] = (
     ('COM', 'ChnCom'), ('TCP', 'ChnTcp'), ('LOOP', 'ChnLoop'),
     ('TRC', 'ChnTrc'), ('NOISE', 'ChnNoise'), ('DF1', 'ChnDF1'),
-    ('FT1_2', 'ChnFT1_2'), ('ICS', 'ChnICS'));
+    ('FT1_2', 'ChnFT1_2'), ('ICS', 'ChnICS'), ('IEC104', 'ChnIec104'));
 
 function ChLayerUnit(const Name: ShortString): ShortString;
 var
