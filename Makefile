@@ -41,19 +41,24 @@ TUNITDIR := $(BUILD)/test-units
 TBINDIR  := $(BUILD)/test-bin
 DEB_PACKAGES := fp-compiler fp-units-rtl fp-units-base fp-units-fcl
 
-# Per-OS code lives in src/unix and src/win (units and the include files
-# of portable units), as in Free Pascal's own packages; this OS's folder
-# is searched too. The optional Synapse backend builds only with SYNAPSE_DIR.
+# The library is a folder per part under src/ (src/README.md): core, phys,
+# trace, df1, iec, ics...; every part folder is searched. Per-OS code lives
+# in a part's unix/ and win/ folders (units and the include files of
+# portable units), as in Free Pascal's own packages; this OS's folder of
+# src/phys is searched too. The optional Synapse backend builds only with
+# SYNAPSE_DIR.
 ifeq ($(OS),Windows_NT)
 OSDIR    := win
 else
 OSDIR    := unix
 endif
+SRCDIRS  := $(patsubst %/,%,$(wildcard src/*/))
+SRCPATH  := $(addprefix -Fu,$(SRCDIRS)) -Fusrc/phys/$(OSDIR)
 
 SYNAPSE_FLAGS := $(if $(SYNAPSE_DIR),-Fu$(SYNAPSE_DIR) -Fi$(SYNAPSE_DIR) -dCHN_SYNAPSE)
 COMMON   := -Fisrc -v0ew -l-
 # library units: warnings are errors; release code is optimised
-UNITFLAGS := $(COMMON) $(SYNAPSE_FLAGS) -Fusrc -Fusrc/$(OSDIR) -O2 -Sew -FU$(UNITDIR) -FE$(BINDIR)
+UNITFLAGS := $(COMMON) $(SYNAPSE_FLAGS) $(SRCPATH) -O2 -Sew -FU$(UNITDIR) -FE$(BINDIR)
 # examples, tools, benchmarks: the compiled library (as an installed one
 # would be used; Synapse's units too, so they are not rebuilt with -Sew),
 # plus tools/lib
@@ -62,7 +67,7 @@ PROGFLAGS := $(COMMON) $(if $(SYNAPSE_DIR),-dCHN_SYNAPSE) -Fu$(UNITDIR) -Futools
 # tests: range, overflow and stack checks, heaptrc, line info (and -Xs-:
 # Debian's fpc.cfg strips it otherwise, and failures could not say where);
 # -B rebuilds everything, as FPC's one-second timestamps can miss a quick edit
-TESTFLAGS := $(COMMON) $(SYNAPSE_FLAGS) -Fusrc -Fusrc/$(OSDIR) -Futools/lib -Futests/support -B -Cr -Co -Ct -gh -gl -Xs- \
+TESTFLAGS := $(COMMON) $(SYNAPSE_FLAGS) $(SRCPATH) -Futools/lib -Futests/support -B -Cr -Co -Ct -gh -gl -Xs- \
              -Fu$(BUILD)/fpcunit -FU$(TUNITDIR) -FE$(TBINDIR) -Fi$(BUILD)
 # FPCUnit rebuilt from Debian's fpc-source without optimisation, so that a
 # failing assert's location names the test's own line (the prebuilt one
@@ -72,7 +77,7 @@ FPCUNIT_SRC = /usr/share/fpcsrc/$(shell $(FPC) -iV)/packages/fcl-fpcunit/src
 # The units: fpmake.pp is the one list (tools/units.sh reads it); its
 # optional ones (the Synapse backend) build only with SYNAPSE_DIR.
 UNITS    := $(shell bash tools/units.sh $(OSDIR)) $(if $(SYNAPSE_DIR),$(shell bash tools/units.sh --optional))
-LIBSRC   := $(UNITS) $(wildcard src/*.inc src/$(OSDIR)/*.inc)
+LIBSRC   := $(UNITS) $(wildcard src/*.inc src/*/$(OSDIR)/*.inc)
 TOOLLIB  := $(wildcard tools/lib/*.pas)
 EXAMPLES := $(wildcard examples/*.pas)
 TOOLS    := $(wildcard tools/*.pas)
@@ -111,26 +116,26 @@ $(BUILD)/units.stamp: $(LIBSRC) fpmake.pp | check-fpc
 	@mkdir -p $(UNITDIR) $(BINDIR)
 	@# compiled units that "fpc -Fusrc prog.pas" left beside the sources
 	@# would be taken as current and never reach $(UNITDIR)
-	@if [ -n "$$(ls src/*.ppu src/*/*.ppu tools/lib/*.ppu 2>/dev/null)" ]; then \
+	@if [ -n "$$(ls src/*/*.ppu src/*/*/*.ppu tools/lib/*.ppu 2>/dev/null)" ]; then \
 	  echo "note: removing compiler output left in src/ or tools/lib/"; \
-	  rm -f src/*.ppu src/*.o src/*.rsj src/*/*.ppu src/*/*.o src/*/*.rsj \
+	  rm -f src/*/*.ppu src/*/*.o src/*/*.rsj src/*/*/*.ppu src/*/*/*.o src/*/*/*.rsj \
 	    tools/lib/*.ppu tools/lib/*.o tools/lib/*.rsj; fi
 	@$(if $(SYNAPSE_DIR),$(FPC) $(COMMON) $(SYNAPSE_FLAGS) -O2 -FU$(UNITDIR) -FE$(BINDIR) $(SYNAPSE_DIR)/synaser.pas >/dev/null;) true
 	@{ echo 'unit chnall; interface uses'; \
 	   echo '$(basename $(notdir $(UNITS)))' | sed 's/ /, /g'; \
 	   echo '; implementation end.'; } > $(BUILD)/chnall.pas
-	@echo "fpc src/*.pas"
+	@echo "fpc src/*/*.pas"
 	@$(FPC) $(UNITFLAGS) $(BUILD)/chnall.pas
 	@touch $@
 
 # The Lazarus package lists every unit of fpmake.pp (all OSes).
-chn.lpk: fpmake.pp $(wildcard src/*.inc src/*/*.inc) tools/mklpk.sh tools/units.sh
+chn.lpk: fpmake.pp $(wildcard src/*.inc src/*/*/*.inc) tools/mklpk.sh tools/units.sh
 	@bash tools/mklpk.sh
 
 # Which sources each program depends on (from the uses clauses).
 $(BUILD)/deps.mk: $(LIBSRC) $(TOOLLIB) $(PROGRAMS) $(BENCHES) tools/mkdeps.sh
 	@mkdir -p $(BUILD)
-	@bash tools/mkdeps.sh $(BINDIR) src src/$(OSDIR) tools/lib -- $(PROGRAMS) $(BENCHES) > $@.tmp && mv $@.tmp $@
+	@bash tools/mkdeps.sh $(BINDIR) $(SRCDIRS) $(wildcard src/*/$(OSDIR)) tools/lib -- $(PROGRAMS) $(BENCHES) > $@.tmp && mv $@.tmp $@
 -include $(BUILD)/deps.mk
 
 # One program: its units are current (units.stamp, order only: a program
@@ -256,12 +261,12 @@ $(MANDIR)/%.1: $(BINDIR)/%
 # The API reference from the interface comments, by Debian's pasdoc, as
 # HTML in build/doc; a warning fails it (the suite checks that every
 # library unit has its page: tests/packaging.sh).
-DOCSRC := $(sort $(wildcard src/*.pas src/*/*.pas))
+DOCSRC := $(sort $(wildcard src/*/*.pas src/*/*/*.pas))
 doc:
 	@command -v pasdoc >/dev/null 2>&1 || { echo "pasdoc not found: apt-get install pasdoc"; exit 1; }
 	@rm -rf $(BUILD)/doc; mkdir -p $(BUILD)/doc
 	@pasdoc --format html --output $(BUILD)/doc --title 'Chn library $(shell sed -n "s/^  ChnVersion = '\(.*\)';/\1/p" tools/lib/ChnCli.pas)' \
-	  $(addprefix --include ,$(sort $(dir $(DOCSRC)))) --define FPC --define UNIX --define LINUX \
+	  --include src/ $(addprefix --include ,$(sort $(dir $(DOCSRC)))) --define FPC --define UNIX --define LINUX \
 	  --write-uses-list --sort=structures,non-record-fields $(DOCSRC) >$(BUILD)/doc.log 2>&1 || { cat $(BUILD)/doc.log; exit 1; }
 	@if grep -E '^(Warning|Error)' $(BUILD)/doc.log; then echo "make doc: pasdoc warnings (above)"; exit 1; fi
 	@echo "API reference: $(BUILD)/doc/index.html ($(words $(DOCSRC)) units)"
@@ -286,7 +291,7 @@ install: units $(addprefix $(BINDIR)/,$(TOOL_PROGRAMS)) man
 	  install -m 644 $(UNITDIR)/$$u.ppu "$$d/$$l.ppu"; \
 	  if [ -f $(UNITDIR)/$$u.o ]; then install -m 644 $(UNITDIR)/$$u.o "$$d/$$l.o"; fi; done; \
 	$(if $(SYNAPSE_DIR),$(SYNAPSE_INSTALL);) \
-	for f in $(wildcard src/*.pas src/*.inc src/*/*.pas src/*/*.inc); do \
+	for f in $(wildcard src/*.inc src/README.md src/*/*.pas src/*/*/*.pas src/*/*/*.inc); do \
 	  install -D -m 644 "$$f" "$$s/$$f"; done; install -m 644 chn.lpk COPYING COPYING.LGPL "$$s/"; \
 	for p in $(TOOL_PROGRAMS); do install -m 755 $(BINDIR)/$$p "$$b/$$p"; \
 	  if [ -f $(MANDIR)/$$p.1 ]; then mkdir -p "$$m"; install -m 644 $(MANDIR)/$$p.1 "$$m/$$p.1"; fi; done; \

@@ -9,8 +9,10 @@
     ./fpmake install                           # where fpc finds them
     ./fpmake install --prefix=$HOME/.fppkg     # per user (Debian searches it)
 
-  Per-OS units and include files are in src/unix (Unix-likes) and src/win
-  (Windows), as in Free Pascal's own packages. ChnPortSynapse needs
+  The units are a folder per part under src/ (src/README.md); each Part
+  call below names the folder of the units after it. Per-OS units and
+  include files are in a part's unix/ (Unix-likes) and win/ (Windows)
+  folders, as in Free Pascal's own packages. ChnPortSynapse needs
   Synapse, which is not part of this package: it is listed as
   "Optional" below and built by "make SYNAPSE_DIR=..." instead. Tools,
   examples and tests are built by the Makefile. }
@@ -26,8 +28,21 @@ const
   { units of src/ this package does not build (tools/units.sh reads it) }
   Optional = 'ChnPortSynapse.pas';
 
-{ One unit: its file (found in src/ or this OS's folder), the OSes it
-  builds on, the units of this package it uses on every OS. }
+{ A part of the library: its folder src/<Name> and the per-OS folders in
+  it are searched for the units (and include files) listed after it. }
+procedure Part(P: TPackage; const Name: string);
+begin
+  P.SourcePath.Add('src/' + Name);
+  P.SourcePath.Add('src/' + Name + '/unix', AllUnixOSes);
+  P.SourcePath.Add('src/' + Name + '/win', AllWindowsOSes);
+  P.IncludePath.Add('src/' + Name);
+  P.IncludePath.Add('src/' + Name + '/unix', AllUnixOSes);
+  P.IncludePath.Add('src/' + Name + '/win', AllWindowsOSes);
+end;
+
+{ One unit: its file (found in the folder of the current part or its
+  folder for this OS), the OSes it builds on, the units of this package it
+  uses on every OS. }
 function AddUnit(P: TPackage; const FileName: string; OSes: TOSes;
   const Deps: array of string): TTarget;
 var
@@ -54,28 +69,33 @@ begin
     P.OSes := AllUnixOSes + AllWindowsOSes;
     P.Dependencies.Add('rtl-extra');   { Sockets, WinSock2 (ChnSock) }
     P.Dependencies.Add('rtl-objpas');  { DateUtils (ChnTrc) }
-    P.SourcePath.Add('src');
-    P.SourcePath.Add('src/unix', AllUnixOSes);
-    P.SourcePath.Add('src/win', AllWindowsOSes);
-    P.IncludePath.Add('src');
-    P.IncludePath.Add('src/unix', AllUnixOSes);
-    P.IncludePath.Add('src/win', AllWindowsOSes);
+    P.IncludePath.Add('src');          { chn.inc }
 
-    { types, tokens, the layer contract }
+    { ---- src/core: types, tokens, the layer contract, the wait }
+    Part(P, 'core');
     AddUnit(P, 'ChnTypes.pas', AllOSes, []);
     AddUnit(P, 'uString.pas', AllOSes, []);
     AddUnit(P, 'ChnRing.pas', AllOSes, ['ChnWait']);
     AddUnit(P, 'ChnVirt.pas', AllOSes, ['ChnTypes', 'uString', 'ChnWait']);
-    { what the Unix parts share }
-    AddUnit(P, 'ChnUnix.pas', AllUnixOSes, ['ChnTypes']);
     { the program-wide wait; its OS parts are include files (in the
       source as unix/chnwait.inc, found here through the OS's include path) }
     T := AddUnit(P, 'ChnWait.pas', AllOSes, []);
       T.Dependencies.AddUnit('ChnUnix', [linux]);
       T.Dependencies.AddInclude('chnwait.inc', AllUnixOSes);
       T.Dependencies.AddInclude('chnwait.inc', AllWindowsOSes);
-    { the physical base and its port drivers }
-    AddUnit(P, 'ChnPort.pas', AllOSes, ['ChnTypes', 'ChnWait', 'uString']);
+    { the protocol base }
+    AddUnit(P, 'ChnProto.pas', AllOSes, ['ChnTypes', 'ChnVirt', 'ChnWait']);
+    { every layer at once, for programs that take any parameter string }
+    T := AddUnit(P, 'ChnLayers.pas', AllOSes, ['ChnCom', 'ChnTcp', 'ChnLoop', 'ChnTrc', 'ChnNoise',
+      'ChnDF1', 'ChnFT1_2', 'ChnICS']);
+      T.Dependencies.AddUnit('ChnPty', AllUnixOSes);
+
+    { ---- src/phys: the physical layers, their port drivers, sockets }
+    Part(P, 'phys');
+    { what the Unix parts share }
+    AddUnit(P, 'ChnUnix.pas', AllUnixOSes, ['ChnTypes']);
+    T := AddUnit(P, 'ChnPort.pas', AllOSes, ['ChnTypes', 'ChnWait', 'uString']);
+      T.Dependencies.AddUnit('ChnUnix', AllUnixOSes);
     AddUnit(P, 'ChnPortUnix.pas', AllUnixOSes, ['ChnTypes', 'ChnWait', 'ChnPort', 'ChnUnix']);
     AddUnit(P, 'ChnPty.pas', AllUnixOSes, ['ChnTypes', 'ChnPort', 'ChnPortUnix', 'ChnUnix']);
     AddUnit(P, 'ChnPortWin.pas', AllWindowsOSes, ['ChnTypes', 'ChnWait', 'ChnPort']);
@@ -95,13 +115,17 @@ begin
     AddUnit(P, 'ChnPortTcp.pas', AllOSes, ['ChnTypes', 'ChnPort', 'ChnWait', 'ChnSock', 'ChnTelnet']);
     AddUnit(P, 'ChnTcp.pas', AllOSes, ['ChnTypes', 'ChnVirt', 'ChnPort', 'ChnCom', 'ChnPortTcp',
       'uString']);
-    { middle layers }
+
+    { ---- src/trace: middle layers (fault injection, trace, capture files) }
+    Part(P, 'trace');
     AddUnit(P, 'ChnNoise.pas', AllOSes, ['ChnTypes', 'ChnVirt', 'uString', 'ChnWait']);
     AddUnit(P, 'ChnTrcFormat.pas', AllOSes, ['ChnTypes', 'uString']);
     AddUnit(P, 'ChnPcap.pas', AllOSes, ['ChnTypes', 'ChnTrcFormat', 'uString']);
     AddUnit(P, 'ChnTrc.pas', AllOSes, ['ChnTypes', 'ChnVirt', 'ChnTrcFormat', 'ChnPcap', 'uString']);
-    { protocols: the protocol base, then per protocol codec, layer, link helpers }
-    AddUnit(P, 'ChnProto.pas', AllOSes, ['ChnTypes', 'ChnVirt', 'ChnWait']);
+
+    { ---- protocols: per protocol codec, layer, link helpers }
+    { src/df1: DF1 and PCCC }
+    Part(P, 'df1');
     AddUnit(P, 'ChnDF1Codec.pas', AllOSes, ['ChnTypes']);
     AddUnit(P, 'ChnDF1.pas', AllOSes, ['ChnTypes', 'ChnVirt', 'ChnProto', 'ChnDF1Codec']);
     AddUnit(P, 'ChnPcccNames.pas', AllOSes, []);
@@ -111,21 +135,23 @@ begin
     AddUnit(P, 'ChnPlc5.pas', AllOSes, ['ChnTypes', 'ChnDF1Codec', 'ChnPccc']);
     AddUnit(P, 'ChnPcccClient.pas', AllOSes, ['ChnTypes', 'ChnVirt', 'ChnDF1Codec', 'ChnDF1Link',
       'ChnPccc', 'ChnPlc5', 'uString', 'ChnWait']);
+    AddUnit(P, 'ChnPcccTags.pas', AllOSes, ['ChnTypes', 'ChnVirt', 'ChnDF1Codec', 'ChnDF1Link',
+      'ChnPccc', 'ChnPcccClient', 'ChnWait']);
+    { src/iec: FT 1.2 and IEC 60870-5-101 }
+    Part(P, 'iec');
     AddUnit(P, 'ChnFT12Codec.pas', AllOSes, ['ChnTypes']);
     AddUnit(P, 'ChnFT1_2.pas', AllOSes, ['ChnTypes', 'ChnVirt', 'ChnProto', 'ChnFT12Codec', 'uString']);
     AddUnit(P, 'ChnFT12Link.pas', AllOSes, ['ChnTypes', 'ChnVirt', 'ChnFT1_2', 'ChnFT12Codec', 'ChnWait']);
-    AddUnit(P, 'ChnICSCodec.pas', AllOSes, ['ChnTypes', 'uString']);
-    AddUnit(P, 'ChnICS.pas', AllOSes, ['ChnTypes', 'ChnVirt', 'ChnProto', 'ChnICSCodec']);
     { IEC 60870-5-101 application layer on the FT 1.2 link helpers }
     AddUnit(P, 'ChnIec101Asdu.pas', AllOSes, ['ChnTypes']);
     AddUnit(P, 'ChnIec101Master.pas', AllOSes, ['ChnTypes', 'ChnVirt', 'ChnFT1_2', 'ChnFT12Link',
       'ChnIec101Asdu', 'ChnWait']);
     AddUnit(P, 'ChnIec101Slave.pas', AllOSes, ['ChnTypes', 'ChnVirt', 'ChnFT1_2', 'ChnFT12Link',
       'ChnIec101Asdu']);
-    { every layer at once, for programs that take any parameter string }
-    T := AddUnit(P, 'ChnLayers.pas', AllOSes, ['ChnCom', 'ChnTcp', 'ChnLoop', 'ChnTrc', 'ChnNoise',
-      'ChnDF1', 'ChnFT1_2', 'ChnICS']);
-      T.Dependencies.AddUnit('ChnPty', AllUnixOSes);
+    { src/ics: ICSlink }
+    Part(P, 'ics');
+    AddUnit(P, 'ChnICSCodec.pas', AllOSes, ['ChnTypes', 'uString']);
+    AddUnit(P, 'ChnICS.pas', AllOSes, ['ChnTypes', 'ChnVirt', 'ChnProto', 'ChnICSCodec']);
     Run;
   end;
 end.

@@ -65,7 +65,7 @@ begin
     Chn^.ChOpen;
   if Chn^.ChResult <> res_Ok then
   begin
-    WriteLn(StdErr, 'comraw: ', Chn^.ChResultStr(Chn^.ChResult), ' (', Chn^.ChParamError, ')');
+    WriteLn(StdErr, 'comraw: ', Chn^.ChErrorText);
     Dispose(Chn, Done);
     Halt(1);
   end;

@@ -51,10 +51,10 @@ procedure Fail(const What: string; R: tChResult);
 begin
   if R = res_Ok then
     R := res_Timeout;          { the state never came }
-  Write(StdErr, 'df1echo: ', What, ': ', Chn^.ChResultStr(R));
-  if Chn^.ChParamError <> '' then
-    Write(StdErr, ' (', Chn^.ChParamError, ')');
-  WriteLn(StdErr);
+  if R = Chn^.ChResult then
+    WriteLn(StdErr, 'df1echo: ', What, ': ', Chn^.ChErrorText)  { token, OS reason }
+  else
+    WriteLn(StdErr, 'df1echo: ', What, ': ', Chn^.ChResultStr(R));
   Dispose(Chn, Done);
   Halt(1);
 end;

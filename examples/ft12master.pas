@@ -51,10 +51,10 @@ var
 { Print what went wrong, clean up and stop with exit code 1. }
 procedure Fail(const What: string; R: tChResult);
 begin
-  Write(StdErr, 'ft12master: ', What, ': ', Chn^.ChResultStr(R));
-  if Chn^.ChParamError <> '' then
-    Write(StdErr, ' (', Chn^.ChParamError, ')');
-  WriteLn(StdErr);
+  if R = Chn^.ChResult then
+    WriteLn(StdErr, 'ft12master: ', What, ': ', Chn^.ChErrorText)  { token, OS reason }
+  else
+    WriteLn(StdErr, 'ft12master: ', What, ': ', Chn^.ChResultStr(R));
   Dispose(Chn, Done);
   Dispose(SMess);
   Dispose(RMess);

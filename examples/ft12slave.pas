@@ -62,7 +62,10 @@ var
 
 procedure Fail(const What: string; R: tChResult);
 begin
-  WriteLn(StdErr, 'ft12slave: ', What, ': ', Chn^.ChResultStr(R), ' (', Chn^.ChParamError, ')');
+  if R = Chn^.ChResult then
+    WriteLn(StdErr, 'ft12slave: ', What, ': ', Chn^.ChErrorText)
+  else
+    WriteLn(StdErr, 'ft12slave: ', What, ': ', Chn^.ChResultStr(R));
   Dispose(Chn, Done);
   Halt(1);
 end;

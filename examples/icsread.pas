@@ -51,10 +51,10 @@ var
 { Print the error, tear the channel down and stop. }
 procedure Fail(const What: string; R: tChResult; Code: Integer);
 begin
-  Write(StdErr, 'icsread: ', What, ': ', Chn^.ChResultStr(R));
-  if Chn^.ChParamError <> '' then
-    Write(StdErr, ' (', Chn^.ChParamError, ')');
-  WriteLn(StdErr);
+  if R = Chn^.ChResult then
+    WriteLn(StdErr, 'icsread: ', What, ': ', Chn^.ChErrorText)  { token, OS reason }
+  else
+    WriteLn(StdErr, 'icsread: ', What, ': ', Chn^.ChResultStr(R));
   Dispose(Chn, Done);
   Dispose(SMess);
   Dispose(RMess);

@@ -66,10 +66,10 @@ end;
 
 procedure Stop(const What: string; R: tChResult);
 begin
-  Write(StdErr, 'icsslave: ', What, ': ', Chn^.ChResultStr(R));
-  if Chn^.ChParamError <> '' then
-    Write(StdErr, ' (', Chn^.ChParamError, ')');
-  WriteLn(StdErr);
+  if R = Chn^.ChResult then
+    WriteLn(StdErr, 'icsslave: ', What, ': ', Chn^.ChErrorText)  { token, OS reason }
+  else
+    WriteLn(StdErr, 'icsslave: ', What, ': ', Chn^.ChResultStr(R));
   Dispose(Chn, Done);
   Halt(1);
 end;

@@ -377,8 +377,7 @@ begin
     Chn^.ChConnect;
   if Chn^.ChResult <> res_Ok then
   begin
-    WriteLn(StdErr, Prog, ': cannot open the line: ', Chn^.ChResultStr(Chn^.ChResult), ' (',
-      Chn^.ChParamError, ')');
+    WriteLn(StdErr, Prog, ': cannot open the line: ', Chn^.ChErrorText);
     Dispose(Chn, Done);
     Halt(ExitLine);
   end;

@@ -196,7 +196,7 @@ begin
     Chn^.ChConnect;
   if Chn^.ChResult <> res_Ok then
   begin
-    Err := Chn^.ChResultStr(Chn^.ChResult);
+    Err := Chn^.ChErrorText;
     Dispose(Chn, Done);
     CliFail(Cli, Err, LineParams, 1);
   end;

@@ -55,8 +55,7 @@ begin
     Chn[I]^.ChOpen;
     if Chn[I]^.ChResult <> res_Ok then
     begin
-      WriteLn(StdErr, 'waitany: line ', I, ': ', Chn[I]^.ChResultStr(Chn[I]^.ChResult),
-        ' (', Chn[I]^.ChParamError, ')');
+      WriteLn(StdErr, 'waitany: line ', I, ': ', Chn[I]^.ChErrorText);
       for Len := 1 to N do
         Dispose(Chn[Len], Done);
       Halt(1);

@@ -67,6 +67,7 @@ type
     procedure TestIdleWaitReturnsOnFirstByte;
     procedure TestLegacyPollingLoopCpu;
     procedure TestRefusalNamesTheToken;
+    procedure TestOpenErrorsSayTheOsReason;
   end;
 
   TTestChnComRtl = class(TTestChnComPty)
@@ -1187,6 +1188,62 @@ begin
   end;
 end;
 
+{ ChErrorText after a refused open: the result, the token and the OS's
+  own words for why (the C library's texts, as ls or cat print them),
+  through a protocol layer above as well. }
+procedure TTestChnComPty.TestOpenErrorsSayTheOsReason;
+var
+  Second, D: pChnVirt;
+
+  procedure OpenAs(const Dev: string);
+  begin
+    FChn^.ChSetParam('DRV=' + Drv + ' DEV=' + Dev);
+    AssertEquals(Dev + ' params', res_Ok, FChn^.ChResult);
+    FChn^.ChOpen;
+  end;
+
+begin
+  FChn := ChnCollection^.ChNewInit(ChnCom.cName);
+  OpenAs('/dev/chn-no-such-tty');
+  AssertEquals('device cannot be opened (DEV=/dev/chn-no-such-tty): No such file or directory',
+    FChn^.ChErrorText);
+  OpenAs('/nonexistent-dir/ttyUSB0');
+  AssertEquals('device cannot be opened (DEV=/nonexistent-dir/ttyUSB0): No such file or directory',
+    FChn^.ChErrorText);
+  OpenAs('/tmp');
+  AssertEquals('device cannot be opened (DEV=/tmp): Is a directory', FChn^.ChErrorText);
+  OpenAs('/dev/null');
+  AssertEquals('device refuses the setting (DEV=/dev/null): Inappropriate ioctl for device',
+    FChn^.ChErrorText);
+  { a good open says nothing more }
+  OpenAs(FPty.SlavePath);
+  AssertEquals('ok', res_Ok, FChn^.ChResult);
+  AssertEquals('ok', FChn^.ChErrorText);
+  { the pty in use: flock says it would have to wait }
+  Second := ChnCollection^.ChNewInit(ChnCom.cName);
+  try
+    Second^.ChSetParam('DRV=' + Drv + ' DEV=' + FPty.SlavePath);
+    Second^.ChOpen;
+    AssertEquals('device cannot be opened (DEV=' + FPty.SlavePath +
+      '): Resource temporarily unavailable', Second^.ChErrorText);
+  finally
+    Dispose(Second, Done);
+  end;
+  { through a protocol layer: the top layer's text is the same }
+  D := ChnCollection^.ChNewInit('DF1');
+  try
+    D^.ChSetParam('NAM=DF1 NAM=COM DRV=' + Drv + ' DEV=/tmp');
+    AssertEquals(res_Ok, D^.ChResult);
+    D^.ChOpen;
+    AssertEquals('device cannot be opened (DEV=/tmp): Is a directory', D^.ChErrorText);
+    { and a bad value below says what the key takes }
+    D^.ChSetParam('NAM=DF1 NAM=COM DRV=' + Drv + ' DEV=/tmp BD=abc');
+    AssertEquals('bad parameter (BD=abc): a number 50..4000000', D^.ChErrorText);
+  finally
+    Dispose(D, Done);
+  end;
+end;
+
 { ------------------------------------------------------------ virtual line }
 
 procedure TTestChnComVirtual.SetUp;
@@ -1361,8 +1418,16 @@ var
 begin
   AssertTrue(BinPath('comraw') + ' missing (make examples)', FileExists(BinPath('comraw')));
   AssertEquals('comraw exit code', 1, RunBin('comraw', ['DEV=/dev/null BD=9600'], 10000, Output));
-  AssertTrue('comraw: ' + Output,
-    Pos('comraw: device refuses the setting (DEV=/dev/null)', Output) > 0);
+  AssertTrue('comraw: ' + Output, Pos('comraw: device refuses the setting (DEV=/dev/null): ' +
+    'Inappropriate ioctl for device', Output) > 0);
+  { the OS's reason through DF1 on top, and a bad value with what it takes }
+  RunBin('df1read', ['N7:0', '1', 'NAM=DF1 NOD=0 DNO=1 NAM=COM DEV=/dev/chn-no-such-tty'],
+    10000, Output);
+  AssertTrue('df1read: ' + Output, Pos('device cannot be opened (DEV=/dev/chn-no-such-tty): ' +
+    'No such file or directory', Output) > 0);
+  RunBin('df1read', ['N7:0', '1', 'NAM=DF1 NOD=0 DNO=1 NAM=COM DEV=/tmp BD=abc'], 10000, Output);
+  AssertTrue('df1read: ' + Output, Pos('df1read: bad parameter string: bad parameter (BD=abc): ' +
+    'a number 50..4000000', Output) > 0);
   { a pty has no RS-485: refused, and named, through DF1 on top }
   RunBin('df1read', ['N7:0', '1', 'NAM=DF1 NOD=0 DNO=1 NAM=COM DEV=' + FPty.SlavePath +
     ' RS485=KERNEL'], 10000, Output);
@@ -1430,6 +1495,11 @@ const
   Bad: array[0..14] of string = ('BD=49', 'BD=4000001', 'BD=96OO', 'BIT=4', 'BIT=9',
     'STOP=0', 'STOP=3', 'PAR=X', 'FLW=CTS', 'RS485=YES', 'LRB=0', 'LSB=65536',
     'IDL=1001', 'COM=0', 'DRV=NOPE');
+  Allowed: array[0..14] of string = ('a number 50..4000000', 'a number 50..4000000',
+    'a number 50..4000000', 'a number 5..8', 'a number 5..8', 'a number 1..2',
+    'a number 1..2', 'one of N|E|O|M|S', 'one of NONE|RTSCTS|XONXOFF',
+    'one of OFF|RTS|KERNEL|AUTO', 'a number 1..16777216', 'a number 1..65535',
+    'a number 0..1000', 'a number 1..256', 'one of @DRIVERS');
 var
   C: pChnVirt;
   Before: string;
@@ -1444,9 +1514,13 @@ begin
       AssertEquals(Bad[I], res_BadParam, C^.ChResult);
       AssertEquals(Bad[I] + ' named', Bad[I], C^.ChParamError);
       AssertEquals(Bad[I] + ' changed nothing', Before, C^.ChGetParam(''));
+      AssertEquals(Bad[I] + ': what it allows', 'bad parameter (' + Bad[I] + '): ' +
+        StringReplace(Allowed[I], '@DRIVERS', PortDriverNames, []), C^.ChErrorText);
     end;
     C^.ChSetParam('XYZ=1');
     AssertEquals('unknown key', res_UnknownParam, C^.ChResult);
+    AssertEquals('unknown parameter key (XYZ=1): COM takes DRV COM BD BIT STOP PAR FLW RS485 LRB LSB IDL',
+      C^.ChErrorText);
     C^.ChSetParam('NAM=DF1');
     AssertEquals('nothing below a physical layer', res_BadParam, C^.ChResult);
   finally

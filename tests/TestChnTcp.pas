@@ -489,6 +489,14 @@ begin
   AssertEquals('PORT=' + IntToStr(Port), Cli^.ChParamError);
   AssertEquals(CHS_Close, Cli^.ChReady);
   AssertEquals('connection refused', Cli^.ChResultStr(Cli^.ChResult));
+  { the OS's words too ({$IFDEF WINDOWS}Winsock's{$ELSE}the C library's{$ENDIF}) }
+  {$IFDEF UNIX}
+  AssertEquals('connection refused (PORT=' + IntToStr(Port) + '): Connection refused',
+    Cli^.ChErrorText);
+  {$ELSE}
+  AssertTrue(Cli^.ChErrorText, Pos('connection refused (PORT=' + IntToStr(Port) + '): ',
+    Cli^.ChErrorText) = 1);
+  {$ENDIF}
 end;
 
 {$IFDEF LINUX}

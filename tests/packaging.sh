@@ -45,10 +45,10 @@ else bad "package: files citing SPEC/seeds/../shared: $(echo $hits)"; fi
 perl tests/fpmakecheck.pl
 
 missing=""
-for f in src/*.pas src/*.inc src/unix/*.pas src/unix/*.inc src/win/*.pas src/win/*.inc; do
+for f in src/*.inc src/*/*.pas src/*/*/*.pas src/*/*/*.inc; do
   grep -q "<Filename Value=\"$f\"/>" chn.lpk || missing="$missing $f"
 done
-if [ -z "$missing" ]; then pass "package: chn.lpk lists every unit of src/ (and src/unix, src/win)"
+if [ -z "$missing" ]; then pass "package: chn.lpk lists every unit of src/ (its part folders and their unix/, win/)"
 else bad "package: chn.lpk misses$missing (make writes it: commit it)"; fi
 
 # the license: stated once in COPYING, the same words in fpmake.pp and chn.lpk
@@ -124,13 +124,13 @@ for p in $tprogs; do
     *) WANT='^never$' ;;
   esac
   d="$TMP/toolsmd-$p"; mkdir -p "$d/lib"; cp "$TMP/tools-md/$p.pas" "$d/"
-  build_run "docs/TOOLS.md, -Fu to the checkout" "$d" "$p" "$FPC" -v0 -Sew -Fu"$REPO/src" -Fi"$REPO/src" -FUlib "$p.pas"
+  build_run "docs/TOOLS.md, -Fu to the checkout" "$d" "$p" "$FPC" -v0 -Sew -Fu"$REPO/src/*" -Fi"$REPO/src" -FUlib "$p.pas"
 done
 WANT=
 
 # the checkout stays clean: a build that follows the README leaves no
 # compiled unit beside the library's sources
-if [ -z "$(ls src/*.ppu src/*.o src/*/*.ppu src/*/*.o 2>/dev/null)" ]; then pass "package: building from the checkout writes nothing into src/"
+if [ -z "$(ls src/*.ppu src/*.o src/*/*.ppu src/*/*.o src/*/*/*.ppu src/*/*/*.o 2>/dev/null)" ]; then pass "package: building from the checkout writes nothing into src/"
 else bad "package: compiled units were left in src/"; fi
 
 # way 2: make install as a user (PREFIX=$HOME/.fppkg), then plain fpc
@@ -167,7 +167,7 @@ D="$TMP/dest"
 MA=$(gcc -print-multiarch 2>/dev/null || dpkg-architecture -qDEB_HOST_MULTIARCH)
 U="$D/usr/lib/$MA/fpc/$($FPC -iV)/units/$($FPC -iTP)-$($FPC -iTO)/chn"
 if make -s install BUILD="$BUILD" DESTDIR="$D" >"$TMP/dinstall.log" 2>&1 && [ -f "$U/chnvirt.ppu" ] &&
-   [ -f "$D/usr/share/chn/src/ChnVirt.pas" ] && [ -f "$D/usr/share/chn/chn.lpk" ] &&
+   [ -f "$D/usr/share/chn/src/core/ChnVirt.pas" ] && [ -f "$D/usr/share/chn/chn.lpk" ] &&
    [ -f "$D/usr/share/chn/COPYING" ] && [ -f "$D/usr/share/chn/COPYING.LGPL" ]; then
   p=$(echo $progs | cut -d' ' -f1)
   d="$TMP/destdir"; mkdir -p "$d"; cp "$TMP/readme/$p.pas" "$d/"
@@ -241,7 +241,7 @@ if ! command -v pasdoc >/dev/null 2>&1; then
   skip "package: make doc: pasdoc missing (apt-get install pasdoc), the API reference is not checked"
 elif make -s doc BUILD="$BUILD" >"$TMP/doc.log" 2>&1; then
   missing=""
-  for f in $(ls src/*.pas src/*/*.pas 2>/dev/null); do
+  for f in $(ls src/*/*.pas src/*/*/*.pas 2>/dev/null); do
     u=$(basename "$f" .pas)
     [ -f "$BUILD/doc/$u.html" ] || missing="$missing $u"
   done

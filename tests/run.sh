@@ -83,7 +83,7 @@ fi
 
 if [ -z "$FILTER" ] || [[ "api" == *"${FILTER,,}"* ]]; then
   if command -v perl >/dev/null; then
-    if perl tests/apicheck.pl src/*.pas src/unix/*.pas src/win/*.pas $(ls tools/lib/*.pas 2>/dev/null); then
+    if perl tests/apicheck.pl src/*/*.pas src/*/*/*.pas $(ls tools/lib/*.pas 2>/dev/null); then
       pass "api: no Integer, Cardinal, plain string or {\$H+} in library interfaces"
     else
       fail "api: mode-dependent types in library interfaces (docs/LAYERS.md)"
@@ -104,7 +104,7 @@ for prog in tests/legacy/*.pas; do
   for mode in tp fpc objfpc delphi; do
     dir="$BUILD/legacy-$mode"
     mkdir -p "$dir"
-    if ! "$FPC" -M$mode -Fusrc -Fisrc -FU"$dir" -FE"$dir" -Cr -Co -Ct "$prog" >"$dir/$name.log" 2>&1; then
+    if ! "$FPC" -M$mode -Fu'src/*' -Fisrc -FU"$dir" -FE"$dir" -Cr -Co -Ct "$prog" >"$dir/$name.log" 2>&1; then
       fail "legacy $name -M$mode: does not compile"; tail -n 15 "$dir/$name.log"; continue
     fi
     if [ -f "tests/legacy/$name.peer" ]; then

@@ -69,7 +69,9 @@ if [ ! -f "$RTLU/strutils.ppu" ]; then
     || { tail -n 20 "$WORK/strutils-build.log"; echo "win64 StrUtils build failed"; exit 1; }
 fi
 mkdir -p "$OUT/units" "$OUT/bin"
-FLAGS="-Twin64 -Px86_64 -n -v0ew -Sew -O2 -Fu$RTLU -Fusrc -Fusrc/win -Futools/lib -Fisrc -FU$OUT/units -FE$OUT/bin"
+# the part folders of src/ (src/README.md) and the Windows folder of src/phys
+PARTS=$(for d in src/*/; do printf -- '-Fu%s ' "${d%/}"; done)
+FLAGS="-Twin64 -Px86_64 -n -v0ew -Sew -O2 -Fu$RTLU $PARTS-Fusrc/phys/win -Futools/lib -Fisrc -FU$OUT/units -FE$OUT/bin"
 if [ -n "${SYNAPSE_DIR:-}" ]; then
   # synaser needs registry and winver from the FPC packages; its own
   # warnings are not ours, so no -Sew for it
@@ -79,7 +81,7 @@ if [ -n "${SYNAPSE_DIR:-}" ]; then
     -Fu"$P/fcl-base/src" -Fi"$P/fcl-base/src" -Fu"$P/fcl-xml/src" -Fi"$P/fcl-xml/src" \
     -Fu"$SYNAPSE_DIR" -Fi"$SYNAPSE_DIR" "$SYNAPSE_DIR/synaser.pas" >/dev/null
   FLAGS="$FLAGS -Fu$SYNAPSE_DIR -Fi$SYNAPSE_DIR -dCHN_SYNAPSE"
-  $PPC $FLAGS src/ChnPortSynapse.pas
+  $PPC $FLAGS src/phys/ChnPortSynapse.pas
 fi
 # every unit fpmake.pp lists for Windows (tools/units.sh)
 for u in $(bash tools/units.sh win); do $PPC $FLAGS "$u"; done

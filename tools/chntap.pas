@@ -155,8 +155,7 @@ begin
     S.Chn^.ChSetParam(S.Params);
     if S.Chn^.ChResult <> res_Ok then
     begin
-      WriteLn(StdErr, 'chntap: ', S.Params, ': ', S.Chn^.ChResultStr(S.Chn^.ChResult),
-        ' ', S.Chn^.ChParamError);
+      WriteLn(StdErr, 'chntap: ', S.Params, ': ', S.Chn^.ChErrorText);
       Exit;
     end;
   end;

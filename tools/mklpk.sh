@@ -7,10 +7,12 @@
 set -eu
 cd "$(dirname "$0")/.."
 files=$({ bash tools/units.sh all; bash tools/units.sh --optional; } | LC_ALL=C sort -f)
-incs=$(ls src/*.inc src/unix/*.inc src/win/*.inc | LC_ALL=C sort -f)
+incs=$(ls src/*.inc src/*/*/*.inc | LC_ALL=C sort -f)
+# the part folders (src/README.md), and the per-OS folder of src/phys
+parts=$(ls -d src/*/ | sed 's|/$||' | LC_ALL=C sort | tr '\n' ';')
 n=$(($(echo "$files" | wc -l) + $(echo "$incs" | wc -l)))
 {
-cat <<'HEAD'
+cat <<HEAD
 <?xml version="1.0" encoding="UTF-8"?>
 <!-- chn.lpk - the Chn library as a Lazarus runtime package (no LCL).
      Written by tools/mklpk.sh from the units fpmake.pp lists; do not
@@ -29,8 +31,8 @@ cat <<'HEAD'
       <Version Value="11"/>
       <SearchPaths>
         <IncludeFiles Value="src"/>
-        <OtherUnitFiles Value="src;src/$(SrcOS)"/>
-        <UnitOutputDirectory Value="lib/$(TargetCPU)-$(TargetOS)"/>
+        <OtherUnitFiles Value="${parts}src/phys/\$(SrcOS)"/>
+        <UnitOutputDirectory Value="lib/\$(TargetCPU)-\$(TargetOS)"/>
       </SearchPaths>
     </CompilerOptions>
     <Description Value="SofCon Chn serial-communication units (DF1, FT 1.2, ICSlink): layered channels driven by polling."/>

@@ -68,7 +68,7 @@ if ! SYNAPSE_DIR= OUT=$OUT PPC=$PPC bash tools/build-win64.sh examples/*.pas too
   cat "$LOG/build.log"; fail "win64 build (tools/build-win64.sh)"; finish
 fi
 # the Linux end of the serial tests
-if ! "$FPC" -Fusrc -Fusrc/unix -Fisrc -v0ew -Sew -O2 -FU"$BUILD/units" -FE"$BUILD/bin" \
+if ! "$FPC" -Fu"src/*" -Fusrc/phys/unix -Fisrc -v0ew -Sew -O2 -FU"$BUILD/units" -FE"$BUILD/bin" \
      tests/wine/ptyecho.pas >"$LOG/ptyecho-build.log" 2>&1; then
   cat "$LOG/ptyecho-build.log"; fail "tests/wine/ptyecho (native)"; finish
 fi
@@ -93,7 +93,7 @@ for prog in tests/legacy/*.pas; do
   if [ -f "tests/legacy/$name.peer" ]; then
     for mode in tp fpc objfpc delphi; do
       dir="$OUT/legacy/$mode"; mkdir -p "$dir"
-      if "$PPC" -Twin64 -Px86_64 -n -v0ew -M$mode -Fu"$RTLU" -Fusrc -Fusrc/win -Fisrc \
+      if "$PPC" -Twin64 -Px86_64 -n -v0ew -M$mode -Fu"$RTLU" -Fu"src/*" -Fusrc/phys/win -Fisrc \
            -FU"$dir" -FE"$dir" -B -Cr -Co -Ct "$prog" >"$dir/$name.log" 2>&1; then
         skip "win64 legacy $name -M$mode: compiles; not run (needs its peer on a null-modem, run by make test on Linux)"
       else
@@ -105,7 +105,7 @@ for prog in tests/legacy/*.pas; do
   for mode in tp fpc objfpc delphi; do
     dir="$OUT/legacy/$mode"
     mkdir -p "$dir"
-    if ! "$PPC" -Twin64 -Px86_64 -n -v0ew -M$mode -Fu"$RTLU" -Fusrc -Fusrc/win -Fisrc \
+    if ! "$PPC" -Twin64 -Px86_64 -n -v0ew -M$mode -Fu"$RTLU" -Fu"src/*" -Fusrc/phys/win -Fisrc \
          -FU"$dir" -FE"$dir" -B -Cr -Co -Ct "$prog" >"$dir/$name.log" 2>&1; then
       fail "win64 legacy $name -M$mode: does not compile"; tail -n 15 "$dir/$name.log"; continue
     fi
@@ -122,7 +122,7 @@ done
 # in it are in {$IFDEF UNIX}
 if [ ! -f "$BUILD/testunits.inc" ]; then
   fail "no $BUILD/testunits.inc: run make wintest"
-elif "$PPC" -Twin64 -Px86_64 -n -v0ew -Fu"$RTLU" -Fusrc -Fusrc/win -Fisrc -Futools/lib -Futests/support \
+elif "$PPC" -Twin64 -Px86_64 -n -v0ew -Fu"$RTLU" -Fu"src/*" -Fusrc/phys/win -Fisrc -Futools/lib -Futests/support \
      -B -Cr -Co -Ct -gh -gl -FU"$OUT/test-units" -FE"$OUT/test-bin" -Fi"$BUILD" \
      tests/runtests.pas >"$LOG/runtests-build.log" 2>&1; then
   heaplog="$OUT/heaptrc.log"

@@ -149,7 +149,7 @@ fi
 
 if want params && command -v fpc >/dev/null; then
   mkdir -p "$tmp/pu"
-  if fpc -v0 -Fisrc -Fusrc -Cr -Co -Ct -gl -FU"$tmp/pu" -FE"$tmp" tests/hostile/paramattack.pas >"$tmp/pa.log" 2>&1; then
+  if fpc -v0 -Fisrc -Fu'src/*' -Cr -Co -Ct -gl -FU"$tmp/pu" -FE"$tmp" tests/hostile/paramattack.pas >"$tmp/pa.log" 2>&1; then
     (cd "$tmp" && ./paramattack 20000 1) >"$tmp/pa.out" 2>&1
     echo "attack params: $(tail -n 1 "$tmp/pa.out")"
     grep -m3 '^exception\|^refused naming nothing' "$tmp/pa.out" | sed 's/^/  /'
@@ -162,7 +162,7 @@ if want decode; then
   dec="$BIN/chndecode"
   if [ "${CHECKED:-0}" = 1 ] && command -v fpc >/dev/null; then
     mkdir -p "$tmp/u"
-    fpc -v0 -Fisrc -Fusrc -Futools/lib -Cr -Co -Ct -gl -FU"$tmp/u" -FE"$tmp" tools/chndecode.pas >/dev/null &&
+    fpc -v0 -Fisrc -Fu'src/*' -Futools/lib -Cr -Co -Ct -gl -FU"$tmp/u" -FE"$tmp" tools/chndecode.pas >/dev/null &&
       dec="$tmp/chndecode"
   fi
   # inputs: a pcap and a text log of a real exchange, and the repository's traces

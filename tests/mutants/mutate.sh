@@ -9,7 +9,7 @@
 # LIST (default tests/mutants/mutants.txt) holds one record per mutant:
 #
 #   [id]
-#   file     = src/ChnWait.pas
+#   file     = src/core/ChnWait.pas
 #   after    = a line of the file before it, found exactly once (optional)
 #   line     = the line as it is
 #   mutant   = the line as mutated (empty: the line is removed)

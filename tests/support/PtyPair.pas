@@ -45,7 +45,7 @@ var
   Err: cint;
 begin
   inherited Create;
-  { the pair itself comes from src/unix/ChnPty, shared with tools/df1sim --pty }
+  { the pair itself comes from src/phys/unix/ChnPty, shared with tools/df1sim --pty }
   Err := PtyCreate(FMaster, FSlavePath);
   if Err <> 0 then
     raise Exception.CreateFmt('cannot create a pty pair (errno %d)', [Err]);

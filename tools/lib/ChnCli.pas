@@ -108,7 +108,8 @@ function CliUsageText(const Cli: tCli): AnsiString;
 { A parameter string checked the way ChSetParam checks it, with nothing
   opened: a layer of type TopLayer (or, when Params starts with NAM=, the
   one it names) is created, given the string and freed. A refusal is a
-  usage error: "PROG: bad parameter string: <result text> (TOKEN)". }
+  usage error: "PROG: bad parameter string: <result text> (TOKEN): <what
+  the key allows>" (ChErrorText). }
 procedure CliCheckParams(const Cli: tCli; const Params, TopLayer: AnsiString);
 { The same, but the channel (not opened) is the caller's. }
 function CliChannel(const Cli: tCli; const Params, TopLayer: AnsiString): pChnVirt;
@@ -506,10 +507,9 @@ begin
   Result^.ChSetParam(Rest);
   if Result^.ChResult <> res_Ok then
   begin
-    Why := Result^.ChResultStr(Result^.ChResult);
-    Layer := Result^.ChParamError;
+    Why := Result^.ChErrorText;     { the token and what it allows }
     Dispose(Result, Done);
-    CliUsageError(Cli, 'bad parameter string: ' + Why, Layer);
+    CliUsageError(Cli, 'bad parameter string: ' + Why, '');
   end;
 end;
 

@@ -120,6 +120,9 @@ function PcccStep(var R: tPcccRequest): Boolean;
 procedure PcccCancel(var R: tPcccRequest);
 { Drive a started request to its end (with C.Idle or sleeping). }
 function PcccFinish(var R: tPcccRequest): tChResult;
+{ Why the link exchange M on Chn failed, in words ('no ACK after 3 tries',
+  'NAK on each of 3 tries', 'no reply', ...); M.Result <> res_Ok. }
+function PcccMasterFailure(const M: tDF1Master; Chn: pChnVirt): ShortString;
 { For tools: 0 res_Ok, 1 the request cannot be made (address, count,
   value, kind), 3 the PLC's answer is an error or does not fit, 2 any
   other failure (no answer, NAK, line lost). }
@@ -495,6 +498,20 @@ begin
 end;
 
 { The exchange of request R.Index is over: check, decode, go on. }
+function PcccMasterFailure(const M: tDF1Master; Chn: pChnVirt): ShortString;
+begin
+  if (M.Result = res_Timeout) and not M.Acked and (M.Naks >= M.Tries) then
+    Result := Format('NAK on each of %d tries', [M.Tries])
+  else if (M.Result = res_Timeout) and not M.Acked then
+    Result := Format('no ACK after %d tries', [M.Tries])
+  else if M.Result = res_Timeout then
+    Result := 'no reply'
+  else if M.Result = res_BadMessage then
+    Result := 'the reply is not the one to this command'
+  else
+    Result := Chn^.ChResultStr(M.Result);
+end;
+
 procedure Exchanged(var R: tPcccRequest);
 var
   E: ShortString;
@@ -507,15 +524,9 @@ begin
   if M^.Result <> res_Ok then
   begin
     if (M^.Result = res_Timeout) and not M^.Acked and (M^.Naks >= M^.Tries) then
-      Fail(R, res_PcccNak, Format('NAK on each of %d tries', [M^.Tries]))
-    else if (M^.Result = res_Timeout) and not M^.Acked then
-      Fail(R, res_Timeout, Format('no ACK after %d tries', [M^.Tries]))
-    else if M^.Result = res_Timeout then
-      Fail(R, res_Timeout, 'no reply')
-    else if M^.Result = res_BadMessage then
-      Fail(R, res_BadMessage, 'the reply is not the one to this command')
+      Fail(R, res_PcccNak, PcccMasterFailure(M^, R.Client^.Chn))
     else
-      Fail(R, M^.Result, R.Client^.Chn^.ChResultStr(M^.Result));
+      Fail(R, M^.Result, PcccMasterFailure(M^, R.Client^.Chn));
     Exit;
   end;
   First := 0;

@@ -130,6 +130,10 @@ type
     { bytes pulled from the lower layer and not yet consumed }
     CH_LowBuf  : array[0..MaxLowChunk - 1] of Byte;
     CH_LowLen, CH_LowPos: Word;
+    { what the code and the token of the last failed ChSetParam or ChOpen
+      do not say: what the key allows, the OS's reason a device could not
+      be opened; '' when nothing more is known (ChErrorText) }
+    CH_ErrWhy  : tWordString;
 
     constructor Init;
     constructor ChInitParam(const S: tParamStr);
@@ -183,6 +187,11 @@ type
     function  ChParamError: tWordString; virtual;
     { Readable text of a result code of this layer (protocol codes included). }
     function  ChResultStr(R: tChResult): ShortString; virtual;
+    { ChResult as a sentence for a person: its text, the token at fault
+      and why, when known - 'bad parameter (BD=abc): a number 50..4000000',
+      'device cannot be opened (DEV=/dev/ttyUSB9): No such file or
+      directory' (the OS's own words, on every OS and port backend). }
+    function  ChErrorText: ShortString;
     { Own parameters as ' KEY=VALUE' tokens, for ChGetParam; descendants
       append theirs to inherited ChOwnParams. }
     function  ChOwnParams: tParamStr; virtual;
@@ -323,6 +332,10 @@ function ParamNum(const S: tWordString; Min, Max: LongInt; var N: SmallInt): tCh
 function ParamChoice(const S: tWordString; const Choices: ShortString; var Index: LongInt): tChResult; overload;
 function ParamChoice(const S: tWordString; const Choices: ShortString; var Index: SmallInt): tChResult; overload;
 function ParamText(const Key: ShortString; N: LongInt): ShortString;
+{ res_BadParam for a value a layer checks itself, with what the key
+  allows ('one of RTL|PTY'), for ChErrorText; ParamNum and ParamChoice
+  say it by themselves. }
+function ParamBad(const Allowed: ShortString): tChResult;
 { A two-way choice kept in a Boolean. Choices lists the False word first
   ('OFF|ON', 'SLAVE|MASTER'); Flag is set only when CmdL = cmd_Set. }
 function ParamFlag(const S: tWordString; const Choices: ShortString; CmdL: tCmd;
@@ -347,6 +360,11 @@ implementation
 
 uses
   SysUtils, ChnWait;
+
+var
+  { what the last failing ParamNum/ParamChoice allows, for ChErrorText
+    (one thread sets parameters: ChSetParam reads it right after) }
+  ParamAllowedText: ShortString = '';
 
 const
   { every layer name of the library and the unit that registers it }
@@ -501,12 +519,52 @@ begin
     Result := '';
 end;
 
+{ ' KEY1 KEY2 ...': the keys of ' KEY1=VALUE KEY2=VALUE ...' }
+function ParamKeyList(const Tokens: AnsiString): ShortString;
+var
+  I: LongInt;
+  InKey: Boolean;
+begin
+  Result := '';
+  InKey := False;
+  for I := 1 to Length(Tokens) do
+    if Tokens[I] = ' ' then
+    begin
+      InKey := True;
+      if (Result <> '') and (Result[Length(Result)] <> ' ') then
+        Result := Result + ' ';
+    end
+    else if Tokens[I] = '=' then
+      InKey := False
+    else if InKey and (Length(Result) < 250) then
+    begin
+      if Result = '' then
+        Result := ' ';
+      Result := Result + Tokens[I];
+    end;
+  Result := TrimRight(Result);
+end;
+
+function ParamBad(const Allowed: ShortString): tChResult;
+begin
+  ParamAllowedText := Allowed;
+  Result := res_BadParam;
+end;
+
+function NumAllowed(Min, Max: LongInt): ShortString;
+begin
+  Result := 'a number ' + NumStr(Min) + '..' + NumStr(Max);
+end;
+
 function ParamNum(const S: tWordString; Min, Max: LongInt; var N: LongInt): tChResult;
 begin
   if StrToNum(ParamValue(S), Min, Max, N) then
     Result := res_Ok
   else
+  begin
+    ParamAllowedText := NumAllowed(Min, Max);
     Result := res_BadParam;
+  end;
 end;
 
 function ParamNum(const S: tWordString; Min, Max: LongInt; var N: SmallInt): tChResult;
@@ -514,7 +572,10 @@ begin
   if StrToNum(ParamValue(S), Min, Max, N) then
     Result := res_Ok
   else
+  begin
+    ParamAllowedText := NumAllowed(Min, Max);
     Result := res_BadParam;
+  end;
 end;
 
 function ParamChoice(const S: tWordString; const Choices: ShortString; var Index: LongInt): tChResult;
@@ -523,7 +584,10 @@ var
 begin
   I := ChoiceIndex(ParamValue(S), Choices);
   if I < 0 then
+  begin
+    ParamAllowedText := 'one of ' + Choices;
     Exit(res_BadParam);
+  end;
   Index := I;
   Result := res_Ok;
 end;
@@ -601,6 +665,7 @@ begin
   CH_RBuff := nil;
   CH_RSize := 0;
   CH_ParamErr := '';
+  CH_ErrWhy := '';
   IData := 0;
   CH_LowLen := 0;
   CH_LowPos := 0;
@@ -641,7 +706,12 @@ begin
       if L.Items[J].Key = L.Items[I].Key then
         Exit(res_DupParam);
     Cmd := cmd_Check;
+    ParamAllowedText := '';
     Result := ChSetOneParam(L.Items[I].Text, Cmd);
+    if Result = res_UnknownParam then
+      CH_ErrWhy := CH_Type + ' takes' + ParamKeyList(ChOwnParams)
+    else if Result <> res_Ok then
+      CH_ErrWhy := ParamAllowedText;
     if Result <> res_Ok then
       Exit;
   end;
@@ -675,6 +745,7 @@ begin
   if Result <> res_Ok then
   begin
     ErrTok := NewLow^.ChParamError;
+    CH_ErrWhy := NewLow^.CH_ErrWhy;
     Dispose(NewLow, Done);
     NewLow := nil;
   end;
@@ -690,6 +761,7 @@ var
   NewLow: pChnVirt;
 begin
   CH_ParamErr := '';
+  CH_ErrWhy := '';
   ParamSplit(S, L);
   { a leading NAM=<this layer's type> names this layer itself; any later
     NAM= starts the layer below (so 'NAM=TSTP NAM=TSTP' is two layers) }
@@ -832,6 +904,20 @@ begin
   Result := ChResultText(R, CH_Type);
 end;
 
+function tChnVirt.ChErrorText: ShortString;
+var
+  R: tChResult;
+begin
+  R := ChResult;
+  Result := ChResultStr(R);
+  if R = res_Ok then
+    Exit;
+  if ChParamError <> '' then
+    Result := Result + ' (' + ChParamError + ')';
+  if CH_ErrWhy <> '' then
+    Result := Result + ': ' + CH_ErrWhy;
+end;
+
 function tChnVirt.ChHasLow: Boolean;
 begin
   Result := True;
@@ -864,6 +950,7 @@ begin
     if CH_Result <> res_Ok then
     begin
       CH_ParamErr := CH_Low^.ChParamError;  { the setting a device refused }
+      CH_ErrWhy := CH_Low^.CH_ErrWhy;
       Exit;
     end;
   end;

@@ -162,6 +162,11 @@ type
     property Device: ShortString read FDevice;
     property IsOpen: Boolean read FOpen;
     property OSError: LongInt read FOSError;
+    { The OS's own words for OSError ('No such file or directory', 'Is a
+      directory', 'Inappropriate ioctl for device'; Windows' text for its
+      code), '' when OSError is 0. A backend with codes of its own
+      (Synapse) translates those. }
+    function OSErrorText: ShortString; virtual;
     { A virtual line (a Linux pty slave or master, a socat link to one)
       carries bytes only: Configure takes BD BIT STOP PAR FLW as given and
       changes nothing on it. Known after Open; always False on Windows,
@@ -192,7 +197,7 @@ function DefaultPortDriver: ShortString;
 implementation
 
 uses
-  uString;
+  {$IFDEF UNIX}ChnUnix,{$ENDIF} SysUtils, uString;
 
 const
   MaxDrivers = 8;
@@ -280,6 +285,20 @@ end;
 function TChnPort.OsHandle: PtrInt;
 begin
   Result := -1;
+end;
+
+function TChnPort.OSErrorText: ShortString;
+begin
+  if FOSError = 0 then
+    Exit('');
+  {$IFDEF UNIX}
+  Result := ChnUnix.OsErrorText(FOSError);
+  {$ELSE}
+  { Windows ends its messages with a full stop and a line break }
+  Result := TrimRight(SysErrorMessage(FOSError));
+  while (Result <> '') and (Result[Length(Result)] = '.') do
+    SetLength(Result, Length(Result) - 1);
+  {$ENDIF}
 end;
 
 procedure TChnPort.Close;

@@ -279,6 +279,7 @@ begin
       else
         Key := 'HOST';
     CH_ParamErr := ChGetParam(Key);
+    CH_ErrWhy := P.OSErrorText;     { 'Connection refused' }
     P.Free;
     Exit;
   end;

@@ -23,6 +23,11 @@ const
 { Mark Fd close-on-exec. }
 procedure CloseOnExec(Fd: cint);
 
+{ The C library's words for errno E ('Inappropriate ioctl for device'),
+  as the system's own tools print them (the RTL's table has older ones:
+  'Not a typewriter'). }
+function OsErrorText(E: cint): ShortString;
+
 { True when Fd (opened on Path) is a pseudo terminal, slave or master: a
   virtual line. }
 function PortIsPty(Fd: cint; const Path: tWordString): Boolean;
@@ -48,6 +53,19 @@ implementation
 
 uses
   SysUtils;
+
+function strerror(E: cint): PChar; cdecl; external 'c' name 'strerror';
+
+function OsErrorText(E: cint): ShortString;
+var
+  P: PChar;
+begin
+  P := strerror(E);
+  if P = nil then
+    Result := 'error ' + IntToStr(E)
+  else
+    Result := StrPas(P);
+end;
 
 function PortSetLatency(const Path: tWordString; Ms: LongInt; out Err: cint): tChResult;
 {$IFDEF LINUX}

@@ -293,7 +293,7 @@ begin
   else if Key = 'DRV' then
   begin
     if FindPortDriver(Value) = nil then
-      Result := res_BadParam      { not built in, see docs/ChnCom.md }
+      Result := ParamBad('one of ' + PortDriverNames)  { not built in, see docs/ChnCom.md }
     else
       Result := res_Ok;
     if (Result = res_Ok) and (CmdL = cmd_Set) then
@@ -461,6 +461,7 @@ begin
   if R <> res_Ok then
   begin
     CH_ParamErr := ChGetParam(Key);
+    CH_ErrWhy := Port.OSErrorText;  { 'No such file or directory' }
     Port.Free;                      { closes it }
     Port := nil;
   end;
@@ -521,6 +522,7 @@ begin
   CH_Set.InQueue := CH_LRB;
   CH_RtsToggle := False;
   CH_ParamErr := '';
+  CH_ErrWhy := '';
   R := ComOpenPort(Port);
   if R <> res_Ok then
   begin

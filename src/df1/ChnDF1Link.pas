@@ -243,9 +243,10 @@ begin
   R := Result^.ChResult;
   if R = res_Ok then
     R := res_Timeout;            { the state never came }
-  Err := Step + ': ' + Result^.ChResultStr(R);
-  if Result^.ChParamError <> '' then
-    Err := Err + ' (' + Result^.ChParamError + ')';
+  if R = Result^.ChResult then
+    Err := Step + ': ' + Result^.ChErrorText   { with the token and the OS reason }
+  else
+    Err := Step + ': ' + Result^.ChResultStr(R);
   Dispose(Result, Done);
   Result := nil;
 end;

@@ -84,6 +84,9 @@ type
       out Rearm: tChnWaitRearm; out Data: Pointer): Boolean; override;
     {$ENDIF}
     function OsHandle: PtrInt; override;
+    { synaser's words for its own codes (9991 'Port owned by other
+      process'), the OS's for the others }
+    function OSErrorText: ShortString; override;
     procedure Close; override;
     property Serial: TChnBlockSerial read FSer;
   end;
@@ -183,6 +186,14 @@ begin
     Result := res_IOError;
   end;
   {$ENDIF}
+end;
+
+function TChnPortSynapse.OSErrorText: ShortString;
+begin
+  if (FOSError >= ErrAccessDenied) and (FOSError <= ErrTxFull) then
+    Result := TBlockSerial.GetErrorDesc(FOSError)
+  else
+    Result := inherited OSErrorText;
 end;
 
 function TChnPortSynapse.Refuse(const Key: ShortString): tChResult;
