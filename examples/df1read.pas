@@ -92,7 +92,7 @@ begin
   if PcccStartRead(R, C, Addr, Count) then
     PcccFinish(R);
   if R.Result <> res_Ok then
-    Fail(R.Err + ' (' + ChResultText(R.Result, PcccLayer) + ')', CliExitOf(R.Result));
+    Fail(R.Err + ' (' + ChResultText(R.Result, PcccLayer) + ')', PcccExitCode(R.Result));
   for I := 0 to Count - 1 do
     WriteLn(PcccItemText(R, I));
   PcccClose(C);

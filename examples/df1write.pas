@@ -109,7 +109,7 @@ begin
   if PcccStartWriteText(R, C, Addr, Values) then
     PcccFinish(R);
   if R.Result <> res_Ok then
-    Fail(R.Err + ' (' + ChResultText(R.Result, PcccLayer) + ')', CliExitOf(R.Result));
+    Fail(R.Err + ' (' + ChResultText(R.Result, PcccLayer) + ')', PcccExitCode(R.Result));
   WriteLn('df1write: ', Length(Values), ' value(s) written from ', Addr);
   PcccClose(C);
 end.

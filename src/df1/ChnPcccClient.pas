@@ -118,14 +118,20 @@ function PcccStep(var R: tPcccRequest): Boolean;
   client takes a new one at once. A client runs one request at a time: a
   start while one is under way is refused with res_WrongState. }
 procedure PcccCancel(var R: tPcccRequest);
-{ Drive a started request to its end (with C.Idle or sleeping). }
+{ Drive a started request to its end: a step, then C.Idle when the client
+  has one, otherwise the program-wide wait up to the request's next timer
+  (ChnWaitUntil: it ends at the first input or at the timer) - no sleep,
+  no busy loop. }
 function PcccFinish(var R: tPcccRequest): tChResult;
 { Why the link exchange M on Chn failed, in words ('no ACK after 3 tries',
   'NAK on each of 3 tries', 'no reply', ...); M.Result <> res_Ok. }
 function PcccMasterFailure(const M: tDF1Master; Chn: pChnVirt): ShortString;
-{ For tools: 0 res_Ok, 1 the request cannot be made (address, count,
-  value, kind), 3 the PLC's answer is an error or does not fit, 2 any
-  other failure (no answer, NAK, line lost). }
+{ A program's exit code for a request's result, in the tools' one scheme
+  (docs/TOOLS.md): 0 res_Ok; 1 the line failed (cannot be opened, lost, any
+  other error); 2 the request cannot be made (address, count, value, kind,
+  no DF1 channel: what the command line asked is wrong); 3 the PLC's
+  answer is an error reply, does not fit, or a NAK on every try; 4 no
+  answer in time. }
 function PcccExitCode(Res: tChResult): LongInt;
 { 'N7:3 = -1', 'F8:0 = 1.5', 'B3:1/4 = 1', 'T4:0 = $A000 100 42' for item
   Item of a finished read. }
@@ -603,10 +609,11 @@ function PcccExitCode(Res: tChResult): LongInt;
 begin
   case Res of
     res_Ok: Result := 0;
-    res_PcccAddress, res_PcccCount, res_PcccValue, res_PcccUsage, res_WrongLayer: Result := 1;
-    res_PcccStatus, res_PcccReply, res_BadMessage: Result := 3;
+    res_PcccAddress, res_PcccCount, res_PcccValue, res_PcccUsage, res_WrongLayer: Result := 2;
+    res_PcccStatus, res_PcccReply, res_BadMessage, res_PcccNak: Result := 3;
+    res_Timeout: Result := 4;
   else
-    Result := 2;
+    Result := 1;
   end;
 end;
 
