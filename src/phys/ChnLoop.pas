@@ -108,6 +108,13 @@ type
   { One end of a line as a port: Write puts the bytes on the wire, Read
     takes what reached this end. }
   TChnPortLoop = class(TChnPort)
+  protected
+    function DoRead(var Buf; Size: LongInt; out Got: LongInt): tChResult; override;
+    { Without a speed: takes a whole message or nothing (0 while the last
+      one is still on its way); it moves on as the other ends read, also
+      when this end is not polled. With a speed: takes it all, behind what
+      is still on the wire. }
+    function DoWrite(const Buf; Len: LongInt; out Done: LongInt): tChResult; override;
   private
     FPair: pLoopPair;
     FEnd: Byte;
@@ -119,12 +126,6 @@ type
     { Path is ignored: the pair is PairName, the end EndNo. res_CannotOpen
       when that end is open in another stack. }
     function Open(const Path: tWordString): tChResult; override;
-    function Read(var Buf; Size: LongInt; out Got: LongInt): tChResult; override;
-    { Without a speed: takes a whole message or nothing (0 while the last
-      one is still on its way); it moves on as the other ends read, also
-      when this end is not polled. With a speed: takes it all, behind what
-      is still on the wire. }
-    function Write(const Buf; Len: LongInt; out Done: LongInt): tChResult; override;
     { Bytes of what was sent not yet at the other ends. }
     function OutQueue(out N: LongInt): tChResult; override;
     { Whether bytes wait; never sleeps (the shared wait does that). }
@@ -373,7 +374,7 @@ begin
   inherited Close;
 end;
 
-function TChnPortLoop.Read(var Buf; Size: LongInt; out Got: LongInt): tChResult;
+function TChnPortLoop.DoRead(var Buf; Size: LongInt; out Got: LongInt): tChResult;
 begin
   EnterCriticalSection(Lock);
   try
@@ -413,15 +414,12 @@ begin
       end;
 end;
 
-function TChnPortLoop.Write(const Buf; Len: LongInt; out Done: LongInt): tChResult;
+function TChnPortLoop.DoWrite(const Buf; Len: LongInt; out Done: LongInt): tChResult;
 var
   Now: QWord;
   Idle: Boolean;
 begin
-  Done := 0;
   Result := res_Ok;
-  if Len <= 0 then
-    Exit;
   EnterCriticalSection(Lock);
   try
     Now := ChnClockUs;

@@ -54,7 +54,7 @@ type
 
   TChnPortClass = class of TChnPort;
 
-  { The serial-port interface. A driver implements Open, Read, Write,
+  { The serial-port interface. A driver implements Open, DoRead, DoWrite,
     WaitInput and Close (calling inherited Close); every other method has
     a default for a device without that capability (below), so a driver
     overrides only what its device does. All return at once unless the
@@ -65,6 +65,10 @@ type
     FOpen: Boolean;
     FOSError: LongInt;   { OS error code of the last failure, 0 if none }
     FVirtual: Boolean;   { no physical line behind the device (a pty) }
+    { Read and Write of the driver, called by Read and Write once the
+      port is open and there is something to move (Size, Len > 0). }
+    function DoRead(var Buf; Size: LongInt; out Got: LongInt): tChResult; virtual; abstract;
+    function DoWrite(const Buf; Len: LongInt; out Done: LongInt): tChResult; virtual; abstract;
   public
     { After a failed Open or Configure: the parameter key at fault ('BD',
       'BIT', 'STOP', 'PAR', 'FLW', 'RS485', or '' for the device itself),
@@ -82,8 +86,9 @@ type
       with no line settings: only bytes cross it). }
     function Configure(const S: tPortSettings): tChResult; virtual;
     { Copy up to Size waiting bytes into Buf, never wait. Got = 0 with
-      res_Ok means nothing is waiting. }
-    function Read(var Buf; Size: LongInt; out Got: LongInt): tChResult; virtual; abstract;
+      res_Ok means nothing is waiting; res_WrongState while not open. The
+      checks are here, the reading is the driver's DoRead. }
+    function Read(var Buf; Size: LongInt; out Got: LongInt): tChResult; virtual;
     { Wait at most Ms milliseconds for input; True as soon as a byte (or a
       fault, which the next Read reports) is waiting. Ms = 0 only looks. }
     function WaitInput(Ms: LongInt): Boolean; virtual; abstract;
@@ -91,8 +96,9 @@ type
       True at once (no buffer the OS could fill). }
     function WaitOutput(Ms: LongInt): Boolean; virtual;
     { Hand up to Len bytes to the OS, never wait: Done tells how many were
-      taken (possibly 0 when the OS buffer is full). }
-    function Write(const Buf; Len: LongInt; out Done: LongInt): tChResult; virtual; abstract;
+      taken (possibly 0 when the OS buffer is full); res_WrongState while
+      not open. The checks are here, the writing is the driver's DoWrite. }
+    function Write(const Buf; Len: LongInt; out Done: LongInt): tChResult; virtual;
     { Bytes handed to the OS but not yet on the line; 0 where unknown (the
       default). }
     function OutQueue(out N: LongInt): tChResult; virtual;
@@ -227,6 +233,26 @@ end;
 function TChnPort.Configure(const S: tPortSettings): tChResult;
 begin
   Result := res_Ok;
+end;
+
+function TChnPort.Read(var Buf; Size: LongInt; out Got: LongInt): tChResult;
+begin
+  Got := 0;
+  if not FOpen then
+    Exit(res_WrongState);
+  if Size <= 0 then
+    Exit(res_Ok);
+  Result := DoRead(Buf, Size, Got);
+end;
+
+function TChnPort.Write(const Buf; Len: LongInt; out Done: LongInt): tChResult;
+begin
+  Done := 0;
+  if not FOpen then
+    Exit(res_WrongState);
+  if Len <= 0 then
+    Exit(res_Ok);
+  Result := DoWrite(Buf, Len, Done);
 end;
 
 function TChnPort.WaitOutput(Ms: LongInt): Boolean;
