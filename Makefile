@@ -240,6 +240,9 @@ FPCLIBDIR = $(if $(filter /usr,$(PREFIX)),$(PREFIX)/lib/$(MULTIARCH)/fpc,$(PREFI
 INSTALL_UNITDIR ?= $(FPCLIBDIR)/$(FPCVER)/units/$(FPCTARGET)/chn
 INSTALL_SRCDIR  ?= $(PREFIX)/share/chn
 
+# The library's version, written once (src/core/chnversion.inc)
+CHNVERSION = $(shell sed -n "s/^'\(.*\)'$$/\1/p" src/core/chnversion.inc)
+
 # The programs that are tools (docs/TOOLS.md, "Installed tools"): into
 # $(PREFIX)/bin, each with a man page made from its --help and --version
 # by Debian's help2man (without help2man the pages are left out, with a
@@ -254,7 +257,7 @@ man: $(addprefix $(MANDIR)/,$(addsuffix .1,$(TOOL_PROGRAMS)))
 $(MANDIR)/%.1: $(BINDIR)/%
 	@mkdir -p $(MANDIR)
 	@if command -v help2man >/dev/null 2>&1; then \
-	  help2man -N --no-discard-stderr -s 1 -m 'Chn tools' -S 'Chn $(shell sed -n "s/^  ChnVersion = '\(.*\)';/\1/p" tools/lib/ChnCli.pas)' \
+	  help2man -N --no-discard-stderr -s 1 -m 'Chn tools' -S 'Chn $(CHNVERSION)' \
 	    -n "$$($< --help | sed -n '2,/^$$/p' | tr '\n' ' ' | sed 's/ ([^)]*)//g; s/[.:;].*//')" -o $@ $< || exit 1; \
 	else echo "note: help2man not found (apt-get install help2man): no man page for $*"; fi
 
@@ -265,7 +268,7 @@ DOCSRC := $(sort $(wildcard src/*/*.pas src/*/*/*.pas))
 doc:
 	@command -v pasdoc >/dev/null 2>&1 || { echo "pasdoc not found: apt-get install pasdoc"; exit 1; }
 	@rm -rf $(BUILD)/doc; mkdir -p $(BUILD)/doc
-	@pasdoc --format html --output $(BUILD)/doc --title 'Chn library $(shell sed -n "s/^  ChnVersion = '\(.*\)';/\1/p" tools/lib/ChnCli.pas)' \
+	@pasdoc --format html --output $(BUILD)/doc --title 'Chn library $(CHNVERSION)' \
 	  --include src/ $(addprefix --include ,$(sort $(dir $(DOCSRC)))) --define FPC --define UNIX --define LINUX \
 	  --write-uses-list --sort=structures,non-record-fields $(DOCSRC) >$(BUILD)/doc.log 2>&1 || { cat $(BUILD)/doc.log; exit 1; }
 	@if grep -E '^(Warning|Error)' $(BUILD)/doc.log; then echo "make doc: pasdoc warnings (above)"; exit 1; fi

@@ -24,7 +24,7 @@ uses
   SysUtils, fpmkunit;
 
 const
-  Version = '1.0.0';
+  Version = {$I src/core/chnversion.inc};   { the library's version, written once }
   { units of src/ this package does not build (tools/units.sh reads it) }
   Optional = 'ChnPortSynapse.pas';
 
@@ -73,7 +73,8 @@ begin
 
     { ---- src/core: types, tokens, the layer contract, the wait }
     Part(P, 'core');
-    AddUnit(P, 'ChnTypes.pas', AllOSes, []);
+    T := AddUnit(P, 'ChnTypes.pas', AllOSes, []);
+      T.Dependencies.AddInclude('chnversion.inc');
     AddUnit(P, 'uString.pas', AllOSes, []);
     AddUnit(P, 'ChnRing.pas', AllOSes, ['ChnWait']);
     { the parameter-string parser }
