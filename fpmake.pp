@@ -165,6 +165,8 @@ begin
       'uString', 'ChnTcp']);
     { IEC 60870-5-101 application layer on the FT 1.2 link helpers or IEC 104 }
     AddUnit(P, 'ChnIec101Asdu.pas', AllOSes, ['ChnTypes']);
+    { the IEC 101 information objects as JSON or a readable line, for tools }
+    AddUnit(P, 'ChnIec101Print.pas', AllOSes, ['ChnIec101Asdu']);
     AddUnit(P, 'ChnIecTransport.pas', AllOSes, ['ChnTypes', 'ChnVirt', 'ChnFT1_2', 'ChnFT12Link', 'ChnFT12Balanced',
       'ChnIec104', 'ChnIec104Codec']);
     AddUnit(P, 'ChnIec101Master.pas', AllOSes, ['ChnTypes', 'ChnVirt', 'ChnFT1_2', 'ChnFT12Link',

@@ -28,7 +28,7 @@ program ft12balanced;
 
 uses
   SysUtils, uString, ChnTypes, ChnVirt, ChnLayers, ChnFT1_2, ChnFT12Balanced,
-  ChnIec101Asdu, Iec101Print, ChnFT12Gap, ChnCli;
+  ChnIec101Asdu, ChnIec101Print, ChnFT12Gap, ChnCli;
 
 var
   Chn: pChnVirt;
@@ -50,7 +50,7 @@ begin
   Result := FormatDateTime('hh:nn:ss.zzz', Now) + ' ';
 end;
 
-{ The ASDU at Buf as one line (Iec101Print, lib60870's sizes 2/2/3). }
+{ The ASDU at Buf as one line (ChnIec101Print, lib60870's sizes 2/2/3). }
 function AsduText(Buf: PByte; Len: Word): string;
 begin
   if Len = 0 then
