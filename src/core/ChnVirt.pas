@@ -249,7 +249,7 @@ var
 implementation
 
 uses
-  {$IFDEF LINUX}Linux, UnixType,{$ENDIF} {$IFDEF WINDOWS}Windows,{$ENDIF} SysUtils, ChnWait;
+  SysUtils, ChnWait;
 
 {$DEFINE CHNVIRT_BODIES}
 {$I chnvirtnames.inc}
@@ -291,34 +291,10 @@ begin
   Result := GetTickCount64;
 end;
 
-{$IFDEF WINDOWS}
-var
-  UsFreq: Int64 = 0;     { QueryPerformanceFrequency, counts per second }
-{$ENDIF}
-
 function ChUsTick: QWord;
-{$IFDEF LINUX}
-var
-  T: TTimeSpec;
 begin
-  clock_gettime(CLOCK_MONOTONIC, @T);
-  Result := QWord(T.tv_sec) * 1000000 + QWord(T.tv_nsec) div 1000;
+  Result := ChnClockUs;             { the wait's clock: one per OS, in its OS part }
 end;
-{$ELSE}{$IFDEF WINDOWS}
-var
-  C: Int64;
-begin
-  if UsFreq = 0 then
-    QueryPerformanceFrequency(UsFreq);      { fixed at boot, never 0 since XP }
-  QueryPerformanceCounter(C);
-  { seconds and the rest apart: C * 1000000 would overflow after days }
-  Result := QWord(C div UsFreq) * 1000000 + QWord(C mod UsFreq) * 1000000 div QWord(UsFreq);
-end;
-{$ELSE}
-begin
-  Result := GetTickCount64 * 1000;
-end;
-{$ENDIF}{$ENDIF}
 
 function ChSendWhenFree(Chn: pChnVirt; Buff: Pointer; Len: Word;
   TimeoutMs: LongInt): tChResult;
