@@ -139,7 +139,7 @@ begin
   AssertTrue(FHub.AddPort('IMM'));
   AssertEquals(res_Ok, IecMasterInit(M, FChn, IecDefaultParams));
   M.TimeoutMs := LinkMs;
-  M.Bal.TimeoutMs := LinkMs;
+  M.Link.Bal.TimeoutMs := LinkMs;
   M.CommandMs := 2000;
   M.CycleMs := 5;
   M.DeadMinMs := 200;
@@ -479,7 +479,7 @@ begin
   Open('NAM=FT1_2 MS=OFF PRI=ON DIR=1 LEN=0 NOD=1 DNO=5', [5], True);
   AssertTrue(M.Balanced);
   I := 0;
-  while (M.Bal.State <> bsAvailable) and (I < 2000) do
+  while (M.Link.Bal.State <> bsAvailable) and (I < 2000) do
   begin
     IecMasterStep(M);
     Pump;
@@ -680,8 +680,8 @@ begin
   AssertEquals(res_Timeout, IecInterrogation(M, 5, 1, Qoi_Station));
   AssertTrue(M.Cmd.Err, Pos(' — ', M.Cmd.Err) > 0);
   AssertTrue(M.Cmd.Err, Pos('frames from link address 2 ignored', M.Cmd.Err) > 0);
-  AssertTrue(M.Bal.OtherAddr > 0);
-  AssertEquals(2, M.Bal.OtherLast);
+  AssertTrue(M.Link.Bal.OtherAddr > 0);
+  AssertEquals(2, M.Link.Bal.OtherLast);
 end;
 
 { Both stations DIR=1: every frame of the peer carries this station's own
@@ -693,7 +693,7 @@ begin
   M.CommandMs := 600;
   AssertEquals(res_Timeout, IecInterrogation(M, 5, 1, Qoi_Station));
   AssertTrue(M.Cmd.Err, Pos('frames with this station''s own DIR bit ignored', M.Cmd.Err) > 0);
-  AssertTrue(M.Bal.BadDir > 0);
+  AssertTrue(M.Link.Bal.BadDir > 0);
 end;
 
 initialization

@@ -612,7 +612,7 @@ begin
   until (PeerGot.Count >= 6) or (ChMsTick - T0 > 3000);
   AssertEquals('0B 01 03 00 01 00 65 00 00 07 00 00', PeerGot[5]);
   AssertEquals(0, S.BadAsdus);
-  AssertEquals(S.Bal.State = bsAvailable, True);
+  AssertEquals(S.Link.Bal.State = bsAvailable, True);
 end;
 
 { 400 random ASDUs (a known type or not, any length): each is counted as

@@ -51,7 +51,7 @@ unit ChnIec101Master;
 interface
 
 uses
-  ChnTypes, ChnVirt, ChnFT1_2, ChnFT12Link, ChnIec101Asdu;
+  ChnTypes, ChnVirt, ChnFT1_2, ChnFT12Link, ChnIec101Asdu, ChnIecTransport;
 
 const
   res_IecNegative    = res_Proto + 8;    { negative confirmation (P/N = 1) }
@@ -121,7 +121,9 @@ type
     Slaves   : array[0..IecMaxSlaves - 1] of tIecSlave;
     SlaveCount: LongInt;
     Turn     : LongInt;    { the slave whose turn it is }
-    Bal      : tFT12Balanced;
+    Over104  : Boolean;    { on an IEC104 channel (Balanced too: no link polling) }
+    TestCount: LongInt;    { 104: TSC of the last C_TS_TA_1 }
+    Link     : tIecTransport;   { balanced FT 1.2 link or IEC 104 }
     { settings }
     TimeoutMs: LongInt;    { link answer (FT12LinkTimeoutMs) }
     Retries  : LongInt;    { link repetitions (FT12LinkRetries) }
@@ -224,8 +226,10 @@ end;
 
 function IecLineShowed(const M: tIecMaster; S: LongInt): ShortString;
 begin
-  if M.Balanced then
-    Result := FT12IgnoredText(M.Bal.OtherAddr, M.Bal.OtherLast, M.Bal.BadDir)
+  if M.Over104 then
+    Result := ''                         { TCP: no link addresses, no DIR }
+  else if M.Balanced then
+    Result := FT12IgnoredText(M.Link.Bal.OtherAddr, M.Link.Bal.OtherLast, M.Link.Bal.BadDir)
   else if (S >= 0) and (S < M.SlaveCount) then
     Result := FT12IgnoredText(M.Slaves[S].Link.OtherAddr, M.Slaves[S].Link.OtherLast, 0)
   else
@@ -260,16 +264,16 @@ begin
   Result := IecCheckParams(P, E);
   if Result <> res_Ok then
     Exit;
-  if (Chn = nil) or (Chn^.CH_Type <> ChnFT1_2.cName) then
+  M.Over104 := IecTransportIs104(Chn);
+  if not M.Over104 and ((Chn = nil) or (Chn^.CH_Type <> ChnFT1_2.cName)) then
     Exit(res_WrongLayer);
-  M.Balanced := not pChnFT1_2(Chn)^.CH_MaSl;
+  M.Balanced := M.Over104 or not pChnFT1_2(Chn)^.CH_MaSl;
   if M.Balanced then
   begin
-    Result := FT12BalancedInit(M.Bal, Chn);
+    Result := IecTransportInit(M.Link, Chn);
     if Result <> res_Ok then
       Exit;
-    M.Bal.OnUserData := @OnBalancedData;
-    M.Bal.Data := @M;
+    IecTransportHandler(M.Link, @OnBalancedData, @M);
     SlaveInit(M.Slaves[0], Chn^.CH_DNode, M.DeadMinMs);
     M.SlaveCount := 1;
   end
@@ -452,12 +456,22 @@ var
 begin
   O := IecObject(0);
   O.Time := T;
-  Result := Start(M, Addr, Ca, C_CS_NA_1, O, False, False, Delay);
+  { 104 does not use delay acquisition (IEC 60870-5-104 clause 8) }
+  Result := Start(M, Addr, Ca, C_CS_NA_1, O, False, False, Delay and not M.Over104);
 end;
 
 function IecStartTest(var M: tIecMaster; Addr, Ca: Word): Boolean;
+var
+  O: tIecObject;
 begin
-  Result := StartWith(M, Addr, Ca, C_TS_NA_1, Fbp_Test, False);
+  if not M.Over104 then
+    Exit(StartWith(M, Addr, Ca, C_TS_NA_1, Fbp_Test, False));
+  { 104 tests with the time tag: C_TS_TA_1, TSC and CP56 }
+  Inc(M.TestCount);
+  O := IecObject(0);
+  O.Int := M.TestCount and $FFFF;
+  O.Time := IecTimeFromDateTime(Now);
+  Result := Start(M, Addr, Ca, C_TS_TA_1, O, False, False, False);
 end;
 
 function IecStartResetProcess(var M: tIecMaster; Addr, Ca: Word; Qrp: Byte): Boolean;
@@ -904,18 +918,18 @@ var
   E: ShortString;
   R: tChResult;
 begin
-  Result := FT12BalancedStep(M.Bal);
+  Result := IecTransportStep(M.Link);
   if M.Chn^.ChResult <> res_Ok then
     M.LineResult := M.Chn^.ChResult;
-  if M.Bal.State = bsAvailable then
+  if IecTransportUp(M.Link) then
     M.Slaves[0].State := isOnline
   else
     M.Slaves[0].State := isOffline;
-  if (M.Cmd.Phase = cpSend) and (M.Bal.State = bsAvailable) and (M.Bal.QCount < FT12BalQueueLen) then
+  if (M.Cmd.Phase = cpSend) and IecTransportUp(M.Link) and IecTransportRoom(M.Link) then
   begin
     R := StageEncode(M, Buf, Len, E);
     if R = res_Ok then
-      R := FT12BalancedSend(M.Bal, @Buf, Len, True);
+      R := IecTransportSend(M.Link, @Buf, Len);
     if R = res_Ok then
     begin
       Inc(M.Slaves[0].Commands);
@@ -958,7 +972,7 @@ var
   I: Integer;
   T: QWord;
 begin
-  Result := ChMsTick + 50;               { the balanced link's timers }
+  Result := ChMsTick + QWord(IecTransportWaitMs(M.Link, 50));   { the link's timers }
   if not M.Balanced then
   begin
     Result := ChMsTick + QWord(M.DeadMaxMs);

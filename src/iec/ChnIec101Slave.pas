@@ -53,7 +53,7 @@ unit ChnIec101Slave;
 interface
 
 uses
-  ChnTypes, ChnVirt, ChnFT1_2, ChnFT12Link, ChnIec101Asdu;
+  ChnTypes, ChnVirt, ChnFT1_2, ChnFT12Link, ChnIec101Asdu, ChnIecTransport;
 
 const
   IecSlaveMaxPoints = 1024;
@@ -96,9 +96,10 @@ type
     Chn      : pChnVirt;
     Params   : tIecParams;
     Ca       : Word;          { own common address (IecSlaveInit: 1) }
-    Balanced : Boolean;
+    Balanced : Boolean;       { no link polling: balanced FT 1.2 or IEC 104 }
+    Over104  : Boolean;       { on an IEC104 channel }
     Station  : tFT12Station;  { unbalanced link }
-    Bal      : tFT12Balanced; { balanced link }
+    Link     : tIecTransport; { balanced link or IEC 104 }
     Points   : array[0..IecSlaveMaxPoints - 1] of tIecPoint;
     PointCount: LongInt;
     Class1, Class2: tIecQueue;
@@ -250,6 +251,27 @@ begin
   Result := IecEncodeOne(S.Params, Ti, Cot_Spontaneous, S.Ca, Obj, Buf, Len, Err);
 end;
 
+{ IEC 104 has no CP24 types (IEC 60870-5-104 clause 8): the CP56 type
+  of the same information. }
+function Cp56Counterpart(Ti: Byte): Byte;
+begin
+  case Ti of
+    M_SP_TA_1: Result := M_SP_TB_1;
+    M_DP_TA_1: Result := M_DP_TB_1;
+    M_ST_TA_1: Result := M_ST_TB_1;
+    M_BO_TA_1: Result := M_BO_TB_1;
+    M_ME_TA_1: Result := M_ME_TD_1;
+    M_ME_TB_1: Result := M_ME_TE_1;
+    M_ME_TC_1: Result := M_ME_TF_1;
+    M_IT_TA_1: Result := M_IT_TB_1;
+    M_EP_TA_1: Result := M_EP_TD_1;
+    M_EP_TB_1: Result := M_EP_TE_1;
+    M_EP_TC_1: Result := M_EP_TF_1;
+  else
+    Result := Ti;
+  end;
+end;
+
 function IecSlaveAddPoint(var S: tIecSlaveStation; Ti: Byte; const Obj: tIecObject; Group: Byte;
   out Err: ShortString): tChResult;
 var
@@ -257,6 +279,8 @@ var
   O: tIecObject;
 begin
   Err := '';
+  if S.Over104 then
+    Ti := Cp56Counterpart(Ti);
   if not ((IecIsMonitor(Ti) and (Ti <> M_EI_NA_1)) or IsCommand(Ti)) then
   begin
     Err := 'point ' + IntToStr(Obj.Ioa) + ': type ' + IntToStr(Ti) +
@@ -690,9 +714,11 @@ begin
     Answer(S, A, Len, Cot_UnknownCa, True);
     Exit;
   end;
-  if IecIsMonitor(H.Ti) or (H.Ti >= P_ME_NA_1) or (H.Count <> 1) then
+  if IecIsMonitor(H.Ti) or (H.Ti >= P_ME_NA_1) or (H.Count <> 1) or
+     (S.Over104 and (H.Ti in [C_TS_NA_1, C_CD_NA_1])) then
   begin
-    { monitoring types, parameters, several objects: not taken here }
+    { monitoring types, parameters, several objects: not taken here; 104
+      does not use test without time tag and delay acquisition }
     Answer(S, A, Len, Cot_UnknownType, True);
     Exit;
   end;
@@ -785,9 +811,10 @@ begin
   Result := IecCheckParams(P, Err);
   if Result <> res_Ok then
     Exit;
-  if (Chn = nil) or (Chn^.CH_Type <> ChnFT1_2.cName) then
+  S.Over104 := IecTransportIs104(Chn);
+  if not S.Over104 and ((Chn = nil) or (Chn^.CH_Type <> ChnFT1_2.cName)) then
   begin
-    Err := 'the channel is no FT 1.2 stack';
+    Err := 'the channel is no FT 1.2 or IEC 104 stack';
     Exit(res_WrongLayer);
   end;
   if Ca > IecMaxCa(P) then
@@ -796,14 +823,13 @@ begin
     Exit(res_BadParam);
   end;
   S.Chn := Chn;
-  S.Balanced := not pChnFT1_2(Chn)^.CH_MaSl;
+  S.Balanced := S.Over104 or not pChnFT1_2(Chn)^.CH_MaSl;
   if S.Balanced then
   begin
-    Result := FT12BalancedInit(S.Bal, Chn);
+    Result := IecTransportInit(S.Link, Chn);
     if Result <> res_Ok then
       Exit;
-    S.Bal.OnUserData := @OnUserData;
-    S.Bal.Data := @S;
+    IecTransportHandler(S.Link, @OnUserData, @S);
   end
   else
   begin
@@ -820,14 +846,14 @@ begin
   end;
 end;
 
-{ Balanced: hand waiting ASDUs to the link while its queue has room, class
-  1 first. }
+{ Balanced and IEC 104: hand waiting ASDUs to the transport while it has
+  room, class 1 first. }
 procedure FeedBalanced(var S: tIecSlaveStation);
 var
   G: tIecQueued;
   Q: ^tIecQueue;
 begin
-  while (S.Bal.State = bsAvailable) and (S.Bal.QCount < FT12BalQueueLen) do
+  while IecTransportRoom(S.Link) do
   begin
     if S.Class1.Count > 0 then
       Q := @S.Class1
@@ -841,7 +867,7 @@ begin
         Exit;
       Q := @S.Class2;
     end;
-    if FT12BalancedSend(S.Bal, @Q^.Items[Q^.Head].Data[0], Q^.Items[Q^.Head].Len, True) <> res_Ok then
+    if IecTransportSend(S.Link, @Q^.Items[Q^.Head].Data[0], Q^.Items[Q^.Head].Len) <> res_Ok then
       Exit;
     Sent(S, Q^.Items[Q^.Head]);
     QueueDrop(Q^);
@@ -855,7 +881,7 @@ begin
     Exit;
   if S.Balanced then
   begin
-    Result := FT12BalancedStep(S.Bal);
+    Result := IecTransportStep(S.Link);
     FeedBalanced(S);
   end
   else
@@ -869,8 +895,10 @@ end;
 
 function IecSlaveWaitMs(const S: tIecSlaveStation): LongInt;
 begin
-  if S.Balanced and (IecSlavePending(S) or not FT12BalancedQuiet(S.Bal) or
-     (S.Bal.State <> bsAvailable)) then
+  if S.Over104 then
+    Result := IecTransportWaitMs(S.Link, 1000)   { the layer's timers }
+  else if S.Balanced and (IecSlavePending(S) or not IecTransportQuiet(S.Link) or
+     not IecTransportUp(S.Link)) then
     Result := 10           { the balanced link's timers }
   else if S.Balanced then
     Result := 100          { test function timer }
