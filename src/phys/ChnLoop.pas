@@ -57,7 +57,7 @@ const
   LoopMaxEnds = 32;
   { characters a receiver is woken for at most at once (a UART's FIFO):
     a long message is handed over while it comes, not only at its end }
-  LoopWakeChars = 64;
+  LoopWakeChars = 16;
 
 type
   pLoopPair = ^tLoopPair;
@@ -650,7 +650,9 @@ end;
 
 procedure tChnLoop.ChSend(Buff: Pointer; Len: Word);
 begin
-  if ChSendReady <> CHS_SendReady then
+  { at a speed the line queues it behind what is still on its way, as a
+    UART does; without, the last message must have gone on first }
+  if (CH_LoopBaud = 0) and (ChSendReady <> CHS_SendReady) then
     CH_SResult := res_Busy
   else
     inherited ChSend(Buff, Len);
