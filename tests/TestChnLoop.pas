@@ -461,10 +461,11 @@ begin
 end;
 
 { A wait with nothing but characters on their way ends when they arrive,
-  not at its timeout: 20 characters at 1200 8N1 take 167 ms. }
+  not at its timeout: 12 characters at 1200 8N1 (8333 us each) take
+  100 ms. }
 procedure TTestChnLoop.TestTimedLineWakesTheWaitInTime;
 var
-  S: array[0..19] of Byte;
+  S: array[0..11] of Byte;
   D: array[0..19] of Byte;
   T0, Took: QWord;
   Len: Word;
@@ -478,10 +479,10 @@ begin
   while (B^.ChReceiveReady <> CHS_ReceiveReady) and (GetTickCount64 - T0 < 3000) do
     ChnWaitAny(3000);
   Took := GetTickCount64 - T0;
-  AssertTrue('woke after ' + IntToStr(Took) + ' ms', Took >= 166);
+  AssertTrue('woke after ' + IntToStr(Took) + ' ms', Took >= 99);
   AssertTrue('woke after ' + IntToStr(Took) + ' ms', Took < 1500);
   B^.ChReceive(Len);
-  AssertEquals('all 20 (woken for the last)', 20, Len);
+  AssertEquals('all 12 (woken for the last)', 12, Len);
 end;
 
 procedure TTestChnLoop.TestMultidropEveryEndHearsEveryOther;
