@@ -87,7 +87,7 @@ begin
     AddUnit(P, 'ChnProto.pas', AllOSes, ['ChnTypes', 'ChnVirt', 'ChnWait']);
     { every layer at once, for programs that take any parameter string }
     T := AddUnit(P, 'ChnLayers.pas', AllOSes, ['ChnCom', 'ChnTcp', 'ChnLoop', 'ChnTrc', 'ChnNoise',
-      'ChnDF1', 'ChnFT1_2', 'ChnICS']);
+      'ChnDF1', 'ChnFT1_2', 'ChnICS', 'ChnIec104']);
       T.Dependencies.AddUnit('ChnPty', AllUnixOSes);
 
     { ---- src/phys: the physical layers, their port drivers, sockets }
@@ -132,8 +132,9 @@ begin
     AddUnit(P, 'ChnDF1Link.pas', AllOSes, ['ChnTypes', 'ChnVirt', 'ChnDF1', 'ChnPcccNames', 'uString',
       'ChnWait']);
     AddUnit(P, 'ChnPccc.pas', AllOSes, ['ChnTypes', 'ChnDF1Codec', 'uString', 'ChnPcccNames']);
+    AddUnit(P, 'ChnPlc5.pas', AllOSes, ['ChnTypes', 'ChnDF1Codec', 'ChnPccc']);
     AddUnit(P, 'ChnPcccClient.pas', AllOSes, ['ChnTypes', 'ChnVirt', 'ChnDF1Codec', 'ChnDF1Link',
-      'ChnPccc', 'uString', 'ChnWait']);
+      'ChnPccc', 'ChnPlc5', 'uString', 'ChnWait']);
     AddUnit(P, 'ChnPcccTags.pas', AllOSes, ['ChnTypes', 'ChnVirt', 'ChnDF1Codec', 'ChnDF1Link',
       'ChnPccc', 'ChnPcccClient', 'ChnWait']);
     { src/iec: FT 1.2 and IEC 60870-5-101 }
@@ -141,12 +142,18 @@ begin
     AddUnit(P, 'ChnFT12Codec.pas', AllOSes, ['ChnTypes']);
     AddUnit(P, 'ChnFT1_2.pas', AllOSes, ['ChnTypes', 'ChnVirt', 'ChnProto', 'ChnFT12Codec', 'uString']);
     AddUnit(P, 'ChnFT12Link.pas', AllOSes, ['ChnTypes', 'ChnVirt', 'ChnFT1_2', 'ChnFT12Codec', 'ChnWait']);
-    { IEC 60870-5-101 application layer on the FT 1.2 link helpers }
+    { IEC 60870-5-104: the APCI codec and the layer over NAM=TCP }
+    AddUnit(P, 'ChnIec104Codec.pas', AllOSes, ['ChnTypes']);
+    AddUnit(P, 'ChnIec104.pas', AllOSes, ['ChnTypes', 'ChnVirt', 'ChnProto', 'ChnIec104Codec',
+      'uString', 'ChnTcp']);
+    { IEC 60870-5-101 application layer on the FT 1.2 link helpers or IEC 104 }
     AddUnit(P, 'ChnIec101Asdu.pas', AllOSes, ['ChnTypes']);
+    AddUnit(P, 'ChnIecTransport.pas', AllOSes, ['ChnTypes', 'ChnVirt', 'ChnFT1_2', 'ChnFT12Link',
+      'ChnIec104', 'ChnIec104Codec']);
     AddUnit(P, 'ChnIec101Master.pas', AllOSes, ['ChnTypes', 'ChnVirt', 'ChnFT1_2', 'ChnFT12Link',
-      'ChnIec101Asdu', 'ChnWait']);
+      'ChnIec101Asdu', 'ChnWait', 'ChnIecTransport']);
     AddUnit(P, 'ChnIec101Slave.pas', AllOSes, ['ChnTypes', 'ChnVirt', 'ChnFT1_2', 'ChnFT12Link',
-      'ChnIec101Asdu']);
+      'ChnIec101Asdu', 'ChnIecTransport']);
     { src/ics: ICSlink }
     Part(P, 'ics');
     AddUnit(P, 'ChnICSCodec.pas', AllOSes, ['ChnTypes', 'uString']);

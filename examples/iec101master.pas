@@ -276,7 +276,7 @@ begin
     CliUsageError(Cli, ChResultText(R, Iec101Layer), Cli.Args[0]);
   end;
   M.TimeoutMs := CliNum(Cli, 'timeout', 1, 60000, FT12LinkTimeoutMs);
-  M.Bal.TimeoutMs := M.TimeoutMs;
+  M.Link.Bal.TimeoutMs := M.TimeoutMs;
   M.Retries := CliNum(Cli, 'retries', 0, 100, FT12LinkRetries);
   M.CommandMs := CliNum(Cli, 'wait', 1, 3600000, 10000);
   M.OnObject := @OnReceived;
@@ -297,7 +297,7 @@ begin
       if IecMasterAddSlave(M, Slaves[I]) <> res_Ok then
       begin
         Dispose(Chn, Done);
-        CliUsageError(Cli, 'slave address twice or too large for ADR=', IntToStr(Slaves[I]));
+        CliUsageError(Cli, 'slave address twice, too large for ADR= or the broadcast address', IntToStr(Slaves[I]));
       end;
 end;
 
@@ -367,8 +367,10 @@ begin
     CliUsageError(Cli, 'no command', Cli.Args[0]);
   ParseCommands;
   { the parameter string and the master, checked before anything opens }
-  if Pos('NAM=FT1_2', UpperCase(TrimLeft(Cli.Args[0]))) <> 1 then
-    CliUsageError(Cli, 'the parameter string must start with NAM=FT1_2', Copy(Cli.Args[0], 1, 20));
+  if (Pos('NAM=FT1_2', UpperCase(TrimLeft(Cli.Args[0]))) <> 1) and
+     (Pos('NAM=IEC104', UpperCase(TrimLeft(Cli.Args[0]))) <> 1) then
+    CliUsageError(Cli, 'the parameter string must start with NAM=FT1_2 or NAM=IEC104',
+      Copy(Cli.Args[0], 1, 20));
   Chn := CliChannel(Cli, Cli.Args[0], ChnFT1_2.cName);
   ParseSlaves(Chn);
   SetUpMaster(Chn);

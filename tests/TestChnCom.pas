@@ -168,14 +168,6 @@ begin
   TCSetAttr(Pty.Master, TCSANOW, Old);
 end;
 
-function CpuMs: Double;
-var
-  T: TTimeSpec;
-begin
-  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, @T);
-  Result := T.tv_sec * 1000.0 + T.tv_nsec / 1e6;
-end;
-
 { ------------------------------------------------------------ pty tests }
 
 procedure TTestChnComPty.SetUp;

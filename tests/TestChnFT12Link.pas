@@ -55,6 +55,7 @@ type
     procedure TestUnknownFunctionAndGarbledFrame;
     procedure TestSingleCharacterAck;
     procedure TestErrorsReturnedAtOnce;
+    procedure TestFcvServicesWithoutFcvRefused;
   end;
 
 implementation
@@ -680,6 +681,32 @@ begin
   AssertTrue(GetTickCount64 - T0 < 500);
   Settle;
   AssertEquals('nothing sent', '', FTap.Lines('A'));
+end;
+
+{ FC 3, 10 and 11 are FCV = 1 services (IEC 60870-5-2 table 2): one
+  with FCV = 0 has no frame count check, a repetition would be taken
+  twice - no such service (FC 15), the data are not taken. }
+procedure TTestChnFT12Link.TestFcvServicesWithoutFcvRefused;
+begin
+  SetUpPair;
+  AssertEquals(res_Ok, FT12ResetLink(FM, FLink, TimeoutMs, 2, @Idle, Self));
+  FTap.Log.Clear;
+  { 68 03 03 68, CODE $43 (PRM, FC 3, FCB 0, FCV 0), A 5, AA; sum $F2 }
+  FTap.InjectToB('68 03 03 68 43 05 AA F2 16');
+  Settle;
+  AssertEquals('10 0F 05 14 16', FTap.Lines('B'));
+  AssertEquals('not taken', 0, FUserCalls);
+  { class 2 request without FCV: $4B + $05 = $50 }
+  FTap.Log.Clear;
+  FTap.InjectToB('10 4B 05 50 16');
+  Settle;
+  AssertEquals('10 0F 05 14 16', FTap.Lines('B'));
+  AssertEquals(2, FSt.Refused);
+  { with FCV (CODE $73: FCB 1, FCV 1; sum $22) the data are taken }
+  FTap.Log.Clear;
+  FTap.InjectToB('68 03 03 68 73 05 AA 22 16');
+  Settle;
+  AssertEquals(1, FUserCalls);
 end;
 
 initialization

@@ -48,6 +48,10 @@ type
     procedure TestSteppedFormAndOneCommandAtATime;
     procedure TestBalancedPeer;
     procedure TestStepNeverWaitsForADeadSlave;
+    procedure TestBroadcastAddressIsNoSlave;
+    procedure TestConfirmationMustMirrorTheCommand;
+    procedure TestHostileSlavesLeaveHalfTheLine;
+    procedure TestDataPolledAgainAtOnce;
   end;
 
 implementation
@@ -130,7 +134,7 @@ begin
   AssertTrue(FHub.AddPort('IMM'));
   AssertEquals(res_Ok, IecMasterInit(M, FChn, IecDefaultParams));
   M.TimeoutMs := LinkMs;
-  M.Bal.TimeoutMs := LinkMs;
+  M.Link.Bal.TimeoutMs := LinkMs;
   M.CommandMs := 2000;
   M.CycleMs := 5;
   M.DeadMinMs := 200;
@@ -183,7 +187,8 @@ begin
   L := SizeOf(tFT12Link);
   AssertEquals('State after Addr and Link', 2 + L, LongInt(PtrUInt(@S.State) - PtrUInt(@S)));
   AssertEquals('Class1', 2 + L + 1 + 8 + 8 + 4, LongInt(PtrUInt(@S.Class1) - PtrUInt(@S)));
-  AssertEquals('SizeOf(tIecSlave)', 2 + L + 1 + 8 + 8 + 4 + 9 * 4, SizeOf(tIecSlave));
+  AssertEquals('Probation', 2 + L + 1 + 8 + 8 + 4 + 9 * 4, LongInt(PtrUInt(@S.Probation) - PtrUInt(@S)));
+  AssertEquals('SizeOf(tIecSlave)', 2 + L + 1 + 8 + 8 + 4 + 9 * 4 + 1 + 8, SizeOf(tIecSlave));
 end;
 
 procedure TTestChnIec101Master.TestInitRefusesOtherChannels;
@@ -222,7 +227,8 @@ begin
     '5 M_SP_TB_1 20 300 = 1 22:15'#10 +
     '5 C_IC_NA_1 10 0 = 20'#10, StringReplace(Objects.Text, #13, '', [rfReplaceAll]));
   AssertTrue('link reset of slave 5', M.Slaves[0].Resets = 1);
-  AssertTrue('slave 6 polled too', M.Slaves[1].Class2 > 0);
+  { the turn passed to slave 6 while 5 had data }
+  AssertTrue('slave 6 had its turns', M.Slaves[1].Resets + M.Slaves[1].Class2 > 0);
   AssertEquals(0, M.BadAsdus);
   { a group interrogation: QOI 20 + 2 }
   Objects.Clear;
@@ -468,7 +474,7 @@ begin
   Open('NAM=FT1_2 MS=OFF PRI=ON DIR=1 LEN=0 NOD=1 DNO=5', [5], True);
   AssertTrue(M.Balanced);
   I := 0;
-  while (M.Bal.State <> bsAvailable) and (I < 2000) do
+  while (M.Link.Bal.State <> bsAvailable) and (I < 2000) do
   begin
     IecMasterStep(M);
     Pump;
@@ -517,6 +523,135 @@ begin
   AssertTrue('longest step ' + IntToStr(Longest) + ' ms', Longest < 50);
   AssertEquals('slave 7 dead', Ord(isDead), Ord(M.Slaves[1].State));
   AssertTrue('slave 5 polled: ' + IntToStr(M.Slaves[0].Class2), M.Slaves[0].Class2 > 20);
+end;
+
+{ Link address 255 (ADR=1; 65535 with ADR=2) is the broadcast address of
+  IEC 60870-5-2: SEND/NO REPLY only, no station answers it. As a slave it
+  could never come up (the master once retried it without pause). }
+procedure TTestChnIec101Master.TestBroadcastAddressIsNoSlave;
+var
+  Err: string;
+  C: pChnVirt;
+  M2: tIecMaster;
+begin
+  Open('NAM=FT1_2 MS=ON MAS=MASTER LEN=0 NOD=0 DNO=5', [5]);
+  AssertEquals(res_BadParam, IecMasterAddSlave(M, 255));
+  AssertEquals(res_Ok, IecMasterAddSlave(M, 254));
+  AssertEquals(res_BadParam, IecMasterAddSlave(M, 256));
+  C := OpenStack(ChnFT1_2.cName, 'NAM=FT1_2 MS=ON MAS=MASTER LEN=0 ADR=2 NOD=0 DNO=5 NAM=LOOP PAIR=IMB END=1', Err);
+  AssertTrue(Err, C <> nil);
+  try
+    AssertEquals(res_Ok, IecMasterInit(M2, C, IecDefaultParams));
+    AssertEquals(res_BadParam, IecMasterAddSlave(M2, 65535));
+    AssertEquals(res_Ok, IecMasterAddSlave(M2, 65534));
+    AssertEquals(res_Ok, IecMasterAddSlave(M2, 255));
+  finally
+    Dispose(C, Done);
+  end;
+end;
+
+{ A confirmation mirrors its command (IEC 60870-5-101 7.2.6.x, -5 6.8):
+  the ACT_CON of an execute (S/E = 0) confirms no select, and one with
+  T = 1 (test) confirms no command sent without it: the master waits for
+  the right one (here in vain) and never executes on a wrong one. }
+procedure TTestChnIec101Master.TestConfirmationMustMirrorTheCommand;
+var
+  O: tIecObject;
+begin
+  Open('NAM=FT1_2 MS=ON MAS=MASTER LEN=0 NOD=0 DNO=5', [5]);
+  M.CommandMs := 300;
+  O := IecObject(5000);
+  O.Int := 1;
+  Sim(5).SelectConfirmedAsExecute := True;
+  AssertEquals(res_Timeout, IecCommand(M, 5, 1, C_SC_NA_1, O, True));
+  AssertEquals('the select only', 1, Sim(5).Got.Count);
+  AssertEquals('2D 01 06 00 01 00 88 13 00 81', Sim(5).Got[0]);
+  AssertTrue(M.Cmd.Err, Pos('no ACT_CON', M.Cmd.Err) > 0);
+  Sim(5).SelectConfirmedAsExecute := False;
+  Sim(5).ConfirmInTest := True;
+  AssertEquals(res_Timeout, IecCommand(M, 5, 1, C_SC_NA_1, O, False));
+  AssertEquals(2, Sim(5).Got.Count);
+  Sim(5).ConfirmInTest := False;
+  AssertEquals(M.Cmd.Err, res_Ok, IecCommand(M, 5, 1, C_SC_NA_1, O, True));
+  AssertEquals('select, execute', 4, Sim(5).Got.Count);
+end;
+
+{ Class 2 polls slave 5 (idle, answers E5 / no data) gets in Ms. }
+function PollsOf5(T: TTestChnIec101Master; Ms: LongInt): LongInt;
+begin
+  Result := T.M.Slaves[0].Class2;
+  IecPollFor(T.M, Ms);
+  Result := T.M.Slaves[0].Class2 - Result;
+end;
+
+{ Slave 7 turns hostile; slave 5, idle, must keep at least half the class
+  2 polls it got while 7 was healthy: a slave that answers status and
+  reset but no poll (its back-off grew only while it failed, reset by
+  every FC 9 answer before: four timeouts a cycle), one with ACD stuck,
+  one that streams class 1 events (both kept the turn without bound:
+  slave 5 got no poll at all). }
+procedure TTestChnIec101Master.TestHostileSlavesLeaveHalfTheLine;
+const
+  Window = 1200;
+var
+  Normal, Got: LongInt;
+  Kind: Integer;
+  What: string;
+begin
+  Open('NAM=FT1_2 MS=ON MAS=MASTER LEN=0 NOD=0 DNO=5', [5, 7]);
+  M.CycleMs := 20;
+  M.DeadMinMs := LinkMs;                 { a back-off as short as a timeout }
+  M.DeadMaxMs := 800;
+  IecPollFor(M, 100);
+  AssertEquals(Ord(isOnline), Ord(M.Slaves[1].State));
+  Normal := PollsOf5(Self, Window);
+  AssertTrue('normal rate: ' + IntToStr(Normal), Normal >= 10);
+  for Kind := 1 to 3 do
+  begin
+    case Kind of
+      1: begin Sim(7).HalfDead := True; What := 'half-dead'; end;
+      2: begin Sim(7).AcdStuck := True; What := 'ACD stuck'; end;
+    else
+      Sim(7).Stream := '01 01 03 00 01 00 68 00 00 01'; What := 'event stream';
+    end;
+    IecPollFor(M, 200);                  { 7 turns hostile: its first death }
+    Got := PollsOf5(Self, Window);
+    AssertTrue(Format('%s slave 7: slave 5 got %d class 2 polls, %d with 7 healthy (7: %d class 1, %d class 2, %d failures)',
+      [What, Got, Normal, M.Slaves[1].Class1, M.Slaves[1].Class2, M.Slaves[1].Failures]),
+      2 * Got >= Normal);
+    if Kind = 1 then
+      { the first failure had its repetitions; on probation (set up again
+        but no poll answered) one transmission each }
+      AssertEquals('class polls to the half-dead slave', M.Slaves[1].Failures + M.Retries,
+        Sim(7).HalfDeadPolls);
+    Sim(7).HalfDead := False;
+    Sim(7).AcdStuck := False;
+    Sim(7).Stream := '';
+    Sim(7).Class1.Clear;
+  end;
+  AssertTrue('the streamed events arrived', Objects.IndexOf('7 M_SP_NA_1 3 104 = 1') >= 0);
+  AssertTrue('a half-dead slave''s back-off grew: ' + IntToStr(M.Slaves[1].BackoffMs),
+    M.Slaves[1].Failures > 0);
+end;
+
+{ After an answer with data the slave is polled again at once; CycleMs
+  paces only a slave that had nothing: an interrogation of ten class 2
+  ASDUs with CycleMs = 1000 takes far less than a second. }
+procedure TTestChnIec101Master.TestDataPolledAgainAtOnce;
+var
+  T0: QWord;
+  I: Integer;
+begin
+  Open('NAM=FT1_2 MS=ON MAS=MASTER LEN=0 NOD=0 DNO=5', [5]);
+  M.CycleMs := 1000;
+  IecPollFor(M, 50);
+  AssertEquals(Ord(isOnline), Ord(M.Slaves[0].State));
+  for I := 1 to 7 do
+    Sim(5).Send(GiAnswer[0], False);
+  T0 := ChMsTick;
+  AssertEquals(M.Cmd.Err, res_Ok, IecInterrogation(M, 5, 1, Qoi_Station));
+  AssertTrue('took ' + IntToStr(ChMsTick - T0) + ' ms', ChMsTick - T0 < 700);
+  AssertEquals(7 * 3 + 8, Objects.Count);
 end;
 
 initialization

@@ -52,6 +52,9 @@ type
     procedure TestMalformedCountedNeverStops;
     procedure TestBalancedInterrogationInOrder;
     procedure TestRandomAsdusNeverStopIt;
+    procedure TestResetOfTaggedEventsKeepsConfirmations;
+    procedure TestTestBitAndPnBitNeverExecuted;
+    procedure TestExecuteMustCarryTheSelection;
   end;
 
 implementation
@@ -609,7 +612,7 @@ begin
   until (PeerGot.Count >= 6) or (ChMsTick - T0 > 3000);
   AssertEquals('0B 01 03 00 01 00 65 00 00 07 00 00', PeerGot[5]);
   AssertEquals(0, S.BadAsdus);
-  AssertEquals(S.Bal.State = bsAvailable, True);
+  AssertEquals(S.Link.Bal.State = bsAvailable, True);
 end;
 
 { 400 random ASDUs (a known type or not, any length): each is counted as
@@ -650,6 +653,95 @@ begin
   Send('64 01 06 00 01 00 00 00 00 14');
   AssertEquals('64 01 07 00 01 00 00 00 00 14', Poll(1));
   AssertEquals('0B 03 14 00 01 00 64 00 00 FF FF 00 65 00 00 17 00 00 66 00 00 FC 08 00', Poll(2));
+end;
+
+{ QRP 2 is the reset of pending information with time tag (IEC
+  60870-5-101 7.2.6.27): the time-tagged events waiting go; the
+  confirmation of a command executed before it stays (its loss would leave
+  the master without ACT_CON for a command the station executed), and so
+  do untagged events. }
+procedure TTestChnIec101Slave.TestResetOfTaggedEventsKeepsConfirmations;
+var
+  O: tIecObject;
+  E: ShortString;
+begin
+  Open;
+  AddStd;
+  Add(M_SP_TB_1, 300, 0);
+  Add(C_SC_TA_1, 5001, 0);
+  O := IecObject(0);
+  O.Int := 1;
+  AssertEquals(res_Ok, IecSlaveUpdate(S, 300, O, True, E));   { tagged event }
+  AssertEquals(res_Ok, IecSlaveUpdate(S, 105, O, True, E));   { untagged event }
+  Send('2D 01 06 00 01 00 88 13 00 01');                      { C_SC on }
+  { C_SC_TA_1 (58 = $3A) IOA 5001 on, CP56Time2a 2026-01-02 03:04:05.000:
+    ms 5000 = 88 13, min 04, hour 03, day 02, month 01, year 1A }
+  Send('3A 01 06 00 01 00 89 13 00 01 88 13 04 03 02 01 1A');
+  { C_RP_NA_1 (105 = $69), QRP 2 }
+  Send('69 01 06 00 01 00 00 00 00 02');
+  AssertEquals('the untagged event (IOA 105 = 69 00 00, SIQ 1)', '01 01 03 00 01 00 69 00 00 01', Poll(1));
+  AssertEquals('the command''s ACT_CON', '2D 01 07 00 01 00 88 13 00 01', Poll(1));
+  AssertEquals('a time-tagged command''s ACT_CON', '3A 01 07 00 01 00 89 13 00 01 88 13 04 03 02 01 1A', Poll(1));
+  AssertEquals('the reset''s ACT_CON', '69 01 07 00 01 00 00 00 00 02', Poll(1));
+  AssertFalse(FAcd);
+  AssertEquals('-', Poll(1));
+  AssertEquals('C_SC_NA_1 5000 1 select=False', Cmds[0]);
+end;
+
+{ T = 1 (test, IEC 60870-5-101 7.2.3): not meant to change the process -
+  refused, never handed to the program, the T bit mirrored. P/N = 1 in
+  control direction: no cause carries it - COT 45, negative. }
+procedure TTestChnIec101Slave.TestTestBitAndPnBitNeverExecuted;
+begin
+  Open;
+  AddStd;
+  { COT 6 + T ($80) = $86: negative ACT_CON $80 + $40 + 7 = $C7 }
+  Send('2D 01 86 00 01 00 88 13 00 01');
+  AssertEquals('2D 01 C7 00 01 00 88 13 00 01', Poll(1));
+  { a select with T = 1, and a deactivation with T = 1 ($88 -> $C9) }
+  Send('2D 01 86 00 01 00 88 13 00 81');
+  AssertEquals('2D 01 C7 00 01 00 88 13 00 81', Poll(1));
+  AssertFalse(S.SelActive);
+  Send('2D 01 88 00 01 00 88 13 00 81');
+  AssertEquals('2D 01 C9 00 01 00 88 13 00 81', Poll(1));
+  { P/N set ($46): COT 45 with P/N = $6D }
+  Send('2D 01 46 00 01 00 88 13 00 01');
+  AssertEquals('2D 01 6D 00 01 00 88 13 00 01', Poll(1));
+  Send('64 01 46 00 01 00 00 00 00 14');
+  AssertEquals('64 01 6D 00 01 00 00 00 00 14', Poll(1));
+  AssertEquals('the program saw none', 0, Cmds.Count);
+  AssertEquals(0, S.Points[IecSlaveFind(S, 5000)].Obj.Int);
+  AssertEquals(0, S.Interrogations);
+  { the same command without them is executed }
+  Send('2D 01 06 00 01 00 88 13 00 01');
+  AssertEquals('2D 01 07 00 01 00 88 13 00 01', Poll(1));
+  AssertEquals(1, Cmds.Count);
+end;
+
+{ Select and execute (IEC 60870-5-5 6.8): the execute must be the command
+  selected - another value or qualifier is refused and ends the selection. }
+procedure TTestChnIec101Slave.TestExecuteMustCarryTheSelection;
+begin
+  Open;
+  AddStd;
+  Send('2D 01 06 00 01 00 88 13 00 81');          { select on }
+  AssertEquals('2D 01 07 00 01 00 88 13 00 81', Poll(1));
+  Send('2D 01 06 00 01 00 88 13 00 00');          { execute off }
+  AssertEquals('2D 01 47 00 01 00 88 13 00 00', Poll(1));
+  AssertFalse(S.SelActive);
+  Send('2D 01 06 00 01 00 88 13 00 81');          { select on, QU 0 }
+  AssertEquals('2D 01 07 00 01 00 88 13 00 81', Poll(1));
+  Send('2D 01 06 00 01 00 88 13 00 05');          { execute on, QU 1 (short pulse) }
+  AssertEquals('2D 01 47 00 01 00 88 13 00 05', Poll(1));
+  AssertEquals('only the selects reached the program', 2, Cmds.Count);
+  AssertEquals(0, S.Points[IecSlaveFind(S, 5000)].Obj.Int);
+  Send('2D 01 06 00 01 00 88 13 00 81');
+  AssertEquals('2D 01 07 00 01 00 88 13 00 81', Poll(1));
+  Send('2D 01 06 00 01 00 88 13 00 01');          { the one selected }
+  AssertEquals('2D 01 07 00 01 00 88 13 00 01', Poll(1));
+  AssertEquals('C_SC_NA_1 5000 1 select=False', Cmds[3]);
+  AssertEquals(1, S.Points[IecSlaveFind(S, 5000)].Obj.Int);
+  AssertEquals(2, S.Refused);
 end;
 
 initialization

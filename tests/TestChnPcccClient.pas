@@ -46,6 +46,7 @@ type
     procedure TestReplyToAnotherCommand;
     procedure TestRefusedBeforeSending;
     procedure TestNoDF1Channel;
+    procedure TestExitCodesFollowTheToolsScheme;
     {$IFDEF UNIX}
     procedure TestAgainstDf1SimFullDuplex;
     procedure TestAgainstDf1SimHalfDuplex;
@@ -420,6 +421,7 @@ procedure TTestChnPcccClient.TestNoAck;
 var
   V: array[0..0] of LongInt;
   T0: QWord;
+  C0: Double;
 begin
   StartClient(True, True, 'PCNOACK');
   C.Idle := nil;                      { the station is never stepped }
@@ -429,7 +431,34 @@ begin
   AssertEquals(res_Timeout, PcccReadInts(C, 'N7:0', 1, V));
   AssertEquals('N7:0: no ACK after 3 tries', C.Err);
   AssertTrue('bounded: three tries and ENQs of 50 ms', ChMsTick - T0 < 3000);
+  {$IFDEF LINUX}
+  { without Idle PcccFinish waits in the program-wide wait: the 300 ms
+    and more of timers cost next to no CPU (a polling loop takes them
+    all) }
+  C0 := CpuMs;
+  T0 := ChMsTick;
+  AssertEquals(res_Timeout, PcccReadInts(C, 'N7:0', 1, V));
+  AssertTrue(Format('waited, not polled: %.1f ms CPU in %d ms', [CpuMs - C0, ChMsTick - T0]),
+    CpuMs - C0 < 0.3 * (ChMsTick - T0));
+  {$ENDIF}
   AssertEquals('the caller''s value untouched', 12345, V[0]);
+end;
+
+{ PcccExitCode in the tools' one scheme (docs/TOOLS.md): 0 done, 1 the
+  line failed, 2 a command-line error, 3 an error or unfitting answer, 4
+  no answer in time. }
+procedure TTestChnPcccClient.TestExitCodesFollowTheToolsScheme;
+const
+  Codes: array[0..13] of tChResult = (res_Ok, res_CannotOpen, res_DeviceLost, res_IOError,
+    res_WrongState, res_PcccAddress, res_PcccCount, res_PcccValue, res_PcccUsage,
+    res_WrongLayer, res_PcccStatus, res_PcccReply, res_PcccNak, res_Timeout);
+  Want: array[0..13] of LongInt = (0, 1, 1, 1, 1, 2, 2, 2, 2, 2, 3, 3, 3, 4);
+var
+  I: Integer;
+begin
+  for I := Low(Codes) to High(Codes) do
+    AssertEquals(ChResultText(Codes[I], PcccLayer), Want[I], PcccExitCode(Codes[I]));
+  AssertEquals('a reply to another command', 3, PcccExitCode(res_BadMessage));
 end;
 
 procedure TTestChnPcccClient.TestNakOnEveryTry;

@@ -1167,14 +1167,6 @@ begin
 end;
 
 {$IFDEF LINUX}
-function CpuMs: Double;
-var
-  Ts: TTimeSpec;
-begin
-  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, @Ts);
-  Result := Ts.tv_sec * 1000.0 + Ts.tv_nsec / 1e6;
-end;
-
 { TCP_NODELAY and keep-alive with Linux timing, as the OS reports them for
   the client's socket and a server's accepted one. }
 procedure TTestChnTcp.TestNoDelayAndKeepAlive;

@@ -20,6 +20,7 @@ type
     procedure SetUp; override;
     procedure TearDown; override;
   published
+    procedure TestMicrosecondClock;
     procedure TestEveryRegisteredNameCreatesItsLayer;
     procedure TestUnknownNameGivesNil;
     procedure TestNumNameIsStableAndCaseBlind;
@@ -484,6 +485,42 @@ begin
   finally
     Dispose(M, Done);
   end;
+end;
+
+{ ChUsTick: a QWord (SizeOf 8 in every mode), never goes back, resolves
+  less than a millisecond (a millisecond clock times 1000 moves in steps
+  of 1000), and runs at ChMsTick's rate. }
+procedure TTestChnVirt.TestMicrosecondClock;
+var
+  Prev, Now, Fine, U0, U1: QWord;
+  M0, M1: QWord;
+  I: LongInt;
+begin
+  AssertEquals('explicit size', 8, SizeOf(ChUsTick));
+  Prev := ChUsTick;
+  Fine := 0;
+  for I := 1 to 200000 do
+  begin
+    Now := ChUsTick;
+    AssertTrue(Format('monotonic: %d after %d', [Now, Prev]), Now >= Prev);
+    if (Now > Prev) and (Now - Prev < 1000) and (Fine = 0) then
+      Fine := Now - Prev;
+    Prev := Now;
+  end;
+  {$IF DEFINED(LINUX) or DEFINED(WINDOWS)}
+  AssertTrue('a step under a millisecond was seen', Fine > 0);
+  {$ENDIF}
+  M0 := ChMsTick;
+  U0 := ChUsTick;
+  Sleep(300);
+  U1 := ChUsTick;
+  M1 := ChMsTick;
+  { the two reads of each clock bracket the same interval within the
+    time of two calls; generous bounds for a loaded machine (a tick of
+    GetTickCount64 on Windows is 16 ms) }
+  AssertTrue(Format('us %d vs ms %d', [U1 - U0, M1 - M0]),
+    Abs(Int64((U1 - U0) div 1000) - Int64(M1 - M0)) <= 20);
+  AssertTrue(Format('300 ms slept: %d us', [U1 - U0]), U1 - U0 >= 290000);
 end;
 
 initialization

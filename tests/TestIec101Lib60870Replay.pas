@@ -287,8 +287,8 @@ begin
   AssertEquals(33, S.PointCount);
   if Balanced then
   begin
-    S.Bal.TestMs := 0;
-    S.Bal.TimeoutMs := 60000;         { no repetitions while the replay waits }
+    S.Link.Bal.TestMs := 0;
+    S.Link.Bal.TimeoutMs := 60000;         { no repetitions while the replay waits }
   end;
   { lib60870's answers to requests of our station (balanced) }
   Ack := '';
@@ -350,7 +350,7 @@ begin
     end;
     AssertEquals('malformed', 0, S.BadAsdus);
     if Balanced then
-      AssertEquals('broken frames', 0, S.Bal.Broken);
+      AssertEquals('broken frames', 0, S.Link.Bal.Broken);
     for I := 0 to High(Lib60870Printed) do
     begin
       AssertTrue('our answer ' + IntToStr(I) + ' missing', I < Got.Count);
@@ -439,8 +439,8 @@ begin
         PeerAck := F[I].Hex;
   if Balanced then
   begin
-    M.Bal.TestMs := 0;
-    M.Bal.TimeoutMs := 200;
+    M.Link.Bal.TestMs := 0;
+    M.Link.Bal.TimeoutMs := 200;
     { the peer's own requests (rx, PRM = 1), in order, each once our
       station has answered the one before }
     Next := 0;
@@ -453,18 +453,18 @@ begin
         Break;
       RawSend(F[Next].Hex);
       Inc(Next);
-      N := M.Bal.Frames;
+      N := M.Link.Bal.Frames;
       repeat
         IecMasterStep(M);
         PeerPump;
-        if M.Bal.Frames = N then
+        if M.Link.Bal.Frames = N then
           Sleep(1);
-      until (M.Bal.Frames > N) or (ChMsTick - T0 > 5000);
+      until (M.Link.Bal.Frames > N) or (ChMsTick - T0 > 5000);
       { our answer goes out in the same step }
       IecMasterStep(M);
       PeerPump;
     end;
-    AssertEquals('broken frames', 0, M.Bal.Broken);
+    AssertEquals('broken frames', 0, M.Link.Bal.Broken);
   end
   else
   begin

@@ -4,7 +4,7 @@
   only when its unit is linked into the program. A tool that takes its
   parameter string from the user cannot know which layers the user will
   name, so it uses this unit: NAM=COM (with DRV=PTY on Unix), TCP, LOOP,
-  TRC, NOISE, DF1, FT1_2 and ICS then work in every program. A program that
+  TRC, NOISE, DF1, FT1_2, ICS and IEC104 then work in every program. A program that
   links fewer units gets, for a layer it lacks, "unknown layer name
   (NAM=TRC: add ChnTrc to the uses clause)" (ChnVirt.ChUnknownLayerText).
 
@@ -17,7 +17,7 @@ unit ChnLayers;
 interface
 
 uses
-  ChnCom, ChnTcp, ChnLoop, ChnTrc, ChnNoise, ChnDF1, ChnFT1_2, ChnICS
+  ChnCom, ChnTcp, ChnLoop, ChnTrc, ChnNoise, ChnDF1, ChnFT1_2, ChnICS, ChnIec104
   {$IFDEF UNIX}, ChnPty{$ENDIF};
 
 implementation

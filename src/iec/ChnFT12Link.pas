@@ -127,7 +127,8 @@ type
     Frames     : LongInt;      { frames taken, good or broken }
     Executed   : LongInt;      { FC 3/4/10/11 frames handed to the callbacks }
     Repeats    : LongInt;      { repetitions answered with the last reply }
-    Refused    : LongInt;      { FCV = 1 frames before a reset (NACK) }
+    Refused    : LongInt;      { FCV = 1 frames before a reset (NACK); FC 3, 10, 11
+                                 without FCV (FC 15) }
   end;
 
 procedure FT12LinkInit(var Link: tFT12Link; Addr: Word);
@@ -834,6 +835,16 @@ begin
       if Assigned(S.OnUserData) then
         S.OnUserData(S.Data, @S.RMess.Data[1], Len - cSizeHeadRecMsg, False);
     end;
+    Exit;
+  end;
+  if not Fcv and FT12FcvOf(S.RMess.FC) then
+  begin
+    { user data and class requests are FCV = 1 services (IEC 60870-5-2):
+      without it the frame-count check is off, and a repetition would be
+      taken twice - no such service, the data are not taken }
+    Inc(S.Refused);
+    FixedReply(S, FCS_NotImplemented);
+    SendNow(S.Chn, S.Reply, S.ReplyLen);
     Exit;
   end;
   if Fcv then

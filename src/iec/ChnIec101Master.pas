@@ -2,13 +2,21 @@
   tChnFT1_2 channel, unbalanced (MS=ON, several slaves on one line) or
   balanced (MS=OFF, one peer).
 
-  Unbalanced: the slaves get their turns round-robin. A slave whose link
-  is not up gets request status of link (FC 9) and reset of remote link
-  (FC 0); an online slave is polled for class 1 data (FC 10) whenever the
-  last reply had ACD set, else for class 2 data (FC 11), at most once per
-  CycleMs. A slave that stops answering is marked dead and tried again
-  after DeadMinMs, doubling up to DeadMaxMs, with a single transmission, so
-  it costs the others one timeout per back-off. Commands go as SEND/CONFIRM
+  Unbalanced: the slaves get their turns round-robin, and the line is
+  never idle while a slave has data. A slave whose link is not up gets
+  request status of link (FC 9) and reset of remote link (FC 0); an
+  online slave is polled for class 1 data (FC 10) whenever the last reply
+  had ACD set, else for class 2 data (FC 11). After an answer with data
+  (ACD set, or class 2 user data) the slave is polled again at once; one
+  that had nothing waits CycleMs. A slave keeps the turn for at most
+  PollBurst services in a row while it has data, then the next slave
+  that is due gets it: one that always has data (ACD stuck, a stream of
+  events) cannot starve the others. A slave that stops answering is
+  marked dead and tried again after DeadMinMs, doubling up to DeadMaxMs,
+  with a single transmission; its back-off is reset only by an answered
+  class poll or command, not by a status or reset answer alone, so a
+  slave that answers FC 9 and FC 0 but never a poll costs the others one
+  timeout per back-off too. Commands go as SEND/CONFIRM
   user data (FC 3) when their slave is online. The link procedures (FCB,
   repetitions, the reset in front of FCV = 1 services) are ChnFT12Link's.
   Balanced: ChnFT12Link's tFT12Balanced runs the link; commands are
@@ -43,7 +51,7 @@ unit ChnIec101Master;
 interface
 
 uses
-  ChnTypes, ChnVirt, ChnFT1_2, ChnFT12Link, ChnIec101Asdu;
+  ChnTypes, ChnVirt, ChnFT1_2, ChnFT12Link, ChnIec101Asdu, ChnIecTransport;
 
 const
   res_IecNegative    = res_Proto + 8;    { negative confirmation (P/N = 1) }
@@ -76,6 +84,8 @@ type
     Failures : LongInt;    { services without an answer }
     Deaths   : LongInt;    { times marked dead }
     Resets   : LongInt;    { link resets acknowledged }
+    Probation: Boolean;    { died, and no class poll or command answered since }
+    PolledAt : QWord;      { the last class poll left (ChMsTick) }
   end;
 
   tIecObjectFunc = procedure(Data: Pointer; Addr: Word; const H: tIecAsdu; const O: tIecObject);
@@ -111,11 +121,14 @@ type
     Slaves   : array[0..IecMaxSlaves - 1] of tIecSlave;
     SlaveCount: LongInt;
     Turn     : LongInt;    { the slave whose turn it is }
-    Bal      : tFT12Balanced;
+    Over104  : Boolean;    { on an IEC104 channel (Balanced too: no link polling) }
+    TestCount: LongInt;    { 104: TSC of the last C_TS_TA_1 }
+    Link     : tIecTransport;   { balanced FT 1.2 link or IEC 104 }
     { settings }
     TimeoutMs: LongInt;    { link answer (FT12LinkTimeoutMs) }
     Retries  : LongInt;    { link repetitions (FT12LinkRetries) }
-    CycleMs  : LongInt;    { class 2 polls of one slave at most this often (100) }
+    CycleMs  : LongInt;    { class 2 polls of a slave that had no data at most this often (100) }
+    PollBurst: LongInt;    { services in a row for a slave with data before the turn passes (3) }
     DeadMinMs, DeadMaxMs: LongInt;   { back-off of a dead slave (1000, 30000) }
     CommandMs: LongInt;    { confirmation of a command (10000) }
     OnObject : tIecObjectFunc;
@@ -136,6 +149,7 @@ type
     Prim     : tFT12Primary;
     Rep      : tRecRecord;
     RepLen   : Word;
+    Run      : LongInt;    { services in a row of the slave whose turn it is }
   end;
   pIecMaster = ^tIecMaster;
 
@@ -146,7 +160,8 @@ type
   receives into it). Balanced: the peer is slave DNO of the channel. }
 function IecMasterInit(var M: tIecMaster; Chn: pChnVirt; const P: tIecParams): tChResult;
 { Add a slave link address (unbalanced); res_Busy when IecMaxSlaves are
-  there, res_BadParam for an address twice or above 255 (ADR=1). }
+  there, res_BadParam for an address twice, above 255 (ADR=1) or the
+  broadcast address (255, ADR=2: 65535), which no station answers. }
 function IecMasterAddSlave(var M: tIecMaster; Addr: Word): tChResult;
 { Index of a slave, -1 when not added. }
 function IecMasterSlave(const M: tIecMaster; Addr: Word): LongInt;
@@ -191,7 +206,7 @@ procedure IecPollFor(var M: tIecMaster; Ms: LongInt);
 implementation
 
 uses
-  SysUtils, ChnWait;
+  SysUtils, ChnWait, ChnFT12Codec;
 
 function IecSlaveStateName(S: tIecSlaveState): ShortString;
 begin
@@ -224,6 +239,7 @@ begin
   M.TimeoutMs := FT12LinkTimeoutMs;
   M.Retries := FT12LinkRetries;
   M.CycleMs := 100;
+  M.PollBurst := 3;
   M.DeadMinMs := 1000;
   M.DeadMaxMs := 30000;
   M.CommandMs := 10000;
@@ -231,16 +247,16 @@ begin
   Result := IecCheckParams(P, E);
   if Result <> res_Ok then
     Exit;
-  if (Chn = nil) or (Chn^.CH_Type <> ChnFT1_2.cName) then
+  M.Over104 := IecTransportIs104(Chn);
+  if not M.Over104 and ((Chn = nil) or (Chn^.CH_Type <> ChnFT1_2.cName)) then
     Exit(res_WrongLayer);
-  M.Balanced := not pChnFT1_2(Chn)^.CH_MaSl;
+  M.Balanced := M.Over104 or not pChnFT1_2(Chn)^.CH_MaSl;
   if M.Balanced then
   begin
-    Result := FT12BalancedInit(M.Bal, Chn);
+    Result := IecTransportInit(M.Link, Chn);
     if Result <> res_Ok then
       Exit;
-    M.Bal.OnUserData := @OnBalancedData;
-    M.Bal.Data := @M;
+    IecTransportHandler(M.Link, @OnBalancedData, @M);
     SlaveInit(M.Slaves[0], Chn^.CH_DNode, M.DeadMinMs);
     M.SlaveCount := 1;
   end
@@ -259,10 +275,15 @@ begin
 end;
 
 function IecMasterAddSlave(var M: tIecMaster; Addr: Word): tChResult;
+var
+  AdrLen: Byte;
 begin
   if M.Balanced then
     Exit(res_BadParam);
-  if (IecMasterSlave(M, Addr) >= 0) or (Addr > $FFFF shr (8 * (2 - pChnFT1_2(M.Chn)^.CH_AdrLen))) then
+  { the broadcast address is no station: it never answers (SEND/NO REPLY only) }
+  AdrLen := pChnFT1_2(M.Chn)^.CH_AdrLen;
+  if (IecMasterSlave(M, Addr) >= 0) or (Addr > $FFFF shr (8 * (2 - AdrLen))) or
+     ((AdrLen > 0) and (Addr = FT12Broadcast(AdrLen))) then
     Exit(res_BadParam);
   if M.SlaveCount >= IecMaxSlaves then
     Exit(res_Busy);
@@ -418,12 +439,22 @@ var
 begin
   O := IecObject(0);
   O.Time := T;
-  Result := Start(M, Addr, Ca, C_CS_NA_1, O, False, False, Delay);
+  { 104 does not use delay acquisition (IEC 60870-5-104 clause 8) }
+  Result := Start(M, Addr, Ca, C_CS_NA_1, O, False, False, Delay and not M.Over104);
 end;
 
 function IecStartTest(var M: tIecMaster; Addr, Ca: Word): Boolean;
+var
+  O: tIecObject;
 begin
-  Result := StartWith(M, Addr, Ca, C_TS_NA_1, Fbp_Test, False);
+  if not M.Over104 then
+    Exit(StartWith(M, Addr, Ca, C_TS_NA_1, Fbp_Test, False));
+  { 104 tests with the time tag: C_TS_TA_1, TSC and CP56 }
+  Inc(M.TestCount);
+  O := IecObject(0);
+  O.Int := M.TestCount and $FFFF;
+  O.Time := IecTimeFromDateTime(Now);
+  Result := Start(M, Addr, Ca, C_TS_TA_1, O, False, False, False);
 end;
 
 function IecStartResetProcess(var M: tIecMaster; Addr, Ca: Word; Qrp: Byte): Boolean;
@@ -480,6 +511,12 @@ begin
   end;
 end;
 
+{ Does a command of type Ti carry the S/E bit? }
+function HasSelectBit(Ti: Byte): Boolean;
+begin
+  Result := IecTypeKind(Ti) in [ikSingleCmd, ikDoubleCmd, ikStepCmd, ikSetNormal, ikSetScaled, ikSetFloat];
+end;
+
 { An ASDU from slave index S: does it answer the command? }
 procedure MatchCommand(var M: tIecMaster; S: Integer; const H: tIecAsdu; const O: tIecObject);
 var
@@ -499,6 +536,11 @@ begin
     Exit;
   end;
   if (H.Ti <> Ti) or (O.Ioa <> Want.Ioa) then
+    Exit;
+  { a confirmation mirrors the command: the S/E bit of this stage (an
+    execute's ACT_CON confirms no select), and T = 0 (this master sends no
+    test-mode commands) }
+  if H.Test or (HasSelectBit(Ti) and (O.Select <> Want.Select)) then
     Exit;
   What := 'COT ' + IntToStr(H.Cot) + ' ' + IecCotName(H.Cot);
   case H.Cot of
@@ -629,10 +671,13 @@ begin
     Sl^.State := isOffline;              { an answer that does not fit: set the link up again }
     Exit;
   end;
-  if Sl^.State <> isDead then
+  { a slave that failed again before it answered a poll (dead, or set up
+    again after it) waits twice as long; a healthy one just died }
+  if not Sl^.Probation then
     Inc(Sl^.Deaths)
   else if Sl^.BackoffMs < M.DeadMaxMs then
     Sl^.BackoffMs := Sl^.BackoffMs * 2;
+  Sl^.Probation := True;
   if Sl^.BackoffMs > M.DeadMaxMs then
     Sl^.BackoffMs := M.DeadMaxMs;
   Sl^.State := isDead;
@@ -641,10 +686,12 @@ begin
     Finish(M, res_Timeout, 'slave does not answer (' + ChResultText(R) + ')');
 end;
 
-procedure SlaveAnswered(var M: tIecMaster; S: Integer);
+{ A class poll or a command was answered: the slave serves again. (A
+  status or reset answer alone does not count: a slave may answer those
+  and never a poll.) }
+procedure SlaveServes(var M: tIecMaster; S: Integer);
 begin
-  if M.Slaves[S].State = isDead then
-    M.Slaves[S].State := isOffline;     { back: set its link up again }
+  M.Slaves[S].Probation := False;
   M.Slaves[S].BackoffMs := M.DeadMinMs;
 end;
 
@@ -654,8 +701,7 @@ begin
   with M.Slaves[S] do
     case State of
       isDead: Result := Now_ >= RetryAt;
-      isOnline: Result := Link.Acd or (Now_ >= NextPoll)
-        or ((M.Cmd.Slave = S) and (M.Cmd.Phase = cpSend));
+      isOnline: Result := (Now_ >= NextPoll) or ((M.Cmd.Slave = S) and (M.Cmd.Phase = cpSend));
     else
       Result := True;
     end;
@@ -674,7 +720,7 @@ begin
   Sl := @M.Slaves[S];
   Buf[0] := 0;                          { fixed frames carry none of it }
   Retries := M.Retries;
-  if Sl^.State = isDead then
+  if Sl^.Probation then
     Retries := 0;                       { one try: the others wait one timeout only }
   case Sl^.State of
     isOffline, isDead: LinkStart(M, S, ljStatus, FCM_ReqLinkState, Buf, 0, Retries);
@@ -691,14 +737,22 @@ begin
         LinkStart(M, S, ljCommand, FCM_UserDataReply, Buf, Len, Retries);
       end;
     end
-    else if Sl^.Link.Acd then
-      LinkStart(M, S, ljClass1, FCM_ReqUserData1, Buf, 0, Retries)
     else
     begin
-      Sl^.NextPoll := ChMsTick + QWord(M.CycleMs);
-      LinkStart(M, S, ljClass2, FCM_ReqUserData2, Buf, 0, Retries);
+      Sl^.PolledAt := ChMsTick;
+      if Sl^.Link.Acd then
+        LinkStart(M, S, ljClass1, FCM_ReqUserData1, Buf, 0, Retries)
+      else
+        LinkStart(M, S, ljClass2, FCM_ReqUserData2, Buf, 0, Retries);
     end;
   end;
+end;
+
+{ The turn goes to the slave after S. }
+procedure PassTurn(var M: tIecMaster; S: LongInt);
+begin
+  M.Turn := (S + 1) mod M.SlaveCount;
+  M.Run := 0;
 end;
 
 { The service under way is over: act on its answer. }
@@ -707,6 +761,7 @@ var
   S: LongInt;
   Sl: ^tIecSlave;
   Job: tIecLinkJob;
+  Data: Boolean;
 begin
   S := M.JobSlave;
   Sl := @M.Slaves[S];
@@ -715,15 +770,14 @@ begin
   if M.LinkResult <> res_Ok then
   begin
     SlaveFailed(M, S, M.LinkResult);
-    M.Turn := (S + 1) mod M.SlaveCount;
+    if Job <> ljCommand then
+      PassTurn(M, S);
     Exit;
   end;
+  Data := False;
   case Job of
     ljStatus:
-      begin
-        SlaveAnswered(M, S);
-        Sl^.State := isLinkStatus;
-      end;
+      Sl^.State := isLinkStatus;        { dead or not: set its link up (again) }
     ljReset:
       begin
         Inc(Sl^.Resets);
@@ -734,6 +788,7 @@ begin
       if (M.Cmd.Slave = S) and (M.Cmd.Phase = cpSend)
         and ((M.Rep.MessType = tpSACK) or (M.Rep.FC = FCS_Ack)) then
       begin
+        SlaveServes(M, S);
         Inc(Sl^.Commands);
         StageSent(M, S);
         if M.Cmd.Stage = stDelaySend then
@@ -747,17 +802,38 @@ begin
       { a NACK (busy): sent again at the next turn }
     ljClass1, ljClass2:
       begin
+        SlaveServes(M, S);
         if Job = ljClass1 then
           Inc(Sl^.Class1)
         else
           Inc(Sl^.Class2);
-        if (M.Rep.MessType = tpLongM) and (M.Rep.FC = FCS_UserData) and (M.RepLen > cSizeHeadRecMsg) then
+        Data := (M.Rep.MessType = tpLongM) and (M.Rep.FC = FCS_UserData) and (M.RepLen > cSizeHeadRecMsg);
+        if Data then
           TakeAsdu(M, S, M.Rep.Data, M.RepLen - cSizeHeadRecMsg);
+        { more data (ACD, or class 2 had some): polled again at once;
+          none: not before CycleMs after this poll }
+        Data := Data or Sl^.Link.Acd;
+        if Data then
+          Sl^.NextPoll := 0
+        else
+          Sl^.NextPoll := Sl^.PolledAt + QWord(M.CycleMs);
       end;
   end;
-  { a slave with class 1 data waiting keeps its turn }
-  if not ((Sl^.State = isOnline) and Sl^.Link.Acd) then
-    M.Turn := (S + 1) mod M.SlaveCount;
+  if Sl^.Link.Acd then
+    Sl^.NextPoll := 0;                  { class 1 waits (a command's ACT_CON ...) }
+  { a command jumps the queue: the turn stays where it was }
+  if Job = ljCommand then
+    Exit;
+  { a slave with data keeps the turn for PollBurst services at most; the
+    link set up (status, reset) takes a turn each }
+  if S <> M.Turn then
+  begin
+    M.Turn := S;                        { the ones before it had nothing due }
+    M.Run := 0;
+  end;
+  Inc(M.Run);
+  if not Data or (M.Run >= M.PollBurst) then
+    PassTurn(M, S);
 end;
 
 function StepUnbalanced(var M: tIecMaster): Boolean;
@@ -819,18 +895,18 @@ var
   E: ShortString;
   R: tChResult;
 begin
-  Result := FT12BalancedStep(M.Bal);
+  Result := IecTransportStep(M.Link);
   if M.Chn^.ChResult <> res_Ok then
     M.LineResult := M.Chn^.ChResult;
-  if M.Bal.State = bsAvailable then
+  if IecTransportUp(M.Link) then
     M.Slaves[0].State := isOnline
   else
     M.Slaves[0].State := isOffline;
-  if (M.Cmd.Phase = cpSend) and (M.Bal.State = bsAvailable) and (M.Bal.QCount < FT12BalQueueLen) then
+  if (M.Cmd.Phase = cpSend) and IecTransportUp(M.Link) and IecTransportRoom(M.Link) then
   begin
     R := StageEncode(M, Buf, Len, E);
     if R = res_Ok then
-      R := FT12BalancedSend(M.Bal, @Buf, Len, True);
+      R := IecTransportSend(M.Link, @Buf, Len);
     if R = res_Ok then
     begin
       Inc(M.Slaves[0].Commands);
@@ -873,7 +949,7 @@ var
   I: Integer;
   T: QWord;
 begin
-  Result := ChMsTick + 50;               { the balanced link's timers }
+  Result := ChMsTick + QWord(IecTransportWaitMs(M.Link, 50));   { the link's timers }
   if not M.Balanced then
   begin
     Result := ChMsTick + QWord(M.DeadMaxMs);

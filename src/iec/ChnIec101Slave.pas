@@ -22,17 +22,19 @@
     handed to OnCommand (True accepts: positive ACT_CON, False: negative);
     a select (S/E = 1) is remembered for SelectMs, the execute that
     follows it in time is passed on, one after the timeout is refused
-    (negative ACT_CON, OnCommand not called); deactivation (COT 8) ends a
-    selection (DEACT_CON);
+    (negative ACT_CON, OnCommand not called), and so is an execute with
+    another value or qualifier than the one selected; deactivation (COT 8)
+    ends a selection (DEACT_CON); a command with T = 1 (test) is never
+    executed: negative confirmation, T kept;
   * clock synchronisation (C_CS_NA_1): the difference to the PC clock is
     kept as the station clock's offset, OnClock told, ACT_CON with the
     time received;
   * read (C_RD_NA_1): the point in class 1 with COT 5;
   * test (C_TS_NA_1, C_TS_TA_1), reset process (C_RP_NA_1: QRP 2 drops
-    the queued events), delay acquisition (C_CD_NA_1: COT 6 confirmed,
+    the queued time-tagged events, never a confirmation), delay acquisition (C_CD_NA_1: COT 6 confirmed,
     COT 3 kept as the delay): ACT_CON;
   * anything else is mirrored as a negative answer with COT 44 (unknown
-    type), 45 (a cause the type does not take), 46 (another common
+    type), 45 (a cause the type does not take, or P/N = 1), 46 (another common
     address, or the broadcast address with a read or a command) or 47 (an
     IOA the table does not have for that type).
   A malformed ASDU (too short, wrong length for its type and count) is
@@ -51,7 +53,7 @@ unit ChnIec101Slave;
 interface
 
 uses
-  ChnTypes, ChnVirt, ChnFT1_2, ChnFT12Link, ChnIec101Asdu;
+  ChnTypes, ChnVirt, ChnFT1_2, ChnFT12Link, ChnIec101Asdu, ChnIecTransport;
 
 const
   IecSlaveMaxPoints = 1024;
@@ -94,9 +96,10 @@ type
     Chn      : pChnVirt;
     Params   : tIecParams;
     Ca       : Word;          { own common address (IecSlaveInit: 1) }
-    Balanced : Boolean;
+    Balanced : Boolean;       { no link polling: balanced FT 1.2 or IEC 104 }
+    Over104  : Boolean;       { on an IEC104 channel }
     Station  : tFT12Station;  { unbalanced link }
-    Bal      : tFT12Balanced; { balanced link }
+    Link     : tIecTransport; { balanced link or IEC 104 }
     Points   : array[0..IecSlaveMaxPoints - 1] of tIecPoint;
     PointCount: LongInt;
     Class1, Class2: tIecQueue;
@@ -111,6 +114,7 @@ type
     SelIoa   : LongWord;
     SelUntil : QWord;
     SelectMs : LongInt;
+    SelObj   : tIecObject;    { the object selected: its execute must carry the same }
     { station clock: PC clock + ClockOffsetMs; delay from C_CD_NA_1 }
     ClockOffsetMs: Int64;
     DelayMs  : LongInt;
@@ -188,6 +192,23 @@ begin
   Dec(Q.Count);
 end;
 
+{ Reset of pending information with time tag (QRP 2): the queued
+  spontaneous ASDUs of time-tagged types go; confirmations, terminations,
+  answers to reads and untagged events stay, in their order. }
+procedure QueueDropTaggedEvents(var Q: tIecQueue);
+var
+  Old: tIecQueue;
+  I: Integer;
+begin
+  Old := Q;
+  Q.Head := 0;
+  Q.Count := 0;
+  for I := 0 to Old.Count - 1 do
+    with Old.Items[(Old.Head + I) mod IecSlaveQueueLen] do
+      if (Len < 3) or (Data[2] and $3F <> Cot_Spontaneous) or (IecTypeTime(Data[0]) = tkNone) then
+        QueuePut(Q, Data, Len);
+end;
+
 procedure Queue1(var S: tIecSlaveStation; const Buf: array of Byte; Len: Word);
 begin
   if not QueuePut(S.Class1, Buf, Len) then
@@ -230,6 +251,27 @@ begin
   Result := IecEncodeOne(S.Params, Ti, Cot_Spontaneous, S.Ca, Obj, Buf, Len, Err);
 end;
 
+{ IEC 104 has no CP24 types (IEC 60870-5-104 clause 8): the CP56 type
+  of the same information. }
+function Cp56Counterpart(Ti: Byte): Byte;
+begin
+  case Ti of
+    M_SP_TA_1: Result := M_SP_TB_1;
+    M_DP_TA_1: Result := M_DP_TB_1;
+    M_ST_TA_1: Result := M_ST_TB_1;
+    M_BO_TA_1: Result := M_BO_TB_1;
+    M_ME_TA_1: Result := M_ME_TD_1;
+    M_ME_TB_1: Result := M_ME_TE_1;
+    M_ME_TC_1: Result := M_ME_TF_1;
+    M_IT_TA_1: Result := M_IT_TB_1;
+    M_EP_TA_1: Result := M_EP_TD_1;
+    M_EP_TB_1: Result := M_EP_TE_1;
+    M_EP_TC_1: Result := M_EP_TF_1;
+  else
+    Result := Ti;
+  end;
+end;
+
 function IecSlaveAddPoint(var S: tIecSlaveStation; Ti: Byte; const Obj: tIecObject; Group: Byte;
   out Err: ShortString): tChResult;
 var
@@ -237,6 +279,8 @@ var
   O: tIecObject;
 begin
   Err := '';
+  if S.Over104 then
+    Ti := Cp56Counterpart(Ti);
   if not ((IecIsMonitor(Ti) and (Ti <> M_EI_NA_1)) or IsCommand(Ti)) then
   begin
     Err := 'point ' + IntToStr(Obj.Ioa) + ': type ' + IntToStr(Ti) +
@@ -457,6 +501,21 @@ begin
   Queue1(S, Out, Len);
 end;
 
+{ Does an execute carry what was selected (value, qualifier)? }
+function SameCommand(const Sel, O: tIecObject): Boolean;
+begin
+  Result := (Sel.Int = O.Int) and (Sel.Bits = O.Bits) and (Sel.Number = O.Number) and (Sel.Qu = O.Qu);
+end;
+
+{ The confirmation cause of an activation (7) or deactivation (9). }
+function ActOrDeact(Cot: Byte): Byte;
+begin
+  if Cot = Cot_Deactivation then
+    Result := Cot_DeactCon
+  else
+    Result := Cot_ActCon;
+end;
+
 { A command of types 45..51 / 58..64 with cause 6 or 8. }
 procedure TakeCommand(var S: tIecSlaveStation; const Buf: array of Byte; Len: Word;
   const H: tIecAsdu; const O: tIecObject);
@@ -471,6 +530,14 @@ begin
     Exit;
   end;
   Select := O.Select and (IecTypeKind(H.Ti) <> ikBitsCmd);
+  if H.Test then
+  begin
+    { T = 1: generated under test conditions, not meant to change the
+      process - never executed, refused (negative, T kept) }
+    Inc(S.Refused);
+    Answer(S, Buf, Len, ActOrDeact(H.Cot), True);
+    Exit;
+  end;
   if H.Cot = Cot_Deactivation then
   begin
     { ends a selection of this object }
@@ -481,9 +548,10 @@ begin
     Exit;
   end;
   if not Select and S.SelActive and (S.SelTi = H.Ti) and (S.SelIoa = O.Ioa) and
-     (ChMsTick > S.SelUntil) then
+     ((ChMsTick > S.SelUntil) or not SameCommand(S.SelObj, O)) then
   begin
-    { the execute of a selection whose time is up }
+    { the execute of a selection whose time is up, or with another value
+      or qualifier than the one selected }
     S.SelActive := False;
     Inc(S.Refused);
     Answer(S, Buf, Len, Cot_ActCon, True);
@@ -499,6 +567,7 @@ begin
       S.SelTi := H.Ti;
       S.SelIoa := O.Ioa;
       S.SelUntil := ChMsTick + QWord(S.SelectMs);
+      S.SelObj := O;
     end
     else
     begin
@@ -645,13 +714,16 @@ begin
     Answer(S, A, Len, Cot_UnknownCa, True);
     Exit;
   end;
-  if IecIsMonitor(H.Ti) or (H.Ti >= P_ME_NA_1) or (H.Count <> 1) then
+  if IecIsMonitor(H.Ti) or (H.Ti >= P_ME_NA_1) or (H.Count <> 1) or
+     (S.Over104 and (H.Ti in [C_TS_NA_1, C_CD_NA_1])) then
   begin
-    { monitoring types, parameters, several objects: not taken here }
+    { monitoring types, parameters, several objects: not taken here; 104
+      does not use test without time tag and delay acquisition }
     Answer(S, A, Len, Cot_UnknownType, True);
     Exit;
   end;
-  if not CotFits(H.Ti, H.Cot) then
+  { P/N is the confirmation's: in control direction no cause carries it }
+  if not CotFits(H.Ti, H.Cot) or H.Negative then
   begin
     Answer(S, A, Len, Cot_UnknownCause, True);
     Exit;
@@ -669,7 +741,7 @@ begin
     C_TS_NA_1, C_TS_TA_1, C_RP_NA_1:
       begin
         if (H.Ti = C_RP_NA_1) and (O.Int = Qrp_Events) then
-          S.Class1.Count := 0;                  { pending events dropped }
+          QueueDropTaggedEvents(S.Class1);
         Answer(S, A, Len, Cot_ActCon, False);
       end;
     C_CD_NA_1:
@@ -739,9 +811,10 @@ begin
   Result := IecCheckParams(P, Err);
   if Result <> res_Ok then
     Exit;
-  if (Chn = nil) or (Chn^.CH_Type <> ChnFT1_2.cName) then
+  S.Over104 := IecTransportIs104(Chn);
+  if not S.Over104 and ((Chn = nil) or (Chn^.CH_Type <> ChnFT1_2.cName)) then
   begin
-    Err := 'the channel is no FT 1.2 stack';
+    Err := 'the channel is no FT 1.2 or IEC 104 stack';
     Exit(res_WrongLayer);
   end;
   if Ca > IecMaxCa(P) then
@@ -750,14 +823,13 @@ begin
     Exit(res_BadParam);
   end;
   S.Chn := Chn;
-  S.Balanced := not pChnFT1_2(Chn)^.CH_MaSl;
+  S.Balanced := S.Over104 or not pChnFT1_2(Chn)^.CH_MaSl;
   if S.Balanced then
   begin
-    Result := FT12BalancedInit(S.Bal, Chn);
+    Result := IecTransportInit(S.Link, Chn);
     if Result <> res_Ok then
       Exit;
-    S.Bal.OnUserData := @OnUserData;
-    S.Bal.Data := @S;
+    IecTransportHandler(S.Link, @OnUserData, @S);
   end
   else
   begin
@@ -774,14 +846,14 @@ begin
   end;
 end;
 
-{ Balanced: hand waiting ASDUs to the link while its queue has room, class
-  1 first. }
+{ Balanced and IEC 104: hand waiting ASDUs to the transport while it has
+  room, class 1 first. }
 procedure FeedBalanced(var S: tIecSlaveStation);
 var
   G: tIecQueued;
   Q: ^tIecQueue;
 begin
-  while (S.Bal.State = bsAvailable) and (S.Bal.QCount < FT12BalQueueLen) do
+  while IecTransportRoom(S.Link) do
   begin
     if S.Class1.Count > 0 then
       Q := @S.Class1
@@ -795,7 +867,7 @@ begin
         Exit;
       Q := @S.Class2;
     end;
-    if FT12BalancedSend(S.Bal, @Q^.Items[Q^.Head].Data[0], Q^.Items[Q^.Head].Len, True) <> res_Ok then
+    if IecTransportSend(S.Link, @Q^.Items[Q^.Head].Data[0], Q^.Items[Q^.Head].Len) <> res_Ok then
       Exit;
     Sent(S, Q^.Items[Q^.Head]);
     QueueDrop(Q^);
@@ -809,7 +881,7 @@ begin
     Exit;
   if S.Balanced then
   begin
-    Result := FT12BalancedStep(S.Bal);
+    Result := IecTransportStep(S.Link);
     FeedBalanced(S);
   end
   else
@@ -823,8 +895,10 @@ end;
 
 function IecSlaveWaitMs(const S: tIecSlaveStation): LongInt;
 begin
-  if S.Balanced and (IecSlavePending(S) or not FT12BalancedQuiet(S.Bal) or
-     (S.Bal.State <> bsAvailable)) then
+  if S.Over104 then
+    Result := IecTransportWaitMs(S.Link, 1000)   { the layer's timers }
+  else if S.Balanced and (IecSlavePending(S) or not IecTransportQuiet(S.Link) or
+     not IecTransportUp(S.Link)) then
     Result := 10           { the balanced link's timers }
   else if S.Balanced then
     Result := 100          { test function timer }

@@ -59,12 +59,14 @@ type
     FEarlyLost: LongWord;           { data beyond EarlyCap, dropped }
     FBroken: Boolean;               { the peer broke the Telnet stream }
     FKicked, FIdleDropped: LongWord;
+    FSession: LongWord;             { this connection's number (NewSession) }
     { server on Linux: the program-wide wait watches the listening socket
       and the client served through this one descriptor (SockGroupCreate) }
     FGroup: tSock;
     FGroupSock: tSock;              { the client socket in FGroup }
     FHeld: Boolean;                 { FEarly counted in ChnWaitHeld }
     procedure NoteEarly;
+    procedure NewSession;
     procedure GroupTakeClient;
     procedure GroupLoseClient;
     function SockResult(E: tSockErr): tChResult;
@@ -136,6 +138,14 @@ type
     { server: clients closed by Kick, and for IdleMs without input }
     property Kicked: LongWord read FKicked;
     property IdleDropped: LongWord read FIdleDropped;
+    { The connection served now, a number no other connection of this
+      process had; 0 while there is none. A protocol above that keeps
+      state per connection (IEC 104's sequence numbers) sees a new one. }
+    function Session: LongWord;
+    { Close the connection served now (a protocol above found the peer
+      broke it): a server waits for the next client, a client's next read
+      finds no connection. }
+    procedure HangUp;
     procedure Close; override;
   end;
 
@@ -267,6 +277,7 @@ begin
     Exit(res_Busy);
   FConnecting := False;
   Started;
+  NewSession;
   FEvent := SockEventCreate(FSock);
   if Rfc2217 then
   begin
@@ -335,6 +346,7 @@ begin
   FLastInput := GetTickCount64;
   TelnetInit(FDec);
   GroupTakeClient;
+  NewSession;
 end;
 
 { Server, line held by a client just read from (so one that left is
@@ -353,6 +365,7 @@ begin
       FLastInput := GetTickCount64;
       TelnetInit(FDec);
       GroupTakeClient;
+      NewSession;
     end
     else
       SockClose(S);
@@ -386,6 +399,35 @@ begin
     DropClient;
     Inc(FIdleDropped);
   end;
+end;
+
+var
+  LastSession: LongWord = 0;       { the last connection number given }
+
+procedure TChnPortTcp.NewSession;
+begin
+  Inc(LastSession);
+  if LastSession = 0 then
+    LastSession := 1;
+  FSession := LastSession;
+end;
+
+function TChnPortTcp.Session: LongWord;
+begin
+  if FOpen and not FConnecting and (FSock <> NoSock) then
+    Result := FSession
+  else
+    Result := 0;
+end;
+
+procedure TChnPortTcp.HangUp;
+begin
+  if FSock = NoSock then
+    Exit;
+  if FListen <> NoSock then
+    DropClient
+  else
+    SockClose(FSock);
 end;
 
 procedure TChnPortTcp.DropClient;

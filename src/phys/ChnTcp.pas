@@ -68,6 +68,18 @@ type
     function  ChHasClient: Boolean;
     { The listening socket (tests ask the OS what it is bound to). }
     function  ChListenHandle: PtrInt;
+    { The connection in use: a number no other connection of the process
+      had, 0 while there is none (a server without client, a client lost
+      or reconnecting). }
+    function  ChSession: LongWord;
+    { LISTEN= was given: the layer serves instead of connecting. }
+    function  ChIsServer: Boolean;
+    { Close the connection in use because the protocol above found it
+      broken: a server waits for its next client, a client is lost
+      (res_DeviceLost; with RECON= it connects again). }
+    procedure ChHangUp;
+    { CTO= from a layer above that has its own name for it (IEC 104's t0) }
+    procedure ChSetConnectMs(Ms: LongInt);
   protected
     function  ComOpenPort(out Port: TChnPort): tChResult; virtual;
     function  ComDropsWhenFull: Boolean; virtual;
@@ -343,6 +355,33 @@ begin
     Result := -1
   else
     Result := TChnPortTcp(CH_Port).ListenHandle;
+end;
+
+function tChnTcp.ChSession: LongWord;
+begin
+  if (CH_Port = nil) or (CH_Fault <> res_Ok) then
+    Result := 0
+  else
+    Result := TChnPortTcp(CH_Port).Session;
+end;
+
+function tChnTcp.ChIsServer: Boolean;
+begin
+  Result := CH_Listen <> '';
+end;
+
+procedure tChnTcp.ChHangUp;
+begin
+  if (CH_Port = nil) or (CH_Fault <> res_Ok) then
+    Exit;
+  TChnPortTcp(CH_Port).HangUp;
+  if CH_Listen = '' then
+    ComFault(res_DeviceLost);
+end;
+
+procedure tChnTcp.ChSetConnectMs(Ms: LongInt);
+begin
+  CH_Cto := Ms;
 end;
 
 function tAddChnTcp.ChInit: pChnVirt;

@@ -33,6 +33,14 @@ type
     Class1, Class2: TStringList;   { hex ASDUs to send }
     Got: TStringList;              { hex ASDUs received }
     RefuseNext: Boolean;           { the next command gets a negative ACT_CON }
+    { hostile: a select's ACT_CON with S/E = 0; every ACT_CON with T = 1 }
+    SelectConfirmedAsExecute, ConfirmInTest: Boolean;
+    { hostile links: ACD in every answer, none of it class 1 data
+      (AcdStuck); this ASDU in every class 1 answer (Stream); status and
+      reset answered, class polls never (HalfDead) }
+    AcdStuck, HalfDead: Boolean;
+    Stream: string;
+    HalfDeadPolls: LongInt;        { class polls a HalfDead slave left unanswered }
     constructor Create(const Params: string; IsBalanced: Boolean; LinkMs: LongInt = 40);
     destructor Destroy; override;
     procedure Take(const Hex: string);
@@ -61,6 +69,8 @@ var
 begin
   S := TSim(Data);
   if ClassNo = 1 then L := S.Class1 else L := S.Class2;
+  if (ClassNo = 1) and (L.Count = 0) and (S.Stream <> '') then
+    L.Add(S.Stream);
   Result := L.Count > 0;
   if not Result then
     Exit;
@@ -73,7 +83,8 @@ end;
 
 function SimAcd(Data: Pointer): Boolean;
 begin
-  Result := TSim(Data).Class1.Count > 0;
+  with TSim(Data) do
+    Result := (Class1.Count > 0) or AcdStuck or (Stream <> '');
 end;
 
 constructor TSim.Create(const Params: string; IsBalanced: Boolean; LinkMs: LongInt);
@@ -144,6 +155,10 @@ var
   begin
     C := Copy(B);
     C[2] := NewCot or (Ord(Negative) shl 6);
+    if (NewCot = Cot_ActCon) and ConfirmInTest then
+      C[2] := C[2] or $80;
+    if (NewCot = Cot_ActCon) and SelectConfirmedAsExecute and (Ti in [C_SC_NA_1, C_DC_NA_1, C_SE_NB_1]) then
+      C[Length(C) - 1] := C[Length(C) - 1] and $7F;
     Result := BytesToHex(C, Length(C));
   end;
 
@@ -204,10 +219,39 @@ begin
   end;
 end;
 
+{ HalfDead: the frame taken by hand; FC 9 gets the status of link (FC 11),
+  FC 0 an ACK, anything else nothing. }
+function HalfDeadStep(S: TSim): Boolean;
+var
+  Len: Word;
+  Rep: tSendRecord;
+begin
+  Result := S.Chn^.ChReceiveReady = CHS_ReceiveReady;
+  if not Result then
+    Exit;
+  Len := 0;
+  S.Chn^.ChReceive(Len);
+  if (S.Chn^.ChReceiveResult <> res_Ok) or (S.St.RMess.MessType <> tpShortM) then
+    Exit;
+  if S.St.RMess.FC in [FCM_ReqUserData1, FCM_ReqUserData2] then
+    Inc(S.HalfDeadPolls);
+  if not (S.St.RMess.FC in [FCM_ReqLinkState, FCM_1stSetTransmit]) then
+    Exit;
+  FillChar(Rep, SizeOf(Rep), 0);
+  Rep.MessType := tpShortM;
+  if S.St.RMess.FC = FCM_ReqLinkState then
+    Rep.FC := FCS_LinkSAccesReq
+  else
+    Rep.FC := FCS_Ack;
+  ChSendWhenFree(S.Chn, @Rep, cSizeHeadSndMsg + pChnFT1_2(S.Chn)^.CH_LenShortM, 100);
+end;
+
 function TSim.Step: Boolean;
 begin
   Result := False;
-  if Alive then
+  if Alive and HalfDead and not Balanced then
+    Result := HalfDeadStep(Self)
+  else if Alive then
     if Balanced then
       Result := FT12BalancedStep(Bal)
     else

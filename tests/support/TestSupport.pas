@@ -35,11 +35,26 @@ function NoiseOnePoll(const Params: tParamStr; var State: tChState): LongInt;
   microseconds of emulation (1000 idle polls: 23-25 ms natively, 35-65 ms
   under qemu-arm); a spinning loop takes ten times more still. }
 function IdleCpuBound(Native: Double): Double;
+{$IFDEF LINUX}
+{ CPU time this process used so far, ms (CLOCK_PROCESS_CPUTIME_ID): what
+  a wait costs, whatever else the machine runs. }
+function CpuMs: Double;
+{$ENDIF}
 
 implementation
 
 uses
-  SysUtils, uString, ChnNoise;
+  {$IFDEF LINUX}Linux, UnixType,{$ENDIF} SysUtils, uString, ChnNoise;
+
+{$IFDEF LINUX}
+function CpuMs: Double;
+var
+  Ts: TTimeSpec;
+begin
+  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, @Ts);
+  Result := Ts.tv_sec * 1000.0 + Ts.tv_nsec / 1e6;
+end;
+{$ENDIF}
 
 function IdleCpuBound(Native: Double): Double;
 begin

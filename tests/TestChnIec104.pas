@@ -1,0 +1,385 @@
+{ Tests of NAM=IEC104 on loopback TCP against a raw NAM=TCP peer that
+  sends and checks APDUs written out by hand (IEC 60870-5-104 clause 5):
+  STARTDT on connect, I frames with their numbers, the k and w windows,
+  S acknowledgements, TESTFR, t1/t3, the queue across a reconnect, and
+  every check that closes the connection with its reason. }
+unit TestChnIec104;
+
+{$MODE OBJFPC}{$H+}
+
+interface
+
+uses
+  SysUtils, fpcunit, testregistry, ChnTypes, ChnVirt, ChnTcp, ChnIec104, ChnIec104Codec,
+  TestSupport;
+
+type
+  TTestChnIec104 = class(TTestCase)
+  private
+    Layer, Peer: pChnVirt;
+    PeerBuf: array[0..4095] of Byte;
+    Got: string;                   { what the peer received, hex }
+    LBuf: array[0..255] of Byte;
+    function L: pChnIec104;
+    function OpenServerLayer(const Extra: string): Word;
+    procedure OpenPeerClient(Port: Word);
+    function OpenPeerServer: Word;
+    procedure OpenClientLayer(Port: Word; const Extra: string);
+    procedure PeerSend(const HexText: string);
+    { poll both until the peer has received Want (hex) after what it had;
+      False after TimeoutMs }
+    function PeerGets(const Want: string; TimeoutMs: Integer = 3000): Boolean;
+    { poll both until the layer delivers an ASDU; its hex ('' none) }
+    function LayerGets(TimeoutMs: Integer = 3000): string;
+    procedure Poll(Ms: Integer);
+    procedure StartServer;
+  protected
+    procedure TearDown; override;
+  published
+    procedure TestParameters;
+    procedure TestClientSendsStartDtAndQueuedAsdus;
+    procedure TestServerStartsOnStartDt;
+    procedure TestAcknowledgesAfterW;
+    procedure TestKWindowHoldsTheRest;
+    procedure TestTestFrAnswered;
+    procedure TestT3SendsTestFrAndT1Closes;
+    procedure TestIFrameBeforeStartDtCloses;
+    procedure TestWrongNsCloses;
+    procedure TestNrOutOfWindowCloses;
+    procedure TestUWithTwoFunctionsCloses;
+    procedure TestBadLengthCloses;
+    procedure TestQueueDropsOldestAndNoneTwice;
+    procedure TestNeedsTcpBelow;
+  end;
+
+implementation
+
+function tTestChnIec104.L: pChnIec104;
+begin
+  Result := pChnIec104(Layer);
+end;
+
+procedure TTestChnIec104.TearDown;
+begin
+  if Layer <> nil then Dispose(Layer, Done);
+  if Peer <> nil then Dispose(Peer, Done);
+  Layer := nil;
+  Peer := nil;
+end;
+
+function TTestChnIec104.OpenServerLayer(const Extra: string): Word;
+var
+  Err: string;
+  T: pChnVirt;
+begin
+  Layer := OpenStack('IEC104', Extra + ' NAM=TCP LISTEN=127.0.0.1:0', Err);
+  AssertNotNull(Err, Layer);
+  Layer^.ChReceiveBuffer(@LBuf, SizeOf(LBuf));
+  T := Layer^.CH_Low;
+  Result := pChnTcp(T)^.ChLocalPort;
+end;
+
+procedure TTestChnIec104.OpenPeerClient(Port: Word);
+var
+  Err: string;
+begin
+  Peer := OpenStack('TCP', 'HOST=127.0.0.1 PORT=' + IntToStr(Port), Err);
+  AssertNotNull(Err, Peer);
+  Peer^.ChReceiveBuffer(@PeerBuf, SizeOf(PeerBuf));
+  Got := '';
+end;
+
+function TTestChnIec104.OpenPeerServer: Word;
+var
+  Err: string;
+begin
+  Peer := OpenStack('TCP', 'LISTEN=127.0.0.1:0', Err);
+  AssertNotNull(Err, Peer);
+  Peer^.ChReceiveBuffer(@PeerBuf, SizeOf(PeerBuf));
+  Result := pChnTcp(Peer)^.ChLocalPort;
+  Got := '';
+end;
+
+procedure TTestChnIec104.OpenClientLayer(Port: Word; const Extra: string);
+var
+  Err: string;
+begin
+  Layer := OpenStack('IEC104', Extra + ' NAM=TCP HOST=127.0.0.1 PORT=' + IntToStr(Port), Err);
+  AssertNotNull(Err, Layer);
+  Layer^.ChReceiveBuffer(@LBuf, SizeOf(LBuf));
+end;
+
+procedure TTestChnIec104.PeerSend(const HexText: string);
+var
+  B: TBytes;
+begin
+  B := HexToBytes(HexText);
+  Peer^.ChSend(@B[0], Length(B));
+  AssertEquals('peer send', res_Ok, Peer^.ChSendResult);
+  AssertTrue('peer sent', WaitSent(Peer, 2000));
+end;
+
+procedure TTestChnIec104.Poll(Ms: Integer);
+var
+  Deadline: QWord;
+  Len: Word;
+begin
+  Deadline := GetTickCount64 + QWord(Ms);
+  repeat
+    Layer^.ChReceiveReady;
+    if Peer^.ChReceiveReady = CHS_ReceiveReady then
+    begin
+      Peer^.ChReceive(Len);
+      if Len > 0 then
+      begin
+        if Got <> '' then
+          Got := Got + ' ';
+        Got := Got + BytesToHex(PeerBuf, Len);
+      end;
+    end;
+  until GetTickCount64 >= Deadline;
+end;
+
+function TTestChnIec104.PeerGets(const Want: string; TimeoutMs: Integer): Boolean;
+var
+  Deadline: QWord;
+begin
+  Deadline := GetTickCount64 + QWord(TimeoutMs);
+  repeat
+    Poll(1);
+    if Pos(Want, Got) > 0 then
+    begin
+      Delete(Got, 1, Pos(Want, Got) + Length(Want));
+      Exit(True);
+    end;
+  until GetTickCount64 >= Deadline;
+  Result := False;
+end;
+
+function TTestChnIec104.LayerGets(TimeoutMs: Integer): string;
+var
+  Deadline: QWord;
+  Len: Word;
+begin
+  Result := '';
+  Deadline := GetTickCount64 + QWord(TimeoutMs);
+  repeat
+    Poll(1);
+    Len := 0;
+    Layer^.ChReceive(Len);
+    if (Layer^.ChReceiveResult = res_Ok) and (Len > 0) then
+      Exit(BytesToHex(LBuf, Len));
+  until GetTickCount64 >= Deadline;
+end;
+
+procedure TTestChnIec104.StartServer;
+begin
+  PeerSend('68 04 07 00 00 00');
+  AssertTrue('STARTDT con', PeerGets('68 04 0B 00 00 00'));
+  AssertTrue('started', L^.ChDataStarted);
+end;
+
+procedure TTestChnIec104.TestParameters;
+var
+  C: pChnVirt;
+begin
+  C := ChnCollection^.ChNewInit('IEC104');
+  try
+    C^.ChSetParam('NAM=IEC104 K=20 W=10 T1=20 T2=5 T3=30 QUE=50 NAM=TCP HOST=h PORT=2404');
+    AssertEquals(res_Ok, C^.ChResult);
+    AssertTrue(C^.ChGetParam(''), Pos('NAM=IEC104 K=20 W=10 T0=30 T1=20 T2=5 T3=30 QUE=50', C^.ChGetParam('')) = 1);
+    C^.ChSetParam('NAM=IEC104 K=4 W=5 NAM=TCP HOST=h PORT=2404');
+    AssertEquals('w above k', res_BadParam, C^.ChResult);
+    AssertEquals('W=5', C^.ChParamError);
+    C^.ChSetParam('NAM=IEC104 T2=20 NAM=TCP HOST=h PORT=2404');
+    AssertEquals('t2 not below t1 (20 in force)', res_BadParam, C^.ChResult);
+    AssertEquals('T2=20', C^.ChParamError);
+    C^.ChSetParam('NAM=IEC104 K=0 NAM=TCP HOST=h PORT=2404');
+    AssertEquals('k 0', res_BadParam, C^.ChResult);
+    C^.ChSetParam('NAM=IEC104 T1=256 NAM=TCP HOST=h PORT=2404');
+    AssertEquals('t1 256', res_BadParam, C^.ChResult);
+  finally
+    Dispose(C, Done);
+  end;
+end;
+
+procedure TTestChnIec104.TestNeedsTcpBelow;
+var
+  C: pChnVirt;
+begin
+  C := ChnCollection^.ChNewInit('IEC104');
+  try
+    C^.ChSetParam('NAM=IEC104 NAM=LOOP');
+    AssertEquals(res_Ok, C^.ChResult);
+    C^.ChOpen;
+    AssertEquals(res_WrongLayer, C^.ChResult);
+    AssertTrue(C^.ChParamError, Pos('NAM=TCP', C^.ChParamError) > 0);
+  finally
+    Dispose(C, Done);
+  end;
+end;
+
+procedure TTestChnIec104.TestClientSendsStartDtAndQueuedAsdus;
+var
+  Port: Word;
+  A: TBytes;
+begin
+  Port := OpenPeerServer;
+  OpenClientLayer(Port, 'NAM=IEC104');
+  A := HexToBytes('64 01 06 00 01 00 00 00 00 14');
+  Layer^.ChSend(@A[0], Length(A));            { queued until STARTDT con }
+  AssertEquals(res_Ok, Layer^.ChSendResult);
+  AssertTrue('STARTDT act', PeerGets('68 04 07 00 00 00'));
+  Poll(50);
+  AssertEquals('nothing before STARTDT con', '', Got);
+  PeerSend('68 04 0B 00 00 00');
+  AssertTrue('the interrogation as I frame 0', PeerGets('68 0E 00 00 00 00 64 01 06 00 01 00 00 00 00 14'));
+  { the peer's ACT_CON, N(S)=0 N(R)=1 }
+  PeerSend('68 0E 00 00 02 00 64 01 07 00 01 00 00 00 00 14');
+  AssertEquals('delivered', '64 01 07 00 01 00 00 00 00 14', LayerGets);
+  { the next I frame acknowledges it: N(S)=1 N(R)=1 }
+  Layer^.ChSend(@A[0], Length(A));
+  AssertTrue('I frame 1', PeerGets('68 0E 02 00 02 00 64'));
+end;
+
+procedure TTestChnIec104.TestServerStartsOnStartDt;
+begin
+  OpenPeerClient(OpenServerLayer('NAM=IEC104'));
+  Poll(30);
+  AssertFalse('not started', L^.ChDataStarted);
+  StartServer;
+  PeerSend('68 04 13 00 00 00');
+  AssertTrue('STOPDT con', PeerGets('68 04 23 00 00 00'));
+  AssertFalse('stopped', L^.ChDataStarted);
+end;
+
+procedure TTestChnIec104.TestAcknowledgesAfterW;
+begin
+  OpenPeerClient(OpenServerLayer('NAM=IEC104 K=4 W=2'));
+  StartServer;
+  PeerSend('68 05 00 00 00 00 AA');
+  AssertEquals('first', 'AA', LayerGets);
+  Poll(30);
+  AssertEquals('no S after one', '', Got);
+  PeerSend('68 05 02 00 00 00 BB');
+  AssertEquals('second', 'BB', LayerGets);
+  AssertTrue('S N(R)=2 after w = 2', PeerGets('68 04 01 00 04 00'));
+end;
+
+procedure TTestChnIec104.TestKWindowHoldsTheRest;
+var
+  B: Byte;
+  I: Integer;
+begin
+  OpenPeerClient(OpenServerLayer('NAM=IEC104 K=2 W=2'));
+  StartServer;
+  for I := 1 to 3 do
+  begin
+    B := I;
+    Layer^.ChSend(@B, 1);
+  end;
+  AssertTrue('two I frames', PeerGets('68 05 00 00 00 00 01 68 05 02 00 00 00 02'));
+  Poll(50);
+  AssertEquals('the third waits for k', '', Got);
+  AssertEquals('queued', 1, L^.ChQueued);
+  PeerSend('68 04 01 00 02 00');                { S N(R)=1 }
+  AssertTrue('the third', PeerGets('68 05 04 00 00 00 03'));
+end;
+
+procedure TTestChnIec104.TestTestFrAnswered;
+begin
+  OpenPeerClient(OpenServerLayer('NAM=IEC104'));
+  PeerSend('68 04 43 00 00 00');
+  AssertTrue('TESTFR con', PeerGets('68 04 83 00 00 00'));
+end;
+
+procedure TTestChnIec104.TestT3SendsTestFrAndT1Closes;
+begin
+  OpenPeerClient(OpenServerLayer('NAM=IEC104 T1=2 T2=1 T3=1'));
+  Poll(50);
+  AssertTrue('TESTFR act after t3', PeerGets('68 04 43 00 00 00', 2500));
+  { unanswered: closed after t1 }
+  Poll(2500);
+  AssertEquals('closed', 1, L^.ChClosings);
+  AssertTrue(L^.ChCloseReason, Pos('no TESTFR con within t1', L^.ChCloseReason) > 0);
+end;
+
+procedure TTestChnIec104.TestIFrameBeforeStartDtCloses;
+begin
+  OpenPeerClient(OpenServerLayer('NAM=IEC104'));
+  PeerSend('68 05 00 00 00 00 AA');
+  Poll(100);
+  AssertEquals('closed', 1, L^.ChClosings);
+  AssertTrue(L^.ChCloseReason, Pos('before STARTDT', L^.ChCloseReason) > 0);
+  AssertEquals('nothing delivered', '', LayerGets(50));
+  Poll(50);
+  AssertEquals('the peer sees the close', res_DeviceLost, Peer^.ChReceiveResult);
+end;
+
+procedure TTestChnIec104.TestWrongNsCloses;
+begin
+  OpenPeerClient(OpenServerLayer('NAM=IEC104'));
+  StartServer;
+  PeerSend('68 05 02 00 00 00 AA');              { N(S)=1, expected 0 }
+  Poll(100);
+  AssertEquals('closed', 1, L^.ChClosings);
+  AssertTrue(L^.ChCloseReason, Pos('N(S)=1, expected 0', L^.ChCloseReason) > 0);
+end;
+
+procedure TTestChnIec104.TestNrOutOfWindowCloses;
+begin
+  OpenPeerClient(OpenServerLayer('NAM=IEC104'));
+  StartServer;
+  PeerSend('68 04 01 00 02 00');                { S N(R)=1: nothing was sent }
+  Poll(100);
+  AssertEquals('closed', 1, L^.ChClosings);
+  AssertTrue(L^.ChCloseReason, Pos('N(R)=1 outside 0..0', L^.ChCloseReason) > 0);
+end;
+
+procedure TTestChnIec104.TestUWithTwoFunctionsCloses;
+begin
+  OpenPeerClient(OpenServerLayer('NAM=IEC104'));
+  PeerSend('68 04 47 00 00 00');
+  Poll(100);
+  AssertEquals('closed', 1, L^.ChClosings);
+  AssertTrue(L^.ChCloseReason, Pos('control field', L^.ChCloseReason) > 0);
+end;
+
+procedure TTestChnIec104.TestBadLengthCloses;
+begin
+  OpenPeerClient(OpenServerLayer('NAM=IEC104'));
+  PeerSend('68 03 07 00 00');
+  Poll(100);
+  AssertEquals('closed', 1, L^.ChClosings);
+  AssertTrue(L^.ChCloseReason, Pos('length octet 3', L^.ChCloseReason) > 0);
+  Dispose(Peer, Done);
+  Peer := nil;
+  OpenPeerClient(pChnTcp(Layer^.CH_Low)^.ChLocalPort);
+  PeerSend('68 FE');
+  Poll(100);
+  AssertEquals('closed again', 2, L^.ChClosings);
+  AssertTrue(L^.ChCloseReason, Pos('length octet 254', L^.ChCloseReason) > 0);
+end;
+
+procedure TTestChnIec104.TestQueueDropsOldestAndNoneTwice;
+var
+  Port: Word;
+  B: Byte;
+  I: Integer;
+begin
+  Port := OpenPeerServer;
+  OpenClientLayer(Port, 'NAM=IEC104 K=12 QUE=3');
+  for I := 1 to 5 do
+  begin
+    B := I;
+    Layer^.ChSend(@B, 1);
+  end;
+  AssertTrue('STARTDT act', PeerGets('68 04 07 00 00 00'));
+  PeerSend('68 04 0B 00 00 00');
+  AssertTrue('the newest three', PeerGets('68 05 00 00 00 00 03 68 05 02 00 00 00 04 68 05 04 00 00 00 05'));
+  AssertEquals('two dropped', 2, L^.CH_Dropped);
+end;
+
+initialization
+  RegisterTest(TTestChnIec104);
+end.

@@ -1,0 +1,227 @@
+{ The IEC 101 master and slave helpers over NAM=IEC104 (loopback TCP, one
+  process, the slave stepped while the master waits): the same
+  procedures as on FT 1.2, with 104's differences - no link polling,
+  CP24 types served as their CP56 counterparts, C_TS_NA_1 refused with
+  COT 44, events made while no connection is started sent after STARTDT. }
+unit TestIec104Helpers;
+
+{$MODE OBJFPC}{$H+}
+
+interface
+
+uses
+  SysUtils, Classes, fpcunit, testregistry, ChnTypes, ChnVirt, ChnTcp, ChnIec104,
+  ChnIec101Asdu, ChnIec101Master, ChnIec101Slave, ChnWait, TestSupport;
+
+type
+  TTestIec104Helpers = class(TTestCase)
+  private
+    SChn, MChn: pChnVirt;
+    Objects: TStringList;
+    Commands: Integer;
+    procedure OpenPair(const Extra: string = '');
+    procedure StepSlave;
+  protected
+    procedure SetUp; override;
+    procedure TearDown; override;
+  public
+    M: tIecMaster;
+    S: tIecSlaveStation;
+  published
+    procedure TestInterrogationServesCp56ForCp24;
+    procedure TestCounterInterrogation;
+    procedure TestCommandConfirmed;
+    procedure TestClockSyncAndTest;
+    procedure TestTestWithoutTimeTagRefusedWithCot44;
+    procedure TestEventsQueuedUntilStartDt;
+  end;
+
+implementation
+
+procedure OnObj(Data: Pointer; Addr: Word; const H: tIecAsdu; const O: tIecObject);
+begin
+  TTestIec104Helpers(Data).Objects.Add(IecTypeName(H.Ti) + ' COT ' + IntToStr(H.Cot) +
+    ' IOA ' + IntToStr(O.Ioa));
+end;
+
+function OnCmd(Data: Pointer; const H: tIecAsdu; const O: tIecObject): Boolean;
+begin
+  Inc(TTestIec104Helpers(Data).Commands);
+  Result := True;
+end;
+
+procedure IdleSlave(Data: Pointer);
+begin
+  TTestIec104Helpers(Data).StepSlave;
+end;
+
+procedure TTestIec104Helpers.StepSlave;
+begin
+  IecSlaveStep(S);
+  ChnWaitAny(2);
+end;
+
+procedure TTestIec104Helpers.SetUp;
+begin
+  Objects := TStringList.Create;
+  SChn := nil;
+  MChn := nil;
+  Commands := 0;
+end;
+
+procedure TTestIec104Helpers.TearDown;
+begin
+  if MChn <> nil then Dispose(MChn, Done);
+  if SChn <> nil then Dispose(SChn, Done);
+  Objects.Free;
+end;
+
+procedure TTestIec104Helpers.OpenPair(const Extra: string);
+var
+  Err: string;
+  E: ShortString;
+  O: tIecObject;
+  Port: Word;
+begin
+  SChn := OpenStack('IEC104', 'NAM=IEC104 NAM=TCP LISTEN=127.0.0.1:0', Err);
+  AssertNotNull(Err, SChn);
+  Port := pChnTcp(SChn^.CH_Low)^.ChLocalPort;
+  AssertEquals('slave', res_Ok, IecSlaveInit(S, SChn, IecDefaultParams, 1, E));
+  S.OnCommand := @OnCmd;
+  S.Data := Self;
+  O := IecObject(100);
+  O.Bits := 1;
+  AssertEquals(res_Ok, IecSlaveAddPoint(S, M_SP_NA_1, O, 0, E));
+  O := IecObject(101);
+  AssertEquals(res_Ok, IecSlaveAddPoint(S, M_SP_TA_1, O, 0, E));     { CP24: served as 30 }
+  O := IecObject(200);
+  O.Number := 1.5;
+  AssertEquals(res_Ok, IecSlaveAddPoint(S, M_ME_NC_1, O, 0, E));
+  O := IecObject(300);
+  O.Int := 1234;
+  AssertEquals(res_Ok, IecSlaveAddPoint(S, M_IT_NA_1, O, 0, E));
+  O := IecObject(5000);
+  AssertEquals(res_Ok, IecSlaveAddPoint(S, C_SC_NA_1, O, 0, E));
+  MChn := OpenStack('IEC104', 'NAM=IEC104 ' + Extra + ' NAM=TCP HOST=127.0.0.1 PORT=' +
+    IntToStr(Port) + ' RECON=200', Err);
+  AssertNotNull(Err, MChn);
+  AssertEquals('master', res_Ok, IecMasterInit(M, MChn, IecDefaultParams));
+  M.CommandMs := 3000;
+  M.OnObject := @OnObj;
+  M.Data := Self;
+  M.Idle := @IdleSlave;
+  M.IdleData := Self;
+end;
+
+procedure TTestIec104Helpers.TestInterrogationServesCp56ForCp24;
+begin
+  OpenPair;
+  AssertEquals(M.Cmd.Err, res_Ok, IecInterrogation(M, 0, 1, Qoi_Station));
+  AssertTrue(Objects.Text, Objects.IndexOf('M_SP_NA_1 COT 20 IOA 100') >= 0);
+  AssertTrue(Objects.Text, Objects.IndexOf('M_SP_TB_1 COT 20 IOA 101') >= 0);
+  AssertTrue(Objects.Text, Objects.IndexOf('M_ME_NC_1 COT 20 IOA 200') >= 0);
+  AssertEquals('no counter, no command point', -1, Objects.IndexOf('M_IT_NA_1 COT 20 IOA 300'));
+  AssertEquals('slave saw one', 1, S.Interrogations);
+end;
+
+procedure TTestIec104Helpers.TestCounterInterrogation;
+begin
+  OpenPair;
+  AssertEquals(M.Cmd.Err, res_Ok, IecCounterInterrogation(M, 0, 1, Qcc_General));
+  AssertTrue(Objects.Text, Objects.IndexOf('M_IT_NA_1 COT 37 IOA 300') >= 0);
+end;
+
+procedure TTestIec104Helpers.TestCommandConfirmed;
+var
+  O: tIecObject;
+begin
+  OpenPair;
+  O := IecObject(5000);
+  O.Bits := 1;
+  AssertEquals(M.Cmd.Err, res_Ok, IecCommand(M, 0, 1, C_SC_NA_1, O, False));
+  AssertEquals('the program saw it', 1, Commands);
+  O := IecObject(5001);
+  AssertEquals('no such point: COT 47', res_IecUnknownIoa, IecCommand(M, 0, 1, C_SC_NA_1, O, False));
+end;
+
+procedure TTestIec104Helpers.TestClockSyncAndTest;
+begin
+  OpenPair;
+  AssertEquals(M.Cmd.Err, res_Ok, IecClockSync(M, 0, 1, IecTimeFromDateTime(Now), True));
+  AssertEquals('synchronised', 1, S.ClockSyncs);
+  AssertEquals(M.Cmd.Err, res_Ok, IecTestCommand(M, 0, 1));
+  AssertEquals('C_TS_TA_1 went out', C_TS_TA_1, M.Cmd.Ti);
+end;
+
+procedure TTestIec104Helpers.TestTestWithoutTimeTagRefusedWithCot44;
+var
+  Err: string;
+  C: pChnVirt;
+  A: TBytes;
+  Buf: array[0..255] of Byte;
+  Len: Word;
+  Deadline: QWord;
+  Got: string;
+begin
+  OpenPair;
+  Dispose(MChn, Done);              { a raw 104 client in place of the master }
+  MChn := nil;
+  C := OpenStack('IEC104', 'NAM=IEC104 NAM=TCP HOST=127.0.0.1 PORT=' +
+    IntToStr(pChnTcp(SChn^.CH_Low)^.ChLocalPort), Err);
+  AssertNotNull(Err, C);
+  try
+    C^.ChReceiveBuffer(@Buf, SizeOf(Buf));
+    { C_TS_NA_1, COT 6, CA 1, IOA 0, FBP AA55 }
+    A := HexToBytes('68 01 06 00 01 00 00 00 00 55 AA');
+    C^.ChSend(@A[0], Length(A));
+    Got := '';
+    Deadline := GetTickCount64 + 3000;
+    repeat
+      IecSlaveStep(S);
+      Len := 0;
+      C^.ChReceive(Len);
+      if (C^.ChReceiveResult = res_Ok) and (Len > 0) then
+        Got := BytesToHex(Buf, Len);
+      ChnWaitAny(2);
+    until (Got <> '') or (GetTickCount64 > Deadline);
+    { mirrored, P/N = 1, COT 44: 40h + 2Ch = 6Ch }
+    AssertEquals('68 01 6C 00 01 00 00 00 00 55 AA', Got);
+  finally
+    Dispose(C, Done);
+  end;
+end;
+
+procedure TTestIec104Helpers.TestEventsQueuedUntilStartDt;
+var
+  O: tIecObject;
+  Err: ShortString;
+  I: Integer;
+begin
+  OpenPair;
+  { no connection started yet: the events wait in the layer }
+  O := IecObject(100);
+  O.Bits := 0;
+  AssertEquals(Err, res_Ok, IecSlaveUpdate(S, 100, O, True, Err));
+  O.Bits := 1;
+  AssertEquals(Err, res_Ok, IecSlaveUpdate(S, 100, O, True, Err));
+  IecSlaveStep(S);
+  AssertFalse('not started', pChnIec104(SChn)^.ChDataStarted);
+  for I := 1 to 200 do
+  begin
+    IecMasterStep(M);
+    StepSlave;
+  end;
+  AssertEquals(Objects.Text, 2, Objects.Count);
+  AssertEquals('M_SP_NA_1 COT 3 IOA 100', Objects[0]);
+  AssertEquals('M_SP_NA_1 COT 3 IOA 100', Objects[1]);
+  for I := 1 to 50 do
+  begin
+    IecMasterStep(M);
+    StepSlave;
+  end;
+  AssertEquals('none twice', 2, Objects.Count);
+end;
+
+initialization
+  RegisterTest(TTestIec104Helpers);
+end.
