@@ -128,7 +128,7 @@ begin
     AssertTrue('emptied', StepUntil(C, @Emptied, 5000));
     AssertTrue('the subscriber got it: ' + Sub.Text, Sub.WaitFor('chn/plc1/N7:0 {"value":12}', 5000));
     AssertTrue('online on the will''s topic: ' + Sub.Text, Sub.WaitFor('chn/$gateway/status online', 5000));
-    AssertEquals('published', 1, C.Published);
+    AssertEquals('delivered', 1, C.Delivered);
     { the other way: mosquitto_pub to a topic the client subscribed to }
     AssertEquals('mosquitto_pub', 0, MqttPub(Broker.Port, 'chn/set/x', '42'));
     AssertTrue('received', StepUntil(C, @HasMessage, 5000));

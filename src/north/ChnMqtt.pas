@@ -85,7 +85,7 @@ type
     Inbox      : array of tMqttMessage;
     InboxHead  : LongInt;
     { counters }
-    Published  : LongInt;       { acknowledged (QoS 1) or handed over (QoS 0) }
+    Delivered  : LongInt;       { acknowledged (QoS 1) or handed over (QoS 0) }
     Dropped    : LongInt;       { dropped from a full queue }
     Connects   : LongInt;
     LastError  : AnsiString;
@@ -337,7 +337,7 @@ begin
       for J := I + 1 to High(C^.Queue) do
         C^.Queue[J - 1] := C^.Queue[J];
       SetLength(C^.Queue, Length(C^.Queue) - 1);
-      Inc(C^.Published);
+      Inc(C^.Delivered);
       Exit;
     end;
 end;
@@ -493,7 +493,7 @@ begin
         for J := I + 1 to High(C.Queue) do
           C.Queue[J - 1] := C.Queue[J];
         SetLength(C.Queue, Length(C.Queue) - 1);
-        Inc(C.Published);
+        Inc(C.Delivered);
         Continue;
       end;
       C.Queue[I].Mid := Mid;
