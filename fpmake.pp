@@ -151,7 +151,7 @@ begin
     AddUnit(P, 'ChnIecTransport.pas', AllOSes, ['ChnTypes', 'ChnVirt', 'ChnFT1_2', 'ChnFT12Link',
       'ChnIec104', 'ChnIec104Codec']);
     AddUnit(P, 'ChnIec101Master.pas', AllOSes, ['ChnTypes', 'ChnVirt', 'ChnFT1_2', 'ChnFT12Link',
-      'ChnIec101Asdu', 'ChnWait', 'ChnIecTransport']);
+      'ChnIec101Asdu', 'ChnWait', 'ChnIecTransport', 'ChnFT12Codec']);
     AddUnit(P, 'ChnIec101Slave.pas', AllOSes, ['ChnTypes', 'ChnVirt', 'ChnFT1_2', 'ChnFT12Link',
       'ChnIec101Asdu', 'ChnIecTransport']);
     { src/ics: ICSlink }
