@@ -177,6 +177,10 @@ begin
     Part(P, 'ics');
     AddUnit(P, 'ChnICSCodec.pas', AllOSes, ['ChnTypes', 'uString']);
     AddUnit(P, 'ChnICS.pas', AllOSes, ['ChnTypes', 'ChnVirt', 'ChnProto', 'ChnICSCodec']);
+    { src/north: what a gateway offers upwards; MQTT loads libmosquitto
+      at run time, nothing is linked }
+    Part(P, 'north');
+    AddUnit(P, 'ChnMqtt.pas', AllOSes, ['ChnWait']);
     Run;
   end;
 end.

@@ -90,6 +90,10 @@ type
     Fencing    : Boolean;     { Out is a fence: FC 9 to flush late answers }
     Fences     : LongInt;     { fences sent }
     Stale      : LongInt;     { late answers recognised and ignored }
+    OtherAddr  : LongInt;     { frames from or for another link address
+                                (answers here, requests dropped by the channel) }
+    OtherLast  : Word;        { the address the last of them carried }
+    RxForeign  : LongWord;    { the channel's count when last looked at }
   end;
 
 { Bind B to a balanced tChnFT1_2 and set the defaults; the channel's
@@ -236,6 +240,8 @@ begin
      (B.Chn^.CH_RSNode <> B.Chn^.ChGetDestNode) then
   begin
     Inc(B.Ignored);               { another station's }
+    Inc(B.OtherAddr);
+    B.OtherLast := B.Chn^.CH_RSNode;
     Exit;
   end;
   Status := (B.RMess.MessType in [tpShortM, tpLongM]) and (B.RMess.FC = FCS_LinkSAccesReq);
@@ -466,6 +472,7 @@ begin
     { the next request goes out before the next look, which may wait IDL }
     RunPrimary(B);
   end;
+  FT12NoteForeign(B.Chn, B.RxForeign, B.OtherAddr, B.OtherLast);
   if not Result then
     RunPrimary(B);
 end;

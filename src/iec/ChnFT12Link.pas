@@ -100,6 +100,8 @@ type
     StatusAt  : QWord;   { when a status request last went out }
     Fences    : LongInt; { fences (FC 9) sent before a service }
     Stale     : LongInt; { late answers recognised and ignored }
+    OtherAddr : LongInt; { of Ignored: answers from another link address }
+    OtherLast : Word;    { the address the last of them carried }
   end;
 
   { Secondary callbacks; Data is tFT12Station.Data.
@@ -125,6 +127,13 @@ function FT12FcvOf(FC: Byte): Boolean;
 
 { Octets of a fixed frame on this channel (LEN=), as a record length. }
 function FT12FixedLen(Chn: pChnVirt): Word;
+{ What the line showed besides the answers awaited, for an error text:
+  ' — 12 frames from link address 1 ignored', ' — 3 frames with this
+  station's own DIR bit ignored' (both when both), '' when none. }
+function FT12IgnoredText(OtherAddr: LongInt; OtherLast: Word; OwnDir: LongInt): ShortString;
+{ Frames the channel dropped for another link address since the last
+  look (Seen): added to Count, Last the address of the last of them. }
+procedure FT12NoteForeign(Chn: pChnVirt; var Seen: LongWord; var Count: LongInt; var Last: Word);
 { Send once the transmitter is free (bounded wait). }
 function FT12SendNow(Chn: pChnVirt; constref R: tSendRecord; Len: Word): tChResult;
 { Does a secondary's reply of type T and function FC answer primary
@@ -138,7 +147,7 @@ function FT12UserDataAnswer(F: tFT12UserDataFunc; Data: Pointer;
 implementation
 
 uses
-  ChnFT12Codec;
+  SysUtils, ChnFT12Codec;
 
 var
   FT12NumName: Word;   { ChNumName(ChnFT1_2.cName) }
@@ -152,6 +161,29 @@ function FT12FcvOf(FC: Byte): Boolean;
 begin
   Result := FC in [FCM_CheckLink, FCM_UserDataReply, FCM_ReqUserData1,
     FCM_ReqUserData2];
+end;
+
+function FT12IgnoredText(OtherAddr: LongInt; OtherLast: Word; OwnDir: LongInt): ShortString;
+begin
+  Result := '';
+  if OtherAddr > 0 then
+    Result := ' — ' + IntToStr(OtherAddr) + ' frames from link address ' + IntToStr(OtherLast) + ' ignored';
+  if OwnDir > 0 then
+    Result := Result + ' — ' + IntToStr(OwnDir) + ' frames with this station''s own DIR bit ignored';
+end;
+
+procedure FT12NoteForeign(Chn: pChnVirt; var Seen: LongWord; var Count: LongInt; var Last: Word);
+var
+  N: LongWord;
+  A: Word;
+begin
+  N := pChnFT1_2(Chn)^.ChForeignFrames(A);
+  if N <> Seen then
+  begin
+    Inc(Count, LongInt(N - Seen));
+    Seen := N;
+    Last := A;
+  end;
 end;
 
 procedure FT12LinkInit(var Link: tFT12Link; Addr: Word);

@@ -310,6 +310,11 @@ begin
       (P.Chn^.CH_RSNode <> P.Link^.Addr)) then
   begin
     Inc(P.Link^.Ignored);               { garbled, or another station's }
+    if P.Chn^.ChReceiveResult = res_Ok then
+    begin
+      Inc(P.Link^.OtherAddr);
+      P.Link^.OtherLast := P.Chn^.CH_RSNode;
+    end;
     Exit(False);
   end;
   Status := (P.Rep.MessType in [tpShortM, tpLongM]) and (P.Rep.FC = FCS_LinkSAccesReq);

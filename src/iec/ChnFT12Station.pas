@@ -33,6 +33,10 @@ type
     Repeats    : LongInt;      { repetitions answered with the last reply }
     Refused    : LongInt;      { FCV = 1 frames before a reset (NACK); FC 3, 10, 11
                                  without FCV (FC 15) }
+    OtherAddr  : LongInt;      { frames for another link address (the channel
+                                 drops them: other stations' traffic on a bus) }
+    OtherLast  : Word;         { the address the last of them carried }
+    RxForeign  : LongWord;     { the channel's count when last looked at }
   end;
 
 procedure FT12StationInit(var S: tFT12Station; Chn: pChnVirt);
@@ -93,6 +97,7 @@ end;
 
 function FT12StationStep(var S: tFT12Station): Boolean;
 var
+  Ready: Boolean;
   Len: Word;
   Broadcast, Fcv: Boolean;
   F: pChnFT1_2;
@@ -100,7 +105,9 @@ begin
   Result := False;
   if not IsFT12Channel(S.Chn) then
     Exit;                       { only a tChnFT1_2 has the fields used below }
-  if S.Chn^.ChReceiveReady <> CHS_ReceiveReady then
+  Ready := S.Chn^.ChReceiveReady = CHS_ReceiveReady;
+  FT12NoteForeign(S.Chn, S.RxForeign, S.OtherAddr, S.OtherLast);
+  if not Ready then
     Exit;
   Result := True;
   Inc(S.Frames);

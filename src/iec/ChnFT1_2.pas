@@ -12,8 +12,10 @@
   NOD=, DNO=, LEN=. Added by the port (see docs/ChnFT1_2.md):
     ADR=0|1|2  link address octets (default 1 as in the manual; 2 octets are
                little-endian and NOD=/DNO= then range up to 65535)
-    DIR=0|1    balanced: station A (1) or B (0, default); the DIR bit sent,
-               and a received frame with it is res_ErrDir (own side)
+    DIR=0|1    balanced: station A (1) or B (0); the DIR bit sent, and a
+               received frame with it is res_ErrDir (own side); not
+               given: 1 when PRI=ON or MAS=MASTER is (the controlling
+               station), else 0
     GAP=n      line-idle gap in character times that discards a
                half-received frame (0 = off, default); the character time
                is 11 bits at the BD= of the layer below, 9600 Bd if none
@@ -127,6 +129,10 @@ type
     CH_LowBaud  : LongInt;
     CH_SPrimary : Boolean;   { direction of the frame ChSend is encoding }
     CH_RNow     : QWord;     { time stamp of the bytes of this receive tick }
+    { which of MAS=, PRI=, DIR= the strings gave: a balanced station whose
+      role is given (PRI=ON or MAS=MASTER: the controlling station) and
+      no DIR= is station A, DIR=1, as lib60870's balanced master }
+    CH_MasGiven, CH_PriGiven, CH_DirGiven: Boolean;
 
     constructor Init;
     constructor ChInitParam(const S: tParamStr);
@@ -161,6 +167,10 @@ type
     { The PRM bit of the frame the last ChReceive gave: True for a request
       of the peer's primary (CH_RPrm). }
     function  ChReceivedPrm: Boolean;
+    { Frames the receiver dropped because they were for another link
+      address (other stations' traffic on a bus), since ChOpen; LastAddr
+      the address the last of them carried. }
+    function  ChForeignFrames(out LastAddr: Word): LongWord;
     { ChSendAs once the transmitter is free, waiting for it at most
       TimeoutMs as ChSendWhenFree does (res_Timeout; a channel fault at
       once); the result of the send. }
@@ -206,6 +216,9 @@ begin
   CH_LowBaud := cDefaultBaud;
   CH_SPrimary := True;
   CH_RNow := 0;
+  CH_MasGiven := False;
+  CH_PriGiven := False;
+  CH_DirGiven := False;
   FillChar(CH_Rx, SizeOf(CH_Rx), 0);
   CH_Rx.Cfg := ChFT12Config;
   FT12RxReset(CH_Rx);
@@ -355,11 +368,23 @@ begin
     Result := inherited ChSetOneParam(S, CmdL);
   if (Result = res_Ok) and (CmdL = cmd_Set) then
   begin
+    if Key = 'MAS' then
+      CH_MasGiven := True
+    else if Key = 'PRI' then
+      CH_PriGiven := True
+    else if Key = 'DIR' then
+      CH_DirGiven := True;
     { the manual's one role field follows MAS= or PRI= by the mode }
     if CH_MaSl then
       CH_Master := CH_MasParam
     else
       CH_Master := CH_PriParam;
+    { balanced, no DIR=: the role given says which station this is }
+    if not CH_MaSl and not CH_DirGiven then
+      if CH_PriGiven then
+        CH_Dir := CH_PriParam
+      else if CH_MasGiven then
+        CH_Dir := CH_MasParam;
   end;
 end;
 
@@ -397,6 +422,12 @@ begin
     Exit;
   ChSendAs(Primary, Buff, Len);
   Result := ChSendResult;
+end;
+
+function tChnFT1_2.ChForeignFrames(out LastAddr: Word): LongWord;
+begin
+  LastAddr := CH_Rx.ForeignAddr;
+  Result := CH_Rx.Foreign;
 end;
 
 function tChnFT1_2.ChReceivedPrm: Boolean;
