@@ -51,6 +51,14 @@ done
 if [ -z "$missing" ]; then pass "package: chn.lpk lists every unit of src/ (its part folders and their unix/, win/)"
 else bad "package: chn.lpk misses$missing (make writes it: commit it)"; fi
 
+# a make with nothing to do runs nothing (the README's 0.05 s): after one
+# make, a second one remakes no file, only its phony goals
+make -s BUILD="$BUILD" >/dev/null 2>&1
+remade=$(make --debug=b BUILD="$BUILD" 2>/dev/null | sed -n "s/^ *Must remake target '\(.*\)'\.$/\1/p" |
+         grep -vxE 'all|units|check-fpc' || true)
+if [ -z "$remade" ]; then pass "package: a make with nothing to do remakes nothing"
+else bad "package: a second make remakes: $(echo $remade)"; fi
+
 # the license: stated once in COPYING, the same words in fpmake.pp and chn.lpk
 lic=$(sed -n "s/^ *P\.License := '\(.*\)';/\1/p" fpmake.pp)
 if [ -f COPYING ] && [ -f COPYING.LGPL ] && grep -q "Lesser General Public License" COPYING &&
