@@ -15,7 +15,7 @@ program df1read;
 
 uses
   {$IFDEF UNIX}cthreads,{$ENDIF}
-  SysUtils, uString, ChnTypes, ChnLayers, ChnDF1, ChnPccc, ChnPcccClient, ChnCli;
+  SysUtils, uString, ChnTypes, ChnLayers, ChnDF1, ChnPccc, ChnPlc5, ChnPcccClient, ChnCli;
 
 var
   Cli: tCli;
@@ -27,6 +27,15 @@ var
 procedure Log(const Line: AnsiString);
 begin
   WriteLn('df1read: ', Line);
+end;
+
+{ --plc5, --word-range: the PLC-5's addresses and commands }
+procedure Family(var C: tPcccClient);
+begin
+  if CliHas(Cli, 'word-range') then
+    PcccClientPlc5(C, p5WordRange)
+  else if CliHas(Cli, 'plc5') then
+    PcccClientPlc5(C, p5Typed);
 end;
 
 procedure Fail(const What: string; Code: Integer);
@@ -48,6 +57,9 @@ begin
   CliExit(Cli, 1, 'the line could not be opened, or was lost');
   CliExit(Cli, 3, 'an error reply (STS <> 0) or a reply that does not fit');
   CliExit(Cli, 4, 'no answer in time');
+  CliOption(Cli, 'plc5', #0, '', 'a PLC-5: its addresses (I:012/05, D10:0) and typed ' +
+    'read/write (0F 68/67)');
+  CliOption(Cli, 'word-range', #0, '', 'a PLC-5 with word range read/write (0F 01/00) instead');
   CliParse(Cli);
   Addr := 'N7:0';
   Count := 10;
@@ -67,12 +79,14 @@ begin
   if Params = '' then
     CliUsageError(Cli, 'no parameter string (e.g. NAM=DF1 NOD=0 DNO=1 NAM=COM DEV=/dev/ttyUSB0)', '');
   PcccClientInit(C, nil);
+  Family(C);
   if not PcccStartRead(R, C, Addr, Count) and (R.Result <> res_WrongLayer) and
      (R.Result <> res_WrongState) then
     CliUsageError(Cli, R.Err, Addr);
   CliCheckParams(Cli, Params, ChnDF1.cName);
   if PcccOpen(C, Params) <> res_Ok then
     Fail(C.Err, 1);
+  Family(C);
   WriteLn('df1read: ', C.Chn^.ChGetParam(''));
   C.Log := @Log;
   if PcccStartRead(R, C, Addr, Count) then

@@ -19,7 +19,7 @@ program df1write;
 
 uses
   {$IFDEF UNIX}cthreads,{$ENDIF}
-  SysUtils, ChnTypes, ChnLayers, ChnDF1, ChnPccc, ChnPcccClient, ChnCli;
+  SysUtils, ChnTypes, ChnLayers, ChnDF1, ChnPccc, ChnPlc5, ChnPcccClient, ChnCli;
 
 var
   Cli: tCli;
@@ -32,6 +32,15 @@ var
 procedure Log(const Line: AnsiString);
 begin
   WriteLn('df1write: ', Line);
+end;
+
+{ --plc5, --word-range: the PLC-5's addresses and commands }
+procedure Family(var C: tPcccClient);
+begin
+  if CliHas(Cli, 'word-range') then
+    PcccClientPlc5(C, p5WordRange)
+  else if CliHas(Cli, 'plc5') then
+    PcccClientPlc5(C, p5Typed);
 end;
 
 procedure Fail(const What: string; Code: Integer);
@@ -55,6 +64,9 @@ begin
   CliExit(Cli, 3, 'an error reply (STS <> 0) or a reply that does not fit');
   CliExit(Cli, 4, 'no answer in time');
   { "-1" is a value: no short option may take it }
+  CliOption(Cli, 'plc5', #0, '', 'a PLC-5: its addresses (I:012/05, D10:0) and typed ' +
+    'read/write (0F 68/67)');
+  CliOption(Cli, 'word-range', #0, '', 'a PLC-5 with word range read/write (0F 01/00) instead');
   CliParse(Cli);
   First := 1;
   while (First < CliArgCount(Cli)) and (Pos('=', Cli.Args[First]) = 0) do
@@ -76,8 +88,10 @@ begin
   { the values against the address before any device is opened: a dry run
     on an in-memory line (NAM=LOOP, nobody at the other end) }
   PcccClientInit(C, nil);
+  Family(C);
   if PcccOpen(C, 'NAM=DF1 NOD=0 DNO=1 NAM=LOOP PAIR=DF1WRITE-DRY-RUN END=1') = res_Ok then
   begin
+    Family(C);
     if PcccStartWriteText(R, C, Addr, Values) then
       PcccCancel(R)
     else if (R.Result = res_PcccAddress) or (R.Result = res_PcccCount) or
@@ -86,9 +100,11 @@ begin
     PcccClose(C);
   end;
   PcccClientInit(C, nil);
+  Family(C);
   CliCheckParams(Cli, Params, ChnDF1.cName);
   if PcccOpen(C, Params) <> res_Ok then
     Fail(C.Err, 1);
+  Family(C);
   C.Log := @Log;
   if PcccStartWriteText(R, C, Addr, Values) then
     PcccFinish(R);

@@ -7,8 +7,8 @@ unit TestChnLoop;
 interface
 
 uses
-  Classes, SysUtils, fpcunit, testregistry, ChnTypes, ChnVirt, ChnLoop, TestSupport,
-  StackCase;
+  Classes, SysUtils, fpcunit, testregistry, ChnTypes, ChnVirt, ChnLoop, ChnPort,
+  ChnWait, TestSupport, StackCase;
 
 type
   TTestChnLoop = class(TStackCase)
@@ -27,6 +27,13 @@ type
     procedure TestReceiverAloneTakesALargeMessage;
     procedure TestReceiveFlush;
     procedure TestTwoThreadsWithIdleWait;
+    procedure TestCharacterTimes;
+    procedure TestLineParameters;
+    procedure TestTimedLineDeliversAtLineSpeed;
+    procedure TestTimedLineWakesTheWaitInTime;
+    procedure TestMultidropEveryEndHearsEveryOther;
+    procedure TestCollisionGarblesBoth;
+    procedure TestNoCollisionOneAfterTheOther;
   end;
 
 implementation
@@ -345,6 +352,220 @@ begin
   finally
     T.Free;
   end;
+end;
+
+{ Character times worked out by hand: start + data + parity + stop bits,
+  times 1e6 / BD, rounded up. }
+procedure TTestChnLoop.TestCharacterTimes;
+var
+  S: tPortSettings;
+begin
+  S := DefaultPortSettings;
+  S.Baud := 9600;                       { 8N1: 10 bits, 1041.67 us }
+  AssertEquals('9600 8N1', 1042, LoopCharUs(S));
+  S.Parity := ppEven;                   { 8E1: 11 bits, 1145.83 us }
+  AssertEquals('9600 8E1', 1146, LoopCharUs(S));
+  S.Baud := 1200;
+  S.StopBits := 2;                      { 8E2: 12 bits, 10000 us }
+  AssertEquals('1200 8E2', 10000, LoopCharUs(S));
+  S.Baud := 19200;
+  S.DataBits := 7;
+  S.StopBits := 1;                      { 7E1: 10 bits, 520.83 us }
+  AssertEquals('19200 7E1', 521, LoopCharUs(S));
+  S.Baud := 0;
+  AssertEquals('no speed', 0, LoopCharUs(S));
+end;
+
+procedure TTestChnLoop.TestLineParameters;
+begin
+  A := Stack('LOOP', 'PAIR=PRM END=32 BD=19200 BIT=7 PAR=E STOP=2');
+  AssertEquals('BD=19200', A^.ChGetParam('BD'));
+  AssertEquals('PAR=E', A^.ChGetParam('PAR'));
+  AssertEquals('BIT=7', A^.ChGetParam('BIT'));
+  AssertEquals('STOP=2', A^.ChGetParam('STOP'));
+  A^.ChSetParam('END=33');
+  AssertEquals('END=33', res_BadParam, A^.ChResult);
+  A^.ChClose;
+  A^.ChSetParam('BD=49');
+  AssertEquals('BD=49', res_BadParam, A^.ChResult);
+  A^.ChSetParam('BD=0');
+  AssertEquals('BD=0: no speed', res_Ok, A^.ChResult);
+  AssertEquals('no speed, no line keys', '', A^.ChGetParam('BD'));
+  A^.ChSetParam('PAR=X');
+  AssertEquals('PAR=X', res_BadParam, A^.ChResult);
+end;
+
+{ Receive from R until Count bytes came, waiting in ChnWaitAny between
+  polls; Wakes counts the waits. }
+function TimedDrain(R: pChnVirt; var Dst: array of Byte; Count: Integer;
+  out Wakes: Integer): Integer;
+var
+  Buf: array[0..999] of Byte;
+  Len: Word;
+  Deadline: QWord;
+begin
+  Result := 0;
+  Wakes := 0;
+  R^.ChReceiveBuffer(@Buf, SizeOf(Buf));
+  Deadline := GetTickCount64 + 5000;
+  while (Result < Count) and (GetTickCount64 < Deadline) do
+    if R^.ChReceiveReady = CHS_ReceiveReady then
+    begin
+      R^.ChReceive(Len);
+      if Result + Len > Count then
+        Break;
+      Move(Buf, Dst[Result], Len);
+      Inc(Result, Len);
+    end
+    else
+    begin
+      ChnWaitAny(1000);
+      Inc(Wakes);
+    end;
+end;
+
+{ 200 characters at 9600 8N1 take 208 ms: none of them is there at once,
+  the sender is busy until then, and all of them come by then. }
+procedure TTestChnLoop.TestTimedLineDeliversAtLineSpeed;
+var
+  S, D: array[0..199] of Byte;
+  I, Wakes: Integer;
+  T0, Took: QWord;
+  Len: Word;
+begin
+  OpenPair('SPEED', 'BD=9600');
+  for I := 0 to High(S) do
+    S[I] := I;
+  T0 := GetTickCount64;
+  A^.ChSend(@S, SizeOf(S));
+  AssertEquals(res_Ok, A^.ChSendResult);
+  AssertEquals('the line is busy', CHS_Sending, A^.ChSendReady);
+  B^.ChReceiveBuffer(@D, SizeOf(D));
+  if B^.ChReceiveReady = CHS_ReceiveReady then
+  begin
+    B^.ChReceive(Len);
+    AssertTrue('not all at once: ' + IntToStr(Len), Len < 100);
+  end;
+  AssertEquals(SizeOf(S), TimedDrain(B, D, SizeOf(S), Wakes));
+  Took := GetTickCount64 - T0;
+  AssertTrue('content', CompareMem(@S, @D, SizeOf(S)));
+  AssertTrue('took ' + IntToStr(Took) + ' ms of 208', Took >= 206);
+  AssertTrue('took ' + IntToStr(Took) + ' ms of 208', Took < 2000);
+  AssertTrue('woken ' + IntToStr(Wakes) + ' times', Wakes <= 40);
+  AssertEquals('sent', CHS_SendReady, A^.ChSendReady);
+end;
+
+{ A wait with nothing but characters on their way ends when they arrive,
+  not at its timeout: 20 characters at 1200 8N1 take 167 ms. }
+procedure TTestChnLoop.TestTimedLineWakesTheWaitInTime;
+var
+  S: array[0..19] of Byte;
+  D: array[0..19] of Byte;
+  T0, Took: QWord;
+  Len: Word;
+begin
+  OpenPair('WAKE', 'BD=1200');
+  FillChar(S, SizeOf(S), $5A);
+  B^.ChReceiveBuffer(@D, SizeOf(D));
+  AssertEquals(CHS_Receiving, B^.ChReceiveReady);
+  T0 := GetTickCount64;
+  A^.ChSend(@S, SizeOf(S));
+  while (B^.ChReceiveReady <> CHS_ReceiveReady) and (GetTickCount64 - T0 < 3000) do
+    ChnWaitAny(3000);
+  Took := GetTickCount64 - T0;
+  AssertTrue('woke after ' + IntToStr(Took) + ' ms', Took >= 166);
+  AssertTrue('woke after ' + IntToStr(Took) + ' ms', Took < 1500);
+  B^.ChReceive(Len);
+  AssertEquals('all 20 (woken for the last)', 20, Len);
+end;
+
+procedure TTestChnLoop.TestMultidropEveryEndHearsEveryOther;
+var
+  C: pChnVirt;
+  S, D: array[0..2] of Byte;
+  Speed: Integer;
+  Wakes: Integer;
+begin
+  for Speed := 0 to 1 do
+  begin
+    CloseStacks;
+    A := Stack('LOOP', 'PAIR=BUS END=1 BD=' + IntToStr(Speed * 19200));
+    B := Stack('LOOP', 'PAIR=BUS END=2 BD=' + IntToStr(Speed * 19200));
+    C := Stack('LOOP', 'PAIR=BUS END=7 BD=' + IntToStr(Speed * 19200));
+    S[0] := 1; S[1] := 2; S[2] := 3;
+    A^.ChSend(@S, 3);
+    AssertEquals('B hears A', 3, TimedDrain(B, D, 3, Wakes));
+    AssertEquals(2, D[1]);
+    AssertEquals('C hears A', 3, TimedDrain(C, D, 3, Wakes));
+    AssertEquals(3, D[2]);
+    AssertEquals('A does not hear itself', CHS_Receiving, A^.ChReceiveReady);
+    S[0] := 9;
+    C^.ChSend(@S, 1);
+    AssertEquals('A hears C', 1, TimedDrain(A, D, 1, Wakes));
+    AssertEquals(9, D[0]);
+    AssertEquals('B hears C', 1, TimedDrain(B, D, 1, Wakes));
+    AssertEquals(9, D[0]);
+  end;
+end;
+
+{ A and B start 10 characters each at the same moment (within far less
+  than a character time): C gets all 20, each inverted ($11 -> $EE,
+  $22 -> $DD); A gets B's garbled and B gets A's. }
+procedure TTestChnLoop.TestCollisionGarblesBoth;
+var
+  C: pChnVirt;
+  SA, SB: array[0..9] of Byte;
+  D: array[0..19] of Byte;
+  I, Wakes, NE, ND: Integer;
+  Coll, Garb: LongWord;
+begin
+  A := Stack('LOOP', 'PAIR=COLL END=1 BD=9600');
+  B := Stack('LOOP', 'PAIR=COLL END=2 BD=9600');
+  C := Stack('LOOP', 'PAIR=COLL END=3 BD=9600');
+  FillChar(SA, SizeOf(SA), $11);
+  FillChar(SB, SizeOf(SB), $22);
+  A^.ChSend(@SA, 10);
+  B^.ChSend(@SB, 10);
+  AssertEquals('C gets both', 20, TimedDrain(C, D, 20, Wakes));
+  NE := 0;
+  ND := 0;
+  for I := 0 to 19 do
+    if D[I] = $EE then
+      Inc(NE)
+    else if D[I] = $DD then
+      Inc(ND);
+  AssertEquals('A''s ten, garbled', 10, NE);
+  AssertEquals('B''s ten, garbled', 10, ND);
+  AssertEquals(10, TimedDrain(A, D, 10, Wakes));
+  AssertEquals('A hears B garbled', $DD, D[9]);
+  AssertEquals(10, TimedDrain(B, D, 10, Wakes));
+  AssertEquals('B hears A garbled', $EE, D[0]);
+  AssertTrue(LoopLineStats('coll', Coll, Garb));
+  AssertEquals('one collision', 1, Coll);
+  AssertEquals('20 characters garbled', 20, Garb);
+end;
+
+procedure TTestChnLoop.TestNoCollisionOneAfterTheOther;
+var
+  S: array[0..9] of Byte;
+  D: array[0..9] of Byte;
+  Wakes: Integer;
+  Coll, Garb: LongWord;
+begin
+  OpenPair('TURN', 'BD=19200');
+  FillChar(S, SizeOf(S), $11);
+  A^.ChSend(@S, 10);
+  AssertEquals(10, TimedDrain(B, D, 10, Wakes));
+  AssertEquals($11, D[9]);
+  AssertEquals(CHS_SendReady, A^.ChSendReady);
+  FillChar(S, SizeOf(S), $22);
+  B^.ChSend(@S, 10);
+  AssertEquals(10, TimedDrain(A, D, 10, Wakes));
+  AssertEquals($22, D[0]);
+  AssertTrue(LoopLineStats('TURN', Coll, Garb));
+  AssertEquals(0, Coll);
+  AssertEquals(0, Garb);
+  AssertFalse('no such line', LoopLineStats('NONE', Coll, Garb));
 end;
 
 initialization

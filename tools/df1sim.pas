@@ -24,6 +24,10 @@
                         answered with the cached reply, not executed again)
       --node=N          station address (default 1); --dno=N peer (default 0)
       --config=FILE     data table (tools/df1sim.conf); default: built in
+      --plc5            play a PLC-5: PLC-5 addresses in the data table (octal
+                        I/O, D files in BCD) and its commands too (typed
+                        read/write 0F 68/67, word range 0F 01/00,
+                        read-modify-write 0F 26; unit ChnPlc5Sim)
       --count=N         exit after answering N commands
       --timeout=S       exit after S seconds without a message
       --quiet           no per-message log
@@ -137,12 +141,15 @@ begin
   CliOption(Cli, 'node', #0, 'N', 'station address (default 1)');
   CliOption(Cli, 'dno', #0, 'N', 'peer address (default 0)');
   CliOption(Cli, 'config', #0, 'FILE', 'data table (tools/df1sim.conf); default: built in');
+  CliOption(Cli, 'plc5', #0, '', 'play a PLC-5: PLC-5 addresses in the data table and its ' +
+    'commands (typed read/write, word range read/write, read-modify-write)');
   CliOption(Cli, 'count', #0, 'N', 'exit after answering N commands');
   CliOption(Cli, 'timeout', #0, 'S', 'exit after S seconds without a message');
   CliOption(Cli, 'quiet', 'q', '', 'no per-message log');
   CliEpilog(Cli, 'Examples:' + LineEnding +
     '  df1sim --pty --half --bcc' + LineEnding +
     '  df1sim --dev=/dev/ttyUSB1 --bd=19200' + LineEnding +
+    '  df1sim --pty --plc5' + LineEnding +
     '  df1sim NAM=DF1 MAS=SLAVE NOD=1 NAM=TRC FILE=sim.log NAM=COM DRV=PTY' + LineEnding);
   CliExit(Cli, 0, 'ended by a signal, --count or --timeout');
   CliExit(Cli, 1, 'the port could not be opened, or was lost');
@@ -168,9 +175,12 @@ begin
   if (Params = '') and not UsePty and (Dev = '') and (Listen = '') then
     CliUsageError(Cli, 'no line: give --pty, --dev=PATH, --listen=PORT or a parameter string', '');
 
-  if ConfigName = '' then
+  if (ConfigName = '') and CliHas(Cli, 'plc5') then
+    Plc5LoadDefault(Table)
+  else if ConfigName = '' then
     SlcLoadDefault(Table)
-  else if not SlcLoadConfig(Table, LoadFile(ConfigName), ErrLine, Err) then
+  else if CliHas(Cli, 'plc5') and not Plc5LoadConfig(Table, LoadFile(ConfigName), ErrLine, Err) or
+    not CliHas(Cli, 'plc5') and not SlcLoadConfig(Table, LoadFile(ConfigName), ErrLine, Err) then
     CliUsageError(Cli, Format('%s line %d: %s', [ConfigName, ErrLine, Err]), '--config ' + ConfigName);
 
   if Params = '' then

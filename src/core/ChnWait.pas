@@ -65,6 +65,7 @@ type
     WantOut: Boolean;         { the owner waits for room to send }
     Rearm  : tChnWaitRearm;
     RearmData: Pointer;
+    Due    : QWord;           { ChnClockUs at which it fires by itself; 0: never }
     Index  : LongInt;         { slot in the set }
     Gen    : LongWord;        { bumped on every reuse of the slot }
   end;
@@ -110,6 +111,13 @@ function  ChnWaitWatching(Src: pChnWaitSource): Boolean;
 function  ChnWaitArmed(Src: pChnWaitSource): Boolean;
 { True where ChnWaitIdle really waits on the whole set (Linux, Windows). }
 function  ChnWaitShared: Boolean;
+{ A monotonic clock in microseconds (the time base of ChnWaitDue). }
+function  ChnClockUs: QWord;
+{ Src fires by itself at AtUs (ChnClockUs) as if input had come: a layer
+  whose input arrives at a known time (a line at a given speed) makes the
+  waits of the process end then instead of polling for it. The earliest
+  time given since Src last fired is kept; firing clears it. Any thread. }
+procedure ChnWaitDue(Src: pChnWaitSource; AtUs: QWord);
 { Number of sources in the set now (open physical layers). }
 function  ChnWaitCount: LongInt;
 { A layer holds input that has arrived but that the program has not taken
@@ -154,11 +162,34 @@ var
   SkipBudget: LongInt = 0;           { waits that may still return at once }
   Blocked: LongInt = 0;              { threads inside the OS wait now }
   HeldCount: LongInt = 0;            { layers holding input not yet taken }
+  DueCount: LongInt = 0;             { sources with a Due time }
 
 {$IFDEF UNIX}{$I unix/chnwait.inc}{$ENDIF}
 {$IFDEF WINDOWS}{$I win/chnwait.inc}{$ENDIF}
 
 { ------------------------------------------------------------------ set }
+
+function ChnClockUs: QWord;
+{$IFDEF WINDOWS}
+var
+  C, F: Int64;
+begin
+  QueryPerformanceFrequency(F);
+  QueryPerformanceCounter(C);
+  Result := QWord(C div F) * 1000000 + QWord((C mod F) * 1000000 div F);
+end;
+{$ELSE}{$IFDEF LINUX}
+var
+  T: TTimeSpec;
+begin
+  clock_gettime(CLOCK_MONOTONIC, @T);
+  Result := QWord(T.tv_sec) * 1000000 + QWord(T.tv_nsec div 1000);
+end;
+{$ELSE}
+begin
+  Result := GetTickCount64 * 1000;
+end;
+{$ENDIF}{$ENDIF}
 
 function ChnWaitShared: Boolean;
 begin
@@ -201,6 +232,77 @@ end;
 function ChnWaitHeldCount: LongInt;
 begin
   Result := HeldCount;
+end;
+
+{ Caller holds Lock. }
+procedure MarkFired(Src: pChnWaitSource);
+begin
+  if Src^.Kind = wkSignal then
+    Src^.Armed := False;            { like a one-shot descriptor }
+  if not Src^.Fired then
+  begin
+    Src^.Fired := True;
+    Inc(FiredCount);
+  end;
+  SkipBudget := 2 * Members + 2;
+end;
+
+{ Caller holds Lock. }
+procedure ClearDue(Src: pChnWaitSource);
+begin
+  if Src^.Due <> 0 then
+  begin
+    Src^.Due := 0;
+    Dec(DueCount);
+  end;
+end;
+
+{ Fire the sources whose time has come; Left := microseconds to the next
+  due time (High(QWord) when none). True when one fired. Caller holds Lock. }
+function FireDue(out Left: QWord): Boolean;
+var
+  I: LongInt;
+  Now: QWord;
+begin
+  Result := False;
+  Left := High(QWord);
+  if DueCount = 0 then
+    Exit;
+  Now := ChnClockUs;
+  for I := 0 to SlotCount - 1 do
+    with Slots[I]^ do
+      if Used and (Due <> 0) then
+        if Due <= Now then
+        begin
+          ClearDue(Slots[I]);
+          MarkFired(Slots[I]);
+          Result := True;
+        end
+        else if Due - Now < Left then
+          Left := Due - Now;
+end;
+
+procedure ChnWaitDue(Src: pChnWaitSource; AtUs: QWord);
+begin
+  if Src = nil then
+    Exit;
+  if AtUs = 0 then
+    AtUs := 1;
+  EnterCriticalSection(Lock);
+  try
+    if Src^.Used and ((Src^.Due = 0) or (AtUs < Src^.Due)) then
+    begin
+      if Src^.Due = 0 then
+        Inc(DueCount);
+      Src^.Due := AtUs;
+      {$IF DEFINED(LINUX) OR DEFINED(WINDOWS)}
+      if Blocked > 0 then
+        OsWake(Blocked);            { they wait with the old timeout }
+      {$ENDIF}
+    end;
+  finally
+    LeaveCriticalSection(Lock);
+  end;
 end;
 
 { Caller holds Lock. }
@@ -268,6 +370,7 @@ begin
     if Src^.Used then
     begin
       ClearFired(Src);
+      ClearDue(Src);
       {$IF DEFINED(LINUX) OR DEFINED(WINDOWS)}
       OsForget(Src);
       {$ENDIF}
@@ -314,14 +417,7 @@ begin
   try
     if Src^.Used and Src^.Armed then
     begin
-      if Src^.Kind = wkSignal then
-        Src^.Armed := False;        { like a one-shot descriptor }
-      if not Src^.Fired then
-      begin
-        Src^.Fired := True;
-        Inc(FiredCount);
-      end;
-      SkipBudget := 2 * Members + 2;
+      MarkFired(Src);
       {$IF DEFINED(LINUX) OR DEFINED(WINDOWS)}
       if Blocked > 0 then
         OsWake(Blocked);
@@ -360,10 +456,12 @@ end;
 function WaitSet(Own: pChnWaitSource; Ms: LongInt): Boolean;
 var
   I: LongInt;
+  Left: QWord;
 begin
   Result := False;
   {$IF DEFINED(LINUX) OR DEFINED(WINDOWS)}
   EnterCriticalSection(Lock);
+  FireDue(Left);
   if FiredCount > 0 then
   begin
     { another channel has input its owner has not looked at yet: do not
@@ -390,7 +488,11 @@ begin
     LeaveCriticalSection(Lock);
     Exit(False);
   end;
+  if (Left < High(QWord)) and ((Left + 999) div 1000 < QWord(Ms)) then
+    Ms := (Left + 999) div 1000;     { a source falls due before then }
   Result := OsWait(Ms, Own);         { returns with Lock held, as it came }
+  if FireDue(Left) then
+    Result := True;
   LeaveCriticalSection(Lock);
   {$ENDIF}
 end;

@@ -53,6 +53,7 @@ const
   pft_String  = $8D;
   pft_Ascii   = $8E;
   pft_Long    = $91;
+  pft_Bcd     = $8F;   { PLC-5 D files (unit ChnPlc5): a word of four BCD digits }
 
   CF_PcccRead3      = $0FA2;   { = ChnDF1.CF_ProtectRead3Addr }
   CF_PcccWrite3     = $0FAA;   { = ChnDF1.CF_ProtectWrite3Addr }
@@ -75,6 +76,9 @@ type
 
   tPcccValueKind = (pvInt, pvFloat, pvString);
 
+  { whose address rules: SLC 500 / MicroLogix, or PLC-5 }
+  tPcccDialect = (pdSlc, pdPlc5);
+
   { How a read or write of Count items at Addr travels: requests of
     PerReq units (elements, or words for bits) each. }
   tPcccMode = (pmElems, pmSubs, pmBits);
@@ -92,6 +96,14 @@ type
 { Parse an address (case and surrounding blanks ignored). res_Ok, or
   res_PcccAddress with Err naming the part that is wrong. }
 function PcccParseAddress(const S: ShortString; out A: tPcccAddr; out Err: ShortString): tChResult;
+{ The same by the rules of a family: pdSlc (SLC 500 / MicroLogix: files
+  up to 255, elements up to 65535, L files) or pdPlc5 (PLC-5, unit
+  ChnPlc5: files 3..999, elements 0..999, O and I elements octal 0..277
+  with octal bits 00..17, D files, no L). }
+function PcccParseAddressAs(Dialect: tPcccDialect; const S: ShortString; out A: tPcccAddr;
+  out Err: ShortString): tChResult;
+{ The canonical text by a family's rules ('I:012/05' for a PLC-5). }
+function PcccAddressTextAs(Dialect: tPcccDialect; const A: tPcccAddr): ShortString;
 { The canonical text of an address ('T4:0.ACC', 'B3:1/4'). }
 function PcccAddressText(const A: tPcccAddr): ShortString;
 { The file letter(s) of a type code ('N', 'ST'); '' when unknown. }
@@ -100,6 +112,14 @@ function PcccFileLetter(FileType: Byte): ShortString;
 function PcccElemSize(FileType: Byte): Word;
 { What kind of value an address reads and writes. }
 function PcccValueKind(const A: tPcccAddr): tPcccValueKind;
+{ The type code of file letter(s) ('N', 'ST', 'D'); 0 when unknown. Fixed
+  is the file's only number (O 0, I 1, S 2), -1 for the others. }
+function PcccFileByLetter(const Letters: ShortString; out Fixed: SmallInt): Byte;
+{ The sub-element '.ACC', '.DN' ... of a T, C or R file: its word (Sub)
+  and bit (-1: the whole word); False when the file has none of that name. }
+function PcccFindSub(FileType: Byte; const Name: ShortString; out Sub: Byte; out Bit: ShortInt): Boolean;
+{ The name of A's sub-element ('ACC', 'DN'); '' when none. }
+function PcccSubName(const A: tPcccAddr): ShortString;
 
 { Plan a read (Write False) or write of Count items at A, at most MaxBytes
   data bytes per request (1..244). An item is an element; a word for
@@ -116,6 +136,10 @@ function PcccPlan(const A: tPcccAddr; Count: LongInt; Write: Boolean; MaxBytes: 
 function PcccItemAddress(const P: tPcccPlan; Item: LongInt): tPcccAddr;
 { Number of requests of a plan. }
 function PcccPlanRequests(const P: tPcccPlan): LongInt;
+{ Where request Index of a plan starts (the word of a bit, the element of
+  a sub-element) and how many units it covers; False when Index is out of
+  range. }
+function PcccPlanChunk(const P: tPcccPlan; Index: LongInt; out At: tPcccAddr; out Units: LongInt): Boolean;
 { The values (LongInt) the items of a plan fill: Count * PerItem. }
 function PcccPlanValues(const P: tPcccPlan): LongInt;
 
@@ -132,6 +156,17 @@ function PcccDecodePlanInts(const P: tPcccPlan; Index: LongInt; const Data: arra
   DataLen: Word; var Values: array of LongInt): tChResult;
 function PcccDecodePlanFloats(const P: tPcccPlan; Index: LongInt; const Data: array of Byte;
   DataLen: Word; var Values: array of Single): tChResult;
+
+{ The data of request Index of a write plan, whatever command carries it:
+  At is where it starts; Bytes bytes in Data (little-endian words, longs,
+  floats), or for bits Bytes 0 and the word's Mask (bits written) and
+  Bits (their values). res_PcccValue with Err naming the value and its
+  range when one does not fit the element. }
+function PcccPlanWriteInts(const P: tPcccPlan; Index: LongInt; const Values: array of LongInt;
+  out At: tPcccAddr; var Data: array of Byte; out Bytes: Word; out Mask, Bits: Word;
+  out Err: ShortString): tChResult;
+function PcccPlanWriteFloats(const P: tPcccPlan; Index: LongInt; const Values: array of Single;
+  out At: tPcccAddr; var Data: array of Byte; out Bytes: Word; out Err: ShortString): tChResult;
 
 { Request Index of a write plan with the values given (ints for word, long
   and bit addresses, floats for F). res_PcccValue with Err naming the
@@ -177,7 +212,7 @@ type
   end;
 
 const
-  Files: array[0..11] of tFileInfo = (
+  Files: array[0..12] of tFileInfo = (
     (Letter: 'O';  FType: pft_Output;  Size: 2;  Fixed: 0),
     (Letter: 'I';  FType: pft_Input;   Size: 2;  Fixed: 1),
     (Letter: 'S';  FType: pft_Status;  Size: 2;  Fixed: 2),
@@ -189,7 +224,8 @@ const
     (Letter: 'F';  FType: pft_Float;   Size: 4;  Fixed: -1),
     (Letter: 'ST'; FType: pft_String;  Size: 84; Fixed: -1),
     (Letter: 'A';  FType: pft_Ascii;   Size: 2;  Fixed: -1),
-    (Letter: 'L';  FType: pft_Long;    Size: 4;  Fixed: -1));
+    (Letter: 'L';  FType: pft_Long;    Size: 4;  Fixed: -1),
+    (Letter: 'D';  FType: pft_Bcd;     Size: 2;  Fixed: -1));
 
 type
   tSubInfo = record
@@ -280,7 +316,37 @@ begin
     Result := pvInt;
 end;
 
-function SubName(const A: tPcccAddr): ShortString;
+function PcccFileByLetter(const Letters: ShortString; out Fixed: SmallInt): Byte;
+var
+  I: Integer;
+begin
+  Result := 0;
+  Fixed := -1;
+  for I := Low(Files) to High(Files) do
+    if Files[I].Letter = Letters then
+    begin
+      Fixed := Files[I].Fixed;
+      Exit(Files[I].FType);
+    end;
+end;
+
+function PcccFindSub(FileType: Byte; const Name: ShortString; out Sub: Byte; out Bit: ShortInt): Boolean;
+var
+  I: Integer;
+begin
+  Sub := 0;
+  Bit := -1;
+  for I := Low(SubTable) to High(SubTable) do
+    if (SubTable[I].FType = FileType) and (SubTable[I].Name = Name) then
+    begin
+      Sub := SubTable[I].Sub;
+      Bit := SubTable[I].Bit;
+      Exit(True);
+    end;
+  Result := False;
+end;
+
+function PcccSubName(const A: tPcccAddr): ShortString;
 var
   I: Integer;
 begin
@@ -298,7 +364,7 @@ begin
   Result := PcccFileLetter(A.FileType) + IntToStr(A.FileNo) + ':' + IntToStr(A.Elem);
   if A.HasSub then
   begin
-    Name := SubName(A);
+    Name := PcccSubName(A);
     if Name = '' then
       Name := IntToStr(A.Sub);
     Result := Result + '.' + Name;
@@ -310,11 +376,82 @@ begin
 end;
 
 function PcccParseAddress(const S: ShortString; out A: tPcccAddr; out Err: ShortString): tChResult;
+begin
+  Result := PcccParseAddressAs(pdSlc, S, A, Err);
+end;
+
+type
+  tDialectRules = record
+    Missing  : Byte;          { the file type this family has not }
+    Letters  : string[27];
+    MaxFile  : LongInt;
+    MaxElem  : LongInt;
+    MaxBit   : LongInt;       { of a bit counted from the start of a B file }
+    OctalIo  : Boolean;       { O and I elements and bits in octal }
+  end;
+
+const
+  Rules: array[tPcccDialect] of tDialectRules = (
+    (Missing: pft_Bcd;  Letters: 'O I S B T C R N F ST A L'; MaxFile: 255; MaxElem: 65535;
+     MaxBit: 65535; OctalIo: False),
+    (Missing: pft_Long; Letters: 'O I S B T C R N F ST A D'; MaxFile: 999; MaxElem: 999;
+     MaxBit: 15999; OctalIo: True));
+  OctalIoMax = 191;           { 277 octal: the last rack/group of a PLC-5 }
+
+function IsIo(FileType: Byte): Boolean;
+begin
+  Result := FileType in [pft_Output, pft_Input];
+end;
+
+{ Octal digits to a number up to Max; False when empty, not octal or above. }
+function OctalToNum(const S: ShortString; Max: LongInt; out V: LongInt): Boolean;
+var
+  I: Integer;
+begin
+  V := 0;
+  Result := (S <> '') and (Length(S) <= 7);
+  if not Result then
+    Exit;
+  for I := 1 to Length(S) do
+  begin
+    if not (S[I] in ['0'..'7']) then
+      Exit(False);
+    V := V * 8 + Ord(S[I]) - Ord('0');
+  end;
+  Result := V <= Max;
+end;
+
+function OctalText(V: LongInt; Digits: Integer): ShortString;
+begin
+  Result := '';
+  repeat
+    Result := Chr(Ord('0') + V mod 8) + Result;
+    V := V div 8;
+  until V = 0;
+  while Length(Result) < Digits do
+    Result := '0' + Result;
+end;
+
+function PcccAddressTextAs(Dialect: tPcccDialect; const A: tPcccAddr): ShortString;
+begin
+  if Rules[Dialect].OctalIo and IsIo(A.FileType) then
+  begin
+    Result := PcccFileLetter(A.FileType) + ':' + OctalText(A.Elem, 3);
+    if A.Bit >= 0 then
+      Result := Result + '/' + OctalText(A.Bit, 2);
+  end
+  else
+    Result := PcccAddressText(A);
+end;
+
+function PcccParseAddressAs(Dialect: tPcccDialect; const S: ShortString; out A: tPcccAddr;
+  out Err: ShortString): tChResult;
 var
   T, Letters, Num, SubS: ShortString;
   P, Q, I, FI: Integer;
   V: LongInt;
-  HaveFile: Boolean;
+  HaveFile, Octal: Boolean;
+  R: tDialectRules;
 
   function Bad(const Why: ShortString): tChResult;
   begin
@@ -326,6 +463,7 @@ begin
   FillChar(A, SizeOf(A), 0);
   A.Bit := -1;
   Err := '';
+  R := Rules[Dialect];
   T := UpperCase(Trim(S));
   if T = '' then
     Exit(Bad('empty'));
@@ -338,8 +476,8 @@ begin
   for I := Low(Files) to High(Files) do
     if Files[I].Letter = Letters then
       FI := I;
-  if FI < 0 then
-    Exit(Bad('file type "' + Letters + '" is none of O I S B T C R N F ST A L'));
+  if (FI < 0) or (Files[FI].FType = R.Missing) then
+    Exit(Bad('file type "' + Letters + '" is none of ' + R.Letters));
   A.FileType := Files[FI].FType;
   { the file number (may be left out for O, I and S) }
   Q := P;
@@ -348,8 +486,8 @@ begin
   Num := Copy(T, Q, P - Q);
   HaveFile := Num <> '';
   V := 0;
-  if HaveFile and not StrToNum(Num, 0, 255, V) then
-    Exit(Bad('file number "' + Num + '" is not 0..255'));
+  if HaveFile and not StrToNum(Num, 0, R.MaxFile, V) then
+    Exit(Bad('file number "' + Num + '" is not 0..' + IntToStr(R.MaxFile)));
   if Files[FI].Fixed >= 0 then
   begin
     if HaveFile and (V <> Files[FI].Fixed) then
@@ -359,7 +497,7 @@ begin
   else if not HaveFile then
     Exit(Bad('file number missing after ' + Letters))
   else if V < 3 then
-    Exit(Bad('file number ' + Num + ' is not 3..255 (0, 1, 2 are O, I, S)'));
+    Exit(Bad('file number ' + Num + ' is not 3..' + IntToStr(R.MaxFile) + ' (0, 1, 2 are O, I, S)'));
   A.FileNo := V;
   if P > Length(T) then
     Exit(Bad('":element" missing'));
@@ -369,8 +507,8 @@ begin
     if A.FileType <> pft_Bit then
       Exit(Bad('a bit number without an element ("/n") is only for B files'));
     Num := Copy(T, P + 1, 255);
-    if not StrToNum(Num, 0, 65535, V) then
-      Exit(Bad('bit number "' + Num + '" is not 0..65535'));
+    if not StrToNum(Num, 0, R.MaxBit, V) then
+      Exit(Bad('bit number "' + Num + '" is not 0..' + IntToStr(R.MaxBit)));
     A.Elem := V div 16;
     A.Bit := V mod 16;
     Exit(res_Ok);
@@ -382,8 +520,14 @@ begin
   while (P <= Length(T)) and (T[P] in ['0'..'9']) do
     Inc(P);
   Num := Copy(T, Q, P - Q);
-  if not StrToNum(Num, 0, 65535, V) then
-    Exit(Bad('element "' + Num + '" is not 0..65535'));
+  Octal := R.OctalIo and IsIo(A.FileType);
+  if Octal then
+  begin
+    if not OctalToNum(Num, OctalIoMax, V) then
+      Exit(Bad('element "' + Num + '" is not octal 0..277 (I/O racks and groups)'));
+  end
+  else if not StrToNum(Num, 0, R.MaxElem, V) then
+    Exit(Bad('element "' + Num + '" is not 0..' + IntToStr(R.MaxElem)));
   A.Elem := V;
   { .sub-element }
   if (P <= Length(T)) and (T[P] = '.') then
@@ -395,13 +539,7 @@ begin
     SubS := Copy(T, Q, P - Q);
     if not IsTcr(A.FileType) then
       Exit(Bad('".' + SubS + '": ' + Letters + ' elements have no sub-elements'));
-    for I := Low(SubTable) to High(SubTable) do
-      if (SubTable[I].FType = A.FileType) and (SubTable[I].Name = SubS) then
-      begin
-        A.HasSub := True;
-        A.Sub := SubTable[I].Sub;
-        A.Bit := SubTable[I].Bit;
-      end;
+    A.HasSub := PcccFindSub(A.FileType, SubS, A.Sub, A.Bit);
     if not A.HasSub then
       Exit(Bad('sub-element ".' + SubS + '" is not one of a ' + Letters + ' element'));
   end;
@@ -415,7 +553,12 @@ begin
       Exit(Bad('"/' + Num + '" on a whole ' + Letters + ' element: name a word (.PRE, .ACC) or a bit (.DN)'));
     if not IsWordFile(A.FileType) and not IsTcr(A.FileType) then
       Exit(Bad('"/' + Num + '": ' + Letters + ' elements have no addressable bits'));
-    if not StrToNum(Num, 0, 15, V) then
+    if Octal then
+    begin
+      if not OctalToNum(Num, 15, V) then
+        Exit(Bad('bit "' + Num + '" is not octal 00..17'));
+    end
+    else if not StrToNum(Num, 0, 15, V) then
       Exit(Bad('bit "' + Num + '" is not 0..15'));
     A.Bit := V;
     P := Length(T) + 1;
@@ -637,6 +780,14 @@ begin
     Result.Sub := 0;
 end;
 
+function PcccPlanChunk(const P: tPcccPlan; Index: LongInt; out At: tPcccAddr; out Units: LongInt): Boolean;
+var
+  First: LongInt;
+begin
+  Result := Chunk(P, Index, First, Units);
+  At := ChunkAddr(P, First);
+end;
+
 function PcccBuildPlanRead(const P: tPcccPlan; Index: LongInt; Tns: Word;
   var Req: tSendRecord; out ReqLen: Word; out Expect: Word): tChResult;
 var
@@ -757,16 +908,18 @@ begin
   end;
 end;
 
-function PcccBuildPlanWriteInts(const P: tPcccPlan; Index: LongInt; const Values: array of LongInt;
-  Tns: Word; var Req: tSendRecord; out ReqLen: Word; out Err: ShortString): tChResult;
+function PcccPlanWriteInts(const P: tPcccPlan; Index: LongInt; const Values: array of LongInt;
+  out At: tPcccAddr; var Data: array of Byte; out Bytes: Word; out Mask, Bits: Word;
+  out Err: ShortString): tChResult;
 var
   First, N, I, K, Item, Lo, Hi: LongInt;
-  Buf: array[0..MaxDataLen - 1] of Byte;
-  Mask, Bits: Word;
   V: LongInt;
 begin
-  ReqLen := 0;
+  Bytes := 0;
+  Mask := 0;
+  Bits := 0;
   Err := '';
+  At := P.Addr;
   if not P.Write or not Chunk(P, Index, First, N) or (PcccValueKind(P.Addr) <> pvInt) then
   begin
     Err := PcccAddressText(P.Addr) + ' does not take integer values';
@@ -777,11 +930,10 @@ begin
     Err := Format('%d values given, %d needed', [Length(Values), PcccPlanValues(P)]);
     Exit(res_PcccCount);
   end;
+  At := ChunkAddr(P, First);
   IntRange(P.Addr, Lo, Hi);
   if P.Mode = pmBits then
   begin
-    Mask := 0;
-    Bits := 0;
     for K := 0 to 15 do
     begin
       Item := First * 16 + K - P.Addr.Bit;
@@ -799,7 +951,7 @@ begin
           Bits := Bits or Word(1 shl K);
       end;
     end;
-    Exit(PcccBuildMaskedWrite(ChunkAddr(P, First), Mask, Bits, Tns, Req, ReqLen));
+    Exit(res_Ok);
   end;
   if (P.Mode = pmSubs) and (P.Addr.Bit >= 0) then
   begin
@@ -810,9 +962,12 @@ begin
         [V, PcccAddressText(PcccItemAddress(P, First))]);
       Exit(res_PcccValue);
     end;
-    Exit(PcccBuildMaskedWrite(ChunkAddr(P, First), Word(1 shl P.Addr.Bit),
-      Word(V shl P.Addr.Bit), Tns, Req, ReqLen));
+    Mask := Word(1 shl P.Addr.Bit);
+    Bits := Word(V shl P.Addr.Bit);
+    Exit(res_Ok);
   end;
+  if N * P.UnitBytes > Length(Data) then
+    Exit(res_PcccCount);
   for I := 0 to N * P.PerItem - 1 do
   begin
     V := Values[First * P.PerItem + I];
@@ -824,29 +979,47 @@ begin
     end;
     if P.Addr.FileType = pft_Long then
     begin
-      Buf[I * 4] := LongWord(V) and $FF;
-      Buf[I * 4 + 1] := (LongWord(V) shr 8) and $FF;
-      Buf[I * 4 + 2] := (LongWord(V) shr 16) and $FF;
-      Buf[I * 4 + 3] := LongWord(V) shr 24;
+      Data[I * 4] := LongWord(V) and $FF;
+      Data[I * 4 + 1] := (LongWord(V) shr 8) and $FF;
+      Data[I * 4 + 2] := (LongWord(V) shr 16) and $FF;
+      Data[I * 4 + 3] := LongWord(V) shr 24;
     end
     else
     begin
-      Buf[I * 2] := V and $FF;
-      Buf[I * 2 + 1] := (V shr 8) and $FF;
+      Data[I * 2] := V and $FF;
+      Data[I * 2 + 1] := (V shr 8) and $FF;
     end;
   end;
-  Result := PcccBuildWrite(ChunkAddr(P, First), Buf, N * P.UnitBytes, Tns, Req, ReqLen);
+  Bytes := N * P.UnitBytes;
+  Result := res_Ok;
 end;
 
-function PcccBuildPlanWriteFloats(const P: tPcccPlan; Index: LongInt; const Values: array of Single;
+function PcccBuildPlanWriteInts(const P: tPcccPlan; Index: LongInt; const Values: array of LongInt;
   Tns: Word; var Req: tSendRecord; out ReqLen: Word; out Err: ShortString): tChResult;
 var
-  First, N, I: LongInt;
   Buf: array[0..MaxDataLen - 1] of Byte;
-  L: LongWord;
+  At: tPcccAddr;
+  Bytes, Mask, Bits: Word;
 begin
   ReqLen := 0;
+  Result := PcccPlanWriteInts(P, Index, Values, At, Buf, Bytes, Mask, Bits, Err);
+  if Result <> res_Ok then
+    Exit;
+  if Bytes = 0 then
+    Result := PcccBuildMaskedWrite(At, Mask, Bits, Tns, Req, ReqLen)
+  else
+    Result := PcccBuildWrite(At, Buf, Bytes, Tns, Req, ReqLen);
+end;
+
+function PcccPlanWriteFloats(const P: tPcccPlan; Index: LongInt; const Values: array of Single;
+  out At: tPcccAddr; var Data: array of Byte; out Bytes: Word; out Err: ShortString): tChResult;
+var
+  First, N, I: LongInt;
+  L: LongWord;
+begin
+  Bytes := 0;
   Err := '';
+  At := P.Addr;
   if not P.Write or not Chunk(P, Index, First, N) or (PcccValueKind(P.Addr) <> pvFloat) then
   begin
     Err := PcccAddressText(P.Addr) + ' does not take float values';
@@ -857,6 +1030,8 @@ begin
     Err := Format('%d values given, %d needed', [Length(Values), P.Count]);
     Exit(res_PcccCount);
   end;
+  if N * 4 > Length(Data) then
+    Exit(res_PcccCount);
   for I := 0 to N - 1 do
   begin
     Move(Values[First + I], L, 4);
@@ -865,12 +1040,27 @@ begin
       Err := 'value for ' + PcccAddressText(PcccItemAddress(P, First + I)) + ' is not a finite number';
       Exit(res_PcccValue);
     end;
-    Buf[I * 4] := L and $FF;
-    Buf[I * 4 + 1] := (L shr 8) and $FF;
-    Buf[I * 4 + 2] := (L shr 16) and $FF;
-    Buf[I * 4 + 3] := L shr 24;
+    Data[I * 4] := L and $FF;
+    Data[I * 4 + 1] := (L shr 8) and $FF;
+    Data[I * 4 + 2] := (L shr 16) and $FF;
+    Data[I * 4 + 3] := L shr 24;
   end;
-  Result := PcccBuildWrite(ChunkAddr(P, First), Buf, N * 4, Tns, Req, ReqLen);
+  At := ChunkAddr(P, First);
+  Bytes := N * 4;
+  Result := res_Ok;
+end;
+
+function PcccBuildPlanWriteFloats(const P: tPcccPlan; Index: LongInt; const Values: array of Single;
+  Tns: Word; var Req: tSendRecord; out ReqLen: Word; out Err: ShortString): tChResult;
+var
+  Buf: array[0..MaxDataLen - 1] of Byte;
+  At: tPcccAddr;
+  Bytes: Word;
+begin
+  ReqLen := 0;
+  Result := PcccPlanWriteFloats(P, Index, Values, At, Buf, Bytes, Err);
+  if Result = res_Ok then
+    Result := PcccBuildWrite(At, Buf, Bytes, Tns, Req, ReqLen);
 end;
 
 { -------------------------------------------------------------- strings }

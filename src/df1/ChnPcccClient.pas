@@ -1,4 +1,5 @@
-{ ChnPcccClient - read and write SLC 500 / MicroLogix data by address
+{ ChnPcccClient - read and write SLC 500 / MicroLogix (and, with
+  PcccClientPlc5, PLC-5: unit ChnPlc5) data by address
   ('N7:0', 'F8:2', 'B3:1/4', 'T4:0.ACC', 'ST9:0', 'L10:0') over any DF1
   stack (full or half duplex, BCC or CRC), as a master.
 
@@ -26,7 +27,7 @@ unit ChnPcccClient;
 interface
 
 uses
-  ChnTypes, ChnVirt, ChnDF1Codec, ChnDF1Link, ChnPccc;
+  ChnTypes, ChnVirt, ChnDF1Codec, ChnDF1Link, ChnPccc, ChnPlc5;
 
 type
   tPcccClient = record
@@ -42,6 +43,8 @@ type
     Requests : LongInt;      { exchanges made }
     InUse    : Boolean;      { a request is under way: one at a time }
     Err      : ShortString;  { the text of the last failure }
+    Plc5     : Boolean;      { PLC-5 addresses and commands (PcccClientPlc5) }
+    Plc5Cmd  : tPlc5Command; { typed read/write or word range }
   end;
   pPcccClient = ^tPcccClient;
 
@@ -74,6 +77,10 @@ procedure PcccClientInit(var C: tPcccClient; Chn: pChnVirt);
 function PcccOpen(var C: tPcccClient; const Params: AnsiString): tChResult;
 { Disconnect and dispose of a stack PcccOpen built. }
 procedure PcccClose(var C: tPcccClient);
+{ Talk to a PLC-5: its addresses ('I:012/05', 'D10:0', unit ChnPlc5) and
+  commands - typed read/write (0F 68/67, Cmd p5Typed) or word range read/
+  write (0F 01/00, p5WordRange); bits by read-modify-write (0F 26). }
+procedure PcccClientPlc5(var C: tPcccClient; Cmd: tPlc5Command);
 
 { Blocking. Count items from Addr (see ChnPccc.PcccPlan: ints are 16-bit
   words, 32-bit for L, 0/1 for bits, three per whole T/C/R element). }
@@ -172,6 +179,30 @@ begin
   Result := res_Ok;
 end;
 
+procedure PcccClientPlc5(var C: tPcccClient; Cmd: tPlc5Command);
+begin
+  C.Plc5 := True;
+  C.Plc5Cmd := Cmd;
+end;
+
+{ The address rules of the client's PLC family. }
+function ParseFor(const C: tPcccClient; const Addr: ShortString; out A: tPcccAddr;
+  out E: ShortString): tChResult;
+begin
+  if C.Plc5 then
+    Result := Plc5ParseAddress(Addr, A, E)
+  else
+    Result := PcccParseAddress(Addr, A, E);
+end;
+
+function TextFor(C: pPcccClient; const A: tPcccAddr): ShortString;
+begin
+  if (C <> nil) and C^.Plc5 then
+    Result := Plc5AddressText(A)
+  else
+    Result := PcccAddressText(A);
+end;
+
 procedure PcccClose(var C: tPcccClient);
 begin
   if C.OwnsChn and (C.Chn <> nil) then
@@ -200,7 +231,7 @@ function Fail(var R: tPcccRequest; Res: tChResult; const Why: ShortString): Bool
 begin
   Release(R);
   R.Result := Res;
-  R.Err := PcccAddressText(R.Plan.Addr) + ': ' + Why;
+  R.Err := TextFor(R.Client, R.Plan.Addr) + ': ' + Why;
   if R.Client <> nil then
     R.Client^.Err := R.Err;
   Result := False;
@@ -234,7 +265,7 @@ begin
   SetLength(R.Ints, 0);
   SetLength(R.Floats, 0);
   C.Err := '';
-  Res := PcccParseAddress(Addr, A, E);
+  Res := ParseFor(C, Addr, A, E);
   if Res <> res_Ok then
   begin
     R.Result := Res;
@@ -244,7 +275,10 @@ begin
   end;
   R.Plan.Addr := A;
   R.Kind := PcccValueKind(A);
-  Res := PcccPlan(A, Count, Op = poWrite, C.MaxBytes, R.Plan, E);
+  if C.Plc5 then
+    Res := Plc5Plan(A, Count, Op = poWrite, C.MaxBytes, R.Plan, E)
+  else
+    Res := PcccPlan(A, Count, Op = poWrite, C.MaxBytes, R.Plan, E);
   if Res <> res_Ok then
     Exit(Fail(R, Res, E));
   if (R.Kind = pvString) and (Count <> 1) then
@@ -252,6 +286,24 @@ begin
   if not IsDF1Channel(C.Chn) then
     Exit(Fail(R, res_WrongLayer, 'the client has no DF1 channel'));
   Result := True;
+end;
+
+{ Request R.Index to a PLC-5. }
+function BuildPlc5(var R: tPcccRequest; var Req: tSendRecord; out Len: Word; out E: ShortString): tChResult;
+var
+  C: pPcccClient;
+begin
+  C := R.Client;
+  E := '';
+  if R.Op = poRead then
+    Result := Plc5BuildPlanRead(R.Plan, R.Index, C^.Plc5Cmd, C^.Tns, Req, Len, R.Expect)
+  else
+    case R.Kind of
+      pvFloat: Result := Plc5BuildPlanWriteFloats(R.Plan, R.Index, R.Floats, C^.Plc5Cmd, C^.Tns, Req, Len, E);
+      pvString: Result := Plc5BuildWriteString(R.Plan.Addr, R.Str, C^.Tns, Req, Len, E);
+    else
+      Result := Plc5BuildPlanWriteInts(R.Plan, R.Index, R.Ints, C^.Plc5Cmd, C^.Tns, Req, Len, E);
+    end;
 end;
 
 { Build request R.Index and send it. }
@@ -267,7 +319,9 @@ begin
   C := R.Client;
   E := '';
   R.Expect := 0;
-  if R.Op = poRead then
+  if C^.Plc5 then
+    Res := BuildPlc5(R, Req, Len, E)
+  else if R.Op = poRead then
     Res := PcccBuildPlanRead(R.Plan, R.Index, C^.Tns, Req, Len, R.Expect)
   else
     case R.Kind of
@@ -345,7 +399,7 @@ var
 begin
   { a whole T/C/R element takes three values: the plan counts elements }
   PerItem := 1;
-  if (PcccParseAddress(Addr, A, E) = res_Ok) and
+  if (ParseFor(C, Addr, A, E) = res_Ok) and
      (A.FileType in [pft_Timer, pft_Counter, pft_Control]) and not A.HasSub and (A.Bit < 0) then
     PerItem := 3;
   Result := Prepare(R, C, Addr, Max(Length(Values) div PerItem, 1), poWrite);
@@ -403,7 +457,7 @@ var
   D: Double;
   Res: tChResult;
 begin
-  Res := PcccParseAddress(Addr, A, E);
+  Res := ParseFor(C, Addr, A, E);
   if Res <> res_Ok then
   begin
     Prepare(R, C, Addr, 1, poWrite);      { fails the same way, fills R }
@@ -467,6 +521,7 @@ end;
 procedure Exchanged(var R: tPcccRequest);
 var
   E: ShortString;
+  First: Word;
   Res: tChResult;
   M: ^tDF1Master;
 begin
@@ -480,7 +535,11 @@ begin
       Fail(R, M^.Result, PcccMasterFailure(M^, R.Client^.Chn));
     Exit;
   end;
-  Res := PcccCheckReply(M^.Rep, M^.RepLen, R.Expect, E);
+  First := 0;
+  if R.Client^.Plc5 and (R.Op = poRead) then
+    Res := Plc5CheckReadReply(R.Plan, R.Client^.Plc5Cmd, M^.Rep, M^.RepLen, R.Expect, First, E)
+  else
+    Res := PcccCheckReply(M^.Rep, M^.RepLen, R.Expect, E);
   if Res = res_PcccStatus then
   begin
     Fail(R, Res, 'error reply ' + E);
@@ -493,8 +552,14 @@ begin
   end;
   if R.Op = poRead then
   begin
+    if First > 0 then
+      Move(M^.Rep.Data[First], M^.Rep.Data[0], R.Expect);   { past the type parameter }
     case R.Kind of
-      pvInt: Res := PcccDecodePlanInts(R.Plan, R.Index, M^.Rep.Data, R.Expect, R.Ints);
+      pvInt:
+        if R.Client^.Plc5 then
+          Res := Plc5DecodePlanInts(R.Plan, R.Index, M^.Rep.Data, R.Expect, R.Ints)
+        else
+          Res := PcccDecodePlanInts(R.Plan, R.Index, M^.Rep.Data, R.Expect, R.Ints);
       pvFloat: Res := PcccDecodePlanFloats(R.Plan, R.Index, M^.Rep.Data, R.Expect, R.Floats);
       pvString: Res := PcccDecodeString(M^.Rep.Data, 0, R.Str);
     end;
@@ -558,7 +623,7 @@ var
   K: LongInt;
 begin
   A := PcccItemAddress(R.Plan, Item);
-  Result := PcccAddressText(A) + ' = ';
+  Result := TextFor(R.Client, A) + ' = ';
   case R.Kind of
     pvFloat: Result := Result + FloatToStr(R.Floats[Item]);
     pvString: Result := Result + '"' + R.Str + '"';

@@ -63,6 +63,9 @@ begin
         $A9: Result := 'Protected Typed Logical Write (2 addr)';
         $67: Result := 'Typed Write';
         $68: Result := 'Typed Read';
+        $00: Result := 'Word Range Write';
+        $01: Result := 'Word Range Read';
+        $26: Result := 'Read-Modify-Write';
       end;
   end;
 end;

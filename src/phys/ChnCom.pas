@@ -194,6 +194,8 @@ type
 
 { ' BD=.. BIT=.. STOP=.. PAR=.. FLW=..' as ChGetParam reports them. }
 function ComLineText(const S: tPortSettings): ShortString;
+{ ' BIT=.. STOP=.. PAR=..', the character alone. }
+function ComCharText(const S: tPortSettings): ShortString;
 
 implementation
 
@@ -385,9 +387,13 @@ end;
 
 function ComLineText(const S: tPortSettings): ShortString;
 begin
-  Result := ParamText('BD', S.Baud) + ParamText('BIT', S.DataBits) +
-    ParamText('STOP', S.StopBits) + ' PAR=' + ParityLetters[S.Parity] +
-    ' FLW=' + FlowNames[S.Flow];
+  Result := ParamText('BD', S.Baud) + ComCharText(S) + ' FLW=' + FlowNames[S.Flow];
+end;
+
+function ComCharText(const S: tPortSettings): ShortString;
+begin
+  Result := ParamText('BIT', S.DataBits) + ParamText('STOP', S.StopBits) +
+    ' PAR=' + ParityLetters[S.Parity];
 end;
 
 function tChnCom.ComBufferText: ShortString;

@@ -1,27 +1,44 @@
-{ ChnLoop - in-memory null modem (NAM=LOOP), a physical layer.
+{ ChnLoop - in-memory line (NAM=LOOP), a physical layer.
 
-  Two channel stacks in one process talk to each other with no OS device:
+  Channel stacks in one process talk to each other with no OS device:
     'NAM=DF1 NOD=1 NAM=LOOP PAIR=A END=1'   and   '... NAM=LOOP PAIR=A END=2'
   Each end is a tChnLoop: a tChnCom whose port is TChnPortLoop, so the
   receive ring, LRB=, IDL=, the transmit buffer and the program-wide wait
-  are COM's. The ends of one PAIR share two byte rings in the drivers, one
-  per direction, each of the receiving end's LRB bytes. A message larger
-  than the free space stays pending at the sender (COM's transmit buffer)
-  and moves on as the receiver reads, so the transfer is flow-controlled
-  and never loses bytes (ChSendReady reports CHS_Sending meanwhile). Bytes
-  sent while the other end is closed are lost, as on a cable with nobody
-  listening.
+  are COM's. The ends of one PAIR are one line: what an end sends, every
+  other open end of the pair receives (two ends: a null modem; more: a
+  multidrop line such as RS-485, END=1..32). Bytes sent while nobody else
+  is open are lost, as on a cable with nobody listening.
 
-  Parameters: PAIR=name (default A), END=1|2 (default 1; PAIR= and END=
-  cannot change while the end is open: res_WrongState), LRB=receive ring
-  size (default 4096, taken at the next ChOpen), IDL=ms to wait in
+  Without BD= the line has no speed: a message goes at once into the
+  receivers' rings (each LRB bytes); what does not fit stays pending at
+  the sender (COM's transmit buffer) and moves on as the receivers read,
+  so the transfer is flow-controlled and never loses bytes (ChSendReady
+  reports CHS_Sending meanwhile).
+
+  With BD= (and BIT=, STOP=, PAR= for the character: start bit, data,
+  parity, stop bits; default 8N1) the line runs at that speed: each
+  character reaches the other ends when its last bit would have, one
+  character time after the one before, and ChSendReady says CHS_Sending
+  until the last one has left. Nothing sleeps: the time is looked at when
+  a poll comes, and the program-wide wait (ChnWaitAny, IDL=) is told when
+  the next characters fall due (ChnWaitDue), so it wakes then. A
+  receiver whose ring is full loses what comes (counted, res_Overrun, as
+  a UART overrun). Two ends sending at the same time collide, as on an
+  RS-485 bus: the collision is counted (LoopLineStats) and the characters
+  that overlapped reach every receiver garbled (each bit inverted), both
+  ends' alike.
+
+  Parameters: PAIR=name (default A), END=1..32 (default 1; PAIR= and END=
+  cannot change while the end is open: res_WrongState), BD=50..4000000 or
+  0 (default 0: no speed; reported with the character only when given), BIT=5..8, STOP=1|2, PAR=N|E|O|M|S, LRB=receive
+  ring size (default 4096, taken at the next ChOpen), IDL=ms to wait in
   ChReceiveReady when nothing is waiting (default 0: the peer usually runs
   in the same thread, where waiting only adds latency; give IDL when the
-  peer runs in another thread). COM's device and line keys mean nothing
-  here. Each open end is a wkSignal source of the program-wide wait (unit
-  ChnWait): bytes put into its ring, or room made for its pending send,
-  wake the waits of the process. Safe for two threads when the program
-  uses cthreads. }
+  peer runs in another thread). BD= and the character take effect at the
+  next ChOpen. COM's device keys mean nothing here. Each open end is a
+  wkSignal source of the program-wide wait (unit ChnWait): bytes put into
+  its ring, or room made for its pending send, wake the waits of the
+  process. Safe for several threads when the program uses cthreads. }
 unit ChnLoop;
 
 {$I chn.inc}
@@ -34,6 +51,10 @@ uses
 const
   cName = 'LOOP';
   LoopDefaultLRB = 4096;
+  LoopMaxEnds = 32;
+  { characters a receiver is woken for at most at once (a UART's FIFO):
+    a long message is handed over while it comes, not only at its end }
+  LoopWakeChars = 64;
 
 type
   pLoopPair = ^tLoopPair;
@@ -41,7 +62,8 @@ type
   pChnLoop = ^tChnLoop;
   tChnLoop = object(tChnCom)
     CH_Pair   : string[31];   { PAIR= }
-    CH_End    : Byte;         { END=, 1 or 2 }
+    CH_End    : Byte;         { END=, 1..LoopMaxEnds }
+    CH_LoopBaud: LongInt;     { BD= of the loop, 0: no speed }
     constructor Init;
     constructor ChInitParam(const S: tParamStr);
     function  ChSetOneParam(const S: tWordString; var CmdL: tCmd): tChResult; virtual;
@@ -58,58 +80,76 @@ type
     function  ComDropsWhenFull: Boolean; virtual;
   end;
 
-  tLoopDir = record             { bytes flowing towards one end }
-    Ring: tByteRing;            { Buf is nil while that end is closed }
-    Pend: PByte;                { sender's message not yet in the ring }
-    PendLen, PendPos: LongInt;
+  { One end of a line. }
+  tLoopEnd = record
+    Open: Boolean;
+    Ring: tByteRing;            { what this end received; Buf nil while closed }
+    Wait: pChnWaitSource;       { this end in the shared wait }
+    Wire: PByte;                { what this end sent and nobody got yet }
+    WireCap, WireLen, WirePos: LongInt;
+    CharUs: LongInt;            { microseconds per character; 0: no speed }
+    WireAt: QWord;              { ChnClockUs when character WirePos begins }
+    LastEnd: QWord;             { when this end's last character ended }
+    GarbleTo: QWord;            { characters begun before this collided }
+    Overruns: LongWord;         { characters lost at this end's full ring }
   end;
 
   tLoopPair = record
     Name: string[31];
-    Dir : array[1..2] of tLoopDir;   { Dir[E]: data received by end E }
-    Open: array[1..2] of Boolean;
-    Wait: array[1..2] of pChnWaitSource;   { each open end in the shared wait }
+    Ends: array[1..LoopMaxEnds] of tLoopEnd;
+    OpenCount: LongInt;
+    Collisions: LongWord;       { two ends began sending over each other }
+    Garbled: LongWord;          { characters that reached the ends garbled }
     Next: pLoopPair;
   end;
 
-  { One end of a pair as a port: Write puts bytes into the other end's
-    ring (as many as fit), Read takes them from this end's. }
+  { One end of a line as a port: Write puts the bytes on the wire, Read
+    takes what reached this end. }
   TChnPortLoop = class(TChnPort)
   private
     FPair: pLoopPair;
     FEnd: Byte;
-    FPendBuf: PByte;            { the rest of the last message, see Write }
-    FPendCap: LongInt;
   public
     PairName: ShortString;      { set before Open }
     EndNo: Byte;
     RingSize: LongInt;
+    CharUs: LongInt;            { microseconds per character, 0: no speed }
     { Path is ignored: the pair is PairName, the end EndNo. res_CannotOpen
       when that end is open in another stack. }
     function Open(const Path: tWordString): tChResult; override;
     function Read(var Buf; Size: LongInt; out Got: LongInt): tChResult; override;
-    { Takes a whole message or nothing: what does not fit into the other
-      end's ring stays here (OutQueue) and moves on as that end reads, also
-      when this end is not polled; 0 while the last one is still here. }
+    { Without a speed: takes a whole message or nothing (0 while the last
+      one is still on its way); it moves on as the other ends read, also
+      when this end is not polled. With a speed: takes it all, behind what
+      is still on the wire. }
     function Write(const Buf; Len: LongInt; out Done: LongInt): tChResult; override;
-    { Bytes of the last message not yet in the other end's ring. }
+    { Bytes of what was sent not yet at the other ends. }
     function OutQueue(out N: LongInt): tChResult; override;
     { Whether bytes wait; never sleeps (the shared wait does that). }
     function WaitInput(Ms: LongInt): Boolean; override;
-    { Whether the other end's ring has room now. }
+    { Whether the line can take a message now. }
     function WaitOutput(Ms: LongInt): Boolean; override;
     function Flush(Input, Output: Boolean): tChResult; override;
+    { Characters lost at this end's full ring (with a speed). }
+    function OsOverruns(out N: LongWord): tChResult; override;
     function WaitSource(out Kind: tChnWaitKind; out Os: PtrInt;
       out Rearm: tChnWaitRearm; out Data: Pointer): Boolean; override;
     procedure WaitJoined(Src: pChnWaitSource); override;
     procedure Close; override;
-    destructor Destroy; override;
   end;
 
   pAddChnLoop = ^tAddChnLoop;
   tAddChnLoop = object(tAddChnVirt)
     function ChInit: pChnVirt; virtual;
   end;
+
+{ Microseconds one character takes at Baud with the character format of S
+  (start bit, data bits, parity, stop bits); 0 when Baud is 0. }
+function LoopCharUs(const S: tPortSettings): LongInt;
+{ What the line PAIR= Pair did since its first end opened: collisions
+  (two ends sending at once) and characters delivered garbled by them.
+  False when no end of that pair is open. }
+function LoopLineStats(const Pair: ShortString; out Collisions, Garbled: LongWord): Boolean;
 
 implementation
 
@@ -118,20 +158,136 @@ uses
 
 var
   Pairs: pLoopPair = nil;
-  Lock: TRTLCriticalSection;    { guards Pairs, every ring and Wait[] }
+  Lock: TRTLCriticalSection;    { guards Pairs and everything in them }
 
-function OtherEnd(E: Byte): Byte; inline;
+function LoopCharUs(const S: tPortSettings): LongInt;
+var
+  Bits: LongInt;
 begin
-  Result := 3 - E;
+  if S.Baud <= 0 then
+    Exit(0);
+  Bits := 1 + S.DataBits + S.StopBits;    { start, data, stop }
+  if S.Parity <> ppNone then
+    Inc(Bits);
+  Result := (Int64(Bits) * 1000000 + S.Baud - 1) div S.Baud;
 end;
 
-{ Move what fits of the pending message into the ring. Caller holds Lock. }
-procedure Pump(var D: tLoopDir);
+function FindPair(const Name: ShortString): pLoopPair;
 begin
-  if D.Ring.Buf = nil then
-    D.PendPos := D.PendLen      { nobody listening: the bytes are gone }
-  else if D.PendPos < D.PendLen then
-    Inc(D.PendPos, RingPut(D.Ring, @D.Pend[D.PendPos], D.PendLen - D.PendPos));
+  Result := Pairs;
+  while (Result <> nil) and (Result^.Name <> Name) do
+    Result := Result^.Next;
+end;
+
+function LoopLineStats(const Pair: ShortString; out Collisions, Garbled: LongWord): Boolean;
+var
+  P: pLoopPair;
+begin
+  Collisions := 0;
+  Garbled := 0;
+  EnterCriticalSection(Lock);
+  P := FindPair(UpStr(Pair));
+  Result := P <> nil;
+  if Result then
+  begin
+    Collisions := P^.Collisions;
+    Garbled := P^.Garbled;
+  end;
+  LeaveCriticalSection(Lock);
+end;
+
+{ Hand N > 0 characters of end E's wire to every other open end (a
+  garbled one inverted); at a full ring they are lost there (Overruns).
+  Caller: the end whose call this is (it needs no wake-up). }
+procedure Deliver(P: pLoopPair; E, N, Caller: LongInt);
+var
+  L, I: LongInt;
+  B: Byte;
+  Start: QWord;
+begin
+  with P^.Ends[E] do
+    for I := 0 to N - 1 do
+    begin
+      B := Wire[WirePos + I];
+      Start := WireAt + QWord(I) * QWord(CharUs);
+      if (CharUs > 0) and (Start < GarbleTo) then
+      begin
+        B := not B;
+        Inc(P^.Garbled);
+      end;
+      for L := 1 to LoopMaxEnds do
+        if (L <> E) and P^.Ends[L].Open then
+          if RingPut(P^.Ends[L].Ring, @B, 1) = 0 then
+            Inc(P^.Ends[L].Overruns);
+    end;
+  with P^.Ends[E] do
+  begin
+    Inc(WirePos, N);
+    WireAt := WireAt + QWord(N) * QWord(CharUs);
+    if WirePos >= WireLen then
+    begin
+      WirePos := 0;
+      WireLen := 0;
+      LastEnd := WireAt;
+    end;
+  end;
+  { input for the others; for E, room (no speed) or its send done - not
+    for the end whose own call moved them }
+  for L := 1 to LoopMaxEnds do
+    if (L <> Caller) and P^.Ends[L].Open and
+      ((L <> E) or (P^.Ends[E].CharUs = 0) or (P^.Ends[E].WireLen = 0)) then
+      ChnWaitSignal(P^.Ends[L].Wait);
+end;
+
+{ Move what has reached the other ends by Now (with a speed), or what
+  fits into every other end's ring (without), and tell the shared wait
+  when the next characters fall due: the receivers when the next ones
+  (up to LoopWakeChars) arrive, the sender when its last one has left.
+  Caller: the end whose call this is. Caller holds Lock. }
+procedure Pump(P: pLoopPair; Now: QWord; Caller: LongInt);
+var
+  E, L: LongInt;
+  N, Room: LongInt;
+  Due: QWord;
+begin
+  for E := 1 to LoopMaxEnds do
+    with P^.Ends[E] do
+    begin
+      if WirePos >= WireLen then
+        Continue;
+      if CharUs = 0 then
+      begin
+        N := WireLen - WirePos;
+        for L := 1 to LoopMaxEnds do
+          if (L <> E) and P^.Ends[L].Open then
+          begin
+            Room := RingRoom(P^.Ends[L].Ring);
+            if Room < N then
+              N := Room;
+          end;
+      end
+      else if Now < WireAt + QWord(CharUs) then
+        N := 0
+      else
+      begin
+        N := (Now - WireAt) div QWord(CharUs);
+        if N > WireLen - WirePos then
+          N := WireLen - WirePos;
+      end;
+      if N > 0 then
+        Deliver(P, E, N, Caller);
+      if (WirePos < WireLen) and (CharUs > 0) then
+      begin
+        ChnWaitDue(Wait, WireAt + QWord(WireLen - WirePos) * QWord(CharUs));
+        N := WireLen - WirePos;
+        if N > LoopWakeChars then
+          N := LoopWakeChars;
+        Due := WireAt + QWord(N) * QWord(CharUs);
+        for L := 1 to LoopMaxEnds do
+          if (L <> E) and P^.Ends[L].Open then
+            ChnWaitDue(P^.Ends[L].Wait, Due);
+      end;
+    end;
 end;
 
 { ---------------------------------------------------------------- port }
@@ -146,9 +302,7 @@ begin
   FVirtual := True;
   EnterCriticalSection(Lock);
   try
-    P := Pairs;
-    while (P <> nil) and (P^.Name <> PairName) do
-      P := P^.Next;
+    P := FindPair(PairName);
     if P = nil then
     begin
       New(P);
@@ -157,10 +311,20 @@ begin
       P^.Next := Pairs;
       Pairs := P;
     end;
-    if P^.Open[EndNo] then
+    if P^.Ends[EndNo].Open then
       Exit(res_CannotOpen);         { this end is in use by another stack }
-    P^.Open[EndNo] := True;
-    RingAlloc(P^.Dir[EndNo].Ring, RingSize, True);   { input held here ends ChnWaitAny }
+    with P^.Ends[EndNo] do
+    begin
+      Open := True;
+      RingAlloc(Ring, RingSize, True);   { input held here ends ChnWaitAny }
+      WireLen := 0;
+      WirePos := 0;
+      LastEnd := 0;
+      GarbleTo := 0;
+      Overruns := 0;
+    end;
+    P^.Ends[EndNo].CharUs := CharUs;
+    Inc(P^.OpenCount);
     FPair := P;
     FEnd := EndNo;
     FOpen := True;
@@ -178,16 +342,20 @@ begin
   begin
     EnterCriticalSection(Lock);
     try
-      FPair^.Open[FEnd] := False;
-      FPair^.Wait[FEnd] := nil;
-      RingFree(FPair^.Dir[FEnd].Ring);
-      with FPair^.Dir[OtherEnd(FEnd)] do
+      with FPair^.Ends[FEnd] do
       begin
-        Pend := nil;                { our buffer may go away now }
-        PendLen := 0;
-        PendPos := 0;
+        Open := False;
+        Wait := nil;
+        RingFree(Ring);
+        WireLen := 0;               { what was still on the wire is gone }
+        WirePos := 0;
+        if Wire <> nil then
+          FreeMem(Wire);
+        Wire := nil;
+        WireCap := 0;
       end;
-      if not FPair^.Open[OtherEnd(FEnd)] then
+      Dec(FPair^.OpenCount);
+      if FPair^.OpenCount = 0 then
       begin
         Link := @Pairs;
         while Link^ <> FPair do
@@ -203,102 +371,117 @@ begin
   inherited Close;
 end;
 
-destructor TChnPortLoop.Destroy;
-begin
-  inherited Destroy;            { closes: nothing points into FPendBuf }
-  if FPendBuf <> nil then
-    FreeMem(FPendBuf);
-end;
-
 function TChnPortLoop.Read(var Buf; Size: LongInt; out Got: LongInt): tChResult;
-var
-  Before: LongInt;
 begin
   EnterCriticalSection(Lock);
   try
-    with FPair^.Dir[FEnd] do
-    begin
-      Pump(FPair^.Dir[FEnd]);
-      Got := RingGet(Ring, @Buf, Size);
-      Before := PendPos;
-      Pump(FPair^.Dir[FEnd]);       { room again for the sender }
-      if PendPos > Before then
-        ChnWaitSignal(FPair^.Wait[OtherEnd(FEnd)]);   { its send went on }
-    end;
+    Pump(FPair, ChnClockUs, FEnd);
+    Got := RingGet(FPair^.Ends[FEnd].Ring, @Buf, Size);
+    if Got > 0 then
+      Pump(FPair, ChnClockUs, FEnd);       { room again for a held sender }
   finally
     LeaveCriticalSection(Lock);
   end;
   Result := res_Ok;
+end;
+
+{ Another end sends now (its wire holds characters not yet delivered):
+  the new message collides with it; both are garbled where they overlap.
+  Caller holds Lock, after Pump. }
+procedure Collide(P: pLoopPair; E: LongInt);
+var
+  L: LongInt;
+  Ends, OtherEnds: QWord;
+begin
+  with P^.Ends[E] do
+    Ends := WireAt + QWord(WireLen - WirePos) * QWord(CharUs);
+  for L := 1 to LoopMaxEnds do
+    if (L <> E) and P^.Ends[L].Open and (P^.Ends[L].CharUs > 0) and
+      (P^.Ends[L].WirePos < P^.Ends[L].WireLen) then
+      with P^.Ends[L] do
+      begin
+        OtherEnds := WireAt + QWord(WireLen - WirePos) * QWord(CharUs);
+        if OtherEnds > Ends then
+          OtherEnds := Ends;          { the overlap ends with the shorter }
+        if OtherEnds > GarbleTo then
+          GarbleTo := OtherEnds;
+        if OtherEnds > P^.Ends[E].GarbleTo then
+          P^.Ends[E].GarbleTo := OtherEnds;
+        Inc(P^.Collisions);
+      end;
 end;
 
 function TChnPortLoop.Write(const Buf; Len: LongInt; out Done: LongInt): tChResult;
 var
-  Put: LongInt;
+  Now: QWord;
+  Idle: Boolean;
 begin
   Done := 0;
+  Result := res_Ok;
+  if Len <= 0 then
+    Exit;
   EnterCriticalSection(Lock);
   try
-    with FPair^.Dir[OtherEnd(FEnd)] do
+    Now := ChnClockUs;
+    Pump(FPair, Now, FEnd);
+    with FPair^.Ends[FEnd] do
     begin
-      Pump(FPair^.Dir[OtherEnd(FEnd)]);
-      if PendPos < PendLen then
-        Exit(res_Ok);               { the last message is still on its way }
-      if Ring.Buf = nil then
-        Put := Len                  { nobody listening: the bytes are gone }
-      else
-        Put := RingPut(Ring, @Buf, Len);
-      if Put < Len then
+      Idle := WirePos >= WireLen;
+      if not Idle and (CharUs = 0) then
+        Exit;                       { the last message is still on its way }
+      if WirePos > 0 then
       begin
-        if Len - Put > FPendCap then
-        begin
-          ReAllocMem(FPendBuf, Len - Put);
-          FPendCap := Len - Put;
-        end;
-        Move(PByte(@Buf)[Put], FPendBuf^, Len - Put);
-        Pend := FPendBuf;
-        PendLen := Len - Put;
-        PendPos := 0;
+        Move(Wire[WirePos], Wire^, WireLen - WirePos);
+        Dec(WireLen, WirePos);
+        WirePos := 0;
       end;
-      Done := Len;
-      if Put > 0 then
-        ChnWaitSignal(FPair^.Wait[OtherEnd(FEnd)]);
+      if WireLen + Len > WireCap then
+      begin
+        WireCap := WireLen + Len;
+        ReAllocMem(Wire, WireCap);
+      end;
+      Move(Buf, Wire[WireLen], Len);
+      Inc(WireLen, Len);
+      if Idle then
+      begin
+        WireAt := Now;              { the line is free: it starts now }
+        if WireAt < LastEnd then
+          WireAt := LastEnd;
+      end;
     end;
+    Done := Len;
+    if FPair^.Ends[FEnd].CharUs > 0 then
+      Collide(FPair, FEnd);
+    Pump(FPair, Now, FEnd);
   finally
     LeaveCriticalSection(Lock);
   end;
-  Result := res_Ok;
 end;
 
 function TChnPortLoop.OutQueue(out N: LongInt): tChResult;
 begin
-  N := 0;
-  Result := res_Ok;
-  { no lock for nothing pending: only this end's Write makes a rest }
-  with FPair^.Dir[OtherEnd(FEnd)] do
-    if PendPos >= PendLen then
-      Exit;
   EnterCriticalSection(Lock);
-  with FPair^.Dir[OtherEnd(FEnd)] do
-  begin
-    Pump(FPair^.Dir[OtherEnd(FEnd)]);
-    N := PendLen - PendPos;
-  end;
+  Pump(FPair, ChnClockUs, FEnd);
+  with FPair^.Ends[FEnd] do
+    N := WireLen - WirePos;
   LeaveCriticalSection(Lock);
   Result := res_Ok;
 end;
 
-{ No lock: only this end takes bytes out of its ring, so a count above 0
-  read at any moment is true (one read a moment too early only says 0). }
 function TChnPortLoop.WaitInput(Ms: LongInt): Boolean;
 begin
-  Result := FPair^.Dir[FEnd].Ring.Count > 0;
+  EnterCriticalSection(Lock);
+  Pump(FPair, ChnClockUs, FEnd);
+  Result := FPair^.Ends[FEnd].Ring.Count > 0;
+  LeaveCriticalSection(Lock);
 end;
 
 function TChnPortLoop.WaitOutput(Ms: LongInt): Boolean;
 begin
   EnterCriticalSection(Lock);
-  with FPair^.Dir[OtherEnd(FEnd)] do
-    Result := (Ring.Buf = nil) or (PendPos >= PendLen);
+  Pump(FPair, ChnClockUs, FEnd);
+  with FPair^.Ends[FEnd] do
+    Result := (CharUs > 0) or (WirePos >= WireLen);
   LeaveCriticalSection(Lock);
 end;
 
@@ -307,9 +490,17 @@ begin
   if Input then
   begin
     EnterCriticalSection(Lock);
-    RingClear(FPair^.Dir[FEnd].Ring);
+    RingClear(FPair^.Ends[FEnd].Ring);
     LeaveCriticalSection(Lock);
   end;
+  Result := res_Ok;
+end;
+
+function TChnPortLoop.OsOverruns(out N: LongWord): tChResult;
+begin
+  EnterCriticalSection(Lock);
+  N := FPair^.Ends[FEnd].Overruns;
+  LeaveCriticalSection(Lock);
   Result := res_Ok;
 end;
 
@@ -324,7 +515,8 @@ end;
 procedure TChnPortLoop.WaitJoined(Src: pChnWaitSource);
 begin
   EnterCriticalSection(Lock);
-  FPair^.Wait[FEnd] := Src;
+  FPair^.Ends[FEnd].Wait := Src;
+  Pump(FPair, ChnClockUs, FEnd);          { characters already on their way }
   LeaveCriticalSection(Lock);
 end;
 
@@ -336,6 +528,7 @@ begin
   ChSetType(cName);
   CH_Pair := 'A';
   CH_End := 1;
+  CH_LoopBaud := 0;
   CH_LRB := LoopDefaultLRB;
   CH_Idle := 0;
 end;
@@ -371,35 +564,51 @@ begin
   end
   else if Key = 'END' then
   begin
-    Result := ParamNum(S, 1, 2, N);
+    Result := ParamNum(S, 1, LoopMaxEnds, N);
     if (Result = res_Ok) and (CH_State <> CHS_Close) and (N <> CH_End) then
       Result := res_WrongState;
     if (Result = res_Ok) and (CmdL = cmd_Set) then
       CH_End := N;
   end
+  else if Key = 'BD' then
+  begin
+    Result := ParamNum(S, 0, 4000000, N);
+    if (Result = res_Ok) and (N > 0) and (N < 50) then
+      Result := res_BadParam;       { COM's lowest rate }
+    if (Result = res_Ok) and (CmdL = cmd_Set) then
+      CH_LoopBaud := N;
+  end
+  else if (Key = 'BIT') or (Key = 'STOP') or (Key = 'PAR') then
+    Result := tChnCom.ChSetOneParam(S, CmdL)   { COM's ranges }
   else if Key = 'LRB' then         { COM's ranges, without its key chain }
     Result := ParamSetNum(S, 1, 1 shl 24, CmdL, CH_LRB)
   else if Key = 'IDL' then
     Result := ParamSetNum(S, 0, 1000, CmdL, CH_Idle)
   else
-    { COM's device and line keys mean nothing on an in-memory line }
+    { COM's device keys mean nothing on an in-memory line }
     Result := tChnVirt.ChSetOneParam(S, CmdL);
 end;
 
 function tChnLoop.ChOwnParams: tParamStr;
 begin
-  Result := tChnVirt.ChOwnParams + ' PAIR=' + CH_Pair + ParamText('END', CH_End) +
-    ParamText('LRB', CH_LRB) + ParamText('IDL', CH_Idle);
+  Result := tChnVirt.ChOwnParams + ' PAIR=' + CH_Pair + ParamText('END', CH_End);
+  if CH_LoopBaud > 0 then          { a line without speed reads as before }
+    Result := Result + ParamText('BD', CH_LoopBaud) + ComCharText(CH_Set);
+  Result := Result + ParamText('LRB', CH_LRB) + ParamText('IDL', CH_Idle);
 end;
 
 function tChnLoop.ComOpenPort(out Port: TChnPort): tChResult;
 var
   P: TChnPortLoop;
+  Line: tPortSettings;
 begin
   P := TChnPortLoop.Create;
   P.PairName := CH_Pair;
   P.EndNo := CH_End;
   P.RingSize := CH_LRB;
+  Line := CH_Set;
+  Line.Baud := CH_LoopBaud;
+  P.CharUs := LoopCharUs(Line);
   Result := P.Open('');
   if Result <> res_Ok then
   begin
@@ -443,7 +652,7 @@ procedure tChnLoop.ChReceive(var Len: Word);
 var
   Got: LongInt;
 begin
-  if (CH_Ring.Count > 0) or (CH_Port = nil) then
+  if (CH_Ring.Count > 0) or (CH_Port = nil) or (CH_Lost <> CH_LostShown) then
   begin
     inherited ChReceive(Len);
     Exit;
@@ -460,7 +669,8 @@ begin
   CH_RCtrl := CHS_Receiving;     { the next ChReceiveReady looks again }
 end;
 
-{ The sender waits for room: nothing is ever lost on a loop. }
+{ Without a speed the sender waits for room: nothing is lost. With one,
+  the port itself counts what a full ring lost (OsOverruns). }
 function tChnLoop.ComDropsWhenFull: Boolean;
 begin
   Result := False;

@@ -86,6 +86,17 @@ const
     'N7 50'#10'N7:0 = 0 10 20 30 40 50 60 70 80 90'#10 +
     'F8 10'#10'F8:0 = 1.5 -2.25 3.14159 1000000'#10 +
     'N9 64'#10'CIF 9'#10;
+  { The PLC-5 table of df1sim --plc5 (PLC-5 addresses: octal I/O, D as
+    decimal values stored in BCD). }
+  Plc5DefaultConfig1 =
+    'O0 16'#10'O:001 = $00FF'#10'I1 16'#10'I:012 = $0020'#10'S2 32'#10 +
+    'B3 8'#10'B3:0 = $0001 $0002 $00FF'#10 +
+    'T4 4'#10'T4:0 = $2000 100 100'#10'T4:1.PRE = 50'#10'T4:1.ACC = 7'#10 +
+    'C5 4'#10'C5:0 = $8000 10 3'#10'R6 2'#10'R6:0.LEN = 8'#10;
+  Plc5DefaultConfig2 =
+    'N7 50'#10'N7:0 = 0 10 20 30 40 50 60 70 80 90'#10 +
+    'F8 10'#10'F8:0 = 1.5 -2.25 3.14159 1000000'#10 +
+    'ST9 2'#10'ST9:0 = "hello"'#10'D10 4'#10'D10:0 = 1234 9999'#10;
   SlcDefaultConfig2 =
     'T4 4'#10'T4:0 = $2000 100 100'#10'T4:1.PRE = 50'#10'T4:1.ACC = 7'#10 +
     'C5 4'#10'C5:0 = $8000 10 3'#10 +
@@ -117,6 +128,8 @@ type
     Cif   : Byte;
     Diag  : array[0..dgCount - 1] of Word;
     Name  : string[15];    { in the diagnostic status block }
+    Plc5  : Boolean;       { a PLC-5: its addresses in the configuration and its
+                             commands (unit ChnPlc5Sim); set by Plc5LoadConfig }
   end;
 
 procedure SlcClear(var T: tSlcTable);
@@ -127,8 +140,20 @@ function SlcAddFile(var T: tSlcTable; FType: Byte; Num: Byte; Elems: LongInt): B
   failure ErrLine/Err tell where and why; the table is then undefined. }
 function SlcLoadConfig(var T: tSlcTable; const Text: AnsiString;
   out ErrLine: LongInt; out Err: AnsiString): Boolean;
+{ The same for a PLC-5 (df1sim --plc5): PLC-5 addresses ('I:012 = $20',
+  'D10:0 = 1234', files 0..255 of the table), and the table answers the
+  PLC-5 commands too (unit ChnPlc5Sim). }
+function Plc5LoadConfig(var T: tSlcTable; const Text: AnsiString;
+  out ErrLine: LongInt; out Err: AnsiString): Boolean;
+{ A reply's status: STS, and EXT STS as its first data byte when STS is
+  $F0; N becomes the reply's data bytes (0 or 1). }
+procedure SlcSetSts(var Rep: tSendRecord; var N: Integer; Sts, Ext: Byte);
+{ Load Plc5DefaultConfig (a test loads it). }
+procedure Plc5LoadDefault(var T: tSlcTable);
 { SlcDefaultConfig1 and SlcDefaultConfig2, the built-in table. }
 function SlcDefaultConfig: AnsiString;
+{ The built-in table of a PLC-5 (df1sim --plc5; T.Plc5 set). }
+function Plc5DefaultConfig: AnsiString;
 { Load SlcDefaultConfig (it is valid: a test loads it). }
 procedure SlcLoadDefault(var T: tSlcTable);
 
@@ -160,7 +185,7 @@ function SlcStationInit(var S: tDF1Station; Chn: pChnVirt; T: pSlcTable): tChRes
 implementation
 
 uses
-  SysUtils, uString;
+  SysUtils, uString, ChnPlc5, ChnPlc5Sim;
 
 const
   MskReply  = $4000;   { CMD bit 6: a reply (ChnDF1.MskCF_Reply) }
@@ -195,6 +220,7 @@ begin
   T.Cif := SlcDefaultCif;
   FillChar(T.Diag, SizeOf(T.Diag), 0);
   T.Name := 'df1sim';
+  T.Plc5 := False;
 end;
 
 function SlcAddFile(var T: tSlcTable; FType: Byte; Num: Byte; Elems: LongInt): Boolean;
@@ -259,8 +285,30 @@ end;
 
 { ------------------------------------------------------------ config text }
 
+{ An address by the rules of the table's PLC (SLC or PLC-5); a PLC-5 file
+  above 255 is refused: the table holds 0..255. }
+function ParseAddr(const T: tSlcTable; const S: ShortString; out A: tPcccAddr; out Err: ShortString): tChResult;
+begin
+  if not T.Plc5 then
+    Exit(PcccParseAddress(S, A, Err));
+  Result := Plc5ParseAddress(S, A, Err);
+  if (Result = res_Ok) and (A.FileNo > 255) then
+  begin
+    Err := 'address "' + S + '": df1sim holds files 0..255';
+    Result := res_PcccAddress;
+  end;
+end;
+
+function AddrText(const T: tSlcTable; const A: tPcccAddr): ShortString;
+begin
+  if T.Plc5 then
+    Result := Plc5AddressText(A)
+  else
+    Result := PcccAddressText(A);
+end;
+
 { 'N7' -> type code and number, by the library's address rules }
-function ParseFileName(const S: AnsiString; out FType: Byte; out Num: Byte): Boolean;
+function ParseFileName(const T: tSlcTable; const S: AnsiString; out FType: Byte; out Num: Byte): Boolean;
 var
   A: tPcccAddr;
   Err: ShortString;
@@ -268,7 +316,7 @@ begin
   FType := 0;
   Num := 0;
   Result := (Length(S) < 200) and (S <> '') and (S[Length(S)] in ['0'..'9']) and
-    (PcccParseAddress(S + ':0', A, Err) = res_Ok);
+    (ParseAddr(T, S + ':0', A, Err) = res_Ok);
   if Result then
   begin
     FType := A.FileType;
@@ -297,7 +345,7 @@ begin
     F.Data[At + K] := (V shr (8 * K)) and $FF;
 end;
 
-function SlcLoadConfig(var T: tSlcTable; const Text: AnsiString;
+function LoadConfig(var T: tSlcTable; Plc5: Boolean; const Text: AnsiString;
   out ErrLine: LongInt; out Err: AnsiString): Boolean;
 var
   Lines: array of AnsiString;
@@ -310,6 +358,7 @@ var
   A: tPcccAddr;
   PErr: ShortString;
   Buf: array[0..2 + PcccStringChars - 1] of Byte;
+  W: Word;
 
   procedure Split;
   var
@@ -353,6 +402,7 @@ begin
   ErrLine := 0;
   Err := '';
   SlcClear(T);
+  T.Plc5 := Plc5;
   Split;
   for I := 0 to High(Lines) do
   begin
@@ -375,8 +425,11 @@ begin
     begin
       { declaration: N7 100 }
       V := 0;
-      if not ParseFileName(Head, FType, Num) then
-        Exit(Bad('"' + Head + '" is no file name (O0 I1 S2, B T C R N F ST A L 3..255)'));
+      if not ParseFileName(T, Head, FType, Num) then
+        if T.Plc5 then
+          Exit(Bad('"' + Head + '" is no file name (O0 I1 S2, B T C R N F ST A D 3..255)'))
+        else
+          Exit(Bad('"' + Head + '" is no file name (O0 I1 S2, B T C R N F ST A L 3..255)'));
       if not Next(Tok) or not StrToNum(Tok, 1, SlcMaxElements, V) or Next(Tok) then
         Exit(Bad('a file wants its element count 1..' + IntToStr(SlcMaxElements)));
       SlcAddFile(T, FType, Num, V);
@@ -385,9 +438,9 @@ begin
     { values: N7:0 = 1 2 3, T4:0.PRE = 5, ST10:0 = "text" }
     if Length(Head) > 200 then
       Exit(Bad('address too long'));
-    if PcccParseAddress(Head, A, PErr) <> res_Ok then
+    if ParseAddr(T, Head, A, PErr) <> res_Ok then
       Exit(Bad(PErr));
-    Head := PcccAddressText(A);
+    Head := AddrText(T, A);
     if (T.Files[A.FileNo].FType <> A.FileType) or (A.FileType = 0) then
       Exit(Bad(PcccFileLetter(A.FileType) + IntToStr(A.FileNo) +
         ' is not declared (or declared with another type)'));
@@ -440,6 +493,13 @@ begin
           Exit(Bad('"' + Tok + '" is no 32-bit value'));
         L := LongWord(V);
       end
+      else if A.FileType = pft_Bcd then
+      begin
+        V := 0;
+        if not StrToNum(Tok, 0, 9999, V) or not Plc5ToBcd(V, W) then
+          Exit(Bad('"' + Tok + '" is not 0..9999 (a D element holds four BCD digits)'));
+        L := W;
+      end
       else
       begin
         V := 0;
@@ -456,9 +516,35 @@ begin
   Result := True;
 end;
 
+function SlcLoadConfig(var T: tSlcTable; const Text: AnsiString;
+  out ErrLine: LongInt; out Err: AnsiString): Boolean;
+begin
+  Result := LoadConfig(T, False, Text, ErrLine, Err);
+end;
+
+function Plc5LoadConfig(var T: tSlcTable; const Text: AnsiString;
+  out ErrLine: LongInt; out Err: AnsiString): Boolean;
+begin
+  Result := LoadConfig(T, True, Text, ErrLine, Err);
+end;
+
+procedure Plc5LoadDefault(var T: tSlcTable);
+var
+  ErrLine: Integer;
+  Err: AnsiString;
+begin
+  if not Plc5LoadConfig(T, Plc5DefaultConfig, ErrLine, Err) then
+    SlcClear(T);   { not reached; TestChnPlc5Sim checks it }
+end;
+
 function SlcDefaultConfig: AnsiString;
 begin
   Result := SlcDefaultConfig1 + SlcDefaultConfig2;
+end;
+
+function Plc5DefaultConfig: AnsiString;
+begin
+  Result := Plc5DefaultConfig1 + Plc5DefaultConfig2;
 end;
 
 procedure SlcLoadDefault(var T: tSlcTable);
@@ -515,7 +601,7 @@ begin
   end;
 end;
 
-procedure SetSts(var Rep: tSendRecord; var N: Integer; Sts, Ext: Byte);
+procedure SlcSetSts(var Rep: tSendRecord; var N: Integer; Sts, Ext: Byte);
 begin
   Rep.Sts := Sts;
   N := 0;
@@ -546,7 +632,7 @@ begin
   if not (TakeByte(C, Size) and TakeField(C, FileNo) and TakeByte(C, FType) and
           TakeField(C, Elem) and TakeField(C, Sub)) then
   begin
-    SetSts(Rep, N, sts_IllegalCmd, 0);       { fields missing }
+    SlcSetSts(Rep, N, sts_IllegalCmd, 0);       { fields missing }
     Exit;
   end;
   case Op of
@@ -557,7 +643,7 @@ begin
   end;
   if C.Len - C.Pos <> Want then
   begin
-    SetSts(Rep, N, sts_IllegalCmd, 0);       { data does not match SIZE }
+    SlcSetSts(Rep, N, sts_IllegalCmd, 0);       { data does not match SIZE }
     Exit;
   end;
   MaxSub := 0;
@@ -567,7 +653,7 @@ begin
      (T.Files[FileNo].FType <> FType) or (Sub > MaxSub) or
      (Elem >= T.Files[FileNo].Elems) then
   begin
-    SetSts(Rep, N, sts_ExtSts, ext_NotUsable);
+    SlcSetSts(Rep, N, sts_ExtSts, ext_NotUsable);
     Exit;
   end;
   ES := PcccElemSize(FType);
@@ -576,13 +662,13 @@ begin
     Unit_ := 4;
   if (Size = 0) or (Size > MaxDataLen) or (Size mod Unit_ <> 0) then
   begin
-    SetSts(Rep, N, sts_ExtSts, ext_IllegalVal);
+    SlcSetSts(Rep, N, sts_ExtSts, ext_IllegalVal);
     Exit;
   end;
   At := Elem * ES + Sub * 2;
   if At + Size > T.Files[FileNo].Elems * ES then
   begin
-    SetSts(Rep, N, sts_ExtSts, ext_WrongSize);
+    SlcSetSts(Rep, N, sts_ExtSts, ext_WrongSize);
     Exit;
   end;
   N := 0;
@@ -609,7 +695,7 @@ begin
   N := 0;
   if DataLen < 3 then
   begin
-    SetSts(Rep, N, sts_IllegalCmd, 0);
+    SlcSetSts(Rep, N, sts_IllegalCmd, 0);
     Exit;
   end;
   Addr := Req.Data[0] or (Req.Data[1] shl 8);
@@ -620,19 +706,19 @@ begin
     Size := Req.Data[2];
     if DataLen <> 3 then
     begin
-      SetSts(Rep, N, sts_IllegalCmd, 0);
+      SlcSetSts(Rep, N, sts_IllegalCmd, 0);
       Exit;
     end;
   end;
   if Odd(Addr) or (Size = 0) or Odd(Size) or (Size > MaxDataLen) then
   begin
-    SetSts(Rep, N, sts_IllegalCmd, 0);
+    SlcSetSts(Rep, N, sts_IllegalCmd, 0);
     Exit;
   end;
   with T.Files[T.Cif] do
     if (FType <> pft_Integer) or (Addr + Size > Elems * 2) then
     begin
-      SetSts(Rep, N, sts_Address, 0);
+      SlcSetSts(Rep, N, sts_Address, 0);
       Exit;
     end;
   if Write then
@@ -719,13 +805,13 @@ begin
           DiagStatus(T, Rep, N);
         FncReadDiag:
           if DataLen <> 3 then
-            SetSts(Rep, N, sts_IllegalCmd, 0)
+            SlcSetSts(Rep, N, sts_IllegalCmd, 0)
           else
           begin
             Addr := Req.Data[0] or (Req.Data[1] shl 8);
             Size := Req.Data[2];
             if Addr + Size > SizeOf(T.Diag) then
-              SetSts(Rep, N, sts_IllegalCmd, 0)
+              SlcSetSts(Rep, N, sts_IllegalCmd, 0)
             else
             begin
               for I := 0 to Size - 1 do
@@ -739,20 +825,22 @@ begin
         FncResetDiag:
           FillChar(T.Diag, SizeOf(T.Diag), 0);
       else
-        SetSts(Rep, N, sts_IllegalCmd, 0);
+        SlcSetSts(Rep, N, sts_IllegalCmd, 0);
       end;
     CmdTyped:
-      case Fnc of
+      if T.Plc5 and Plc5SimHandle(T, Fnc, Req, DataLen, Rep, N) then
+        { a PLC-5 command }
+      else case Fnc of
         FncTRead3: TypedRW(T, Req, DataLen, twRead, Rep, N);
         FncTWrite3: TypedRW(T, Req, DataLen, twWrite, Rep, N);
         FncTMaskWrite3: TypedRW(T, Req, DataLen, twMasked, Rep, N);
       else
-        SetSts(Rep, N, sts_IllegalCmd, 0);
+        SlcSetSts(Rep, N, sts_IllegalCmd, 0);
       end;
     CmdURead: UnprotRW(T, Req, DataLen, False, Rep, N);
     CmdUWrite: UnprotRW(T, Req, DataLen, True, Rep, N);
   else
-    SetSts(Rep, N, sts_IllegalCmd, 0);
+    SlcSetSts(Rep, N, sts_IllegalCmd, 0);
   end;
   if Rep.Sts <> sts_Ok then
     SlcCount(T, dgErrReplies);
