@@ -301,7 +301,9 @@ function ChMsTick: QWord;
 { Microseconds from a monotonic clock, for measuring what a millisecond
   cannot resolve (a byte's time at 115200 baud is 87 us): differences
   only, its zero is not ChMsTick's. Linux CLOCK_MONOTONIC, Windows
-  QueryPerformanceCounter; other systems ChMsTick * 1000. }
+  QueryPerformanceCounter, other systems ChMsTick * 1000: ChnWait's
+  ChnClockUs, the shared wait's time base, under the name beside
+  ChMsTick. }
 function ChUsTick: QWord;
 
 { ChSend once the transmitter is free, waiting for it at most TimeoutMs
@@ -364,7 +366,7 @@ var
 implementation
 
 uses
-  {$IFDEF LINUX}Linux, UnixType,{$ENDIF} {$IFDEF WINDOWS}Windows,{$ENDIF} SysUtils, ChnWait;
+  SysUtils, ChnWait;
 
 var
   { what the last failing ParamNum/ParamChoice allows, for ChErrorText
@@ -408,34 +410,10 @@ begin
   Result := GetTickCount64;
 end;
 
-{$IFDEF WINDOWS}
-var
-  UsFreq: Int64 = 0;     { QueryPerformanceFrequency, counts per second }
-{$ENDIF}
-
 function ChUsTick: QWord;
-{$IFDEF LINUX}
-var
-  T: TTimeSpec;
 begin
-  clock_gettime(CLOCK_MONOTONIC, @T);
-  Result := QWord(T.tv_sec) * 1000000 + QWord(T.tv_nsec) div 1000;
+  Result := ChnClockUs;          { the program-wide wait's time base }
 end;
-{$ELSE}{$IFDEF WINDOWS}
-var
-  C: Int64;
-begin
-  if UsFreq = 0 then
-    QueryPerformanceFrequency(UsFreq);      { fixed at boot, never 0 since XP }
-  QueryPerformanceCounter(C);
-  { seconds and the rest apart: C * 1000000 would overflow after days }
-  Result := QWord(C div UsFreq) * 1000000 + QWord(C mod UsFreq) * 1000000 div QWord(UsFreq);
-end;
-{$ELSE}
-begin
-  Result := GetTickCount64 * 1000;
-end;
-{$ENDIF}{$ENDIF}
 
 function ChSendWhenFree(Chn: pChnVirt; Buff: Pointer; Len: Word;
   TimeoutMs: LongInt): tChResult;
