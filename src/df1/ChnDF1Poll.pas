@@ -54,7 +54,7 @@ const
   DF1PollMaxStations = 64;
   DF1PollMaxJobs     = 16;
   DF1PollInboxSize   = 16;
-  DF1PollMaxPerTurn  = 8;      { messages one station may send in one turn }
+  DF1PollMaxPerTurn  = 8;      {< messages one station may send in one turn }
 
 type
   tDF1PollMode = (dpStandard, dpMessage);
@@ -64,8 +64,8 @@ type
     Addr     : Byte;
     Priority : Boolean;
     Dead     : Boolean;
-    Misses   : LongInt;      { polls or messages unanswered in a row }
-    SkipLeft : LongInt;      { dead: cycles left until it is polled again }
+    Misses   : LongInt;      {< polls or messages unanswered in a row }
+    SkipLeft : LongInt;      {< dead: cycles left until it is polled again }
     { counters }
     Polls, Eots, MsgsIn, MsgsOut, Naks, Timeouts, Routed, Deaths: LongWord;
   end;
@@ -73,15 +73,15 @@ type
   tDF1PollJobState = (pjFree, pjQueued, pjWaitAck, pjWaitReply, pjDone);
   tDF1PollJob = record
     State   : tDF1PollJobState;
-    Own     : Boolean;       { the program's: kept until DF1PollResult }
-    Src, Dst: Byte;          { Src: the master, or the slave it came from }
+    Own     : Boolean;       {< the program's: kept until DF1PollResult }
+    Src, Dst: Byte;          {< Src: the master, or the slave it came from }
     Req     : tSendRecord;
     ReqLen  : Word;
     Rep     : tRecRecord;
     RepLen  : Word;
     Result  : tChResult;
     Tries   : LongInt;
-    Deadline: QWord;         { the reply's }
+    Deadline: QWord;         {< the reply's }
   end;
 
   tDF1PollMsg = record
@@ -95,29 +95,29 @@ type
   pDF1Poller = ^tDF1Poller;
   tDF1Poller = record
     Chn         : pChnVirt;
-    Node        : Byte;          { the master's own address (NOD=) }
+    Node        : Byte;          {< the master's own address (NOD=) }
     Mode        : tDF1PollMode;
-    MultiPerScan: Boolean;       { standard: poll a talking station again }
-    NormalGroup : LongInt;       { normal stations per cycle, default 1 }
-    AckMs       : LongInt;       { ACK of a master message (default 1000) }
-    PollMs      : LongInt;       { answer to a poll (default 1000) }
-    ReplyMs     : LongInt;       { a command's reply (default 3000) }
-    DeadAfter   : LongInt;       { misses in a row that make a station dead (3) }
-    DeadEvery   : LongInt;       { a dead station is polled every so many cycles (10) }
+    MultiPerScan: Boolean;       {< standard: poll a talking station again }
+    NormalGroup : LongInt;       {< normal stations per cycle, default 1 }
+    AckMs       : LongInt;       {< ACK of a master message (default 1000) }
+    PollMs      : LongInt;       {< answer to a poll (default 1000) }
+    ReplyMs     : LongInt;       {< a command's reply (default 3000) }
+    DeadAfter   : LongInt;       {< misses in a row that make a station dead (3) }
+    DeadEvery   : LongInt;       {< a dead station is polled every so many cycles (10) }
     Stations    : array[0..DF1PollMaxStations - 1] of tDF1PollStation;
     Count       : LongInt;
     Jobs        : array[0..DF1PollMaxJobs - 1] of tDF1PollJob;
     Inbox       : array[0..DF1PollInboxSize - 1] of tDF1PollMsg;
     InHead, InCount: LongInt;
-    InLost      : LongWord;      { messages for the program lost: inbox full }
-    Cycles      : LongWord;      { poll cycles begun }
+    InLost      : LongWord;      {< messages for the program lost: inbox full }
+    Cycles      : LongWord;      {< poll cycles begun }
     { the cycle under way: station indexes }
     Seq         : array[0..DF1PollMaxStations - 1] of LongInt;
     SeqLen, SeqPos, NextNormal: LongInt;
     State       : tDF1PollState;
-    Cur         : LongInt;       { station polled or sent to }
-    CurJob      : LongInt;       { job waiting for its ACK }
-    Turn        : LongInt;       { messages the current station sent this turn }
+    Cur         : LongInt;       {< station polled or sent to }
+    CurJob      : LongInt;       {< job waiting for its ACK }
+    Turn        : LongInt;       {< messages the current station sent this turn }
     Until_      : QWord;
     RMess       : tRecRecord;
     Log         : tDF1LogProc;
