@@ -53,16 +53,16 @@ const
 type
   pChnTrc = ^tChnTrc;
   tChnTrc = object(tChnMiddle)
-    CH_File     : tWordString;  { FILE=: a path, STDERR or STDOUT }
-    CH_Mode     : tTrcMode;     { MOD=HEX|DEC: the text format }
-    CH_Pcap     : Boolean;      { MOD=PCAP: binary pcap instead of text }
-    CH_Handle   : THandle;      { the log while open }
-    CH_LogOpen  : Boolean;      { CH_Handle is valid }
-    CH_OwnHandle: Boolean;      { CH_Handle is a file this layer opened }
-    CH_LogErrors: LongInt;      { log writes that failed }
-    CH_PcapTcp  : Boolean;      { MOD=PCAP as a TCP stream (ChPcapAsTcp) }
-    CH_PcapServer: Boolean;     { ... of which this side is the server }
-    CH_Flow     : tPcapTcpFlow;
+    CH_File     : tWordString;  {< FILE=: a path, STDERR or STDOUT }
+    CH_Mode     : tTrcMode;     {< MOD=HEX|DEC: the text format }
+    CH_Pcap     : Boolean;      {< MOD=PCAP: binary pcap instead of text }
+    CH_Handle   : THandle;      {< the log while open }
+    CH_LogOpen  : Boolean;      {< CH_Handle is valid }
+    CH_OwnHandle: Boolean;      {< CH_Handle is a file this layer opened }
+    CH_LogErrors: LongInt;      {< log writes that failed }
+    CH_PcapTcp  : Boolean;      {< MOD=PCAP as a TCP stream (ChPcapAsTcp) }
+    CH_PcapServer: Boolean;     {< ... of which this side is the server }
+    CH_Flow     : tPcapTcpFlow; {< its sequence numbers }
     constructor Init;
     constructor ChInitParam(const S: tParamStr);
     destructor  Done; virtual;
