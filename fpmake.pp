@@ -146,7 +146,7 @@ begin
     { IEC 60870-5-104: the APCI codec and the layer over NAM=TCP }
     AddUnit(P, 'ChnIec104Codec.pas', AllOSes, ['ChnTypes']);
     AddUnit(P, 'ChnIec104.pas', AllOSes, ['ChnTypes', 'ChnVirt', 'ChnProto', 'ChnIec104Codec',
-      'uString', 'ChnTcp']);
+      'uString', 'ChnTcp', 'ChnTrc']);
     { IEC 60870-5-101 application layer on the FT 1.2 link helpers or IEC 104 }
     AddUnit(P, 'ChnIec101Asdu.pas', AllOSes, ['ChnTypes']);
     AddUnit(P, 'ChnIecTransport.pas', AllOSes, ['ChnTypes', 'ChnVirt', 'ChnFT1_2', 'ChnFT12Link',
