@@ -20,10 +20,10 @@ uses
 type
   { One token of a parameter string, split once by ParamSplit. }
   tParamToken = record
-    Text : tWordString;   { KEY=VALUE as given }
-    Key  : string[31];    { upper-cased KEY ('' when there is no '=') }
-    Ok   : Boolean;       { of the form KEY=VALUE, VALUE not empty, one '=' }
-    Start: LongInt;       { where it begins in the string }
+    Text : tWordString;   {< KEY=VALUE as given }
+    Key  : string[31];    {< upper-cased KEY ('' when there is no '=') }
+    Ok   : Boolean;       {< of the form KEY=VALUE, VALUE not empty, one '=' }
+    Start: LongInt;       {< where it begins in the string }
   end;
   { A parameter string as tokens; while ChSetParam checks a layer's tokens,
     Items[OwnFirst .. OwnEnd - 1] are that layer's own (OwnEnd: the NAM=

@@ -27,7 +27,7 @@ uses
 {$I chnvirtnames.inc}   { ChnTypes' and ChnParam's names, for "uses ChnVirt" alone }
 
 const
-  MaxLowChunk = 256;   { bytes a protocol layer pulls from below at once }
+  MaxLowChunk = 256;   {< bytes a protocol layer pulls from below at once }
   { bytes one ChReceiveTick of a protocol layer may feed its automaton, so
     a line babbling bytes that never make a frame cannot stall a poll }
   MaxBytesPerTick = 4096;
@@ -36,23 +36,23 @@ const
 type
   pChnVirt = ^tChnVirt;
   tChnVirt = object
-    CH_Type    : string[15];   { layer type, the registry name ('DF1') }
-    CH_Name    : string[15];   { instance name, CH_Type unless changed }
-    CH_NumName : Word;         { ChNumName(CH_Type) }
-    CH_Node    : tNode;        { own station address }
-    CH_DNode   : tNode;        { destination station address }
-    CH_RSNode  : tNode;        { source address of the last received message }
-    CH_RDNode  : tNode;        { destination address of the last received message }
-    CH_RCtrl   : tChState;     { receiver automaton state }
-    CH_State   : tChState;     { life cycle: CHS_Close/Open/Connect/DisConnect }
-    CH_Result  : tChResult;    { result of the last life-cycle call }
-    CH_SResult : tChResult;    { result of the last send }
-    CH_RResult : tChResult;    { result of the last receive step }
-    CH_Low     : pChnVirt;     { the layer below; nil in a physical layer }
-    CH_RBuff   : Pointer;      { the application's receive buffer }
-    CH_RSize   : Word;         { and its size }
-    CH_ParamErr: tWordString;  { token that made the last ChSetParam fail }
-    IData      : LongInt;      { free for the application }
+    CH_Type    : string[15];   {< layer type, the registry name ('DF1') }
+    CH_Name    : string[15];   {< instance name, CH_Type unless changed }
+    CH_NumName : Word;         {< ChNumName(CH_Type) }
+    CH_Node    : tNode;        {< own station address }
+    CH_DNode   : tNode;        {< destination station address }
+    CH_RSNode  : tNode;        {< source address of the last received message }
+    CH_RDNode  : tNode;        {< destination address of the last received message }
+    CH_RCtrl   : tChState;     {< receiver automaton state }
+    CH_State   : tChState;     {< life cycle: CHS_Close/Open/Connect/DisConnect }
+    CH_Result  : tChResult;    {< result of the last life-cycle call }
+    CH_SResult : tChResult;    {< result of the last send }
+    CH_RResult : tChResult;    {< result of the last receive step }
+    CH_Low     : pChnVirt;     {< the layer below; nil in a physical layer }
+    CH_RBuff   : Pointer;      {< the application's receive buffer }
+    CH_RSize   : Word;         {< and its size }
+    CH_ParamErr: tWordString;  {< token that made the last ChSetParam fail }
+    IData      : LongInt;      {< free for the application }
     { bytes pulled from the lower layer and not yet consumed }
     CH_LowBuf  : array[0..MaxLowChunk - 1] of Byte;
     CH_LowLen, CH_LowPos: Word;
@@ -96,7 +96,7 @@ type
     procedure ChDestNode(DNode: tNode); virtual;
     procedure ChGetNode(var SNode, DNode: tNode); virtual;
 
-    { --- additions of the port (not in the SofCon manuals) --- }
+    {- --- additions of the port (not in the SofCon manuals) --- }
     { The receive buffer ChReceiveBuffer gave last (nil, 0: none) and the
       destination ChDestNode set: what a helper that borrows the channel
       for an exchange gives back afterwards, through ChReceiveBuffer and
@@ -227,7 +227,9 @@ function ChMsTick: QWord;
 { Microseconds from a monotonic clock, for measuring what a millisecond
   cannot resolve (a byte's time at 115200 baud is 87 us): differences
   only, its zero is not ChMsTick's. Linux CLOCK_MONOTONIC, Windows
-  QueryPerformanceCounter; other systems ChMsTick * 1000. }
+  QueryPerformanceCounter, other systems ChMsTick * 1000: ChnWait's
+  ChnClockUs, the shared wait's time base, under the name beside
+  ChMsTick. }
 function ChUsTick: QWord;
 
 { ChSend once the transmitter is free, waiting for it at most TimeoutMs
@@ -944,7 +946,7 @@ begin
   CH_LowPos := 0;
 end;
 
-{ -------------------------------------------------------------- tChnMiddle }
+{- -------------------------------------------------------------- tChnMiddle }
 
 procedure tChnMiddle.ChReceiveTick;
 begin
@@ -977,7 +979,7 @@ begin
     Result := inherited ChResultStr(R);
 end;
 
-{ ------------------------------------------------------------- tAddChnVirt }
+{- ------------------------------------------------------------- tAddChnVirt }
 
 constructor tAddChnVirt.Init(const AName: ShortString);
 begin
@@ -993,7 +995,7 @@ begin
   Result := nil;
 end;
 
-{ ---------------------------------------------------------- tChnCollection }
+{- ---------------------------------------------------------- tChnCollection }
 
 constructor tChnCollection.Init;
 begin

@@ -17,20 +17,20 @@ uses
 
 
 const
-  FT12BalQueueLen = 8;        { user data frames waiting to be sent }
-  FT12BalTestMs   = 5000;     { default: test function after 5 s of quiet }
+  FT12BalQueueLen = 8;        {< user data frames waiting to be sent }
+  FT12BalTestMs   = 5000;     {< default: test function after 5 s of quiet }
 
 type
   { What the primary half of a balanced link is doing. }
   tFT12BalState = (
-    bsIdle,           { link not established: request status of link next }
-    bsRequestStatus,  { FC 9 sent, waiting for status of link (FC 11) }
-    bsResetting,      { FC 0 sent, waiting for ACK }
-    bsAvailable);     { reset acknowledged: user data and test functions }
+    bsIdle,           {< link not established: request status of link next }
+    bsRequestStatus,  {< FC 9 sent, waiting for status of link (FC 11) }
+    bsResetting,      {< FC 0 sent, waiting for ACK }
+    bsAvailable);     {< reset acknowledged: user data and test functions }
 
   tFT12BalUserData = record
     Len    : Word;
-    Confirm: Boolean;         { FC 3 (SEND/CONFIRM) or FC 4 (SEND/NO REPLY) }
+    Confirm: Boolean;         {< FC 3 (SEND/CONFIRM) or FC 4 (SEND/NO REPLY) }
     Data   : tData;
   end;
 
@@ -43,57 +43,57 @@ type
     Chn        : pChnVirt;
     RMess      : tRecRecord;
     { settings (FT12BalancedInit gives the defaults) }
-    TimeoutMs  : LongInt;     { wait for an answer (FT12LinkTimeoutMs) }
-    Retries    : SmallInt;    { repetitions before the link counts as lost }
-    TestMs     : LongInt;     { test function after this long without a
+    TimeoutMs  : LongInt;     {< wait for an answer (FT12LinkTimeoutMs) }
+    Retries    : SmallInt;    {< repetitions before the link counts as lost }
+    TestMs     : LongInt;     {< test function after this long without a
                                 request of ours; 0 = never }
-    Dfc        : Boolean;     { DFC sent in every answer (set by the application) }
+    Dfc        : Boolean;     {< DFC sent in every answer (set by the application) }
     { primary }
     State      : tFT12BalState;
-    Pending    : Boolean;     { a request is out and its answer awaited }
-    Out        : tSendRecord; { that request, for repetitions }
+    Pending    : Boolean;     {< a request is out and its answer awaited }
+    Out        : tSendRecord; {< that request, for repetitions }
     OutLen     : Word;
-    Fcb        : Boolean;     { FCB of the next new FCV = 1 transmission }
-    Tries      : SmallInt;    { transmissions of Out so far }
-    SentAt     : QWord;       { when Out went out the last time }
-    LastRequest: QWord;       { when a request of ours last went out }
-    HoldUntil  : QWord;       { no new request before (NACK, DFC) }
-    PeerDfc    : Boolean;     { DFC of the peer's last answer }
+    Fcb        : Boolean;     {< FCB of the next new FCV = 1 transmission }
+    Tries      : SmallInt;    {< transmissions of Out so far }
+    SentAt     : QWord;       {< when Out went out the last time }
+    LastRequest: QWord;       {< when a request of ours last went out }
+    HoldUntil  : QWord;       {< no new request before (NACK, DFC) }
+    PeerDfc    : Boolean;     {< DFC of the peer's last answer }
     Queue      : array[0..FT12BalQueueLen - 1] of tFT12BalUserData;
     QHead, QCount: SmallInt;
     { secondary }
-    HasReply   : Boolean;     { an FCV = 1 frame was accepted since the reset }
-    LastFcb    : Boolean;     { its FCB }
-    Reply      : tSendRecord; { the answer it got, sent again on a repetition }
+    HasReply   : Boolean;     {< an FCV = 1 frame was accepted since the reset }
+    LastFcb    : Boolean;     {< its FCB }
+    Reply      : tSendRecord; {< the answer it got, sent again on a repetition }
     ReplyLen   : Word;
-    PeerReset  : Boolean;     { the peer reset this station's secondary }
-    OnUserData : tFT12UserDataFunc;   { FC 3 (Confirm) / FC 4 user data }
+    PeerReset  : Boolean;     {< the peer reset this station's secondary }
+    OnUserData : tFT12UserDataFunc;   {< FC 3 (Confirm) / FC 4 user data }
     Data       : Pointer;
     { counters }
-    Frames     : LongInt;     { frames taken, good or broken }
-    Executed   : LongInt;     { FC 3/4 frames handed to OnUserData }
-    Repeats    : LongInt;     { repetitions answered from memory }
-    Retransmits: LongInt;     { our requests sent again after a timeout }
-    Confirmed  : LongInt;     { our user data confirmed (or sent, FC 4) }
-    Tests      : LongInt;     { test functions of ours confirmed }
-    LinkLost   : LongInt;     { times the link had to be established anew }
-    Unexpected : LongInt;     { answers with no request of ours outstanding }
-    Ignored    : LongInt;     { answers that do not fit, or from another address }
-    BadDir     : LongInt;     { frames with the DIR of this station's side }
-    Broken     : LongInt;     { other broken frames (checksum, length, ...) }
+    Frames     : LongInt;     {< frames taken, good or broken }
+    Executed   : LongInt;     {< FC 3/4 frames handed to OnUserData }
+    Repeats    : LongInt;     {< repetitions answered from memory }
+    Retransmits: LongInt;     {< our requests sent again after a timeout }
+    Confirmed  : LongInt;     {< our user data confirmed (or sent, FC 4) }
+    Tests      : LongInt;     {< test functions of ours confirmed }
+    LinkLost   : LongInt;     {< times the link had to be established anew }
+    Unexpected : LongInt;     {< answers with no request of ours outstanding }
+    Ignored    : LongInt;     {< answers that do not fit, or from another address }
+    BadDir     : LongInt;     {< frames with the DIR of this station's side }
+    Broken     : LongInt;     {< other broken frames (checksum, length, ...) }
     { answers that may still come for earlier transmissions (see "Late
       answers" in the unit header) }
-    Suspect    : Boolean;     { other than status of link: fence first }
-    OwedStatus : LongInt;     { status of link answers (FC 11) }
-    StatusSkip : LongInt;     { of those, to skip for the request now out }
-    StatusAt   : QWord;       { when a status request last went out }
-    Fencing    : Boolean;     { Out is a fence: FC 9 to flush late answers }
-    Fences     : LongInt;     { fences sent }
-    Stale      : LongInt;     { late answers recognised and ignored }
-    OtherAddr  : LongInt;     { frames from or for another link address
+    Suspect    : Boolean;     {< other than status of link: fence first }
+    OwedStatus : LongInt;     {< status of link answers (FC 11) }
+    StatusSkip : LongInt;     {< of those, to skip for the request now out }
+    StatusAt   : QWord;       {< when a status request last went out }
+    Fencing    : Boolean;     {< Out is a fence: FC 9 to flush late answers }
+    Fences     : LongInt;     {< fences sent }
+    Stale      : LongInt;     {< late answers recognised and ignored }
+    OtherAddr  : LongInt;     {< frames from or for another link address
                                 (answers here, requests dropped by the channel) }
-    OtherLast  : Word;        { the address the last of them carried }
-    RxForeign  : LongWord;    { the channel's count when last looked at }
+    OtherLast  : Word;        {< the address the last of them carried }
+    RxForeign  : LongWord;    {< the channel's count when last looked at }
   end;
 
 { Bind B to a balanced tChnFT1_2 and set the defaults; the channel's

@@ -78,30 +78,30 @@ const
     never stops sending cannot keep a step from running the timers }
   FT12MaxFramesPerStep = 64;
 
-  { secondary function codes of IEC 60870-5-2 that the manual does not name }
-  FCS_NotFunctioning  = 14;  { link service not functioning }
-  FCS_NotImplemented  = 15;  { link service not implemented }
+  {- secondary function codes of IEC 60870-5-2 that the manual does not name }
+  FCS_NotFunctioning  = 14;  {< link service not functioning }
+  FCS_NotImplemented  = 15;  {< link service not implemented }
 
 type
   tFT12Idle = procedure(Data: Pointer);
 
   { What the primary keeps per secondary. }
   tFT12Link = record
-    Addr    : Word;      { link address of the secondary (DNO) }
-    Fcb     : Boolean;   { FCB for the next new FCV = 1 transmission }
-    Reset   : Boolean;   { reset of remote link acknowledged, no failure since }
-    Acd     : Boolean;   { ACD of the last reply: class 1 data waiting }
-    Dfc     : Boolean;   { DFC of the last reply: secondary cannot take more }
-    Repeats : LongInt;   { repetitions sent after a missing reply }
-    Ignored : LongInt;   { frames ignored while waiting (other address, broken) }
-    { late answers (unit header): }
-    Suspect   : Boolean; { answers to earlier transmissions may still come: fence first }
-    OwedStatus: LongInt; { status of link answers (FC 11) that may still come }
-    StatusAt  : QWord;   { when a status request last went out }
-    Fences    : LongInt; { fences (FC 9) sent before a service }
-    Stale     : LongInt; { late answers recognised and ignored }
-    OtherAddr : LongInt; { of Ignored: answers from another link address }
-    OtherLast : Word;    { the address the last of them carried }
+    Addr    : Word;      {< link address of the secondary (DNO) }
+    Fcb     : Boolean;   {< FCB for the next new FCV = 1 transmission }
+    Reset   : Boolean;   {< reset of remote link acknowledged, no failure since }
+    Acd     : Boolean;   {< ACD of the last reply: class 1 data waiting }
+    Dfc     : Boolean;   {< DFC of the last reply: secondary cannot take more }
+    Repeats : LongInt;   {< repetitions sent after a missing reply }
+    Ignored : LongInt;   {< frames ignored while waiting (other address, broken) }
+    {- late answers (unit header): }
+    Suspect   : Boolean; {< answers to earlier transmissions may still come: fence first }
+    OwedStatus: LongInt; {< status of link answers (FC 11) that may still come }
+    StatusAt  : QWord;   {< when a status request last went out }
+    Fences    : LongInt; {< fences (FC 9) sent before a service }
+    Stale     : LongInt; {< late answers recognised and ignored }
+    OtherAddr : LongInt; {< of Ignored: answers from another link address }
+    OtherLast : Word;    {< the address the last of them carried }
   end;
 
   { Secondary callbacks; Data is tFT12Station.Data.

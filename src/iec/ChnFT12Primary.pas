@@ -47,7 +47,7 @@ type
     Link     : ^tFT12Link;
     Req      : tSendRecord;
     ReqLen   : Word;
-    Out      : tSendRecord;     { what goes on the line: the reset or the service }
+    Out      : tSendRecord;     {< what goes on the line: the reset or the service }
     OutLen   : Word;
     Rep      : tRecRecord;
     RepLen   : Word;
@@ -55,13 +55,13 @@ type
     Result   : tChResult;
     Fcv      : Boolean;
     NoReply  : Boolean;
-    Resetting: Boolean;         { the reset in front of an FCV = 1 service is out }
-    Fencing  : Boolean;         { the fence in front of them is out (FC 9) }
-    StatusSkip: LongInt;        { status answers owed from before: not this one's }
-    Try_     : LongInt;         { repetitions of Out so far }
+    Resetting: Boolean;         {< the reset in front of an FCV = 1 service is out }
+    Fencing  : Boolean;         {< the fence in front of them is out (FC 9) }
+    StatusSkip: LongInt;        {< status answers owed from before: not this one's }
+    Try_     : LongInt;         {< repetitions of Out so far }
     Retries  : LongInt;
     TimeoutMs: LongInt;
-    Until_   : QWord;           { end of the wait for this transmission }
+    Until_   : QWord;           {< end of the wait for this transmission }
     OldBuf   : Pointer;
     OldSize  : Word;
     OldDNode : tNode;

@@ -16,27 +16,27 @@ type
   tFT12Station = record
     Chn        : pChnVirt;
     RMess      : tRecRecord;
-    Reply      : tSendRecord;  { last reply to an FCV = 1 frame or a reset }
+    Reply      : tSendRecord;  {< last reply to an FCV = 1 frame or a reset }
     ReplyLen   : Word;
     HasReply   : Boolean;
-    LinkReset  : Boolean;      { a reset of remote link was received }
-    LastFcb    : Boolean;      { FCB of the last accepted FCV = 1 frame (0 after reset) }
-    Dfc        : Boolean;      { DFC sent in every reply (set by the application) }
-    SingleAck  : Boolean;      { ACK as E5 when no class 1 data is waiting }
+    LinkReset  : Boolean;      {< a reset of remote link was received }
+    LastFcb    : Boolean;      {< FCB of the last accepted FCV = 1 frame (0 after reset) }
+    Dfc        : Boolean;      {< DFC sent in every reply (set by the application) }
+    SingleAck  : Boolean;      {< ACK as E5 when no class 1 data is waiting }
     OnUserData : tFT12UserDataFunc;
     OnClassData: tFT12ClassDataFunc;
     OnClass1   : tFT12Class1Func;
     Data       : Pointer;
     { counters }
-    Frames     : LongInt;      { frames taken, good or broken }
-    Executed   : LongInt;      { FC 3/4/10/11 frames handed to the callbacks }
-    Repeats    : LongInt;      { repetitions answered with the last reply }
-    Refused    : LongInt;      { FCV = 1 frames before a reset (NACK); FC 3, 10, 11
+    Frames     : LongInt;      {< frames taken, good or broken }
+    Executed   : LongInt;      {< FC 3/4/10/11 frames handed to the callbacks }
+    Repeats    : LongInt;      {< repetitions answered with the last reply }
+    Refused    : LongInt;      {< FCV = 1 frames before a reset (NACK); FC 3, 10, 11
                                  without FCV (FC 15) }
-    OtherAddr  : LongInt;      { frames for another link address (the channel
+    OtherAddr  : LongInt;      {< frames for another link address (the channel
                                  drops them: other stations' traffic on a bus) }
-    OtherLast  : Word;         { the address the last of them carried }
-    RxForeign  : LongWord;     { the channel's count when last looked at }
+    OtherLast  : Word;         {< the address the last of them carried }
+    RxForeign  : LongWord;     {< the channel's count when last looked at }
   end;
 
 procedure FT12StationInit(var S: tFT12Station; Chn: pChnVirt);

@@ -58,13 +58,13 @@ const
 type
   pChnCom = ^tChnCom;
   tChnCom = object(tChnPhys)
-    CH_Com     : LongInt;          { COM= }
-    CH_Dev     : tWordString;      { DEV=, '' = use COM }
-    CH_Drv     : string[15];       { DRV= }
-    CH_Rs485   : Byte;             { RS485=, rs485* }
-    CH_Irq     : string[15];       { IRQ= as given (ignored) }
-    CH_DosKey  : string[31];       { ADR=/BASE=/PORT= token as given (ignored) }
-    CH_Lat     : LongInt;          { LAT= USB adapter latency timer ms, 0 = as it is }
+    CH_Com     : LongInt;          {< COM= }
+    CH_Dev     : tWordString;      {< DEV=, '' = use COM }
+    CH_Drv     : string[15];       {< DRV= }
+    CH_Rs485   : Byte;             {< RS485=, rs485* }
+    CH_Irq     : string[15];       {< IRQ= as given (ignored) }
+    CH_DosKey  : string[31];       {< ADR=/BASE=/PORT= token as given (ignored) }
+    CH_Lat     : LongInt;          {< LAT= USB adapter latency timer ms, 0 = as it is }
     constructor Init;
     constructor ChInitParam(const S: tParamStr);
     function  ChSetOneParam(const S: tWordString; var CmdL: tCmd): tChResult; virtual;

@@ -58,24 +58,24 @@ const
 type
   pChnPhys = ^tChnPhys;
   tChnPhys = object(tChnVirt)
-    CH_Set     : tPortSettings;    { BD BIT STOP PAR FLW, where the kind has a line }
-    CH_LRB     : LongInt;          { LRB= }
-    CH_LSB     : LongInt;          { LSB= }
-    CH_Idle    : LongInt;          { IDL= }
-    CH_Port    : TChnPort;         { the open port, nil when closed }
-    CH_RtsToggle: Boolean;         { this layer switches RTS (COM's RS485=RTS/AUTO) }
-    CH_RtsUp   : Boolean;          { RTS raised for the message being sent }
-    CH_Fault   : tChResult;        { device lost / I/O error while open }
-    CH_Ring    : tByteRing;        { receive ring of CH_LRB bytes }
-    CH_Lost    : LongWord;         { bytes lost since open (ring or OS) }
-    CH_LostShown: LongWord;        { part of CH_Lost already reported }
-    CH_OsLost  : LongWord;         { OS overrun count last seen }
-    CH_TxBuf   : PByte;            { copy of the message being sent }
+    CH_Set     : tPortSettings;    {< BD BIT STOP PAR FLW, where the kind has a line }
+    CH_LRB     : LongInt;          {< LRB= }
+    CH_LSB     : LongInt;          {< LSB= }
+    CH_Idle    : LongInt;          {< IDL= }
+    CH_Port    : TChnPort;         {< the open port, nil when closed }
+    CH_RtsToggle: Boolean;         {< this layer switches RTS (COM's RS485=RTS/AUTO) }
+    CH_RtsUp   : Boolean;          {< RTS raised for the message being sent }
+    CH_Fault   : tChResult;        {< device lost / I/O error while open }
+    CH_Ring    : tByteRing;        {< receive ring of CH_LRB bytes }
+    CH_Lost    : LongWord;         {< bytes lost since open (ring or OS) }
+    CH_LostShown: LongWord;        {< part of CH_Lost already reported }
+    CH_OsLost  : LongWord;         {< OS overrun count last seen }
+    CH_TxBuf   : PByte;            {< copy of the message being sent }
     CH_TxCap, CH_TxLen, CH_TxPos: LongInt;
-    CH_Wait    : pChnWaitSource;   { this port in the program-wide wait; nil: none }
-    CH_Reopen  : LongInt;          { RECON= ms between reopen attempts, 0 = off }
-    CH_ReopenAt: QWord;            { next reopen attempt (GetTickCount64) }
-    CH_ReopenPort: TChnPort;       { a reopen in progress (ComReopenStart said res_Busy) }
+    CH_Wait    : pChnWaitSource;   {< this port in the program-wide wait; nil: none }
+    CH_Reopen  : LongInt;          {< RECON= ms between reopen attempts, 0 = off }
+    CH_ReopenAt: QWord;            {< next reopen attempt (GetTickCount64) }
+    CH_ReopenPort: TChnPort;       {< a reopen in progress (ComReopenStart said res_Busy) }
     constructor Init;
     destructor  Done; virtual;
     { LRB= LSB= IDL= RECON=, those of PhysKeys }

@@ -32,9 +32,9 @@ type
   end;
 
 const
-  TCGETS2 = $802C542A;        { _IOR('T', 0x2A, struct termios2) }
-  TCSETS2 = $402C542B;        { _IOW('T', 0x2B, struct termios2) }
-  BOTHER = $1000;             { c_cflag speed code: rate in c_ispeed/c_ospeed }
+  TCGETS2 = $802C542A;        {< _IOR('T', 0x2A, struct termios2) }
+  TCSETS2 = $402C542B;        {< _IOW('T', 0x2B, struct termios2) }
+  BOTHER = $1000;             {< c_cflag speed code: rate in c_ispeed/c_ospeed }
 {$ENDIF}
 
 { Mark Fd close-on-exec. }
