@@ -24,7 +24,7 @@ interface
 uses
   ChnTypes, uString, ChnParam;
 
-{$I chnvirtnames.inc}   { ChnTypes' and ChnParam's names, for "uses ChnVirt" alone }
+{$I chnvirtnames.inc}   {- ChnTypes' and ChnParam's names, for "uses ChnVirt" alone }
 
 const
   MaxLowChunk = 256;   {< bytes a protocol layer pulls from below at once }

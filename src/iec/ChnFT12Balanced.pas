@@ -42,7 +42,7 @@ type
   tFT12Balanced = record
     Chn        : pChnVirt;
     RMess      : tRecRecord;
-    { settings (FT12BalancedInit gives the defaults) }
+    {- settings (FT12BalancedInit gives the defaults) }
     TimeoutMs  : LongInt;     {< wait for an answer (FT12LinkTimeoutMs) }
     Retries    : SmallInt;    {< repetitions before the link counts as lost }
     TestMs     : LongInt;     {< test function after this long without a
@@ -61,7 +61,7 @@ type
     PeerDfc    : Boolean;     {< DFC of the peer's last answer }
     Queue      : array[0..FT12BalQueueLen - 1] of tFT12BalUserData;
     QHead, QCount: SmallInt;
-    { secondary }
+    {- secondary }
     HasReply   : Boolean;     {< an FCV = 1 frame was accepted since the reset }
     LastFcb    : Boolean;     {< its FCB }
     Reply      : tSendRecord; {< the answer it got, sent again on a repetition }
@@ -69,7 +69,7 @@ type
     PeerReset  : Boolean;     {< the peer reset this station's secondary }
     OnUserData : tFT12UserDataFunc;   {< FC 3 (Confirm) / FC 4 user data }
     Data       : Pointer;
-    { counters }
+    {- counters }
     Frames     : LongInt;     {< frames taken, good or broken }
     Executed   : LongInt;     {< FC 3/4 frames handed to OnUserData }
     Repeats    : LongInt;     {< repetitions answered from memory }
@@ -81,7 +81,7 @@ type
     Ignored    : LongInt;     {< answers that do not fit, or from another address }
     BadDir     : LongInt;     {< frames with the DIR of this station's side }
     Broken     : LongInt;     {< other broken frames (checksum, length, ...) }
-    { answers that may still come for earlier transmissions (see "Late
+    {- answers that may still come for earlier transmissions (see "Late
       answers" in the unit header) }
     Suspect    : Boolean;     {< other than status of link: fence first }
     OwedStatus : LongInt;     {< status of link answers (FC 11) }

@@ -27,7 +27,7 @@ type
     OnClassData: tFT12ClassDataFunc;
     OnClass1   : tFT12Class1Func;
     Data       : Pointer;
-    { counters }
+    {- counters }
     Frames     : LongInt;      {< frames taken, good or broken }
     Executed   : LongInt;      {< FC 3/4/10/11 frames handed to the callbacks }
     Repeats    : LongInt;      {< repetitions answered with the last reply }
