@@ -151,7 +151,7 @@ $(PROGBINS) $(BENCHBINS): src/chn.inc | $(BUILD)/units.stamp
 # (ptys) are listed here and built only there; single Unix-only tests are
 # {$IFDEF UNIX} in their unit.
 UNIX_TESTS := TestChnPty TestChnTcpSer2net TestFT12Examples TestFaultCycling TestIec101Examples \
-              TestIec101SlaveTool TestIec101Docs
+              TestIec101SlaveTool TestIec101Docs TestIec104Tools
 comma := ,
 uses_entry = $(if $(filter $(1),$(UNIX_TESTS)),'{$$IFDEF UNIX}$(1)$(comma){$$ENDIF}','$(1)$(comma)')
 $(BUILD)/testunits.inc: $(TESTUNITS)
@@ -244,7 +244,7 @@ INSTALL_SRCDIR  ?= $(PREFIX)/share/chn
 # $(PREFIX)/bin, each with a man page made from its --help and --version
 # by Debian's help2man (without help2man the pages are left out, with a
 # note). The other examples are demos of the API and stay in build/bin.
-TOOL_PROGRAMS := df1sim chndecode chntap df1read df1write df1echo comraw waitany \
+TOOL_PROGRAMS := df1sim chndecode chntap chnline df1read df1write df1echo comraw waitany \
                  $(basename $(notdir $(wildcard examples/iec101master.pas examples/iec101slave.pas examples/plcconc.pas)))
 INSTALL_BINDIR ?= $(PREFIX)/bin
 INSTALL_MANDIR ?= $(PREFIX)/share/man/man1

@@ -370,8 +370,10 @@ begin
     CliUsageError(Cli, 'no command', Cli.Args[0]);
   ParseCommands;
   { the parameter string and the master, checked before anything opens }
-  if Pos('NAM=FT1_2', UpperCase(TrimLeft(Cli.Args[0]))) <> 1 then
-    CliUsageError(Cli, 'the parameter string must start with NAM=FT1_2', Copy(Cli.Args[0], 1, 20));
+  if (Pos('NAM=FT1_2', UpperCase(TrimLeft(Cli.Args[0]))) <> 1) and
+     (Pos('NAM=IEC104', UpperCase(TrimLeft(Cli.Args[0]))) <> 1) then
+    CliUsageError(Cli, 'the parameter string must start with NAM=FT1_2 or NAM=IEC104',
+      Copy(Cli.Args[0], 1, 20));
   Chn := CliChannel(Cli, Cli.Args[0], ChnFT1_2.cName);
   ParseSlaves(Chn);
   SetUpMaster(Chn);

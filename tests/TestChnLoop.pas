@@ -34,6 +34,7 @@ type
     procedure TestMultidropEveryEndHearsEveryOther;
     procedure TestCollisionGarblesBoth;
     procedure TestNoCollisionOneAfterTheOther;
+    procedure TestNullModemIsFullDuplex;
   end;
 
 implementation
@@ -391,6 +392,10 @@ begin
   A^.ChSetParam('BD=0');
   AssertEquals('BD=0: no speed', res_Ok, A^.ChResult);
   AssertEquals('no speed, no line keys', '', A^.ChGetParam('BD'));
+  A^.ChSetParam('BUS=ON');
+  AssertEquals('BUS=ON', A^.ChGetParam('BUS'));
+  A^.ChSetParam('BUS=2');
+  AssertEquals('BUS=2', res_BadParam, A^.ChResult);
   A^.ChSetParam('PAR=X');
   AssertEquals('PAR=X', res_BadParam, A^.ChResult);
 end;
@@ -456,10 +461,11 @@ begin
 end;
 
 { A wait with nothing but characters on their way ends when they arrive,
-  not at its timeout: 20 characters at 1200 8N1 take 167 ms. }
+  not at its timeout: 12 characters at 1200 8N1 (8333 us each) take
+  100 ms. }
 procedure TTestChnLoop.TestTimedLineWakesTheWaitInTime;
 var
-  S: array[0..19] of Byte;
+  S: array[0..11] of Byte;
   D: array[0..19] of Byte;
   T0, Took: QWord;
   Len: Word;
@@ -473,10 +479,10 @@ begin
   while (B^.ChReceiveReady <> CHS_ReceiveReady) and (GetTickCount64 - T0 < 3000) do
     ChnWaitAny(3000);
   Took := GetTickCount64 - T0;
-  AssertTrue('woke after ' + IntToStr(Took) + ' ms', Took >= 166);
+  AssertTrue('woke after ' + IntToStr(Took) + ' ms', Took >= 99);
   AssertTrue('woke after ' + IntToStr(Took) + ' ms', Took < 1500);
   B^.ChReceive(Len);
-  AssertEquals('all 20 (woken for the last)', 20, Len);
+  AssertEquals('all 12 (woken for the last)', 12, Len);
 end;
 
 procedure TTestChnLoop.TestMultidropEveryEndHearsEveryOther;
@@ -566,6 +572,27 @@ begin
   AssertEquals(0, Coll);
   AssertEquals(0, Garb);
   AssertFalse('no such line', LoopLineStats('NONE', Coll, Garb));
+end;
+
+{ Two ends without BUS=ON are a null modem: both send at once, nothing
+  collides, each gets the other's bytes as sent. }
+procedure TTestChnLoop.TestNullModemIsFullDuplex;
+var
+  SA, SB, D: array[0..9] of Byte;
+  Wakes: Integer;
+  Coll, Garb: LongWord;
+begin
+  OpenPair('FDX', 'BD=9600');
+  FillChar(SA, SizeOf(SA), $11);
+  FillChar(SB, SizeOf(SB), $22);
+  A^.ChSend(@SA, 10);
+  B^.ChSend(@SB, 10);
+  AssertEquals(10, TimedDrain(B, D, 10, Wakes));
+  AssertEquals($11, D[9]);
+  AssertEquals(10, TimedDrain(A, D, 10, Wakes));
+  AssertEquals($22, D[0]);
+  AssertTrue(LoopLineStats('FDX', Coll, Garb));
+  AssertEquals(0, Coll);
 end;
 
 initialization

@@ -173,7 +173,7 @@ if make -s install BUILD="$BUILD" DESTDIR="$D" >"$TMP/dinstall.log" 2>&1 && [ -f
   d="$TMP/destdir"; mkdir -p "$d"; cp "$TMP/readme/$p.pas" "$d/"
   build_run "make install DESTDIR= PREFIX=/usr" "$d" "$p" "$FPC" -v0 -Fu"$U" "$p.pas"
   # the tools: in usr/bin, each answering --help, with a man page
-  TOOLS_INSTALLED="df1sim chndecode chntap df1read df1write df1echo comraw waitany"
+  TOOLS_INSTALLED="df1sim chndecode chntap chnline df1read df1write df1echo comraw waitany"
   missing=""
   for t in $TOOLS_INSTALLED; do
     [ -x "$D/usr/bin/$t" ] && "$D/usr/bin/$t" --help 2>/dev/null | grep -q "^Usage: $t " || missing="$missing $t"

@@ -6,7 +6,8 @@
   receive ring, LRB=, IDL=, the transmit buffer and the program-wide wait
   are COM's. The ends of one PAIR are one line: what an end sends, every
   other open end of the pair receives (two ends: a null modem; more: a
-  multidrop line such as RS-485, END=1..32). Bytes sent while nobody else
+  multidrop line such as RS-485, END=1..32; BUS=ON makes two ends one too).
+  Bytes sent while nobody else
   is open are lost, as on a cable with nobody listening.
 
   Without BD= the line has no speed: a message goes at once into the
@@ -23,13 +24,15 @@
   a poll comes, and the program-wide wait (ChnWaitAny, IDL=) is told when
   the next characters fall due (ChnWaitDue), so it wakes then. A
   receiver whose ring is full loses what comes (counted, res_Overrun, as
-  a UART overrun). Two ends sending at the same time collide, as on an
+  a UART overrun). On a multidrop line (half duplex: more than two ends
+  open, or BUS=ON) two ends sending at the same time collide, as on an
   RS-485 bus: the collision is counted (LoopLineStats) and the characters
   that overlapped reach every receiver garbled (each bit inverted), both
   ends' alike.
 
   Parameters: PAIR=name (default A), END=1..32 (default 1; PAIR= and END=
-  cannot change while the end is open: res_WrongState), BD=50..4000000 or
+  cannot change while the end is open: res_WrongState), BUS=OFF|ON
+  (default OFF), BD=50..4000000 or
   0 (default 0: no speed; reported with the character only when given), BIT=5..8, STOP=1|2, PAR=N|E|O|M|S, LRB=receive
   ring size (default 4096, taken at the next ChOpen), IDL=ms to wait in
   ChReceiveReady when nothing is waiting (default 0: the peer usually runs
@@ -54,7 +57,7 @@ const
   LoopMaxEnds = 32;
   { characters a receiver is woken for at most at once (a UART's FIFO):
     a long message is handed over while it comes, not only at its end }
-  LoopWakeChars = 64;
+  LoopWakeChars = 16;
 
 type
   pLoopPair = ^tLoopPair;
@@ -64,6 +67,7 @@ type
     CH_Pair   : string[31];   { PAIR= }
     CH_End    : Byte;         { END=, 1..LoopMaxEnds }
     CH_LoopBaud: LongInt;     { BD= of the loop, 0: no speed }
+    CH_Bus    : Boolean;      { BUS=ON: half duplex even with two ends }
     constructor Init;
     constructor ChInitParam(const S: tParamStr);
     function  ChSetOneParam(const S: tWordString; var CmdL: tCmd): tChResult; virtual;
@@ -92,6 +96,7 @@ type
     LastEnd: QWord;             { when this end's last character ended }
     GarbleTo: QWord;            { characters begun before this collided }
     Overruns: LongWord;         { characters lost at this end's full ring }
+    Bus: Boolean;               { opened with BUS=ON }
   end;
 
   tLoopPair = record
@@ -114,6 +119,7 @@ type
     EndNo: Byte;
     RingSize: LongInt;
     CharUs: LongInt;            { microseconds per character, 0: no speed }
+    Bus: Boolean;               { BUS=ON }
     { Path is ignored: the pair is PairName, the end EndNo. res_CannotOpen
       when that end is open in another stack. }
     function Open(const Path: tWordString): tChResult; override;
@@ -324,6 +330,7 @@ begin
       Overruns := 0;
     end;
     P^.Ends[EndNo].CharUs := CharUs;
+    P^.Ends[EndNo].Bus := Bus;
     Inc(P^.OpenCount);
     FPair := P;
     FEnd := EndNo;
@@ -385,14 +392,28 @@ begin
   Result := res_Ok;
 end;
 
+{ Half duplex: more than two ends open, or one of them opened BUS=ON.
+  Two ends alone are a null modem: each sends on its own wire. }
+function IsBus(P: pLoopPair): Boolean;
+var
+  L: LongInt;
+begin
+  Result := P^.OpenCount > 2;
+  for L := 1 to LoopMaxEnds do
+    if P^.Ends[L].Open and P^.Ends[L].Bus then
+      Result := True;
+end;
+
 { Another end sends now (its wire holds characters not yet delivered):
-  the new message collides with it; both are garbled where they overlap.
-  Caller holds Lock, after Pump. }
+  on a bus the new message collides with it; both are garbled where they
+  overlap. Caller holds Lock, after Pump. }
 procedure Collide(P: pLoopPair; E: LongInt);
 var
   L: LongInt;
   Ends, OtherEnds: QWord;
 begin
+  if not IsBus(P) then
+    Exit;
   with P^.Ends[E] do
     Ends := WireAt + QWord(WireLen - WirePos) * QWord(CharUs);
   for L := 1 to LoopMaxEnds do
@@ -578,6 +599,12 @@ begin
     if (Result = res_Ok) and (CmdL = cmd_Set) then
       CH_LoopBaud := N;
   end
+  else if Key = 'BUS' then
+  begin
+    Result := ParamChoice(S, 'OFF|ON', I);
+    if (Result = res_Ok) and (CmdL = cmd_Set) then
+      CH_Bus := I = 1;
+  end
   else if (Key = 'BIT') or (Key = 'STOP') or (Key = 'PAR') then
     Result := tChnCom.ChSetOneParam(S, CmdL)   { COM's ranges }
   else if Key = 'LRB' then         { COM's ranges, without its key chain }
@@ -594,6 +621,8 @@ begin
   Result := tChnVirt.ChOwnParams + ' PAIR=' + CH_Pair + ParamText('END', CH_End);
   if CH_LoopBaud > 0 then          { a line without speed reads as before }
     Result := Result + ParamText('BD', CH_LoopBaud) + ComCharText(CH_Set);
+  if CH_Bus then
+    Result := Result + ' BUS=ON';
   Result := Result + ParamText('LRB', CH_LRB) + ParamText('IDL', CH_Idle);
 end;
 
@@ -609,6 +638,7 @@ begin
   Line := CH_Set;
   Line.Baud := CH_LoopBaud;
   P.CharUs := LoopCharUs(Line);
+  P.Bus := CH_Bus;
   Result := P.Open('');
   if Result <> res_Ok then
   begin
@@ -620,7 +650,9 @@ end;
 
 procedure tChnLoop.ChSend(Buff: Pointer; Len: Word);
 begin
-  if ChSendReady <> CHS_SendReady then
+  { at a speed the line queues it behind what is still on its way, as a
+    UART does; without, the last message must have gone on first }
+  if (CH_LoopBaud = 0) and (ChSendReady <> CHS_SendReady) then
     CH_SResult := res_Busy
   else
     inherited ChSend(Buff, Len);
