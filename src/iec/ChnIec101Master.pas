@@ -600,6 +600,13 @@ begin
     InitCa := Ca;
     InitGi := not M.NoGiAfterInit;
     InitCi := not M.NoGiAfterInit and (M.CiAfterInit <> 0);
+    { an interrogation of this slave not yet confirmed is answered after
+      the initialisation: it is the one that follows it }
+    if (M.Cmd.Slave = S) and (M.Cmd.Phase in [cpSend, cpConfirm]) then
+      if M.Cmd.Ti = C_IC_NA_1 then
+        InitGi := False
+      else if M.Cmd.Ti = C_CI_NA_1 then
+        InitCi := False;
   end;
   if Assigned(M.OnEndOfInit) then
     M.OnEndOfInit(M.Data, M.Slaves[S].Addr, Ca, Coi);
