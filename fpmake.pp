@@ -151,13 +151,17 @@ begin
     AddUnit(P, 'ChnIecTransport.pas', AllOSes, ['ChnTypes', 'ChnVirt', 'ChnFT1_2', 'ChnFT12Link',
       'ChnIec104', 'ChnIec104Codec']);
     AddUnit(P, 'ChnIec101Master.pas', AllOSes, ['ChnTypes', 'ChnVirt', 'ChnFT1_2', 'ChnFT12Link',
-      'ChnIec101Asdu', 'ChnWait', 'ChnIecTransport']);
+      'ChnIec101Asdu', 'ChnWait', 'ChnIecTransport', 'ChnFT12Codec']);
     AddUnit(P, 'ChnIec101Slave.pas', AllOSes, ['ChnTypes', 'ChnVirt', 'ChnFT1_2', 'ChnFT12Link',
       'ChnIec101Asdu', 'ChnIecTransport']);
     { src/ics: ICSlink }
     Part(P, 'ics');
     AddUnit(P, 'ChnICSCodec.pas', AllOSes, ['ChnTypes', 'uString']);
     AddUnit(P, 'ChnICS.pas', AllOSes, ['ChnTypes', 'ChnVirt', 'ChnProto', 'ChnICSCodec']);
+    { src/north: what a gateway offers upwards; MQTT loads libmosquitto
+      at run time, nothing is linked }
+    Part(P, 'north');
+    AddUnit(P, 'ChnMqtt.pas', AllOSes, ['ChnWait']);
     Run;
   end;
 end.

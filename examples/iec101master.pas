@@ -74,7 +74,7 @@ begin
     'An IEC 60870-5-101 master: runs the commands in order for every slave and ' +
     'prints every information object sent and received, one per line. PARAMS is ' +
     'an FT 1.2 stack (NAM=FT1_2 ...), unbalanced (MS=ON MAS=MASTER) or balanced ' +
-    '(MS=OFF PRI=ON).');
+    '(MS=OFF PRI=ON: the controlling station, DIR=1 unless DIR= says otherwise).');
   CliOption(Cli, 'ca', #0, 'N', 'common address of ASDU (default 1)');
   CliOption(Cli, 'cot-size', #0, 'N', 'octets of the cause of transmission, 1 or 2 (default 2)');
   CliOption(Cli, 'ca-size', #0, 'N', 'octets of the common address, 1 or 2 (default 2)');
@@ -409,9 +409,9 @@ begin
     for I := 0 to M.SlaveCount - 1 do
       with M.Slaves[I] do
         WriteLn(StdErr, Format('%s: slave %d %s: %d class 1, %d class 2 polls, %d ASDUs, '
-          + '%d objects, %d bad ASDUs, %d failures, %d link resets',
+          + '%d objects, %d bad ASDUs, %d failures, %d link resets%s',
           [Prog, Addr, IecSlaveStateName(State), Class1, Class2, Asdus, Objects, BadAsdus,
-           Failures, Resets]));
+           Failures, Resets, IecLineShowed(M, I)]));
   Dispose(Chn, Done);
   Halt(Worst);
 end.

@@ -115,6 +115,10 @@ type
       character is taken only after FT12SuspectIdleMs of line idle }
     Suspect : Boolean;
     Suspects: LongWord;   { single characters dropped so }
+    { of Ignored: frames with another link address (not the broadcast),
+      and the address the last of them carried }
+    Foreign : LongWord;
+    ForeignAddr: Word;
   end;
 
 { Broadcast address for the given address length (255 or 65535). }
@@ -323,6 +327,11 @@ begin
       (S.Cfg.Balanced and Prm and Foreign)) then
   begin
     Inc(S.Ignored);
+    if Foreign and not Single then
+    begin
+      Inc(S.Foreign);
+      S.ForeignAddr := S.Addr;
+    end;
     Exit(fe_None);
   end;
   if S.Cfg.Balanced and S.Cfg.CheckDir and not Single and

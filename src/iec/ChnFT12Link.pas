@@ -94,6 +94,8 @@ type
     StatusAt  : QWord;   { when a status request last went out }
     Fences    : LongInt; { fences (FC 9) sent before a service }
     Stale     : LongInt; { late answers recognised and ignored }
+    OtherAddr : LongInt; { of Ignored: answers from another link address }
+    OtherLast : Word;    { the address the last of them carried }
   end;
 
   { Secondary callbacks; Data is tFT12Station.Data.
@@ -129,6 +131,10 @@ type
     Repeats    : LongInt;      { repetitions answered with the last reply }
     Refused    : LongInt;      { FCV = 1 frames before a reset (NACK); FC 3, 10, 11
                                  without FCV (FC 15) }
+    OtherAddr  : LongInt;      { frames for another link address (the channel
+                                 drops them: other stations' traffic on a bus) }
+    OtherLast  : Word;         { the address the last of them carried }
+    RxForeign  : LongWord;     { the channel's count when last looked at }
   end;
 
 procedure FT12LinkInit(var Link: tFT12Link; Addr: Word);
@@ -213,6 +219,10 @@ function FT12RequestClass(Chn: pChnVirt; var Link: tFT12Link; ClassNo: Byte;
 
 { FCV the standard gives a primary function code. }
 function FT12FcvOf(FC: Byte): Boolean;
+{ What the line showed besides the answers awaited, for an error text:
+  ' — 12 frames from link address 1 ignored', ' — 3 frames with this
+  station's own DIR bit ignored' (both when both), '' when none. }
+function FT12IgnoredText(OtherAddr: LongInt; OtherLast: Word; OwnDir: LongInt): ShortString;
 
 procedure FT12StationInit(var S: tFT12Station; Chn: pChnVirt);
 { Take at most one frame and act on it; False when none was waiting, or
@@ -295,6 +305,10 @@ type
     Fencing    : Boolean;     { Out is a fence: FC 9 to flush late answers }
     Fences     : LongInt;     { fences sent }
     Stale      : LongInt;     { late answers recognised and ignored }
+    OtherAddr  : LongInt;     { frames from or for another link address
+                                (answers here, requests dropped by the channel) }
+    OtherLast  : Word;        { the address the last of them carried }
+    RxForeign  : LongWord;    { the channel's count when last looked at }
   end;
 
 { Bind B to a balanced tChnFT1_2 and set the defaults; the channel's
@@ -330,6 +344,29 @@ function FT12FcvOf(FC: Byte): Boolean;
 begin
   Result := FC in [FCM_CheckLink, FCM_UserDataReply, FCM_ReqUserData1,
     FCM_ReqUserData2];
+end;
+
+function FT12IgnoredText(OtherAddr: LongInt; OtherLast: Word; OwnDir: LongInt): ShortString;
+begin
+  Result := '';
+  if OtherAddr > 0 then
+    Result := ' — ' + IntToStr(OtherAddr) + ' frames from link address ' + IntToStr(OtherLast) + ' ignored';
+  if OwnDir > 0 then
+    Result := Result + ' — ' + IntToStr(OwnDir) + ' frames with this station''s own DIR bit ignored';
+end;
+
+{ Frames the channel dropped for another link address since the last look. }
+procedure NoteForeign(Chn: pChnVirt; var Seen: LongWord; var Count: LongInt; var Last: Word);
+var
+  F: pChnFT1_2;
+begin
+  F := pChnFT1_2(Chn);
+  if F^.CH_Rx.Foreign <> Seen then
+  begin
+    Inc(Count, LongInt(F^.CH_Rx.Foreign - Seen));
+    Seen := F^.CH_Rx.Foreign;
+    Last := F^.CH_Rx.ForeignAddr;
+  end;
 end;
 
 procedure FT12LinkInit(var Link: tFT12Link; Addr: Word);
@@ -590,6 +627,11 @@ begin
       (P.Chn^.CH_RSNode <> P.Link^.Addr)) then
   begin
     Inc(P.Link^.Ignored);               { garbled, or another station's }
+    if P.Chn^.ChReceiveResult = res_Ok then
+    begin
+      Inc(P.Link^.OtherAddr);
+      P.Link^.OtherLast := P.Chn^.CH_RSNode;
+    end;
     Exit(False);
   end;
   Status := (P.Rep.MessType in [tpShortM, tpLongM]) and (P.Rep.FC = FCS_LinkSAccesReq);
@@ -807,6 +849,7 @@ end;
 
 function FT12StationStep(var S: tFT12Station): Boolean;
 var
+  Ready: Boolean;
   Len: Word;
   Broadcast, Fcv: Boolean;
   F: pChnFT1_2;
@@ -814,7 +857,9 @@ begin
   Result := False;
   if not IsFT12Channel(S.Chn) then
     Exit;                       { only a tChnFT1_2 has the fields used below }
-  if S.Chn^.ChReceiveReady <> CHS_ReceiveReady then
+  Ready := S.Chn^.ChReceiveReady = CHS_ReceiveReady;
+  NoteForeign(S.Chn, S.RxForeign, S.OtherAddr, S.OtherLast);
+  if not Ready then
     Exit;
   Result := True;
   Inc(S.Frames);
@@ -1034,6 +1079,8 @@ begin
      (B.Chn^.CH_RSNode <> B.Chn^.ChGetDestNode) then
   begin
     Inc(B.Ignored);               { another station's }
+    Inc(B.OtherAddr);
+    B.OtherLast := B.Chn^.CH_RSNode;
     Exit;
   end;
   Status := (B.RMess.MessType in [tpShortM, tpLongM]) and (B.RMess.FC = FCS_LinkSAccesReq);
@@ -1264,6 +1311,7 @@ begin
     { the next request goes out before the next look, which may wait IDL }
     RunPrimary(B);
   end;
+  NoteForeign(B.Chn, B.RxForeign, B.OtherAddr, B.OtherLast);
   if not Result then
     RunPrimary(B);
 end;

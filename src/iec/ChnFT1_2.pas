@@ -12,8 +12,10 @@
   NOD=, DNO=, LEN=. Added by the port (see docs/ChnFT1_2.md):
     ADR=0|1|2  link address octets (default 1 as in the manual; 2 octets are
                little-endian and NOD=/DNO= then range up to 65535)
-    DIR=0|1    balanced: station A (1) or B (0, default); the DIR bit sent,
-               and a received frame with it is res_ErrDir (own side)
+    DIR=0|1    balanced: station A (1) or B (0); the DIR bit sent, and a
+               received frame with it is res_ErrDir (own side); not
+               given: 1 when PRI=ON or MAS=MASTER is (the controlling
+               station), else 0
     GAP=n      line-idle gap in character times that discards a
                half-received frame (0 = off, default); the character time
                is 11 bits at the BD= of the layer below, 9600 Bd if none
@@ -127,6 +129,10 @@ type
     CH_LowBaud  : LongInt;
     CH_SPrimary : Boolean;   { direction of the frame ChSend is encoding }
     CH_RNow     : QWord;     { time stamp of the bytes of this receive tick }
+    { which of MAS=, PRI=, DIR= the strings gave: a balanced station whose
+      role is given (PRI=ON or MAS=MASTER: the controlling station) and
+      no DIR= is station A, DIR=1, as lib60870's balanced master }
+    CH_MasGiven, CH_PriGiven, CH_DirGiven: Boolean;
 
     constructor Init;
     constructor ChInitParam(const S: tParamStr);
@@ -196,6 +202,9 @@ begin
   CH_LowBaud := cDefaultBaud;
   CH_SPrimary := True;
   CH_RNow := 0;
+  CH_MasGiven := False;
+  CH_PriGiven := False;
+  CH_DirGiven := False;
   FillChar(CH_Rx, SizeOf(CH_Rx), 0);
   CH_Rx.Cfg := ChCodecConfig;
   FT12RxReset(CH_Rx);
@@ -345,11 +354,23 @@ begin
     Result := inherited ChSetOneParam(S, CmdL);
   if (Result = res_Ok) and (CmdL = cmd_Set) then
   begin
+    if Key = 'MAS' then
+      CH_MasGiven := True
+    else if Key = 'PRI' then
+      CH_PriGiven := True
+    else if Key = 'DIR' then
+      CH_DirGiven := True;
     { the manual's one role field follows MAS= or PRI= by the mode }
     if CH_MaSl then
       CH_Master := CH_MasParam
     else
       CH_Master := CH_PriParam;
+    { balanced, no DIR=: the role given says which station this is }
+    if not CH_MaSl and not CH_DirGiven then
+      if CH_PriGiven then
+        CH_Dir := CH_PriParam
+      else if CH_MasGiven then
+        CH_Dir := CH_MasParam;
   end;
 end;
 

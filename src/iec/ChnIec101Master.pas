@@ -181,6 +181,11 @@ function IecMasterSlave(const M: tIecMaster; Addr: Word): LongInt;
 function IecMasterStep(var M: tIecMaster): Boolean;
 function IecMasterWaitEnd(const M: tIecMaster): QWord;
 function IecSlaveStateName(S: tIecSlaveState): ShortString;
+{ What the line showed of slave index S besides its answers, for an
+  error: ' — 12 frames from link address 1 ignored' (a wrong NOD=/DNO=),
+  balanced also ' — N frames with this station's own DIR bit ignored'
+  (both stations DIR= alike); '' when nothing was ignored. }
+function IecLineShowed(const M: tIecMaster; S: LongInt): ShortString;
 
 { Stepped commands to slave Addr, common address Ca: False when refused
   (M.Cmd.Result, M.Cmd.Err say why; nothing sent). Then step until
@@ -227,6 +232,18 @@ begin
   else
     Result := 'DEAD';
   end;
+end;
+
+function IecLineShowed(const M: tIecMaster; S: LongInt): ShortString;
+begin
+  if M.Over104 then
+    Result := ''                         { TCP: no link addresses, no DIR }
+  else if M.Balanced then
+    Result := FT12IgnoredText(M.Link.Bal.OtherAddr, M.Link.Bal.OtherLast, M.Link.Bal.BadDir)
+  else if (S >= 0) and (S < M.SlaveCount) then
+    Result := FT12IgnoredText(M.Slaves[S].Link.OtherAddr, M.Slaves[S].Link.OtherLast, 0)
+  else
+    Result := '';
 end;
 
 procedure SlaveInit(var S: tIecSlave; Addr: Word; BackoffMs: LongInt);
@@ -736,6 +753,7 @@ end;
 procedure SlaveFailed(var M: tIecMaster; S: Integer; R: tChResult);
 var
   Sl: ^tIecSlave;
+  E: ShortString;
 begin
   Sl := @M.Slaves[S];
   Inc(Sl^.Failures);
@@ -758,7 +776,12 @@ begin
   Sl^.State := isDead;
   Sl^.RetryAt := ChMsTick + QWord(Sl^.BackoffMs);
   if (M.Cmd.Slave = S) and not IecCommandDone(M) then
-    Finish(M, res_Timeout, 'slave does not answer (' + ChResultText(R) + ')');
+  begin
+    E := IecLineShowed(M, S);
+    if E <> '' then
+      E := ': no answer from link address ' + IntToStr(Sl^.Addr) + E;
+    Finish(M, res_Timeout, 'slave does not answer (' + ChResultText(R) + ')' + E);
+  end;
 end;
 
 { A class poll or a command was answered: the slave serves again. (A
@@ -1012,11 +1035,11 @@ begin
   if (M.Cmd.Phase in [cpSend, cpConfirm, cpTerm]) and (ChMsTick > M.Cmd.Deadline) then
     if M.Cmd.Phase = cpSend then
       Finish(M, res_Timeout, 'not sent in ' + IntToStr(M.CommandMs) + ' ms (slave '
-        + IecSlaveStateName(M.Slaves[M.Cmd.Slave].State) + ')')
+        + IecSlaveStateName(M.Slaves[M.Cmd.Slave].State) + ')' + IecLineShowed(M, M.Cmd.Slave))
     else if M.Cmd.Phase = cpConfirm then
-      Finish(M, res_Timeout, 'no ACT_CON in ' + IntToStr(M.CommandMs) + ' ms')
+      Finish(M, res_Timeout, 'no ACT_CON in ' + IntToStr(M.CommandMs) + ' ms' + IecLineShowed(M, M.Cmd.Slave))
     else
-      Finish(M, res_Timeout, 'no ACT_TERM in ' + IntToStr(M.CommandMs) + ' ms');
+      Finish(M, res_Timeout, 'no ACT_TERM in ' + IntToStr(M.CommandMs) + ' ms' + IecLineShowed(M, M.Cmd.Slave));
   StartAfterInit(M);
 end;
 

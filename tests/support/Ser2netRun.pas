@@ -13,14 +13,13 @@ unit Ser2netRun;
 interface
 
 uses
-  SysUtils, Classes, Process, BaseUnix;
+  SysUtils, Classes, Process, BaseUnix, DaemonRun;
 
 type
-  TSer2net = class
+  TSer2net = class(TDaemon)
   private
-    FDir, FDevice, FLog: string;
+    FDir, FDevice: string;
     FRawPort, FRfcPort: Word;
-    FProc: TProcess;
   public
     { The program on PATH, '' when not installed. }
     class function Path: string;
@@ -28,18 +27,14 @@ type
     constructor Create(const Device, Line: string);
     destructor Destroy; override;
     procedure Start;
-    { Stop by PID with Sig (SIGTERM, SIGKILL) and wait for the process. }
-    procedure Stop(Sig: cint = SIGTERM);
-    function Running: Boolean;
-    function Pid: LongInt;
     property RawPort: Word read FRawPort;
     property RfcPort: Word read FRfcPort;
-    { what ser2net printed, for failure messages }
-    function LogText: string;
   end;
 
 { A TCP port on 127.0.0.1 that nothing listens on right now. }
 function FreeLoopbackPort: Word;
+{ True when something listens on 127.0.0.1:Port (probed by binding it). }
+function PortTaken(Port: Word): Boolean;
 
 implementation
 
@@ -113,18 +108,8 @@ var
 begin
   if Running then
     Exit;
-  FreeAndNil(FProc);
-  FProc := TProcess.Create(nil);
-  FProc.Executable := '/bin/sh';
-  { exec: the PID is ser2net's own; output to a file, never a full pipe }
-  FProc.Parameters.Add('-c');
-  FProc.Parameters.Add('exec "$0" -n -u -c "$1" -P "$2" >>"$3" 2>&1');
-  FProc.Parameters.Add(Path);
-  FProc.Parameters.Add(FDir + '/ser2net.yaml');
-  FProc.Parameters.Add(FDir + '/ser2net.pid');
-  FProc.Parameters.Add(FLog);
-  FProc.Options := [];
-  FProc.Execute;
+  Launch('exec "$0" -n -u -c "$1" -P "$2" >>"$3" 2>&1',
+    [Path, FDir + '/ser2net.yaml', FDir + '/ser2net.pid', FLog]);
   { ready when both ports are taken: probed by binding them ourselves, as
     a probe connection would open the device and hold it for a moment }
   Deadline := GetTickCount64 + 5000;
@@ -134,43 +119,6 @@ begin
     Sleep(20);
   until (GetTickCount64 > Deadline) or not FProc.Running;
   raise Exception.Create('ser2net did not come up: ' + LogText);
-end;
-
-procedure TSer2net.Stop(Sig: cint);
-var
-  Deadline: QWord;
-begin
-  if (FProc = nil) or not FProc.Running then
-    Exit;
-  FpKill(FProc.ProcessID, Sig);
-  Deadline := GetTickCount64 + 3000;
-  while FProc.Running and (GetTickCount64 < Deadline) do
-    Sleep(5);
-  if FProc.Running then
-    FpKill(FProc.ProcessID, SIGKILL);
-  FProc.WaitOnExit;
-  FreeAndNil(FProc);
-end;
-
-function TSer2net.Running: Boolean;
-begin
-  Result := (FProc <> nil) and FProc.Running;
-end;
-
-function TSer2net.Pid: LongInt;
-begin
-  if FProc = nil then
-    Result := 0
-  else
-    Result := FProc.ProcessID;
-end;
-
-function TSer2net.LogText: string;
-begin
-  if FileExists(FLog) then
-    Result := ReadFileText(FLog)
-  else
-    Result := '(no output)';
 end;
 
 end.

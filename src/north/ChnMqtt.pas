@@ -1,0 +1,578 @@
+{ ChnMqtt - an MQTT client on Eclipse Mosquitto's client library
+  (libmosquitto, Debian package libmosquitto1), loaded when the first
+  client opens: a program that never opens one runs without it, and one
+  that does on a system without it gets
+  'libmosquitto.so.1 not found (apt-get install libmosquitto1)'.
+
+  One thread: the broker's socket joins the program-wide wait (ChnWait),
+  so ChnWaitAny ends when the broker sent something or, while the client
+  has bytes to send (mosquitto_want_write), when the socket can take them.
+  MqttStep, called after every wait, does the library's work without
+  blocking (mosquitto_loop_read, loop_write, loop_misc for the keep-alive)
+  and MqttWaitMs says how long the program may wait at most (the next
+  keep-alive or reconnect). No thread of libmosquitto's own is started.
+
+  Delivery. Every message goes through the client's own queue, bounded
+  by QueueMax messages: while the broker is away (not yet connected, lost,
+  restarting) messages wait there and the oldest is dropped and counted
+  (Dropped) when it is full. Once connected they are handed to the
+  library in order; a QoS 1 message stays in the queue until the broker
+  acknowledged it (PUBACK), and is sent again after a reconnect when the
+  connection was lost before - so a broker restart loses nothing that fit
+  in the queue (at least once: a message may arrive twice). QoS 0
+  messages leave the queue when handed over.
+
+  Connection: host and port, user name and password, TLS with a CA file
+  (or directory) as libmosquitto offers them, a last will (published by
+  the broker when the client vanishes) and an online message published
+  retained after each connect; a lost or refused connection is tried again
+  after 1 s, doubling up to 30 s. Subscriptions are made again after each
+  connect; received messages wait in Inbox for MqttTakeMessage. }
+unit ChnMqtt;
+
+{$I chn.inc}
+
+interface
+
+uses
+  ChnWait;
+
+const
+  MqttLibName = {$IFDEF WINDOWS}'mosquitto.dll'{$ELSE}'libmosquitto.so.1'{$ENDIF};
+  MqttQueueDefault = 10000;
+  MqttKeepAliveDefault = 30;
+  MqttBackoffMinMs = 1000;
+  MqttBackoffMaxMs = 30000;
+
+type
+  tMqttMessage = record
+    Topic  : AnsiString;
+    Payload: AnsiString;
+    Qos    : LongInt;
+    Retain : Boolean;
+    Mid    : LongInt;     { the library's message id while handed over }
+    Sent   : Boolean;     { handed to the library, no PUBACK yet }
+  end;
+
+  tMqttState = (msClosed, msConnecting, msConnected, msWaiting);
+
+  pMqttClient = ^tMqttClient;
+  tMqttClient = record
+    { settings: fill before MqttOpen }
+    Host       : AnsiString;
+    Port       : LongInt;       { default 1883 (8883 with TLS) }
+    ClientId   : AnsiString;    { '' : the library makes one }
+    User       : AnsiString;
+    Password   : AnsiString;
+    Tls        : Boolean;
+    CaFile     : AnsiString;    { a CA file; a directory is taken as CA path }
+    Insecure   : Boolean;       { TLS without checking the server's name }
+    KeepAlive  : LongInt;       { seconds }
+    Qos        : LongInt;       { 0 or 1, default 1 }
+    QueueMax   : LongInt;
+    WillTopic  : AnsiString;    { '' : no will }
+    WillPayload: AnsiString;
+    OnlinePayload: AnsiString;  { published retained to WillTopic on connect }
+    { state }
+    State      : tMqttState;
+    Mosq       : Pointer;
+    Src        : pChnWaitSource;
+    Sock       : LongInt;
+    RetryAt    : QWord;
+    BackoffMs  : LongInt;
+    Queue      : array of tMqttMessage;
+    Subs       : array of AnsiString;
+    Inbox      : array of tMqttMessage;
+    InboxHead  : LongInt;
+    { counters }
+    Delivered  : LongInt;       { acknowledged (QoS 1) or handed over (QoS 0) }
+    Dropped    : LongInt;       { dropped from a full queue }
+    Connects   : LongInt;
+    LastError  : AnsiString;
+    Changed    : Boolean;       { the connection state changed (MqttStep's result) }
+  end;
+
+{ Load libmosquitto; True when it is there (loaded once per process). Err:
+  'libmosquitto.so.1 not found (apt-get install libmosquitto1)'. }
+function MqttLoad(out Err: AnsiString): Boolean;
+{ Settings to their defaults (Host 127.0.0.1, Port 1883, QoS 1 ...). }
+procedure MqttInit(var C: tMqttClient);
+{ Create the client and start connecting (without waiting). False with
+  Err when the library is missing or refuses a setting (the CA file ...). }
+function MqttOpen(var C: tMqttClient; out Err: AnsiString): Boolean;
+{ Disconnect cleanly (what is queued and not sent is lost), free it all. }
+procedure MqttClose(var C: tMqttClient);
+{ Queue a message (QoS of C.Qos). Never blocks; a full queue drops its
+  oldest message (counted in Dropped). }
+procedure MqttPublish(var C: tMqttClient; const Topic, Payload: AnsiString; Retain: Boolean);
+{ Subscribe to Topic (wildcards allowed), now and after every reconnect. }
+procedure MqttSubscribe(var C: tMqttClient; const Topic: AnsiString);
+{ Do the client's work without blocking; True when a message arrived or
+  the connection changed. Call after every ChnWaitAny. }
+function MqttStep(var C: tMqttClient): Boolean;
+{ Milliseconds the program may wait before the next MqttStep at most. }
+function MqttWaitMs(const C: tMqttClient): LongInt;
+{ The next received message; False when none. }
+function MqttTakeMessage(var C: tMqttClient; out M: tMqttMessage): Boolean;
+{ Messages waiting in the queue (not yet acknowledged). }
+function MqttQueued(const C: tMqttClient): LongInt;
+{ 'connected', 'connecting', 'waiting' (to reconnect), 'closed'. }
+function MqttStateText(const C: tMqttClient): AnsiString;
+
+implementation
+
+uses
+  SysUtils, DynLibs, ctypes;
+
+const
+  MOSQ_ERR_SUCCESS = 0;
+  MOSQ_ERR_NO_CONN = 4;
+  MOSQ_ERR_CONN_LOST = 7;
+
+type
+  PMosqMessage = ^TMosqMessage;
+  {$PUSH}{$PACKRECORDS C}   { struct mosquitto_message, C layout (chn.inc packs records) }
+  TMosqMessage = record
+    Mid       : cint;
+    Topic     : PChar;
+    Payload   : Pointer;
+    PayloadLen: cint;
+    Qos       : cint;
+    Retain    : Boolean;
+  end;
+  {$POP}
+  TConnectCb = procedure(Mosq, Obj: Pointer; Rc: cint); cdecl;
+  TPublishCb = procedure(Mosq, Obj: Pointer; Mid: cint); cdecl;
+  TMessageCb = procedure(Mosq, Obj: Pointer; Msg: PMosqMessage); cdecl;
+
+var
+  Lib: TLibHandle = NilHandle;
+  LibInited: Boolean = False;
+  mosquitto_lib_init: function: cint; cdecl;
+  mosquitto_lib_cleanup: function: cint; cdecl;
+  mosquitto_new: function(Id: PChar; Clean: Boolean; Obj: Pointer): Pointer; cdecl;
+  mosquitto_destroy: procedure(Mosq: Pointer); cdecl;
+  mosquitto_username_pw_set: function(Mosq: Pointer; User, Pw: PChar): cint; cdecl;
+  mosquitto_will_set: function(Mosq: Pointer; Topic: PChar; Len: cint; Payload: Pointer;
+    Qos: cint; Retain: Boolean): cint; cdecl;
+  mosquitto_tls_set: function(Mosq: Pointer; CaFile, CaPath, CertFile, KeyFile: PChar;
+    PwCb: Pointer): cint; cdecl;
+  mosquitto_tls_insecure_set: function(Mosq: Pointer; Value: Boolean): cint; cdecl;
+  mosquitto_connect_async: function(Mosq: Pointer; Host: PChar; Port, KeepAlive: cint): cint; cdecl;
+  mosquitto_reconnect_async: function(Mosq: Pointer): cint; cdecl;
+  mosquitto_disconnect: function(Mosq: Pointer): cint; cdecl;
+  mosquitto_socket: function(Mosq: Pointer): cint; cdecl;
+  mosquitto_loop_read: function(Mosq: Pointer; MaxPackets: cint): cint; cdecl;
+  mosquitto_loop_write: function(Mosq: Pointer; MaxPackets: cint): cint; cdecl;
+  mosquitto_loop_misc: function(Mosq: Pointer): cint; cdecl;
+  mosquitto_want_write: function(Mosq: Pointer): Boolean; cdecl;
+  mosquitto_publish: function(Mosq: Pointer; Mid: pcint; Topic: PChar; Len: cint; Payload: Pointer;
+    Qos: cint; Retain: Boolean): cint; cdecl;
+  mosquitto_subscribe: function(Mosq: Pointer; Mid: pcint; Sub: PChar; Qos: cint): cint; cdecl;
+  mosquitto_connect_callback_set: procedure(Mosq: Pointer; Cb: TConnectCb); cdecl;
+  mosquitto_disconnect_callback_set: procedure(Mosq: Pointer; Cb: TConnectCb); cdecl;
+  mosquitto_publish_callback_set: procedure(Mosq: Pointer; Cb: TPublishCb); cdecl;
+  mosquitto_message_callback_set: procedure(Mosq: Pointer; Cb: TMessageCb); cdecl;
+  mosquitto_strerror: function(Rc: cint): PChar; cdecl;
+  mosquitto_connack_string: function(Rc: cint): PChar; cdecl;
+
+function MqttLoad(out Err: AnsiString): Boolean;
+
+  function Get(const Name: AnsiString; var P): Boolean;
+  begin
+    Pointer(P) := GetProcedureAddress(Lib, Name);
+    Result := Pointer(P) <> nil;
+    if not Result then
+      Err := MqttLibName + ' has no ' + Name + ' (libmosquitto 1.6 or later is needed)';
+  end;
+
+begin
+  Err := '';
+  if LibInited then
+    Exit(True);
+  if Lib = NilHandle then
+    Lib := LoadLibrary(MqttLibName);
+  if Lib = NilHandle then
+  begin
+    Err := MqttLibName + ' not found (apt-get install libmosquitto1)';
+    Exit(False);
+  end;
+  Result := Get('mosquitto_lib_init', mosquitto_lib_init) and
+    Get('mosquitto_lib_cleanup', mosquitto_lib_cleanup) and
+    Get('mosquitto_new', mosquitto_new) and Get('mosquitto_destroy', mosquitto_destroy) and
+    Get('mosquitto_username_pw_set', mosquitto_username_pw_set) and
+    Get('mosquitto_will_set', mosquitto_will_set) and Get('mosquitto_tls_set', mosquitto_tls_set) and
+    Get('mosquitto_tls_insecure_set', mosquitto_tls_insecure_set) and
+    Get('mosquitto_connect_async', mosquitto_connect_async) and
+    Get('mosquitto_reconnect_async', mosquitto_reconnect_async) and
+    Get('mosquitto_disconnect', mosquitto_disconnect) and Get('mosquitto_socket', mosquitto_socket) and
+    Get('mosquitto_loop_read', mosquitto_loop_read) and
+    Get('mosquitto_loop_write', mosquitto_loop_write) and
+    Get('mosquitto_loop_misc', mosquitto_loop_misc) and
+    Get('mosquitto_want_write', mosquitto_want_write) and
+    Get('mosquitto_publish', mosquitto_publish) and Get('mosquitto_subscribe', mosquitto_subscribe) and
+    Get('mosquitto_connect_callback_set', mosquitto_connect_callback_set) and
+    Get('mosquitto_disconnect_callback_set', mosquitto_disconnect_callback_set) and
+    Get('mosquitto_publish_callback_set', mosquitto_publish_callback_set) and
+    Get('mosquitto_message_callback_set', mosquitto_message_callback_set) and
+    Get('mosquitto_strerror', mosquitto_strerror) and
+    Get('mosquitto_connack_string', mosquitto_connack_string);
+  if not Result then
+    Exit;
+  mosquitto_lib_init();
+  LibInited := True;
+end;
+
+procedure MqttInit(var C: tMqttClient);
+begin
+  Finalize(C);
+  FillChar(C, SizeOf(C), 0);
+  C.Host := '127.0.0.1';
+  C.Port := 1883;
+  C.KeepAlive := MqttKeepAliveDefault;
+  C.Qos := 1;
+  C.QueueMax := MqttQueueDefault;
+  C.Sock := -1;
+  C.BackoffMs := MqttBackoffMinMs;
+end;
+
+function MqttStateText(const C: tMqttClient): AnsiString;
+const
+  Names: array[tMqttState] of string[10] = ('closed', 'connecting', 'connected', 'waiting');
+begin
+  Result := Names[C.State];
+end;
+
+function MqttQueued(const C: tMqttClient): LongInt;
+begin
+  Result := Length(C.Queue);
+end;
+
+function ErrText(Rc: cint): AnsiString;
+begin
+  Result := StrPas(mosquitto_strerror(Rc));
+end;
+
+{ ------------------------------------------------------------ the socket }
+
+{ The socket the library uses now joins the wait (it changes on reconnect). }
+procedure FollowSocket(var C: tMqttClient);
+var
+  S: LongInt;
+begin
+  if C.Mosq = nil then
+    S := -1
+  else
+    S := mosquitto_socket(C.Mosq);
+  if S = C.Sock then
+    Exit;
+  ChnWaitLeave(C.Src);
+  C.Sock := S;
+  if S >= 0 then
+    C.Src := ChnWaitJoin(wkDescriptor, S, nil, nil);
+end;
+
+{ The connection is gone (Why): try again after the back-off. }
+procedure Lost(var C: tMqttClient; const Why: AnsiString);
+var
+  I: LongInt;
+begin
+  if C.State = msWaiting then
+    Exit;
+  C.LastError := Why;
+  C.State := msWaiting;
+  C.Changed := True;
+  C.RetryAt := GetTickCount64 + QWord(C.BackoffMs);
+  C.BackoffMs := C.BackoffMs * 2;
+  if C.BackoffMs > MqttBackoffMaxMs then
+    C.BackoffMs := MqttBackoffMaxMs;
+  { nothing handed over is acknowledged any more: send it again }
+  for I := 0 to High(C.Queue) do
+    C.Queue[I].Sent := False;
+  { the library closed (or will close) the socket: out of the wait now,
+    before its number can be another channel's }
+  ChnWaitLeave(C.Src);
+  C.Sock := -1;
+end;
+
+{ ------------------------------------------------------------ callbacks }
+
+procedure OnConnect(Mosq, Obj: Pointer; Rc: cint); cdecl;
+var
+  C: pMqttClient;
+  I: LongInt;
+begin
+  C := pMqttClient(Obj);
+  if Rc <> 0 then
+  begin
+    Lost(C^, 'the broker refused the connection: ' + StrPas(mosquitto_connack_string(Rc)));
+    Exit;
+  end;
+  C^.State := msConnected;
+  C^.Changed := True;
+  C^.BackoffMs := MqttBackoffMinMs;
+  Inc(C^.Connects);
+  if (C^.WillTopic <> '') and (C^.OnlinePayload <> '') then
+    mosquitto_publish(Mosq, nil, PChar(C^.WillTopic), Length(C^.OnlinePayload),
+      PChar(C^.OnlinePayload), 1, True);
+  for I := 0 to High(C^.Subs) do
+    mosquitto_subscribe(Mosq, nil, PChar(C^.Subs[I]), 1);
+end;
+
+procedure OnDisconnect(Mosq, Obj: Pointer; Rc: cint); cdecl;
+begin
+  if pMqttClient(Obj)^.State <> msClosed then
+    Lost(pMqttClient(Obj)^, 'disconnected: ' + ErrText(Rc));
+end;
+
+procedure OnPublish(Mosq, Obj: Pointer; Mid: cint); cdecl;
+var
+  C: pMqttClient;
+  I, J: LongInt;
+begin
+  C := pMqttClient(Obj);
+  for I := 0 to High(C^.Queue) do
+    if C^.Queue[I].Sent and (C^.Queue[I].Mid = Mid) then
+    begin
+      for J := I + 1 to High(C^.Queue) do
+        C^.Queue[J - 1] := C^.Queue[J];
+      SetLength(C^.Queue, Length(C^.Queue) - 1);
+      Inc(C^.Delivered);
+      Exit;
+    end;
+end;
+
+procedure OnMessage(Mosq, Obj: Pointer; Msg: PMosqMessage); cdecl;
+var
+  C: pMqttClient;
+  M: tMqttMessage;
+begin
+  C := pMqttClient(Obj);
+  M.Topic := StrPas(Msg^.Topic);
+  SetLength(M.Payload, Msg^.PayloadLen);
+  if Msg^.PayloadLen > 0 then
+    Move(Msg^.Payload^, M.Payload[1], Msg^.PayloadLen);
+  M.Qos := Msg^.Qos;
+  M.Retain := Msg^.Retain;
+  M.Mid := Msg^.Mid;
+  M.Sent := False;
+  SetLength(C^.Inbox, Length(C^.Inbox) + 1);
+  C^.Inbox[High(C^.Inbox)] := M;
+end;
+
+{ ------------------------------------------------------------ client }
+
+function MqttOpen(var C: tMqttClient; out Err: AnsiString): Boolean;
+var
+  Rc: cint;
+  Id: PChar;
+begin
+  Result := MqttLoad(Err);
+  if not Result then
+    Exit;
+  Id := nil;
+  if C.ClientId <> '' then
+    Id := PChar(C.ClientId);
+  C.Mosq := mosquitto_new(Id, True, @C);
+  if C.Mosq = nil then
+  begin
+    Err := 'mosquitto_new failed (out of memory, or a bad client id "' + C.ClientId + '")';
+    Exit(False);
+  end;
+  Rc := MOSQ_ERR_SUCCESS;
+  if C.User <> '' then
+    Rc := mosquitto_username_pw_set(C.Mosq, PChar(C.User), PChar(C.Password));
+  if (Rc = MOSQ_ERR_SUCCESS) and (C.WillTopic <> '') then
+    Rc := mosquitto_will_set(C.Mosq, PChar(C.WillTopic), Length(C.WillPayload),
+      PChar(C.WillPayload), 1, True);
+  if (Rc = MOSQ_ERR_SUCCESS) and C.Tls then
+  begin
+    if DirectoryExists(C.CaFile) then
+      Rc := mosquitto_tls_set(C.Mosq, nil, PChar(C.CaFile), nil, nil, nil)
+    else
+      Rc := mosquitto_tls_set(C.Mosq, PChar(C.CaFile), nil, nil, nil, nil);
+    if (Rc = MOSQ_ERR_SUCCESS) and C.Insecure then
+      Rc := mosquitto_tls_insecure_set(C.Mosq, True);
+  end;
+  if Rc <> MOSQ_ERR_SUCCESS then
+  begin
+    Err := 'MQTT: ' + ErrText(Rc);
+    mosquitto_destroy(C.Mosq);
+    C.Mosq := nil;
+    Exit(False);
+  end;
+  mosquitto_connect_callback_set(C.Mosq, @OnConnect);
+  mosquitto_disconnect_callback_set(C.Mosq, @OnDisconnect);
+  mosquitto_publish_callback_set(C.Mosq, @OnPublish);
+  mosquitto_message_callback_set(C.Mosq, @OnMessage);
+  C.State := msConnecting;
+  Rc := mosquitto_connect_async(C.Mosq, PChar(C.Host), C.Port, C.KeepAlive);
+  if Rc <> MOSQ_ERR_SUCCESS then
+    Lost(C, Format('cannot connect to %s:%d: %s', [C.Host, C.Port, ErrText(Rc)]))
+  else
+    FollowSocket(C);
+  Result := True;
+end;
+
+procedure MqttClose(var C: tMqttClient);
+begin
+  if C.Mosq <> nil then
+  begin
+    if C.State = msConnected then
+    begin
+      C.State := msClosed;
+      { the library writes DISCONNECT at once (no thread of its own) }
+      mosquitto_disconnect(C.Mosq);
+    end;
+    C.State := msClosed;
+    mosquitto_destroy(C.Mosq);
+    C.Mosq := nil;
+  end;
+  C.State := msClosed;
+  ChnWaitLeave(C.Src);
+  C.Sock := -1;
+  C.Queue := nil;
+  C.Inbox := nil;
+  C.Subs := nil;
+end;
+
+procedure MqttPublish(var C: tMqttClient; const Topic, Payload: AnsiString; Retain: Boolean);
+var
+  I: LongInt;
+begin
+  if (C.QueueMax > 0) and (Length(C.Queue) >= C.QueueMax) then
+  begin
+    for I := 1 to High(C.Queue) do
+      C.Queue[I - 1] := C.Queue[I];
+    SetLength(C.Queue, Length(C.Queue) - 1);
+    Inc(C.Dropped);
+  end;
+  I := Length(C.Queue);
+  SetLength(C.Queue, I + 1);
+  C.Queue[I].Topic := Topic;
+  C.Queue[I].Payload := Payload;
+  C.Queue[I].Qos := C.Qos;
+  C.Queue[I].Retain := Retain;
+  C.Queue[I].Mid := 0;
+  C.Queue[I].Sent := False;
+end;
+
+procedure MqttSubscribe(var C: tMqttClient; const Topic: AnsiString);
+begin
+  SetLength(C.Subs, Length(C.Subs) + 1);
+  C.Subs[High(C.Subs)] := Topic;
+  if (C.Mosq <> nil) and (C.State = msConnected) then
+    mosquitto_subscribe(C.Mosq, nil, PChar(Topic), 1);
+end;
+
+{ Hand what waits in the queue to the library, in order. }
+procedure Flush(var C: tMqttClient);
+var
+  I, J: LongInt;
+  Mid: cint;
+  Rc: cint;
+begin
+  I := 0;
+  while (I < Length(C.Queue)) and (C.State = msConnected) do
+  begin
+    if not C.Queue[I].Sent then
+    begin
+      Mid := 0;
+      Rc := mosquitto_publish(C.Mosq, @Mid, PChar(C.Queue[I].Topic), Length(C.Queue[I].Payload),
+        PChar(C.Queue[I].Payload), C.Queue[I].Qos, C.Queue[I].Retain);
+      if Rc <> MOSQ_ERR_SUCCESS then
+      begin
+        if (Rc = MOSQ_ERR_NO_CONN) or (Rc = MOSQ_ERR_CONN_LOST) then
+          Lost(C, 'publish: ' + ErrText(Rc))
+        else
+          C.LastError := 'publish ' + C.Queue[I].Topic + ': ' + ErrText(Rc);
+        Exit;
+      end;
+      if C.Queue[I].Qos = 0 then
+      begin
+        for J := I + 1 to High(C.Queue) do
+          C.Queue[J - 1] := C.Queue[J];
+        SetLength(C.Queue, Length(C.Queue) - 1);
+        Inc(C.Delivered);
+        Continue;
+      end;
+      C.Queue[I].Mid := Mid;
+      C.Queue[I].Sent := True;
+    end;
+    Inc(I);
+  end;
+end;
+
+function MqttStep(var C: tMqttClient): Boolean;
+var
+  Rc: cint;
+begin
+  C.Changed := False;
+  if C.Mosq = nil then
+    Exit(False);
+  if C.State = msWaiting then
+  begin
+    if GetTickCount64 >= C.RetryAt then
+    begin
+      C.State := msConnecting;
+      Rc := mosquitto_reconnect_async(C.Mosq);
+      if Rc <> MOSQ_ERR_SUCCESS then
+        Lost(C, Format('cannot connect to %s:%d: %s', [C.Host, C.Port, ErrText(Rc)]));
+      FollowSocket(C);
+    end;
+  end;
+  if C.State in [msConnecting, msConnected] then
+  begin
+    Rc := mosquitto_loop_read(C.Mosq, 100);
+    if (Rc = MOSQ_ERR_SUCCESS) and (C.State in [msConnecting, msConnected]) then
+    begin
+      Flush(C);
+      if mosquitto_want_write(C.Mosq) then
+        Rc := mosquitto_loop_write(C.Mosq, 100);
+    end;
+    if (Rc = MOSQ_ERR_SUCCESS) and (C.State in [msConnecting, msConnected]) then
+      Rc := mosquitto_loop_misc(C.Mosq);
+    if (Rc <> MOSQ_ERR_SUCCESS) and (C.State in [msConnecting, msConnected]) then
+      Lost(C, 'connection to ' + C.Host + ':' + IntToStr(C.Port) + ': ' + ErrText(Rc));
+    if C.Src <> nil then
+    begin
+      ChnWaitServed(C.Src, True);
+      ChnWaitOutput(C.Src, (C.State in [msConnecting, msConnected]) and mosquitto_want_write(C.Mosq));
+    end;
+  end;
+  Result := C.Changed or (C.InboxHead < Length(C.Inbox));
+end;
+
+function MqttWaitMs(const C: tMqttClient): LongInt;
+begin
+  case C.State of
+    msWaiting: Result := ChnWaitLeft(C.RetryAt);
+    msConnecting, msConnected:
+      { the keep-alive: loop_misc sends the ping when it is due }
+      Result := 1000;
+  else
+    Result := High(LongInt);
+  end;
+end;
+
+function MqttTakeMessage(var C: tMqttClient; out M: tMqttMessage): Boolean;
+begin
+  Result := C.InboxHead < Length(C.Inbox);
+  if not Result then
+  begin
+    C.Inbox := nil;
+    C.InboxHead := 0;
+    M.Topic := '';
+    M.Payload := '';
+    Exit;
+  end;
+  M := C.Inbox[C.InboxHead];
+  Inc(C.InboxHead);
+end;
+
+finalization
+  if LibInited then
+    mosquitto_lib_cleanup();
+  if Lib <> NilHandle then
+    UnloadLibrary(Lib);
+end.

@@ -1,0 +1,172 @@
+{ MosquittoRun - Debian's mosquitto broker for the tests, and its
+  mosquitto_sub / mosquitto_pub clients as the IT side.
+
+  TMosquitto writes a configuration into a new temporary folder (one
+  listener on a free loopback port, anonymous clients, no persistence),
+  starts "mosquitto -c" and waits until the port is taken; Stop ends it by
+  its PID (SIGTERM, or SIGKILL: a crash), Start brings it back on the same
+  port. TMqttSub runs mosquitto_sub -v on a topic and collects what it
+  printed ("topic payload" lines). A test that needs them calls
+  MosquittoMissing first and skips with the reason when it says one. }
+unit MosquittoRun;
+
+{$MODE OBJFPC}{$H+}
+
+interface
+
+uses
+  SysUtils, Classes, Process, BaseUnix, DaemonRun;
+
+type
+  TMosquitto = class(TDaemon)
+  private
+    FDir: string;
+    FPort: Word;
+  public
+    constructor Create;
+    destructor Destroy; override;
+    procedure Start;
+    property Port: Word read FPort;
+  end;
+
+  TMqttSub = class
+  private
+    FProc: TProcess;
+    FOut: string;
+  public
+    { mosquitto_sub -v -t Topic on the broker at Port (-q 1) }
+    constructor Create(Port: Word; const Topic: string; const Extra: array of string);
+    destructor Destroy; override;
+    { what arrived so far ("topic payload" lines) }
+    function Text: string;
+    { wait up to Ms until Text contains S }
+    function WaitFor(const S: string; Ms: LongInt): Boolean;
+  end;
+
+{ '' when mosquitto, mosquitto_sub and mosquitto_pub and libmosquitto are
+  there; else why not, with the install command. }
+function MosquittoMissing: string;
+{ mosquitto_pub -t Topic -m Payload on the broker at Port; its exit code. }
+function MqttPub(Port: Word; const Topic, Payload: string): LongInt;
+
+implementation
+
+uses
+  Ser2netRun, TestTempDir, BinSupport, ChnMqtt;
+
+function Tool(const Name: string): string;
+begin
+  Result := ExeSearch(Name, GetEnvironmentVariable('PATH') + ':/usr/sbin:/sbin');
+end;
+
+function MosquittoMissing: string;
+var
+  Err: AnsiString;
+begin
+  Result := '';
+  if (Tool('mosquitto') = '') or (Tool('mosquitto_sub') = '') or (Tool('mosquitto_pub') = '') then
+    Result := 'mosquitto or its clients are not installed'
+  else if not MqttLoad(Err) then
+    Result := Err;
+  if Result <> '' then
+    Result := Result + ' (Debian: apt-get install mosquitto mosquitto-clients libmosquitto1; .ci/run does)';
+end;
+
+constructor TMosquitto.Create;
+begin
+  inherited Create;
+  FDir := MakeTempDir('chn-mosquitto');
+  FLog := FDir + '/mosquitto.log';
+  FPort := FreeLoopbackPort;
+  WriteFileText(FDir + '/mosquitto.conf',
+    'listener ' + IntToStr(FPort) + ' 127.0.0.1' + LineEnding +
+    'allow_anonymous true' + LineEnding +
+    'persistence false' + LineEnding +
+    'log_dest stderr' + LineEnding);
+  Start;
+end;
+
+destructor TMosquitto.Destroy;
+begin
+  Stop(SIGTERM);
+  RemoveTempDir(FDir);
+  inherited Destroy;
+end;
+
+procedure TMosquitto.Start;
+var
+  Deadline: QWord;
+begin
+  if Running then
+    Exit;
+  Launch('exec "$0" -c "$1" >>"$2" 2>&1', [Tool('mosquitto'), FDir + '/mosquitto.conf', FLog]);
+  Deadline := GetTickCount64 + 5000;
+  repeat
+    if PortTaken(FPort) then
+      Exit;
+    Sleep(10);
+  until (GetTickCount64 > Deadline) or not FProc.Running;
+  raise Exception.Create('mosquitto did not come up: ' + LogText);
+end;
+
+constructor TMqttSub.Create(Port: Word; const Topic: string; const Extra: array of string);
+var
+  A: string;
+begin
+  inherited Create;
+  FProc := TProcess.Create(nil);
+  FProc.Executable := Tool('mosquitto_sub');
+  FProc.Parameters.Add('-h');
+  FProc.Parameters.Add('127.0.0.1');
+  FProc.Parameters.Add('-p');
+  FProc.Parameters.Add(IntToStr(Port));
+  FProc.Parameters.Add('-q');
+  FProc.Parameters.Add('1');
+  FProc.Parameters.Add('-v');
+  FProc.Parameters.Add('-t');
+  FProc.Parameters.Add(Topic);
+  for A in Extra do
+    FProc.Parameters.Add(A);
+  FProc.Options := [poUsePipes, poStderrToOutPut];
+  FProc.Execute;
+end;
+
+destructor TMqttSub.Destroy;
+begin
+  if FProc.Running then
+  begin
+    FpKill(FProc.ProcessID, SIGTERM);
+    FProc.WaitOnExit;
+  end;
+  FProc.Free;
+  inherited Destroy;
+end;
+
+function TMqttSub.Text: string;
+begin
+  Drain(FProc, FOut);
+  Result := FOut;
+end;
+
+function TMqttSub.WaitFor(const S: string; Ms: LongInt): Boolean;
+var
+  Deadline: QWord;
+begin
+  Deadline := GetTickCount64 + QWord(Ms);
+  repeat
+    if Pos(S, Text) > 0 then
+      Exit(True);
+    Sleep(10);
+  until GetTickCount64 > Deadline;
+  Result := Pos(S, Text) > 0;
+end;
+
+function MqttPub(Port: Word; const Topic, Payload: string): LongInt;
+var
+  Output: string;
+begin
+  Result := RunExe(Tool('mosquitto_pub'), ['-h', '127.0.0.1', '-p', IntToStr(Port), '-q', '1',
+    '-t', Topic, '-m', Payload], 5000, Output);
+end;
+
+end.
