@@ -36,7 +36,7 @@ uses
   ChnTypes, ChnVirt, ChnDF1, ChnPcccNames;
 
 const
-  DF1LinkTimeoutMs = 1000;   { the RACOM note's link timeout }
+  DF1LinkTimeoutMs = 1000;   {< the RACOM note's link timeout }
   DF1LinkTries     = 3;
   { messages one DF1MasterStep takes at most: all that was received, but a
     peer that never stops (50 ENQs a millisecond) cannot keep the step
@@ -65,7 +65,7 @@ type
     Src  : Byte;
     Tns  : Word;
     Len  : Word;
-    Stamp: LongInt;       { S.Requests when it was kept: the oldest goes }
+    Stamp: LongInt;       {< S.Requests when it was kept: the oldest goes }
     Rep  : tSendRecord;
   end;
 
@@ -77,22 +77,22 @@ type
   tDF1Station = record
     Chn      : pChnVirt;
     Handler  : tDF1Handler;
-    Data     : Pointer;       { given to Handler and OnEvent }
-    OnEvent  : tDF1EventProc; { nil: nothing counted }
+    Data     : Pointer;       {< given to Handler and OnEvent }
+    OnEvent  : tDF1EventProc; {< nil: nothing counted }
     FullDup  : Boolean;
     RMess    : tRecRecord;
-    Reply    : tSendRecord;   { the last reply, kept for a repeated command }
-    ReplyLen : Word;          { 0: no reply yet }
-    HasReply : Boolean;       { a reply not yet ACKed by the master }
-    AwaitAck : Boolean;       { half duplex: the reply just went out }
-    LastLink : tSendRecord;   { last ACK/NAK sent, repeated on ENQ }
-    Requests : LongInt;       { commands answered }
-    Messages : LongInt;       { messages taken, good or broken }
-    Repeats  : LongInt;       { repeated commands answered from the cache }
-    DupSeen  : LongInt;       { the DF1 layer's CH_DupCount already acted on }
+    Reply    : tSendRecord;   {< the last reply, kept for a repeated command }
+    ReplyLen : Word;          {< 0: no reply yet }
+    HasReply : Boolean;       {< a reply not yet ACKed by the master }
+    AwaitAck : Boolean;       {< half duplex: the reply just went out }
+    LastLink : tSendRecord;   {< last ACK/NAK sent, repeated on ENQ }
+    Requests : LongInt;       {< commands answered }
+    Messages : LongInt;       {< messages taken, good or broken }
+    Repeats  : LongInt;       {< repeated commands answered from the cache }
+    DupSeen  : LongInt;       {< the DF1 layer's CH_DupCount already acted on }
     Cache    : array[0..DF1ReplyCacheSize - 1] of tDF1CachedReply;
-    Log      : tDF1LogProc;   { nil: quiet }
-    LogWire  : Boolean;       { lines of sent frames end with the wire bytes }
+    Log      : tDF1LogProc;   {< nil: quiet }
+    LogWire  : Boolean;       {< lines of sent frames end with the wire bytes }
   end;
 
 { Set S up on Chn (a tChnDF1 stack) with the command handler and its data.
@@ -136,17 +136,17 @@ type
     Result   : tChResult;
     Tries    : LongInt;
     Naks     : LongInt;
-    NaksOut  : LongInt;        { broken replies NAKed (full duplex) }
-    Stale    : LongInt;        { replies to other commands, ACKed and ignored }
-    Ignored  : LongInt;        { broken frames and stray symbols while waiting for the ACK }
-    EnqsIn   : LongInt;        { ENQs of the peer, answered with LastAck }
-    LastAck  : Boolean;        { the last ACK/NAK this master sent was an ACK (none: NAK) }
-    Acked    : Boolean;        { the command was ACKed (or answered) }
+    NaksOut  : LongInt;        {< broken replies NAKed (full duplex) }
+    Stale    : LongInt;        {< replies to other commands, ACKed and ignored }
+    Ignored  : LongInt;        {< broken frames and stray symbols while waiting for the ACK }
+    EnqsIn   : LongInt;        {< ENQs of the peer, answered with LastAck }
+    LastAck  : Boolean;        {< the last ACK/NAK this master sent was an ACK (none: NAK) }
+    Acked    : Boolean;        {< the command was ACKed (or answered) }
     EnqSent  : Boolean;
     FullDup  : Boolean;
     TimeoutMs: LongInt;
-    Until_   : QWord;          { end of the current wait }
-    Deadline : QWord;          { end of the wait for the reply }
+    Until_   : QWord;          {< end of the current wait }
+    Deadline : QWord;          {< end of the wait for the reply }
     OldBuf   : Pointer;
     OldSize  : Word;
     Log      : tDF1LogProc;
@@ -297,7 +297,7 @@ begin
   Result := ChSendWhenFree(Chn, @R, Len, DF1LinkTimeoutMs);
 end;
 
-{ ------------------------------------------------------------- station }
+{- ------------------------------------------------------------- station }
 
 function DF1StationInit(var S: tDF1Station; Chn: pChnVirt; Handler: tDF1Handler;
   Data: Pointer): tChResult;
@@ -489,7 +489,7 @@ begin
   end;
 end;
 
-{ -------------------------------------------------------------- master }
+{- -------------------------------------------------------------- master }
 
 procedure MasterSay(var M: tDF1Master; const Line: AnsiString);
 begin

@@ -54,13 +54,13 @@ uses
   ChnTypes, ChnVirt, ChnFT1_2, ChnFT12Link, ChnIec101Asdu, ChnIecTransport;
 
 const
-  res_IecNegative    = res_Proto + 8;    { negative confirmation (P/N = 1) }
-  res_IecUnknownType = res_Proto + 9;    { COT 44 }
-  res_IecUnknownCot  = res_Proto + 10;   { COT 45 }
-  res_IecUnknownCa   = res_Proto + 11;   { COT 46 }
-  res_IecUnknownIoa  = res_Proto + 12;   { COT 47 }
-  res_IecNoSlave     = res_Proto + 13;   { no such slave on this master }
-  res_IecBusy        = res_Proto + 14;   { a command is under way }
+  res_IecNegative    = res_Proto + 8;    {< negative confirmation (P/N = 1) }
+  res_IecUnknownType = res_Proto + 9;    {< COT 44 }
+  res_IecUnknownCot  = res_Proto + 10;   {< COT 45 }
+  res_IecUnknownCa   = res_Proto + 11;   {< COT 46 }
+  res_IecUnknownIoa  = res_Proto + 12;   {< COT 47 }
+  res_IecNoSlave     = res_Proto + 13;   {< no such slave on this master }
+  res_IecBusy        = res_Proto + 14;   {< a command is under way }
 
   IecMaxSlaves = 32;
 
@@ -72,23 +72,23 @@ type
     Addr     : Word;
     Link     : tFT12Link;
     State    : tIecSlaveState;
-    NextPoll : QWord;      { no class 2 poll before (ChMsTick) }
-    RetryAt  : QWord;      { dead: next attempt }
-    BackoffMs: LongInt;    { dead: the wait after the next failure }
-    { counters }
-    Class1, Class2: LongInt;   { polls answered }
-    Commands : LongInt;    { user data (commands) confirmed by the link }
-    Asdus    : LongInt;    { ASDUs received }
-    Objects  : LongInt;    { information objects passed to OnObject }
-    BadAsdus : LongInt;    { malformed ASDUs }
-    Failures : LongInt;    { services without an answer }
-    Deaths   : LongInt;    { times marked dead }
-    Resets   : LongInt;    { link resets acknowledged }
-    Probation: Boolean;    { died, and no class poll or command answered since }
-    PolledAt : QWord;      { the last class poll left (ChMsTick) }
-    EndOfInits: LongInt;   { end of initialisation ASDUs (M_EI_NA_1, COT 4) }
-    LastCoi  : Byte;       { the COI of the last one }
-    InitGi, InitCi: Boolean;   { interrogations due after one }
+    NextPoll : QWord;      {< no class 2 poll before (ChMsTick) }
+    RetryAt  : QWord;      {< dead: next attempt }
+    BackoffMs: LongInt;    {< dead: the wait after the next failure }
+    {- counters }
+    Class1, Class2: LongInt;   {< polls answered }
+    Commands : LongInt;    {< user data (commands) confirmed by the link }
+    Asdus    : LongInt;    {< ASDUs received }
+    Objects  : LongInt;    {< information objects passed to OnObject }
+    BadAsdus : LongInt;    {< malformed ASDUs }
+    Failures : LongInt;    {< services without an answer }
+    Deaths   : LongInt;    {< times marked dead }
+    Resets   : LongInt;    {< link resets acknowledged }
+    Probation: Boolean;    {< died, and no class poll or command answered since }
+    PolledAt : QWord;      {< the last class poll left (ChMsTick) }
+    EndOfInits: LongInt;   {< end of initialisation ASDUs (M_EI_NA_1, COT 4) }
+    LastCoi  : Byte;       {< the COI of the last one }
+    InitGi, InitCi: Boolean;   {< interrogations due after one }
     InitCa   : Word;
   end;
 
@@ -106,19 +106,19 @@ type
   tIecCommand = record
     Phase   : tIecCmdPhase;
     Stage   : tIecCmdStage;
-    Slave   : LongInt;     { index in Slaves }
-    Ti      : Byte;        { type of the main command }
+    Slave   : LongInt;     {< index in Slaves }
+    Ti      : Byte;        {< type of the main command }
     Ca      : Word;
-    Obj     : tIecObject;  { its object (IOA, value, qualifier) }
-    Sbo     : Boolean;     { select before operate }
-    WaitTerm: Boolean;     { ends on ACT_TERM (interrogations) }
-    Delay   : Boolean;     { clock sync: delay acquisition first }
-    SentAt  : QWord;       { the current stage left }
+    Obj     : tIecObject;  {< its object (IOA, value, qualifier) }
+    Sbo     : Boolean;     {< select before operate }
+    WaitTerm: Boolean;     {< ends on ACT_TERM (interrogations) }
+    Delay   : Boolean;     {< clock sync: delay acquisition first }
+    SentAt  : QWord;       {< the current stage left }
     Deadline: QWord;
-    DelayMs : LongInt;     { the delay measured (clock sync with delay) }
+    DelayMs : LongInt;     {< the delay measured (clock sync with delay) }
     Result  : tChResult;
     Err     : ShortString;
-    Auto    : Boolean;     { the master's own, after an end of initialisation }
+    Auto    : Boolean;     {< the master's own, after an end of initialisation }
   end;
 
   tIecMaster = record
@@ -127,31 +127,31 @@ type
     Balanced : Boolean;
     Slaves   : array[0..IecMaxSlaves - 1] of tIecSlave;
     SlaveCount: LongInt;
-    Turn     : LongInt;    { the slave whose turn it is }
-    Over104  : Boolean;    { on an IEC104 channel (Balanced too: no link polling) }
-    TestCount: LongInt;    { 104: TSC of the last C_TS_TA_1 }
-    Link     : tIecTransport;   { balanced FT 1.2 link or IEC 104 }
-    { settings }
-    TimeoutMs: LongInt;    { link answer (FT12LinkTimeoutMs) }
-    Retries  : LongInt;    { link repetitions (FT12LinkRetries) }
-    CycleMs  : LongInt;    { class 2 polls of a slave that had no data at most this often (100) }
-    PollBurst: LongInt;    { services in a row for a slave with data before the turn passes (3) }
-    DeadMinMs, DeadMaxMs: LongInt;   { back-off of a dead slave (1000, 30000) }
-    CommandMs: LongInt;    { confirmation of a command (10000) }
+    Turn     : LongInt;    {< the slave whose turn it is }
+    Over104  : Boolean;    {< on an IEC104 channel (Balanced too: no link polling) }
+    TestCount: LongInt;    {< 104: TSC of the last C_TS_TA_1 }
+    Link     : tIecTransport;   {< balanced FT 1.2 link or IEC 104 }
+    {- settings }
+    TimeoutMs: LongInt;    {< link answer (FT12LinkTimeoutMs) }
+    Retries  : LongInt;    {< link repetitions (FT12LinkRetries) }
+    CycleMs  : LongInt;    {< class 2 polls of a slave that had no data at most this often (100) }
+    PollBurst: LongInt;    {< services in a row for a slave with data before the turn passes (3) }
+    DeadMinMs, DeadMaxMs: LongInt;   {< back-off of a dead slave (1000, 30000) }
+    CommandMs: LongInt;    {< confirmation of a command (10000) }
     OnObject : tIecObjectFunc;
-    OnSent   : tIecObjectFunc;   { each command object as it goes out (nil: none) }
+    OnSent   : tIecObjectFunc;   {< each command object as it goes out (nil: none) }
     OnBad    : tIecBadFunc;
-    OnEndOfInit: tIecInitFunc;   { a slave's end of initialisation (nil: none) }
-    NoGiAfterInit: Boolean;      { do not interrogate a slave after its end of initialisation }
-    CiAfterInit: Byte;     { QCC of a counter interrogation after it too (0: none) }
+    OnEndOfInit: tIecInitFunc;   {< a slave's end of initialisation (nil: none) }
+    NoGiAfterInit: Boolean;      {< do not interrogate a slave after its end of initialisation }
+    CiAfterInit: Byte;     {< QCC of a counter interrogation after it too (0: none) }
     Data     : Pointer;
-    Idle     : tFT12Idle;  { blocking forms: called instead of waiting (tests: the slave) }
+    Idle     : tFT12Idle;  {< blocking forms: called instead of waiting (tests: the slave) }
     IdleData : Pointer;
     Cmd      : tIecCommand;
     { counters and the last trouble }
     Asdus, Objects, BadAsdus, EndOfInits: LongInt;
     LastBad  : ShortString;
-    LineResult: tChResult; { the channel failed (res_DeviceLost ...), else res_Ok }
+    LineResult: tChResult; {< the channel failed (res_DeviceLost ...), else res_Ok }
     { the link service under way (unbalanced) }
     Job      : tIecLinkJob;
     JobSlave : LongInt;
@@ -159,7 +159,7 @@ type
     Prim     : tFT12Primary;
     Rep      : tRecRecord;
     RepLen   : Word;
-    Run      : LongInt;    { services in a row of the slave whose turn it is }
+    Run      : LongInt;    {< services in a row of the slave whose turn it is }
   end;
   pIecMaster = ^tIecMaster;
 
@@ -319,7 +319,7 @@ begin
   Result := res_Ok;
 end;
 
-{ ------------------------------------------------------------ commands }
+{- ------------------------------------------------------------ commands }
 
 function CmdName(const M: tIecMaster): ShortString;
 begin
@@ -708,7 +708,7 @@ begin
   M.OnSent(M.Data, M.Slaves[S].Addr, H, O);
 end;
 
-{ ------------------------------------------------------------ unbalanced }
+{- ------------------------------------------------------------ unbalanced }
 
 { The one place that drives an FT 1.2 primary service. LinkStart starts
   FC with Len octets of user data (an ASDU) to slave S for Job; LinkStep
@@ -972,7 +972,7 @@ begin
   Result := True;
 end;
 
-{ ------------------------------------------------------------ balanced }
+{- ------------------------------------------------------------ balanced }
 
 function OnBalancedData(Data: Pointer; Buf: PByte; Len: Word; Confirm: Boolean): Boolean;
 var
@@ -1024,7 +1024,7 @@ begin
   end;
 end;
 
-{ ------------------------------------------------------------ stepping }
+{- ------------------------------------------------------------ stepping }
 
 function IecMasterStep(var M: tIecMaster): Boolean;
 begin

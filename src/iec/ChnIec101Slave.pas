@@ -62,16 +62,16 @@ uses
 
 const
   IecSlaveMaxPoints = 1024;
-  IecSlaveQueueLen  = 64;        { ASDUs waiting per class }
-  IecSlaveSelectMs  = 10000;     { default select-before-operate timeout }
+  IecSlaveQueueLen  = 64;        {< ASDUs waiting per class }
+  IecSlaveSelectMs  = 10000;     {< default select-before-operate timeout }
 
 type
   { One entry of the point table. }
   tIecPoint = record
-    Ti    : Byte;         { monitoring type (1..21, 30..40) or command type (45..51, 58..64) }
-    Group : Byte;         { interrogation group 1..16 (counters 1..4), 0 = station only }
-    Obj   : tIecObject;   { IOA, value, quality, time (see ChnIec101Asdu.tIecKind) }
-    Frozen: tIecObject;   { counters: the value of the last freeze }
+    Ti    : Byte;         {< monitoring type (1..21, 30..40) or command type (45..51, 58..64) }
+    Group : Byte;         {< interrogation group 1..16 (counters 1..4), 0 = station only }
+    Obj   : tIecObject;   {< IOA, value, quality, time (see ChnIec101Asdu.tIecKind) }
+    Frozen: tIecObject;   {< counters: the value of the last freeze }
     HasFrozen: Boolean;
   end;
   pIecPoint = ^tIecPoint;
@@ -102,26 +102,26 @@ type
   tIecSlaveStation = record
     Chn      : pChnVirt;
     Params   : tIecParams;
-    Ca       : Word;          { own common address (IecSlaveInit: 1) }
-    Balanced : Boolean;       { no link polling: balanced FT 1.2 or IEC 104 }
-    Over104  : Boolean;       { on an IEC104 channel }
-    Station  : tFT12Station;  { unbalanced link }
-    Link     : tIecTransport; { balanced link or IEC 104 }
+    Ca       : Word;          {< own common address (IecSlaveInit: 1) }
+    Balanced : Boolean;       {< no link polling: balanced FT 1.2 or IEC 104 }
+    Over104  : Boolean;       {< on an IEC104 channel }
+    Station  : tFT12Station;  {< unbalanced link }
+    Link     : tIecTransport; {< balanced link or IEC 104 }
     Points   : array[0..IecSlaveMaxPoints - 1] of tIecPoint;
     PointCount: LongInt;
     Class1, Class2: tIecQueue;
     { interrogation under way (station/group or counters) }
     GiActive : Boolean;
     GiQoi    : Byte;
-    GiNext   : LongInt;       { next point index to look at }
-    GiAsdu   : tIecQueued;    { its ACT_CON, the mirror for ACT_TERM }
+    GiNext   : LongInt;       {< next point index to look at }
+    GiAsdu   : tIecQueued;    {< its ACT_CON, the mirror for ACT_TERM }
     { select before operate }
     SelActive: Boolean;
     SelTi    : Byte;
     SelIoa   : LongWord;
     SelUntil : QWord;
     SelectMs : LongInt;
-    SelObj   : tIecObject;    { the object selected: its execute must carry the same }
+    SelObj   : tIecObject;    {< the object selected: its execute must carry the same }
     { station clock: PC clock + ClockOffsetMs; delay from C_CD_NA_1 }
     ClockOffsetMs: Int64;
     DelayMs  : LongInt;
@@ -187,7 +187,7 @@ implementation
 uses
   SysUtils, DateUtils;
 
-{ ---------------------------------------------------------------- queues }
+{- ---------------------------------------------------------------- queues }
 
 function QueuePut(var Q: tIecQueue; const Buf: array of Byte; Len: Word): Boolean;
 var
@@ -231,7 +231,7 @@ begin
     Inc(S.Overflows);
 end;
 
-{ ---------------------------------------------------------------- points }
+{- ---------------------------------------------------------------- points }
 
 function IsCounter(Ti: Byte): Boolean;
 begin
@@ -394,7 +394,7 @@ begin
   end;
 end;
 
-{ ---------------------------------------------------------- interrogation }
+{- ---------------------------------------------------------- interrogation }
 
 { Does point P answer the interrogation under way? }
 function GiWants(const S: tIecSlaveStation; const P: tIecPoint): Boolean;
@@ -493,7 +493,7 @@ begin
   end;
 end;
 
-{ ---------------------------------------------------------------- answers }
+{- ---------------------------------------------------------------- answers }
 
 procedure Bad(var S: tIecSlaveStation; const Err: ShortString);
 begin
@@ -806,7 +806,7 @@ begin
   end;
 end;
 
-{ ------------------------------------------------------------- link glue }
+{- ------------------------------------------------------------- link glue }
 
 function OnUserData(Data: Pointer; Buf: PByte; Len: Word; Confirm: Boolean): Boolean;
 var

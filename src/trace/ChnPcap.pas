@@ -35,10 +35,10 @@ uses
   ChnTypes, ChnTrcFormat;
 
 const
-  PcapMagic      = $A1B2C3D4;   { microsecond timestamps }
-  PcapMagicNano  = $A1B23C4D;   { nanosecond timestamps }
-  PcapLinkRtac   = 250;         { LINKTYPE_RTAC_SERIAL }
-  PcapSnapLen    = 65547;       { longest record: 12 + 65535 chunk bytes }
+  PcapMagic      = $A1B2C3D4;   {< microsecond timestamps }
+  PcapMagicNano  = $A1B23C4D;   {< nanosecond timestamps }
+  PcapLinkRtac   = 250;         {< LINKTYPE_RTAC_SERIAL }
+  PcapSnapLen    = 65547;       {< longest record: 12 + 65535 chunk bytes }
   RtacHeaderLen  = 12;
 
   { RTAC serial event types }
@@ -48,18 +48,18 @@ const
   RtacTxEnd        = 3;
   RtacRxEnd        = 4;
 
-  { results of the reader (texts registered for TrcLayer, after the
+  {- results of the reader (texts registered for TrcLayer, after the
     text reader's res_TrcShort / res_TrcLong) }
-  res_PcapNotPcap  = res_Proto + 2;   { no pcap magic, or a file header cut short }
-  res_PcapLinkType = res_Proto + 3;   { a pcap of another link type }
-  res_PcapCut      = res_Proto + 4;   { ends inside a record header, or a bad length }
+  res_PcapNotPcap  = res_Proto + 2;   {< no pcap magic, or a file header cut short }
+  res_PcapLinkType = res_Proto + 3;   {< a pcap of another link type }
+  res_PcapCut      = res_Proto + 4;   {< ends inside a record header, or a bad length }
 
 type
   tPcapFileHeader = packed record
     Magic   : LongWord;
-    VerMajor: Word;                { 2 }
-    VerMinor: Word;                { 4 }
-    ThisZone: LongInt;             { 0: times are UTC }
+    VerMajor: Word;                {< 2 }
+    VerMinor: Word;                {< 4 }
+    ThisZone: LongInt;             {< 0: times are UTC }
     SigFigs : LongWord;
     SnapLen : LongWord;
     LinkType: LongWord;
@@ -67,12 +67,14 @@ type
 
   tPcapRecHeader = packed record
     TsSec  : LongWord;
-    TsFrac : LongWord;             { microseconds (nanoseconds: PcapMagicNano) }
-    InclLen: LongWord;             { bytes in the file }
-    OrigLen: LongWord;             { bytes on the wire }
+    TsFrac : LongWord;             {< microseconds (nanoseconds: PcapMagicNano) }
+    InclLen: LongWord;             {< bytes in the file }
+    OrigLen: LongWord;             {< bytes on the wire }
   end;
 
-  tRtacHeader = packed record      { big-endian on the wire }
+  { The RTAC serial header before each record's bytes, big-endian on the
+    wire. }
+  tRtacHeader = packed record
     TsSec : LongWord;
     TsUSec: LongWord;
     Event : Byte;
@@ -81,12 +83,12 @@ type
   end;
 
   tPcapInfo = record
-    Records : LongInt;             { records read }
-    Skipped : LongInt;             { records of other event types or < 12 bytes }
-    Swapped : Boolean;             { the file is big-endian }
+    Records : LongInt;             {< records read }
+    Skipped : LongInt;             {< records of other event types or < 12 bytes }
+    Swapped : Boolean;             {< the file is big-endian }
     LinkType: LongWord;
-    ErrPos  : LongInt;             { byte offset of the culprit (result <> res_Ok) }
-    ErrText : ShortString;         { what is wrong there }
+    ErrPos  : LongInt;             {< byte offset of the culprit (result <> res_Ok) }
+    ErrText : ShortString;         {< what is wrong there }
   end;
 
 { The 24-byte file header (little-endian, link type 250). }

@@ -53,13 +53,13 @@ const
 type
   pChnTrc = ^tChnTrc;
   tChnTrc = object(tChnMiddle)
-    CH_File     : tWordString;  { FILE=: a path, STDERR or STDOUT }
-    CH_Mode     : tTrcMode;     { MOD=HEX|DEC: the text format }
-    CH_Pcap     : Boolean;      { MOD=PCAP: binary pcap instead of text }
-    CH_Handle   : THandle;      { the log while open }
-    CH_LogOpen  : Boolean;      { CH_Handle is valid }
-    CH_OwnHandle: Boolean;      { CH_Handle is a file this layer opened }
-    CH_LogErrors: LongInt;      { log writes that failed }
+    CH_File     : tWordString;  {< FILE=: a path, STDERR or STDOUT }
+    CH_Mode     : tTrcMode;     {< MOD=HEX|DEC: the text format }
+    CH_Pcap     : Boolean;      {< MOD=PCAP: binary pcap instead of text }
+    CH_Handle   : THandle;      {< the log while open }
+    CH_LogOpen  : Boolean;      {< CH_Handle is valid }
+    CH_OwnHandle: Boolean;      {< CH_Handle is a file this layer opened }
+    CH_LogErrors: LongInt;      {< log writes that failed }
     constructor Init;
     constructor ChInitParam(const S: tParamStr);
     destructor  Done; virtual;
