@@ -91,6 +91,11 @@ const
   Qcc_Reset   = $C0;       {< counter reset }
   Qrp_General = 1;         {< QRP: general reset of process }
   Qrp_Events  = 2;         {< reset of pending time-tagged events }
+  {- COI, the cause of an end of initialisation (M_EI_NA_1, COT 4) }
+  Coi_PowerOn     = 0;     {< local power switch on }
+  Coi_ManualReset = 1;     {< local manual reset }
+  Coi_RemoteReset = 2;     {< remote reset (C_RP_NA_1) }
+  Coi_LocalChange = $80;   {< BS1: initialisation after a change of local parameters }
   Fbp_Test    = $55AA;     {< fixed test bit pattern of C_TS_NA_1 }
 
   {- Quality bits (SIQ, DIQ, QDS, SEP, QDP, BCR): the Quality field keeps

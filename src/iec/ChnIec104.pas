@@ -131,7 +131,7 @@ type
 implementation
 
 uses
-  SysUtils, uString, ChnTcp;
+  SysUtils, uString, ChnTcp, ChnTrc;
 
 constructor tChnIec104.Init;
 begin
@@ -271,6 +271,15 @@ begin
     end;
     pChnTcp(T)^.ChSetConnectMs(CH_T0 * 1000);
     CH_Client := not pChnTcp(T)^.ChIsServer;
+    { a pcap trace between this layer and TCP is a TCP stream Wireshark
+      dissects as IEC 104 }
+    T := CH_Low;
+    while (T <> nil) and (T^.CH_Type <> ChnTcp.cName) do
+    begin
+      if T^.CH_Type = ChnTrc.cName then
+        pChnTrc(T)^.ChPcapAsTcp(not CH_Client);
+      T := T^.CH_Low;
+    end;
     SetLength(CH_Queue, CH_QueLen);
     SetLength(CH_SentAt, CH_K);
     CH_QHead := 0;
