@@ -143,24 +143,32 @@ begin
     TagAdd(D, 'run', 'B3:0/5', 500, 0, False, E);
     TagAdd(D, '', 'F8:0', 500, 0, False, E);
     TagAdd(D, '', 'ST9:0', 500, 0, False, E);
+    D.Tags[0].Quality := tqBad;
+    AssertEquals('bad before any good read', '{"value":null,"quality":"bad","ts":"1970-01-01T00:00:00.000Z"}',
+      GateTagPayload(D.Tags[0]));
+    D.Tags[0].Quality := tqInitial;
     AssertEquals('not read yet', '{"value":null,"quality":"initial","ts":"1970-01-01T00:00:00.000Z"}',
       GateTagPayload(D.Tags[0]));
     D.Tags[0].Values[0] := 1; D.Tags[0].Values[1] := -2; D.Tags[0].Values[2] := 30000;
     D.Tags[0].Quality := tqGood;
+    D.Tags[0].Known := True;
     D.Tags[0].TimeMs := Int64(1796378400) * 1000 + 123;
     AssertEquals('array', '{"value":[1,-2,30000],"quality":"good","ts":"2026-12-04T10:00:00.123Z"}',
       GateTagPayload(D.Tags[0]));
     D.Tags[1].Values[0] := 1;
     D.Tags[1].Quality := tqBad;
+    D.Tags[1].Known := True;
     D.Tags[1].TimeMs := Int64(1796378400) * 1000;
     AssertEquals('bit', '{"value":true,"quality":"bad","ts":"2026-12-04T10:00:00.000Z"}',
       GateTagPayload(D.Tags[1]));
     D.Tags[2].Values[0] := Single(-2.25);
     D.Tags[2].Quality := tqGood;
+    D.Tags[2].Known := True;
     AssertEquals('float', '{"value":-2.25,"quality":"good","ts":"1970-01-01T00:00:00.000Z"}',
       GateTagPayload(D.Tags[2]));
     D.Tags[3].Text := 'say "hi"';
     D.Tags[3].Quality := tqRefused;
+    D.Tags[3].Known := True;
     AssertEquals('string', '{"value":"say \"hi\"","quality":"refused","ts":"1970-01-01T00:00:00.000Z"}',
       GateTagPayload(D.Tags[3]));
     D.Requests := 12;

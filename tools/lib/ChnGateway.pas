@@ -504,7 +504,7 @@ var
   V: AnsiString;
   K: LongInt;
 begin
-  if T.Quality = tqInitial then
+  if not T.Known then
     V := 'null'
   else if T.Kind = pvString then
     V := JsonString(T.Text)
