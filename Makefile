@@ -171,7 +171,9 @@ test: all $(BUILD)/testunits.inc $(BUILD)/fpcunit/stamp
 	@$(FPC) $(SOAKFLAGS) tests/soak/soak.pas >>$(BUILD)/test-build.log 2>&1 || { cat $(BUILD)/test-build.log; echo "0 passed, 1 failed"; exit 1; }
 	@BUILD=$(BUILD) FPC=$(FPC) T="$(T)" bash tests/run.sh
 
-demo: all
+# only the four programs it runs: a first make demo builds the library
+# and those, not every example
+demo: $(addprefix $(BINDIR)/,df1sim df1echo df1read chndecode)
 	@bash tools/demo.sh $(BUILD)
 
 bench: $(BENCHBINS) $(BINDIR)/chntap $(BINDIR)/plcconc $(BINDIR)/df1sim
@@ -269,7 +271,7 @@ doc:
 	@rm -rf $(BUILD)/doc; mkdir -p $(BUILD)/doc
 	@pasdoc --format html --output $(BUILD)/doc --title 'Chn library $(shell sed -n "s/^  ChnVersion = '\(.*\)';/\1/p" tools/lib/ChnCli.pas)' \
 	  --include src/ $(addprefix --include ,$(sort $(dir $(DOCSRC)))) --define FPC --define UNIX --define LINUX \
-	  --write-uses-list --sort=structures,non-record-fields $(DOCSRC) >$(BUILD)/doc.log 2>&1 || { cat $(BUILD)/doc.log; exit 1; }
+	  --ignore-marker=- --write-uses-list --sort=structures,non-record-fields $(DOCSRC) >$(BUILD)/doc.log 2>&1 || { cat $(BUILD)/doc.log; exit 1; }
 	@if grep -E '^(Warning|Error)' $(BUILD)/doc.log; then echo "make doc: pasdoc warnings (above)"; exit 1; fi
 	@echo "API reference: $(BUILD)/doc/index.html ($(words $(DOCSRC)) units)"
 
@@ -301,7 +303,16 @@ install: units $(addprefix $(BINDIR)/,$(TOOL_PROGRAMS)) man
 	mkdir -p '$(DESTDIR)$(INSTALL_UNITFILEDIR)'; \
 	sed 's|@PREFIX@|$(PREFIX)|g' tools/chngate.service > '$(DESTDIR)$(INSTALL_UNITFILEDIR)/chngate.service'; \
 	echo "installed units in $$d, sources in $$s, tools in $$b, man pages in $$m," \
-	  "the gateway's example configuration $$s/chngate.conf and systemd unit $(INSTALL_UNITFILEDIR)/chngate.service"
+	  "the gateway's example configuration $$s/chngate.conf and systemd unit $(INSTALL_UNITFILEDIR)/chngate.service"; \
+	$(if $(DESTDIR),true,$(INSTALL_HINT))
+
+# After an install to a prefix fpc.cfg does not search (asked of fpc
+# itself, tools/fpcsearches.sh): the -Fu a program's fpc call needs. Not
+# with DESTDIR (a package's staging folder, not where the units will be).
+INSTALL_HINT = if ! bash tools/fpcsearches.sh '$(FPC)' '$(INSTALL_UNITDIR)'; then \
+	  echo "note: fpc does not search $(INSTALL_UNITDIR) (/etc/fpc.cfg): compile your programs with"; \
+	  echo "  fpc -Fu$(INSTALL_UNITDIR) yourprogram.pas"; \
+	  echo "or put that -Fu line into ~/.fpc.cfg (PREFIX=/usr or PREFIX=\$$HOME/.fppkg need none)"; fi
 
 uninstall:
 	rm -rf '$(DESTDIR)$(INSTALL_UNITDIR)' '$(DESTDIR)$(INSTALL_SRCDIR)'

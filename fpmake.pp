@@ -131,6 +131,7 @@ begin
     AddUnit(P, 'ChnPcccNames.pas', AllOSes, []);
     AddUnit(P, 'ChnDF1Link.pas', AllOSes, ['ChnTypes', 'ChnVirt', 'ChnDF1', 'ChnPcccNames', 'uString',
       'ChnWait']);
+    AddUnit(P, 'ChnDF1Poll.pas', AllOSes, ['ChnTypes', 'ChnVirt', 'ChnDF1', 'ChnDF1Link', 'ChnWait', 'uString']);
     AddUnit(P, 'ChnPccc.pas', AllOSes, ['ChnTypes', 'ChnDF1Codec', 'uString', 'ChnPcccNames']);
     AddUnit(P, 'ChnPlc5.pas', AllOSes, ['ChnTypes', 'ChnDF1Codec', 'ChnPccc']);
     AddUnit(P, 'ChnPcccClient.pas', AllOSes, ['ChnTypes', 'ChnVirt', 'ChnDF1Codec', 'ChnDF1Link',
@@ -145,7 +146,7 @@ begin
     { IEC 60870-5-104: the APCI codec and the layer over NAM=TCP }
     AddUnit(P, 'ChnIec104Codec.pas', AllOSes, ['ChnTypes']);
     AddUnit(P, 'ChnIec104.pas', AllOSes, ['ChnTypes', 'ChnVirt', 'ChnProto', 'ChnIec104Codec',
-      'uString', 'ChnTcp']);
+      'uString', 'ChnTcp', 'ChnTrc']);
     { IEC 60870-5-101 application layer on the FT 1.2 link helpers or IEC 104 }
     AddUnit(P, 'ChnIec101Asdu.pas', AllOSes, ['ChnTypes']);
     AddUnit(P, 'ChnIecTransport.pas', AllOSes, ['ChnTypes', 'ChnVirt', 'ChnFT1_2', 'ChnFT12Link',

@@ -74,7 +74,7 @@ begin
     'An IEC 60870-5-101 master: runs the commands in order for every slave and ' +
     'prints every information object sent and received, one per line. PARAMS is ' +
     'an FT 1.2 stack (NAM=FT1_2 ...), unbalanced (MS=ON MAS=MASTER) or balanced ' +
-    '(MS=OFF PRI=ON).');
+    '(MS=OFF PRI=ON: the controlling station, DIR=1 unless DIR= says otherwise).');
   CliOption(Cli, 'ca', #0, 'N', 'common address of ASDU (default 1)');
   CliOption(Cli, 'cot-size', #0, 'N', 'octets of the cause of transmission, 1 or 2 (default 2)');
   CliOption(Cli, 'ca-size', #0, 'N', 'octets of the common address, 1 or 2 (default 2)');
@@ -86,6 +86,8 @@ begin
   CliOption(Cli, 'retries', #0, 'N', 'link repetitions (default ' + IntToStr(FT12LinkRetries) + ')');
   CliOption(Cli, 'wait', #0, 'MS', 'wait for a confirmation at most MS (default 10000)');
   CliOption(Cli, 'json', #0, '', 'one JSON object per line on standard output, nothing else');
+  CliOption(Cli, 'no-gi-after-init', #0, '', 'do not interrogate a slave after its end of ' +
+    'initialisation (M_EI_NA_1)');
   CliEpilog(Cli, 'Commands:' + LineEnding +
     '  gi                      station interrogation' + LineEnding +
     '  gi-group N              interrogation of group N (1..16)' + LineEnding +
@@ -282,6 +284,7 @@ begin
   M.OnObject := @OnReceived;
   M.OnSent := @OnSent;
   M.OnBad := @OnBad;
+  M.NoGiAfterInit := CliHas(Cli, 'no-gi-after-init');
   M.Data := nil;
   if M.Balanced then
   begin
@@ -406,9 +409,9 @@ begin
     for I := 0 to M.SlaveCount - 1 do
       with M.Slaves[I] do
         WriteLn(StdErr, Format('%s: slave %d %s: %d class 1, %d class 2 polls, %d ASDUs, '
-          + '%d objects, %d bad ASDUs, %d failures, %d link resets',
+          + '%d objects, %d bad ASDUs, %d failures, %d link resets%s',
           [Prog, Addr, IecSlaveStateName(State), Class1, Class2, Asdus, Objects, BadAsdus,
-           Failures, Resets]));
+           Failures, Resets, IecLineShowed(M, I)]));
   Dispose(Chn, Done);
   Halt(Worst);
 end.

@@ -444,6 +444,10 @@ begin
   FInject := '10 0B 06 11 16';
   AssertEquals(res_Timeout, Fixed(FCM_ReqLinkState, Rep, 0));
   AssertTrue(FLink.Ignored >= 1);
+  AssertEquals('from another address', 1, FLink.OtherAddr);
+  AssertEquals(6, FLink.OtherLast);
+  AssertEquals(' — 1 frames from link address 6 ignored',
+    FT12IgnoredText(FLink.OtherAddr, FLink.OtherLast, 0));
   { wrong station, a garbled frame (sum $11 for $10), then station 5; on
     a new link record (the old one waits for the first request's answer) }
   FT12LinkInit(FLink, 5);
@@ -452,6 +456,11 @@ begin
   AssertEquals(4, FRepLen);
   AssertEquals(FCS_LinkSAccesReq, Rep.FC);
   AssertEquals(2, FLink.Ignored);
+  AssertEquals('the garbled one is not from another address', 1, FLink.OtherAddr);
+  AssertEquals('', FT12IgnoredText(0, 0, 0));
+  AssertEquals(' — 3 frames with this station''s own DIR bit ignored', FT12IgnoredText(0, 0, 3));
+  AssertEquals(' — 2 frames from link address 65535 ignored — 1 frames with this station''s own DIR bit ignored',
+    FT12IgnoredText(2, 65535, 1));
 end;
 
 procedure TTestChnFT12Link.TestReplyNotFittingTheFunction;

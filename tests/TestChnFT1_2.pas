@@ -29,6 +29,7 @@ type
     procedure TestLayoutAndManualConstants;
     procedure TestInitDefaultsOfTheManual;
     procedure TestParamsRoleAndRoundTrip;
+    procedure TestBalancedRoleGivesTheDirBit;
     procedure TestParamErrors;
     procedure TestAdrAndNodeRangeInAnyOrder;
     procedure TestWireBytesIec101;
@@ -229,6 +230,40 @@ begin
   finally
     Dispose(C, Done);
     Dispose(D, Done);
+  end;
+end;
+
+{ Balanced, no DIR=: a controlling station (PRI=ON or MAS=MASTER given)
+  is station A and sends DIR = 1, as lib60870's balanced master; a
+  controlled one (PRI=OFF, MAS=SLAVE), or no role given, DIR = 0; DIR=
+  given wins; unbalanced has no DIR (RES = 0). }
+procedure TTestChnFT1_2.TestBalancedRoleGivesTheDirBit;
+const
+  Cases: array[0..8] of record P: string; Dir: Boolean; end = (
+    (P: 'MS=OFF'; Dir: False),
+    (P: 'MS=OFF PRI=ON'; Dir: True),
+    (P: 'MS=OFF MAS=MASTER'; Dir: True),
+    (P: 'MAS=MASTER MS=OFF'; Dir: True),
+    (P: 'MS=OFF PRI=OFF'; Dir: False),
+    (P: 'MS=OFF MAS=SLAVE'; Dir: False),
+    (P: 'MS=OFF PRI=ON DIR=0'; Dir: False),
+    (P: 'MS=OFF DIR=0 MAS=MASTER'; Dir: False),
+    (P: 'MS=ON MAS=MASTER'; Dir: False));
+var
+  C: pChnFT1_2;
+  I: Integer;
+begin
+  for I := 0 to High(Cases) do
+  begin
+    New(C, Init);
+    try
+      C^.ChSetParam(Cases[I].P);
+      AssertEquals(Cases[I].P, res_Ok, C^.ChResult);
+      AssertEquals(Cases[I].P, Cases[I].Dir, C^.CH_Dir);
+      AssertEquals(Cases[I].P, Cases[I].Dir, Pos('DIR=1', C^.ChGetParam('')) > 0);
+    finally
+      Dispose(C, Done);
+    end;
   end;
 end;
 

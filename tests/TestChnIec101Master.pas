@@ -22,6 +22,7 @@ type
     FHub: TLoopHub;
     FChn: pChnVirt;
     FSims: array of TSim;
+    FSimLink: string;           { balanced slaves: role, DIR=, DNO= }
     procedure Open(const MasterParams: string; const Slaves: array of Word; Balanced: Boolean = False);
     function Sim(Addr: Word): TSim;
   protected
@@ -52,6 +53,9 @@ type
     procedure TestConfirmationMustMirrorTheCommand;
     procedure TestHostileSlavesLeaveHalfTheLine;
     procedure TestDataPolledAgainAtOnce;
+    procedure TestBalancedControllingStationIsDir1;
+    procedure TestBalancedWrongAddressSaysSo;
+    procedure TestBalancedTwinDirSaysSo;
   end;
 
 implementation
@@ -103,6 +107,7 @@ procedure TTestChnIec101Master.SetUp;
 begin
   FHub := TLoopHub.Create;
   FChn := nil;
+  FSimLink := 'PRI=OFF DIR=0 DNO=1';
   SetLength(FSims, 0);
   Objects := TStringList.Create;
   Bad := TStringList.Create;
@@ -148,8 +153,8 @@ begin
   for I := 0 to High(Slaves) do
   begin
     if Balanced then
-      FSims[I] := TSim.Create('NAM=FT1_2 MS=OFF PRI=OFF DIR=0 LEN=0 NOD=' + IntToStr(Slaves[I])
-        + ' DNO=1 NAM=LOOP PAIR=IMS' + IntToStr(Slaves[I]) + ' END=1', True)
+      FSims[I] := TSim.Create('NAM=FT1_2 MS=OFF ' + FSimLink + ' LEN=0 NOD=' + IntToStr(Slaves[I])
+        + ' NAM=LOOP PAIR=IMS' + IntToStr(Slaves[I]) + ' END=1', True)
     else
     begin
       FSims[I] := TSim.Create('NAM=FT1_2 MS=ON MAS=SLAVE LEN=0 NOD=' + IntToStr(Slaves[I])
@@ -178,7 +183,8 @@ var
   S: tIecSlave;
   L: LongInt;
 begin
-  AssertEquals('SizeOf(tIecCommand)', 327, SizeOf(tIecCommand));
+  AssertEquals('SizeOf(tIecCommand)', 328, SizeOf(tIecCommand));
+  AssertEquals('Auto@327, last', 327, PtrUInt(@C.Auto) - PtrUInt(@C));
   AssertEquals('Slave@2', 2, PtrUInt(@C.Slave) - PtrUInt(@C));
   AssertEquals('Obj@9', 9, PtrUInt(@C.Obj) - PtrUInt(@C));
   AssertEquals('SentAt@49', 49, PtrUInt(@C.SentAt) - PtrUInt(@C));
@@ -188,7 +194,10 @@ begin
   AssertEquals('State after Addr and Link', 2 + L, LongInt(PtrUInt(@S.State) - PtrUInt(@S)));
   AssertEquals('Class1', 2 + L + 1 + 8 + 8 + 4, LongInt(PtrUInt(@S.Class1) - PtrUInt(@S)));
   AssertEquals('Probation', 2 + L + 1 + 8 + 8 + 4 + 9 * 4, LongInt(PtrUInt(@S.Probation) - PtrUInt(@S)));
-  AssertEquals('SizeOf(tIecSlave)', 2 + L + 1 + 8 + 8 + 4 + 9 * 4 + 1 + 8, SizeOf(tIecSlave));
+  { + EndOfInits(4) LastCoi(1) InitGi InitCi(2) InitCa(2) }
+  AssertEquals('SizeOf(tIecSlave)', 2 + L + 1 + 8 + 8 + 4 + 9 * 4 + 1 + 8 + 4 + 1 + 2 + 2, SizeOf(tIecSlave));
+  AssertEquals('EndOfInits after PolledAt', 2 + L + 1 + 8 + 8 + 4 + 9 * 4 + 1 + 8,
+    LongInt(PtrUInt(@S.EndOfInits) - PtrUInt(@S)));
 end;
 
 procedure TTestChnIec101Master.TestInitRefusesOtherChannels;
@@ -652,6 +661,43 @@ begin
   AssertEquals(M.Cmd.Err, res_Ok, IecInterrogation(M, 5, 1, Qoi_Station));
   AssertTrue('took ' + IntToStr(ChMsTick - T0) + ' ms', ChMsTick - T0 < 700);
   AssertEquals(7 * 3 + 8, Objects.Count);
+end;
+
+{ MS=OFF MAS=MASTER, no DIR=: the controlling station sends DIR = 1
+  (both sent DIR = 0 before, and nothing happened but "slave OFFLINE"). }
+procedure TTestChnIec101Master.TestBalancedControllingStationIsDir1;
+begin
+  Open('NAM=FT1_2 MS=OFF MAS=MASTER LEN=0 NOD=1 DNO=5', [5], True);
+  AssertTrue(pChnFT1_2(FChn)^.CH_Dir);
+  M.CommandMs := 1000;
+  AssertEquals(M.Cmd.Err, res_Ok, IecInterrogation(M, 5, 1, Qoi_Station));
+  AssertEquals(8, Objects.Count);
+end;
+
+{ The peer sends to link address 2, this station is 3: the command fails,
+  and the error says what the line showed. }
+procedure TTestChnIec101Master.TestBalancedWrongAddressSaysSo;
+begin
+  FSimLink := 'PRI=OFF DIR=0 DNO=2';
+  Open('NAM=FT1_2 MS=OFF PRI=ON LEN=0 NOD=3 DNO=5', [5], True);
+  M.CommandMs := 600;
+  AssertEquals(res_Timeout, IecInterrogation(M, 5, 1, Qoi_Station));
+  AssertTrue(M.Cmd.Err, Pos(' — ', M.Cmd.Err) > 0);
+  AssertTrue(M.Cmd.Err, Pos('frames from link address 2 ignored', M.Cmd.Err) > 0);
+  AssertTrue(M.Link.Bal.OtherAddr > 0);
+  AssertEquals(2, M.Link.Bal.OtherLast);
+end;
+
+{ Both stations DIR=1: every frame of the peer carries this station's own
+  DIR bit; the error says so. }
+procedure TTestChnIec101Master.TestBalancedTwinDirSaysSo;
+begin
+  FSimLink := 'PRI=OFF DIR=1 DNO=1';
+  Open('NAM=FT1_2 MS=OFF PRI=ON LEN=0 NOD=1 DNO=5', [5], True);
+  M.CommandMs := 600;
+  AssertEquals(res_Timeout, IecInterrogation(M, 5, 1, Qoi_Station));
+  AssertTrue(M.Cmd.Err, Pos('frames with this station''s own DIR bit ignored', M.Cmd.Err) > 0);
+  AssertTrue(M.Link.Bal.BadDir > 0);
 end;
 
 initialization

@@ -55,6 +55,7 @@ type
     procedure TestResetOfTaggedEventsKeepsConfirmations;
     procedure TestTestBitAndPnBitNeverExecuted;
     procedure TestExecuteMustCarryTheSelection;
+    procedure TestEndOfInitOctets;
   end;
 
 implementation
@@ -660,6 +661,42 @@ end;
   confirmation of a command executed before it stays (its loss would leave
   the master without ACT_CON for a command the station executed), and so
   do untagged events. }
+procedure OnResetProc(Data: Pointer; Qrp: Byte);
+begin
+  TTestChnIec101Slave(Data).Cmds.Add('reset ' + IntToStr(Qrp));
+end;
+
+{ M_EI_NA_1 (70 = $46), VSQ 1, COT 4 (2 octets), CA 1, IOA 0, COI:
+  0 local power on, 1 local manual reset (+$80 after a local parameter
+  change), 2 remote reset - after C_RP_NA_1 (105 = $69) QRP 1, whose
+  ACT_CON comes first and which drops what was waiting. }
+procedure TTestChnIec101Slave.TestEndOfInitOctets;
+var
+  O: tIecObject;
+  E: ShortString;
+begin
+  Open;
+  AddStd;
+  S.OnReset := @OnResetProc;
+  AssertEquals('nothing before the program says so', '-', Poll(1));
+  IecSlaveEndOfInit(S, Coi_PowerOn);
+  AssertEquals('after a start', '46 01 04 00 01 00 00 00 00 00', Poll(1));
+  AssertFalse(FAcd);
+  IecSlaveEndOfInit(S, Coi_ManualReset or Coi_LocalChange);
+  AssertEquals('manual reset, local change', '46 01 04 00 01 00 00 00 00 81', Poll(1));
+  O := IecObject(0);
+  O.Int := 0;
+  AssertEquals(res_Ok, IecSlaveUpdate(S, 104, O, True, E));   { an event waits }
+  Send('69 01 06 00 01 00 00 00 00 01');
+  AssertEquals('the reset''s ACT_CON', '69 01 07 00 01 00 00 00 00 01', Poll(1));
+  AssertTrue('more to come', FAcd);
+  AssertEquals('remote reset', '46 01 04 00 01 00 00 00 00 02', Poll(1));
+  AssertFalse('the event went with the reset', FAcd);
+  AssertEquals('-', Poll(1));
+  AssertEquals('reset 1', Cmds[0]);
+  AssertEquals(3, S.EndOfInits);
+end;
+
 procedure TTestChnIec101Slave.TestResetOfTaggedEventsKeepsConfirmations;
 var
   O: tIecObject;

@@ -33,6 +33,7 @@ type
     procedure TestSlaveThatDoesNotAnswer;
     procedure TestBalancedLine;
     procedure TestSeveralSlavesOneDead;
+    procedure TestBalancedWrongAddressNamed;
   end;
 
 implementation
@@ -257,6 +258,19 @@ begin
   AssertTrue(FErr, Pos('slave 5 ONLINE', FErr) > 0);
   AssertTrue(FErr, Pos('slave 7 DEAD', FErr) > 0);
   AssertEquals('only the interrogation reached slave 5', 1, FSim.Got.Count);
+end;
+
+{ The peer sends to link address 2, this station is 1 (a wrong DNO= on
+  the other side): the error names what the line showed. }
+procedure TTestIec101Examples.TestBalancedWrongAddressNamed;
+begin
+  FreeAndNil(FSim);
+  FSim := TSim.Create('NAM=FT1_2 MS=OFF PRI=OFF LEN=0 NOD=5 DNO=2 NAM=COM DRV=PTY', True, 200);
+  AssertEquals(FErr, 4, Run(['--timeout=200', '--wait=1500', 'NAM=FT1_2 MS=OFF PRI=ON LEN=0 NOD=1 DNO=5 NAM=COM DEV='
+    + PtyLastSlave, 'gi']));
+  AssertTrue(FErr, Pos('C_IC_NA_1 to slave 5: ', FErr) > 0);
+  AssertTrue(FErr, Pos(' — ', FErr) > 0);
+  AssertTrue(FErr, Pos(' frames from link address 2 ignored', FErr) > 0);
 end;
 
 initialization

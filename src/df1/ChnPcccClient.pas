@@ -31,20 +31,20 @@ uses
 
 type
   tPcccClient = record
-    Chn      : pChnVirt;     { a tChnDF1 stack, master }
-    OwnsChn  : Boolean;      { PcccClose disposes of Chn }
-    TimeoutMs: LongInt;      { link timeout, default DF1LinkTimeoutMs }
-    MaxBytes : Word;         { data bytes per request, 2..244 (default 244) }
-    Tns      : Word;         { TNS of the next request }
-    Idle     : tDF1Idle;     { blocking calls: called while waiting (nil: the program-wide wait) }
+    Chn      : pChnVirt;     {< a tChnDF1 stack, master }
+    OwnsChn  : Boolean;      {< PcccClose disposes of Chn }
+    TimeoutMs: LongInt;      {< link timeout, default DF1LinkTimeoutMs }
+    MaxBytes : Word;         {< data bytes per request, 2..244 (default 244) }
+    Tns      : Word;         {< TNS of the next request }
+    Idle     : tDF1Idle;     {< blocking calls: called while waiting (nil: the program-wide wait) }
     IdleData : Pointer;
-    Log      : tDF1LogProc;  { nil: quiet }
+    Log      : tDF1LogProc;  {< nil: quiet }
     LogWire  : Boolean;
-    Requests : LongInt;      { exchanges made }
-    InUse    : Boolean;      { a request is under way: one at a time }
-    Err      : ShortString;  { the text of the last failure }
-    Plc5     : Boolean;      { PLC-5 addresses and commands (PcccClientPlc5) }
-    Plc5Cmd  : tPlc5Command; { typed read/write or word range }
+    Requests : LongInt;      {< exchanges made }
+    InUse    : Boolean;      {< a request is under way: one at a time }
+    Err      : ShortString;  {< the text of the last failure }
+    Plc5     : Boolean;      {< PLC-5 addresses and commands (PcccClientPlc5) }
+    Plc5Cmd  : tPlc5Command; {< typed read/write or word range }
   end;
   pPcccClient = ^tPcccClient;
 
@@ -57,8 +57,8 @@ type
     Op     : tPcccOp;
     Kind   : tPcccValueKind;
     Plan   : tPcccPlan;
-    Index  : LongInt;        { request of the plan under way }
-    Expect : Word;           { data bytes its reply must carry }
+    Index  : LongInt;        {< request of the plan under way }
+    Expect : Word;           {< data bytes its reply must carry }
     Busy   : Boolean;
     Result : tChResult;
     Err    : ShortString;
@@ -215,7 +215,7 @@ begin
   C.OwnsChn := False;
 end;
 
-{ ------------------------------------------------------------- stepping }
+{- ------------------------------------------------------------- stepping }
 
 { R is over: the client is free for the next one. }
 procedure Release(var R: tPcccRequest);
@@ -642,7 +642,7 @@ begin
   end;
 end;
 
-{ ------------------------------------------------------------- blocking }
+{- ------------------------------------------------------------- blocking }
 
 function Copied(var C: tPcccClient; var R: tPcccRequest): tChResult;
 begin

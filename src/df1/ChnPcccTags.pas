@@ -43,7 +43,7 @@ uses
   ChnTypes, ChnVirt, ChnDF1Codec, ChnDF1Link, ChnPccc, ChnPcccClient;
 
 const
-  TagMaxGapDefault      = 32;      { bytes read in vain rather than a request more }
+  TagMaxGapDefault      = 32;      {< bytes read in vain rather than a request more }
   TagDemoteAfterDefault = 3;
   TagDemoteMsDefault    = 10000;
   TagScanMsDefault      = 1000;
@@ -53,35 +53,35 @@ type
   tTagDeviceState = (tdOk, tdDown, tdDemoted);
 
   tPcccTag = record
-    Name    : ShortString;   { the name it is published under (default: Address) }
-    Address : ShortString;   { as parsed, canonical: 'N7:0[10]', 'T4:1.ACC' }
+    Name    : ShortString;   {< the name it is published under (default: Address) }
+    Address : ShortString;   {< as parsed, canonical: 'N7:0[10]', 'T4:1.ACC' }
     Addr    : tPcccAddr;
-    Count   : LongInt;       { items: 1, or the [n] of an array }
-    Plan    : tPcccPlan;     { a read of the tag alone: how its bytes decode }
+    Count   : LongInt;       {< items: 1, or the [n] of an array }
+    Plan    : tPcccPlan;     {< a read of the tag alone: how its bytes decode }
     Kind    : tPcccValueKind;
     ScanMs  : LongInt;
     Deadband: Double;
     Writable: Boolean;
-    Block   : LongInt;       { the block that reads it }
-    First   : LongInt;       { its first element in the data file }
-    Values  : array of Double;   { PcccPlanValues of Plan (ints and floats) }
-    Text    : ShortString;       { an ST tag's value }
+    Block   : LongInt;       {< the block that reads it }
+    First   : LongInt;       {< its first element in the data file }
+    Values  : array of Double;   {< PcccPlanValues of Plan (ints and floats) }
+    Text    : ShortString;       {< an ST tag's value }
     Quality : tTagQuality;
-    Known   : Boolean;       { Values hold what a good read gave (else nothing yet) }
-    TimeMs  : Int64;         { UTC ms since 1970 of the read that gave them }
-    Sent    : array of Double;   { the values last taken by TagTakeChange }
+    Known   : Boolean;       {< Values hold what a good read gave (else nothing yet) }
+    TimeMs  : Int64;         {< UTC ms since 1970 of the read that gave them }
+    Sent    : array of Double;   {< the values last taken by TagTakeChange }
     SentText: ShortString;
     SentQuality: tTagQuality;
-    Queued  : Boolean;       { in the change queue }
+    Queued  : Boolean;       {< in the change queue }
   end;
 
   tPcccBlock = record
     FileType: Byte;
     FileNo  : Word;
-    First   : LongInt;       { first element read }
+    First   : LongInt;       {< first element read }
     Elems   : LongInt;
     ScanMs  : LongInt;
-    Due     : QWord;         { ChMsTick when its next read is due }
+    Due     : QWord;         {< ChMsTick when its next read is due }
   end;
 
   tTagWrite = record
@@ -104,22 +104,22 @@ type
     DemoteAfter: LongInt;
     DemoteMs   : LongInt;
     State      : tTagDeviceState;
-    StateChanged: Boolean;   { health to report (TagTakeHealth) }
-    Fails      : LongInt;    { failed requests in a row }
-    RetryAt    : QWord;      { demoted: when the next read is tried }
+    StateChanged: Boolean;   {< health to report (TagTakeHealth) }
+    Fails      : LongInt;    {< failed requests in a row }
+    RetryAt    : QWord;      {< demoted: when the next read is tried }
     Requests   : LongInt;
     Errors     : LongInt;
     Retries    : LongInt;
     LastError  : ShortString;
     { the request under way }
     Busy       : tTagBusy;
-    Cur        : LongInt;    { block read, or write (index in Writes) }
+    Cur        : LongInt;    {< block read, or write (index in Writes) }
     Expect     : Word;
     Master     : tDF1Master;
     WriteReq   : tPcccRequest;
-    Writes     : array of tTagWrite;   { waiting, Writes[0] under way }
-    Done       : array of tTagWrite;   { finished, for TagTakeWrite }
-    Changes    : array of LongInt;     { tags queued, oldest first }
+    Writes     : array of tTagWrite;   {< waiting, Writes[0] under way }
+    Done       : array of tTagWrite;   {< finished, for TagTakeWrite }
+    Changes    : array of LongInt;     {< tags queued, oldest first }
     ChangeHead : LongInt;
   end;
 
@@ -329,7 +329,7 @@ begin
   Result := -1;
 end;
 
-{ ------------------------------------------------------------ merging }
+{- ------------------------------------------------------------ merging }
 
 { Tag A before B: by file, scan class, first element. }
 function Before(const A, B: tPcccTag): Boolean;
@@ -417,7 +417,7 @@ begin
   D.WriteReq.Floats := nil;
 end;
 
-{ ------------------------------------------------------------ values }
+{- ------------------------------------------------------------ values }
 
 procedure QueueChange(var D: tPcccDevice; Tag: LongInt);
 begin
@@ -517,7 +517,7 @@ begin
   end;
 end;
 
-{ ------------------------------------------------------------ stepping }
+{- ------------------------------------------------------------ stepping }
 
 { The device answered. }
 procedure Answered(var D: tPcccDevice);

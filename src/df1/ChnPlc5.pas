@@ -144,7 +144,7 @@ begin
   Result := PcccParseAddressAs(pdPlc5, S, A, Err);
 end;
 
-{ ------------------------------------------------------------ encoding }
+{- ------------------------------------------------------------ encoding }
 
 procedure PutLevel(V: LongInt; var Data: array of Byte; var N: Integer);
 begin
@@ -333,7 +333,7 @@ begin
   Result := True;
 end;
 
-{ --------------------------------------------------------------- plans }
+{- --------------------------------------------------------------- plans }
 
 function Plc5Plan(const A: tPcccAddr; Count: LongInt; Write: Boolean; MaxBytes: Word;
   out P: tPcccPlan; out Err: ShortString): tChResult;

@@ -12,8 +12,10 @@
   NOD=, DNO=, LEN=. Added by the port (see docs/ChnFT1_2.md):
     ADR=0|1|2  link address octets (default 1 as in the manual; 2 octets are
                little-endian and NOD=/DNO= then range up to 65535)
-    DIR=0|1    balanced: station A (1) or B (0, default); the DIR bit sent,
-               and a received frame with it is res_ErrDir (own side)
+    DIR=0|1    balanced: station A (1) or B (0); the DIR bit sent, and a
+               received frame with it is res_ErrDir (own side); not
+               given: 1 when PRI=ON or MAS=MASTER is (the controlling
+               station), else 0
     GAP=n      line-idle gap in character times that discards a
                half-received frame (0 = off, default); the character time
                is 11 bits at the BD= of the layer below, 9600 Bd if none
@@ -32,10 +34,10 @@ uses
   ChnTypes, ChnVirt, ChnProto, ChnFT12Codec;
 
 const
-  cVerNo = $0100;                 { BCD }
+  cVerNo = $0100;                 {< BCD }
   cVer   = '01.00,21.11.2026';
   cName  = 'FT1_2';
-  MaxTBuf = 65500;                { largest send buffer (LSB=) }
+  MaxTBuf = 65500;                {< largest send buffer (LSB=) }
   MaxDataLen = ChnFT12Codec.MaxDataLen;
 
   { control characters (manual 4.1) }
@@ -45,31 +47,31 @@ const
   SACK = ChnFT12Codec.SACK;
   SNAK = ChnFT12Codec.SNAK;
 
-  { function codes from a master/primary station (manual 4.2);
+  {- function codes from a master/primary station (manual 4.2);
     V = balanced, N = unbalanced }
-  FCM_1stSetTransmit =  0;  { V N  reset of remote link, FCV = False }
-  FCM_1stSetUserFun  =  1;  { V N  reset of user process, FCV = False }
-  FCM_CheckLink      =  2;  { V    test function for link, FCV = True }
-  FCM_UserDataReply  =  3;  { V N  user data, confirm expected, FCV = True }
-  FCM_UserDataNoRep  =  4;  { V N  user data, no reply, FCV = False }
-  FCM_ReqReplyAcces  =  8;  {   N  request for access demand, FCV = False }
-  FCM_ReqLinkState   =  9;  { V N  request status of link, FCV = False }
-  FCM_ReqUserData1   = 10;  {   N  request user data class 1, FCV = True }
-  FCM_ReqUserData2   = 11;  {   N  request user data class 2, FCV = True }
+  FCM_1stSetTransmit =  0;  {< V N  reset of remote link, FCV = False }
+  FCM_1stSetUserFun  =  1;  {< V N  reset of user process, FCV = False }
+  FCM_CheckLink      =  2;  {< V    test function for link, FCV = True }
+  FCM_UserDataReply  =  3;  {< V N  user data, confirm expected, FCV = True }
+  FCM_UserDataNoRep  =  4;  {< V N  user data, no reply, FCV = False }
+  FCM_ReqReplyAcces  =  8;  {<   N  request for access demand, FCV = False }
+  FCM_ReqLinkState   =  9;  {< V N  request status of link, FCV = False }
+  FCM_ReqUserData1   = 10;  {<   N  request user data class 1, FCV = True }
+  FCM_ReqUserData2   = 11;  {<   N  request user data class 2, FCV = True }
 
-  { function codes from a slave/secondary station }
-  FCS_Ack            =  0;  { V N  ACK }
-  FCS_NackBusy       =  1;  { V N  NACK: message not accepted, link busy }
-  FCS_UserData       =  8;  {   N  user data }
-  FCS_DataNotAcces   =  9;  {   N  NACK: requested data not available }
-  FCS_LinkSAccesReq  = 11;  { V N  status of link or access demand }
+  {- function codes from a slave/secondary station }
+  FCS_Ack            =  0;  {< V N  ACK }
+  FCS_NackBusy       =  1;  {< V N  NACK: message not accepted, link busy }
+  FCS_UserData       =  8;  {<   N  user data }
+  FCS_DataNotAcces   =  9;  {<   N  NACK: requested data not available }
+  FCS_LinkSAccesReq  = 11;  {< V N  status of link or access demand }
 
-  { receive results (manual 4.3) }
-  res_ErrSum   = ChnFT12Codec.res_ErrSum;     { $20 }
-  res_ErrLen   = ChnFT12Codec.res_ErrLen;     { $21 }
-  res_ErrCode  = ChnFT12Codec.res_ErrCode;    { $22 }
-  res_ErrFrame = ChnFT12Codec.res_ErrFrame;   { $23 }
-  res_ErrDir   = ChnFT12Codec.res_ErrDir;     { $24 port: balanced, DIR of the own side }
+  {- receive results (manual 4.3) }
+  res_ErrSum   = ChnFT12Codec.res_ErrSum;     {< $20 }
+  res_ErrLen   = ChnFT12Codec.res_ErrLen;     {< $21 }
+  res_ErrCode  = ChnFT12Codec.res_ErrCode;    {< $22 }
+  res_ErrFrame = ChnFT12Codec.res_ErrFrame;   {< $23 }
+  res_ErrDir   = ChnFT12Codec.res_ErrDir;     {< $24 port: balanced, DIR of the own side }
 
   { message types (manual 4) }
   tpSACK   = ChnFT12Codec.tpSACK;
@@ -105,18 +107,18 @@ type
 
   pChnFT1_2 = ^tChnFT1_2;
   tChnFT1_2 = object(tChnProto)
-    CH_RSum     : tSum8;     { receiver checksum }
-    CH_SSum     : tSum8;     { checksum of the last frame sent }
-    CH_MaSl     : Boolean;   { True: unbalanced (MS=ON) }
-    CH_Master   : Boolean;   { master (unbalanced) or primary (balanced) }
-    CH_LenShortM: Byte;      { LEN=: data octets of a fixed frame }
-    { --- additions of the port --- }
-    CH_MasParam : Boolean;   { MAS=MASTER; CH_Master follows it when MS=ON }
-    CH_PriParam : Boolean;   { PRI=ON; CH_Master follows it when MS=OFF }
-    CH_AdrLen   : Byte;      { ADR= }
-    CH_Dir      : Boolean;   { DIR= }
-    CH_Gap      : Word;      { GAP= in character times }
-    CH_Rx       : tFT12Rx;   { receive automaton }
+    CH_RSum     : tSum8;     {< receiver checksum }
+    CH_SSum     : tSum8;     {< checksum of the last frame sent }
+    CH_MaSl     : Boolean;   {< True: unbalanced (MS=ON) }
+    CH_Master   : Boolean;   {< master (unbalanced) or primary (balanced) }
+    CH_LenShortM: Byte;      {< LEN=: data octets of a fixed frame }
+    {- --- additions of the port --- }
+    CH_MasParam : Boolean;   {< MAS=MASTER; CH_Master follows it when MS=ON }
+    CH_PriParam : Boolean;   {< PRI=ON; CH_Master follows it when MS=OFF }
+    CH_AdrLen   : Byte;      {< ADR= }
+    CH_Dir      : Boolean;   {< DIR= }
+    CH_Gap      : Word;      {< GAP= in character times }
+    CH_Rx       : tFT12Rx;   {< receive automaton }
     { direction of the frame the last ChReceive gave (False after a broken
       frame): PRM (True = a request from the peer's primary; single
       characters count as secondary) and the DIR bit it carried }
@@ -125,8 +127,12 @@ type
     { BD= of the stack below for GAP= (9600 if none), taken when the stack
       is built (ChSetParam) and at ChConnect, not on every send }
     CH_LowBaud  : LongInt;
-    CH_SPrimary : Boolean;   { direction of the frame ChSend is encoding }
-    CH_RNow     : QWord;     { time stamp of the bytes of this receive tick }
+    CH_SPrimary : Boolean;   {< direction of the frame ChSend is encoding }
+    CH_RNow     : QWord;     {< time stamp of the bytes of this receive tick }
+    { which of MAS=, PRI=, DIR= the strings gave: a balanced station whose
+      role is given (PRI=ON or MAS=MASTER: the controlling station) and
+      no DIR= is station A, DIR=1, as lib60870's balanced master }
+    CH_MasGiven, CH_PriGiven, CH_DirGiven: Boolean;
 
     constructor Init;
     constructor ChInitParam(const S: tParamStr);
@@ -196,6 +202,9 @@ begin
   CH_LowBaud := cDefaultBaud;
   CH_SPrimary := True;
   CH_RNow := 0;
+  CH_MasGiven := False;
+  CH_PriGiven := False;
+  CH_DirGiven := False;
   FillChar(CH_Rx, SizeOf(CH_Rx), 0);
   CH_Rx.Cfg := ChCodecConfig;
   FT12RxReset(CH_Rx);
@@ -345,11 +354,23 @@ begin
     Result := inherited ChSetOneParam(S, CmdL);
   if (Result = res_Ok) and (CmdL = cmd_Set) then
   begin
+    if Key = 'MAS' then
+      CH_MasGiven := True
+    else if Key = 'PRI' then
+      CH_PriGiven := True
+    else if Key = 'DIR' then
+      CH_DirGiven := True;
     { the manual's one role field follows MAS= or PRI= by the mode }
     if CH_MaSl then
       CH_Master := CH_MasParam
     else
       CH_Master := CH_PriParam;
+    { balanced, no DIR=: the role given says which station this is }
+    if not CH_MaSl and not CH_DirGiven then
+      if CH_PriGiven then
+        CH_Dir := CH_PriParam
+      else if CH_MasGiven then
+        CH_Dir := CH_MasParam;
   end;
 end;
 

@@ -30,7 +30,12 @@
     kept as the station clock's offset, OnClock told, ACT_CON with the
     time received;
   * read (C_RD_NA_1): the point in class 1 with COT 5;
-  * test (C_TS_NA_1, C_TS_TA_1), reset process (C_RP_NA_1: QRP 2 drops
+  * end of initialisation (M_EI_NA_1, COT 4) in class 1 when the program
+    says the station has initialised (IecSlaveEndOfInit, COI 0 after a
+    start), and after a general reset of process;
+  * test (C_TS_NA_1, C_TS_TA_1), reset process (C_RP_NA_1: QRP 1 starts
+    the station again - queues dropped, OnReset told - and queues an end
+    of initialisation with COI 2 after the ACT_CON; QRP 2 drops
     the queued time-tagged events, never a confirmation), delay acquisition (C_CD_NA_1: COT 6 confirmed,
     COT 3 kept as the delay): ACT_CON;
   * anything else is mirrored as a negative answer with COT 44 (unknown
@@ -57,16 +62,16 @@ uses
 
 const
   IecSlaveMaxPoints = 1024;
-  IecSlaveQueueLen  = 64;        { ASDUs waiting per class }
-  IecSlaveSelectMs  = 10000;     { default select-before-operate timeout }
+  IecSlaveQueueLen  = 64;        {< ASDUs waiting per class }
+  IecSlaveSelectMs  = 10000;     {< default select-before-operate timeout }
 
 type
   { One entry of the point table. }
   tIecPoint = record
-    Ti    : Byte;         { monitoring type (1..21, 30..40) or command type (45..51, 58..64) }
-    Group : Byte;         { interrogation group 1..16 (counters 1..4), 0 = station only }
-    Obj   : tIecObject;   { IOA, value, quality, time (see ChnIec101Asdu.tIecKind) }
-    Frozen: tIecObject;   { counters: the value of the last freeze }
+    Ti    : Byte;         {< monitoring type (1..21, 30..40) or command type (45..51, 58..64) }
+    Group : Byte;         {< interrogation group 1..16 (counters 1..4), 0 = station only }
+    Obj   : tIecObject;   {< IOA, value, quality, time (see ChnIec101Asdu.tIecKind) }
+    Frozen: tIecObject;   {< counters: the value of the last freeze }
     HasFrozen: Boolean;
   end;
   pIecPoint = ^tIecPoint;
@@ -91,30 +96,32 @@ type
     ASDU handed to the link (Sent = True). }
   tIecSlaveAsduFunc = procedure(Data: Pointer; Sent: Boolean; Buf: PByte; Len: Word);
   tIecSlaveBadFunc = procedure(Data: Pointer; const Err: ShortString);
+  { A reset of process (C_RP_NA_1) with its QRP, after its ACT_CON. }
+  tIecSlaveResetFunc = procedure(Data: Pointer; Qrp: Byte);
 
   tIecSlaveStation = record
     Chn      : pChnVirt;
     Params   : tIecParams;
-    Ca       : Word;          { own common address (IecSlaveInit: 1) }
-    Balanced : Boolean;       { no link polling: balanced FT 1.2 or IEC 104 }
-    Over104  : Boolean;       { on an IEC104 channel }
-    Station  : tFT12Station;  { unbalanced link }
-    Link     : tIecTransport; { balanced link or IEC 104 }
+    Ca       : Word;          {< own common address (IecSlaveInit: 1) }
+    Balanced : Boolean;       {< no link polling: balanced FT 1.2 or IEC 104 }
+    Over104  : Boolean;       {< on an IEC104 channel }
+    Station  : tFT12Station;  {< unbalanced link }
+    Link     : tIecTransport; {< balanced link or IEC 104 }
     Points   : array[0..IecSlaveMaxPoints - 1] of tIecPoint;
     PointCount: LongInt;
     Class1, Class2: tIecQueue;
     { interrogation under way (station/group or counters) }
     GiActive : Boolean;
     GiQoi    : Byte;
-    GiNext   : LongInt;       { next point index to look at }
-    GiAsdu   : tIecQueued;    { its ACT_CON, the mirror for ACT_TERM }
+    GiNext   : LongInt;       {< next point index to look at }
+    GiAsdu   : tIecQueued;    {< its ACT_CON, the mirror for ACT_TERM }
     { select before operate }
     SelActive: Boolean;
     SelTi    : Byte;
     SelIoa   : LongWord;
     SelUntil : QWord;
     SelectMs : LongInt;
-    SelObj   : tIecObject;    { the object selected: its execute must carry the same }
+    SelObj   : tIecObject;    {< the object selected: its execute must carry the same }
     { station clock: PC clock + ClockOffsetMs; delay from C_CD_NA_1 }
     ClockOffsetMs: Int64;
     DelayMs  : LongInt;
@@ -122,10 +129,11 @@ type
     OnClock  : tIecSlaveClockFunc;
     OnAsdu   : tIecSlaveAsduFunc;
     OnBad    : tIecSlaveBadFunc;
+    OnReset  : tIecSlaveResetFunc;
     Data     : Pointer;
     { counters }
     Asdus, BadAsdus, Commands, Refused, ClockSyncs, Interrogations,
-      CounterInterrogations, Reads, Events, Negatives, Overflows: LongInt;
+      CounterInterrogations, Reads, Events, Negatives, Overflows, EndOfInits: LongInt;
     LastBad  : ShortString;
   end;
   pIecSlaveStation = ^tIecSlaveStation;
@@ -165,13 +173,21 @@ function IecSlaveStep(var S: tIecSlaveStation): Boolean;
 function IecSlaveWaitMs(const S: tIecSlaveStation): LongInt;
 { ASDUs waiting in class 1 and class 2 (and an interrogation's rest). }
 function IecSlavePending(const S: tIecSlaveStation): Boolean;
+{ The station has initialised: queue its end of initialisation (M_EI_NA_1,
+  COT 4, IOA 0, the COI: Coi_PowerOn after a start, Coi_ManualReset,
+  + Coi_LocalChange when local parameters changed) in class 1. A program
+  calls it once its point table is filled; it goes out when the master
+  has reset the link and polls class 1 (unbalanced), or as soon as the
+  link is up (balanced FT 1.2, IEC 104). A general reset of process
+  (C_RP_NA_1, QRP 1) sends one with Coi_RemoteReset by itself. }
+procedure IecSlaveEndOfInit(var S: tIecSlaveStation; Coi: Byte);
 
 implementation
 
 uses
   SysUtils, DateUtils;
 
-{ ---------------------------------------------------------------- queues }
+{- ---------------------------------------------------------------- queues }
 
 function QueuePut(var Q: tIecQueue; const Buf: array of Byte; Len: Word): Boolean;
 var
@@ -215,7 +231,7 @@ begin
     Inc(S.Overflows);
 end;
 
-{ ---------------------------------------------------------------- points }
+{- ---------------------------------------------------------------- points }
 
 function IsCounter(Ti: Byte): Boolean;
 begin
@@ -378,7 +394,7 @@ begin
   end;
 end;
 
-{ ---------------------------------------------------------- interrogation }
+{- ---------------------------------------------------------- interrogation }
 
 { Does point P answer the interrogation under way? }
 function GiWants(const S: tIecSlaveStation; const P: tIecPoint): Boolean;
@@ -477,7 +493,7 @@ begin
   end;
 end;
 
-{ ---------------------------------------------------------------- answers }
+{- ---------------------------------------------------------------- answers }
 
 procedure Bad(var S: tIecSlaveStation; const Err: ShortString);
 begin
@@ -659,6 +675,37 @@ begin
   S.GiActive := True;
 end;
 
+procedure IecSlaveEndOfInit(var S: tIecSlaveStation; Coi: Byte);
+var
+  Buf: array[0..IecMaxAsdu - 1] of Byte;
+  Len: Word;
+  O: tIecObject;
+  Err: ShortString;
+begin
+  O := IecObject(0);
+  O.Int := Coi;
+  if IecEncodeOne(S.Params, M_EI_NA_1, Cot_Initialized, S.Ca, O, Buf, Len, Err) = res_Ok then
+  begin
+    Queue1(S, Buf, Len);
+    Inc(S.EndOfInits);
+  end;
+end;
+
+{ A general reset of process: the station starts again - what waited is
+  dropped, an interrogation or selection under way ends - and says so
+  with an end of initialisation after the confirmation. }
+procedure GeneralReset(var S: tIecSlaveStation; const Buf: array of Byte; Len: Word);
+begin
+  S.Class1.Count := 0;
+  S.Class2.Count := 0;
+  S.GiActive := False;
+  S.SelActive := False;
+  Answer(S, Buf, Len, Cot_ActCon, False);
+  if Assigned(S.OnReset) then
+    S.OnReset(S.Data, Qrp_General);
+  IecSlaveEndOfInit(S, Coi_RemoteReset);
+end;
+
 { Does type Ti take cause Cot in control direction? }
 function CotFits(Ti, Cot: Byte): Boolean;
 begin
@@ -739,10 +786,15 @@ begin
     C_RD_NA_1: TakeRead(S, A, Len, O);
     C_CS_NA_1: TakeClock(S, A, Len, O);
     C_TS_NA_1, C_TS_TA_1, C_RP_NA_1:
+      if (H.Ti = C_RP_NA_1) and (O.Int = Qrp_General) then
+        GeneralReset(S, A, Len)
+      else
       begin
         if (H.Ti = C_RP_NA_1) and (O.Int = Qrp_Events) then
           QueueDropTaggedEvents(S.Class1);
         Answer(S, A, Len, Cot_ActCon, False);
+        if (H.Ti = C_RP_NA_1) and Assigned(S.OnReset) then
+          S.OnReset(S.Data, O.Int);
       end;
     C_CD_NA_1:
       if H.Cot = Cot_Spontaneous then
@@ -754,7 +806,7 @@ begin
   end;
 end;
 
-{ ------------------------------------------------------------- link glue }
+{- ------------------------------------------------------------- link glue }
 
 function OnUserData(Data: Pointer; Buf: PByte; Len: Word; Confirm: Boolean): Boolean;
 var

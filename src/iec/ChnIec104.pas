@@ -50,19 +50,19 @@ type
   tChnIec104 = object(tChnProto)
     { parameters }
     CH_K, CH_W        : LongInt;
-    CH_T0, CH_T1, CH_T2, CH_T3: LongInt;   { seconds }
+    CH_T0, CH_T1, CH_T2, CH_T3: LongInt;   {< seconds }
     CH_QueLen         : LongInt;
     { the connection (NAM=TCP's session number, 0: none) }
     CH_Session        : LongWord;
-    CH_Client         : Boolean;     { the layer below connects out }
-    CH_Started        : Boolean;     { data transfer started }
+    CH_Client         : Boolean;     {< the layer below connects out }
+    CH_Started        : Boolean;     {< data transfer started }
     CH_Vs, CH_Vr, CH_Va, CH_AckVr: Word;
-    CH_SentAt         : array of QWord;   { send time of the unacknowledged I frames, K }
-    CH_UAct           : Byte;        { U act waiting for its con (0: none) }
+    CH_SentAt         : array of QWord;   {< send time of the unacknowledged I frames, K }
+    CH_UAct           : Byte;        {< U act waiting for its con (0: none) }
     CH_UActAt         : QWord;
-    CH_StopDue        : Boolean;     { STOPDT con once all is acknowledged }
-    CH_FirstRxAt      : QWord;       { oldest I frame not acknowledged yet (t2) }
-    CH_LastRxAt       : QWord;       { last frame received (t3) }
+    CH_StopDue        : Boolean;     {< STOPDT con once all is acknowledged }
+    CH_FirstRxAt      : QWord;       {< oldest I frame not acknowledged yet (t2) }
+    CH_LastRxAt       : QWord;       {< last frame received (t3) }
     { ASDUs not sent yet }
     CH_Queue          : array of tIec104Slot;
     CH_QHead, CH_QCount: LongInt;
@@ -91,7 +91,7 @@ type
     procedure ChRxReset; virtual;
     function  ChRxByte(B: Byte; var Err: tChResult): Boolean; virtual;
     function  ChRxDeliver(var Len: Word): tChResult; virtual;
-    { --- additions --- }
+    {- --- additions --- }
     { Data transfer is started on the connection in use. }
     function  ChDataStarted: Boolean;
     { ASDUs ChSend would queue now without dropping one. }
@@ -131,7 +131,7 @@ type
 implementation
 
 uses
-  SysUtils, uString, ChnTcp;
+  SysUtils, uString, ChnTcp, ChnTrc;
 
 constructor tChnIec104.Init;
 begin
@@ -271,6 +271,15 @@ begin
     end;
     pChnTcp(T)^.ChSetConnectMs(CH_T0 * 1000);
     CH_Client := not pChnTcp(T)^.ChIsServer;
+    { a pcap trace between this layer and TCP is a TCP stream Wireshark
+      dissects as IEC 104 }
+    T := CH_Low;
+    while (T <> nil) and (T^.CH_Type <> ChnTcp.cName) do
+    begin
+      if T^.CH_Type = ChnTrc.cName then
+        pChnTrc(T)^.ChPcapAsTcp(not CH_Client);
+      T := T^.CH_Low;
+    end;
     SetLength(CH_Queue, CH_QueLen);
     SetLength(CH_SentAt, CH_K);
     CH_QHead := 0;
@@ -282,7 +291,7 @@ begin
   inherited ChOpen;
 end;
 
-{ ---------------------------------------------------------------- sending }
+{- ---------------------------------------------------------------- sending }
 
 procedure tChnIec104.Emit(const Buf: array of Byte; Len: Word);
 begin
@@ -403,7 +412,7 @@ begin
   CH_SResult := res_Ok;
 end;
 
-{ -------------------------------------------------------------- receiving }
+{- -------------------------------------------------------------- receiving }
 
 { A new connection starts afresh; one gone stops data transfer. }
 procedure tChnIec104.SyncSession;
@@ -621,7 +630,7 @@ begin
   Flush;
 end;
 
-{ ------------------------------------------------------------- additions }
+{- ------------------------------------------------------------- additions }
 
 function tChnIec104.ChDataStarted: Boolean;
 begin

@@ -88,31 +88,31 @@ const
 type
   pChnCom = ^tChnCom;
   tChnCom = object(tChnVirt)
-    CH_Com     : LongInt;          { COM= }
-    CH_Dev     : tWordString;      { DEV=, '' = use COM }
-    CH_Drv     : string[15];       { DRV= }
-    CH_Set     : tPortSettings;    { BD BIT STOP PAR FLW }
-    CH_LRB     : LongInt;          { LRB= }
-    CH_LSB     : LongInt;          { LSB= }
-    CH_Idle    : LongInt;          { IDL= }
-    CH_Rs485   : Byte;             { RS485=, rs485* }
-    CH_Irq     : string[15];       { IRQ= as given (ignored) }
-    CH_DosKey  : string[31];       { ADR=/BASE=/PORT= token as given (ignored) }
-    CH_Port    : TChnPort;         { the open port, nil when closed }
-    CH_RtsToggle: Boolean;         { this layer switches RTS (RS485=RTS/AUTO) }
-    CH_RtsUp   : Boolean;          { RTS raised for the message being sent }
-    CH_Fault   : tChResult;        { device lost / I/O error while open }
-    CH_Ring    : tByteRing;        { receive ring of CH_LRB bytes }
-    CH_Lost    : LongWord;         { bytes lost since open (ring or OS) }
-    CH_LostShown: LongWord;        { part of CH_Lost already reported }
-    CH_OsLost  : LongWord;         { OS overrun count last seen }
-    CH_TxBuf   : PByte;            { copy of the message being sent }
+    CH_Com     : LongInt;          {< COM= }
+    CH_Dev     : tWordString;      {< DEV=, '' = use COM }
+    CH_Drv     : string[15];       {< DRV= }
+    CH_Set     : tPortSettings;    {< BD BIT STOP PAR FLW }
+    CH_LRB     : LongInt;          {< LRB= }
+    CH_LSB     : LongInt;          {< LSB= }
+    CH_Idle    : LongInt;          {< IDL= }
+    CH_Rs485   : Byte;             {< RS485=, rs485* }
+    CH_Irq     : string[15];       {< IRQ= as given (ignored) }
+    CH_DosKey  : string[31];       {< ADR=/BASE=/PORT= token as given (ignored) }
+    CH_Port    : TChnPort;         {< the open port, nil when closed }
+    CH_RtsToggle: Boolean;         {< this layer switches RTS (RS485=RTS/AUTO) }
+    CH_RtsUp   : Boolean;          {< RTS raised for the message being sent }
+    CH_Fault   : tChResult;        {< device lost / I/O error while open }
+    CH_Ring    : tByteRing;        {< receive ring of CH_LRB bytes }
+    CH_Lost    : LongWord;         {< bytes lost since open (ring or OS) }
+    CH_LostShown: LongWord;        {< part of CH_Lost already reported }
+    CH_OsLost  : LongWord;         {< OS overrun count last seen }
+    CH_TxBuf   : PByte;            {< copy of the message being sent }
     CH_TxCap, CH_TxLen, CH_TxPos: LongInt;
-    CH_Wait    : pChnWaitSource;   { this port in the program-wide wait; nil: none }
-    CH_Reopen  : LongInt;          { RECON= ms between reopen attempts, 0 = off }
-    CH_Lat     : LongInt;          { LAT= USB adapter latency timer ms, 0 = as it is }
-    CH_ReopenAt: QWord;            { next reopen attempt (GetTickCount64) }
-    CH_ReopenPort: TChnPort;       { a reopen in progress (ComReopenStart said res_Busy) }
+    CH_Wait    : pChnWaitSource;   {< this port in the program-wide wait; nil: none }
+    CH_Reopen  : LongInt;          {< RECON= ms between reopen attempts, 0 = off }
+    CH_Lat     : LongInt;          {< LAT= USB adapter latency timer ms, 0 = as it is }
+    CH_ReopenAt: QWord;            {< next reopen attempt (GetTickCount64) }
+    CH_ReopenPort: TChnPort;       {< a reopen in progress (ComReopenStart said res_Busy) }
     constructor Init;
     constructor ChInitParam(const S: tParamStr);
     destructor  Done; virtual;
@@ -126,7 +126,7 @@ type
     function  ChReceiveReady: tChState; virtual;
     procedure ChReceive(var Len: Word); virtual;
     procedure ChReceiveFlush; virtual;
-    { --- additions of the port --- }
+    {- --- additions of the port --- }
     { The device path COM=/DEV= stand for now. }
     function  ChDevicePath: ShortString;
     { Modem lines, for applications that drive them by hand. }

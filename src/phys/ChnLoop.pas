@@ -64,10 +64,10 @@ type
 
   pChnLoop = ^tChnLoop;
   tChnLoop = object(tChnCom)
-    CH_Pair   : string[31];   { PAIR= }
-    CH_End    : Byte;         { END=, 1..LoopMaxEnds }
-    CH_LoopBaud: LongInt;     { BD= of the loop, 0: no speed }
-    CH_Bus    : Boolean;      { BUS=ON: half duplex even with two ends }
+    CH_Pair   : string[31];   {< PAIR= }
+    CH_End    : Byte;         {< END=, 1..LoopMaxEnds }
+    CH_LoopBaud: LongInt;     {< BD= of the loop, 0: no speed }
+    CH_Bus    : Boolean;      {< BUS=ON: half duplex even with two ends }
     constructor Init;
     constructor ChInitParam(const S: tParamStr);
     function  ChSetOneParam(const S: tWordString; var CmdL: tCmd): tChResult; virtual;
@@ -87,24 +87,24 @@ type
   { One end of a line. }
   tLoopEnd = record
     Open: Boolean;
-    Ring: tByteRing;            { what this end received; Buf nil while closed }
-    Wait: pChnWaitSource;       { this end in the shared wait }
-    Wire: PByte;                { what this end sent and nobody got yet }
+    Ring: tByteRing;            {< what this end received; Buf nil while closed }
+    Wait: pChnWaitSource;       {< this end in the shared wait }
+    Wire: PByte;                {< what this end sent and nobody got yet }
     WireCap, WireLen, WirePos: LongInt;
-    CharUs: LongInt;            { microseconds per character; 0: no speed }
-    WireAt: QWord;              { ChnClockUs when character WirePos begins }
-    LastEnd: QWord;             { when this end's last character ended }
-    GarbleTo: QWord;            { characters begun before this collided }
-    Overruns: LongWord;         { characters lost at this end's full ring }
-    Bus: Boolean;               { opened with BUS=ON }
+    CharUs: LongInt;            {< microseconds per character; 0: no speed }
+    WireAt: QWord;              {< ChnClockUs when character WirePos begins }
+    LastEnd: QWord;             {< when this end's last character ended }
+    GarbleTo: QWord;            {< characters begun before this collided }
+    Overruns: LongWord;         {< characters lost at this end's full ring }
+    Bus: Boolean;               {< opened with BUS=ON }
   end;
 
   tLoopPair = record
     Name: string[31];
     Ends: array[1..LoopMaxEnds] of tLoopEnd;
     OpenCount: LongInt;
-    Collisions: LongWord;       { two ends began sending over each other }
-    Garbled: LongWord;          { characters that reached the ends garbled }
+    Collisions: LongWord;       {< two ends began sending over each other }
+    Garbled: LongWord;          {< characters that reached the ends garbled }
     Next: pLoopPair;
   end;
 
@@ -115,11 +115,11 @@ type
     FPair: pLoopPair;
     FEnd: Byte;
   public
-    PairName: ShortString;      { set before Open }
+    PairName: ShortString;      {< set before Open }
     EndNo: Byte;
     RingSize: LongInt;
-    CharUs: LongInt;            { microseconds per character, 0: no speed }
-    Bus: Boolean;               { BUS=ON }
+    CharUs: LongInt;            {< microseconds per character, 0: no speed }
+    Bus: Boolean;               {< BUS=ON }
     { Path is ignored: the pair is PairName, the end EndNo. res_CannotOpen
       when that end is open in another stack. }
     function Open(const Path: tWordString): tChResult; override;
@@ -296,7 +296,7 @@ begin
     end;
 end;
 
-{ ---------------------------------------------------------------- port }
+{- ---------------------------------------------------------------- port }
 
 function TChnPortLoop.Open(const Path: tWordString): tChResult;
 var
@@ -541,7 +541,7 @@ begin
   LeaveCriticalSection(Lock);
 end;
 
-{ --------------------------------------------------------------- layer }
+{- --------------------------------------------------------------- layer }
 
 constructor tChnLoop.Init;
 begin

@@ -42,29 +42,29 @@ type
     FAddrCount, FAddrNext: LongInt;
     FDec: tTelnetDecoder;
     FNeg: tTelnetNeg;
-    FOut: array of Byte;            { Telnet: encoded bytes not yet sent }
+    FOut: array of Byte;            {< Telnet: encoded bytes not yet sent }
     FOutLen: LongInt;
-    FEarly: array of Byte;          { data that arrived while negotiating }
+    FEarly: array of Byte;          {< data that arrived while negotiating }
     FEarlyLen, FEarlyPos: LongInt;
-    FWant: tPortSettings;           { what Configure asked for }
-    FAsked: array[CPO_SETBAUDRATE..CPO_SETCONTROL] of Boolean;  { answer due }
-    FBad: ShortString;                  { a setting the server answered otherwise }
-    FModem: Byte;                   { last NOTIFY-MODEMSTATE }
+    FWant: tPortSettings;           {< what Configure asked for }
+    FAsked: array[CPO_SETBAUDRATE..CPO_SETCONTROL] of Boolean;  {< answer due }
+    FBad: ShortString;                  {< a setting the server answered otherwise }
+    FModem: Byte;                   {< last NOTIFY-MODEMSTATE }
     FLineOverruns: LongWord;
     FConnecting: Boolean;
-    FSettingsDue: Boolean;          { SendSettings before the server's DO }
-    FEvent: PtrInt;                 { Windows: the client socket's wait event }
-    FDueUntil: QWord;               { ... which must come by then }
-    FLastInput: QWord;              { server: when the client last sent a byte }
-    FEarlyLost: LongWord;           { data beyond EarlyCap, dropped }
-    FBroken: Boolean;               { the peer broke the Telnet stream }
+    FSettingsDue: Boolean;          {< SendSettings before the server's DO }
+    FEvent: PtrInt;                 {< Windows: the client socket's wait event }
+    FDueUntil: QWord;               {< ... which must come by then }
+    FLastInput: QWord;              {< server: when the client last sent a byte }
+    FEarlyLost: LongWord;           {< data beyond EarlyCap, dropped }
+    FBroken: Boolean;               {< the peer broke the Telnet stream }
     FKicked, FIdleDropped: LongWord;
-    FSession: LongWord;             { this connection's number (NewSession) }
+    FSession: LongWord;             {< this connection's number (NewSession) }
     { server on Linux: the program-wide wait watches the listening socket
       and the client served through this one descriptor (SockGroupCreate) }
     FGroup: tSock;
-    FGroupSock: tSock;              { the client socket in FGroup }
-    FHeld: Boolean;                 { FEarly counted in ChnWaitHeld }
+    FGroupSock: tSock;              {< the client socket in FGroup }
+    FHeld: Boolean;                 {< FEarly counted in ChnWaitHeld }
     procedure NoteEarly;
     procedure NewSession;
     procedure GroupTakeClient;

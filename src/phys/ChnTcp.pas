@@ -49,19 +49,19 @@ const
 type
   pChnTcp = ^tChnTcp;
   tChnTcp = object(tChnCom)
-    CH_Host    : tWordString;      { HOST= }
-    CH_TcpPort : LongInt;          { PORT=, 0 = not given }
-    CH_Listen  : tWordString;      { LISTEN= as given, '' = client }
-    CH_Cto     : LongInt;          { CTO= }
-    CH_Rfc     : Boolean;          { RFC2217= }
-    CH_Kick    : Boolean;          { KICK= (server) }
-    CH_IdleDrop: LongInt;          { IDLE= ms (server), 0 = off }
-    CH_RetryEnd: QWord;            { the reconnect in progress gives up then (CTO=) }
+    CH_Host    : tWordString;      {< HOST= }
+    CH_TcpPort : LongInt;          {< PORT=, 0 = not given }
+    CH_Listen  : tWordString;      {< LISTEN= as given, '' = client }
+    CH_Cto     : LongInt;          {< CTO= }
+    CH_Rfc     : Boolean;          {< RFC2217= }
+    CH_Kick    : Boolean;          {< KICK= (server) }
+    CH_IdleDrop: LongInt;          {< IDLE= ms (server), 0 = off }
+    CH_RetryEnd: QWord;            {< the reconnect in progress gives up then (CTO=) }
     constructor Init;
     constructor ChInitParam(const S: tParamStr);
     function  ChSetOneParam(const S: tWordString; var CmdL: tCmd): tChResult; virtual;
     function  ChOwnParams: tParamStr; virtual;
-    { --- additions --- }
+    {- --- additions --- }
     { The local TCP port: with LISTEN=...:0 the one the OS picked. }
     function  ChLocalPort: Word;
     { A server (LISTEN=) has a client now. }

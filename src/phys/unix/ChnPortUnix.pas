@@ -38,7 +38,7 @@ type
   private
     FFd: cint;
     FOverrunBase: LongWord;
-    FNoCounters: Boolean;     { the driver refused TIOCGICOUNT once: never ask again }
+    FNoCounters: Boolean;     {< the driver refused TIOCGICOUNT once: never ask again }
     function Fail(Err: cint): tChResult;
     function Counters(out N: LongWord): Boolean;
     function Refuse(const Key: ShortString): tChResult;
