@@ -202,6 +202,17 @@ function IecStartResetProcess(var M: tIecMaster; Addr, Ca: Word; Qrp: Byte): Boo
   set here); Sbo: select, then execute after the positive ACT_CON. }
 function IecStartCommand(var M: tIecMaster; Addr, Ca: Word; Ti: Byte; const Obj: tIecObject;
   Sbo: Boolean): Boolean;
+{ Parameter loading: one per parameter type - the parameter of kind Qpm
+  (Kpa_Threshold, Kpa_Smoothing, Kpa_Low, Kpa_High; + Qpm_NotInOperation
+  to load it without putting it in operation) of the measured value Ioa:
+  a normalized (P_ME_NA_1, -1 <= Value < 1), scaled (P_ME_NB_1) or float
+  (P_ME_NC_1) one; ends on its ACT_CON. Activation (P_AC_NA_1, COT 6)
+  with Qpa (Qpa_Loaded with Ioa 0: every parameter loaded; Qpa_Object:
+  those of Ioa). }
+function IecStartParamNormal(var M: tIecMaster; Addr, Ca: Word; Ioa: LongWord; Value: Double; Qpm: Byte): Boolean;
+function IecStartParamScaled(var M: tIecMaster; Addr, Ca: Word; Ioa: LongWord; Value: LongInt; Qpm: Byte): Boolean;
+function IecStartParamFloat(var M: tIecMaster; Addr, Ca: Word; Ioa: LongWord; Value: Double; Qpm: Byte): Boolean;
+function IecStartParamActivation(var M: tIecMaster; Addr, Ca: Word; Ioa: LongWord; Qpa: Byte): Boolean;
 function IecCommandDone(const M: tIecMaster): Boolean;
 { Step a started command to its end (Idle, or ChnWaitAny); its result. }
 function IecFinish(var M: tIecMaster): tChResult;
@@ -215,6 +226,10 @@ function IecTestCommand(var M: tIecMaster; Addr, Ca: Word): tChResult;
 function IecResetProcess(var M: tIecMaster; Addr, Ca: Word; Qrp: Byte): tChResult;
 function IecCommand(var M: tIecMaster; Addr, Ca: Word; Ti: Byte; const Obj: tIecObject;
   Sbo: Boolean): tChResult;
+function IecParamNormal(var M: tIecMaster; Addr, Ca: Word; Ioa: LongWord; Value: Double; Qpm: Byte): tChResult;
+function IecParamScaled(var M: tIecMaster; Addr, Ca: Word; Ioa: LongWord; Value: LongInt; Qpm: Byte): tChResult;
+function IecParamFloat(var M: tIecMaster; Addr, Ca: Word; Ioa: LongWord; Value: Double; Qpm: Byte): tChResult;
+function IecParamActivation(var M: tIecMaster; Addr, Ca: Word; Ioa: LongWord; Qpa: Byte): tChResult;
 { Step for Ms milliseconds (polling, objects to OnObject). }
 procedure IecPollFor(var M: tIecMaster; Ms: LongInt);
 
@@ -515,6 +530,38 @@ begin
   end;
   { C_BO has no S/E bit: no select stage }
   Result := Start(M, Addr, Ca, Ti, Obj, Sbo and (IecTypeKind(Ti) <> ikBitsCmd), False, False);
+end;
+
+function StartParam(var M: tIecMaster; Addr, Ca: Word; Ti: Byte; Ioa: LongWord;
+  Int: LongInt; Number: Double; Qu: Byte): Boolean;
+var
+  O: tIecObject;
+begin
+  O := IecObject(Ioa);
+  O.Int := Int;
+  O.Number := Number;
+  O.Qu := Qu;
+  Result := Start(M, Addr, Ca, Ti, O, False, False, False);
+end;
+
+function IecStartParamNormal(var M: tIecMaster; Addr, Ca: Word; Ioa: LongWord; Value: Double; Qpm: Byte): Boolean;
+begin
+  Result := StartParam(M, Addr, Ca, P_ME_NA_1, Ioa, 0, Value, Qpm);
+end;
+
+function IecStartParamScaled(var M: tIecMaster; Addr, Ca: Word; Ioa: LongWord; Value: LongInt; Qpm: Byte): Boolean;
+begin
+  Result := StartParam(M, Addr, Ca, P_ME_NB_1, Ioa, Value, 0, Qpm);
+end;
+
+function IecStartParamFloat(var M: tIecMaster; Addr, Ca: Word; Ioa: LongWord; Value: Double; Qpm: Byte): Boolean;
+begin
+  Result := StartParam(M, Addr, Ca, P_ME_NC_1, Ioa, 0, Value, Qpm);
+end;
+
+function IecStartParamActivation(var M: tIecMaster; Addr, Ca: Word; Ioa: LongWord; Qpa: Byte): Boolean;
+begin
+  Result := StartParam(M, Addr, Ca, P_AC_NA_1, Ioa, Qpa, 0, 0);
 end;
 
 function IecCommandDone(const M: tIecMaster): Boolean;
@@ -1174,6 +1221,30 @@ function IecCommand(var M: tIecMaster; Addr, Ca: Word; Ti: Byte; const Obj: tIec
 begin
   AwaitAuto(M);
   Result := Blocking(M, IecStartCommand(M, Addr, Ca, Ti, Obj, Sbo));
+end;
+
+function IecParamNormal(var M: tIecMaster; Addr, Ca: Word; Ioa: LongWord; Value: Double; Qpm: Byte): tChResult;
+begin
+  AwaitAuto(M);
+  Result := Blocking(M, IecStartParamNormal(M, Addr, Ca, Ioa, Value, Qpm));
+end;
+
+function IecParamScaled(var M: tIecMaster; Addr, Ca: Word; Ioa: LongWord; Value: LongInt; Qpm: Byte): tChResult;
+begin
+  AwaitAuto(M);
+  Result := Blocking(M, IecStartParamScaled(M, Addr, Ca, Ioa, Value, Qpm));
+end;
+
+function IecParamFloat(var M: tIecMaster; Addr, Ca: Word; Ioa: LongWord; Value: Double; Qpm: Byte): tChResult;
+begin
+  AwaitAuto(M);
+  Result := Blocking(M, IecStartParamFloat(M, Addr, Ca, Ioa, Value, Qpm));
+end;
+
+function IecParamActivation(var M: tIecMaster; Addr, Ca: Word; Ioa: LongWord; Qpa: Byte): tChResult;
+begin
+  AwaitAuto(M);
+  Result := Blocking(M, IecStartParamActivation(M, Addr, Ca, Ioa, Qpa));
 end;
 
 initialization

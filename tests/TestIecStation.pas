@@ -1,5 +1,7 @@
-{ End of initialisation (M_EI_NA_1, COT 4) between the library's slave and
-  master, over FT 1.2 unbalanced and balanced (LOOP) and over IEC 104
+{ Station services between the library's slave and master: parameter
+  loading and activation (P_ME_NA/NB/NC_1, P_AC_NA_1: the master's calls,
+  blocking and stepped, the slave's deadband), and end of initialisation
+  (M_EI_NA_1, COT 4), over FT 1.2 unbalanced and balanced (LOOP) and over IEC 104
   (loopback TCP): the slave sends it when the program says it has
   initialised (COI 0 after a start) and after a general reset of process
   (COI 2); the master reports it (OnEndOfInit) and, unless told not to,
@@ -8,7 +10,7 @@
   master's over. The octets of M_EI_NA_1 itself are checked by hand in
   TestChnIec101Slave.TestEndOfInitOctets. One thread: the master's Idle
   steps the slave. }
-unit TestIecEndOfInit;
+unit TestIecStation;
 
 {$MODE OBJFPC}{$H+}
 
@@ -20,10 +22,10 @@ uses
 
 type
   tPairKind = (pkUnbalanced, pkBalanced, pk104);
-  TTestIecEndOfInit = class;
-  TFunc = function(T: TTestIecEndOfInit): Boolean;
+  TTestIecStation = class;
+  TFunc = function(T: TTestIecStation): Boolean;
 
-  TTestIecEndOfInit = class(TTestCase)
+  TTestIecStation = class(TTestCase)
   private
     SChn, MChn: pChnVirt;
     Kind: tPairKind;
@@ -50,38 +52,40 @@ type
     procedure TestCounterInterrogationToo;
     procedure TestToldNotToInterrogate;
     procedure TestProgramInterrogationTakesItOver;
+    procedure TestParametersUnbalanced;
+    procedure TestParameters104Stepped;
   end;
 
 implementation
 
 procedure OnObj(Data: Pointer; Addr: Word; const H: tIecAsdu; const O: tIecObject);
 begin
-  TTestIecEndOfInit(Data).Objects.Add(IecTypeName(H.Ti) + ' COT ' + IntToStr(H.Cot) +
+  TTestIecStation(Data).Objects.Add(IecTypeName(H.Ti) + ' COT ' + IntToStr(H.Cot) +
     ' IOA ' + IntToStr(O.Ioa));
 end;
 
 procedure OnInit(Data: Pointer; Addr, Ca: Word; Coi: Byte);
 begin
-  TTestIecEndOfInit(Data).Inits.Add(Format('slave %d CA %d COI %d', [Addr, Ca, Coi]));
+  TTestIecStation(Data).Inits.Add(Format('slave %d CA %d COI %d', [Addr, Ca, Coi]));
 end;
 
 procedure OnReset(Data: Pointer; Qrp: Byte);
 begin
-  Inc(TTestIecEndOfInit(Data).Resets);
+  Inc(TTestIecStation(Data).Resets);
 end;
 
 procedure IdleSlave(Data: Pointer);
 begin
-  TTestIecEndOfInit(Data).StepSlave;
+  TTestIecStation(Data).StepSlave;
 end;
 
-procedure TTestIecEndOfInit.StepSlave;
+procedure TTestIecStation.StepSlave;
 begin
   IecSlaveStep(S);
   ChnWaitAny(2);
 end;
 
-procedure TTestIecEndOfInit.SetUp;
+procedure TTestIecStation.SetUp;
 begin
   Objects := TStringList.Create;
   Inits := TStringList.Create;
@@ -90,7 +94,7 @@ begin
   Resets := 0;
 end;
 
-procedure TTestIecEndOfInit.TearDown;
+procedure TTestIecStation.TearDown;
 begin
   if MChn <> nil then Dispose(MChn, Done);
   if SChn <> nil then Dispose(SChn, Done);
@@ -98,7 +102,7 @@ begin
   Inits.Free;
 end;
 
-procedure TTestIecEndOfInit.OpenPair(K: tPairKind);
+procedure TTestIecStation.OpenPair(K: tPairKind);
 var
   Err: string;
   E: ShortString;
@@ -151,7 +155,7 @@ begin
   M.IdleData := Self;
 end;
 
-procedure TTestIecEndOfInit.PollUntil(const What: string; Ms: LongInt; Cond: TFunc);
+procedure TTestIecStation.PollUntil(const What: string; Ms: LongInt; Cond: TFunc);
 var
   Deadline: QWord;
 begin
@@ -162,29 +166,29 @@ begin
     ' inits: ' + Inits.CommaText, Cond(Self));
 end;
 
-function Interrogated(T: TTestIecEndOfInit): Boolean;
+function Interrogated(T: TTestIecStation): Boolean;
 begin
   Result := (T.Objects.IndexOf('C_IC_NA_1 COT 10 IOA 0') >= 0) and IecCommandDone(T.M);
 end;
 
-function TwoInterrogations(T: TTestIecEndOfInit): Boolean;
+function TwoInterrogations(T: TTestIecStation): Boolean;
 begin
   Result := (T.S.Interrogations = 2) and IecCommandDone(T.M) and
     (T.Objects.IndexOf('C_IC_NA_1 COT 10 IOA 0') <> T.Objects.Count - 1) and
     (T.Objects[T.Objects.Count - 1] = 'C_IC_NA_1 COT 10 IOA 0');
 end;
 
-function CountersRead(T: TTestIecEndOfInit): Boolean;
+function CountersRead(T: TTestIecStation): Boolean;
 begin
   Result := (T.Objects.IndexOf('C_CI_NA_1 COT 10 IOA 0') >= 0) and IecCommandDone(T.M);
 end;
 
-function InitSeen(T: TTestIecEndOfInit): Boolean;
+function InitSeen(T: TTestIecStation): Boolean;
 begin
   Result := T.Inits.Count > 0;
 end;
 
-procedure TTestIecEndOfInit.StartAndInterrogate(K: tPairKind);
+procedure TTestIecStation.StartAndInterrogate(K: tPairKind);
 begin
   OpenPair(K);
   IecSlaveEndOfInit(S, Coi_PowerOn);
@@ -201,22 +205,22 @@ begin
   AssertTrue(Objects.Text, Objects.IndexOf('M_IT_NA_1 COT 37 IOA 300') > 0);
 end;
 
-procedure TTestIecEndOfInit.TestUnbalancedStartThenInterrogation;
+procedure TTestIecStation.TestUnbalancedStartThenInterrogation;
 begin
   StartAndInterrogate(pkUnbalanced);
 end;
 
-procedure TTestIecEndOfInit.TestBalancedStartThenInterrogation;
+procedure TTestIecStation.TestBalancedStartThenInterrogation;
 begin
   StartAndInterrogate(pkBalanced);
 end;
 
-procedure TTestIecEndOfInit.Test104StartThenInterrogation;
+procedure TTestIecStation.Test104StartThenInterrogation;
 begin
   StartAndInterrogate(pk104);
 end;
 
-procedure TTestIecEndOfInit.RemoteResetInterrogatesAgain(K: tPairKind);
+procedure TTestIecStation.RemoteResetInterrogatesAgain(K: tPairKind);
 begin
   OpenPair(K);
   IecSlaveEndOfInit(S, Coi_PowerOn);
@@ -227,17 +231,17 @@ begin
   AssertEquals('COI 2: remote reset', Format('slave %d CA 1 COI 2', [Addr]), Inits[1]);
 end;
 
-procedure TTestIecEndOfInit.TestUnbalancedRemoteReset;
+procedure TTestIecStation.TestUnbalancedRemoteReset;
 begin
   RemoteResetInterrogatesAgain(pkUnbalanced);
 end;
 
-procedure TTestIecEndOfInit.Test104RemoteReset;
+procedure TTestIecStation.Test104RemoteReset;
 begin
   RemoteResetInterrogatesAgain(pk104);
 end;
 
-procedure TTestIecEndOfInit.TestCounterInterrogationToo;
+procedure TTestIecStation.TestCounterInterrogationToo;
 begin
   OpenPair(pkUnbalanced);
   M.CiAfterInit := Qcc_General;
@@ -250,7 +254,7 @@ begin
     Objects.IndexOf('C_CI_NA_1 COT 7 IOA 0'));
 end;
 
-procedure TTestIecEndOfInit.TestToldNotToInterrogate;
+procedure TTestIecStation.TestToldNotToInterrogate;
 begin
   OpenPair(pkUnbalanced);
   M.NoGiAfterInit := True;
@@ -262,7 +266,7 @@ begin
   AssertTrue(IecCommandDone(M));
 end;
 
-procedure TTestIecEndOfInit.TestProgramInterrogationTakesItOver;
+procedure TTestIecStation.TestProgramInterrogationTakesItOver;
 var
   Deadline: QWord;
 begin
@@ -283,6 +287,64 @@ begin
   AssertEquals('still one', 1, S.Interrogations);
 end;
 
+{ One call per parameter type; the slave's table has them afterwards and
+  its threshold holds back small changes. }
+procedure TTestIecStation.TestParametersUnbalanced;
+var
+  O: tIecObject;
+  E: ShortString;
+begin
+  OpenPair(pkUnbalanced);
+  O := IecObject(110);
+  O.Int := 100;
+  AssertEquals(res_Ok, IecSlaveAddPoint(S, M_ME_NB_1, O, 0, E));
+  O := IecObject(111);
+  AssertEquals(res_Ok, IecSlaveAddPoint(S, M_ME_NA_1, O, 0, E));
+  O := IecObject(112);
+  AssertEquals(res_Ok, IecSlaveAddPoint(S, M_ME_NC_1, O, 0, E));
+  AssertEquals(M.Cmd.Err, res_Ok, IecParamScaled(M, 1, 1, 110, 50, Kpa_Threshold));
+  AssertEquals(50, S.Points[IecSlaveFind(S, 110)].Par[Kpa_Threshold], 0);
+  AssertEquals(M.Cmd.Err, res_Ok, IecParamNormal(M, 1, 1, 111, 0.25, Kpa_Smoothing));
+  AssertEquals(0.25, S.Points[IecSlaveFind(S, 111)].Par[Kpa_Smoothing], 1e-4);
+  AssertEquals(M.Cmd.Err, res_Ok, IecParamFloat(M, 1, 1, 112, 1.5, Kpa_High or Qpm_NotInOperation));
+  AssertEquals(1.5, S.Points[IecSlaveFind(S, 112)].Par[Kpa_High], 0);
+  AssertFalse('POP: not in operation', S.Points[IecSlaveFind(S, 112)].ParOn);
+  AssertEquals(M.Cmd.Err, res_Ok, IecParamActivation(M, 1, 1, 112, Qpa_Object));
+  AssertTrue('activated', S.Points[IecSlaveFind(S, 112)].ParOn);
+  { refusals come back as results }
+  AssertEquals('a float parameter for a scaled value', res_IecUnknownIoa,
+    IecParamFloat(M, 1, 1, 110, 1.0, Kpa_Threshold));
+  AssertEquals('KPA 5', res_IecNegative, IecParamScaled(M, 1, 1, 110, 1, 5));
+  AssertEquals('cyclic transmission', res_IecNegative, IecParamActivation(M, 1, 1, 110, Qpa_Cyclic));
+  AssertFalse('a normalized value of 1 cannot be sent', IecStartParamNormal(M, 1, 1, 111, 1.0, Kpa_Threshold));
+  { the threshold at work: 100 -> 120 held back, 100 -> 160 reported }
+  O := IecObject(0);
+  O.Int := 100;
+  AssertEquals(res_Ok, IecSlaveUpdate(S, 110, O, True, E));
+  O.Int := 120;
+  AssertEquals(res_Ok, IecSlaveUpdate(S, 110, O, True, E));
+  O.Int := 160;
+  AssertEquals(res_Ok, IecSlaveUpdate(S, 110, O, True, E));
+  IecPollFor(M, 300);
+  AssertEquals('one held back', 1, S.Suppressed);
+  AssertTrue(Objects.Text, Objects.IndexOf('M_ME_NB_1 COT 3 IOA 110') >= 0);
+  AssertEquals('two reports', 2, Objects.Count - Objects.IndexOf('M_ME_NB_1 COT 3 IOA 110'));
+end;
+
+procedure TTestIecStation.TestParameters104Stepped;
+var
+  E: ShortString;
+begin
+  OpenPair(pk104);
+  AssertEquals(res_Ok, IecSlaveAddPoint(S, M_ME_NB_1, IecObject(120), 0, E));
+  AssertTrue(M.Cmd.Err, IecStartParamScaled(M, 0, 1, 120, -3, Kpa_Low));
+  AssertFalse('one at a time', IecStartParamActivation(M, 0, 1, 120, Qpa_Object));
+  AssertEquals(M.Cmd.Err, res_Ok, IecFinish(M));
+  AssertTrue(Objects.Text, Objects.IndexOf('P_ME_NB_1 COT 7 IOA 120') >= 0);
+  AssertEquals(-3, S.Points[IecSlaveFind(S, 120)].Par[Kpa_Low], 0);
+  AssertEquals(M.Cmd.Err, res_Ok, IecParamActivation(M, 0, 1, 0, Qpa_Loaded));
+end;
+
 initialization
-  RegisterTest(TTestIecEndOfInit);
+  RegisterTest(TTestIecStation);
 end.
