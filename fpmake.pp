@@ -143,7 +143,7 @@ begin
     AddUnit(P, 'ChnDF1Poll.pas', AllOSes, ['ChnTypes', 'ChnVirt', 'ChnDF1', 'ChnDF1Link', 'ChnWait', 'uString']);
     AddUnit(P, 'ChnPccc.pas', AllOSes, ['ChnTypes', 'ChnDF1Codec', 'uString', 'ChnPcccNames']);
     AddUnit(P, 'ChnPlc5.pas', AllOSes, ['ChnTypes', 'ChnDF1Codec', 'ChnPccc']);
-    AddUnit(P, 'ChnPcccClient.pas', AllOSes, ['ChnTypes', 'ChnVirt', 'ChnDF1Codec', 'ChnDF1Link',
+    AddUnit(P, 'ChnPcccClient.pas', AllOSes, ['ChnTypes', 'ChnVirt', 'ChnDF1Codec', 'ChnDF1Link', 'ChnDF1Poll',
       'ChnPccc', 'ChnPlc5', 'uString', 'ChnWait']);
     AddUnit(P, 'ChnPcccTags.pas', AllOSes, ['ChnTypes', 'ChnVirt', 'ChnDF1Codec', 'ChnDF1Link',
       'ChnPccc', 'ChnPcccClient', 'ChnWait']);
@@ -182,6 +182,7 @@ begin
       at run time, nothing is linked }
     Part(P, 'north');
     AddUnit(P, 'ChnMqtt.pas', AllOSes, ['ChnWait']);
+    AddUnit(P, 'ChnJson.pas', AllOSes, []);
     Run;
   end;
 end.

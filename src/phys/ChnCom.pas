@@ -19,6 +19,20 @@
               supported, else RTS
     LAT=ms    1..255: the latency timer of a USB adapter; 0 (default)
               leaves it as it is
+    RTSB=ms   0..1000: RS485=RTS waits this long after raising RTS before
+              the first bit (a transceiver or radio that keys up slowly);
+              RS485=KERNEL gives it to the driver (delay_rts_before_send)
+    RTSA=ms   0..1000: RTS stays up this long after the last bit
+              (delay_rts_after_send with KERNEL)
+    TURN=ms   0..10000: a send starts at least this long after the last
+              byte received (a slave's turnaround delay, for masters that
+              need time to switch their line around)
+    IFG=bits  0..10000: a send starts only after the line was idle this
+              many bit times (sent or received; FT 1.2 needs 33, i.e.
+              three characters of 11 bits, between frames)
+              All four without sleeping: the message is held in the
+              transmit buffer (ChSendReady says CHS_Sending) and goes out
+              from a later poll (ChnPhys), the program-wide wait woken then
     DRV=RTL|SYNAPSE|PTY                       port backend; PTY (unit
               ChnPty, Unix) makes a new pseudo-terminal pair and serves its
               master side
@@ -156,6 +170,14 @@ begin
   end
   else if Key = 'LAT' then
     Result := ParamSetNum(S, 0, 255, CmdL, CH_Lat)
+  else if Key = 'RTSB' then
+    Result := ParamSetNum(S, 0, 1000, CmdL, CH_RtsBefore)
+  else if Key = 'RTSA' then
+    Result := ParamSetNum(S, 0, 1000, CmdL, CH_RtsAfter)
+  else if Key = 'TURN' then
+    Result := ParamSetNum(S, 0, 10000, CmdL, CH_Turn)
+  else if Key = 'IFG' then
+    Result := ParamSetNum(S, 0, 10000, CmdL, CH_Ifg)
   else if Key = 'IRQ' then
   begin
     Result := res_Ok;             { DOS only: accepted and ignored }
@@ -195,6 +217,14 @@ begin
     R := R + ParamText('RECON', CH_Reopen);
   if CH_Lat <> 0 then
     R := R + ParamText('LAT', CH_Lat);
+  if CH_RtsBefore <> 0 then
+    R := R + ParamText('RTSB', CH_RtsBefore);
+  if CH_RtsAfter <> 0 then
+    R := R + ParamText('RTSA', CH_RtsAfter);
+  if CH_Turn <> 0 then
+    R := R + ParamText('TURN', CH_Turn);
+  if CH_Ifg <> 0 then
+    R := R + ParamText('IFG', CH_Ifg);
   if CH_Irq <> '' then
     R := R + ' IRQ=' + CH_Irq;
   if CH_DosKey <> '' then
@@ -248,6 +278,8 @@ begin
     Key := 'RS485';
   if (R = res_Ok) and (CH_Rs485 <> rs485Off) and (CH_Set.Flow = flowRtsCts) then
     R := res_BadSetting;            { RTS cannot be handshake and direction }
+  Port.Rs485BeforeMs := CH_RtsBefore;   { the driver's delays (KERNEL) }
+  Port.Rs485AfterMs := CH_RtsAfter;
   if R = res_Ok then
     case CH_Rs485 of
       rs485Off: ;                 { the driver's own setting stays }

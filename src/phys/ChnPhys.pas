@@ -76,6 +76,15 @@ type
     CH_Reopen  : LongInt;          {< RECON= ms between reopen attempts, 0 = off }
     CH_ReopenAt: QWord;            {< next reopen attempt (GetTickCount64) }
     CH_ReopenPort: TChnPort;       {< a reopen in progress (ComReopenStart said res_Busy) }
+    { line timing (COM's RTSB= RTSA= TURN= IFG=; 0 elsewhere) }
+    CH_RtsBefore: LongInt;         {< RTSB= ms from raising RTS to the first bit }
+    CH_RtsAfter: LongInt;          {< RTSA= ms from the last bit to dropping RTS }
+    CH_Turn    : LongInt;          {< TURN= ms at least from the last byte received to a send }
+    CH_Ifg     : LongInt;          {< IFG= bit times at least of idle line before a send }
+    CH_TxAt    : QWord;            {< ChnClockUs before which the held message must not start; 0: now }
+    CH_RtsDropAt: QWord;           {< ChnClockUs at which RTS drops (RTSA=); 0: none due }
+    CH_LastRxUs: QWord;            {< ChnClockUs of the last byte received }
+    CH_LastTxEndUs: QWord;         {< ChnClockUs when the last message sent ends on the line }
     constructor Init;
     destructor  Done; virtual;
     { LRB= LSB= IDL= RECON=, those of PhysKeys }
@@ -149,6 +158,10 @@ type
     procedure ComDrainTx;
     { Milliseconds N bytes take on the line at the BD BIT PAR STOP in force }
     function  ComLineMs(N: LongInt): LongInt;
+    { Microseconds N bytes take on the line (0 without BD). }
+    function  ComLineUs(N: LongInt): LongInt;
+    { The earliest a message handed over at Now may start, ChnClockUs. }
+    function  ComTxStart(Now: QWord): QWord;
     procedure ComFreeBuffers;
     { ' LRB=.. LSB=.. IDL=..' for ChOwnParams }
     function  ComBufferText: ShortString;
@@ -194,6 +207,14 @@ begin
   CH_Reopen := 0;
   CH_ReopenAt := 0;
   CH_ReopenPort := nil;
+  CH_RtsBefore := 0;
+  CH_RtsAfter := 0;
+  CH_Turn := 0;
+  CH_Ifg := 0;
+  CH_TxAt := 0;
+  CH_RtsDropAt := 0;
+  CH_LastRxUs := 0;
+  CH_LastTxEndUs := 0;
 end;
 
 destructor tChnPhys.Done;
@@ -338,6 +359,8 @@ begin
   ComJoinWait;
   CH_TxLen := 0;
   CH_TxPos := 0;
+  CH_TxAt := 0;
+  CH_RtsDropAt := 0;
   CH_RtsUp := False;
   ComLatch(res_Ok);
 end;
@@ -370,6 +393,8 @@ begin
   CH_OsLost := 0;
   CH_TxLen := 0;
   CH_TxPos := 0;
+  CH_TxAt := 0;
+  CH_RtsDropAt := 0;
   CH_RtsUp := False;
   CH_Fault := res_Ok;
   ChOpened;
@@ -397,6 +422,8 @@ begin
   FreeAndNil(CH_ReopenPort);
   CH_TxLen := 0;
   CH_TxPos := 0;
+  CH_TxAt := 0;
+  CH_RtsDropAt := 0;
   CH_RtsUp := False;
   RingClear(CH_Ring);
   CH_Fault := res_Ok;
@@ -413,6 +440,8 @@ begin
   ComLatch(R);
   CH_TxLen := 0;
   CH_TxPos := 0;
+  CH_TxAt := 0;
+  CH_RtsDropAt := 0;
   CH_RtsUp := False;
   ChnWaitServed(CH_Wait, False);  { nothing more to wait for on it }
   ComReconnecting;                { RECON=: res_Reconnecting from this poll on }
@@ -462,6 +491,8 @@ begin
     if Got = 0 then
       Break;
     RingCommit(CH_Ring, Got);
+    if (CH_Turn > 0) or (CH_Ifg > 0) then
+      CH_LastRxUs := ChnClockUs;      { TURN=, IFG= count from here }
     Inc(Pulled, Got);
     { Read again until the driver says empty - except after a small chunk
       (a request, a reply) from a port whose short read proves it empty,
@@ -579,6 +610,16 @@ var
 begin
   if (CH_Port = nil) or (CH_Fault <> res_Ok) then
     Exit;
+  if CH_TxAt <> 0 then
+  begin
+    if ChnClockUs < CH_TxAt then
+    begin
+      ChnWaitDue(CH_Wait, CH_TxAt);  { RTSB=, TURN=, IFG=: not yet }
+      Exit;
+    end;
+    CH_TxAt := 0;
+    CH_LastTxEndUs := ChnClockUs + QWord(ComLineUs(CH_TxLen - CH_TxPos));
+  end;
   while CH_TxPos < CH_TxLen do
   begin
     R := CH_Port.Write(CH_TxBuf[CH_TxPos], CH_TxLen - CH_TxPos, Written);
@@ -606,15 +647,71 @@ begin
     if Queued > 0 then
       Exit;
     { only the UART FIFO and shift register are left: a short wait }
-    R := CH_Port.Drain;
-    if R = res_Ok then
-      R := CH_Port.SetRts(False);
+    if CH_RtsDropAt = 0 then
+    begin
+      R := CH_Port.Drain;
+      if R <> res_Ok then
+      begin
+        ComFault(R);
+        Exit;
+      end;
+      CH_RtsDropAt := ChnClockUs + QWord(CH_RtsAfter) * 1000;
+    end;
+    if ChnClockUs < CH_RtsDropAt then
+    begin
+      ChnWaitDue(CH_Wait, CH_RtsDropAt);   { RTSA=: RTS stays up a while }
+      Exit;
+    end;
+    CH_RtsDropAt := 0;
+    R := CH_Port.SetRts(False);
     if R <> res_Ok then
     begin
       ComFault(R);
       Exit;
     end;
     CH_RtsUp := False;
+  end;
+end;
+
+function tChnPhys.ComLineUs(N: LongInt): LongInt;
+var
+  Bits: LongInt;
+begin
+  Bits := 1 + CH_Set.DataBits + CH_Set.StopBits;    { start, data, stop }
+  if CH_Set.Parity <> ppNone then
+    Inc(Bits);
+  if CH_Set.Baud <= 0 then
+    Exit(0);
+  Result := (Int64(N) * Bits * 1000000 + CH_Set.Baud - 1) div CH_Set.Baud;
+end;
+
+{ The earliest a message handed over now may start (ChnClockUs): RTSB=
+  after RTS is raised, TURN= after the last byte received, IFG= bit
+  times of idle line after whatever was on it last. }
+function tChnPhys.ComTxStart(Now: QWord): QWord;
+var
+  T: QWord;
+begin
+  Result := Now;
+  if CH_RtsToggle and (CH_RtsBefore > 0) then
+    Result := Now + QWord(CH_RtsBefore) * 1000;
+  if (CH_Turn > 0) and (CH_LastRxUs > 0) then
+  begin
+    T := CH_LastRxUs + QWord(CH_Turn) * 1000;
+    if T > Result then
+      Result := T;
+  end;
+  if (CH_Ifg > 0) and (CH_Set.Baud > 0) then
+  begin
+    T := CH_LastRxUs;
+    if CH_LastTxEndUs > T then
+      T := CH_LastTxEndUs;
+    if T > 0 then
+    begin
+      T := T + (QWord(CH_Ifg) * 1000000 + QWord(CH_Set.Baud) - 1) div QWord(CH_Set.Baud);
+      if T > Result then
+        Result := T;
+    end;
   end;
 end;
 
@@ -678,12 +775,15 @@ begin
     CH_Port.Flush(False, True);     { the bound is over: abandon the rest }
   CH_TxLen := 0;
   CH_TxPos := 0;
+  CH_TxAt := 0;
+  CH_RtsDropAt := 0;
 end;
 
 procedure tChnPhys.ChSend(Buff: Pointer; Len: Word);
 var
   R: tChResult;
   Written, Rest: LongInt;
+  Now, Start: QWord;
 begin
   if not ChSendAllowed(Buff, Len, True) then
     Exit;
@@ -719,6 +819,25 @@ begin
     end;
     CH_RtsUp := True;
   end;
+  Now := ChnClockUs;
+  Start := ComTxStart(Now);
+  if Start > Now then
+  begin
+    { RTSB=, TURN=, IFG=: all of it waits here for its time (ComPumpTx) }
+    if Len > CH_TxCap then
+    begin
+      ReAllocMem(CH_TxBuf, Len);
+      CH_TxCap := Len;
+    end;
+    Move(Buff^, CH_TxBuf^, Len);
+    CH_TxLen := Len;
+    CH_TxPos := 0;
+    CH_TxAt := Start;
+    CH_SResult := res_Ok;
+    ChnWaitDue(CH_Wait, Start);
+    Exit;
+  end;
+  CH_LastTxEndUs := Now + QWord(ComLineUs(Len));
   { what the port takes now goes straight from the caller's buffer; only
     the rest is copied, to move on from later polls }
   R := CH_Port.Write(Buff^, Len, Written);
@@ -759,7 +878,7 @@ begin
       ComPumpTx;
     end;
   end
-  else if CH_RtsUp and (CH_Fault = res_Ok) and (CH_Idle > 0) then
+  else if CH_RtsUp and (CH_Fault = res_Ok) and (CH_Idle > 0) and (CH_RtsDropAt = 0) then
   begin
     Sleep(1);                     { the last bytes are on the line }
     ComPumpTx;
