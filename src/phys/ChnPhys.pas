@@ -76,7 +76,7 @@ type
     CH_Reopen  : LongInt;          {< RECON= ms between reopen attempts, 0 = off }
     CH_ReopenAt: QWord;            {< next reopen attempt (GetTickCount64) }
     CH_ReopenPort: TChnPort;       {< a reopen in progress (ComReopenStart said res_Busy) }
-    { line timing (COM's RTSB= RTSA= TURN= IFG=; 0 elsewhere) }
+    {- line timing (COM's RTSB= RTSA= TURN= IFG=; 0 elsewhere) }
     CH_RtsBefore: LongInt;         {< RTSB= ms from raising RTS to the first bit }
     CH_RtsAfter: LongInt;          {< RTSA= ms from the last bit to dropping RTS }
     CH_Turn    : LongInt;          {< TURN= ms at least from the last byte received to a send }
