@@ -8,14 +8,17 @@
   carry at once); the rest is what the master and the stations spend
   between frames. Rows: DF1 full duplex (DF1Transact's master), DF1 half
   duplex through the poll master (ChnDF1Poll) with one station and with
-  four on one bus, 9600 and 19200 Bd 8N1. Run by "make bench". }
+  four on one bus; FT 1.2 / IEC 60870-5-101 unbalanced (ChnIec101Master)
+  interrogating 86 points of one slave (ChnIec101Slave) and of four on a
+  bus, and balanced with one; 9600 and 19200 Bd, DF1 8N1, FT 1.2 8E1.
+  Run by "make bench". }
 program benchline;
 
 {$MODE OBJFPC}{$H+}
 
 uses
   SysUtils, ChnTypes, ChnVirt, ChnWait, ChnLoop, ChnDF1, ChnDF1Link, ChnDF1Poll,
-  ChnPcccClient, ChnSlc;
+  ChnPcccClient, ChnSlc, ChnFT1_2, ChnIec101Asdu, ChnIec101Master, ChnIec101Slave;
 
 const
   MaxSt = 4;
@@ -82,7 +85,7 @@ var
 begin
   Took := ChnClockUs - T0;
   LoopLineLoad(Pair, Chars, BusyUs);
-  WriteLn(Format('%-34s %6d %8.1f %8d %7.1f %%', [What, Bd, Reads / (Took / 1e6),
+  WriteLn(Format('%-40s %6d %8.1f %8d %7.1f %%', [What, Bd, Reads / (Took / 1e6),
     Chars, 100.0 * BusyUs / Took]));
 end;
 
@@ -133,6 +136,102 @@ begin
   CloseAll(Master);
 end;
 
+var
+  Iec: array[1..MaxSt] of tIecSlaveStation;
+
+procedure StepIecSlaves(Data: Pointer);
+var
+  I: LongInt;
+  Busy: Boolean;
+begin
+  Busy := False;
+  for I := 1 to NSt do
+    if IecSlaveStep(Iec[I]) then
+      Busy := True;
+  if not Busy then
+    ChnWaitAny(5);
+end;
+
+function OpenFt(const Params: string): pChnVirt;
+begin
+  Result := ChnCollection^.ChNewInit('FT1_2');
+  Result^.ChSetParam(Params);
+  Result^.ChOpen;
+  Result^.ChConnect;
+  if Result^.ChResult <> res_Ok then
+  begin
+    WriteLn('benchline: cannot open ', Params, ': ', Result^.ChErrorText);
+    Halt(1);
+  end;
+end;
+
+{ FT 1.2: interrogations of 86 points (60 single points, 26 floats) of
+  each of N slaves, in turn. }
+procedure RunIec(const What: string; Bd, N: LongInt; Balanced: Boolean);
+var
+  Master: pChnVirt;
+  M: tIecMaster;
+  Pair, Line, Ms, Err: string;
+  E: ShortString;
+  I, K, Gis: LongInt;
+  O: tIecObject;
+  T0, Stop: QWord;
+begin
+  Pair := Format('BLI%d%d%d', [Bd, N, Ord(Balanced)]);
+  Line := Format('NAM=LOOP PAIR=%s BD=%d PAR=E', [Pair, Bd]);
+  Ms := 'MS=ON';
+  if Balanced then
+    Ms := 'MS=OFF';
+  Master := OpenFt(Format('NAM=FT1_2 %s MAS=MASTER LEN=0 NOD=0 DNO=1 %s END=1', [Ms, Line]));
+  NSt := N;
+  for I := 1 to N do
+  begin
+    StChn[I] := OpenFt(Format('NAM=FT1_2 %s MAS=SLAVE LEN=0 NOD=%d DNO=0 %s END=%d', [Ms, I, Line, I + 1]));
+    if IecSlaveInit(Iec[I], StChn[I], IecDefaultParams, 1, E) <> res_Ok then
+    begin
+      WriteLn('benchline: ', E);
+      Halt(1);
+    end;
+    for K := 0 to 85 do
+    begin
+      FillChar(O, SizeOf(O), 0);
+      O.Ioa := 100 + K;
+      O.Int := K and 1;
+      O.Number := K * 1.5;
+      if K < 60 then
+        IecSlaveAddPoint(Iec[I], M_SP_NA_1, O, 0, E)
+      else
+        IecSlaveAddPoint(Iec[I], M_ME_NC_1, O, 0, E);
+    end;
+  end;
+  if IecMasterInit(M, Master, IecDefaultParams) <> res_Ok then
+  begin
+    WriteLn('benchline: ', What, ': the master does not start');
+    Halt(1);
+  end;
+  for I := 1 to N do
+    IecMasterAddSlave(M, I);
+  M.Idle := @StepIecSlaves;
+  Err := '';
+  Gis := 0;
+  T0 := ChnClockUs;
+  Stop := ChMsTick + QWord(Seconds) * 1000;
+  while ChMsTick < Stop do
+  begin
+    if IecInterrogation(M, 1 + Gis mod N, 1, 20) <> res_Ok then
+    begin
+      WriteLn('benchline: ', What, ': the interrogation failed');
+      Break;
+    end;
+    Inc(Gis);
+  end;
+  Report(What, Bd, Gis, Pair, T0);
+  for I := 1 to N do
+    Dispose(StChn[I], Done);
+  NSt := 0;
+  Dispose(Master, Done);
+end;
+
 const
   Rates: array[0..1] of LongInt = (9600, 19200);
 var
@@ -142,12 +241,15 @@ begin
   if ParamCount >= 1 then
     Seconds := StrToIntDef(ParamStr(1), 2);
   SlcLoadDefault(Table);
-  WriteLn('line share: a master reads N7:0..49 over and over on NAM=LOOP at BD, 8N1');
-  WriteLn(Format('%-34s %6s %8s %8s %9s', ['exchange', 'Bd', 'reads/s', 'chars', 'line used']));
+  WriteLn('line share on NAM=LOOP at BD: DF1 reads N7:0..49 (8N1), FT 1.2 interrogations (8E1)');
+  WriteLn(Format('%-40s %6s %8s %8s %9s', ['exchange', 'Bd', 'n/s', 'chars', 'line used']));
   for Bd in Rates do
   begin
     Run('DF1 full duplex, CRC', Bd, 1, False);
     Run('DF1 half duplex, 1 station', Bd, 1, True);
     Run('DF1 half duplex, 4 stations (bus)', Bd, 4, True);
+    RunIec('FT 1.2 unbalanced, GI of 86, 1 slave', Bd, 1, False);
+    RunIec('FT 1.2 unbalanced, GI of 86, 4 slaves', Bd, 4, False);
+    RunIec('FT 1.2 balanced, GI of 86', Bd, 1, True);
   end;
 end.
