@@ -93,7 +93,27 @@ type
     Cache    : array[0..DF1ReplyCacheSize - 1] of tDF1CachedReply;
     Log      : tDF1LogProc;   {< nil: quiet }
     LogWire  : Boolean;       {< lines of sent frames end with the wire bytes }
+    ReplyDst : Byte;          {< SRC of the command the reply answers }
+    { a message of the station's own (an SLC's MSG instruction), half
+      duplex: sent at a poll instead of EOT, again until ACKed }
+    Own      : tSendRecord;
+    OwnLen   : Word;
+    OwnDst   : Byte;
+    HasOwn   : Boolean;       {< queued, not yet ACKed }
+    OwnAwait : Boolean;       {< it just went out: the next ACK is its }
+    OwnSent  : LongInt;       {< own messages ACKed }
+    OwnReplies: LongInt;      {< replies to them received }
+    LastReply: tRecRecord;    {< the last of those replies }
+    LastReplyLen: Word;
+    LastReplySrc: Byte;
   end;
+
+{ Queue a message of the station's own to station Dst (half duplex: it
+  goes out at the next poll, instead of EOT, and again at later polls
+  until the master ACKs it; a reply to it is counted in OwnReplies and
+  kept in LastReply). res_Busy while the last one is not yet ACKed. }
+function DF1StationQueue(var S: tDF1Station; Dst: Byte; constref Msg: tSendRecord;
+  Len: Word): tChResult;
 
 { Set S up on Chn (a tChnDF1 stack) with the command handler and its data.
   res_WrongLayer (and a station that reads nothing) when Chn is not DF1. }
@@ -343,6 +363,17 @@ begin
     Say(S, '-> send failed: ' + S.Chn^.ChResultStr(Res));
 end;
 
+{ A data message to Dst (DST of the frame; ChDestNode, then DNO= again). }
+procedure StationSendTo(var S: tDF1Station; Dst: Byte; constref R: tSendRecord; Len: Word);
+var
+  Was: tNode;
+begin
+  Was := S.Chn^.CH_DNode;
+  S.Chn^.ChDestNode(Dst);
+  StationSend(S, R, Len);
+  S.Chn^.ChDestNode(Was);
+end;
+
 procedure SendLink(var S: tDF1Station; Ack: Boolean);
 begin
   FillChar(S.LastLink, SizeOf(S.LastLink), 0);
@@ -451,9 +482,15 @@ begin
           if S.RMess.FlAck then
             S.HasReply := False            { the master has the reply }
           else if S.FullDup then
-            StationSend(S, S.Reply, S.ReplyLen);
-        { half duplex NAK: the reply waits for the next poll }
+            StationSendTo(S, S.ReplyDst, S.Reply, S.ReplyLen);
+        if S.OwnAwait and S.RMess.FlAck then
+        begin
+          S.HasOwn := False;               { the master has our message }
+          Inc(S.OwnSent);
+        end;
+        { half duplex NAK: the reply (or our message) waits for the next poll }
         S.AwaitAck := False;
+        S.OwnAwait := False;
       end;
     tpEnq:
       begin
@@ -463,8 +500,14 @@ begin
     tpPoll:
       if S.HasReply then
       begin
-        StationSend(S, S.Reply, S.ReplyLen);
+        StationSendTo(S, S.ReplyDst, S.Reply, S.ReplyLen);
         S.AwaitAck := True;
+        S.OwnAwait := False;
+      end
+      else if S.HasOwn then
+      begin
+        StationSendTo(S, S.OwnDst, S.Own, S.OwnLen);
+        S.OwnAwait := True;
       end
       else
       begin
@@ -476,6 +519,22 @@ begin
       begin
         Count(S, leFrameIn);
         SendLink(S, True);
+        if S.RMess.CF and MskCF_Reply <> 0 then
+        begin
+          { the answer to a message of our own, not a command }
+          Inc(S.OwnReplies);
+          S.LastReply := S.RMess;
+          S.LastReplyLen := Len;
+          S.LastReplySrc := Byte(S.Chn^.CH_RSNode);
+          Exit;
+        end;
+        { half duplex (a multidrop line): the reply goes to the command's
+          SRC, which is another slave when the master routed it; full
+          duplex keeps DNO= (point to point) }
+        if S.FullDup then
+          S.ReplyDst := Byte(S.Chn^.CH_DNode)
+        else
+          S.ReplyDst := Byte(S.Chn^.CH_RSNode);
         if Assigned(S.Handler) and S.Handler(S.Data, S.RMess, Len, S.Reply, S.ReplyLen) then
         begin
           Inc(S.Requests);
@@ -483,10 +542,25 @@ begin
           S.HasReply := True;
           S.AwaitAck := False;
           if S.FullDup then
-            StationSend(S, S.Reply, S.ReplyLen);
+            StationSendTo(S, S.ReplyDst, S.Reply, S.ReplyLen);
         end;
       end;
   end;
+end;
+
+function DF1StationQueue(var S: tDF1Station; Dst: Byte; constref Msg: tSendRecord;
+  Len: Word): tChResult;
+begin
+  if S.Chn = nil then
+    Exit(res_WrongLayer);
+  if S.HasOwn then
+    Exit(res_Busy);
+  S.Own := Msg;
+  S.OwnLen := Len;
+  S.OwnDst := Dst;
+  S.HasOwn := True;
+  S.OwnAwait := False;
+  Result := res_Ok;
 end;
 
 {- -------------------------------------------------------------- master }
