@@ -53,6 +53,7 @@ type
     procedure TestHalfFrameThenSilenceCloses;
     procedure TestSilentClientClosed;
     procedure TestHundredClientsLeaveTheStartedOneAlone;
+    procedure TestStandbyTakesOverWithStartDt;
   end;
 
 implementation
@@ -462,6 +463,92 @@ begin
   Poll(50);
   AssertTrue('heap flat: ' + IntToStr(GetHeapStatus.TotalAllocated) + ' after ' + IntToStr(Heap),
     GetHeapStatus.TotalAllocated <= Heap + 1024);
+end;
+
+{ Redundancy, CON=2: A carries data; B is kept, answered and tested with
+  TESTFR, gets no data; B's STARTDT act makes it the one (numbers from 0),
+  A is a standby one from then; a third client is turned away. }
+procedure TTestChnIec104.TestStandbyTakesOverWithStartDt;
+var
+  Port: Word;
+  B, C: pChnVirt;
+  BBuf: array[0..1023] of Byte;
+  BGot, Err: string;
+  X: Byte;
+
+  function BGets(const Want: string; Ms: Integer = 3000): Boolean;
+  var
+    Deadline: QWord;
+    Len: Word;
+  begin
+    Deadline := GetTickCount64 + QWord(Ms);
+    repeat
+      Poll(1);
+      if B^.ChReceiveReady = CHS_ReceiveReady then
+      begin
+        B^.ChReceive(Len);
+        if Len > 0 then
+          BGot := BGot + ' ' + BytesToHex(BBuf, Len);
+      end;
+      if Pos(Want, BGot) > 0 then
+      begin
+        Delete(BGot, 1, Pos(Want, BGot) + Length(Want));
+        Exit(True);
+      end;
+    until GetTickCount64 >= Deadline;
+    Result := Want = '';
+  end;
+
+  procedure BSend(const HexText: string);
+  var
+    D: TBytes;
+  begin
+    D := HexToBytes(HexText);
+    B^.ChSend(@D[0], Length(D));
+    AssertTrue('B sent', WaitSent(B, 2000));
+  end;
+
+begin
+  Port := OpenServerLayer('NAM=IEC104 CON=2');
+  OpenPeerClient(Port);
+  StartServer;
+  B := OpenStack('TCP', 'HOST=127.0.0.1 PORT=' + IntToStr(Port), Err);
+  AssertNotNull(Err, B);
+  C := nil;
+  try
+    B^.ChReceiveBuffer(@BBuf, SizeOf(BBuf));
+    BGot := '';
+    BSend('68 04 43 00 00 00');
+    AssertTrue('standby B: TESTFR con', BGets('68 04 83 00 00 00'));
+    X := 1;
+    Layer^.ChSend(@X, 1);
+    AssertTrue('A carries data', PeerGets('68 05 00 00 00 00 01'));
+    BGets('', 100);
+    AssertEquals('B gets none', '', BGot);
+    { a third client: CON=2 is full }
+    C := OpenStack('TCP', 'HOST=127.0.0.1 PORT=' + IntToStr(Port), Err);
+    Poll(100);
+    BSend('68 04 07 00 00 00');
+    AssertTrue('B: STARTDT con', BGets('68 04 0B 00 00 00'));
+    AssertEquals('taken over', 1, L^.ChTakeOvers);
+    X := 2;
+    Layer^.ChSend(@X, 1);
+    AssertTrue('B carries data, numbers from 0', BGets('68 05 00 00 00 00 02'));
+    Poll(50);
+    AssertEquals('A gets no more data', '', Got);
+    PeerSend('68 04 43 00 00 00');
+    AssertTrue('A, standby now, is answered', PeerGets('68 04 83 00 00 00'));
+    AssertEquals('A sent one unacknowledged frame: dropped, not sent again', 1, L^.CH_Unconfirmed);
+    if C <> nil then
+    begin
+      C^.ChReceiveReady;
+      AssertEquals('the third one turned away', res_DeviceLost, C^.ChReceiveResult);
+    end;
+  finally
+    Dispose(B, Done);
+    if C <> nil then
+      Dispose(C, Done);
+  end;
 end;
 
 initialization
