@@ -12,8 +12,10 @@ unit TestChnDF1Poll;
 interface
 
 uses
-  SysUtils, fpcunit, testregistry, ChnTypes, ChnVirt, ChnLoop, ChnDF1, ChnDF1Link,
-  ChnDF1Poll, ChnWait, ChnSlc, TestSupport, StackCase;
+  {$IFDEF UNIX}BaseUnix,{$ENDIF}
+  SysUtils, Classes, Process, fpcunit, testregistry, ChnTypes, ChnVirt, ChnLoop, ChnDF1,
+  ChnDF1Link, ChnDF1Poll, ChnPcccClient, ChnWait, ChnSlc, TestSupport, BinSupport,
+  ChildLine, StackCase;
 
 type
   TFunc = function: Boolean;
@@ -41,6 +43,10 @@ type
     procedure TestSlaveToSlaveIsRouted;
     procedure TestDeadStationDemoted;
     procedure TestRefusesAFullDuplexStack;
+    procedure TestPcccClientThroughThePoller;
+    {$IFDEF UNIX}
+    procedure TestTwoDf1simOnAPtyBus;
+    {$ENDIF}
   end;
 
 implementation
@@ -405,6 +411,141 @@ begin
   AssertEquals('own address', res_BadParam, DF1PollAdd(P, 0, True));
   AssertEquals('broadcast', res_BadParam, DF1PollAdd(P, 255, True));
 end;
+
+procedure StepStations(Data: Pointer);
+var
+  I: Integer;
+  T: TTestChnDF1Poll;
+begin
+  T := TTestChnDF1Poll(Data);
+  for I := 1 to T.NSt do
+    DF1StationStep(T.St[I]);
+  ChnWaitAny(2);
+end;
+
+{ The blocking PCCC calls through the poller: N7:0..2 of the default
+  table (0 10 20) from station 2, while station 1 is polled too; a write
+  to station 1 read back. }
+procedure TTestChnDF1Poll.TestPcccClientThroughThePoller;
+var
+  C: tPcccClient;
+  V: array[0..2] of LongInt;
+  W: array[0..0] of LongInt;
+begin
+  OpenMaster('PCCC', 'BD=19200');
+  AddStation(1, 'PCCC', 'BD=19200');
+  AddStation(2, 'PCCC', 'BD=19200');
+  DF1PollAdd(P, 1, False);
+  DF1PollAdd(P, 2, False);
+  PcccClientInit(C, Master);
+  PcccClientPoller(C, P, 2);
+  C.Idle := @StepStations;
+  C.IdleData := Self;
+  AssertEquals('read: ' + C.Err, res_Ok, PcccReadInts(C, 'N7:0', 3, V));
+  AssertEquals(0, V[0]);
+  AssertEquals(10, V[1]);
+  AssertEquals(20, V[2]);
+  PcccClientPoller(C, P, 1);
+  W[0] := 4321;
+  AssertEquals('write: ' + C.Err, res_Ok, PcccWriteInts(C, 'N7:5', W));
+  AssertEquals('read back: ' + C.Err, res_Ok, PcccReadInts(C, 'N7:5', 1, V));
+  AssertEquals(4321, V[0]);
+  AssertTrue('station 2 polled', DF1PollStationOf(P, 2)^.Polls > 0);
+  AssertEquals('two messages to 1', 2, DF1PollStationOf(P, 1)^.MsgsOut);
+end;
+
+{$IFDEF UNIX}
+{ tools/chnline makes an RS-485 bus of three ptys at 19200 Bd; two
+  df1sim --half on it send MSGs every second: station 1 to station 2
+  (routed by the master, and station 2's answer routed back), station 2
+  to the master. The master here reads from both with the PCCC client
+  through the poller meanwhile. }
+procedure TTestChnDF1Poll.TestTwoDf1simOnAPtyBus;
+var
+  Line, Sim1, Sim2: TProcess;
+  Paths: TStringList;
+  First: string;
+  C: tPcccClient;
+  V: array[0..1] of LongInt;
+  M: tDF1PollMsg;
+  FromTwo: Integer;
+  Deadline: QWord;
+
+  function Start(const Exe: string; const Args: array of string): TProcess;
+  var
+    A: string;
+  begin
+    Result := TProcess.Create(nil);
+    BinExecutable(Result, BinPath(Exe));
+    for A in Args do
+      Result.Parameters.Add(A);
+    Result.Options := [poUsePipes];
+    Result.Execute;
+  end;
+
+  procedure Stop(var Pr: TProcess);
+  begin
+    if Pr = nil then
+      Exit;
+    if Pr.Running then
+    begin
+      FpKill(Pr.ProcessID, SIGTERM);
+      Pr.WaitOnExit;
+    end;
+    FreeAndNil(Pr);
+  end;
+
+begin
+  Line := nil;
+  Sim1 := nil;
+  Sim2 := nil;
+  Paths := TStringList.Create;
+  try
+    Line := Start('chnline', ['--ends=3', '--bd=19200', '--quiet']);
+    First := ReadFirstLine(Line, 3000);
+    AssertEquals('PTY ', Copy(First, 1, 4));
+    Paths.Delimiter := ' ';
+    Paths.DelimitedText := Copy(First, 5, MaxInt);
+    AssertEquals(3, Paths.Count);
+    Sim1 := Start('df1sim', ['--dev=' + Paths[1], '--half', '--bcc', '--node=1', '--quiet',
+      '--msg-to=2', '--msg-every=1', '--timeout=20']);
+    Sim2 := Start('df1sim', ['--dev=' + Paths[2], '--half', '--bcc', '--node=2', '--quiet',
+      '--msg-to=0', '--msg-every=1', '--timeout=20']);
+    Master := Stack('DF1', 'NOD=0 MAS=MASTER FHD=HALF CRC=OFF NAM=COM DEV=' + Paths[0] + ' IDL=0');
+    AssertEquals(res_Ok, DF1PollInit(P, Master));
+    P.PollMs := 300;
+    DF1PollAdd(P, 1, False);
+    DF1PollAdd(P, 2, False);
+    P.NormalGroup := 2;
+    PcccClientInit(C, Master);
+    PcccClientPoller(C, P, 1);
+    AssertEquals('read from 1: ' + C.Err, res_Ok, PcccReadInts(C, 'N7:1', 2, V));
+    AssertEquals(10, V[0]);
+    PcccClientPoller(C, P, 2);
+    AssertEquals('read from 2: ' + C.Err, res_Ok, PcccReadInts(C, 'N7:2', 1, V));
+    AssertEquals(20, V[0]);
+    FromTwo := 0;
+    Deadline := ChMsTick + 4000;
+    while (ChMsTick < Deadline) and ((FromTwo < 2) or (DF1PollStationOf(P, 2)^.Routed < 2)) do
+    begin
+      if not DF1PollStep(P) then
+        ChnWaitUntil(DF1PollWaitEnd(P), 20);
+      while DF1PollReceive(P, M) do
+        if (M.Src = 2) and (M.Msg.CF = $0FA2) then
+          Inc(FromTwo);
+    end;
+    AssertTrue('MSGs of station 2 to the master: ' + IntToStr(FromTwo), FromTwo >= 2);
+    AssertTrue('station 1''s MSGs routed to 2', DF1PollStationOf(P, 1)^.Routed >= 2);
+    AssertTrue('station 2''s answers routed back to 1', DF1PollStationOf(P, 2)^.Routed >= 2);
+    AssertEquals('nobody dead', 0, DF1PollStationOf(P, 1)^.Deaths + DF1PollStationOf(P, 2)^.Deaths);
+  finally
+    Stop(Sim1);
+    Stop(Sim2);
+    Stop(Line);
+    Paths.Free;
+  end;
+end;
+{$ENDIF}
 
 initialization
   RegisterTest(TTestChnDF1Poll);

@@ -91,7 +91,24 @@ const
   Qcc_Reset   = $C0;       {< counter reset }
   Qrp_General = 1;         {< QRP: general reset of process }
   Qrp_Events  = 2;         {< reset of pending time-tagged events }
+  {- COI, the cause of an end of initialisation (M_EI_NA_1, COT 4) }
+  Coi_PowerOn     = 0;     {< local power switch on }
+  Coi_ManualReset = 1;     {< local manual reset }
+  Coi_RemoteReset = 2;     {< remote reset (C_RP_NA_1) }
+  Coi_LocalChange = $80;   {< BS1: initialisation after a change of local parameters }
   Fbp_Test    = $55AA;     {< fixed test bit pattern of C_TS_NA_1 }
+  {- QPM of parameters of measured values (P_ME_NA_1..P_ME_NC_1): KPA in
+    bits 0-5, LPC bit 6, POP bit 7 }
+  Kpa_Threshold = 1;       {< threshold value (a deadband on spontaneous reports) }
+  Kpa_Smoothing = 2;       {< smoothing factor (filter time constant) }
+  Kpa_Low       = 3;       {< low limit for transmission of measured values }
+  Kpa_High      = 4;       {< high limit for transmission of measured values }
+  Qpm_LocalChange = $40;   {< LPC: local parameter change }
+  Qpm_NotInOperation = $80; {< POP: parameter not in operation }
+  {- QPA of parameter activation (P_AC_NA_1): COT 6 activates, 8 deactivates }
+  Qpa_Loaded    = 1;       {< the parameters loaded before (IOA 0: all) }
+  Qpa_Object    = 2;       {< the parameters of the addressed object }
+  Qpa_Cyclic    = 3;       {< persistent cyclic or periodic transmission of the object }
 
   {- Quality bits (SIQ, DIQ, QDS, SEP, QDP, BCR): the Quality field keeps
     them in their places on the wire }
