@@ -246,10 +246,12 @@ INSTALL_SRCDIR  ?= $(PREFIX)/share/chn
 # $(PREFIX)/bin, each with a man page made from its --help and --version
 # by Debian's help2man (without help2man the pages are left out, with a
 # note). The other examples are demos of the API and stay in build/bin.
-TOOL_PROGRAMS := df1sim chndecode chntap chnline df1read df1write df1echo comraw waitany \
+TOOL_PROGRAMS := df1sim chndecode chntap chnline chngate df1read df1write df1echo comraw waitany \
                  $(basename $(notdir $(wildcard examples/iec101master.pas examples/iec101slave.pas examples/plcconc.pas)))
 INSTALL_BINDIR ?= $(PREFIX)/bin
 INSTALL_MANDIR ?= $(PREFIX)/share/man/man1
+# chngate's systemd unit (its example configuration goes to INSTALL_SRCDIR)
+INSTALL_UNITFILEDIR ?= $(PREFIX)/lib/systemd/system
 MANDIR := $(BUILD)/man
 
 man: $(addprefix $(MANDIR)/,$(addsuffix .1,$(TOOL_PROGRAMS)))
@@ -297,7 +299,11 @@ install: units $(addprefix $(BINDIR)/,$(TOOL_PROGRAMS)) man
 	  install -D -m 644 "$$f" "$$s/$$f"; done; install -m 644 chn.lpk COPYING COPYING.LGPL "$$s/"; \
 	for p in $(TOOL_PROGRAMS); do install -m 755 $(BINDIR)/$$p "$$b/$$p"; \
 	  if [ -f $(MANDIR)/$$p.1 ]; then mkdir -p "$$m"; install -m 644 $(MANDIR)/$$p.1 "$$m/$$p.1"; fi; done; \
-	echo "installed units in $$d, sources in $$s, tools in $$b, man pages in $$m"; \
+	install -m 644 tools/chngate.conf "$$s/chngate.conf"; \
+	mkdir -p '$(DESTDIR)$(INSTALL_UNITFILEDIR)'; \
+	sed 's|@PREFIX@|$(PREFIX)|g' tools/chngate.service > '$(DESTDIR)$(INSTALL_UNITFILEDIR)/chngate.service'; \
+	echo "installed units in $$d, sources in $$s, tools in $$b, man pages in $$m," \
+	  "the gateway's example configuration $$s/chngate.conf and systemd unit $(INSTALL_UNITFILEDIR)/chngate.service"; \
 	$(if $(DESTDIR),true,$(INSTALL_HINT))
 
 # After an install to a prefix fpc.cfg does not search (asked of fpc
@@ -310,7 +316,8 @@ INSTALL_HINT = if ! bash tools/fpcsearches.sh '$(FPC)' '$(INSTALL_UNITDIR)'; the
 
 uninstall:
 	rm -rf '$(DESTDIR)$(INSTALL_UNITDIR)' '$(DESTDIR)$(INSTALL_SRCDIR)'
-	rm -f $(foreach p,$(TOOL_PROGRAMS),'$(DESTDIR)$(INSTALL_BINDIR)/$(p)' '$(DESTDIR)$(INSTALL_MANDIR)/$(p).1')
+	rm -f $(foreach p,$(TOOL_PROGRAMS),'$(DESTDIR)$(INSTALL_BINDIR)/$(p)' '$(DESTDIR)$(INSTALL_MANDIR)/$(p).1') \
+	  '$(DESTDIR)$(INSTALL_UNITFILEDIR)/chngate.service'
 
 clean:
 	rm -rf $(BUILD)

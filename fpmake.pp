@@ -163,6 +163,7 @@ begin
       at run time, nothing is linked }
     Part(P, 'north');
     AddUnit(P, 'ChnMqtt.pas', AllOSes, ['ChnWait']);
+    AddUnit(P, 'ChnJson.pas', AllOSes, []);
     Run;
   end;
 end.

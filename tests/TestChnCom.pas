@@ -1231,6 +1231,17 @@ begin
     { and a bad value below says what the key takes }
     D^.ChSetParam('NAM=DF1 NAM=COM DRV=' + Drv + ' DEV=/tmp BD=abc');
     AssertEquals('bad parameter (BD=abc): a number 50..4000000', D^.ChErrorText);
+    { the pty in use, then free: the reason does not outlive the failure }
+    FChn^.ChClose;
+    FChn^.ChOpen;
+    D^.ChSetParam('NAM=DF1 NAM=COM DRV=' + Drv + ' DEV=' + FPty.SlavePath);
+    D^.ChOpen;
+    AssertEquals('device cannot be opened (DEV=' + FPty.SlavePath +
+      '): Resource temporarily unavailable', D^.ChErrorText);
+    FChn^.ChClose;
+    D^.ChOpen;
+    AssertEquals('opened', res_Ok, D^.ChResult);
+    AssertEquals('no reason left', '', D^.CH_ErrWhy);
   finally
     Dispose(D, Done);
   end;

@@ -1005,6 +1005,7 @@ begin
   CH_Result := res_Ok;
   CH_SResult := res_Ok;
   CH_RResult := res_Ok;
+  CH_ErrWhy := '';              { nothing left of an earlier failure }
 end;
 
 procedure tChnVirt.ChClose;

@@ -67,6 +67,7 @@ type
     Values  : array of Double;   {< PcccPlanValues of Plan (ints and floats) }
     Text    : ShortString;       {< an ST tag's value }
     Quality : tTagQuality;
+    Known   : Boolean;       {< Values hold what a good read gave (else nothing yet) }
     TimeMs  : Int64;         {< UTC ms since 1970 of the read that gave them }
     Sent    : array of Double;   {< the values last taken by TagTakeChange }
     SentText: ShortString;
@@ -311,6 +312,7 @@ begin
   T.Text := '';
   T.SentText := '';
   T.Quality := tqInitial;
+  T.Known := False;
   T.SentQuality := tqInitial;
   T.TimeMs := 0;
   T.Queued := False;
@@ -579,7 +581,10 @@ begin
     if D.Tags[I].Block = D.Cur then
     begin
       if Decode(D.Tags[I], B^, D.Master.Rep.Data) = res_Ok then
-        D.Tags[I].Quality := tqGood
+      begin
+        D.Tags[I].Quality := tqGood;
+        D.Tags[I].Known := True;
+      end
       else
         D.Tags[I].Quality := tqRefused;
       D.Tags[I].TimeMs := Ms;

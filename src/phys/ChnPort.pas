@@ -70,6 +70,10 @@ type
       'BIT', 'STOP', 'PAR', 'FLW', 'RS485', or '' for the device itself),
       so the layer can name the token in ChParamError. }
     FailKey: ShortString;
+    { Delays SetKernelRs485(True) gives the driver (Linux serial_rs485
+      delay_rts_before_send / delay_rts_after_send, ms); set them first.
+      Windows' RTS_CONTROL_TOGGLE has none. }
+    Rs485BeforeMs, Rs485AfterMs: LongInt;
     constructor Create; virtual;
     destructor Destroy; override;
     { Open Path ('/dev/ttyUSB0', '\\.\COM3') for exclusive use, raw and
