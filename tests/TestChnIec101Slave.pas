@@ -58,6 +58,7 @@ type
     procedure TestEndOfInitOctets;
     procedure TestParameterLoadingOctets;
     procedure TestThresholdIsADeadband;
+    procedure TestEveryCommandTypeConfirmed;
   end;
 
 implementation
@@ -793,6 +794,40 @@ begin
   AssertEquals('71 01 07 00 01 00 00 00 00 01', Poll(1));
   Update(43, Q_Invalid);
   AssertEquals('-', Poll(1));
+end;
+
+{ The command types the other tests leave out, each to a point of its own
+  type, confirmed by mirroring with COT 7. IOA 5002.. = 8A 13 00 ...;
+  RCO 02 higher; NVA 0.5 = 00 40, QOS 0; SVA 100 = 64 00; R32 1.5 =
+  00 00 C0 3F; BSI 12345678 low first; DCO 02 on; CP56 2026-01-02
+  03:04:05.000 = 88 13 04 03 02 01 1A. }
+procedure TTestChnIec101Slave.TestEveryCommandTypeConfirmed;
+
+  procedure Check(const Req: string);
+  begin
+    Send(Req);
+    AssertEquals(Req, Copy(Req, 1, 6) + '07' + Copy(Req, 9, MaxInt), Poll(1));
+  end;
+
+begin
+  Open;
+  Add(C_RC_NA_1, 5002, 0);
+  Add(C_SE_NA_1, 5003, 0);
+  Add(C_SE_NC_1, 5004, 0);
+  Add(C_BO_NA_1, 5005, 0);
+  Add(C_SE_NB_1, 5006, 0);
+  Add(C_DC_NA_1, 5007, 0);
+  Add(C_BO_TA_1, 5008, 0);
+  Add(C_SE_TC_1, 5009, 0);
+  Check('2F 01 06 00 01 00 8A 13 00 02');
+  Check('30 01 06 00 01 00 8B 13 00 00 40 00');
+  Check('32 01 06 00 01 00 8C 13 00 00 00 C0 3F 00');
+  Check('33 01 06 00 01 00 8D 13 00 78 56 34 12');
+  Check('31 01 06 00 01 00 8E 13 00 64 00 00');
+  Check('2E 01 06 00 01 00 8F 13 00 02');
+  Check('40 01 06 00 01 00 90 13 00 78 56 34 12 88 13 04 03 02 01 1A');
+  Check('3F 01 06 00 01 00 91 13 00 00 00 C0 3F 00 88 13 04 03 02 01 1A');
+  AssertEquals(8, Cmds.Count);
 end;
 
 procedure TTestChnIec101Slave.TestResetOfTaggedEventsKeepsConfirmations;

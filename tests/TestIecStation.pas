@@ -42,7 +42,7 @@ type
     M: tIecMaster;
     S: tIecSlaveStation;
     Objects, Inits: TStringList;
-    Resets: Integer;
+    Resets, Commands: Integer;
   published
     procedure TestUnbalancedStartThenInterrogation;
     procedure TestBalancedStartThenInterrogation;
@@ -54,6 +54,7 @@ type
     procedure TestProgramInterrogationTakesItOver;
     procedure TestParametersUnbalanced;
     procedure TestParameters104Stepped;
+    procedure TestEveryCommandType104;
   end;
 
 implementation
@@ -67,6 +68,12 @@ end;
 procedure OnInit(Data: Pointer; Addr, Ca: Word; Coi: Byte);
 begin
   TTestIecStation(Data).Inits.Add(Format('slave %d CA %d COI %d', [Addr, Ca, Coi]));
+end;
+
+function AcceptAll(Data: Pointer; const H: tIecAsdu; const O: tIecObject): Boolean;
+begin
+  Inc(TTestIecStation(Data).Commands);
+  Result := True;
 end;
 
 procedure OnReset(Data: Pointer; Qrp: Byte);
@@ -343,6 +350,34 @@ begin
   AssertTrue(Objects.Text, Objects.IndexOf('P_ME_NB_1 COT 7 IOA 120') >= 0);
   AssertEquals(-3, S.Points[IecSlaveFind(S, 120)].Par[Kpa_Low], 0);
   AssertEquals(M.Cmd.Err, res_Ok, IecParamActivation(M, 0, 1, 0, Qpa_Loaded));
+end;
+
+{ Every command type, with and without time tag, from our master to our
+  slave: each ends on its positive ACT_CON and reaches OnCommand. }
+procedure TTestIecStation.TestEveryCommandType104;
+const
+  Types: array[0..13] of Byte = (C_SC_NA_1, C_DC_NA_1, C_RC_NA_1, C_SE_NA_1, C_SE_NB_1,
+    C_SE_NC_1, C_BO_NA_1, C_SC_TA_1, C_DC_TA_1, C_RC_TA_1, C_SE_TA_1, C_SE_TB_1, C_SE_TC_1, C_BO_TA_1);
+var
+  I: Integer;
+  O: tIecObject;
+  E: ShortString;
+begin
+  OpenPair(pk104);
+  S.OnCommand := @AcceptAll;
+  for I := 0 to High(Types) do
+    AssertEquals(res_Ok, IecSlaveAddPoint(S, Types[I], IecObject(6000 + I), 0, E));
+  for I := 0 to High(Types) do
+  begin
+    O := IecObject(6000 + I);
+    O.Int := 1;
+    O.Number := 0.5;
+    O.Bits := $12345678;
+    O.Time := IecTimeFromDateTime(Now);
+    AssertEquals(IecTypeName(Types[I]) + ': ' + M.Cmd.Err, res_Ok,
+      IecCommand(M, 0, 1, Types[I], O, False));
+  end;
+  AssertEquals('all executed', Length(Types), Commands);
 end;
 
 initialization
