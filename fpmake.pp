@@ -114,7 +114,7 @@ begin
     AddUnit(P, 'ChnTelnet.pas', AllOSes, []);
     AddUnit(P, 'ChnPortTcp.pas', AllOSes, ['ChnTypes', 'ChnPort', 'ChnWait', 'ChnSock', 'ChnTelnet']);
     AddUnit(P, 'ChnTcp.pas', AllOSes, ['ChnTypes', 'ChnVirt', 'ChnPort', 'ChnCom', 'ChnPortTcp',
-      'uString']);
+      'uString', 'ChnRing']);
 
     { ---- src/trace: middle layers (fault injection, trace, capture files) }
     Part(P, 'trace');
