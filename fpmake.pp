@@ -123,7 +123,7 @@ begin
     AddUnit(P, 'ChnTelnet.pas', AllOSes, []);
     AddUnit(P, 'ChnPortTcp.pas', AllOSes, ['ChnTypes', 'ChnPort', 'ChnWait', 'ChnSock', 'ChnTelnet']);
     AddUnit(P, 'ChnTcp.pas', AllOSes, ['ChnTypes', 'ChnVirt', 'ChnPort', 'ChnPhys', 'ChnPortTcp',
-      'uString']);
+      'uString', 'ChnRing']);
 
     { ---- src/trace: middle layers (fault injection, trace, capture files) }
     Part(P, 'trace');
@@ -146,7 +146,7 @@ begin
     AddUnit(P, 'ChnPcccClient.pas', AllOSes, ['ChnTypes', 'ChnVirt', 'ChnDF1Codec', 'ChnDF1Link', 'ChnDF1Poll',
       'ChnPccc', 'ChnPlc5', 'uString', 'ChnWait']);
     AddUnit(P, 'ChnPcccTags.pas', AllOSes, ['ChnTypes', 'ChnVirt', 'ChnDF1Codec', 'ChnDF1Link',
-      'ChnPccc', 'ChnPcccClient', 'ChnWait']);
+      'ChnPccc', 'ChnPlc5', 'ChnPcccClient', 'ChnWait']);
     { src/iec: FT 1.2 and IEC 60870-5-101 }
     Part(P, 'iec');
     AddUnit(P, 'ChnFT12Codec.pas', AllOSes, ['ChnTypes']);

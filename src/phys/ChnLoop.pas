@@ -107,6 +107,8 @@ type
     OpenCount: LongInt;
     Collisions: LongWord;       {< two ends began sending over each other }
     Garbled: LongWord;          {< characters that reached the ends garbled }
+    Chars: QWord;               {< characters the line carried }
+    LineUs: QWord;              {< microseconds they took on the line (at a speed) }
     Next: pLoopPair;
   end;
 
@@ -159,6 +161,10 @@ function LoopCharUs(const S: tPortSettings): LongInt;
   (two ends sending at once) and characters delivered garbled by them.
   False when no end of that pair is open. }
 function LoopLineStats(const Pair: ShortString; out Collisions, Garbled: LongWord): Boolean;
+{ Characters the line PAIR= Pair carried since its first end opened, and
+  the microseconds they took at its speed (the line's busy time, for a
+  share of the line used); False when no end of that pair is open. }
+function LoopLineLoad(const Pair: ShortString; out Chars, BusyUs: QWord): Boolean;
 
 implementation
 
@@ -205,6 +211,23 @@ begin
   LeaveCriticalSection(Lock);
 end;
 
+function LoopLineLoad(const Pair: ShortString; out Chars, BusyUs: QWord): Boolean;
+var
+  P: pLoopPair;
+begin
+  Chars := 0;
+  BusyUs := 0;
+  EnterCriticalSection(Lock);
+  P := FindPair(UpStr(Pair));
+  Result := P <> nil;
+  if Result then
+  begin
+    Chars := P^.Chars;
+    BusyUs := P^.LineUs;
+  end;
+  LeaveCriticalSection(Lock);
+end;
+
 { Hand N > 0 characters of end E's wire to every other open end (a
   garbled one inverted); at a full ring they are lost there (Overruns).
   Caller: the end whose call this is (it needs no wake-up). }
@@ -229,6 +252,8 @@ begin
           if RingPut(P^.Ends[L].Ring, @B, 1) = 0 then
             Inc(P^.Ends[L].Overruns);
     end;
+  Inc(P^.Chars, N);
+  Inc(P^.LineUs, QWord(N) * QWord(P^.Ends[E].CharUs));
   with P^.Ends[E] do
   begin
     Inc(WirePos, N);
