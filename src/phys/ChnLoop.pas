@@ -2,9 +2,9 @@
 
   Channel stacks in one process talk to each other with no OS device:
     'NAM=DF1 NOD=1 NAM=LOOP PAIR=A END=1'   and   '... NAM=LOOP PAIR=A END=2'
-  Each end is a tChnLoop: a tChnCom whose port is TChnPortLoop, so the
-  receive ring, LRB=, IDL=, the transmit buffer and the program-wide wait
-  are COM's. The ends of one PAIR are one line: what an end sends, every
+  Each end is a tChnLoop: a tChnPhys (the physical base, unit ChnPhys)
+  whose port is TChnPortLoop, so the receive ring, LRB=, IDL=, the transmit
+  buffer and the program-wide wait are the base's. The ends of one PAIR are one line: what an end sends, every
   other open end of the pair receives (two ends: a null modem; more: a
   multidrop line such as RS-485, END=1..32; BUS=ON makes two ends one too).
   Bytes sent while nobody else
@@ -12,7 +12,7 @@
 
   Without BD= the line has no speed: a message goes at once into the
   receivers' rings (each LRB bytes); what does not fit stays pending at
-  the sender (COM's transmit buffer) and moves on as the receivers read,
+  the sender (the base's transmit buffer) and moves on as the receivers read,
   so the transfer is flow-controlled and never loses bytes (ChSendReady
   reports CHS_Sending meanwhile).
 
@@ -49,7 +49,7 @@ unit ChnLoop;
 interface
 
 uses
-  ChnTypes, ChnVirt, ChnRing, ChnWait, ChnPort, ChnCom;
+  ChnTypes, ChnVirt, ChnRing, ChnWait, ChnPort, ChnPhys;
 
 const
   cName = 'LOOP';
@@ -63,7 +63,7 @@ type
   pLoopPair = ^tLoopPair;
 
   pChnLoop = ^tChnLoop;
-  tChnLoop = object(tChnCom)
+  tChnLoop = object(tChnPhys)
     CH_Pair   : string[31];   {< PAIR= }
     CH_End    : Byte;         {< END=, 1..LoopMaxEnds }
     CH_LoopBaud: LongInt;     {< BD= of the loop, 0: no speed }
@@ -75,11 +75,13 @@ type
     procedure ChSend(Buff: Pointer; Len: Word); virtual;
     { CHS_Sending also while the port still holds part of the message. }
     function  ChSendReady: tChState; virtual;
-    { While COM's ring is empty, input is taken straight from the pair's
+    { While the base's ring is empty, input is taken straight from the pair's
       ring (one copy instead of two); otherwise as COM. }
     function  ChReceiveReady: tChState; virtual;
     procedure ChReceive(var Len: Word); virtual;
   protected
+    { LRB= IDL= of the base }
+    function  PhysKeys: ShortString; virtual;
     function  ComOpenPort(out Port: TChnPort): tChResult; virtual;
     function  ComDropsWhenFull: Boolean; virtual;
   end;
@@ -105,12 +107,21 @@ type
     OpenCount: LongInt;
     Collisions: LongWord;       {< two ends began sending over each other }
     Garbled: LongWord;          {< characters that reached the ends garbled }
+    Chars: QWord;               {< characters the line carried }
+    LineUs: QWord;              {< microseconds they took on the line (at a speed) }
     Next: pLoopPair;
   end;
 
   { One end of a line as a port: Write puts the bytes on the wire, Read
     takes what reached this end. }
   TChnPortLoop = class(TChnPort)
+  protected
+    function DoRead(var Buf; Size: LongInt; out Got: LongInt): tChResult; override;
+    { Without a speed: takes a whole message or nothing (0 while the last
+      one is still on its way); it moves on as the other ends read, also
+      when this end is not polled. With a speed: takes it all, behind what
+      is still on the wire. }
+    function DoWrite(const Buf; Len: LongInt; out Done: LongInt): tChResult; override;
   private
     FPair: pLoopPair;
     FEnd: Byte;
@@ -123,12 +134,6 @@ type
     { Path is ignored: the pair is PairName, the end EndNo. res_CannotOpen
       when that end is open in another stack. }
     function Open(const Path: tWordString): tChResult; override;
-    function Read(var Buf; Size: LongInt; out Got: LongInt): tChResult; override;
-    { Without a speed: takes a whole message or nothing (0 while the last
-      one is still on its way); it moves on as the other ends read, also
-      when this end is not polled. With a speed: takes it all, behind what
-      is still on the wire. }
-    function Write(const Buf; Len: LongInt; out Done: LongInt): tChResult; override;
     { Bytes of what was sent not yet at the other ends. }
     function OutQueue(out N: LongInt): tChResult; override;
     { Whether bytes wait; never sleeps (the shared wait does that). }
@@ -156,6 +161,10 @@ function LoopCharUs(const S: tPortSettings): LongInt;
   (two ends sending at once) and characters delivered garbled by them.
   False when no end of that pair is open. }
 function LoopLineStats(const Pair: ShortString; out Collisions, Garbled: LongWord): Boolean;
+{ Characters the line PAIR= Pair carried since its first end opened, and
+  the microseconds they took at its speed (the line's busy time, for a
+  share of the line used); False when no end of that pair is open. }
+function LoopLineLoad(const Pair: ShortString; out Chars, BusyUs: QWord): Boolean;
 
 implementation
 
@@ -202,6 +211,23 @@ begin
   LeaveCriticalSection(Lock);
 end;
 
+function LoopLineLoad(const Pair: ShortString; out Chars, BusyUs: QWord): Boolean;
+var
+  P: pLoopPair;
+begin
+  Chars := 0;
+  BusyUs := 0;
+  EnterCriticalSection(Lock);
+  P := FindPair(UpStr(Pair));
+  Result := P <> nil;
+  if Result then
+  begin
+    Chars := P^.Chars;
+    BusyUs := P^.LineUs;
+  end;
+  LeaveCriticalSection(Lock);
+end;
+
 { Hand N > 0 characters of end E's wire to every other open end (a
   garbled one inverted); at a full ring they are lost there (Overruns).
   Caller: the end whose call this is (it needs no wake-up). }
@@ -226,6 +252,8 @@ begin
           if RingPut(P^.Ends[L].Ring, @B, 1) = 0 then
             Inc(P^.Ends[L].Overruns);
     end;
+  Inc(P^.Chars, N);
+  Inc(P^.LineUs, QWord(N) * QWord(P^.Ends[E].CharUs));
   with P^.Ends[E] do
   begin
     Inc(WirePos, N);
@@ -378,7 +406,7 @@ begin
   inherited Close;
 end;
 
-function TChnPortLoop.Read(var Buf; Size: LongInt; out Got: LongInt): tChResult;
+function TChnPortLoop.DoRead(var Buf; Size: LongInt; out Got: LongInt): tChResult;
 begin
   EnterCriticalSection(Lock);
   try
@@ -432,15 +460,12 @@ begin
       end;
 end;
 
-function TChnPortLoop.Write(const Buf; Len: LongInt; out Done: LongInt): tChResult;
+function TChnPortLoop.DoWrite(const Buf; Len: LongInt; out Done: LongInt): tChResult;
 var
   Now: QWord;
   Idle: Boolean;
 begin
-  Done := 0;
   Result := res_Ok;
-  if Len <= 0 then
-    Exit;
   EnterCriticalSection(Lock);
   try
     Now := ChnClockUs;
@@ -606,19 +631,19 @@ begin
       CH_Bus := I = 1;
   end
   else if (Key = 'BIT') or (Key = 'STOP') or (Key = 'PAR') then
-    Result := tChnCom.ChSetOneParam(S, CmdL)   { COM's ranges }
-  else if Key = 'LRB' then         { COM's ranges, without its key chain }
-    Result := ParamSetNum(S, 1, 1 shl 24, CmdL, CH_LRB)
-  else if Key = 'IDL' then
-    Result := ParamSetNum(S, 0, 1000, CmdL, CH_Idle)
+    Result := PhysLineParam(S, CmdL)  { the serial line's ranges }
   else
-    { COM's device keys mean nothing on an in-memory line }
-    Result := tChnVirt.ChSetOneParam(S, CmdL);
+    Result := inherited ChSetOneParam(S, CmdL);   { LRB= IDL= }
+end;
+
+function tChnLoop.PhysKeys: ShortString;
+begin
+  Result := 'LRB IDL';              { an in-memory line is never lost, its messages never too long }
 end;
 
 function tChnLoop.ChOwnParams: tParamStr;
 begin
-  Result := tChnVirt.ChOwnParams + ' PAIR=' + CH_Pair + ParamText('END', CH_End);
+  Result := inherited ChOwnParams + ' PAIR=' + CH_Pair + ParamText('END', CH_End);
   if CH_LoopBaud > 0 then          { a line without speed reads as before }
     Result := Result + ParamText('BD', CH_LoopBaud) + ComCharText(CH_Set);
   if CH_Bus then
