@@ -819,7 +819,11 @@ begin
     end;
     CH_RtsUp := True;
   end;
-  Now := ChnClockUs;
+  { the clock (a system call) only when RTSB=, TURN= or IFG= need it }
+  if (CH_RtsToggle and (CH_RtsBefore > 0)) or (CH_Turn > 0) or (CH_Ifg > 0) then
+    Now := ChnClockUs
+  else
+    Now := 0;
   Start := ComTxStart(Now);
   if Start > Now then
   begin
@@ -837,7 +841,8 @@ begin
     ChnWaitDue(CH_Wait, Start);
     Exit;
   end;
-  CH_LastTxEndUs := Now + QWord(ComLineUs(Len));
+  if Now > 0 then
+    CH_LastTxEndUs := Now + QWord(ComLineUs(Len));
   { what the port takes now goes straight from the caller's buffer; only
     the rest is copied, to move on from later polls }
   R := CH_Port.Write(Buff^, Len, Written);
