@@ -113,7 +113,7 @@ type
 
   tFT12Station = record
     Chn        : pChnVirt;
-    RMess      : tRecRecord;
+    RMess      : tFT12MaxRecord; { any frame, L up to 255 }
     Reply      : tSendRecord;  { last reply to an FCV = 1 frame or a reset }
     ReplyLen   : Word;
     HasReply   : Boolean;
@@ -174,7 +174,7 @@ type
     ReqLen   : Word;
     Out      : tSendRecord;     { what goes on the line: the reset or the service }
     OutLen   : Word;
-    Rep      : tRecRecord;
+    Rep      : tFT12MaxRecord;  { any answer, L up to 255 }
     RepLen   : Word;
     State    : tFT12PrimaryState;
     Result   : tChResult;
@@ -256,7 +256,7 @@ type
     (the channel writes into RMess). }
   tFT12Balanced = record
     Chn        : pChnVirt;
-    RMess      : tRecRecord;
+    RMess      : tFT12MaxRecord; { any frame, L up to 255 }
     { settings (FT12BalancedInit gives the defaults) }
     TimeoutMs  : LongInt;     { wait for an answer (FT12LinkTimeoutMs) }
     Retries    : SmallInt;    { repetitions before the link counts as lost }
@@ -740,10 +740,15 @@ begin
       else
         ChnWaitUntil(FT12PrimaryWaitEnd(P));   { the program-wide wait }
     until FT12PrimaryStep(P);
-  if P.RepLen > 0 then
-    Move(P.Rep, Rep, SizeOf(Rep));
-  RepLen := P.RepLen;
   Result := P.Result;
+  if P.RepLen > SizeOf(Rep) then
+    Result := res_ErrLen                { longer than the manual's record holds }
+  else
+  begin
+    if P.RepLen > 0 then
+      Move(P.Rep, Rep, P.RepLen);
+    RepLen := P.RepLen;
+  end;
 end;
 
 { A fixed frame with function FC and the channel's LEN= zero octets. }
@@ -793,7 +798,7 @@ end;
 { The answer to SEND/CONFIRM user data (FC 3) of Len record octets: ACK
   when the application takes it, NACK when it refuses or has no callback. }
 function UserDataAnswer(F: tFT12UserDataFunc; Data: Pointer;
-  constref R: tRecRecord; Len: Word): Byte;
+  constref R: tFT12MaxRecord; Len: Word): Byte;
 begin
   if Assigned(F) and F(Data, @R.Data[1], Len - cSizeHeadRecMsg, True) then
     Result := FCS_Ack
