@@ -151,7 +151,7 @@ $(PROGBINS) $(BENCHBINS): src/chn.inc | $(BUILD)/units.stamp
 # (ptys) are listed here and built only there; single Unix-only tests are
 # {$IFDEF UNIX} in their unit.
 UNIX_TESTS := TestChnPty TestChnTcpSer2net TestFT12Examples TestFaultCycling TestIec101Examples \
-              TestIec101SlaveTool TestIec101Docs TestIec104Tools
+              TestIec101SlaveTool TestIec101Docs TestIec104Tools TestIec104Docs
 comma := ,
 uses_entry = $(if $(filter $(1),$(UNIX_TESTS)),'{$$IFDEF UNIX}$(1)$(comma){$$ENDIF}','$(1)$(comma)')
 $(BUILD)/testunits.inc: $(TESTUNITS)
@@ -171,7 +171,9 @@ test: all $(BUILD)/testunits.inc $(BUILD)/fpcunit/stamp
 	@$(FPC) $(SOAKFLAGS) tests/soak/soak.pas >>$(BUILD)/test-build.log 2>&1 || { cat $(BUILD)/test-build.log; echo "0 passed, 1 failed"; exit 1; }
 	@BUILD=$(BUILD) FPC=$(FPC) T="$(T)" bash tests/run.sh
 
-demo: all
+# only the four programs it runs: a first make demo builds the library
+# and those, not every example
+demo: $(addprefix $(BINDIR)/,df1sim df1echo df1read chndecode)
 	@bash tools/demo.sh $(BUILD)
 
 bench: $(BENCHBINS) $(BINDIR)/chntap $(BINDIR)/plcconc $(BINDIR)/df1sim
@@ -244,10 +246,12 @@ INSTALL_SRCDIR  ?= $(PREFIX)/share/chn
 # $(PREFIX)/bin, each with a man page made from its --help and --version
 # by Debian's help2man (without help2man the pages are left out, with a
 # note). The other examples are demos of the API and stay in build/bin.
-TOOL_PROGRAMS := df1sim chndecode chntap chnline df1read df1write df1echo comraw waitany \
+TOOL_PROGRAMS := df1sim chndecode chntap chnline chngate df1read df1write df1echo comraw waitany \
                  $(basename $(notdir $(wildcard examples/iec101master.pas examples/iec101slave.pas examples/plcconc.pas)))
 INSTALL_BINDIR ?= $(PREFIX)/bin
 INSTALL_MANDIR ?= $(PREFIX)/share/man/man1
+# chngate's systemd unit (its example configuration goes to INSTALL_SRCDIR)
+INSTALL_UNITFILEDIR ?= $(PREFIX)/lib/systemd/system
 MANDIR := $(BUILD)/man
 
 man: $(addprefix $(MANDIR)/,$(addsuffix .1,$(TOOL_PROGRAMS)))
@@ -267,7 +271,7 @@ doc:
 	@rm -rf $(BUILD)/doc; mkdir -p $(BUILD)/doc
 	@pasdoc --format html --output $(BUILD)/doc --title 'Chn library $(shell sed -n "s/^  ChnVersion = '\(.*\)';/\1/p" tools/lib/ChnCli.pas)' \
 	  --include src/ $(addprefix --include ,$(sort $(dir $(DOCSRC)))) --define FPC --define UNIX --define LINUX \
-	  --write-uses-list --sort=structures,non-record-fields $(DOCSRC) >$(BUILD)/doc.log 2>&1 || { cat $(BUILD)/doc.log; exit 1; }
+	  --ignore-marker=- --write-uses-list --sort=structures,non-record-fields $(DOCSRC) >$(BUILD)/doc.log 2>&1 || { cat $(BUILD)/doc.log; exit 1; }
 	@if grep -E '^(Warning|Error)' $(BUILD)/doc.log; then echo "make doc: pasdoc warnings (above)"; exit 1; fi
 	@echo "API reference: $(BUILD)/doc/index.html ($(words $(DOCSRC)) units)"
 
@@ -295,11 +299,25 @@ install: units $(addprefix $(BINDIR)/,$(TOOL_PROGRAMS)) man
 	  install -D -m 644 "$$f" "$$s/$$f"; done; install -m 644 chn.lpk COPYING COPYING.LGPL "$$s/"; \
 	for p in $(TOOL_PROGRAMS); do install -m 755 $(BINDIR)/$$p "$$b/$$p"; \
 	  if [ -f $(MANDIR)/$$p.1 ]; then mkdir -p "$$m"; install -m 644 $(MANDIR)/$$p.1 "$$m/$$p.1"; fi; done; \
-	echo "installed units in $$d, sources in $$s, tools in $$b, man pages in $$m"
+	install -m 644 tools/chngate.conf "$$s/chngate.conf"; \
+	mkdir -p '$(DESTDIR)$(INSTALL_UNITFILEDIR)'; \
+	sed 's|@PREFIX@|$(PREFIX)|g' tools/chngate.service > '$(DESTDIR)$(INSTALL_UNITFILEDIR)/chngate.service'; \
+	echo "installed units in $$d, sources in $$s, tools in $$b, man pages in $$m," \
+	  "the gateway's example configuration $$s/chngate.conf and systemd unit $(INSTALL_UNITFILEDIR)/chngate.service"; \
+	$(if $(DESTDIR),true,$(INSTALL_HINT))
+
+# After an install to a prefix fpc.cfg does not search (asked of fpc
+# itself, tools/fpcsearches.sh): the -Fu a program's fpc call needs. Not
+# with DESTDIR (a package's staging folder, not where the units will be).
+INSTALL_HINT = if ! bash tools/fpcsearches.sh '$(FPC)' '$(INSTALL_UNITDIR)'; then \
+	  echo "note: fpc does not search $(INSTALL_UNITDIR) (/etc/fpc.cfg): compile your programs with"; \
+	  echo "  fpc -Fu$(INSTALL_UNITDIR) yourprogram.pas"; \
+	  echo "or put that -Fu line into ~/.fpc.cfg (PREFIX=/usr or PREFIX=\$$HOME/.fppkg need none)"; fi
 
 uninstall:
 	rm -rf '$(DESTDIR)$(INSTALL_UNITDIR)' '$(DESTDIR)$(INSTALL_SRCDIR)'
-	rm -f $(foreach p,$(TOOL_PROGRAMS),'$(DESTDIR)$(INSTALL_BINDIR)/$(p)' '$(DESTDIR)$(INSTALL_MANDIR)/$(p).1')
+	rm -f $(foreach p,$(TOOL_PROGRAMS),'$(DESTDIR)$(INSTALL_BINDIR)/$(p)' '$(DESTDIR)$(INSTALL_MANDIR)/$(p).1') \
+	  '$(DESTDIR)$(INSTALL_UNITFILEDIR)/chngate.service'
 
 clean:
 	rm -rf $(BUILD)

@@ -114,7 +114,7 @@ begin
     AddUnit(P, 'ChnTelnet.pas', AllOSes, []);
     AddUnit(P, 'ChnPortTcp.pas', AllOSes, ['ChnTypes', 'ChnPort', 'ChnWait', 'ChnSock', 'ChnTelnet']);
     AddUnit(P, 'ChnTcp.pas', AllOSes, ['ChnTypes', 'ChnVirt', 'ChnPort', 'ChnCom', 'ChnPortTcp',
-      'uString']);
+      'uString', 'ChnRing']);
 
     { ---- src/trace: middle layers (fault injection, trace, capture files) }
     Part(P, 'trace');
@@ -131,12 +131,13 @@ begin
     AddUnit(P, 'ChnPcccNames.pas', AllOSes, []);
     AddUnit(P, 'ChnDF1Link.pas', AllOSes, ['ChnTypes', 'ChnVirt', 'ChnDF1', 'ChnPcccNames', 'uString',
       'ChnWait']);
+    AddUnit(P, 'ChnDF1Poll.pas', AllOSes, ['ChnTypes', 'ChnVirt', 'ChnDF1', 'ChnDF1Link', 'ChnWait', 'uString']);
     AddUnit(P, 'ChnPccc.pas', AllOSes, ['ChnTypes', 'ChnDF1Codec', 'uString', 'ChnPcccNames']);
     AddUnit(P, 'ChnPlc5.pas', AllOSes, ['ChnTypes', 'ChnDF1Codec', 'ChnPccc']);
-    AddUnit(P, 'ChnPcccClient.pas', AllOSes, ['ChnTypes', 'ChnVirt', 'ChnDF1Codec', 'ChnDF1Link',
+    AddUnit(P, 'ChnPcccClient.pas', AllOSes, ['ChnTypes', 'ChnVirt', 'ChnDF1Codec', 'ChnDF1Link', 'ChnDF1Poll',
       'ChnPccc', 'ChnPlc5', 'uString', 'ChnWait']);
     AddUnit(P, 'ChnPcccTags.pas', AllOSes, ['ChnTypes', 'ChnVirt', 'ChnDF1Codec', 'ChnDF1Link',
-      'ChnPccc', 'ChnPcccClient', 'ChnWait']);
+      'ChnPccc', 'ChnPlc5', 'ChnPcccClient', 'ChnWait']);
     { src/iec: FT 1.2 and IEC 60870-5-101 }
     Part(P, 'iec');
     AddUnit(P, 'ChnFT12Codec.pas', AllOSes, ['ChnTypes']);
@@ -145,7 +146,7 @@ begin
     { IEC 60870-5-104: the APCI codec and the layer over NAM=TCP }
     AddUnit(P, 'ChnIec104Codec.pas', AllOSes, ['ChnTypes']);
     AddUnit(P, 'ChnIec104.pas', AllOSes, ['ChnTypes', 'ChnVirt', 'ChnProto', 'ChnIec104Codec',
-      'uString', 'ChnTcp']);
+      'uString', 'ChnTcp', 'ChnTrc']);
     { IEC 60870-5-101 application layer on the FT 1.2 link helpers or IEC 104 }
     AddUnit(P, 'ChnIec101Asdu.pas', AllOSes, ['ChnTypes']);
     AddUnit(P, 'ChnIecTransport.pas', AllOSes, ['ChnTypes', 'ChnVirt', 'ChnFT1_2', 'ChnFT12Link',
@@ -162,6 +163,7 @@ begin
       at run time, nothing is linked }
     Part(P, 'north');
     AddUnit(P, 'ChnMqtt.pas', AllOSes, ['ChnWait']);
+    AddUnit(P, 'ChnJson.pas', AllOSes, []);
     Run;
   end;
 end.

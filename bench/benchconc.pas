@@ -18,7 +18,7 @@ program benchconc;
 {$MODE OBJFPC}{$H+}
 
 uses
-  Classes, SysUtils, BaseUnix, Unix, Process, ChildLine;
+  Classes, SysUtils, BaseUnix, Unix, Process, ChildLine, ProcStat;
 
 type
   tSims = array of TProcess;
@@ -122,32 +122,6 @@ begin
   finally
     Out_.Free;
     P.Free;
-  end;
-end;
-
-function sysconf(Name: cint): clong; cdecl; external 'c';
-
-const
-  _SC_CLK_TCK = 2;
-
-{ utime + stime of a running process, in seconds (/proc/PID/stat). }
-function ProcCpu(Pid: TPid): Double;
-var
-  F: TStringList;
-  S: string;
-  Fields: TStringArray;
-begin
-  Result := 0;
-  F := TStringList.Create;
-  try
-    F.LoadFromFile('/proc/' + IntToStr(Pid) + '/stat');
-    S := F.Text;
-    S := Copy(S, Pos(')', S) + 2, Length(S));   { after "pid (comm) " }
-    Fields := S.Split([' ']);
-    { fields 14 and 15 of stat(5), 12 and 13 here (state is the first) }
-    Result := (StrToInt64(Fields[11]) + StrToInt64(Fields[12])) / sysconf(_SC_CLK_TCK);
-  finally
-    F.Free;
   end;
 end;
 

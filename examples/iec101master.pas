@@ -86,6 +86,8 @@ begin
   CliOption(Cli, 'retries', #0, 'N', 'link repetitions (default ' + IntToStr(FT12LinkRetries) + ')');
   CliOption(Cli, 'wait', #0, 'MS', 'wait for a confirmation at most MS (default 10000)');
   CliOption(Cli, 'json', #0, '', 'one JSON object per line on standard output, nothing else');
+  CliOption(Cli, 'no-gi-after-init', #0, '', 'do not interrogate a slave after its end of ' +
+    'initialisation (M_EI_NA_1)');
   CliEpilog(Cli, 'Commands:' + LineEnding +
     '  gi                      station interrogation' + LineEnding +
     '  gi-group N              interrogation of group N (1..16)' + LineEnding +
@@ -282,6 +284,7 @@ begin
   M.OnObject := @OnReceived;
   M.OnSent := @OnSent;
   M.OnBad := @OnBad;
+  M.NoGiAfterInit := CliHas(Cli, 'no-gi-after-init');
   M.Data := nil;
   if M.Balanced then
   begin

@@ -68,6 +68,8 @@ begin
     IntToStr(IecSlaveSelectMs) + ')');
   CliOption(Cli, 'refuse', #0, '', 'refuse every command (negative ACT_CON)');
   CliOption(Cli, 'json', #0, '', 'one JSON object per line on stdout, nothing else');
+  CliOption(Cli, 'no-init', #0, '', 'send no end of initialisation (M_EI_NA_1, COT 4, COI 0) ' +
+    'after the start');
   CliEpilog(Cli, 'Example:' + LineEnding +
     '  iec101slave ''NAM=FT1_2 MS=ON MAS=SLAVE NOD=1 LEN=0 NAM=COM DEV=/dev/ttyUSB0 BD=9600 PAR=E''' +
     LineEnding);
@@ -191,6 +193,9 @@ begin
   Slave.OnCommand := @OnCommand;
   Slave.OnClock := @OnClock;
   Slave.OnBad := @OnBad;
+  { the station has initialised: the master learns it (and interrogates) }
+  if not CliHas(Cli, 'no-init') then
+    IecSlaveEndOfInit(Slave, Coi_PowerOn);
   Chn^.ChOpen;
   if Chn^.ChResult = res_Ok then
     Chn^.ChConnect;

@@ -121,6 +121,9 @@ type
     procedure TestSettingRefusedLeavesClosed;
     procedure TestModemLinesReachThePort;
     procedure TestPortDriverNames;
+    {$IFDEF WINDOWS}
+    procedure TestMissingPortSaysTheOsReason;
+    {$ENDIF}
   end;
 
 implementation
@@ -1231,6 +1234,17 @@ begin
     { and a bad value below says what the key takes }
     D^.ChSetParam('NAM=DF1 NAM=COM DRV=' + Drv + ' DEV=/tmp BD=abc');
     AssertEquals('bad parameter (BD=abc): a number 50..4000000', D^.ChErrorText);
+    { the pty in use, then free: the reason does not outlive the failure }
+    FChn^.ChClose;
+    FChn^.ChOpen;
+    D^.ChSetParam('NAM=DF1 NAM=COM DRV=' + Drv + ' DEV=' + FPty.SlavePath);
+    D^.ChOpen;
+    AssertEquals('device cannot be opened (DEV=' + FPty.SlavePath +
+      '): Resource temporarily unavailable', D^.ChErrorText);
+    FChn^.ChClose;
+    D^.ChOpen;
+    AssertEquals('opened', res_Ok, D^.ChResult);
+    AssertEquals('no reason left', '', D^.CH_ErrWhy);
   finally
     Dispose(D, Done);
   end;
@@ -1795,6 +1809,30 @@ begin
     Dispose(C, Done);
   end;
 end;
+
+{$IFDEF WINDOWS}
+{ A COM port that is not there: ChErrorText ends with Windows' own text
+  for ERROR_FILE_NOT_FOUND (FormatMessage; its words differ between
+  Windows and Wine, so only its presence is checked). }
+procedure TTestChnComLogic.TestMissingPortSaysTheOsReason;
+var
+  C: pChnVirt;
+  T, Head: string;
+begin
+  C := ChnCollection^.ChNewInit('COM');
+  try
+    C^.ChSetParam('DEV=\\.\COM199');
+    C^.ChOpen;
+    AssertEquals(res_CannotOpen, C^.ChResult);
+    T := C^.ChErrorText;
+    Head := 'device cannot be opened (DEV=\\.\COM199): ';
+    AssertTrue(T, (Pos(Head, T) = 1) and (Length(T) > Length(Head) + 3));
+    AssertTrue('no full stop or line break at the end: ' + T, not (T[Length(T)] in ['.', #10, #13]));
+  finally
+    Dispose(C, Done);
+  end;
+end;
+{$ENDIF}
 
 procedure TTestChnComLogic.TestPortDriverNames;
 var

@@ -28,6 +28,8 @@ type
     procedure TestGivenCheckIsKept;
     procedure TestPcapDamagedAfterFirstRecordExits2;
     procedure TestHugeLengthFieldsUnsigned;
+    procedure TestIec104Capture;
+    procedure TestIec104BrokenStream;
   end;
 
 implementation
@@ -45,6 +47,48 @@ const
     '1002 0001 4600 0100 4110 0377' + NL +
     '10:00:00.030 tx   2 | TRC' + NL +
     '1006' + NL;
+
+{ IEC 104 worked out by hand: STARTDT act (68 04 07 00 00 00); an I frame
+  N(S) = 0, N(R) = 1 (02 00 = 2 shr 1) holding C_IC_NA_1, COT 6, CA 1,
+  IOA 0, QOI 20; its answer N(S) = 1 (02 00), N(R) = 1, COT 7; an S frame
+  N(R) = 2 (04 00). }
+const
+  Iec104Trace =
+    '10:00:00.000 tx   6 | TRC' + NL +
+    '6804 0700 0000' + NL +
+    '10:00:00.010 tx   16 | TRC' + NL +
+    '680E 0000 0200 6401 0600 0100 0000 0014' + NL +
+    '10:00:00.020 rx   22 | TRC' + NL +
+    '680E 0200 0200 6401 0700 0100 0000 0014 6804 0100 0400' + NL;
+
+procedure TTestChnDecodeTool.TestIec104Capture;
+var
+  Output: string;
+begin
+  WriteFileText(Dir + '104.log', Iec104Trace);
+  AssertEquals(Output, 0, RunBin('chndecode', ['--iec104', Dir + '104.log'], 10000, Output));
+  AssertTrue(Output, Pos('tx IEC104 U STARTDT act', Output) > 0);
+  AssertTrue(Output, Pos('tx IEC104 I N(S)=0 N(R)=1: C_IC_NA_1 ACTIVATION CA 1: IOA 0 = 20', Output) > 0);
+  AssertTrue(Output, Pos('rx IEC104 I N(S)=1 N(R)=1: C_IC_NA_1 ACTIVATION_CON CA 1: IOA 0 = 20', Output) > 0);
+  AssertTrue(Output, Pos('rx IEC104 S N(R)=2', Output) > 0);
+  AssertTrue(Output, Pos('3 chunks, 44 bytes: 4 frames, 0 errors, 0 incomplete', Output) > 0);
+end;
+
+{ a wrong start octet, a length octet of 3 and a U frame with two
+  functions (STARTDT act + TESTFR act = 47h) are errors; the decoder finds
+  the next 68h and goes on }
+procedure TTestChnDecodeTool.TestIec104BrokenStream;
+var
+  Output: string;
+begin
+  WriteFileText(Dir + 'bad.hex', '67 68 03 00 68 04 47 00 00 00 68 04 0B 00 00 00');
+  RunBin('chndecode', ['--iec104', '--hex', Dir + 'bad.hex'], 10000, Output);
+  AssertTrue(Output, Pos('ERROR octet $67 where an APDU starts', Output) > 0);
+  AssertTrue(Output, Pos('ERROR length octet 3 (4..253)', Output) > 0);
+  AssertTrue(Output, Pos('ERROR control field 47 00 00 00', Output) > 0);
+  AssertTrue(Output, Pos('IEC104 U STARTDT con', Output) > 0);
+  AssertTrue(Output, Pos('1 frames, 3 errors', Output) > 0);
+end;
 
 procedure TTestChnDecodeTool.SetUp;
 begin

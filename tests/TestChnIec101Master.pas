@@ -184,7 +184,8 @@ var
   S: tIecSlave;
   L: LongInt;
 begin
-  AssertEquals('SizeOf(tIecCommand)', 327, SizeOf(tIecCommand));
+  AssertEquals('SizeOf(tIecCommand)', 328, SizeOf(tIecCommand));
+  AssertEquals('Auto@327, last', 327, PtrUInt(@C.Auto) - PtrUInt(@C));
   AssertEquals('Slave@2', 2, PtrUInt(@C.Slave) - PtrUInt(@C));
   AssertEquals('Obj@9', 9, PtrUInt(@C.Obj) - PtrUInt(@C));
   AssertEquals('SentAt@49', 49, PtrUInt(@C.SentAt) - PtrUInt(@C));
@@ -194,7 +195,10 @@ begin
   AssertEquals('State after Addr and Link', 2 + L, LongInt(PtrUInt(@S.State) - PtrUInt(@S)));
   AssertEquals('Class1', 2 + L + 1 + 8 + 8 + 4, LongInt(PtrUInt(@S.Class1) - PtrUInt(@S)));
   AssertEquals('Probation', 2 + L + 1 + 8 + 8 + 4 + 9 * 4, LongInt(PtrUInt(@S.Probation) - PtrUInt(@S)));
-  AssertEquals('SizeOf(tIecSlave)', 2 + L + 1 + 8 + 8 + 4 + 9 * 4 + 1 + 8, SizeOf(tIecSlave));
+  { + EndOfInits(4) LastCoi(1) InitGi InitCi(2) InitCa(2) }
+  AssertEquals('SizeOf(tIecSlave)', 2 + L + 1 + 8 + 8 + 4 + 9 * 4 + 1 + 8 + 4 + 1 + 2 + 2, SizeOf(tIecSlave));
+  AssertEquals('EndOfInits after PolledAt', 2 + L + 1 + 8 + 8 + 4 + 9 * 4 + 1 + 8,
+    LongInt(PtrUInt(@S.EndOfInits) - PtrUInt(@S)));
 end;
 
 procedure TTestChnIec101Master.TestInitRefusesOtherChannels;

@@ -55,6 +55,10 @@ type
     procedure TestResetOfTaggedEventsKeepsConfirmations;
     procedure TestTestBitAndPnBitNeverExecuted;
     procedure TestExecuteMustCarryTheSelection;
+    procedure TestEndOfInitOctets;
+    procedure TestParameterLoadingOctets;
+    procedure TestThresholdIsADeadband;
+    procedure TestEveryCommandTypeConfirmed;
   end;
 
 implementation
@@ -660,6 +664,172 @@ end;
   confirmation of a command executed before it stays (its loss would leave
   the master without ACT_CON for a command the station executed), and so
   do untagged events. }
+procedure OnResetProc(Data: Pointer; Qrp: Byte);
+begin
+  TTestChnIec101Slave(Data).Cmds.Add('reset ' + IntToStr(Qrp));
+end;
+
+{ M_EI_NA_1 (70 = $46), VSQ 1, COT 4 (2 octets), CA 1, IOA 0, COI:
+  0 local power on, 1 local manual reset (+$80 after a local parameter
+  change), 2 remote reset - after C_RP_NA_1 (105 = $69) QRP 1, whose
+  ACT_CON comes first and which drops what was waiting. }
+procedure TTestChnIec101Slave.TestEndOfInitOctets;
+var
+  O: tIecObject;
+  E: ShortString;
+begin
+  Open;
+  AddStd;
+  S.OnReset := @OnResetProc;
+  AssertEquals('nothing before the program says so', '-', Poll(1));
+  IecSlaveEndOfInit(S, Coi_PowerOn);
+  AssertEquals('after a start', '46 01 04 00 01 00 00 00 00 00', Poll(1));
+  AssertFalse(FAcd);
+  IecSlaveEndOfInit(S, Coi_ManualReset or Coi_LocalChange);
+  AssertEquals('manual reset, local change', '46 01 04 00 01 00 00 00 00 81', Poll(1));
+  O := IecObject(0);
+  O.Int := 0;
+  AssertEquals(res_Ok, IecSlaveUpdate(S, 104, O, True, E));   { an event waits }
+  Send('69 01 06 00 01 00 00 00 00 01');
+  AssertEquals('the reset''s ACT_CON', '69 01 07 00 01 00 00 00 00 01', Poll(1));
+  AssertTrue('more to come', FAcd);
+  AssertEquals('remote reset', '46 01 04 00 01 00 00 00 00 02', Poll(1));
+  AssertFalse('the event went with the reset', FAcd);
+  AssertEquals('-', Poll(1));
+  AssertEquals('reset 1', Cmds[0]);
+  AssertEquals(3, S.EndOfInits);
+end;
+
+{ P_ME_NB_1 (111 = $6F) SVA QPM, P_ME_NA_1 (110 = $6E) NVA QPM, P_ME_NC_1
+  (112 = $70) R32 QPM, P_AC_NA_1 (113 = $71) QPA; COT 6 / 8, mirrored with
+  7 / 9; P/N is bit 6 of the COT octet (7 + $40 = $47, 47 + $40 = $6F).
+  IOA 101 = 65 00 00 (scaled), 200 = C8 00 00 (float). }
+procedure TTestChnIec101Slave.TestParameterLoadingOctets;
+var
+  O: tIecObject;
+  E: ShortString;
+begin
+  Open;
+  AddStd;
+  O := IecObject(200);
+  O.Number := 1.5;
+  AssertEquals(res_Ok, IecSlaveAddPoint(S, M_ME_NC_1, O, 0, E));
+  { threshold 10 (0A 00, KPA 1) for the scaled value 101 }
+  Send('6F 01 06 00 01 00 65 00 00 0A 00 01');
+  AssertEquals('ACT_CON', '6F 01 07 00 01 00 65 00 00 0A 00 01', Poll(1));
+  { a normalized parameter for a scaled value: no such object (COT 47) }
+  Send('6E 01 06 00 01 00 65 00 00 00 10 01');
+  AssertEquals('COT 47', '6E 01 6F 00 01 00 65 00 00 00 10 01', Poll(1));
+  { KPA 5 is reserved: negative ACT_CON }
+  Send('6F 01 06 00 01 00 65 00 00 0A 00 05');
+  AssertEquals('KPA 5', '6F 01 47 00 01 00 65 00 00 0A 00 05', Poll(1));
+  { float 0.5 (3F000000) as the threshold of 200, loaded not in operation (POP, $81) }
+  Send('70 01 06 00 01 00 C8 00 00 00 00 00 3F 81');
+  AssertEquals('float ACT_CON', '70 01 07 00 01 00 C8 00 00 00 00 00 3F 81', Poll(1));
+  { activation of the object's parameters (QPA 2), then deactivation }
+  Send('71 01 06 00 01 00 C8 00 00 02');
+  AssertEquals('P_AC ACT_CON', '71 01 07 00 01 00 C8 00 00 02', Poll(1));
+  Send('71 01 08 00 01 00 65 00 00 02');
+  AssertEquals('P_AC DEACT_CON', '71 01 09 00 01 00 65 00 00 02', Poll(1));
+  { cyclic transmission (QPA 3) is not offered }
+  Send('71 01 06 00 01 00 65 00 00 03');
+  AssertEquals('QPA 3', '71 01 47 00 01 00 65 00 00 03', Poll(1));
+  { a P_ME_NB_1 with COT 3 is no activation: COT 45 ($2D + $40 = $6D) }
+  Send('6F 01 03 00 01 00 65 00 00 0A 00 01');
+  AssertEquals('COT 45', '6F 01 6D 00 01 00 65 00 00 0A 00 01', Poll(1));
+  AssertEquals(4, S.Parameters);
+  { a station interrogation reports them after the points, COT 20 ($14),
+    POP set for 101 (deactivated) and not for 200 (activated) }
+  Send('64 01 06 00 01 00 00 00 00 14');
+  AssertEquals('64 01 07 00 01 00 00 00 00 14', Poll(1));
+  AssertEquals('0B 03 14 00 01 00 64 00 00 FF FF 00 65 00 00 17 00 00 66 00 00 FC 08 00', Poll(2));
+  AssertEquals('01 02 14 00 01 00 68 00 00 01 69 00 00 00', Poll(2));
+  AssertEquals('0D 01 14 00 01 00 C8 00 00 00 00 C0 3F 00', Poll(2));
+  AssertEquals('101: threshold, not in operation', '6F 01 14 00 01 00 65 00 00 0A 00 81', Poll(2));
+  AssertEquals('200: threshold in operation', '70 01 14 00 01 00 C8 00 00 00 00 00 3F 01', Poll(2));
+  AssertEquals('none left', '-', Poll(2));
+  AssertTrue('ACT_TERM waits', FAcd);
+  AssertEquals('ACT_TERM', '64 01 0A 00 01 00 00 00 00 14', Poll(1));
+end;
+
+{ A threshold in operation is a deadband around the value reported last:
+  M_ME_NB_1 (11 = $0B) SVA QDS. }
+procedure TTestChnIec101Slave.TestThresholdIsADeadband;
+var
+  E: ShortString;
+
+  procedure Update(V: LongInt; Quality: Byte = 0);
+  var
+    O: tIecObject;
+  begin
+    O := IecObject(0);
+    O.Int := V;
+    O.Quality := Quality;
+    AssertEquals(E, res_Ok, IecSlaveUpdate(S, 101, O, True, E));
+  end;
+
+begin
+  Open;
+  AddStd;
+  Send('6F 01 06 00 01 00 65 00 00 0A 00 01');
+  AssertEquals('6F 01 07 00 01 00 65 00 00 0A 00 01', Poll(1));
+  Update(30);
+  AssertEquals('the first change', '0B 01 03 00 01 00 65 00 00 1E 00 00', Poll(1));
+  Update(35);
+  AssertEquals('5 from 30: within 10', '-', Poll(1));
+  Update(39);
+  AssertEquals('9 from 30: within', '-', Poll(1));
+  Update(40);
+  AssertEquals('10 from 30: reported', '0B 01 03 00 01 00 65 00 00 28 00 00', Poll(1));
+  Update(41, Q_Invalid);
+  AssertEquals('a quality change is always reported', '0B 01 03 00 01 00 65 00 00 29 00 80', Poll(1));
+  AssertEquals(2, S.Suppressed);
+  { deactivated (P_AC_NA_1 QPA 2, COT 8): every change again }
+  Send('71 01 08 00 01 00 65 00 00 02');
+  AssertEquals('71 01 09 00 01 00 65 00 00 02', Poll(1));
+  Update(42, Q_Invalid);
+  AssertEquals('0B 01 03 00 01 00 65 00 00 2A 00 80', Poll(1));
+  { activated again for all loaded parameters (QPA 1, IOA 0) }
+  Send('71 01 06 00 01 00 00 00 00 01');
+  AssertEquals('71 01 07 00 01 00 00 00 00 01', Poll(1));
+  Update(43, Q_Invalid);
+  AssertEquals('-', Poll(1));
+end;
+
+{ The command types the other tests leave out, each to a point of its own
+  type, confirmed by mirroring with COT 7. IOA 5002.. = 8A 13 00 ...;
+  RCO 02 higher; NVA 0.5 = 00 40, QOS 0; SVA 100 = 64 00; R32 1.5 =
+  00 00 C0 3F; BSI 12345678 low first; DCO 02 on; CP56 2026-01-02
+  03:04:05.000 = 88 13 04 03 02 01 1A. }
+procedure TTestChnIec101Slave.TestEveryCommandTypeConfirmed;
+
+  procedure Check(const Req: string);
+  begin
+    Send(Req);
+    AssertEquals(Req, Copy(Req, 1, 6) + '07' + Copy(Req, 9, MaxInt), Poll(1));
+  end;
+
+begin
+  Open;
+  Add(C_RC_NA_1, 5002, 0);
+  Add(C_SE_NA_1, 5003, 0);
+  Add(C_SE_NC_1, 5004, 0);
+  Add(C_BO_NA_1, 5005, 0);
+  Add(C_SE_NB_1, 5006, 0);
+  Add(C_DC_NA_1, 5007, 0);
+  Add(C_BO_TA_1, 5008, 0);
+  Add(C_SE_TC_1, 5009, 0);
+  Check('2F 01 06 00 01 00 8A 13 00 02');
+  Check('30 01 06 00 01 00 8B 13 00 00 40 00');
+  Check('32 01 06 00 01 00 8C 13 00 00 00 C0 3F 00');
+  Check('33 01 06 00 01 00 8D 13 00 78 56 34 12');
+  Check('31 01 06 00 01 00 8E 13 00 64 00 00');
+  Check('2E 01 06 00 01 00 8F 13 00 02');
+  Check('40 01 06 00 01 00 90 13 00 78 56 34 12 88 13 04 03 02 01 1A');
+  Check('3F 01 06 00 01 00 91 13 00 00 00 C0 3F 00 88 13 04 03 02 01 1A');
+  AssertEquals(8, Cmds.Count);
+end;
+
 procedure TTestChnIec101Slave.TestResetOfTaggedEventsKeepsConfirmations;
 var
   O: tIecObject;

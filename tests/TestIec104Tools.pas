@@ -88,6 +88,7 @@ begin
     SetLength(Errs, S.Stderr.NumBytesAvailable);
     if Length(Errs) > 0 then
       S.Stderr.Read(Errs[1], Length(Errs));
+    { the interrogation after its end of initialisation is the one asked for }
     AssertTrue(Errs, Pos('1 interrogations, 1 counter interrogations, 0 reads, 1 commands (0 refused), 1 clock syncs', Errs) > 0);
     AssertEquals(Errs, 0, S.ExitCode);
   finally

@@ -51,6 +51,14 @@ done
 if [ -z "$missing" ]; then pass "package: chn.lpk lists every unit of src/ (its part folders and their unix/, win/)"
 else bad "package: chn.lpk misses$missing (make writes it: commit it)"; fi
 
+# a make with nothing to do runs nothing (the README's 0.05 s): after one
+# make, a second one remakes no file, only its phony goals
+make -s BUILD="$BUILD" >/dev/null 2>&1
+remade=$(make --debug=b BUILD="$BUILD" 2>/dev/null | sed -n "s/^ *Must remake target '\(.*\)'\.$/\1/p" |
+         grep -vxE 'all|units|check-fpc' || true)
+if [ -z "$remade" ]; then pass "package: a make with nothing to do remakes nothing"
+else bad "package: a second make remakes: $(echo $remade)"; fi
+
 # the license: stated once in COPYING, the same words in fpmake.pp and chn.lpk
 lic=$(sed -n "s/^ *P\.License := '\(.*\)';/\1/p" fpmake.pp)
 if [ -f COPYING ] && [ -f COPYING.LGPL ] && grep -q "Lesser General Public License" COPYING &&
@@ -135,13 +143,32 @@ else bad "package: compiled units were left in src/"; fi
 
 # way 2: make install as a user (PREFIX=$HOME/.fppkg), then plain fpc
 H="$TMP/home"; mkdir -p "$H"
-if make -s install BUILD="$BUILD" PREFIX="$H/.fppkg" >"$TMP/install.log" 2>&1; then
+if env HOME="$H" make -s install BUILD="$BUILD" PREFIX="$H/.fppkg" >"$TMP/install.log" 2>&1; then
   for p in $progs; do
     d="$TMP/installed-$p"; mkdir -p "$d"; cp "$TMP/readme/$p.pas" "$d/"
     build_run "make install PREFIX=~/.fppkg, plain fpc" "$d" "$p" env HOME="$H" "$FPC" -v0 "$p.pas"
   done
+  if grep -q -- '-Fu' "$TMP/install.log"; then bad "package: make install PREFIX=~/.fppkg asks for a -Fu fpc does not need" "$TMP/install.log"
+  else pass "package: make install PREFIX=~/.fppkg prints no -Fu (fpc.cfg searches it)"; fi
 else
   bad "package: make install PREFIX=\$HOME/.fppkg" "$TMP/install.log"
+fi
+
+# way 2b: another prefix - install prints the -Fu plain fpc needs, and a
+# README program builds with exactly that
+W="$TMP/some/where"
+if env HOME="$H" make -s install BUILD="$BUILD" PREFIX="$W" >"$TMP/winstall.log" 2>&1; then
+  fu=$(sed -n 's/^  fpc \(-Fu[^ ]*\) yourprogram\.pas$/\1/p' "$TMP/winstall.log")
+  if [ "$fu" = "-Fu$W/lib/fpc/$("$FPC" -iV)/units/$("$FPC" -iTP)-$("$FPC" -iTO)/chn" ]; then
+    pass "package: make install PREFIX=/some/where names the -Fu to add"
+    p=$(echo $progs | cut -d' ' -f1)
+    d="$TMP/where-$p"; mkdir -p "$d"; cp "$TMP/readme/$p.pas" "$d/"
+    build_run "make install PREFIX=/some/where, fpc $fu" "$d" "$p" env HOME="$H" "$FPC" -v0 "$fu" "$p.pas"
+  else
+    bad "package: make install PREFIX=/some/where does not say which -Fu to add (got '$fu')" "$TMP/winstall.log"
+  fi
+else
+  bad "package: make install PREFIX=/some/where" "$TMP/winstall.log"
 fi
 
 # way 3: the Lazarus package

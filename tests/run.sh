@@ -3,7 +3,8 @@
 #  1. the FPCUnit suite (runtests, built with -Cr -Co -Ct and heaptrc);
 #  2. a heap check: heaptrc must report 0 unfreed blocks;
 #  3. the type rule of docs/LAYERS.md over the library's interfaces
-#     (tests/apicheck.pl; selected by T=api too);
+#     (tests/apicheck.pl; selected by T=api too), and their comments in
+#     the form the API reference needs (tests/doccheck.pl);
 #  4. legacy programs in tests/legacy compiled in -Mtp -Mfpc -Mobjfpc
 #     -Mdelphi and run (each asserts record sizes and offsets itself); a
 #     program with a NAME.peer file runs against that peer on a socat
@@ -90,6 +91,14 @@ if [ -z "$FILTER" ] || [[ "api" == *"${FILTER,,}"* ]]; then
     fi
   else
     fail "api: perl is missing (it is part of every Debian system)"
+  fi
+  # the API reference (make doc, pasdoc) gives every description to the
+  # declaration it was written for: a comment after a declaration is a
+  # back comment {< ... } (tests/doccheck.pl)
+  if perl tests/doccheck.pl src/*/*.pas src/*/*/*.pas; then
+    pass "api: every comment after a declaration is a pasdoc back comment ({< ...})"
+  else
+    fail "api: comments the API reference would give to the next declaration (above)"
   fi
 fi
 

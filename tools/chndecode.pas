@@ -11,6 +11,7 @@
                 and named on standard error)
                 --ft12 [--adr=0..2] [--len=N] [--cot-size=1|2] [--ca-size=1|2] [--ioa-size=1..3]
                 --ics
+                --iec104 [--cot-size=1|2] [--ca-size=1|2] [--ioa-size=1..3]
       options   --lines=A-B   only chunks whose header is on lines A..B
                               (pcap: records A..B)
       output    --to-pcap=OUT [--date=YYYY-MM-DD]  the chunks as a pcap file
@@ -145,7 +146,7 @@ var
   Damaged: Boolean;
 begin
   CliInit(Cli, 'chndecode', '[OPTION]... FILE',
-    'Print each frame of a capture decoded: DF1, FT 1.2 or ICS. FILE is a RACOM ' +
+    'Print each frame of a capture decoded: DF1, FT 1.2, ICS or IEC 104. FILE is a RACOM ' +
     'text capture or NAM=TRC log (--capture, the default), a pcap file of link type ' +
     '250 (RTAC serial), hex text or a binary stream; - reads standard input. DF1 ' +
     'without --crc or --bcc: the check is found from the frames and named on ' +
@@ -166,6 +167,7 @@ begin
   CliOption(Cli, 'ca-size', #0, '1|2', 'FT 1.2 ASDU: common address octets (default 2)');
   CliOption(Cli, 'ioa-size', #0, '1..3', 'FT 1.2 ASDU: information object address octets (default 3)');
   CliOption(Cli, 'ics', #0, '', 'DACS ICSlink');
+  CliOption(Cli, 'iec104', #0, '', 'IEC 60870-5-104 (APCI; the ASDU of each I frame with the sizes above)');
   CliOption(Cli, 'lines', #0, 'A-B', 'only chunks whose header is on lines A..B (pcap: records); ' +
     'A- for all from A');
   CliOption(Cli, 'to-pcap', #0, 'OUT', 'write the chunks as a pcap file; nothing is decoded');

@@ -28,6 +28,12 @@
                         I/O, D files in BCD) and its commands too (typed
                         read/write 0F 68/67, word range 0F 01/00,
                         read-modify-write 0F 26; unit ChnPlc5Sim)
+      --msg-to=N        half duplex: send a message of its own to station N
+                        every --msg-every=S seconds (default 5), as an SLC's
+                        MSG instruction: a read of --msg-read=ADDR (default
+                        N7:0, one element) that goes out at the next poll;
+                        the master takes it (N = its address) or routes it
+                        to station N, whose answer is logged
       --count=N         exit after answering N commands
       --timeout=S       exit after S seconds without a message
       --quiet           no per-message log
@@ -46,7 +52,7 @@ program df1sim;
 uses
   {$IFDEF UNIX}BaseUnix, ChnPty,{$ENDIF}
   SysUtils, Classes, uString, ChnTypes, ChnVirt, ChnLayers, ChnTcp, ChnDF1,
-  ChnSlc, ChnDF1Link, ChnCli;
+  ChnSlc, ChnDF1Link, ChnPccc, ChnCli;
 
 const
   LingerMs = 1000;   { after the last counted command: time for the master's ACK }
@@ -115,6 +121,13 @@ var
   Chn: pChnVirt;
   Params, Dev, Par, ConfigName, Err, Listen: string;
   UsePty, Half, Crc, Dup, LineGiven: Boolean;
+  MsgTo, MsgEvery, MsgReplies: LongInt;
+  MsgAddr: tPcccAddr;
+  MsgReq: tSendRecord;
+  MsgLen: Word;
+  MsgTns: Word;
+  MsgErr: ShortString;
+  NextMsg: QWord;
   Node, DNo, Bd, Count, TimeoutS, ErrLine: LongInt;
   LastMsg, CountReached, Started: QWord;
 
@@ -145,6 +158,10 @@ begin
     'commands (typed read/write, word range read/write, read-modify-write)');
   CliOption(Cli, 'count', #0, 'N', 'exit after answering N commands');
   CliOption(Cli, 'timeout', #0, 'S', 'exit after S seconds without a message');
+  CliOption(Cli, 'msg-to', #0, 'N', 'half duplex: send a message of its own (a read, as an ' +
+    'SLC MSG instruction) to station N every --msg-every seconds, at the next poll');
+  CliOption(Cli, 'msg-every', #0, 'S', 'seconds between two messages of its own (default 5)');
+  CliOption(Cli, 'msg-read', #0, 'ADDR', 'what the message reads (default N7:0, one element)');
   CliOption(Cli, 'quiet', 'q', '', 'no per-message log');
   CliEpilog(Cli, 'Examples:' + LineEnding +
     '  df1sim --pty --half --bcc' + LineEnding +
@@ -158,6 +175,15 @@ begin
   Half := CliHas(Cli, 'half') and not CliHas(Cli, 'full');
   Crc := not CliHas(Cli, 'bcc') or CliHas(Cli, 'crc');
   Quiet := CliHas(Cli, 'quiet');
+  MsgTo := CliNum(Cli, 'msg-to', 0, 254, -1);
+  MsgEvery := CliNum(Cli, 'msg-every', 1, 86400, 5);
+  if (MsgTo >= 0) and not CliHas(Cli, 'half') then
+    CliUsageError(Cli, '--msg-to needs --half (a full-duplex slave never sends on its own)', '--msg-to');
+  MsgErr := '';
+  FillChar(MsgAddr, SizeOf(MsgAddr), 0);
+  MsgLen := 0;
+  if PcccParseAddress(CliValue(Cli, 'msg-read', 'N7:0'), MsgAddr, MsgErr) <> res_Ok then
+    CliUsageError(Cli, MsgErr, '--msg-read ' + CliValue(Cli, 'msg-read', 'N7:0'));
   Dup := CliChoice(Cli, 'dup', 'OFF|ON', 1) = 1;
   Dev := CliValue(Cli, 'dev', '');
   Listen := CliValue(Cli, 'listen', '');
@@ -233,6 +259,9 @@ begin
 
   SlcStationInit(Station, Chn, @Table);
   Station.Log := @LogLine;
+  MsgTns := Random(65536);
+  MsgReplies := 0;
+  NextMsg := ChMsTick + QWord(MsgEvery) * 1000;
   LastMsg := ChMsTick;
   Started := LastMsg;
   CountReached := 0;
@@ -240,6 +269,21 @@ begin
   begin
     { S:4, the free-running clock, as of now for the command about to be answered }
     SlcClock(Table, ChMsTick - Started);
+    if (MsgTo >= 0) and (ChMsTick >= NextMsg) then
+    begin
+      NextMsg := ChMsTick + QWord(MsgEvery) * 1000;
+      Inc(MsgTns);
+      if (PcccBuildRead(MsgAddr, PcccElemSize(MsgAddr.FileType), MsgTns, MsgReq, MsgLen) = res_Ok) and
+        (DF1StationQueue(Station, MsgTo, MsgReq, MsgLen) = res_Ok) then
+        LogLine(Format('df1sim: MSG to %d: read %s, TNS=%d (at the next poll)',
+          [MsgTo, PcccAddressText(MsgAddr), MsgTns]));
+    end;
+    if Station.OwnReplies > MsgReplies then
+    begin
+      MsgReplies := Station.OwnReplies;
+      LogLine(Format('df1sim: MSG reply from %d: %s', [Station.LastReplySrc,
+        DF1Describe(Station.LastReply, Station.LastReplyLen)]));
+    end;
     if DF1StationStep(Station) then
       LastMsg := ChMsTick
     else if Chn^.ChResult <> res_Ok then

@@ -49,16 +49,16 @@ type
 
   pChnProto = ^tChnProto;
   tChnProto = object(tChnVirt)
-    CH_RTick  : Boolean;     { inside ChReceiveTick (debugging aid) }
-    CH_SBuff  : Pointer;     { send buffer: wire bytes of the last ChSend }
-    CH_MSBuff : Word;        { its size (LSB=) }
-    CH_SLen   : Word;        { wire bytes of the last frame sent }
-    CH_LRMess : Word;        { Len of the last received message (0: broken) }
-    CH_RErr   : tChResult;   { the frame waiting for ChReceive: res_Ok when
+    CH_RTick  : Boolean;     {< inside ChReceiveTick (debugging aid) }
+    CH_SBuff  : Pointer;     {< send buffer: wire bytes of the last ChSend }
+    CH_MSBuff : Word;        {< its size (LSB=) }
+    CH_SLen   : Word;        {< wire bytes of the last frame sent }
+    CH_LRMess : Word;        {< Len of the last received message (0: broken) }
+    CH_RErr   : tChResult;   {< the frame waiting for ChReceive: res_Ok when
                                good, else why it is broken }
-    CH_Held   : Boolean;     { counted in ChnWaitHeld now }
-    CH_LsbMin, CH_LsbMax: LongInt;   { LSB= range of this layer }
-    CH_LsbDefault: Word;     { send buffer allocated when LSB= gave none }
+    CH_Held   : Boolean;     {< counted in ChnWaitHeld now }
+    CH_LsbMin, CH_LsbMax: LongInt;   {< LSB= range of this layer }
+    CH_LsbDefault: Word;     {< send buffer allocated when LSB= gave none }
 
     constructor Init;
     destructor  Done; virtual;
@@ -80,7 +80,7 @@ type
       (LsbMin = 0), else only once a buffer is there }
     function  ChLsbText: ShortString;
 
-    { --- the codec: every protocol layer overrides these --- }
+    {- --- the codec: every protocol layer overrides these --- }
     { Start hunting for a frame afresh (connect, flush, disconnect, close). }
     procedure ChRxReset; virtual;
     { Feed one received byte. True when a frame is complete: a good one
@@ -95,7 +95,7 @@ type
       wire bytes. Any other result sends nothing. }
     function  ChEncode(Buff: Pointer; Len: Word; var N: Word): tChResult; virtual;
 
-    { --- optional hooks (the base does nothing) --- }
+    {- --- optional hooks (the base does nothing) --- }
     { before the bytes of one receive tick }
     procedure ChRxBegin; virtual;
     { after them; CH_RCtrl is CHS_ReceiveReady or CHS_Receiving (a layer
@@ -219,7 +219,7 @@ begin
   ChHeldUpdate;
 end;
 
-{ ----------------------------------------------------------------- sending }
+{- ----------------------------------------------------------------- sending }
 
 procedure tChnProto.ChSend(Buff: Pointer; Len: Word);
 var
@@ -248,7 +248,7 @@ begin
     ChSent(Buff);
 end;
 
-{ --------------------------------------------------------------- receiving }
+{- --------------------------------------------------------------- receiving }
 
 procedure tChnProto.ChReceiveTick;
 var
@@ -316,7 +316,7 @@ begin
   ChHeldUpdate;
 end;
 
-{ ------------------------------------------------ codec and hook defaults }
+{- ------------------------------------------------ codec and hook defaults }
 
 procedure tChnProto.ChRxReset;
 begin

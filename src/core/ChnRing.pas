@@ -12,12 +12,12 @@ interface
 
 type
   tByteRing = record
-    Buf  : PByte;     { Cap bytes; nil until RingAlloc }
+    Buf  : PByte;     {< Cap bytes; nil until RingAlloc }
     Cap  : LongInt;
-    Head : LongInt;   { index of the oldest byte }
-    Count: LongInt;   { bytes held }
-    Report: Boolean;  { tell ChnWaitHeld while Count > 0 }
-    Held : Boolean;   { the flag ChnWaitHeld keeps for this ring }
+    Head : LongInt;   {< index of the oldest byte }
+    Count: LongInt;   {< bytes held }
+    Report: Boolean;  {< tell ChnWaitHeld while Count > 0 }
+    Held : Boolean;   {< the flag ChnWaitHeld keeps for this ring }
   end;
 
 { (Re)allocate for Cap bytes and empty the ring; ReportHeld as above. }

@@ -14,12 +14,12 @@ unit ChnTypes;
 interface
 
 type
-  tParamStr   = string[255];  { a whole parameter string }
-  tWordString = string[255];  { one KEY=VALUE token (device paths can be long) }
-  tCmd        = Word;         { what ChSetOneParam is asked to do, see cmd_* }
-  tNode       = Word;         { station address (FT 1.2 allows 2 octets) }
-  tChResult   = Word;         { result code, see res_* }
-  tChState    = Word;         { state code, see CHS_* }
+  tParamStr   = string[255];  {< a whole parameter string }
+  tWordString = string[255];  {< one KEY=VALUE token (device paths can be long) }
+  tCmd        = Word;         {< what ChSetOneParam is asked to do, see cmd_* }
+  tNode       = Word;         {< station address (FT 1.2 allows 2 octets) }
+  tChResult   = Word;         {< result code, see res_* }
+  tChState    = Word;         {< state code, see CHS_* }
 
 const
   { tCmd: ChSetParam validates the whole string first (cmd_Check, no side
@@ -37,54 +37,54 @@ const
   CHS_Open         = 1;
   CHS_Connect      = 2;
   CHS_DisConnect   = 3;
-  { Transmitter: ChSendReady }
-  CHS_SendReady    = 4;    { transmitter idle, ChSend may be called }
-  CHS_Sending      = 5;    { a message is still being transmitted }
-  { Receiver: ChReceiveReady / CH_RCtrl }
-  CHS_ReceiveReady = 6;    { a whole message is waiting for ChReceive }
-  CHS_Receiving    = 7;    { receiver active, no whole message yet }
-  CHS_RecInactive  = 8;    { receiver off (not connected) }
-  CHS_Opening      = 9;    { open in progress }
+  {- Transmitter: ChSendReady }
+  CHS_SendReady    = 4;    {< transmitter idle, ChSend may be called }
+  CHS_Sending      = 5;    {< a message is still being transmitted }
+  {- Receiver: ChReceiveReady / CH_RCtrl }
+  CHS_ReceiveReady = 6;    {< a whole message is waiting for ChReceive }
+  CHS_Receiving    = 7;    {< receiver active, no whole message yet }
+  CHS_RecInactive  = 8;    {< receiver off (not connected) }
+  CHS_Opening      = 9;    {< open in progress }
   { Protocol units may define private receiver states from here upward;
     ChReceiveReady maps them to CHS_Receiving for the caller. }
   CHS_ProtoBase    = $20;
 
   { General results }
   res_Ok           = 0;
-  res_BadParam     = 1;    { malformed token or value out of range }
-  res_UnknownParam = 2;    { key not known to this layer }
-  res_DupParam     = 3;    { the same key twice for one layer }
-  res_UnknownLayer = 4;    { NAM= names no registered layer }
-  res_WrongState   = 5;    { call not allowed in the current state }
-  res_CannotOpen   = 6;    { device cannot be opened (missing, in use) }
-  res_NoPermission = 7;    { device exists but access is denied }
-  res_BadSetting   = 8;    { the device refuses a setting (baud rate ...) }
-  res_IOError      = 9;    { read/write failed }
-  res_DeviceLost   = 10;   { the device went away (USB adapter pulled) }
-  res_NoRecBuff    = 11;   { no receive buffer given (ChReceiveBuffer) }
-  res_SmallRecBuff = 12;   { receive buffer too small for the message }
-  res_Busy         = 13;   { ChSend while the transmitter is busy }
-  res_TooLong      = 14;   { message longer than allowed }
-  res_Overrun      = 15;   { receive buffer overrun: bytes were lost }
-  res_NoLowLayer   = 16;   { a protocol layer has no layer below it }
-  res_BadLen       = 17;   { Len passed to ChSend is impossible }
-  res_BadMessage   = 18;   { record content cannot be sent }
-  res_NoMessage    = 19;   { ChReceive with no message waiting }
-  res_Timeout      = 20;   { no answer in time (helpers, tools) }
-  res_WrongLayer   = 21;   { a helper got a channel of another layer type }
-  res_HostUnknown  = 22;   { network: host name not resolved }
-  res_Refused      = 23;   { network: connection refused }
-  res_Reconnecting = 24;   { network: connection lost, reconnecting by itself }
-  res_ParamTooLong = 25;   { a parameter string longer than tParamStr: refused, not cut }
-  res_BadStream    = 26;   { network: the peer broke the Telnet protocol }
-  res_LastGeneral  = res_BadStream;   { the highest general code in use }
-  res_Proto        = $20;  { first code a protocol unit may use }
+  res_BadParam     = 1;    {< malformed token or value out of range }
+  res_UnknownParam = 2;    {< key not known to this layer }
+  res_DupParam     = 3;    {< the same key twice for one layer }
+  res_UnknownLayer = 4;    {< NAM= names no registered layer }
+  res_WrongState   = 5;    {< call not allowed in the current state }
+  res_CannotOpen   = 6;    {< device cannot be opened (missing, in use) }
+  res_NoPermission = 7;    {< device exists but access is denied }
+  res_BadSetting   = 8;    {< the device refuses a setting (baud rate ...) }
+  res_IOError      = 9;    {< read/write failed }
+  res_DeviceLost   = 10;   {< the device went away (USB adapter pulled) }
+  res_NoRecBuff    = 11;   {< no receive buffer given (ChReceiveBuffer) }
+  res_SmallRecBuff = 12;   {< receive buffer too small for the message }
+  res_Busy         = 13;   {< ChSend while the transmitter is busy }
+  res_TooLong      = 14;   {< message longer than allowed }
+  res_Overrun      = 15;   {< receive buffer overrun: bytes were lost }
+  res_NoLowLayer   = 16;   {< a protocol layer has no layer below it }
+  res_BadLen       = 17;   {< Len passed to ChSend is impossible }
+  res_BadMessage   = 18;   {< record content cannot be sent }
+  res_NoMessage    = 19;   {< ChReceive with no message waiting }
+  res_Timeout      = 20;   {< no answer in time (helpers, tools) }
+  res_WrongLayer   = 21;   {< a helper got a channel of another layer type }
+  res_HostUnknown  = 22;   {< network: host name not resolved }
+  res_Refused      = 23;   {< network: connection refused }
+  res_Reconnecting = 24;   {< network: connection lost, reconnecting by itself }
+  res_ParamTooLong = 25;   {< a parameter string longer than tParamStr: refused, not cut }
+  res_BadStream    = 26;   {< network: the peer broke the Telnet protocol }
+  res_LastGeneral  = res_BadStream;   {< the highest general code in use }
+  res_Proto        = $20;  {< first code a protocol unit may use }
 
 type
-  tBcc8  = Byte;   { DF1 block check: two's complement of the byte sum }
-  tCrc16 = Word;   { DF1 CRC-16: poly $A001 reflected, init 0 }
-  tSum8  = Byte;   { FT 1.2: arithmetic byte sum modulo 256 }
-  tXor8  = Byte;   { ICS: XOR of bytes }
+  tBcc8  = Byte;   {< DF1 block check: two's complement of the byte sum }
+  tCrc16 = Word;   {< DF1 CRC-16: poly $A001 reflected, init 0 }
+  tSum8  = Byte;   {< FT 1.2: arithmetic byte sum modulo 256 }
+  tXor8  = Byte;   {< ICS: XOR of bytes }
 
 { Readable English text for a result code. Codes from res_Proto upward are
   per protocol and the same value means different things in different
@@ -103,8 +103,8 @@ procedure ChRegisterResultText(const Layer: ShortString; R: tChResult; const Tex
 { Checksums. The *Add functions fold one byte into a running value that
   starts at 0; the *Block functions do a whole buffer. }
 function Bcc8Add(Sum: tBcc8; B: Byte): tBcc8; inline;
-function Bcc8Final(Sum: tBcc8): tBcc8; inline;       { value sent on the line }
-function Bcc8Block(const Buf; Len: Word): tBcc8;      { final value }
+function Bcc8Final(Sum: tBcc8): tBcc8; inline;       {< value sent on the line }
+function Bcc8Block(const Buf; Len: Word): tBcc8;      {< final value }
 function Crc16Add(Crc: tCrc16; B: Byte): tCrc16; inline;
 function Crc16Block(const Buf; Len: Word; Crc: tCrc16): tCrc16;
 function Sum8Add(Sum: tSum8; B: Byte): tSum8; inline;

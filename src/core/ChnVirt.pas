@@ -84,7 +84,7 @@ const
   res_Proto        = ChnTypes.res_Proto;
 
 const
-  MaxLowChunk = 256;   { bytes a protocol layer pulls from below at once }
+  MaxLowChunk = 256;   {< bytes a protocol layer pulls from below at once }
   { bytes one ChReceiveTick of a protocol layer may feed its automaton, so
     a line babbling bytes that never make a frame cannot stall a poll }
   MaxBytesPerTick = 4096;
@@ -93,10 +93,10 @@ const
 type
   { One token of a parameter string, split once by ParamSplit. }
   tParamToken = record
-    Text : tWordString;   { KEY=VALUE as given }
-    Key  : string[31];    { upper-cased KEY ('' when there is no '=') }
-    Ok   : Boolean;       { of the form KEY=VALUE, VALUE not empty, one '=' }
-    Start: LongInt;       { where it begins in the string }
+    Text : tWordString;   {< KEY=VALUE as given }
+    Key  : string[31];    {< upper-cased KEY ('' when there is no '=') }
+    Ok   : Boolean;       {< of the form KEY=VALUE, VALUE not empty, one '=' }
+    Start: LongInt;       {< where it begins in the string }
   end;
   { A parameter string as tokens; while ChSetParam checks a layer's tokens,
     Items[OwnFirst .. OwnEnd - 1] are that layer's own (OwnEnd: the NAM=
@@ -110,23 +110,23 @@ type
 
   pChnVirt = ^tChnVirt;
   tChnVirt = object
-    CH_Type    : string[15];   { layer type, the registry name ('DF1') }
-    CH_Name    : string[15];   { instance name, CH_Type unless changed }
-    CH_NumName : Word;         { ChNumName(CH_Type) }
-    CH_Node    : tNode;        { own station address }
-    CH_DNode   : tNode;        { destination station address }
-    CH_RSNode  : tNode;        { source address of the last received message }
-    CH_RDNode  : tNode;        { destination address of the last received message }
-    CH_RCtrl   : tChState;     { receiver automaton state }
-    CH_State   : tChState;     { life cycle: CHS_Close/Open/Connect/DisConnect }
-    CH_Result  : tChResult;    { result of the last life-cycle call }
-    CH_SResult : tChResult;    { result of the last send }
-    CH_RResult : tChResult;    { result of the last receive step }
-    CH_Low     : pChnVirt;     { the layer below; nil in a physical layer }
-    CH_RBuff   : Pointer;      { the application's receive buffer }
-    CH_RSize   : Word;         { and its size }
-    CH_ParamErr: tWordString;  { token that made the last ChSetParam fail }
-    IData      : LongInt;      { free for the application }
+    CH_Type    : string[15];   {< layer type, the registry name ('DF1') }
+    CH_Name    : string[15];   {< instance name, CH_Type unless changed }
+    CH_NumName : Word;         {< ChNumName(CH_Type) }
+    CH_Node    : tNode;        {< own station address }
+    CH_DNode   : tNode;        {< destination station address }
+    CH_RSNode  : tNode;        {< source address of the last received message }
+    CH_RDNode  : tNode;        {< destination address of the last received message }
+    CH_RCtrl   : tChState;     {< receiver automaton state }
+    CH_State   : tChState;     {< life cycle: CHS_Close/Open/Connect/DisConnect }
+    CH_Result  : tChResult;    {< result of the last life-cycle call }
+    CH_SResult : tChResult;    {< result of the last send }
+    CH_RResult : tChResult;    {< result of the last receive step }
+    CH_Low     : pChnVirt;     {< the layer below; nil in a physical layer }
+    CH_RBuff   : Pointer;      {< the application's receive buffer }
+    CH_RSize   : Word;         {< and its size }
+    CH_ParamErr: tWordString;  {< token that made the last ChSetParam fail }
+    IData      : LongInt;      {< free for the application }
     { bytes pulled from the lower layer and not yet consumed }
     CH_LowBuf  : array[0..MaxLowChunk - 1] of Byte;
     CH_LowLen, CH_LowPos: Word;
@@ -170,7 +170,7 @@ type
     procedure ChDestNode(DNode: tNode); virtual;
     procedure ChGetNode(var SNode, DNode: tNode); virtual;
 
-    { --- additions of the port (not in the SofCon manuals) --- }
+    {- --- additions of the port (not in the SofCon manuals) --- }
     { The receive buffer ChReceiveBuffer gave last (nil, 0: none) and the
       destination ChDestNode set: what a helper that borrows the channel
       for an exchange gives back afterwards, through ChReceiveBuffer and
@@ -301,7 +301,9 @@ function ChMsTick: QWord;
 { Microseconds from a monotonic clock, for measuring what a millisecond
   cannot resolve (a byte's time at 115200 baud is 87 us): differences
   only, its zero is not ChMsTick's. Linux CLOCK_MONOTONIC, Windows
-  QueryPerformanceCounter; other systems ChMsTick * 1000. }
+  QueryPerformanceCounter, other systems ChMsTick * 1000: ChnWait's
+  ChnClockUs, the shared wait's time base, under the name beside
+  ChMsTick. }
 function ChUsTick: QWord;
 
 { ChSend once the transmitter is free, waiting for it at most TimeoutMs
@@ -364,7 +366,7 @@ var
 implementation
 
 uses
-  {$IFDEF LINUX}Linux, UnixType,{$ENDIF} {$IFDEF WINDOWS}Windows,{$ENDIF} SysUtils, ChnWait;
+  SysUtils, ChnWait;
 
 var
   { what the last failing ParamNum/ParamChoice allows, for ChErrorText
@@ -408,34 +410,10 @@ begin
   Result := GetTickCount64;
 end;
 
-{$IFDEF WINDOWS}
-var
-  UsFreq: Int64 = 0;     { QueryPerformanceFrequency, counts per second }
-{$ENDIF}
-
 function ChUsTick: QWord;
-{$IFDEF LINUX}
-var
-  T: TTimeSpec;
 begin
-  clock_gettime(CLOCK_MONOTONIC, @T);
-  Result := QWord(T.tv_sec) * 1000000 + QWord(T.tv_nsec) div 1000;
+  Result := ChnClockUs;          { the program-wide wait's time base }
 end;
-{$ELSE}{$IFDEF WINDOWS}
-var
-  C: Int64;
-begin
-  if UsFreq = 0 then
-    QueryPerformanceFrequency(UsFreq);      { fixed at boot, never 0 since XP }
-  QueryPerformanceCounter(C);
-  { seconds and the rest apart: C * 1000000 would overflow after days }
-  Result := QWord(C div UsFreq) * 1000000 + QWord(C mod UsFreq) * 1000000 div QWord(UsFreq);
-end;
-{$ELSE}
-begin
-  Result := GetTickCount64 * 1000;
-end;
-{$ENDIF}{$ENDIF}
 
 function ChSendWhenFree(Chn: pChnVirt; Buff: Pointer; Len: Word;
   TimeoutMs: LongInt): tChResult;
@@ -679,7 +657,7 @@ begin
   Result := ' ' + Key + '=' + ChoiceWord(Choices, Ord(Flag));
 end;
 
-{ ---------------------------------------------------------------- tChnVirt }
+{- ---------------------------------------------------------------- tChnVirt }
 
 constructor tChnVirt.Init;
 begin
@@ -1027,6 +1005,7 @@ begin
   CH_Result := res_Ok;
   CH_SResult := res_Ok;
   CH_RResult := res_Ok;
+  CH_ErrWhy := '';              { nothing left of an earlier failure }
 end;
 
 procedure tChnVirt.ChClose;
@@ -1281,7 +1260,7 @@ begin
   CH_LowPos := 0;
 end;
 
-{ -------------------------------------------------------------- tChnMiddle }
+{- -------------------------------------------------------------- tChnMiddle }
 
 procedure tChnMiddle.ChReceiveTick;
 begin
@@ -1314,7 +1293,7 @@ begin
     Result := inherited ChResultStr(R);
 end;
 
-{ ------------------------------------------------------------- tAddChnVirt }
+{- ------------------------------------------------------------- tAddChnVirt }
 
 constructor tAddChnVirt.Init(const AName: ShortString);
 begin
@@ -1330,7 +1309,7 @@ begin
   Result := nil;
 end;
 
-{ ---------------------------------------------------------- tChnCollection }
+{- ---------------------------------------------------------- tChnCollection }
 
 constructor tChnCollection.Init;
 begin

@@ -58,16 +58,16 @@ type
   tChnWaitSource = record
     Used   : Boolean;
     Kind   : tChnWaitKind;
-    Os     : PtrInt;          { descriptor or handle }
-    Armed  : Boolean;         { in the OS wait now }
-    Fired  : Boolean;         { ended a wait; its owner has not looked since }
-    Hungry : Boolean;         { the owner can take input now }
-    WantOut: Boolean;         { the owner waits for room to send }
+    Os     : PtrInt;          {< descriptor or handle }
+    Armed  : Boolean;         {< in the OS wait now }
+    Fired  : Boolean;         {< ended a wait; its owner has not looked since }
+    Hungry : Boolean;         {< the owner can take input now }
+    WantOut: Boolean;         {< the owner waits for room to send }
     Rearm  : tChnWaitRearm;
     RearmData: Pointer;
-    Due    : QWord;           { ChnClockUs at which it fires by itself; 0: never }
-    Index  : LongInt;         { slot in the set }
-    Gen    : LongWord;        { bumped on every reuse of the slot }
+    Due    : QWord;           {< ChnClockUs at which it fires by itself; 0: never }
+    Index  : LongInt;         {< slot in the set }
+    Gen    : LongWord;        {< bumped on every reuse of the slot }
   end;
 
 { Join the set: a physical layer calls this when it opens. Os is the
@@ -167,7 +167,7 @@ var
 {$IFDEF UNIX}{$I unix/chnwait.inc}{$ENDIF}
 {$IFDEF WINDOWS}{$I win/chnwait.inc}{$ENDIF}
 
-{ ------------------------------------------------------------------ set }
+{- ------------------------------------------------------------------ set }
 
 function ChnClockUs: QWord;
 {$IFDEF WINDOWS}

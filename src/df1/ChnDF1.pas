@@ -45,17 +45,17 @@ uses
   ChnTypes, ChnVirt, ChnProto, ChnDF1Codec;
 
 const
-  cVerNo = $0100;                 { BCD: version 1.00 of the port }
+  cVerNo = $0100;                 {< BCD: version 1.00 of the port }
   cVer   = '01.00,21.11.2026';
   cName  = 'DF1';
 
   MaxDataLen = ChnDF1Codec.MaxDataLen;
-  MaxTBuff   = 65500;             { largest send buffer LSB= may ask for }
+  MaxTBuff   = 65500;             {< largest send buffer LSB= may ask for }
 
   res_ErrFrame    = ChnDF1Codec.res_ErrFrame;
   res_ErrSum      = ChnDF1Codec.res_ErrSum;
   res_ErrLen      = ChnDF1Codec.res_ErrLen;
-  res_ErrMessFrame = res_ErrFrame;   { name used by manual v1.10 }
+  res_ErrMessFrame = res_ErrFrame;   {< name used by manual v1.10 }
 
   { control characters, manual 4.1 (NAK: SPEC 6) }
   SOH    = ChnDF1Codec.SOH;
@@ -147,7 +147,7 @@ const
   CF_RestartRequest    = $0F0A;
   CF_ReturnEditSource  = $0F12;
 
-  DF1DefaultSBuff = DF1MaxWire;   { send buffer when LSB= is not given }
+  DF1DefaultSBuff = DF1MaxWire;   {< send buffer when LSB= is not given }
 
 type
   { the last command seen from one source station (DUP=ON) }
@@ -172,28 +172,28 @@ type
 
   pChnDF1 = ^tChnDF1;
   tChnDF1 = object(tChnProto)
-    CH_FlCrc   : Boolean;     { CRC-16, else BCC }
-    CH_RSumBcc : tBcc8;       { receiver's running BCC sum }
-    CH_SSumBcc : tBcc8;       { BCC of the last frame sent }
-    CH_RSumCrc : tCrc16;      { receiver's running CRC }
-    CH_SSumCrc : tCrc16;      { CRC of the last frame sent }
+    CH_FlCrc   : Boolean;     {< CRC-16, else BCC }
+    CH_RSumBcc : tBcc8;       {< receiver's running BCC sum }
+    CH_SSumBcc : tBcc8;       {< BCC of the last frame sent }
+    CH_RSumCrc : tCrc16;      {< receiver's running CRC }
+    CH_SSumCrc : tCrc16;      {< CRC of the last frame sent }
     CH_Master  : Boolean;
     CH_FullDup : Boolean;
-    CH_DLE     : Boolean;     { receiver has just seen a DLE }
-    CH_NakByte : Byte;        { NAK= : byte sent as NAK ($15 or $0F) }
-    CH_Dec     : tDF1Decoder; { receive automaton }
-    CH_Event   : tDF1Event;   { what is waiting while CH_RCtrl = CHS_ReceiveReady }
-    CH_DupDetect: Boolean;    { DUP=ON }
-    CH_LastCmds: pDF1LastCmds; { per SRC, while DUP=ON (allocated on demand) }
-    CH_DupCount: LongInt;     { repeated commands ACKed and not delivered }
-    CH_DupSrc  : Byte;        { SRC and TNS of the last of them }
+    CH_DLE     : Boolean;     {< receiver has just seen a DLE }
+    CH_NakByte : Byte;        {< NAK= : byte sent as NAK ($15 or $0F) }
+    CH_Dec     : tDF1Decoder; {< receive automaton }
+    CH_Event   : tDF1Event;   {< what is waiting while CH_RCtrl = CHS_ReceiveReady }
+    CH_DupDetect: Boolean;    {< DUP=ON }
+    CH_LastCmds: pDF1LastCmds; {< per SRC, while DUP=ON (allocated on demand) }
+    CH_DupCount: LongInt;     {< repeated commands ACKed and not delivered }
+    CH_DupSrc  : Byte;        {< SRC and TNS of the last of them }
     CH_DupTns  : Word;
-    CH_DupAck  : Boolean;     { its ACK still waits for the layer below }
-    CH_Sent    : tDF1SentLog; { last commands sent, to restore a reply's CF }
+    CH_DupAck  : Boolean;     {< its ACK still waits for the layer below }
+    CH_Sent    : tDF1SentLog; {< last commands sent, to restore a reply's CF }
     { full duplex: replies addressed to another station (DST <> NOD, or
       from a station this layer sent no command to), dropped }
     CH_ForeignCount: LongInt;
-    CH_ForeignSrc, CH_ForeignDst: Byte;   { SRC and DST of the last of them }
+    CH_ForeignSrc, CH_ForeignDst: Byte;   {< SRC and DST of the last of them }
 
     constructor Init;
     constructor ChInitParam(const S: tParamStr);

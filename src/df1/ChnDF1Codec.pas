@@ -51,16 +51,16 @@ const
   ENQ    = $05;
   ACK    = $06;
   NAK    = $15;
-  NAKAlt = $0F;   { the manual's value; accepted on receive, sent with NAK=0F }
+  NAKAlt = $0F;   {< the manual's value; accepted on receive, sent with NAK=0F }
   DLE    = $10;
 
-  MaxDataLen = 244;   { Data bytes of one message }
-  cSizeHead  = 8;     { MessType..Tns: Len = cSizeHead + data bytes }
+  MaxDataLen = 244;   {< Data bytes of one message }
+  cSizeHead  = 8;     {< MessType..Tns: Len = cSizeHead + data bytes }
 
-  { protocol results (manual section 4) }
-  res_ErrFrame = $20;   { malformed frame }
-  res_ErrSum   = $21;   { BCC/CRC mismatch }
-  res_ErrLen   = $22;   { too many data bytes, or larger than the receive buffer }
+  {- protocol results (manual section 4) }
+  res_ErrFrame = $20;   {< malformed frame }
+  res_ErrSum   = $21;   {< BCC/CRC mismatch }
+  res_ErrLen   = $22;   {< too many data bytes, or larger than the receive buffer }
 
   { unstuffed frame body DST SRC CMD STS TNS TNS [FNC] DATA }
   DF1MaxBody = 6 + 1 + MaxDataLen;
@@ -82,8 +82,9 @@ type
         ();
       tpDataMess:
         (Dummy1_1: Byte;
-         case CF: Word of
-           $0F18:   { CF_WriteBytesPhysical, as printed in the manual }
+         case CF: Word of   {< command and function; the variant is the manual's
+                              (CF_WriteBytesPhysical = $0F18) }
+           $0F18:
              (Sts     : Byte;
               Dummy1_2: Byte;
               Tns     : Word;
@@ -94,53 +95,53 @@ type
 
   { What the codec needs to know about the station. }
   tDF1Config = record
-    FullDup: Boolean;   { False: half duplex }
-    Master : Boolean;   { half duplex: master sends SOH frames and polls }
-    Crc    : Boolean;   { CRC-16, else BCC }
-    Node   : Byte;      { own address: SRC of sent frames; a half-duplex
+    FullDup: Boolean;   {< False: half duplex }
+    Master : Boolean;   {< half duplex: master sends SOH frames and polls }
+    Crc    : Boolean;   {< CRC-16, else BCC }
+    Node   : Byte;      {< own address: SRC of sent frames; a half-duplex
                           slave accepts only frames and polls with STN = Node }
-    DNode  : Byte;      { DST of sent frames; STN of master frames and polls }
-    NakByte: Byte;      { NAK or NAKAlt }
+    DNode  : Byte;      {< DST of sent frames; STN of master frames and polls }
+    NakByte: Byte;      {< NAK or NAKAlt }
   end;
 
   tDF1Event = (
-    dfNone,      { byte consumed, nothing complete yet }
-    dfMessage,   { Msg/MsgLen hold a whole message }
-    dfError);    { a frame was broken: Err says why; ready for the next }
+    dfNone,      {< byte consumed, nothing complete yet }
+    dfMessage,   {< Msg/MsgLen hold a whole message }
+    dfError);    {< a frame was broken: Err says why; ready for the next }
 
   { Receive automaton. Init with DF1DecoderInit; feed with DF1Feed. After
     dfMessage, Msg/MsgLen/Src/Dst are valid until the next DF1Feed. }
   tDF1Decoder = record
     Cfg     : tDF1Config;
-    State   : Byte;       { ds* below; dsIdle = between frames }
-    Skip    : Boolean;    { after an error: eat the rest of the broken frame quietly }
-    Ignore  : Boolean;    { frame or poll for another station: no event }
-    HdMaster: Boolean;    { current frame began with DLE SOH STN }
+    State   : Byte;       {< ds* below; dsIdle = between frames }
+    Skip    : Boolean;    {< after an error: eat the rest of the broken frame quietly }
+    Ignore  : Boolean;    {< frame or poll for another station: no event }
+    HdMaster: Boolean;    {< current frame began with DLE SOH STN }
     Stn     : Byte;
-    SumLeft : Byte;       { checksum bytes still to read }
-    RxSum   : Word;       { checksum as received }
-    Bcc     : tBcc8;      { running byte sum }
-    Crc     : tCrc16;     { running CRC }
+    SumLeft : Byte;       {< checksum bytes still to read }
+    RxSum   : Word;       {< checksum as received }
+    Bcc     : tBcc8;      {< running byte sum }
+    Crc     : tCrc16;     {< running CRC }
     BodyLen : Word;
     Body    : array[0..DF1MaxBody - 1] of Byte;
-    Msg     : tRecRecord; { the decoded message }
-    MsgLen  : Word;       { its Len (8 + data, or 1/2 for short messages) }
-    Src, Dst: Byte;       { SRC/DST of a data frame; Dst = STN of a poll }
-    Err     : tChResult;  { after dfError }
+    Msg     : tRecRecord; {< the decoded message }
+    MsgLen  : Word;       {< its Len (8 + data, or 1/2 for short messages) }
+    Src, Dst: Byte;       {< SRC/DST of a data frame; Dst = STN of a poll }
+    Err     : tChResult;  {< after dfError }
   end;
 
 const
-  { decoder states (tDF1Decoder.State) }
-  dsIdle       = 0;    { between frames, hunting for DLE }
-  dsIdleDle    = 1;    { DLE seen between frames }
-  dsStn        = 2;    { after DLE SOH: station byte }
-  dsStnDle     = 3;    { STN was DLE: its second DLE }
-  dsSohDle     = 4;    { after STN: DLE of DLE STX }
-  dsSohStx     = 5;    { after STN DLE: STX }
-  dsBody       = 6;    { inside DST..DATA }
-  dsBodyDle    = 7;    { DLE inside the body }
-  dsSum        = 8;    { checksum bytes after DLE ETX }
-  dsPollStn    = 9;    { after DLE ENQ in a half-duplex slave: STN }
+  {- decoder states (tDF1Decoder.State) }
+  dsIdle       = 0;    {< between frames, hunting for DLE }
+  dsIdleDle    = 1;    {< DLE seen between frames }
+  dsStn        = 2;    {< after DLE SOH: station byte }
+  dsStnDle     = 3;    {< STN was DLE: its second DLE }
+  dsSohDle     = 4;    {< after STN: DLE of DLE STX }
+  dsSohStx     = 5;    {< after STN DLE: STX }
+  dsBody       = 6;    {< inside DST..DATA }
+  dsBodyDle    = 7;    {< DLE inside the body }
+  dsSum        = 8;    {< checksum bytes after DLE ETX }
+  dsPollStn    = 9;    {< after DLE ENQ in a half-duplex slave: STN }
   dsPollStnDle = 10;
   dsPollBcc    = 11;
 
@@ -177,13 +178,13 @@ const
 
 type
   tDF1Sent = record
-    Dst: Byte;    { DST the command went to }
-    CF : Word;    { CF as the application gave it }
+    Dst: Byte;    {< DST the command went to }
+    CF : Word;    {< CF as the application gave it }
     Tns: Word;
   end;
   tDF1SentLog = record
-    Count: Byte;                                     { entries in use }
-    Next : Byte;                                     { slot of the next note }
+    Count: Byte;                                     {< entries in use }
+    Next : Byte;                                     {< slot of the next note }
     Items: array[0..DF1SentMemory - 1] of tDF1Sent;
   end;
 
@@ -205,7 +206,7 @@ begin
   Result := (Cmd and $40 = 0) and ((Cmd and $0F) in [$06, $07, $0F]);
 end;
 
-{ ------------------------------------------------------------------ encode }
+{- ------------------------------------------------------------------ encode }
 
 type
   tWire = record
@@ -324,7 +325,7 @@ begin
   Result := res_Ok;
 end;
 
-{ ------------------------------------------------------------------ decode }
+{- ------------------------------------------------------------------ decode }
 
 procedure DF1DecoderReset(var D: tDF1Decoder);
 begin
@@ -694,7 +695,7 @@ begin
   end;
 end;
 
-{ --------------------------------------------------------------- reply CF }
+{- --------------------------------------------------------------- reply CF }
 
 procedure DF1SentInit(var L: tDF1SentLog);
 begin

@@ -36,7 +36,7 @@ uses
   ChnTypes, ChnVirt, ChnDF1, ChnPcccNames;
 
 const
-  DF1LinkTimeoutMs = 1000;   { the RACOM note's link timeout }
+  DF1LinkTimeoutMs = 1000;   {< the RACOM note's link timeout }
   DF1LinkTries     = 3;
   { messages one DF1MasterStep takes at most: all that was received, but a
     peer that never stops (50 ENQs a millisecond) cannot keep the step
@@ -65,7 +65,7 @@ type
     Src  : Byte;
     Tns  : Word;
     Len  : Word;
-    Stamp: LongInt;       { S.Requests when it was kept: the oldest goes }
+    Stamp: LongInt;       {< S.Requests when it was kept: the oldest goes }
     Rep  : tSendRecord;
   end;
 
@@ -77,23 +77,43 @@ type
   tDF1Station = record
     Chn      : pChnVirt;
     Handler  : tDF1Handler;
-    Data     : Pointer;       { given to Handler and OnEvent }
-    OnEvent  : tDF1EventProc; { nil: nothing counted }
+    Data     : Pointer;       {< given to Handler and OnEvent }
+    OnEvent  : tDF1EventProc; {< nil: nothing counted }
     FullDup  : Boolean;
     RMess    : tRecRecord;
-    Reply    : tSendRecord;   { the last reply, kept for a repeated command }
-    ReplyLen : Word;          { 0: no reply yet }
-    HasReply : Boolean;       { a reply not yet ACKed by the master }
-    AwaitAck : Boolean;       { half duplex: the reply just went out }
-    LastLink : tSendRecord;   { last ACK/NAK sent, repeated on ENQ }
-    Requests : LongInt;       { commands answered }
-    Messages : LongInt;       { messages taken, good or broken }
-    Repeats  : LongInt;       { repeated commands answered from the cache }
-    DupSeen  : LongInt;       { the DF1 layer's CH_DupCount already acted on }
+    Reply    : tSendRecord;   {< the last reply, kept for a repeated command }
+    ReplyLen : Word;          {< 0: no reply yet }
+    HasReply : Boolean;       {< a reply not yet ACKed by the master }
+    AwaitAck : Boolean;       {< half duplex: the reply just went out }
+    LastLink : tSendRecord;   {< last ACK/NAK sent, repeated on ENQ }
+    Requests : LongInt;       {< commands answered }
+    Messages : LongInt;       {< messages taken, good or broken }
+    Repeats  : LongInt;       {< repeated commands answered from the cache }
+    DupSeen  : LongInt;       {< the DF1 layer's CH_DupCount already acted on }
     Cache    : array[0..DF1ReplyCacheSize - 1] of tDF1CachedReply;
-    Log      : tDF1LogProc;   { nil: quiet }
-    LogWire  : Boolean;       { lines of sent frames end with the wire bytes }
+    Log      : tDF1LogProc;   {< nil: quiet }
+    LogWire  : Boolean;       {< lines of sent frames end with the wire bytes }
+    ReplyDst : Byte;          {< SRC of the command the reply answers }
+    { a message of the station's own (an SLC's MSG instruction), half
+      duplex: sent at a poll instead of EOT, again until ACKed }
+    Own      : tSendRecord;
+    OwnLen   : Word;
+    OwnDst   : Byte;
+    HasOwn   : Boolean;       {< queued, not yet ACKed }
+    OwnAwait : Boolean;       {< it just went out: the next ACK is its }
+    OwnSent  : LongInt;       {< own messages ACKed }
+    OwnReplies: LongInt;      {< replies to them received }
+    LastReply: tRecRecord;    {< the last of those replies }
+    LastReplyLen: Word;
+    LastReplySrc: Byte;
   end;
+
+{ Queue a message of the station's own to station Dst (half duplex: it
+  goes out at the next poll, instead of EOT, and again at later polls
+  until the master ACKs it; a reply to it is counted in OwnReplies and
+  kept in LastReply). res_Busy while the last one is not yet ACKed. }
+function DF1StationQueue(var S: tDF1Station; Dst: Byte; constref Msg: tSendRecord;
+  Len: Word): tChResult;
 
 { Set S up on Chn (a tChnDF1 stack) with the command handler and its data.
   res_WrongLayer (and a station that reads nothing) when Chn is not DF1. }
@@ -136,17 +156,17 @@ type
     Result   : tChResult;
     Tries    : LongInt;
     Naks     : LongInt;
-    NaksOut  : LongInt;        { broken replies NAKed (full duplex) }
-    Stale    : LongInt;        { replies to other commands, ACKed and ignored }
-    Ignored  : LongInt;        { broken frames and stray symbols while waiting for the ACK }
-    EnqsIn   : LongInt;        { ENQs of the peer, answered with LastAck }
-    LastAck  : Boolean;        { the last ACK/NAK this master sent was an ACK (none: NAK) }
-    Acked    : Boolean;        { the command was ACKed (or answered) }
+    NaksOut  : LongInt;        {< broken replies NAKed (full duplex) }
+    Stale    : LongInt;        {< replies to other commands, ACKed and ignored }
+    Ignored  : LongInt;        {< broken frames and stray symbols while waiting for the ACK }
+    EnqsIn   : LongInt;        {< ENQs of the peer, answered with LastAck }
+    LastAck  : Boolean;        {< the last ACK/NAK this master sent was an ACK (none: NAK) }
+    Acked    : Boolean;        {< the command was ACKed (or answered) }
     EnqSent  : Boolean;
     FullDup  : Boolean;
     TimeoutMs: LongInt;
-    Until_   : QWord;          { end of the current wait }
-    Deadline : QWord;          { end of the wait for the reply }
+    Until_   : QWord;          {< end of the current wait }
+    Deadline : QWord;          {< end of the wait for the reply }
     OldBuf   : Pointer;
     OldSize  : Word;
     Log      : tDF1LogProc;
@@ -297,7 +317,7 @@ begin
   Result := ChSendWhenFree(Chn, @R, Len, DF1LinkTimeoutMs);
 end;
 
-{ ------------------------------------------------------------- station }
+{- ------------------------------------------------------------- station }
 
 function DF1StationInit(var S: tDF1Station; Chn: pChnVirt; Handler: tDF1Handler;
   Data: Pointer): tChResult;
@@ -341,6 +361,17 @@ begin
   end
   else
     Say(S, '-> send failed: ' + S.Chn^.ChResultStr(Res));
+end;
+
+{ A data message to Dst (DST of the frame; ChDestNode, then DNO= again). }
+procedure StationSendTo(var S: tDF1Station; Dst: Byte; constref R: tSendRecord; Len: Word);
+var
+  Was: tNode;
+begin
+  Was := S.Chn^.CH_DNode;
+  S.Chn^.ChDestNode(Dst);
+  StationSend(S, R, Len);
+  S.Chn^.ChDestNode(Was);
 end;
 
 procedure SendLink(var S: tDF1Station; Ack: Boolean);
@@ -451,9 +482,15 @@ begin
           if S.RMess.FlAck then
             S.HasReply := False            { the master has the reply }
           else if S.FullDup then
-            StationSend(S, S.Reply, S.ReplyLen);
-        { half duplex NAK: the reply waits for the next poll }
+            StationSendTo(S, S.ReplyDst, S.Reply, S.ReplyLen);
+        if S.OwnAwait and S.RMess.FlAck then
+        begin
+          S.HasOwn := False;               { the master has our message }
+          Inc(S.OwnSent);
+        end;
+        { half duplex NAK: the reply (or our message) waits for the next poll }
         S.AwaitAck := False;
+        S.OwnAwait := False;
       end;
     tpEnq:
       begin
@@ -463,8 +500,14 @@ begin
     tpPoll:
       if S.HasReply then
       begin
-        StationSend(S, S.Reply, S.ReplyLen);
+        StationSendTo(S, S.ReplyDst, S.Reply, S.ReplyLen);
         S.AwaitAck := True;
+        S.OwnAwait := False;
+      end
+      else if S.HasOwn then
+      begin
+        StationSendTo(S, S.OwnDst, S.Own, S.OwnLen);
+        S.OwnAwait := True;
       end
       else
       begin
@@ -476,6 +519,22 @@ begin
       begin
         Count(S, leFrameIn);
         SendLink(S, True);
+        if S.RMess.CF and MskCF_Reply <> 0 then
+        begin
+          { the answer to a message of our own, not a command }
+          Inc(S.OwnReplies);
+          S.LastReply := S.RMess;
+          S.LastReplyLen := Len;
+          S.LastReplySrc := Byte(S.Chn^.CH_RSNode);
+          Exit;
+        end;
+        { half duplex (a multidrop line): the reply goes to the command's
+          SRC, which is another slave when the master routed it; full
+          duplex keeps DNO= (point to point) }
+        if S.FullDup then
+          S.ReplyDst := Byte(S.Chn^.CH_DNode)
+        else
+          S.ReplyDst := Byte(S.Chn^.CH_RSNode);
         if Assigned(S.Handler) and S.Handler(S.Data, S.RMess, Len, S.Reply, S.ReplyLen) then
         begin
           Inc(S.Requests);
@@ -483,13 +542,28 @@ begin
           S.HasReply := True;
           S.AwaitAck := False;
           if S.FullDup then
-            StationSend(S, S.Reply, S.ReplyLen);
+            StationSendTo(S, S.ReplyDst, S.Reply, S.ReplyLen);
         end;
       end;
   end;
 end;
 
-{ -------------------------------------------------------------- master }
+function DF1StationQueue(var S: tDF1Station; Dst: Byte; constref Msg: tSendRecord;
+  Len: Word): tChResult;
+begin
+  if S.Chn = nil then
+    Exit(res_WrongLayer);
+  if S.HasOwn then
+    Exit(res_Busy);
+  S.Own := Msg;
+  S.OwnLen := Len;
+  S.OwnDst := Dst;
+  S.HasOwn := True;
+  S.OwnAwait := False;
+  Result := res_Ok;
+end;
+
+{- -------------------------------------------------------------- master }
 
 procedure MasterSay(var M: tDF1Master; const Line: AnsiString);
 begin

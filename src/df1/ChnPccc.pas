@@ -30,15 +30,15 @@ uses
   ChnTypes, ChnDF1Codec;
 
 const
-  PcccLayer = 'PCCC';   { ChResultText(R, PcccLayer) }
+  PcccLayer = 'PCCC';   {< ChResultText(R, PcccLayer) }
 
-  res_PcccAddress = res_Proto;       { malformed or impossible address }
-  res_PcccCount   = res_Proto + 1;   { count does not fit (file, array, frame) }
-  res_PcccValue   = res_Proto + 2;   { value out of range for the element }
-  res_PcccReply   = res_Proto + 3;   { reply length or content does not match }
-  res_PcccStatus  = res_Proto + 4;   { the PLC answered with STS <> 0 }
-  res_PcccNak     = res_Proto + 5;   { the command was NAKed on every try }
-  res_PcccUsage   = res_Proto + 6;   { the address holds another kind of value }
+  res_PcccAddress = res_Proto;       {< malformed or impossible address }
+  res_PcccCount   = res_Proto + 1;   {< count does not fit (file, array, frame) }
+  res_PcccValue   = res_Proto + 2;   {< value out of range for the element }
+  res_PcccReply   = res_Proto + 3;   {< reply length or content does not match }
+  res_PcccStatus  = res_Proto + 4;   {< the PLC answered with STS <> 0 }
+  res_PcccNak     = res_Proto + 5;   {< the command was NAKed on every try }
+  res_PcccUsage   = res_Proto + 6;   {< the address holds another kind of value }
 
   { PCCC file type codes (1770-6.5.16, protected typed logical read) }
   pft_Status  = $84;
@@ -53,20 +53,20 @@ const
   pft_String  = $8D;
   pft_Ascii   = $8E;
   pft_Long    = $91;
-  pft_Bcd     = $8F;   { PLC-5 D files (unit ChnPlc5): a word of four BCD digits }
+  pft_Bcd     = $8F;   {< PLC-5 D files (unit ChnPlc5): a word of four BCD digits }
 
-  CF_PcccRead3      = $0FA2;   { = ChnDF1.CF_ProtectRead3Addr }
-  CF_PcccWrite3     = $0FAA;   { = ChnDF1.CF_ProtectWrite3Addr }
+  CF_PcccRead3      = $0FA2;   {< = ChnDF1.CF_ProtectRead3Addr }
+  CF_PcccWrite3     = $0FAA;   {< = ChnDF1.CF_ProtectWrite3Addr }
   CF_PcccMaskWrite3 = $0FAB;
 
-  PcccStringChars = 82;        { characters of an ST element }
-  PcccMaxItems    = 4096;      { items of one read or write }
+  PcccStringChars = 82;        {< characters of an ST element }
+  PcccMaxItems    = 4096;      {< items of one read or write }
 
 type
   { A parsed address. Sub is the word of a timer, counter or control element
     (0 control bits, 1 PRE/LEN, 2 ACC/POS) when HasSub; Bit -1 when none. }
   tPcccAddr = packed record
-    FileType: Byte;      { pft_* }
+    FileType: Byte;      {< pft_* }
     FileNo  : Word;
     Elem    : Word;
     Sub     : Byte;
@@ -84,12 +84,12 @@ type
   tPcccMode = (pmElems, pmSubs, pmBits);
   tPcccPlan = packed record
     Addr     : tPcccAddr;
-    Count    : LongInt;    { items }
+    Count    : LongInt;    {< items }
     Mode     : tPcccMode;
-    UnitBytes: Word;       { bytes of one unit on the wire }
-    Units    : LongInt;    { units in all }
-    PerReq   : LongInt;    { units per request }
-    PerItem  : Byte;       { LongInt values per item (3 for a whole T/C/R) }
+    UnitBytes: Word;       {< bytes of one unit on the wire }
+    Units    : LongInt;    {< units in all }
+    PerReq   : LongInt;    {< units per request }
+    PerItem  : Byte;       {< LongInt values per item (3 for a whole T/C/R) }
     Write    : Boolean;
   end;
 
@@ -568,7 +568,7 @@ begin
   Result := res_Ok;
 end;
 
-{ ------------------------------------------------------------- requests }
+{- ------------------------------------------------------------- requests }
 
 { A three-address field: one byte, or $FF and a word low first. }
 procedure PutField(var Req: tSendRecord; var N: Integer; V: Word);
@@ -656,7 +656,7 @@ begin
   Result := res_Ok;
 end;
 
-{ ---------------------------------------------------------------- plans }
+{- ---------------------------------------------------------------- plans }
 
 function PcccPlan(const A: tPcccAddr; Count: LongInt; Write: Boolean; MaxBytes: Word;
   out P: tPcccPlan; out Err: ShortString): tChResult;
@@ -1063,7 +1063,7 @@ begin
     Result := PcccBuildWrite(At, Buf, Bytes, Tns, Req, ReqLen);
 end;
 
-{ -------------------------------------------------------------- strings }
+{- -------------------------------------------------------------- strings }
 
 function PcccEncodeString(const S: ShortString; var Data: array of Byte; out Err: ShortString): tChResult;
 var
@@ -1111,7 +1111,7 @@ begin
   Result := res_Ok;
 end;
 
-{ ---------------------------------------------------------------- reply }
+{- ---------------------------------------------------------------- reply }
 
 function PcccCheckReply(const Rep: tRecRecord; RepLen: Word; Expect: Word; out Err: ShortString): tChResult;
 begin

@@ -27,24 +27,26 @@ unit ChnPcccClient;
 interface
 
 uses
-  ChnTypes, ChnVirt, ChnDF1Codec, ChnDF1Link, ChnPccc, ChnPlc5;
+  ChnTypes, ChnVirt, ChnDF1Codec, ChnDF1Link, ChnDF1Poll, ChnPccc, ChnPlc5;
 
 type
   tPcccClient = record
-    Chn      : pChnVirt;     { a tChnDF1 stack, master }
-    OwnsChn  : Boolean;      { PcccClose disposes of Chn }
-    TimeoutMs: LongInt;      { link timeout, default DF1LinkTimeoutMs }
-    MaxBytes : Word;         { data bytes per request, 2..244 (default 244) }
-    Tns      : Word;         { TNS of the next request }
-    Idle     : tDF1Idle;     { blocking calls: called while waiting (nil: the program-wide wait) }
+    Chn      : pChnVirt;     {< a tChnDF1 stack, master }
+    OwnsChn  : Boolean;      {< PcccClose disposes of Chn }
+    TimeoutMs: LongInt;      {< link timeout, default DF1LinkTimeoutMs }
+    MaxBytes : Word;         {< data bytes per request, 2..244 (default 244) }
+    Tns      : Word;         {< TNS of the next request }
+    Idle     : tDF1Idle;     {< blocking calls: called while waiting (nil: the program-wide wait) }
     IdleData : Pointer;
-    Log      : tDF1LogProc;  { nil: quiet }
+    Log      : tDF1LogProc;  {< nil: quiet }
     LogWire  : Boolean;
-    Requests : LongInt;      { exchanges made }
-    InUse    : Boolean;      { a request is under way: one at a time }
-    Err      : ShortString;  { the text of the last failure }
-    Plc5     : Boolean;      { PLC-5 addresses and commands (PcccClientPlc5) }
-    Plc5Cmd  : tPlc5Command; { typed read/write or word range }
+    Requests : LongInt;      {< exchanges made }
+    InUse    : Boolean;      {< a request is under way: one at a time }
+    Err      : ShortString;  {< the text of the last failure }
+    Plc5     : Boolean;      {< PLC-5 addresses and commands (PcccClientPlc5) }
+    Plc5Cmd  : tPlc5Command; {< typed read/write or word range }
+    Poller   : pDF1Poller;   {< nil: the client's own master (DF1MasterStart) }
+    PollDst  : Byte;         {< the station the poller sends to }
   end;
   pPcccClient = ^tPcccClient;
 
@@ -57,8 +59,8 @@ type
     Op     : tPcccOp;
     Kind   : tPcccValueKind;
     Plan   : tPcccPlan;
-    Index  : LongInt;        { request of the plan under way }
-    Expect : Word;           { data bytes its reply must carry }
+    Index  : LongInt;        {< request of the plan under way }
+    Expect : Word;           {< data bytes its reply must carry }
     Busy   : Boolean;
     Result : tChResult;
     Err    : ShortString;
@@ -66,6 +68,7 @@ type
     Floats : array of Single;
     Str    : ShortString;
     Master : tDF1Master;
+    PollJob: LongInt;        {< the poller's job (PcccClientPoller) }
   end;
 
 { A client on an open DF1 stack (it stays the caller's). }
@@ -75,6 +78,11 @@ procedure PcccClientInit(var C: tPcccClient; Chn: pChnVirt);
   255 characters is res_ParamTooLong (C.Err: its length and the limit),
   never cut to another device name. }
 function PcccOpen(var C: tPcccClient; const Params: AnsiString): tChResult;
+{ Requests of C go through the half-duplex poll master P (unit
+  ChnDF1Poll) to station Dst, between its polls of the other stations;
+  C.Chn becomes P's channel. Blocking calls and PcccFinish step P (and
+  only P: stations in this process need stepping by the caller's Idle). }
+procedure PcccClientPoller(var C: tPcccClient; var P: tDF1Poller; Dst: Byte);
 { Disconnect and dispose of a stack PcccOpen built. }
 procedure PcccClose(var C: tPcccClient);
 { Talk to a PLC-5: its addresses ('I:012/05', 'D10:0', unit ChnPlc5) and
@@ -215,7 +223,7 @@ begin
   C.OwnsChn := False;
 end;
 
-{ ------------------------------------------------------------- stepping }
+{- ------------------------------------------------------------- stepping }
 
 { R is over: the client is free for the next one. }
 procedure Release(var R: tPcccRequest);
@@ -344,9 +352,43 @@ begin
   C^.Tns := Word(C^.Tns + 1);
   R.Busy := True;
   C^.InUse := True;
-  if not DF1MasterStart(R.Master, C^.Chn, Req, Len, C^.TimeoutMs, C^.Log, C^.LogWire) then
+  if C^.Poller <> nil then
+  begin
+    { the poller sends it between polls; R.Master only carries the outcome }
+    FillChar(R.Master, SizeOf(R.Master), 0);
+    R.Master.Chn := C^.Chn;
+    R.Master.State := dmWaitAck;
+    R.Master.Tries := 1;
+    Res := DF1PollSend(C^.Poller^, C^.PollDst, Req, Len, R.PollJob);
+    if Res <> res_Ok then
+      Exit(Fail(R, Res, 'cannot queue: ' + ChResultText(Res, PcccLayer)));
+  end
+  else if not DF1MasterStart(R.Master, C^.Chn, Req, Len, C^.TimeoutMs, C^.Log, C^.LogWire) then
     Exit(Fail(R, R.Master.Result, 'cannot send: ' + C^.Chn^.ChResultStr(R.Master.Result)));
   Result := True;
+end;
+
+procedure PcccClientPoller(var C: tPcccClient; var P: tDF1Poller; Dst: Byte);
+begin
+  C.Poller := @P;
+  C.PollDst := Dst;
+  C.Chn := P.Chn;
+end;
+
+{ The poller's step for R: True when R's job is over (R.Master then says
+  how, as DF1MasterStep leaves it). }
+function PollStep(var R: tPcccRequest): Boolean;
+var
+  Res: tChResult;
+begin
+  DF1PollStep(R.Client^.Poller^);
+  Result := DF1PollResult(R.Client^.Poller^, R.PollJob, R.Master.Rep, R.Master.RepLen, Res);
+  if Result then
+  begin
+    R.Master.Result := Res;
+    R.Master.Acked := Res = res_Ok;
+    R.Master.State := dmDone;
+  end;
 end;
 
 function Start(var R: tPcccRequest): Boolean;
@@ -583,14 +625,22 @@ procedure PcccCancel(var R: tPcccRequest);
 begin
   if R.Busy then
   begin
-    DF1MasterCancel(R.Master);
+    if R.Client^.Poller <> nil then
+      DF1PollCancel(R.Client^.Poller^, R.PollJob)
+    else
+      DF1MasterCancel(R.Master);
     Fail(R, res_Timeout, 'cancelled');
   end;
 end;
 
 function PcccStep(var R: tPcccRequest): Boolean;
 begin
-  if R.Busy and DF1MasterStep(R.Master) then
+  if R.Busy and (R.Client^.Poller <> nil) then
+  begin
+    if PollStep(R) then
+      Exchanged(R);
+  end
+  else if R.Busy and DF1MasterStep(R.Master) then
     Exchanged(R);
   Result := not R.Busy;
 end;
@@ -600,6 +650,8 @@ begin
   while not PcccStep(R) do
     if Assigned(R.Client^.Idle) then
       R.Client^.Idle(R.Client^.IdleData)
+    else if R.Client^.Poller <> nil then
+      ChnWaitUntil(DF1PollWaitEnd(R.Client^.Poller^))
     else
       ChnWaitUntil(DF1MasterWaitEnd(R.Master));   { the program-wide wait }
   Result := R.Result;
@@ -642,7 +694,7 @@ begin
   end;
 end;
 
-{ ------------------------------------------------------------- blocking }
+{- ------------------------------------------------------------- blocking }
 
 function Copied(var C: tPcccClient; var R: tPcccRequest): tChResult;
 begin

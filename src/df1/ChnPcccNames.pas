@@ -15,13 +15,13 @@ const
   { STS: the high nibble is the remote node's verdict, the low nibble the
     local node's (the interface that could not deliver the command) }
   sts_Ok         = $00;
-  sts_IllegalCmd = $10;   { illegal command or format }
-  sts_Address    = $50;   { addressing problem or memory protect rungs }
-  sts_ExtSts     = $F0;   { the error code is in the EXT STS byte }
-  { EXT STS (the first data byte of a reply with STS $F0) }
-  ext_IllegalVal = $01;   { a field has an illegal value }
-  ext_NotUsable  = $06;   { address doesn't point to something usable }
-  ext_WrongSize  = $07;   { file is wrong size }
+  sts_IllegalCmd = $10;   {< illegal command or format }
+  sts_Address    = $50;   {< addressing problem or memory protect rungs }
+  sts_ExtSts     = $F0;   {< the error code is in the EXT STS byte }
+  {- EXT STS (the first data byte of a reply with STS $F0) }
+  ext_IllegalVal = $01;   {< a field has an illegal value }
+  ext_NotUsable  = $06;   {< address doesn't point to something usable }
+  ext_WrongSize  = $07;   {< file is wrong size }
 
 { 'Echo', 'Protected Typed Logical Read (3 addr)' ...; '' when unknown.
   Cmd is the command byte (the reply bit $40 is ignored). }

@@ -40,10 +40,10 @@ unit ChnPcccTags;
 interface
 
 uses
-  ChnTypes, ChnVirt, ChnDF1Codec, ChnDF1Link, ChnPccc, ChnPcccClient;
+  ChnTypes, ChnVirt, ChnDF1Codec, ChnDF1Link, ChnPccc, ChnPlc5, ChnPcccClient;
 
 const
-  TagMaxGapDefault      = 32;      { bytes read in vain rather than a request more }
+  TagMaxGapDefault      = 32;      {< bytes read in vain rather than a request more }
   TagDemoteAfterDefault = 3;
   TagDemoteMsDefault    = 10000;
   TagScanMsDefault      = 1000;
@@ -53,34 +53,35 @@ type
   tTagDeviceState = (tdOk, tdDown, tdDemoted);
 
   tPcccTag = record
-    Name    : ShortString;   { the name it is published under (default: Address) }
-    Address : ShortString;   { as parsed, canonical: 'N7:0[10]', 'T4:1.ACC' }
+    Name    : ShortString;   {< the name it is published under (default: Address) }
+    Address : ShortString;   {< as parsed, canonical: 'N7:0[10]', 'T4:1.ACC' }
     Addr    : tPcccAddr;
-    Count   : LongInt;       { items: 1, or the [n] of an array }
-    Plan    : tPcccPlan;     { a read of the tag alone: how its bytes decode }
+    Count   : LongInt;       {< items: 1, or the [n] of an array }
+    Plan    : tPcccPlan;     {< a read of the tag alone: how its bytes decode }
     Kind    : tPcccValueKind;
     ScanMs  : LongInt;
     Deadband: Double;
     Writable: Boolean;
-    Block   : LongInt;       { the block that reads it }
-    First   : LongInt;       { its first element in the data file }
-    Values  : array of Double;   { PcccPlanValues of Plan (ints and floats) }
-    Text    : ShortString;       { an ST tag's value }
+    Block   : LongInt;       {< the block that reads it }
+    First   : LongInt;       {< its first element in the data file }
+    Values  : array of Double;   {< PcccPlanValues of Plan (ints and floats) }
+    Text    : ShortString;       {< an ST tag's value }
     Quality : tTagQuality;
-    TimeMs  : Int64;         { UTC ms since 1970 of the read that gave them }
-    Sent    : array of Double;   { the values last taken by TagTakeChange }
+    Known   : Boolean;       {< Values hold what a good read gave (else nothing yet) }
+    TimeMs  : Int64;         {< UTC ms since 1970 of the read that gave them }
+    Sent    : array of Double;   {< the values last taken by TagTakeChange }
     SentText: ShortString;
     SentQuality: tTagQuality;
-    Queued  : Boolean;       { in the change queue }
+    Queued  : Boolean;       {< in the change queue }
   end;
 
   tPcccBlock = record
     FileType: Byte;
     FileNo  : Word;
-    First   : LongInt;       { first element read }
+    First   : LongInt;       {< first element read }
     Elems   : LongInt;
     ScanMs  : LongInt;
-    Due     : QWord;         { ChMsTick when its next read is due }
+    Due     : QWord;         {< ChMsTick when its next read is due }
   end;
 
   tTagWrite = record
@@ -97,28 +98,29 @@ type
   tPcccDevice = record
     Name       : ShortString;
     Client     : tPcccClient;
+    Plc5       : Boolean;    {< a PLC-5 (TagDevicePlc5) }
     Tags       : array of tPcccTag;
     Blocks     : array of tPcccBlock;
     MaxGap     : LongInt;
     DemoteAfter: LongInt;
     DemoteMs   : LongInt;
     State      : tTagDeviceState;
-    StateChanged: Boolean;   { health to report (TagTakeHealth) }
-    Fails      : LongInt;    { failed requests in a row }
-    RetryAt    : QWord;      { demoted: when the next read is tried }
+    StateChanged: Boolean;   {< health to report (TagTakeHealth) }
+    Fails      : LongInt;    {< failed requests in a row }
+    RetryAt    : QWord;      {< demoted: when the next read is tried }
     Requests   : LongInt;
     Errors     : LongInt;
     Retries    : LongInt;
     LastError  : ShortString;
     { the request under way }
     Busy       : tTagBusy;
-    Cur        : LongInt;    { block read, or write (index in Writes) }
+    Cur        : LongInt;    {< block read, or write (index in Writes) }
     Expect     : Word;
     Master     : tDF1Master;
     WriteReq   : tPcccRequest;
-    Writes     : array of tTagWrite;   { waiting, Writes[0] under way }
-    Done       : array of tTagWrite;   { finished, for TagTakeWrite }
-    Changes    : array of LongInt;     { tags queued, oldest first }
+    Writes     : array of tTagWrite;   {< waiting, Writes[0] under way }
+    Done       : array of tTagWrite;   {< finished, for TagTakeWrite }
+    Changes    : array of LongInt;     {< tags queued, oldest first }
     ChangeHead : LongInt;
   end;
 
@@ -134,6 +136,11 @@ function TagParse(const S: ShortString; out Addr: tPcccAddr; out Count: LongInt;
 
 { An empty device (no line yet). }
 procedure TagDeviceInit(var D: tPcccDevice; const Name: ShortString);
+{ The device is a PLC-5: its tags take PLC-5 addresses (unit ChnPlc5:
+  'I:012/05', 'D10:0' read as 0..9999), blocks are read by word range
+  (0F 01), writes go as the client's PLC-5 commands. Call after the line
+  is opened (PcccOpen sets the client up anew) and before TagAdd. }
+procedure TagDevicePlc5(var D: tPcccDevice);
 { Add a tag; res_Ok, or the parse result with Err. A tag whose bytes do
   not fit in one request (more than 244), or an array of strings, is
   refused (res_PcccCount). Call before TagDeviceStart. }
@@ -192,8 +199,17 @@ begin
   Result := Round((LocalTimeToUniversal(Now) - UnixDateDelta) * MSecsPerDay);
 end;
 
+function TagParseAs(Dialect: tPcccDialect; const S: ShortString; out Addr: tPcccAddr;
+  out Count: LongInt; out Err: ShortString): tChResult; forward;
+
 function TagParse(const S: ShortString; out Addr: tPcccAddr; out Count: LongInt;
   out Err: ShortString): tChResult;
+begin
+  Result := TagParseAs(pdSlc, S, Addr, Count, Err);
+end;
+
+function TagParseAs(Dialect: tPcccDialect; const S: ShortString; out Addr: tPcccAddr;
+  out Count: LongInt; out Err: ShortString): tChResult;
 var
   Base, N: ShortString;
   Open, Code: LongInt;
@@ -220,7 +236,7 @@ begin
     end;
     Base := Copy(Base, 1, Open - 1);
   end;
-  Result := PcccParseAddress(Base, Addr, Err);
+  Result := PcccParseAddressAs(Dialect, Base, Addr, Err);
   if Result <> res_Ok then
     Err := '"' + S + '": ' + Err;
 end;
@@ -235,6 +251,20 @@ begin
   D.DemoteAfter := TagDemoteAfterDefault;
   D.DemoteMs := TagDemoteMsDefault;
   D.Cur := -1;
+end;
+
+procedure TagDevicePlc5(var D: tPcccDevice);
+begin
+  D.Plc5 := True;
+  PcccClientPlc5(D.Client, p5WordRange);
+end;
+
+function Dialect(const D: tPcccDevice): tPcccDialect;
+begin
+  if D.Plc5 then
+    Result := pdPlc5
+  else
+    Result := pdSlc;
 end;
 
 function TagIsBit(const T: tPcccTag): Boolean;
@@ -262,7 +292,7 @@ var
   T: tPcccTag;
   N, Bytes: LongInt;
 begin
-  Result := TagParse(Address, T.Addr, T.Count, Err);
+  Result := TagParseAs(Dialect(D), Address, T.Addr, T.Count, Err);
   if Result <> res_Ok then
     Exit;
   Result := PcccPlan(T.Addr, T.Count, False, MaxDataLen, T.Plan, Err);
@@ -290,7 +320,7 @@ begin
     Err := '"' + Address + '": only a tag of one integer, bit or float can be written';
     Exit(res_PcccUsage);
   end;
-  T.Address := PcccAddressText(T.Addr);
+  T.Address := PcccAddressTextAs(Dialect(D), T.Addr);
   if T.Count > 1 then
     T.Address := T.Address + '[' + IntToStr(T.Count) + ']';
   if Name = '' then
@@ -311,6 +341,7 @@ begin
   T.Text := '';
   T.SentText := '';
   T.Quality := tqInitial;
+  T.Known := False;
   T.SentQuality := tqInitial;
   T.TimeMs := 0;
   T.Queued := False;
@@ -327,7 +358,7 @@ begin
   Result := -1;
 end;
 
-{ ------------------------------------------------------------ merging }
+{- ------------------------------------------------------------ merging }
 
 { Tag A before B: by file, scan class, first element. }
 function Before(const A, B: tPcccTag): Boolean;
@@ -415,7 +446,7 @@ begin
   D.WriteReq.Floats := nil;
 end;
 
-{ ------------------------------------------------------------ values }
+{- ------------------------------------------------------------ values }
 
 procedure QueueChange(var D: tPcccDevice; Tag: LongInt);
 begin
@@ -486,7 +517,8 @@ begin
   else
   begin
     Len := T.Plan.Units * T.Plan.UnitBytes;
-    Result := PcccDecodePlanInts(T.Plan, 0, Data[Off..Off + Len - 1], Len, Ints);
+    { PLC-5 D words are BCD: Plc5DecodePlanInts gives 0..9999 }
+    Result := Plc5DecodePlanInts(T.Plan, 0, Data[Off..Off + Len - 1], Len, Ints);
   end;
   for J := 0 to High(Ints) do
     T.Values[J] := Ints[J];
@@ -515,7 +547,7 @@ begin
   end;
 end;
 
-{ ------------------------------------------------------------ stepping }
+{- ------------------------------------------------------------ stepping }
 
 { The device answered. }
 procedure Answered(var D: tPcccDevice);
@@ -579,7 +611,10 @@ begin
     if D.Tags[I].Block = D.Cur then
     begin
       if Decode(D.Tags[I], B^, D.Master.Rep.Data) = res_Ok then
-        D.Tags[I].Quality := tqGood
+      begin
+        D.Tags[I].Quality := tqGood;
+        D.Tags[I].Known := True;
+      end
       else
         D.Tags[I].Quality := tqRefused;
       D.Tags[I].TimeMs := Ms;
@@ -622,9 +657,9 @@ var
 begin
   T := @D.Tags[D.Writes[0].Tag];
   if T^.Kind = pvFloat then
-    Ok := PcccStartWriteFloats(D.WriteReq, D.Client, PcccAddressText(T^.Addr), [D.Writes[0].Value])
+    Ok := PcccStartWriteFloats(D.WriteReq, D.Client, PcccAddressTextAs(Dialect(D), T^.Addr), [D.Writes[0].Value])
   else
-    Ok := PcccStartWriteInts(D.WriteReq, D.Client, PcccAddressText(T^.Addr),
+    Ok := PcccStartWriteInts(D.WriteReq, D.Client, PcccAddressTextAs(Dialect(D), T^.Addr),
       [Round(D.Writes[0].Value)]);
   D.Busy := tbWrite;
   if not Ok then
@@ -657,7 +692,10 @@ begin
   A.Elem := Word(B^.First);
   A.Bit := -1;
   D.Expect := B^.Elems * PcccElemSize(B^.FileType);
-  PcccBuildRead(A, D.Expect, D.Client.Tns, Req, Len);
+  if D.Plc5 then
+    Plc5BuildWordRead(A, D.Expect, D.Client.Tns, Req, Len)
+  else
+    PcccBuildRead(A, D.Expect, D.Client.Tns, Req, Len);
   D.Client.Tns := Word(D.Client.Tns + 1);
   D.Cur := Blk;
   D.Busy := tbRead;

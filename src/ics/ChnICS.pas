@@ -32,14 +32,14 @@ uses
   ChnTypes, ChnVirt, ChnProto, ChnICSCodec;
 
 const
-  cVerNo = $0120;                 { BCD, port of manual v1.20 }
+  cVerNo = $0120;                 {< BCD, port of manual v1.20 }
   cVer   = '01.20,21.11.2026';
   cName  = 'ICS';
 
-  MaxDataLen = ICSMaxDataLen;     { 32 numbers }
-  MaxTextLen = ICSMaxTextLen;     { 200 characters with both delimiters }
-  MaxTBuf    = 65500;             { largest send buffer (LSB=) }
-  MaxTBuff   = MaxTBuf;           { spelling used in the manual's text }
+  MaxDataLen = ICSMaxDataLen;     {< 32 numbers }
+  MaxTextLen = ICSMaxTextLen;     {< 200 characters with both delimiters }
+  MaxTBuf    = 65500;             {< largest send buffer (LSB=) }
+  MaxTBuff   = MaxTBuf;           {< spelling used in the manual's text }
 
   { control characters (manual 4.1) }
   SOH = ICS_SOH;
@@ -54,17 +54,17 @@ const
   OCS_ReadData   = 'DB';
   OCS_ReadParams = 'LB';
   OCS_WriteData  = 'OK';
-  OPM_ReadData   = OCM_ReadData;    { names used in the manual's text }
+  OPM_ReadData   = OCM_ReadData;    {< names used in the manual's text }
   OPM_ReadParams = OCM_ReadParams;
   OPM_WriteData  = OCM_WriteData;
 
-  { receive results (manual 4.3) }
-  res_ErrFrame = ICS_ErrFrame;    { $20 }
-  res_ErrSum   = ICS_ErrSum;      { $21 }
-  res_ErrLen   = ICS_ErrLen;      { $22 }
-  res_ErrVal   = ICS_ErrVal;      { $23 }
-  res_ErrETX   = ICS_ErrETX;      { $24 }
-  res_ErrEOT   = ICS_ErrEOT;      { $25 }
+  {- receive results (manual 4.3) }
+  res_ErrFrame = ICS_ErrFrame;    {< $20 }
+  res_ErrSum   = ICS_ErrSum;      {< $21 }
+  res_ErrLen   = ICS_ErrLen;      {< $22 }
+  res_ErrVal   = ICS_ErrVal;      {< $23 }
+  res_ErrETX   = ICS_ErrETX;      {< $24 }
+  res_ErrEOT   = ICS_ErrEOT;      {< $25 }
 
 type
   tData       = tICSData;
@@ -75,13 +75,13 @@ type
 
   pChnICS = ^tChnICS;
   tChnICS = object(tChnProto)
-    CH_RSum   : tXor8;       { receiver's running checksum }
-    CH_SSum   : tXor8;       { checksum of the last frame sent }
-    CH_Master : Boolean;     { MAS=MASTER }
-    CH_DataI  : SmallInt;    { numbers received so far in the current frame }
-    CH_PomS   : ShortString;      { the number being received (text) }
-    CH_Codec  : tICSState;   { the receive automaton }
-    CH_Event  : tICSEvent;   { what the automaton last reported }
+    CH_RSum   : tXor8;       {< receiver's running checksum }
+    CH_SSum   : tXor8;       {< checksum of the last frame sent }
+    CH_Master : Boolean;     {< MAS=MASTER }
+    CH_DataI  : SmallInt;    {< numbers received so far in the current frame }
+    CH_PomS   : ShortString;      {< the number being received (text) }
+    CH_Codec  : tICSState;   {< the receive automaton }
+    CH_Event  : tICSEvent;   {< what the automaton last reported }
     constructor Init;
     constructor ChInitParam(const S: tParamStr);
     function  ChSetOneParam(const S: tWordString; var CmdL: tCmd): tChResult; virtual;

@@ -34,9 +34,9 @@ uses
   ChnTypes;
 
 const
-  ICSMaxDataLen = 32;     { numbers in one frame }
-  ICSMaxTextLen = 200;    { text length including both delimiters }
-  ICSMaxNode    = 207;    { chr(207 + $30) = #$FF }
+  ICSMaxDataLen = 32;     {< numbers in one frame }
+  ICSMaxTextLen = 200;    {< text length including both delimiters }
+  ICSMaxNode    = 207;    {< chr(207 + $30) = #$FF }
   ICSNodeBase   = $30;
 
   ICS_SOH = $01;
@@ -44,15 +44,15 @@ const
   ICS_ETX = $03;
   ICS_EOT = $04;
 
-  { Receive results (manual section 4.3) }
-  ICS_ErrFrame = res_Proto + 0;   { $20 structure: STX, address, op code, CBN, ',' }
-  ICS_ErrSum   = res_Proto + 1;   { $21 checksum }
-  ICS_ErrLen   = res_Proto + 2;   { $22 too many numbers, text too long }
-  ICS_ErrVal   = res_Proto + 3;   { $23 malformed number or outside 16 bits }
-  ICS_ErrETX   = res_Proto + 4;   { $24 no ETX where it must come }
-  ICS_ErrEOT   = res_Proto + 5;   { $25 no EOT after SUM }
+  {- Receive results (manual section 4.3) }
+  ICS_ErrFrame = res_Proto + 0;   {< $20 structure: STX, address, op code, CBN, ',' }
+  ICS_ErrSum   = res_Proto + 1;   {< $21 checksum }
+  ICS_ErrLen   = res_Proto + 2;   {< $22 too many numbers, text too long }
+  ICS_ErrVal   = res_Proto + 3;   {< $23 malformed number or outside 16 bits }
+  ICS_ErrETX   = res_Proto + 4;   {< $24 no ETX where it must come }
+  ICS_ErrEOT   = res_Proto + 5;   {< $25 no EOT after SUM }
 
-  ICSMaxNumText = 31;             { characters of one number, see header }
+  ICSMaxNumText = 31;             {< characters of one number, see header }
   { Longest frame: 3 SOH, DNO STX SNO OP OP CBN ',' (7), 32 numbers of
     6 characters ('-32768') with 31 commas, 200 text, ETX SUM EOT. }
   ICSMaxFrame = 3 + 7 + ICSMaxDataLen * 6 + (ICSMaxDataLen - 1) + ICSMaxTextLen + 3;
@@ -60,7 +60,7 @@ const
   ICSHeadLen = 4;
 
 type
-  tICSData = SmallInt;            { Borland "integer" }
+  tICSData = SmallInt;            {< Borland "integer" }
 
   { Byte-exact with the Borland record: OpCode@0, BlockNum@3, Data@4,
     Text@68, SizeOf = 269. }
@@ -72,9 +72,9 @@ type
     Text    : string[ICSMaxTextLen];
   end;
 
-  tICSEvent = (icsNone,    { byte taken, frame not complete }
-               icsFrame,   { a good frame is in State.Rec }
-               icsError);  { a broken frame, code in State.Error }
+  tICSEvent = (icsNone,    {< byte taken, frame not complete }
+               icsFrame,   {< a good frame is in State.Rec }
+               icsError);  {< a broken frame, code in State.Error }
 
   tICSPhase = (ipHunt, ipSOH, ipDNO, ipSNO, ipOp1, ipOp2, ipCBN, ipComma,
                ipData, ipNumber, ipText, ipTextEnd, ipSum, ipEOT);
@@ -82,15 +82,15 @@ type
   { Receive automaton. Only ICSFeed/ICSReset change it; fields may be read. }
   tICSState = record
     Phase  : tICSPhase;
-    Sum    : tXor8;          { running XOR since the last SOH }
-    RecvSum: tXor8;          { SUM byte of the frame }
-    DNode  : tNode;          { addresses of the frame being received }
+    Sum    : tXor8;          {< running XOR since the last SOH }
+    RecvSum: tXor8;          {< SUM byte of the frame }
+    DNode  : tNode;          {< addresses of the frame being received }
     SNode  : tNode;
-    Count  : SmallInt;       { numbers stored in Rec.Data so far }
-    NumText: string[ICSMaxNumText];   { the number being received }
-    Delim  : Char;           { text delimiter }
-    Rec    : tICSRecord;     { the decoded frame }
-    Error  : tChResult;      { the code of the last icsError }
+    Count  : SmallInt;       {< numbers stored in Rec.Data so far }
+    NumText: string[ICSMaxNumText];   {< the number being received }
+    Delim  : Char;           {< text delimiter }
+    Rec    : tICSRecord;     {< the decoded frame }
+    Error  : tChResult;      {< the code of the last icsError }
   end;
 
 { Number count of a record Len (ICSHeadLen + 2 * count), or -1 when Len is

@@ -31,27 +31,27 @@ uses
 const
   MaxDataLen = 247;
 
-  SD1  = $10;   { start of a fixed-length frame }
-  SD2  = $68;   { start of a variable-length frame }
-  ED   = $16;   { end of a frame }
-  SACK = $E5;   { single character: positive acknowledgement }
-  SNAK = $A2;   { single character: negative acknowledgement }
+  SD1  = $10;   {< start of a fixed-length frame }
+  SD2  = $68;   {< start of a variable-length frame }
+  ED   = $16;   {< end of a frame }
+  SACK = $E5;   {< single character: positive acknowledgement }
+  SNAK = $A2;   {< single character: negative acknowledgement }
 
-  { CODE bits }
-  cBitDirRes = $80;   { DIR in balanced mode, RES (0) in unbalanced mode }
-  cBitPrm    = $40;   { 1: frame from a master/primary station }
-  cBitFcbAcd = $20;   { FCB from a primary, ACD from a secondary }
-  cBitFcvDfc = $10;   { FCV from a primary, DFC from a secondary }
+  {- CODE bits }
+  cBitDirRes = $80;   {< DIR in balanced mode, RES (0) in unbalanced mode }
+  cBitPrm    = $40;   {< 1: frame from a master/primary station }
+  cBitFcbAcd = $20;   {< FCB from a primary, ACD from a secondary }
+  cBitFcvDfc = $10;   {< FCV from a primary, DFC from a secondary }
   cMaskFC    = $0F;
 
-  { Receive results (manual 4.3) }
-  res_ErrSum   = res_Proto + 0;   { $20 checksum error }
-  res_ErrLen   = res_Proto + 1;   { $21 bad length (L bytes, L range, buffer) }
-  res_ErrCode  = res_Proto + 2;   { $22 PRM bit does not fit this station }
-  res_ErrFrame = res_Proto + 3;   { $23 wrong second start byte, missing ED }
-  res_ErrDir   = res_Proto + 4;   { $24 balanced: DIR bit of this station's own side }
+  {- Receive results (manual 4.3) }
+  res_ErrSum   = res_Proto + 0;   {< $20 checksum error }
+  res_ErrLen   = res_Proto + 1;   {< $21 bad length (L bytes, L range, buffer) }
+  res_ErrCode  = res_Proto + 2;   {< $22 PRM bit does not fit this station }
+  res_ErrFrame = res_Proto + 3;   {< $23 wrong second start byte, missing ED }
+  res_ErrDir   = res_Proto + 4;   {< $24 balanced: DIR bit of this station's own side }
 
-  cSizeHeadSndMsg = 1 + 1 + 1 + 1;   { MessType, FCB_ACD, FCV_DFC, FC }
+  cSizeHeadSndMsg = 1 + 1 + 1 + 1;   {< MessType, FCB_ACD, FCV_DFC, FC }
   cSizeHeadRecMsg = cSizeHeadSndMsg;
 
   { User data of the longest frame IEC 60870-5-1/-2 allow: L = 255 counts
@@ -89,48 +89,48 @@ type
 
   { What the codec needs to know about this station and the link. }
   tFT12Config = record
-    AddrLen  : Byte;     { link address octets: 0, 1 or 2 }
-    FixedLen : Byte;     { data octets of a fixed frame (LEN=), 0..MaxDataLen;
+    AddrLen  : Byte;     {< link address octets: 0, 1 or 2 }
+    FixedLen : Byte;     {< data octets of a fixed frame (LEN=), 0..MaxDataLen;
                            above that every fixed frame is res_ErrLen }
-    Balanced : Boolean;  { balanced: bit 7 is DIR, else RES (sent as 0) }
-    Dir      : Boolean;  { DIR bit this station sends in balanced mode }
-    Primary  : Boolean;  { PRM bit this station sends }
-    CheckPrm : Boolean;  { receive: PRM must be the opposite of Primary }
-    Filter   : Boolean;  { receive: only frames for OwnAddr or broadcast;
+    Balanced : Boolean;  {< balanced: bit 7 is DIR, else RES (sent as 0) }
+    Dir      : Boolean;  {< DIR bit this station sends in balanced mode }
+    Primary  : Boolean;  {< PRM bit this station sends }
+    CheckPrm : Boolean;  {< receive: PRM must be the opposite of Primary }
+    Filter   : Boolean;  {< receive: only frames for OwnAddr or broadcast;
                            balanced: only PRM = 1 frames are filtered }
     OwnAddr  : Word;
-    GapMs    : LongWord; { receive: idle gap that discards a frame, 0 = off }
-    CheckDir : Boolean;  { receive, balanced: a frame with DIR = Dir came from
+    GapMs    : LongWord; {< receive: idle gap that discards a frame, 0 = off }
+    CheckDir : Boolean;  {< receive, balanced: a frame with DIR = Dir came from
                            this station's own side (an echo, or both stations
                            configured alike): res_ErrDir }
   end;
 
-  tFT12Event = (fe_None,    { byte consumed, nothing complete }
-                fe_Frame,   { a valid frame is in the state record }
-                fe_Error);  { a broken frame was dropped; see Err }
+  tFT12Event = (fe_None,    {< byte consumed, nothing complete }
+                fe_Frame,   {< a valid frame is in the state record }
+                fe_Error);  {< a broken frame was dropped; see Err }
 
   { Receive automaton. After fe_Frame: Kind, Code, Addr, DataLen, Data
     describe the frame until the next FT12Feed. }
   tFT12Rx = record
     Cfg     : tFT12Config;
-    Phase   : Byte;       { rx* below }
+    Phase   : Byte;       {< rx* below }
     Kind    : tMessType;
-    L       : Byte;       { L of a variable frame }
+    L       : Byte;       {< L of a variable frame }
     Code    : Byte;
     Addr    : Word;
     AddrPos : Byte;
     DataLen : Word;
     DataPos : Word;
     Sum     : tSum8;
-    Err     : tChResult;  { code of the last fe_Error }
-    LastTime: QWord;      { time of the previous byte, for the gap }
+    Err     : tChResult;  {< code of the last fe_Error }
+    LastTime: QWord;      {< time of the previous byte, for the gap }
     Data    : array[0..FT12MaxUserData - 1] of Byte;
     { counters for diagnostics }
     Frames, Errors, Ignored, GapDrops: LongWord;
     { garbage or a broken frame since the last whole frame: a single
       character is taken only after FT12SuspectIdleMs of line idle }
     Suspect : Boolean;
-    Suspects: LongWord;   { single characters dropped so }
+    Suspects: LongWord;   {< single characters dropped so }
     { of Ignored: frames with another link address (not the broadcast),
       and the address the last of them carried }
     Foreign : LongWord;

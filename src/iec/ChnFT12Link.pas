@@ -72,30 +72,30 @@ const
     never stops sending cannot keep a step from running the timers }
   FT12MaxFramesPerStep = 64;
 
-  { secondary function codes of IEC 60870-5-2 that the manual does not name }
-  FCS_NotFunctioning  = 14;  { link service not functioning }
-  FCS_NotImplemented  = 15;  { link service not implemented }
+  {- secondary function codes of IEC 60870-5-2 that the manual does not name }
+  FCS_NotFunctioning  = 14;  {< link service not functioning }
+  FCS_NotImplemented  = 15;  {< link service not implemented }
 
 type
   tFT12Idle = procedure(Data: Pointer);
 
   { What the primary keeps per secondary. }
   tFT12Link = record
-    Addr    : Word;      { link address of the secondary (DNO) }
-    Fcb     : Boolean;   { FCB for the next new FCV = 1 transmission }
-    Reset   : Boolean;   { reset of remote link acknowledged, no failure since }
-    Acd     : Boolean;   { ACD of the last reply: class 1 data waiting }
-    Dfc     : Boolean;   { DFC of the last reply: secondary cannot take more }
-    Repeats : LongInt;   { repetitions sent after a missing reply }
-    Ignored : LongInt;   { frames ignored while waiting (other address, broken) }
-    { late answers (unit header): }
-    Suspect   : Boolean; { answers to earlier transmissions may still come: fence first }
-    OwedStatus: LongInt; { status of link answers (FC 11) that may still come }
-    StatusAt  : QWord;   { when a status request last went out }
-    Fences    : LongInt; { fences (FC 9) sent before a service }
-    Stale     : LongInt; { late answers recognised and ignored }
-    OtherAddr : LongInt; { of Ignored: answers from another link address }
-    OtherLast : Word;    { the address the last of them carried }
+    Addr    : Word;      {< link address of the secondary (DNO) }
+    Fcb     : Boolean;   {< FCB for the next new FCV = 1 transmission }
+    Reset   : Boolean;   {< reset of remote link acknowledged, no failure since }
+    Acd     : Boolean;   {< ACD of the last reply: class 1 data waiting }
+    Dfc     : Boolean;   {< DFC of the last reply: secondary cannot take more }
+    Repeats : LongInt;   {< repetitions sent after a missing reply }
+    Ignored : LongInt;   {< frames ignored while waiting (other address, broken) }
+    {- late answers (unit header): }
+    Suspect   : Boolean; {< answers to earlier transmissions may still come: fence first }
+    OwedStatus: LongInt; {< status of link answers (FC 11) that may still come }
+    StatusAt  : QWord;   {< when a status request last went out }
+    Fences    : LongInt; {< fences (FC 9) sent before a service }
+    Stale     : LongInt; {< late answers recognised and ignored }
+    OtherAddr : LongInt; {< of Ignored: answers from another link address }
+    OtherLast : Word;    {< the address the last of them carried }
   end;
 
   { Secondary callbacks; Data is tFT12Station.Data.
@@ -113,28 +113,28 @@ type
 
   tFT12Station = record
     Chn        : pChnVirt;
-    RMess      : tFT12MaxRecord; { any frame, L up to 255 }
-    Reply      : tSendRecord;  { last reply to an FCV = 1 frame or a reset }
+    RMess      : tFT12MaxRecord; {< any frame, L up to 255 }
+    Reply      : tSendRecord;  {< last reply to an FCV = 1 frame or a reset }
     ReplyLen   : Word;
     HasReply   : Boolean;
-    LinkReset  : Boolean;      { a reset of remote link was received }
-    LastFcb    : Boolean;      { FCB of the last accepted FCV = 1 frame (0 after reset) }
-    Dfc        : Boolean;      { DFC sent in every reply (set by the application) }
-    SingleAck  : Boolean;      { ACK as E5 when no class 1 data is waiting }
+    LinkReset  : Boolean;      {< a reset of remote link was received }
+    LastFcb    : Boolean;      {< FCB of the last accepted FCV = 1 frame (0 after reset) }
+    Dfc        : Boolean;      {< DFC sent in every reply (set by the application) }
+    SingleAck  : Boolean;      {< ACK as E5 when no class 1 data is waiting }
     OnUserData : tFT12UserDataFunc;
     OnClassData: tFT12ClassDataFunc;
     OnClass1   : tFT12Class1Func;
     Data       : Pointer;
-    { counters }
-    Frames     : LongInt;      { frames taken, good or broken }
-    Executed   : LongInt;      { FC 3/4/10/11 frames handed to the callbacks }
-    Repeats    : LongInt;      { repetitions answered with the last reply }
-    Refused    : LongInt;      { FCV = 1 frames before a reset (NACK); FC 3, 10, 11
+    {- counters }
+    Frames     : LongInt;      {< frames taken, good or broken }
+    Executed   : LongInt;      {< FC 3/4/10/11 frames handed to the callbacks }
+    Repeats    : LongInt;      {< repetitions answered with the last reply }
+    Refused    : LongInt;      {< FCV = 1 frames before a reset (NACK); FC 3, 10, 11
                                  without FCV (FC 15) }
-    OtherAddr  : LongInt;      { frames for another link address (the channel
+    OtherAddr  : LongInt;      {< frames for another link address (the channel
                                  drops them: other stations' traffic on a bus) }
-    OtherLast  : Word;         { the address the last of them carried }
-    RxForeign  : LongWord;     { the channel's count when last looked at }
+    OtherLast  : Word;         {< the address the last of them carried }
+    RxForeign  : LongWord;     {< the channel's count when last looked at }
   end;
 
 procedure FT12LinkInit(var Link: tFT12Link; Addr: Word);
@@ -172,21 +172,21 @@ type
     Link     : ^tFT12Link;
     Req      : tSendRecord;
     ReqLen   : Word;
-    Out      : tSendRecord;     { what goes on the line: the reset or the service }
+    Out      : tSendRecord;     {< what goes on the line: the reset or the service }
     OutLen   : Word;
-    Rep      : tFT12MaxRecord;  { any answer, L up to 255 }
+    Rep      : tFT12MaxRecord;  {< any answer, L up to 255 }
     RepLen   : Word;
     State    : tFT12PrimaryState;
     Result   : tChResult;
     Fcv      : Boolean;
     NoReply  : Boolean;
-    Resetting: Boolean;         { the reset in front of an FCV = 1 service is out }
-    Fencing  : Boolean;         { the fence in front of them is out (FC 9) }
-    StatusSkip: LongInt;        { status answers owed from before: not this one's }
-    Try_     : LongInt;         { repetitions of Out so far }
+    Resetting: Boolean;         {< the reset in front of an FCV = 1 service is out }
+    Fencing  : Boolean;         {< the fence in front of them is out (FC 9) }
+    StatusSkip: LongInt;        {< status answers owed from before: not this one's }
+    Try_     : LongInt;         {< repetitions of Out so far }
     Retries  : LongInt;
     TimeoutMs: LongInt;
-    Until_   : QWord;           { end of the wait for this transmission }
+    Until_   : QWord;           {< end of the wait for this transmission }
     OldBuf   : Pointer;
     OldSize  : Word;
     OldDNode : tNode;
@@ -229,23 +229,23 @@ procedure FT12StationInit(var S: tFT12Station; Chn: pChnVirt);
   when S.Chn is not a tChnFT1_2 (then nothing is read). }
 function FT12StationStep(var S: tFT12Station): Boolean;
 
-{ ------------------------------------------------------------ balanced }
+{- ------------------------------------------------------------ balanced }
 
 const
-  FT12BalQueueLen = 8;        { user data frames waiting to be sent }
-  FT12BalTestMs   = 5000;     { default: test function after 5 s of quiet }
+  FT12BalQueueLen = 8;        {< user data frames waiting to be sent }
+  FT12BalTestMs   = 5000;     {< default: test function after 5 s of quiet }
 
 type
   { What the primary half of a balanced link is doing. }
   tFT12BalState = (
-    bsIdle,           { link not established: request status of link next }
-    bsRequestStatus,  { FC 9 sent, waiting for status of link (FC 11) }
-    bsResetting,      { FC 0 sent, waiting for ACK }
-    bsAvailable);     { reset acknowledged: user data and test functions }
+    bsIdle,           {< link not established: request status of link next }
+    bsRequestStatus,  {< FC 9 sent, waiting for status of link (FC 11) }
+    bsResetting,      {< FC 0 sent, waiting for ACK }
+    bsAvailable);     {< reset acknowledged: user data and test functions }
 
   tFT12BalUserData = record
     Len    : Word;
-    Confirm: Boolean;         { FC 3 (SEND/CONFIRM) or FC 4 (SEND/NO REPLY) }
+    Confirm: Boolean;         {< FC 3 (SEND/CONFIRM) or FC 4 (SEND/NO REPLY) }
     Data   : tData;
   end;
 
@@ -256,59 +256,59 @@ type
     (the channel writes into RMess). }
   tFT12Balanced = record
     Chn        : pChnVirt;
-    RMess      : tFT12MaxRecord; { any frame, L up to 255 }
-    { settings (FT12BalancedInit gives the defaults) }
-    TimeoutMs  : LongInt;     { wait for an answer (FT12LinkTimeoutMs) }
-    Retries    : SmallInt;    { repetitions before the link counts as lost }
-    TestMs     : LongInt;     { test function after this long without a
+    RMess      : tFT12MaxRecord; {< any frame, L up to 255 }
+    {- settings (FT12BalancedInit gives the defaults) }
+    TimeoutMs  : LongInt;     {< wait for an answer (FT12LinkTimeoutMs) }
+    Retries    : SmallInt;    {< repetitions before the link counts as lost }
+    TestMs     : LongInt;     {< test function after this long without a
                                 request of ours; 0 = never }
-    Dfc        : Boolean;     { DFC sent in every answer (set by the application) }
+    Dfc        : Boolean;     {< DFC sent in every answer (set by the application) }
     { primary }
     State      : tFT12BalState;
-    Pending    : Boolean;     { a request is out and its answer awaited }
-    Out        : tSendRecord; { that request, for repetitions }
+    Pending    : Boolean;     {< a request is out and its answer awaited }
+    Out        : tSendRecord; {< that request, for repetitions }
     OutLen     : Word;
-    Fcb        : Boolean;     { FCB of the next new FCV = 1 transmission }
-    Tries      : SmallInt;    { transmissions of Out so far }
-    SentAt     : QWord;       { when Out went out the last time }
-    LastRequest: QWord;       { when a request of ours last went out }
-    HoldUntil  : QWord;       { no new request before (NACK, DFC) }
-    PeerDfc    : Boolean;     { DFC of the peer's last answer }
+    Fcb        : Boolean;     {< FCB of the next new FCV = 1 transmission }
+    Tries      : SmallInt;    {< transmissions of Out so far }
+    SentAt     : QWord;       {< when Out went out the last time }
+    LastRequest: QWord;       {< when a request of ours last went out }
+    HoldUntil  : QWord;       {< no new request before (NACK, DFC) }
+    PeerDfc    : Boolean;     {< DFC of the peer's last answer }
     Queue      : array[0..FT12BalQueueLen - 1] of tFT12BalUserData;
     QHead, QCount: SmallInt;
-    { secondary }
-    HasReply   : Boolean;     { an FCV = 1 frame was accepted since the reset }
-    LastFcb    : Boolean;     { its FCB }
-    Reply      : tSendRecord; { the answer it got, sent again on a repetition }
+    {- secondary }
+    HasReply   : Boolean;     {< an FCV = 1 frame was accepted since the reset }
+    LastFcb    : Boolean;     {< its FCB }
+    Reply      : tSendRecord; {< the answer it got, sent again on a repetition }
     ReplyLen   : Word;
-    PeerReset  : Boolean;     { the peer reset this station's secondary }
-    OnUserData : tFT12UserDataFunc;   { FC 3 (Confirm) / FC 4 user data }
+    PeerReset  : Boolean;     {< the peer reset this station's secondary }
+    OnUserData : tFT12UserDataFunc;   {< FC 3 (Confirm) / FC 4 user data }
     Data       : Pointer;
-    { counters }
-    Frames     : LongInt;     { frames taken, good or broken }
-    Executed   : LongInt;     { FC 3/4 frames handed to OnUserData }
-    Repeats    : LongInt;     { repetitions answered from memory }
-    Retransmits: LongInt;     { our requests sent again after a timeout }
-    Confirmed  : LongInt;     { our user data confirmed (or sent, FC 4) }
-    Tests      : LongInt;     { test functions of ours confirmed }
-    LinkLost   : LongInt;     { times the link had to be established anew }
-    Unexpected : LongInt;     { answers with no request of ours outstanding }
-    Ignored    : LongInt;     { answers that do not fit, or from another address }
-    BadDir     : LongInt;     { frames with the DIR of this station's side }
-    Broken     : LongInt;     { other broken frames (checksum, length, ...) }
-    { answers that may still come for earlier transmissions (see "Late
+    {- counters }
+    Frames     : LongInt;     {< frames taken, good or broken }
+    Executed   : LongInt;     {< FC 3/4 frames handed to OnUserData }
+    Repeats    : LongInt;     {< repetitions answered from memory }
+    Retransmits: LongInt;     {< our requests sent again after a timeout }
+    Confirmed  : LongInt;     {< our user data confirmed (or sent, FC 4) }
+    Tests      : LongInt;     {< test functions of ours confirmed }
+    LinkLost   : LongInt;     {< times the link had to be established anew }
+    Unexpected : LongInt;     {< answers with no request of ours outstanding }
+    Ignored    : LongInt;     {< answers that do not fit, or from another address }
+    BadDir     : LongInt;     {< frames with the DIR of this station's side }
+    Broken     : LongInt;     {< other broken frames (checksum, length, ...) }
+    {- answers that may still come for earlier transmissions (see "Late
       answers" in the unit header) }
-    Suspect    : Boolean;     { other than status of link: fence first }
-    OwedStatus : LongInt;     { status of link answers (FC 11) }
-    StatusSkip : LongInt;     { of those, to skip for the request now out }
-    StatusAt   : QWord;       { when a status request last went out }
-    Fencing    : Boolean;     { Out is a fence: FC 9 to flush late answers }
-    Fences     : LongInt;     { fences sent }
-    Stale      : LongInt;     { late answers recognised and ignored }
-    OtherAddr  : LongInt;     { frames from or for another link address
+    Suspect    : Boolean;     {< other than status of link: fence first }
+    OwedStatus : LongInt;     {< status of link answers (FC 11) }
+    StatusSkip : LongInt;     {< of those, to skip for the request now out }
+    StatusAt   : QWord;       {< when a status request last went out }
+    Fencing    : Boolean;     {< Out is a fence: FC 9 to flush late answers }
+    Fences     : LongInt;     {< fences sent }
+    Stale      : LongInt;     {< late answers recognised and ignored }
+    OtherAddr  : LongInt;     {< frames from or for another link address
                                 (answers here, requests dropped by the channel) }
-    OtherLast  : Word;        { the address the last of them carried }
-    RxForeign  : LongWord;    { the channel's count when last looked at }
+    OtherLast  : Word;        {< the address the last of them carried }
+    RxForeign  : LongWord;    {< the channel's count when last looked at }
   end;
 
 { Bind B to a balanced tChnFT1_2 and set the defaults; the channel's
@@ -387,7 +387,7 @@ begin
   Result := ChSendWhenFree(Chn, @R, Len, FT12LinkTimeoutMs);
 end;
 
-{ ------------------------------------------------------------- primary }
+{- ------------------------------------------------------------- primary }
 
 { Does a secondary's reply of type T and function FC answer primary
   function Req? (IEC 60870-5-2 table of services) }
@@ -793,7 +793,7 @@ begin
   end;
 end;
 
-{ ----------------------------------------------------------- secondary }
+{- ----------------------------------------------------------- secondary }
 
 { The answer to SEND/CONFIRM user data (FC 3) of Len record octets: ACK
   when the application takes it, NACK when it refuses or has no callback. }
@@ -946,7 +946,7 @@ begin
   SendNow(S.Chn, S.Reply, S.ReplyLen);
 end;
 
-{ ------------------------------------------------------------ balanced }
+{- ------------------------------------------------------------ balanced }
 
 function FT12BalStateName(S: tFT12BalState): ShortString;
 begin

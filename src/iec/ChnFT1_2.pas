@@ -34,12 +34,12 @@ uses
   ChnTypes, ChnVirt, ChnProto, ChnFT12Codec;
 
 const
-  cVerNo = $0100;                 { BCD }
+  cVerNo = $0100;                 {< BCD }
   cVer   = '01.00,21.11.2026';
   cName  = 'FT1_2';
-  MaxTBuf = 65500;                { largest send buffer (LSB=) }
+  MaxTBuf = 65500;                {< largest send buffer (LSB=) }
   MaxDataLen = ChnFT12Codec.MaxDataLen;
-  FT12MaxUserData = ChnFT12Codec.FT12MaxUserData;   { L = 255: 254 - ADR octets }
+  FT12MaxUserData = ChnFT12Codec.FT12MaxUserData;   {< L = 255: 254 - ADR octets }
 
   { control characters (manual 4.1) }
   SD1  = ChnFT12Codec.SD1;
@@ -48,31 +48,31 @@ const
   SACK = ChnFT12Codec.SACK;
   SNAK = ChnFT12Codec.SNAK;
 
-  { function codes from a master/primary station (manual 4.2);
+  {- function codes from a master/primary station (manual 4.2);
     V = balanced, N = unbalanced }
-  FCM_1stSetTransmit =  0;  { V N  reset of remote link, FCV = False }
-  FCM_1stSetUserFun  =  1;  { V N  reset of user process, FCV = False }
-  FCM_CheckLink      =  2;  { V    test function for link, FCV = True }
-  FCM_UserDataReply  =  3;  { V N  user data, confirm expected, FCV = True }
-  FCM_UserDataNoRep  =  4;  { V N  user data, no reply, FCV = False }
-  FCM_ReqReplyAcces  =  8;  {   N  request for access demand, FCV = False }
-  FCM_ReqLinkState   =  9;  { V N  request status of link, FCV = False }
-  FCM_ReqUserData1   = 10;  {   N  request user data class 1, FCV = True }
-  FCM_ReqUserData2   = 11;  {   N  request user data class 2, FCV = True }
+  FCM_1stSetTransmit =  0;  {< V N  reset of remote link, FCV = False }
+  FCM_1stSetUserFun  =  1;  {< V N  reset of user process, FCV = False }
+  FCM_CheckLink      =  2;  {< V    test function for link, FCV = True }
+  FCM_UserDataReply  =  3;  {< V N  user data, confirm expected, FCV = True }
+  FCM_UserDataNoRep  =  4;  {< V N  user data, no reply, FCV = False }
+  FCM_ReqReplyAcces  =  8;  {<   N  request for access demand, FCV = False }
+  FCM_ReqLinkState   =  9;  {< V N  request status of link, FCV = False }
+  FCM_ReqUserData1   = 10;  {<   N  request user data class 1, FCV = True }
+  FCM_ReqUserData2   = 11;  {<   N  request user data class 2, FCV = True }
 
-  { function codes from a slave/secondary station }
-  FCS_Ack            =  0;  { V N  ACK }
-  FCS_NackBusy       =  1;  { V N  NACK: message not accepted, link busy }
-  FCS_UserData       =  8;  {   N  user data }
-  FCS_DataNotAcces   =  9;  {   N  NACK: requested data not available }
-  FCS_LinkSAccesReq  = 11;  { V N  status of link or access demand }
+  {- function codes from a slave/secondary station }
+  FCS_Ack            =  0;  {< V N  ACK }
+  FCS_NackBusy       =  1;  {< V N  NACK: message not accepted, link busy }
+  FCS_UserData       =  8;  {<   N  user data }
+  FCS_DataNotAcces   =  9;  {<   N  NACK: requested data not available }
+  FCS_LinkSAccesReq  = 11;  {< V N  status of link or access demand }
 
-  { receive results (manual 4.3) }
-  res_ErrSum   = ChnFT12Codec.res_ErrSum;     { $20 }
-  res_ErrLen   = ChnFT12Codec.res_ErrLen;     { $21 }
-  res_ErrCode  = ChnFT12Codec.res_ErrCode;    { $22 }
-  res_ErrFrame = ChnFT12Codec.res_ErrFrame;   { $23 }
-  res_ErrDir   = ChnFT12Codec.res_ErrDir;     { $24 port: balanced, DIR of the own side }
+  {- receive results (manual 4.3) }
+  res_ErrSum   = ChnFT12Codec.res_ErrSum;     {< $20 }
+  res_ErrLen   = ChnFT12Codec.res_ErrLen;     {< $21 }
+  res_ErrCode  = ChnFT12Codec.res_ErrCode;    {< $22 }
+  res_ErrFrame = ChnFT12Codec.res_ErrFrame;   {< $23 }
+  res_ErrDir   = ChnFT12Codec.res_ErrDir;     {< $24 port: balanced, DIR of the own side }
 
   { message types (manual 4) }
   tpSACK   = ChnFT12Codec.tpSACK;
@@ -94,7 +94,7 @@ type
   tRec = (Znk, NoZnk, Err);
   tMessType = ChnFT12Codec.tMessType;
   tData = ChnFT12Codec.tData;
-  tFT12MaxRecord = ChnFT12Codec.tFT12MaxRecord;   { a tRecRecord for any L }
+  tFT12MaxRecord = ChnFT12Codec.tFT12MaxRecord;   {< a tRecRecord for any L }
 
   pSendRecord = ^tSendRecord;
   tSendRecord = ChnFT12Codec.tFT12Record;
@@ -109,18 +109,18 @@ type
 
   pChnFT1_2 = ^tChnFT1_2;
   tChnFT1_2 = object(tChnProto)
-    CH_RSum     : tSum8;     { receiver checksum }
-    CH_SSum     : tSum8;     { checksum of the last frame sent }
-    CH_MaSl     : Boolean;   { True: unbalanced (MS=ON) }
-    CH_Master   : Boolean;   { master (unbalanced) or primary (balanced) }
-    CH_LenShortM: Byte;      { LEN=: data octets of a fixed frame }
-    { --- additions of the port --- }
-    CH_MasParam : Boolean;   { MAS=MASTER; CH_Master follows it when MS=ON }
-    CH_PriParam : Boolean;   { PRI=ON; CH_Master follows it when MS=OFF }
-    CH_AdrLen   : Byte;      { ADR= }
-    CH_Dir      : Boolean;   { DIR= }
-    CH_Gap      : Word;      { GAP= in character times }
-    CH_Rx       : tFT12Rx;   { receive automaton }
+    CH_RSum     : tSum8;     {< receiver checksum }
+    CH_SSum     : tSum8;     {< checksum of the last frame sent }
+    CH_MaSl     : Boolean;   {< True: unbalanced (MS=ON) }
+    CH_Master   : Boolean;   {< master (unbalanced) or primary (balanced) }
+    CH_LenShortM: Byte;      {< LEN=: data octets of a fixed frame }
+    {- --- additions of the port --- }
+    CH_MasParam : Boolean;   {< MAS=MASTER; CH_Master follows it when MS=ON }
+    CH_PriParam : Boolean;   {< PRI=ON; CH_Master follows it when MS=OFF }
+    CH_AdrLen   : Byte;      {< ADR= }
+    CH_Dir      : Boolean;   {< DIR= }
+    CH_Gap      : Word;      {< GAP= in character times }
+    CH_Rx       : tFT12Rx;   {< receive automaton }
     { direction of the frame the last ChReceive gave (False after a broken
       frame): PRM (True = a request from the peer's primary; single
       characters count as secondary) and the DIR bit it carried }
@@ -129,8 +129,8 @@ type
     { BD= of the stack below for GAP= (9600 if none), taken when the stack
       is built (ChSetParam) and at ChConnect, not on every send }
     CH_LowBaud  : LongInt;
-    CH_SPrimary : Boolean;   { direction of the frame ChSend is encoding }
-    CH_RNow     : QWord;     { time stamp of the bytes of this receive tick }
+    CH_SPrimary : Boolean;   {< direction of the frame ChSend is encoding }
+    CH_RNow     : QWord;     {< time stamp of the bytes of this receive tick }
     { which of MAS=, PRI=, DIR= the strings gave: a balanced station whose
       role is given (PRI=ON or MAS=MASTER: the controlling station) and
       no DIR= is station A, DIR=1, as lib60870's balanced master }

@@ -39,18 +39,18 @@ uses
   ChnTypes;
 
 const
-  Iec101Layer = 'IEC101';   { ChResultText(R, Iec101Layer) }
+  Iec101Layer = 'IEC101';   {< ChResultText(R, Iec101Layer) }
 
-  res_AsduParam  = res_Proto;       { application parameters impossible }
-  res_AsduShort  = res_Proto + 1;   { shorter than the data unit identifier }
-  res_AsduType   = res_Proto + 2;   { unknown type identification }
-  res_AsduLength = res_Proto + 3;   { length does not fit type and count, or the buffer }
-  res_AsduCount  = res_Proto + 4;   { number of objects 0, above 127 or above the array }
-  res_AsduIoa    = res_Proto + 5;   { IOA out of range for its size or the sequence }
-  res_AsduValue  = res_Proto + 6;   { a value, cause or address out of range (encode) }
+  res_AsduParam  = res_Proto;       {< application parameters impossible }
+  res_AsduShort  = res_Proto + 1;   {< shorter than the data unit identifier }
+  res_AsduType   = res_Proto + 2;   {< unknown type identification }
+  res_AsduLength = res_Proto + 3;   {< length does not fit type and count, or the buffer }
+  res_AsduCount  = res_Proto + 4;   {< number of objects 0, above 127 or above the array }
+  res_AsduIoa    = res_Proto + 5;   {< IOA out of range for its size or the sequence }
+  res_AsduValue  = res_Proto + 6;   {< a value, cause or address out of range (encode) }
 
-  IecMaxObjects = 127;               { VSQ number field }
-  IecMaxAsdu    = 253;               { an ASDU never exceeds this (FT 1.2 L = 255, minus C and A) }
+  IecMaxObjects = 127;               {< VSQ number field }
+  IecMaxAsdu    = 253;               {< an ASDU never exceeds this (FT 1.2 L = 255, minus C and A) }
 
   { Type identifications (IEC 60870-5-101 table 8 ...) }
   M_SP_NA_1 = 1;   M_SP_TA_1 = 2;   M_DP_NA_1 = 3;   M_DP_TA_1 = 4;
@@ -77,30 +77,47 @@ const
   Cot_ActCon       = 7;    Cot_Deactivation = 8;   Cot_DeactCon    = 9;
   Cot_ActTerm      = 10;   Cot_ReturnRemote = 11;  Cot_ReturnLocal = 12;
   Cot_File         = 13;
-  Cot_Interrogated = 20;   { station interrogation; group g is 20 + g (1..16) }
-  Cot_CounterReq   = 37;   { general counter request; group g is 37 + g (1..4) }
+  Cot_Interrogated = 20;   {< station interrogation; group g is 20 + g (1..16) }
+  Cot_CounterReq   = 37;   {< general counter request; group g is 37 + g (1..4) }
   Cot_UnknownType  = 44;   Cot_UnknownCause = 45;
   Cot_UnknownCa    = 46;   Cot_UnknownIoa   = 47;
 
-  { Qualifier of interrogation (QOI) and of counter interrogation (QCC) }
-  Qoi_Station = 20;        { group g (1..16) is 20 + g }
-  Qcc_General = 5;         { RQT: groups 1..4, 5 = general }
-  Qcc_Read    = $00;       { FRZ (bits 6-7): read without freeze or reset }
-  Qcc_Freeze  = $40;       { freeze without reset }
-  Qcc_FreezeReset = $80;   { freeze with reset }
-  Qcc_Reset   = $C0;       { counter reset }
-  Qrp_General = 1;         { QRP: general reset of process }
-  Qrp_Events  = 2;         { reset of pending time-tagged events }
-  Fbp_Test    = $55AA;     { fixed test bit pattern of C_TS_NA_1 }
+  {- Qualifier of interrogation (QOI) and of counter interrogation (QCC) }
+  Qoi_Station = 20;        {< group g (1..16) is 20 + g }
+  Qcc_General = 5;         {< RQT: groups 1..4, 5 = general }
+  Qcc_Read    = $00;       {< FRZ (bits 6-7): read without freeze or reset }
+  Qcc_Freeze  = $40;       {< freeze without reset }
+  Qcc_FreezeReset = $80;   {< freeze with reset }
+  Qcc_Reset   = $C0;       {< counter reset }
+  Qrp_General = 1;         {< QRP: general reset of process }
+  Qrp_Events  = 2;         {< reset of pending time-tagged events }
+  {- COI, the cause of an end of initialisation (M_EI_NA_1, COT 4) }
+  Coi_PowerOn     = 0;     {< local power switch on }
+  Coi_ManualReset = 1;     {< local manual reset }
+  Coi_RemoteReset = 2;     {< remote reset (C_RP_NA_1) }
+  Coi_LocalChange = $80;   {< BS1: initialisation after a change of local parameters }
+  Fbp_Test    = $55AA;     {< fixed test bit pattern of C_TS_NA_1 }
+  {- QPM of parameters of measured values (P_ME_NA_1..P_ME_NC_1): KPA in
+    bits 0-5, LPC bit 6, POP bit 7 }
+  Kpa_Threshold = 1;       {< threshold value (a deadband on spontaneous reports) }
+  Kpa_Smoothing = 2;       {< smoothing factor (filter time constant) }
+  Kpa_Low       = 3;       {< low limit for transmission of measured values }
+  Kpa_High      = 4;       {< high limit for transmission of measured values }
+  Qpm_LocalChange = $40;   {< LPC: local parameter change }
+  Qpm_NotInOperation = $80; {< POP: parameter not in operation }
+  {- QPA of parameter activation (P_AC_NA_1): COT 6 activates, 8 deactivates }
+  Qpa_Loaded    = 1;       {< the parameters loaded before (IOA 0: all) }
+  Qpa_Object    = 2;       {< the parameters of the addressed object }
+  Qpa_Cyclic    = 3;       {< persistent cyclic or periodic transmission of the object }
 
-  { Quality bits (SIQ, DIQ, QDS, SEP, QDP, BCR): the Quality field keeps
+  {- Quality bits (SIQ, DIQ, QDS, SEP, QDP, BCR): the Quality field keeps
     them in their places on the wire }
-  Q_Overflow    = $01;     { OV (QDS) }
-  Q_ElapsedInv  = $08;     { EI (SEP, QDP) }
-  Q_Blocked     = $10;     { BL }
-  Q_Substituted = $20;     { SB }  { BCR: CY, carry }
-  Q_NotTopical  = $40;     { NT }  { BCR: CA, adjusted }
-  Q_Invalid     = $80;     { IV }
+  Q_Overflow    = $01;     {< OV (QDS) }
+  Q_ElapsedInv  = $08;     {< EI (SEP, QDP) }
+  Q_Blocked     = $10;     {< BL }
+  Q_Substituted = $20;     {< SB; in a BCR: CY, carry }
+  Q_NotTopical  = $40;     {< NT; in a BCR: CA, adjusted }
+  Q_Invalid     = $80;     {< IV }
 
 type
   { The application parameters: octets of the cause of transmission (1, or
@@ -116,15 +133,15 @@ type
     hold what the wire bits hold; the encoder refuses what does not fit
     them; IecTimeCheck tells a real date. Reserved bits are dropped. }
   tIecTime = packed record
-    Msec     : Word;      { milliseconds of the minute, 0..59999 }
-    Minute   : Byte;      { 0..59 }
-    Hour     : Byte;      { 0..23 }
-    Day      : Byte;      { day of the month 1..31 }
-    DayOfWeek: Byte;      { 1 Monday .. 7 Sunday, 0 not used }
-    Month    : Byte;      { 1..12 }
-    Year     : Byte;      { 0..99, years of the century }
-    Invalid  : Boolean;   { IV }
-    Summer   : Boolean;   { SU }
+    Msec     : Word;      {< milliseconds of the minute, 0..59999 }
+    Minute   : Byte;      {< 0..59 }
+    Hour     : Byte;      {< 0..23 }
+    Day      : Byte;      {< day of the month 1..31 }
+    DayOfWeek: Byte;      {< 1 Monday .. 7 Sunday, 0 not used }
+    Month    : Byte;      {< 1..12 }
+    Year     : Byte;      {< 0..99, years of the century }
+    Invalid  : Boolean;   {< IV }
+    Summer   : Boolean;   {< SU }
   end;
 
   tIecTimeKind = (tkNone, tkCP24, tkCP56);
@@ -169,33 +186,33 @@ type
 
   { One information object (37 octets, offsets tested). }
   tIecObject = packed record
-    Ioa      : LongWord;  { information object address }
-    Int      : LongInt;   { the integer value (see tIecKind) }
-    Bits     : LongWord;  { bitstrings, packed points, event bits }
-    Number   : Double;    { normalized fraction, short float }
-    Quality  : Byte;      { quality bits as on the wire, 0 if the type has none }
-    Transient: Boolean;   { step position in transient state (VTI bit 7) }
-    Seq      : Byte;      { integrated totals: sequence number 0..31 }
-    Select   : Boolean;   { command: select (True) or execute (False) }
-    Qu       : Byte;      { command qualifier QU/QL, parameter QPM }
-    Elapsed  : Word;      { CP16Time2a: elapsed, duration or delay time, ms }
-    Time     : tIecTime;  { time tag of time-tagged types }
+    Ioa      : LongWord;  {< information object address }
+    Int      : LongInt;   {< the integer value (see tIecKind) }
+    Bits     : LongWord;  {< bitstrings, packed points, event bits }
+    Number   : Double;    {< normalized fraction, short float }
+    Quality  : Byte;      {< quality bits as on the wire, 0 if the type has none }
+    Transient: Boolean;   {< step position in transient state (VTI bit 7) }
+    Seq      : Byte;      {< integrated totals: sequence number 0..31 }
+    Select   : Boolean;   {< command: select (True) or execute (False) }
+    Qu       : Byte;      {< command qualifier QU/QL, parameter QPM }
+    Elapsed  : Word;      {< CP16Time2a: elapsed, duration or delay time, ms }
+    Time     : tIecTime;  {< time tag of time-tagged types }
   end;
   pIecObject = ^tIecObject;
 
   { The data unit identifier of an ASDU (13 octets, offsets tested). }
   tIecAsdu = packed record
-    Ti      : Byte;       { type identification }
-    Sq      : Boolean;    { VSQ bit 7: objects in a sequence, one IOA }
-    Count   : Byte;       { number of information objects 1..127 }
-    Cot     : Byte;       { cause of transmission 0..63 }
-    Negative: Boolean;    { P/N bit: negative confirmation }
-    Test    : Boolean;    { T bit }
-    Oa      : Byte;       { originator address (0 when COT is one octet) }
-    Ca      : Word;       { common address of ASDU }
-    HeadLen : Byte;       { decode: octets of the identifier (TI..CA) }
-    ElemLen : Byte;       { decode: octets of one element (after the IOA) }
-    Len     : Word;       { decode: octets of the whole ASDU }
+    Ti      : Byte;       {< type identification }
+    Sq      : Boolean;    {< VSQ bit 7: objects in a sequence, one IOA }
+    Count   : Byte;       {< number of information objects 1..127 }
+    Cot     : Byte;       {< cause of transmission 0..63 }
+    Negative: Boolean;    {< P/N bit: negative confirmation }
+    Test    : Boolean;    {< T bit }
+    Oa      : Byte;       {< originator address (0 when COT is one octet) }
+    Ca      : Word;       {< common address of ASDU }
+    HeadLen : Byte;       {< decode: octets of the identifier (TI..CA) }
+    ElemLen : Byte;       {< decode: octets of one element (after the IOA) }
+    Len     : Word;       {< decode: octets of the whole ASDU }
   end;
 
 { The parameters of lib60870 and most stations: COT 2, CA 2, IOA 3. }
@@ -494,7 +511,7 @@ begin
     Buf[2] := (Buf[2] and $80) or Cot or (Ord(Negative) shl 6);
 end;
 
-{ ------------------------------------------------------------ time }
+{- ------------------------------------------------------------ time }
 
 function IecTimeFromDateTime(DT: TDateTime): tIecTime;
 var
@@ -607,7 +624,7 @@ begin
   end;
 end;
 
-{ ------------------------------------------------------------ elements }
+{- ------------------------------------------------------------ elements }
 
 procedure PutWord(W: Word; var B: array of Byte; At: Integer);
 begin
@@ -909,7 +926,7 @@ begin
     GetTime(B, At + V, Types[I].Time, O.Time);
 end;
 
-{ ------------------------------------------------------------ ASDU }
+{- ------------------------------------------------------------ ASDU }
 
 function Refuse(R: tChResult; const Text: ShortString; out Err: ShortString): tChResult;
 begin

@@ -54,13 +54,13 @@ uses
   ChnTypes, ChnVirt, ChnFT1_2, ChnFT12Link, ChnIec101Asdu, ChnIecTransport;
 
 const
-  res_IecNegative    = res_Proto + 8;    { negative confirmation (P/N = 1) }
-  res_IecUnknownType = res_Proto + 9;    { COT 44 }
-  res_IecUnknownCot  = res_Proto + 10;   { COT 45 }
-  res_IecUnknownCa   = res_Proto + 11;   { COT 46 }
-  res_IecUnknownIoa  = res_Proto + 12;   { COT 47 }
-  res_IecNoSlave     = res_Proto + 13;   { no such slave on this master }
-  res_IecBusy        = res_Proto + 14;   { a command is under way }
+  res_IecNegative    = res_Proto + 8;    {< negative confirmation (P/N = 1) }
+  res_IecUnknownType = res_Proto + 9;    {< COT 44 }
+  res_IecUnknownCot  = res_Proto + 10;   {< COT 45 }
+  res_IecUnknownCa   = res_Proto + 11;   {< COT 46 }
+  res_IecUnknownIoa  = res_Proto + 12;   {< COT 47 }
+  res_IecNoSlave     = res_Proto + 13;   {< no such slave on this master }
+  res_IecBusy        = res_Proto + 14;   {< a command is under way }
 
   IecMaxSlaves = 32;
 
@@ -72,24 +72,30 @@ type
     Addr     : Word;
     Link     : tFT12Link;
     State    : tIecSlaveState;
-    NextPoll : QWord;      { no class 2 poll before (ChMsTick) }
-    RetryAt  : QWord;      { dead: next attempt }
-    BackoffMs: LongInt;    { dead: the wait after the next failure }
-    { counters }
-    Class1, Class2: LongInt;   { polls answered }
-    Commands : LongInt;    { user data (commands) confirmed by the link }
-    Asdus    : LongInt;    { ASDUs received }
-    Objects  : LongInt;    { information objects passed to OnObject }
-    BadAsdus : LongInt;    { malformed ASDUs }
-    Failures : LongInt;    { services without an answer }
-    Deaths   : LongInt;    { times marked dead }
-    Resets   : LongInt;    { link resets acknowledged }
-    Probation: Boolean;    { died, and no class poll or command answered since }
-    PolledAt : QWord;      { the last class poll left (ChMsTick) }
+    NextPoll : QWord;      {< no class 2 poll before (ChMsTick) }
+    RetryAt  : QWord;      {< dead: next attempt }
+    BackoffMs: LongInt;    {< dead: the wait after the next failure }
+    {- counters }
+    Class1, Class2: LongInt;   {< polls answered }
+    Commands : LongInt;    {< user data (commands) confirmed by the link }
+    Asdus    : LongInt;    {< ASDUs received }
+    Objects  : LongInt;    {< information objects passed to OnObject }
+    BadAsdus : LongInt;    {< malformed ASDUs }
+    Failures : LongInt;    {< services without an answer }
+    Deaths   : LongInt;    {< times marked dead }
+    Resets   : LongInt;    {< link resets acknowledged }
+    Probation: Boolean;    {< died, and no class poll or command answered since }
+    PolledAt : QWord;      {< the last class poll left (ChMsTick) }
+    EndOfInits: LongInt;   {< end of initialisation ASDUs (M_EI_NA_1, COT 4) }
+    LastCoi  : Byte;       {< the COI of the last one }
+    InitGi, InitCi: Boolean;   {< interrogations due after one }
+    InitCa   : Word;
   end;
 
   tIecObjectFunc = procedure(Data: Pointer; Addr: Word; const H: tIecAsdu; const O: tIecObject);
   tIecBadFunc = procedure(Data: Pointer; Addr: Word; const Err: ShortString);
+  { A slave's end of initialisation: its common address and COI. }
+  tIecInitFunc = procedure(Data: Pointer; Addr, Ca: Word; Coi: Byte);
 
   tIecCmdPhase = (cpNone, cpSend, cpConfirm, cpTerm, cpDone);
   { what the link service under way is for }
@@ -100,18 +106,19 @@ type
   tIecCommand = record
     Phase   : tIecCmdPhase;
     Stage   : tIecCmdStage;
-    Slave   : LongInt;     { index in Slaves }
-    Ti      : Byte;        { type of the main command }
+    Slave   : LongInt;     {< index in Slaves }
+    Ti      : Byte;        {< type of the main command }
     Ca      : Word;
-    Obj     : tIecObject;  { its object (IOA, value, qualifier) }
-    Sbo     : Boolean;     { select before operate }
-    WaitTerm: Boolean;     { ends on ACT_TERM (interrogations) }
-    Delay   : Boolean;     { clock sync: delay acquisition first }
-    SentAt  : QWord;       { the current stage left }
+    Obj     : tIecObject;  {< its object (IOA, value, qualifier) }
+    Sbo     : Boolean;     {< select before operate }
+    WaitTerm: Boolean;     {< ends on ACT_TERM (interrogations) }
+    Delay   : Boolean;     {< clock sync: delay acquisition first }
+    SentAt  : QWord;       {< the current stage left }
     Deadline: QWord;
-    DelayMs : LongInt;     { the delay measured (clock sync with delay) }
+    DelayMs : LongInt;     {< the delay measured (clock sync with delay) }
     Result  : tChResult;
     Err     : ShortString;
+    Auto    : Boolean;     {< the master's own, after an end of initialisation }
   end;
 
   tIecMaster = record
@@ -120,28 +127,31 @@ type
     Balanced : Boolean;
     Slaves   : array[0..IecMaxSlaves - 1] of tIecSlave;
     SlaveCount: LongInt;
-    Turn     : LongInt;    { the slave whose turn it is }
-    Over104  : Boolean;    { on an IEC104 channel (Balanced too: no link polling) }
-    TestCount: LongInt;    { 104: TSC of the last C_TS_TA_1 }
-    Link     : tIecTransport;   { balanced FT 1.2 link or IEC 104 }
-    { settings }
-    TimeoutMs: LongInt;    { link answer (FT12LinkTimeoutMs) }
-    Retries  : LongInt;    { link repetitions (FT12LinkRetries) }
-    CycleMs  : LongInt;    { class 2 polls of a slave that had no data at most this often (100) }
-    PollBurst: LongInt;    { services in a row for a slave with data before the turn passes (3) }
-    DeadMinMs, DeadMaxMs: LongInt;   { back-off of a dead slave (1000, 30000) }
-    CommandMs: LongInt;    { confirmation of a command (10000) }
+    Turn     : LongInt;    {< the slave whose turn it is }
+    Over104  : Boolean;    {< on an IEC104 channel (Balanced too: no link polling) }
+    TestCount: LongInt;    {< 104: TSC of the last C_TS_TA_1 }
+    Link     : tIecTransport;   {< balanced FT 1.2 link or IEC 104 }
+    {- settings }
+    TimeoutMs: LongInt;    {< link answer (FT12LinkTimeoutMs) }
+    Retries  : LongInt;    {< link repetitions (FT12LinkRetries) }
+    CycleMs  : LongInt;    {< class 2 polls of a slave that had no data at most this often (100) }
+    PollBurst: LongInt;    {< services in a row for a slave with data before the turn passes (3) }
+    DeadMinMs, DeadMaxMs: LongInt;   {< back-off of a dead slave (1000, 30000) }
+    CommandMs: LongInt;    {< confirmation of a command (10000) }
     OnObject : tIecObjectFunc;
-    OnSent   : tIecObjectFunc;   { each command object as it goes out (nil: none) }
+    OnSent   : tIecObjectFunc;   {< each command object as it goes out (nil: none) }
     OnBad    : tIecBadFunc;
+    OnEndOfInit: tIecInitFunc;   {< a slave's end of initialisation (nil: none) }
+    NoGiAfterInit: Boolean;      {< do not interrogate a slave after its end of initialisation }
+    CiAfterInit: Byte;     {< QCC of a counter interrogation after it too (0: none) }
     Data     : Pointer;
-    Idle     : tFT12Idle;  { blocking forms: called instead of waiting (tests: the slave) }
+    Idle     : tFT12Idle;  {< blocking forms: called instead of waiting (tests: the slave) }
     IdleData : Pointer;
     Cmd      : tIecCommand;
     { counters and the last trouble }
-    Asdus, Objects, BadAsdus: LongInt;
+    Asdus, Objects, BadAsdus, EndOfInits: LongInt;
     LastBad  : ShortString;
-    LineResult: tChResult; { the channel failed (res_DeviceLost ...), else res_Ok }
+    LineResult: tChResult; {< the channel failed (res_DeviceLost ...), else res_Ok }
     { the link service under way (unbalanced) }
     Job      : tIecLinkJob;
     JobSlave : LongInt;
@@ -149,7 +159,7 @@ type
     Prim     : tFT12Primary;
     Rep      : tFT12MaxRecord;
     RepLen   : Word;
-    Run      : LongInt;    { services in a row of the slave whose turn it is }
+    Run      : LongInt;    {< services in a row of the slave whose turn it is }
   end;
   pIecMaster = ^tIecMaster;
 
@@ -192,6 +202,17 @@ function IecStartResetProcess(var M: tIecMaster; Addr, Ca: Word; Qrp: Byte): Boo
   set here); Sbo: select, then execute after the positive ACT_CON. }
 function IecStartCommand(var M: tIecMaster; Addr, Ca: Word; Ti: Byte; const Obj: tIecObject;
   Sbo: Boolean): Boolean;
+{ Parameter loading: one per parameter type - the parameter of kind Qpm
+  (Kpa_Threshold, Kpa_Smoothing, Kpa_Low, Kpa_High; + Qpm_NotInOperation
+  to load it without putting it in operation) of the measured value Ioa:
+  a normalized (P_ME_NA_1, -1 <= Value < 1), scaled (P_ME_NB_1) or float
+  (P_ME_NC_1) one; ends on its ACT_CON. Activation (P_AC_NA_1, COT 6)
+  with Qpa (Qpa_Loaded with Ioa 0: every parameter loaded; Qpa_Object:
+  those of Ioa). }
+function IecStartParamNormal(var M: tIecMaster; Addr, Ca: Word; Ioa: LongWord; Value: Double; Qpm: Byte): Boolean;
+function IecStartParamScaled(var M: tIecMaster; Addr, Ca: Word; Ioa: LongWord; Value: LongInt; Qpm: Byte): Boolean;
+function IecStartParamFloat(var M: tIecMaster; Addr, Ca: Word; Ioa: LongWord; Value: Double; Qpm: Byte): Boolean;
+function IecStartParamActivation(var M: tIecMaster; Addr, Ca: Word; Ioa: LongWord; Qpa: Byte): Boolean;
 function IecCommandDone(const M: tIecMaster): Boolean;
 { Step a started command to its end (Idle, or ChnWaitAny); its result. }
 function IecFinish(var M: tIecMaster): tChResult;
@@ -205,6 +226,10 @@ function IecTestCommand(var M: tIecMaster; Addr, Ca: Word): tChResult;
 function IecResetProcess(var M: tIecMaster; Addr, Ca: Word; Qrp: Byte): tChResult;
 function IecCommand(var M: tIecMaster; Addr, Ca: Word; Ti: Byte; const Obj: tIecObject;
   Sbo: Boolean): tChResult;
+function IecParamNormal(var M: tIecMaster; Addr, Ca: Word; Ioa: LongWord; Value: Double; Qpm: Byte): tChResult;
+function IecParamScaled(var M: tIecMaster; Addr, Ca: Word; Ioa: LongWord; Value: LongInt; Qpm: Byte): tChResult;
+function IecParamFloat(var M: tIecMaster; Addr, Ca: Word; Ioa: LongWord; Value: Double; Qpm: Byte): tChResult;
+function IecParamActivation(var M: tIecMaster; Addr, Ca: Word; Ioa: LongWord; Qpa: Byte): tChResult;
 { Step for Ms milliseconds (polling, objects to OnObject). }
 procedure IecPollFor(var M: tIecMaster; Ms: LongInt);
 
@@ -309,7 +334,7 @@ begin
   Result := res_Ok;
 end;
 
-{ ------------------------------------------------------------ commands }
+{- ------------------------------------------------------------ commands }
 
 function CmdName(const M: tIecMaster): ShortString;
 begin
@@ -435,14 +460,24 @@ begin
   Result := Start(M, Addr, Ca, Ti, O, False, WaitTerm, False);
 end;
 
+{ The master's own interrogation after an end of initialisation is the
+  one the program asks for: it takes it over. }
+function JoinAuto(var M: tIecMaster; Addr, Ca: Word; Ti: Byte; Q: Byte): Boolean;
+begin
+  Result := M.Cmd.Auto and not IecCommandDone(M) and (M.Cmd.Ti = Ti) and
+    (M.Cmd.Obj.Int = Q) and (M.Cmd.Ca = Ca) and (M.Slaves[M.Cmd.Slave].Addr = Addr);
+  if Result then
+    M.Cmd.Auto := False;
+end;
+
 function IecStartInterrogation(var M: tIecMaster; Addr, Ca: Word; Qoi: Byte): Boolean;
 begin
-  Result := StartWith(M, Addr, Ca, C_IC_NA_1, Qoi, True);
+  Result := JoinAuto(M, Addr, Ca, C_IC_NA_1, Qoi) or StartWith(M, Addr, Ca, C_IC_NA_1, Qoi, True);
 end;
 
 function IecStartCounterInterrogation(var M: tIecMaster; Addr, Ca: Word; Qcc: Byte): Boolean;
 begin
-  Result := StartWith(M, Addr, Ca, C_CI_NA_1, Qcc, True);
+  Result := JoinAuto(M, Addr, Ca, C_CI_NA_1, Qcc) or StartWith(M, Addr, Ca, C_CI_NA_1, Qcc, True);
 end;
 
 function IecStartRead(var M: tIecMaster; Addr, Ca: Word; Ioa: LongWord): Boolean;
@@ -495,6 +530,38 @@ begin
   end;
   { C_BO has no S/E bit: no select stage }
   Result := Start(M, Addr, Ca, Ti, Obj, Sbo and (IecTypeKind(Ti) <> ikBitsCmd), False, False);
+end;
+
+function StartParam(var M: tIecMaster; Addr, Ca: Word; Ti: Byte; Ioa: LongWord;
+  Int: LongInt; Number: Double; Qu: Byte): Boolean;
+var
+  O: tIecObject;
+begin
+  O := IecObject(Ioa);
+  O.Int := Int;
+  O.Number := Number;
+  O.Qu := Qu;
+  Result := Start(M, Addr, Ca, Ti, O, False, False, False);
+end;
+
+function IecStartParamNormal(var M: tIecMaster; Addr, Ca: Word; Ioa: LongWord; Value: Double; Qpm: Byte): Boolean;
+begin
+  Result := StartParam(M, Addr, Ca, P_ME_NA_1, Ioa, 0, Value, Qpm);
+end;
+
+function IecStartParamScaled(var M: tIecMaster; Addr, Ca: Word; Ioa: LongWord; Value: LongInt; Qpm: Byte): Boolean;
+begin
+  Result := StartParam(M, Addr, Ca, P_ME_NB_1, Ioa, Value, 0, Qpm);
+end;
+
+function IecStartParamFloat(var M: tIecMaster; Addr, Ca: Word; Ioa: LongWord; Value: Double; Qpm: Byte): Boolean;
+begin
+  Result := StartParam(M, Addr, Ca, P_ME_NC_1, Ioa, 0, Value, Qpm);
+end;
+
+function IecStartParamActivation(var M: tIecMaster; Addr, Ca: Word; Ioa: LongWord; Qpa: Byte): Boolean;
+begin
+  Result := StartParam(M, Addr, Ca, P_AC_NA_1, Ioa, Qpa, 0, 0);
 end;
 
 function IecCommandDone(const M: tIecMaster): Boolean;
@@ -584,6 +651,59 @@ begin
   end;
 end;
 
+{ Slave index S has initialised (M_EI_NA_1, COT 4): tell the program;
+  its data may all have changed - interrogate it (and its counters) when
+  no command is under way, unless told not to. }
+procedure EndOfInit(var M: tIecMaster; S: Integer; Ca: Word; Coi: Byte);
+begin
+  Inc(M.EndOfInits);
+  with M.Slaves[S] do
+  begin
+    Inc(EndOfInits);
+    LastCoi := Coi;
+    InitCa := Ca;
+    InitGi := not M.NoGiAfterInit;
+    InitCi := not M.NoGiAfterInit and (M.CiAfterInit <> 0);
+    { an interrogation of this slave not yet confirmed is answered after
+      the initialisation: it is the one that follows it }
+    if (M.Cmd.Slave = S) and (M.Cmd.Phase in [cpSend, cpConfirm]) then
+      if M.Cmd.Ti = C_IC_NA_1 then
+        InitGi := False
+      else if M.Cmd.Ti = C_CI_NA_1 then
+        InitCi := False;
+  end;
+  if Assigned(M.OnEndOfInit) then
+    M.OnEndOfInit(M.Data, M.Slaves[S].Addr, Ca, Coi);
+end;
+
+{ The interrogations due after an end of initialisation, one at a time,
+  when the program has no command under way. }
+procedure StartAfterInit(var M: tIecMaster);
+var
+  I: Integer;
+begin
+  if not IecCommandDone(M) then
+    Exit;
+  for I := 0 to M.SlaveCount - 1 do
+    with M.Slaves[I] do
+      if InitGi or InitCi then
+      begin
+        if InitGi then
+        begin
+          InitGi := False;
+          if StartWith(M, Addr, InitCa, C_IC_NA_1, Qoi_Station, True) then
+            M.Cmd.Auto := True;
+        end
+        else
+        begin
+          InitCi := False;
+          if StartWith(M, Addr, InitCa, C_CI_NA_1, M.CiAfterInit, True) then
+            M.Cmd.Auto := True;
+        end;
+        Exit;
+      end;
+end;
+
 { An ASDU received from slave index S. }
 procedure TakeAsdu(var M: tIecMaster; S: Integer; const Buf: array of Byte; Len: Word);
 var
@@ -612,6 +732,8 @@ begin
       M.OnObject(M.Data, M.Slaves[S].Addr, H, O);
     if I = 0 then
       MatchCommand(M, S, H, O);
+    if (H.Ti = M_EI_NA_1) and (H.Cot = Cot_Initialized) then
+      EndOfInit(M, S, H.Ca, O.Int);
   end;
 end;
 
@@ -633,7 +755,7 @@ begin
   M.OnSent(M.Data, M.Slaves[S].Addr, H, O);
 end;
 
-{ ------------------------------------------------------------ unbalanced }
+{- ------------------------------------------------------------ unbalanced }
 
 { The one place that drives an FT 1.2 primary service. LinkStart starts
   FC with Len octets of user data (an ASDU) to slave S for Job; LinkStep
@@ -897,7 +1019,7 @@ begin
   Result := True;
 end;
 
-{ ------------------------------------------------------------ balanced }
+{- ------------------------------------------------------------ balanced }
 
 function OnBalancedData(Data: Pointer; Buf: PByte; Len: Word; Confirm: Boolean): Boolean;
 var
@@ -949,7 +1071,7 @@ begin
   end;
 end;
 
-{ ------------------------------------------------------------ stepping }
+{- ------------------------------------------------------------ stepping }
 
 function IecMasterStep(var M: tIecMaster): Boolean;
 begin
@@ -965,6 +1087,7 @@ begin
       Finish(M, res_Timeout, 'no ACT_CON in ' + IntToStr(M.CommandMs) + ' ms' + IecLineShowed(M, M.Cmd.Slave))
     else
       Finish(M, res_Timeout, 'no ACT_TERM in ' + IntToStr(M.CommandMs) + ' ms' + IecLineShowed(M, M.Cmd.Slave));
+  StartAfterInit(M);
 end;
 
 function IecMasterWaitEnd(const M: tIecMaster): QWord;
@@ -1033,6 +1156,16 @@ begin
       WaitABit(M, Until_);
 end;
 
+{ A blocking call waits for the master's own interrogation after an end of
+  initialisation to end first (a stepped start is refused meanwhile, as
+  behind any command). }
+procedure AwaitAuto(var M: tIecMaster);
+begin
+  while M.Cmd.Auto and not IecCommandDone(M) do
+    if not IecMasterStep(M) then
+      WaitABit(M, M.Cmd.Deadline + 1);
+end;
+
 function Blocking(var M: tIecMaster; Started: Boolean): tChResult;
 begin
   if Started then
@@ -1045,38 +1178,73 @@ end;
 
 function IecInterrogation(var M: tIecMaster; Addr, Ca: Word; Qoi: Byte): tChResult;
 begin
+  if JoinAuto(M, Addr, Ca, C_IC_NA_1, Qoi) then
+    Exit(Blocking(M, True));
+  AwaitAuto(M);
   Result := Blocking(M, IecStartInterrogation(M, Addr, Ca, Qoi));
 end;
 
 function IecCounterInterrogation(var M: tIecMaster; Addr, Ca: Word; Qcc: Byte): tChResult;
 begin
+  if JoinAuto(M, Addr, Ca, C_CI_NA_1, Qcc) then
+    Exit(Blocking(M, True));
+  AwaitAuto(M);
   Result := Blocking(M, IecStartCounterInterrogation(M, Addr, Ca, Qcc));
 end;
 
 function IecRead(var M: tIecMaster; Addr, Ca: Word; Ioa: LongWord): tChResult;
 begin
+  AwaitAuto(M);
   Result := Blocking(M, IecStartRead(M, Addr, Ca, Ioa));
 end;
 
 function IecClockSync(var M: tIecMaster; Addr, Ca: Word; const T: tIecTime; Delay: Boolean): tChResult;
 begin
+  AwaitAuto(M);
   Result := Blocking(M, IecStartClockSync(M, Addr, Ca, T, Delay));
 end;
 
 function IecTestCommand(var M: tIecMaster; Addr, Ca: Word): tChResult;
 begin
+  AwaitAuto(M);
   Result := Blocking(M, IecStartTest(M, Addr, Ca));
 end;
 
 function IecResetProcess(var M: tIecMaster; Addr, Ca: Word; Qrp: Byte): tChResult;
 begin
+  AwaitAuto(M);
   Result := Blocking(M, IecStartResetProcess(M, Addr, Ca, Qrp));
 end;
 
 function IecCommand(var M: tIecMaster; Addr, Ca: Word; Ti: Byte; const Obj: tIecObject;
   Sbo: Boolean): tChResult;
 begin
+  AwaitAuto(M);
   Result := Blocking(M, IecStartCommand(M, Addr, Ca, Ti, Obj, Sbo));
+end;
+
+function IecParamNormal(var M: tIecMaster; Addr, Ca: Word; Ioa: LongWord; Value: Double; Qpm: Byte): tChResult;
+begin
+  AwaitAuto(M);
+  Result := Blocking(M, IecStartParamNormal(M, Addr, Ca, Ioa, Value, Qpm));
+end;
+
+function IecParamScaled(var M: tIecMaster; Addr, Ca: Word; Ioa: LongWord; Value: LongInt; Qpm: Byte): tChResult;
+begin
+  AwaitAuto(M);
+  Result := Blocking(M, IecStartParamScaled(M, Addr, Ca, Ioa, Value, Qpm));
+end;
+
+function IecParamFloat(var M: tIecMaster; Addr, Ca: Word; Ioa: LongWord; Value: Double; Qpm: Byte): tChResult;
+begin
+  AwaitAuto(M);
+  Result := Blocking(M, IecStartParamFloat(M, Addr, Ca, Ioa, Value, Qpm));
+end;
+
+function IecParamActivation(var M: tIecMaster; Addr, Ca: Word; Ioa: LongWord; Qpa: Byte): tChResult;
+begin
+  AwaitAuto(M);
+  Result := Blocking(M, IecStartParamActivation(M, Addr, Ca, Ioa, Qpa));
 end;
 
 initialization

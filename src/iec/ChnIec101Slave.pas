@@ -30,9 +30,18 @@
     kept as the station clock's offset, OnClock told, ACT_CON with the
     time received;
   * read (C_RD_NA_1): the point in class 1 with COT 5;
-  * test (C_TS_NA_1, C_TS_TA_1), reset process (C_RP_NA_1: QRP 2 drops
+  * end of initialisation (M_EI_NA_1, COT 4) in class 1 when the program
+    says the station has initialised (IecSlaveEndOfInit, COI 0 after a
+    start), and after a general reset of process;
+  * test (C_TS_NA_1, C_TS_TA_1), reset process (C_RP_NA_1: QRP 1 starts
+    the station again - queues dropped, OnReset told - and queues an end
+    of initialisation with COI 2 after the ACT_CON; QRP 2 drops
     the queued time-tagged events, never a confirmation), delay acquisition (C_CD_NA_1: COT 6 confirmed,
     COT 3 kept as the delay): ACT_CON;
+  * parameters of measured values (P_ME_NA_1..P_ME_NC_1: threshold,
+    smoothing, limits kept per IOA, a threshold in operation a deadband on
+    the spontaneous reports, reported after the points of a station
+    interrogation) and their activation (P_AC_NA_1): ACT_CON / DEACT_CON;
   * anything else is mirrored as a negative answer with COT 44 (unknown
     type), 45 (a cause the type does not take, or P/N = 1), 46 (another common
     address, or the broadcast address with a read or a command) or 47 (an
@@ -57,17 +66,22 @@ uses
 
 const
   IecSlaveMaxPoints = 1024;
-  IecSlaveQueueLen  = 64;        { ASDUs waiting per class }
-  IecSlaveSelectMs  = 10000;     { default select-before-operate timeout }
+  IecSlaveQueueLen  = 64;        {< ASDUs waiting per class }
+  IecSlaveSelectMs  = 10000;     {< default select-before-operate timeout }
 
 type
   { One entry of the point table. }
   tIecPoint = record
-    Ti    : Byte;         { monitoring type (1..21, 30..40) or command type (45..51, 58..64) }
-    Group : Byte;         { interrogation group 1..16 (counters 1..4), 0 = station only }
-    Obj   : tIecObject;   { IOA, value, quality, time (see ChnIec101Asdu.tIecKind) }
-    Frozen: tIecObject;   { counters: the value of the last freeze }
+    Ti    : Byte;         {< monitoring type (1..21, 30..40) or command type (45..51, 58..64) }
+    Group : Byte;         {< interrogation group 1..16 (counters 1..4), 0 = station only }
+    Obj   : tIecObject;   {< IOA, value, quality, time (see ChnIec101Asdu.tIecKind) }
+    Frozen: tIecObject;   {< counters: the value of the last freeze }
     HasFrozen: Boolean;
+    Par   : array[Kpa_Threshold..Kpa_High] of Double;   {< parameters loaded (P_ME_NA/NB/NC_1) }
+    ParSet: Byte;         {< bit KPA set: Par[KPA] loaded }
+    ParOn : Boolean;      {< the parameters are in operation (POP 0, or P_AC_NA_1) }
+    Reported: Double;     {< the value of the last spontaneous report (the deadband's base) }
+    HasReported: Boolean;
   end;
   pIecPoint = ^tIecPoint;
 
@@ -91,30 +105,33 @@ type
     ASDU handed to the link (Sent = True). }
   tIecSlaveAsduFunc = procedure(Data: Pointer; Sent: Boolean; Buf: PByte; Len: Word);
   tIecSlaveBadFunc = procedure(Data: Pointer; const Err: ShortString);
+  { A reset of process (C_RP_NA_1) with its QRP, after its ACT_CON. }
+  tIecSlaveResetFunc = procedure(Data: Pointer; Qrp: Byte);
 
   tIecSlaveStation = record
     Chn      : pChnVirt;
     Params   : tIecParams;
-    Ca       : Word;          { own common address (IecSlaveInit: 1) }
-    Balanced : Boolean;       { no link polling: balanced FT 1.2 or IEC 104 }
-    Over104  : Boolean;       { on an IEC104 channel }
-    Station  : tFT12Station;  { unbalanced link }
-    Link     : tIecTransport; { balanced link or IEC 104 }
+    Ca       : Word;          {< own common address (IecSlaveInit: 1) }
+    Balanced : Boolean;       {< no link polling: balanced FT 1.2 or IEC 104 }
+    Over104  : Boolean;       {< on an IEC104 channel }
+    Station  : tFT12Station;  {< unbalanced link }
+    Link     : tIecTransport; {< balanced link or IEC 104 }
     Points   : array[0..IecSlaveMaxPoints - 1] of tIecPoint;
     PointCount: LongInt;
     Class1, Class2: tIecQueue;
     { interrogation under way (station/group or counters) }
     GiActive : Boolean;
     GiQoi    : Byte;
-    GiNext   : LongInt;       { next point index to look at }
-    GiAsdu   : tIecQueued;    { its ACT_CON, the mirror for ACT_TERM }
+    GiNext   : LongInt;       {< next point index to look at }
+    GiPar    : LongInt;       {< then the parameters: point * 4 + KPA - 1 }
+    GiAsdu   : tIecQueued;    {< its ACT_CON, the mirror for ACT_TERM }
     { select before operate }
     SelActive: Boolean;
     SelTi    : Byte;
     SelIoa   : LongWord;
     SelUntil : QWord;
     SelectMs : LongInt;
-    SelObj   : tIecObject;    { the object selected: its execute must carry the same }
+    SelObj   : tIecObject;    {< the object selected: its execute must carry the same }
     { station clock: PC clock + ClockOffsetMs; delay from C_CD_NA_1 }
     ClockOffsetMs: Int64;
     DelayMs  : LongInt;
@@ -122,10 +139,12 @@ type
     OnClock  : tIecSlaveClockFunc;
     OnAsdu   : tIecSlaveAsduFunc;
     OnBad    : tIecSlaveBadFunc;
+    OnReset  : tIecSlaveResetFunc;
     Data     : Pointer;
     { counters }
     Asdus, BadAsdus, Commands, Refused, ClockSyncs, Interrogations,
-      CounterInterrogations, Reads, Events, Negatives, Overflows: LongInt;
+      CounterInterrogations, Reads, Events, Negatives, Overflows, EndOfInits,
+      Parameters, Suppressed: LongInt;
     LastBad  : ShortString;
   end;
   pIecSlaveStation = ^tIecSlaveStation;
@@ -165,13 +184,21 @@ function IecSlaveStep(var S: tIecSlaveStation): Boolean;
 function IecSlaveWaitMs(const S: tIecSlaveStation): LongInt;
 { ASDUs waiting in class 1 and class 2 (and an interrogation's rest). }
 function IecSlavePending(const S: tIecSlaveStation): Boolean;
+{ The station has initialised: queue its end of initialisation (M_EI_NA_1,
+  COT 4, IOA 0, the COI: Coi_PowerOn after a start, Coi_ManualReset,
+  + Coi_LocalChange when local parameters changed) in class 1. A program
+  calls it once its point table is filled; it goes out when the master
+  has reset the link and polls class 1 (unbalanced), or as soon as the
+  link is up (balanced FT 1.2, IEC 104). A general reset of process
+  (C_RP_NA_1, QRP 1) sends one with Coi_RemoteReset by itself. }
+procedure IecSlaveEndOfInit(var S: tIecSlaveStation; Coi: Byte);
 
 implementation
 
 uses
   SysUtils, DateUtils;
 
-{ ---------------------------------------------------------------- queues }
+{- ---------------------------------------------------------------- queues }
 
 function QueuePut(var Q: tIecQueue; const Buf: array of Byte; Len: Word): Boolean;
 var
@@ -215,7 +242,7 @@ begin
     Inc(S.Overflows);
 end;
 
-{ ---------------------------------------------------------------- points }
+{- ---------------------------------------------------------------- points }
 
 function IsCounter(Ti: Byte): Boolean;
 begin
@@ -342,11 +369,44 @@ begin
   end;
 end;
 
+{ The value of a measured value as its parameters count it: the fraction
+  of a normalized value, the integer of a scaled one, the float. }
+function MeasuredValue(Ti: Byte; const O: tIecObject): Double;
+begin
+  if IecTypeKind(Ti) = ikScaled then
+    Result := O.Int
+  else
+    Result := O.Number;
+end;
+
+{ The parameter type (P_ME_NA/NB/NC_1) of a measured value type; 0 when
+  it has none. }
+function ParamType(Ti: Byte): Byte;
+begin
+  case IecTypeKind(Ti) of
+    ikNormal: Result := P_ME_NA_1;
+    ikScaled: Result := P_ME_NB_1;
+    ikFloat: Result := P_ME_NC_1;
+  else
+    Result := 0;
+  end;
+end;
+
+{ A change within the threshold of a point whose parameters are in
+  operation, and with the same quality, is not reported (a deadband around
+  the value reported last). }
+function InDeadband(const P: tIecPoint; const O: tIecObject; OldQuality: Byte): Boolean;
+begin
+  Result := P.ParOn and (P.ParSet and (1 shl Kpa_Threshold) <> 0) and P.HasReported and
+    (O.Quality = OldQuality) and (Abs(MeasuredValue(P.Ti, O) - P.Reported) < P.Par[Kpa_Threshold]);
+end;
+
 function IecSlaveUpdate(var S: tIecSlaveStation; Ioa: LongWord; const Obj: tIecObject;
   Spontaneous: Boolean; out Err: ShortString): tChResult;
 var
   I: Integer;
   O: tIecObject;
+  Quality: Byte;
 begin
   Err := '';
   I := IecSlaveFind(S, Ioa);
@@ -367,9 +427,17 @@ begin
     Err := 'point ' + IntToStr(Ioa) + ': ' + Err;
     Exit;
   end;
+  Quality := S.Points[I].Obj.Quality;
   S.Points[I].Obj := O;
+  if Spontaneous and InDeadband(S.Points[I], O, Quality) then
+  begin
+    Inc(S.Suppressed);
+    Exit(res_Ok);
+  end;
   if Spontaneous then
   begin
+    S.Points[I].Reported := MeasuredValue(S.Points[I].Ti, O);
+    S.Points[I].HasReported := True;
     Result := QueueObject(S, S.Points[I].Ti, Cot_Spontaneous, O);
     if Result = res_Ok then
       Inc(S.Events);
@@ -378,7 +446,7 @@ begin
   end;
 end;
 
-{ ---------------------------------------------------------- interrogation }
+{- ---------------------------------------------------------- interrogation }
 
 { Does point P answer the interrogation under way? }
 function GiWants(const S: tIecSlaveStation; const P: tIecPoint): Boolean;
@@ -394,6 +462,37 @@ begin
   end
   else
     Result := not IsCounter(P.Ti) and ((S.GiQoi = Qoi_Station) or (P.Group = S.GiQoi - Qoi_Station));
+end;
+
+{ After the points, the parameters loaded for the points the interrogation
+  covers, one ASDU each (P_ME_NA/NB/NC_1, COT 20 + group; QPM the KPA, POP
+  set while they are not in operation); False when none is left. }
+function GiParamAsdu(var S: tIecSlaveStation; var Out: tIecQueued): Boolean;
+var
+  P: pIecPoint;
+  Kpa: Integer;
+  O: tIecObject;
+  Err: ShortString;
+begin
+  Result := False;
+  while not Result and (S.GiPar < S.PointCount * 4) do
+  begin
+    P := @S.Points[S.GiPar div 4];
+    Kpa := S.GiPar mod 4 + 1;
+    Inc(S.GiPar);
+    if (P^.ParSet and (1 shl Kpa) = 0) or not GiWants(S, P^) then
+      Continue;
+    O := IecObject(P^.Obj.Ioa);
+    if ParamType(P^.Ti) = P_ME_NB_1 then
+      O.Int := Round(P^.Par[Kpa])
+    else
+      O.Number := P^.Par[Kpa];
+    O.Qu := Kpa;
+    if not P^.ParOn then
+      O.Qu := O.Qu or Qpm_NotInOperation;
+    Result := IecEncodeOne(S.Params, ParamType(P^.Ti), Cot_Interrogated + (S.GiQoi - Qoi_Station),
+      S.Ca, O, Out.Data, Out.Len, Err) = res_Ok;
+  end;
 end;
 
 { The next answer ASDU of the interrogation: consecutive points of one
@@ -413,6 +512,8 @@ begin
   Counter := S.GiAsdu.Data[0] = C_CI_NA_1;
   while (S.GiNext < S.PointCount) and not GiWants(S, S.Points[S.GiNext]) do
     Inc(S.GiNext);
+  if (S.GiNext >= S.PointCount) and not Counter and GiParamAsdu(S, Out) then
+    Exit(True);
   if S.GiNext >= S.PointCount then
   begin
     { all sent: ACT_TERM, in class 1 }
@@ -477,7 +578,7 @@ begin
   end;
 end;
 
-{ ---------------------------------------------------------------- answers }
+{- ---------------------------------------------------------------- answers }
 
 procedure Bad(var S: tIecSlaveStation; const Err: ShortString);
 begin
@@ -642,6 +743,7 @@ begin
   Move(Buf[0], S.GiAsdu.Data[0], Len);
   S.GiQoi := Q;
   S.GiNext := 0;
+  S.GiPar := 0;
   if H.Ti = C_CI_NA_1 then
   begin
     Inc(S.CounterInterrogations);
@@ -659,6 +761,85 @@ begin
   S.GiActive := True;
 end;
 
+procedure IecSlaveEndOfInit(var S: tIecSlaveStation; Coi: Byte);
+var
+  Buf: array[0..IecMaxAsdu - 1] of Byte;
+  Len: Word;
+  O: tIecObject;
+  Err: ShortString;
+begin
+  O := IecObject(0);
+  O.Int := Coi;
+  if IecEncodeOne(S.Params, M_EI_NA_1, Cot_Initialized, S.Ca, O, Buf, Len, Err) = res_Ok then
+  begin
+    Queue1(S, Buf, Len);
+    Inc(S.EndOfInits);
+  end;
+end;
+
+{ A general reset of process: the station starts again - what waited is
+  dropped, an interrogation or selection under way ends - and says so
+  with an end of initialisation after the confirmation. }
+procedure GeneralReset(var S: tIecSlaveStation; const Buf: array of Byte; Len: Word);
+begin
+  S.Class1.Count := 0;
+  S.Class2.Count := 0;
+  S.GiActive := False;
+  S.SelActive := False;
+  Answer(S, Buf, Len, Cot_ActCon, False);
+  if Assigned(S.OnReset) then
+    S.OnReset(S.Data, Qrp_General);
+  IecSlaveEndOfInit(S, Coi_RemoteReset);
+end;
+
+{ Parameter loading (P_ME_NA/NB/NC_1, for a measured value of the same
+  kind: normalized, scaled, float) and activation (P_AC_NA_1). }
+procedure TakeParameter(var S: tIecSlaveStation; const Buf: array of Byte; Len: Word;
+  const H: tIecAsdu; const O: tIecObject);
+var
+  I, Kpa: Integer;
+  Ok: Boolean;
+begin
+  I := IecSlaveFind(S, O.Ioa);
+  if (H.Ti = P_AC_NA_1) and (O.Int = Qpa_Loaded) and (O.Ioa = 0) then
+  begin
+    { every point's loaded parameters }
+    for I := 0 to S.PointCount - 1 do
+      S.Points[I].ParOn := H.Cot = Cot_Activation;
+    Inc(S.Parameters);
+    Answer(S, Buf, Len, ActOrDeact(H.Cot), False);
+    Exit;
+  end;
+  if (I < 0) or (ParamType(S.Points[I].Ti) = 0) or
+     (H.Ti <> P_AC_NA_1) and (ParamType(S.Points[I].Ti) <> H.Ti) then
+  begin
+    Answer(S, Buf, Len, Cot_UnknownIoa, True);
+    Exit;
+  end;
+  if H.Ti = P_AC_NA_1 then
+  begin
+    { this object's parameters; cyclic transmission is not offered }
+    Ok := O.Int in [Qpa_Loaded, Qpa_Object];
+    if Ok then
+      S.Points[I].ParOn := H.Cot = Cot_Activation;
+  end
+  else
+  begin
+    Kpa := O.Qu and $3F;
+    Ok := (Kpa >= Kpa_Threshold) and (Kpa <= Kpa_High) and
+      ((Kpa <> Kpa_Threshold) or (MeasuredValue(S.Points[I].Ti, O) >= 0));
+    if Ok then
+    begin
+      S.Points[I].Par[Kpa] := MeasuredValue(S.Points[I].Ti, O);
+      S.Points[I].ParSet := S.Points[I].ParSet or (1 shl Kpa);
+      S.Points[I].ParOn := O.Qu and Qpm_NotInOperation = 0;
+    end;
+  end;
+  if Ok then
+    Inc(S.Parameters);
+  Answer(S, Buf, Len, ActOrDeact(H.Cot), not Ok);
+end;
+
 { Does type Ti take cause Cot in control direction? }
 function CotFits(Ti, Cot: Byte): Boolean;
 begin
@@ -666,6 +847,8 @@ begin
     C_RD_NA_1: Result := Cot = Cot_Request;
     C_CS_NA_1, C_TS_NA_1, C_RP_NA_1, C_TS_TA_1: Result := Cot = Cot_Activation;
     C_IC_NA_1, C_CI_NA_1: Result := Cot in [Cot_Activation];
+    P_ME_NA_1, P_ME_NB_1, P_ME_NC_1: Result := Cot = Cot_Activation;
+    P_AC_NA_1: Result := Cot in [Cot_Activation, Cot_Deactivation];
     C_CD_NA_1: Result := Cot in [Cot_Activation, Cot_Spontaneous];
   else
     Result := Cot in [Cot_Activation, Cot_Deactivation];   { commands }
@@ -714,10 +897,10 @@ begin
     Answer(S, A, Len, Cot_UnknownCa, True);
     Exit;
   end;
-  if IecIsMonitor(H.Ti) or (H.Ti >= P_ME_NA_1) or (H.Count <> 1) or
+  if IecIsMonitor(H.Ti) or (H.Ti > P_AC_NA_1) or (H.Count <> 1) or
      (S.Over104 and (H.Ti in [C_TS_NA_1, C_CD_NA_1])) then
   begin
-    { monitoring types, parameters, several objects: not taken here; 104
+    { monitoring types, file transfer, several objects: not taken here; 104
       does not use test without time tag and delay acquisition }
     Answer(S, A, Len, Cot_UnknownType, True);
     Exit;
@@ -737,12 +920,18 @@ begin
   case H.Ti of
     C_IC_NA_1, C_CI_NA_1: TakeInterrogation(S, A, Len, H, O);
     C_RD_NA_1: TakeRead(S, A, Len, O);
+    P_ME_NA_1, P_ME_NB_1, P_ME_NC_1, P_AC_NA_1: TakeParameter(S, A, Len, H, O);
     C_CS_NA_1: TakeClock(S, A, Len, O);
     C_TS_NA_1, C_TS_TA_1, C_RP_NA_1:
+      if (H.Ti = C_RP_NA_1) and (O.Int = Qrp_General) then
+        GeneralReset(S, A, Len)
+      else
       begin
         if (H.Ti = C_RP_NA_1) and (O.Int = Qrp_Events) then
           QueueDropTaggedEvents(S.Class1);
         Answer(S, A, Len, Cot_ActCon, False);
+        if (H.Ti = C_RP_NA_1) and Assigned(S.OnReset) then
+          S.OnReset(S.Data, O.Int);
       end;
     C_CD_NA_1:
       if H.Cot = Cot_Spontaneous then
@@ -754,7 +943,7 @@ begin
   end;
 end;
 
-{ ------------------------------------------------------------- link glue }
+{- ------------------------------------------------------------- link glue }
 
 function OnUserData(Data: Pointer; Buf: PByte; Len: Word; Confirm: Boolean): Boolean;
 var

@@ -27,10 +27,10 @@ uses
 
 const
   Apci104Start   = $68;
-  Apci104MinLen  = 4;             { the length octet: control field only }
+  Apci104MinLen  = 4;             {< the length octet: control field only }
   Apci104MaxLen  = 253;
-  Apci104MaxAsdu = Apci104MaxLen - 4;   { 249 }
-  Apci104MaxApdu = Apci104MaxLen + 2;   { 255 octets on the wire }
+  Apci104MaxAsdu = Apci104MaxLen - 4;   {< 249 }
+  Apci104MaxApdu = Apci104MaxLen + 2;   {< 255 octets on the wire }
   Apci104SeqMod  = 32768;
 
   { U format functions (octet 1) }
@@ -41,13 +41,13 @@ const
   U104TestFrAct  = $43;
   U104TestFrCon  = $83;
 
-  { result codes of the codec (and of NAM=IEC104) }
-  res_ApciStart   = res_Proto + 0;   { an octet other than 68h where an APDU starts }
-  res_ApciLength  = res_Proto + 1;   { length below 4 or above 253, or wrong for the format }
-  res_ApciControl = res_Proto + 2;   { control field of no format (U with 0 or 2 functions ...) }
-  res_ApciSeq     = res_Proto + 3;   { N(S) or N(R) the standard does not allow }
-  res_ApciNotStarted = res_Proto + 4; { an I frame while data transfer is stopped }
-  res_ApciTimeout = res_Proto + 5;   { t1 ran out: no acknowledgement }
+  {- result codes of the codec (and of NAM=IEC104) }
+  res_ApciStart   = res_Proto + 0;   {< an octet other than 68h where an APDU starts }
+  res_ApciLength  = res_Proto + 1;   {< length below 4 or above 253, or wrong for the format }
+  res_ApciControl = res_Proto + 2;   {< control field of no format (U with 0 or 2 functions ...) }
+  res_ApciSeq     = res_Proto + 3;   {< N(S) or N(R) the standard does not allow }
+  res_ApciNotStarted = res_Proto + 4; {< an I frame while data transfer is stopped }
+  res_ApciTimeout = res_Proto + 5;   {< t1 ran out: no acknowledgement }
 
 type
   tApci104Format = (af104I, af104S, af104U);
@@ -55,8 +55,8 @@ type
   { The control field of one APDU, decoded. }
   tApci104 = record
     Format : tApci104Format;
-    Ns, Nr : Word;        { I: both, S: Nr }
-    UFunc  : Byte;        { U: octet 1 (U104StartDtAct ...) }
+    Ns, Nr : Word;        {< I: both, S: Nr }
+    UFunc  : Byte;        {< U: octet 1 (U104StartDtAct ...) }
   end;
 
   tApci104FeedEvent = (fe104None, fe104Apdu, fe104Error);
@@ -65,8 +65,8 @@ type
   tApci104Feed = record
     Buf  : array[0..Apci104MaxApdu - 1] of Byte;
     Pos  : Word;
-    Error: tChResult;     { fe104Error: res_ApciStart or res_ApciLength }
-    Bad  : Byte;          { ... and the octet at fault }
+    Error: tChResult;     {< fe104Error: res_ApciStart or res_ApciLength }
+    Bad  : Byte;          {< ... and the octet at fault }
   end;
 
 procedure Apci104FeedReset(var F: tApci104Feed);

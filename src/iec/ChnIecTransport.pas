@@ -22,12 +22,12 @@ type
   tIecTransport = record
     Kind      : tIecTransportKind;
     Chn       : pChnVirt;
-    Bal       : tFT12Balanced;     { itFT12Balanced }
+    Bal       : tFT12Balanced;     {< itFT12Balanced }
     { itIec104: the ASDU received, kept while OnUserData has no room }
     RxBuf     : array[0..Apci104MaxAsdu - 1] of Byte;
     RxLen     : Word;
     RxHeld    : Boolean;
-    OnUserData: tFT12UserDataFunc; { each ASDU received; False: no room now }
+    OnUserData: tFT12UserDataFunc; {< each ASDU received; False: no room now }
     Data      : Pointer;
   end;
 

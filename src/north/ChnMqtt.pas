@@ -50,8 +50,8 @@ type
     Payload: AnsiString;
     Qos    : LongInt;
     Retain : Boolean;
-    Mid    : LongInt;     { the library's message id while handed over }
-    Sent   : Boolean;     { handed to the library, no PUBACK yet }
+    Mid    : LongInt;     {< the library's message id while handed over }
+    Sent   : Boolean;     {< handed to the library, no PUBACK yet }
   end;
 
   tMqttState = (msClosed, msConnecting, msConnected, msWaiting);
@@ -60,19 +60,19 @@ type
   tMqttClient = record
     { settings: fill before MqttOpen }
     Host       : AnsiString;
-    Port       : LongInt;       { default 1883 (8883 with TLS) }
-    ClientId   : AnsiString;    { '' : the library makes one }
+    Port       : LongInt;       {< default 1883 (8883 with TLS) }
+    ClientId   : AnsiString;    {< '' : the library makes one }
     User       : AnsiString;
     Password   : AnsiString;
     Tls        : Boolean;
-    CaFile     : AnsiString;    { a CA file; a directory is taken as CA path }
-    Insecure   : Boolean;       { TLS without checking the server's name }
-    KeepAlive  : LongInt;       { seconds }
-    Qos        : LongInt;       { 0 or 1, default 1 }
+    CaFile     : AnsiString;    {< a CA file; a directory is taken as CA path }
+    Insecure   : Boolean;       {< TLS without checking the server's name }
+    KeepAlive  : LongInt;       {< seconds }
+    Qos        : LongInt;       {< 0 or 1, default 1 }
     QueueMax   : LongInt;
-    WillTopic  : AnsiString;    { '' : no will }
+    WillTopic  : AnsiString;    {< '' : no will }
     WillPayload: AnsiString;
-    OnlinePayload: AnsiString;  { published retained to WillTopic on connect }
+    OnlinePayload: AnsiString;  {< published retained to WillTopic on connect }
     { state }
     State      : tMqttState;
     Mosq       : Pointer;
@@ -84,12 +84,12 @@ type
     Subs       : array of AnsiString;
     Inbox      : array of tMqttMessage;
     InboxHead  : LongInt;
-    { counters }
-    Delivered  : LongInt;       { acknowledged (QoS 1) or handed over (QoS 0) }
-    Dropped    : LongInt;       { dropped from a full queue }
+    {- counters }
+    Delivered  : LongInt;       {< acknowledged (QoS 1) or handed over (QoS 0) }
+    Dropped    : LongInt;       {< dropped from a full queue }
     Connects   : LongInt;
     LastError  : AnsiString;
-    Changed    : Boolean;       { the connection state changed (MqttStep's result) }
+    Changed    : Boolean;       {< the connection state changed (MqttStep's result) }
   end;
 
 { Load libmosquitto; True when it is there (loaded once per process). Err:
@@ -253,7 +253,7 @@ begin
   Result := StrPas(mosquitto_strerror(Rc));
 end;
 
-{ ------------------------------------------------------------ the socket }
+{- ------------------------------------------------------------ the socket }
 
 { The socket the library uses now joins the wait (it changes on reconnect). }
 procedure FollowSocket(var C: tMqttClient);
@@ -295,7 +295,7 @@ begin
   C.Sock := -1;
 end;
 
-{ ------------------------------------------------------------ callbacks }
+{- ------------------------------------------------------------ callbacks }
 
 procedure OnConnect(Mosq, Obj: Pointer; Rc: cint); cdecl;
 var
@@ -360,7 +360,7 @@ begin
   C^.Inbox[High(C^.Inbox)] := M;
 end;
 
-{ ------------------------------------------------------------ client }
+{- ------------------------------------------------------------ client }
 
 function MqttOpen(var C: tMqttClient; out Err: AnsiString): Boolean;
 var

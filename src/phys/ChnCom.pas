@@ -27,6 +27,20 @@
               latency_timer, FTDI and others); refused with LAT= named
               where the driver has none or it may not be written; 0
               (default) leaves it as it is
+    RTSB=ms   0..1000: RS485=RTS waits this long after raising RTS before
+              the first bit (a transceiver or radio that keys up slowly);
+              RS485=KERNEL gives it to the driver (delay_rts_before_send)
+    RTSA=ms   0..1000: RTS stays up this long after the last bit
+              (delay_rts_after_send with KERNEL)
+    TURN=ms   0..10000: a send starts at least this long after the last
+              byte received (a slave's turnaround delay, for masters that
+              need time to switch their line around)
+    IFG=bits  0..10000: a send starts only after the line was idle this
+              many bit times (sent or received; FT 1.2 needs 33, i.e.
+              three characters of 11 bits, between frames)
+              All four without sleeping: the message is held in the
+              transmit buffer (ChSendReady says CHS_Sending) and goes out
+              from a later poll, the program-wide wait woken then
     IDL=ms    when a poll finds nothing, wait on the device at most this long
               for input (returns at the first byte); 0 never waits. Default 1,
               so legacy busy loops do not burn a CPU.
@@ -88,31 +102,39 @@ const
 type
   pChnCom = ^tChnCom;
   tChnCom = object(tChnVirt)
-    CH_Com     : LongInt;          { COM= }
-    CH_Dev     : tWordString;      { DEV=, '' = use COM }
-    CH_Drv     : string[15];       { DRV= }
-    CH_Set     : tPortSettings;    { BD BIT STOP PAR FLW }
-    CH_LRB     : LongInt;          { LRB= }
-    CH_LSB     : LongInt;          { LSB= }
-    CH_Idle    : LongInt;          { IDL= }
-    CH_Rs485   : Byte;             { RS485=, rs485* }
-    CH_Irq     : string[15];       { IRQ= as given (ignored) }
-    CH_DosKey  : string[31];       { ADR=/BASE=/PORT= token as given (ignored) }
-    CH_Port    : TChnPort;         { the open port, nil when closed }
-    CH_RtsToggle: Boolean;         { this layer switches RTS (RS485=RTS/AUTO) }
-    CH_RtsUp   : Boolean;          { RTS raised for the message being sent }
-    CH_Fault   : tChResult;        { device lost / I/O error while open }
-    CH_Ring    : tByteRing;        { receive ring of CH_LRB bytes }
-    CH_Lost    : LongWord;         { bytes lost since open (ring or OS) }
-    CH_LostShown: LongWord;        { part of CH_Lost already reported }
-    CH_OsLost  : LongWord;         { OS overrun count last seen }
-    CH_TxBuf   : PByte;            { copy of the message being sent }
+    CH_Com     : LongInt;          {< COM= }
+    CH_Dev     : tWordString;      {< DEV=, '' = use COM }
+    CH_Drv     : string[15];       {< DRV= }
+    CH_Set     : tPortSettings;    {< BD BIT STOP PAR FLW }
+    CH_LRB     : LongInt;          {< LRB= }
+    CH_LSB     : LongInt;          {< LSB= }
+    CH_Idle    : LongInt;          {< IDL= }
+    CH_Rs485   : Byte;             {< RS485=, rs485* }
+    CH_Irq     : string[15];       {< IRQ= as given (ignored) }
+    CH_DosKey  : string[31];       {< ADR=/BASE=/PORT= token as given (ignored) }
+    CH_Port    : TChnPort;         {< the open port, nil when closed }
+    CH_RtsToggle: Boolean;         {< this layer switches RTS (RS485=RTS/AUTO) }
+    CH_RtsUp   : Boolean;          {< RTS raised for the message being sent }
+    CH_Fault   : tChResult;        {< device lost / I/O error while open }
+    CH_Ring    : tByteRing;        {< receive ring of CH_LRB bytes }
+    CH_Lost    : LongWord;         {< bytes lost since open (ring or OS) }
+    CH_LostShown: LongWord;        {< part of CH_Lost already reported }
+    CH_OsLost  : LongWord;         {< OS overrun count last seen }
+    CH_TxBuf   : PByte;            {< copy of the message being sent }
     CH_TxCap, CH_TxLen, CH_TxPos: LongInt;
-    CH_Wait    : pChnWaitSource;   { this port in the program-wide wait; nil: none }
-    CH_Reopen  : LongInt;          { RECON= ms between reopen attempts, 0 = off }
-    CH_Lat     : LongInt;          { LAT= USB adapter latency timer ms, 0 = as it is }
-    CH_ReopenAt: QWord;            { next reopen attempt (GetTickCount64) }
-    CH_ReopenPort: TChnPort;       { a reopen in progress (ComReopenStart said res_Busy) }
+    CH_Wait    : pChnWaitSource;   {< this port in the program-wide wait; nil: none }
+    CH_Reopen  : LongInt;          {< RECON= ms between reopen attempts, 0 = off }
+    CH_Lat     : LongInt;          {< LAT= USB adapter latency timer ms, 0 = as it is }
+    CH_ReopenAt: QWord;            {< next reopen attempt (GetTickCount64) }
+    CH_ReopenPort: TChnPort;       {< a reopen in progress (ComReopenStart said res_Busy) }
+    CH_RtsBefore: LongInt;         {< RTSB= ms from raising RTS to the first bit }
+    CH_RtsAfter: LongInt;          {< RTSA= ms from the last bit to dropping RTS }
+    CH_Turn    : LongInt;          {< TURN= ms at least from the last byte received to a send }
+    CH_Ifg     : LongInt;          {< IFG= bit times at least of idle line before a send }
+    CH_TxAt    : QWord;            {< ChnClockUs before which the held message must not start; 0: now }
+    CH_RtsDropAt: QWord;           {< ChnClockUs at which RTS drops (RTSA=); 0: none due }
+    CH_LastRxUs: QWord;            {< ChnClockUs of the last byte received }
+    CH_LastTxEndUs: QWord;         {< ChnClockUs when the last message sent ends on the line }
     constructor Init;
     constructor ChInitParam(const S: tParamStr);
     destructor  Done; virtual;
@@ -126,7 +148,7 @@ type
     function  ChReceiveReady: tChState; virtual;
     procedure ChReceive(var Len: Word); virtual;
     procedure ChReceiveFlush; virtual;
-    { --- additions of the port --- }
+    {- --- additions of the port --- }
     { The device path COM=/DEV= stand for now. }
     function  ChDevicePath: ShortString;
     { Modem lines, for applications that drive them by hand. }
@@ -182,6 +204,10 @@ type
     procedure ComDrainTx;
     { Milliseconds N bytes take on the line at the BD BIT PAR STOP in force }
     function  ComLineMs(N: LongInt): LongInt;
+    { Microseconds N bytes take on the line (0 without BD). }
+    function  ComLineUs(N: LongInt): LongInt;
+    { The earliest a message handed over at Now may start, ChnClockUs. }
+    function  ComTxStart(Now: QWord): QWord;
     procedure ComFreeBuffers;
     { ' LRB=.. LSB=.. IDL=..' for ChOwnParams }
     function  ComBufferText: ShortString;
@@ -237,9 +263,19 @@ begin
   CH_TxCap := 0;
   CH_TxLen := 0;
   CH_TxPos := 0;
+  CH_TxAt := 0;
+  CH_RtsDropAt := 0;
   CH_Wait := nil;
   CH_Reopen := 0;
   CH_ReopenAt := 0;
+  CH_RtsBefore := 0;
+  CH_RtsAfter := 0;
+  CH_Turn := 0;
+  CH_Ifg := 0;
+  CH_TxAt := 0;
+  CH_RtsDropAt := 0;
+  CH_LastRxUs := 0;
+  CH_LastTxEndUs := 0;
   CH_ReopenPort := nil;
   CH_Lat := 0;
 end;
@@ -339,6 +375,14 @@ begin
     Result := ParamSetNum(S, 1, 65535, CmdL, CH_LSB)
   else if Key = 'IDL' then
     Result := ParamSetNum(S, 0, 1000, CmdL, CH_Idle)
+  else if Key = 'RTSB' then
+    Result := ParamSetNum(S, 0, 1000, CmdL, CH_RtsBefore)
+  else if Key = 'RTSA' then
+    Result := ParamSetNum(S, 0, 1000, CmdL, CH_RtsAfter)
+  else if Key = 'TURN' then
+    Result := ParamSetNum(S, 0, 10000, CmdL, CH_Turn)
+  else if Key = 'IFG' then
+    Result := ParamSetNum(S, 0, 10000, CmdL, CH_Ifg)
   else if Key = 'RECON' then
     Result := ParamSetNum(S, 0, 3600000, CmdL, CH_Reopen)
   else if Key = 'LAT' then
@@ -378,6 +422,14 @@ begin
     R := R + ParamText('RECON', CH_Reopen);
   if CH_Lat <> 0 then
     R := R + ParamText('LAT', CH_Lat);
+  if CH_RtsBefore <> 0 then
+    R := R + ParamText('RTSB', CH_RtsBefore);
+  if CH_RtsAfter <> 0 then
+    R := R + ParamText('RTSA', CH_RtsAfter);
+  if CH_Turn <> 0 then
+    R := R + ParamText('TURN', CH_Turn);
+  if CH_Ifg <> 0 then
+    R := R + ParamText('IFG', CH_Ifg);
   if CH_Irq <> '' then
     R := R + ' IRQ=' + CH_Irq;
   if CH_DosKey <> '' then
@@ -442,6 +494,8 @@ begin
     Key := 'RS485';
   if (R = res_Ok) and (CH_Rs485 <> rs485Off) and (CH_Set.Flow = flowRtsCts) then
     R := res_BadSetting;            { RTS cannot be handshake and direction }
+  Port.Rs485BeforeMs := CH_RtsBefore;   { the driver's delays (KERNEL) }
+  Port.Rs485AfterMs := CH_RtsAfter;
   if R = res_Ok then
     case CH_Rs485 of
       rs485Off: ;                 { the driver's own setting stays }
@@ -511,6 +565,8 @@ begin
   ComJoinWait;
   CH_TxLen := 0;
   CH_TxPos := 0;
+  CH_TxAt := 0;
+  CH_RtsDropAt := 0;
   CH_RtsUp := False;
   ComLatch(res_Ok);
 end;
@@ -543,6 +599,8 @@ begin
   CH_OsLost := 0;
   CH_TxLen := 0;
   CH_TxPos := 0;
+  CH_TxAt := 0;
+  CH_RtsDropAt := 0;
   CH_RtsUp := False;
   CH_Fault := res_Ok;
   ChOpened;
@@ -570,6 +628,8 @@ begin
   FreeAndNil(CH_ReopenPort);
   CH_TxLen := 0;
   CH_TxPos := 0;
+  CH_TxAt := 0;
+  CH_RtsDropAt := 0;
   CH_RtsUp := False;
   RingClear(CH_Ring);
   CH_Fault := res_Ok;
@@ -586,6 +646,8 @@ begin
   ComLatch(R);
   CH_TxLen := 0;
   CH_TxPos := 0;
+  CH_TxAt := 0;
+  CH_RtsDropAt := 0;
   CH_RtsUp := False;
   ChnWaitServed(CH_Wait, False);  { nothing more to wait for on it }
   ComReconnecting;                { RECON=: res_Reconnecting from this poll on }
@@ -635,6 +697,8 @@ begin
     if Got = 0 then
       Break;
     RingCommit(CH_Ring, Got);
+    if (CH_Turn > 0) or (CH_Ifg > 0) then
+      CH_LastRxUs := ChnClockUs;      { TURN=, IFG= count from here }
     Inc(Pulled, Got);
     { Read again until the driver says empty - except after a small chunk
       (a request, a reply) from a port whose short read proves it empty,
@@ -757,6 +821,16 @@ var
 begin
   if (CH_Port = nil) or (CH_Fault <> res_Ok) then
     Exit;
+  if CH_TxAt <> 0 then
+  begin
+    if ChnClockUs < CH_TxAt then
+    begin
+      ChnWaitDue(CH_Wait, CH_TxAt);  { RTSB=, TURN=, IFG=: not yet }
+      Exit;
+    end;
+    CH_TxAt := 0;
+    CH_LastTxEndUs := ChnClockUs + QWord(ComLineUs(CH_TxLen - CH_TxPos));
+  end;
   while CH_TxPos < CH_TxLen do
   begin
     R := CH_Port.Write(CH_TxBuf[CH_TxPos], CH_TxLen - CH_TxPos, Written);
@@ -784,15 +858,71 @@ begin
     if Queued > 0 then
       Exit;
     { only the UART FIFO and shift register are left: a short wait }
-    R := CH_Port.Drain;
-    if R = res_Ok then
-      R := CH_Port.SetRts(False);
+    if CH_RtsDropAt = 0 then
+    begin
+      R := CH_Port.Drain;
+      if R <> res_Ok then
+      begin
+        ComFault(R);
+        Exit;
+      end;
+      CH_RtsDropAt := ChnClockUs + QWord(CH_RtsAfter) * 1000;
+    end;
+    if ChnClockUs < CH_RtsDropAt then
+    begin
+      ChnWaitDue(CH_Wait, CH_RtsDropAt);   { RTSA=: RTS stays up a while }
+      Exit;
+    end;
+    CH_RtsDropAt := 0;
+    R := CH_Port.SetRts(False);
     if R <> res_Ok then
     begin
       ComFault(R);
       Exit;
     end;
     CH_RtsUp := False;
+  end;
+end;
+
+function tChnCom.ComLineUs(N: LongInt): LongInt;
+var
+  Bits: LongInt;
+begin
+  Bits := 1 + CH_Set.DataBits + CH_Set.StopBits;    { start, data, stop }
+  if CH_Set.Parity <> ppNone then
+    Inc(Bits);
+  if CH_Set.Baud <= 0 then
+    Exit(0);
+  Result := (Int64(N) * Bits * 1000000 + CH_Set.Baud - 1) div CH_Set.Baud;
+end;
+
+{ The earliest a message handed over now may start (ChnClockUs): RTSB=
+  after RTS is raised, TURN= after the last byte received, IFG= bit
+  times of idle line after whatever was on it last. }
+function tChnCom.ComTxStart(Now: QWord): QWord;
+var
+  T: QWord;
+begin
+  Result := Now;
+  if CH_RtsToggle and (CH_RtsBefore > 0) then
+    Result := Now + QWord(CH_RtsBefore) * 1000;
+  if (CH_Turn > 0) and (CH_LastRxUs > 0) then
+  begin
+    T := CH_LastRxUs + QWord(CH_Turn) * 1000;
+    if T > Result then
+      Result := T;
+  end;
+  if (CH_Ifg > 0) and (CH_Set.Baud > 0) then
+  begin
+    T := CH_LastRxUs;
+    if CH_LastTxEndUs > T then
+      T := CH_LastTxEndUs;
+    if T > 0 then
+    begin
+      T := T + (QWord(CH_Ifg) * 1000000 + QWord(CH_Set.Baud) - 1) div QWord(CH_Set.Baud);
+      if T > Result then
+        Result := T;
+    end;
   end;
 end;
 
@@ -856,12 +986,15 @@ begin
     CH_Port.Flush(False, True);     { the bound is over: abandon the rest }
   CH_TxLen := 0;
   CH_TxPos := 0;
+  CH_TxAt := 0;
+  CH_RtsDropAt := 0;
 end;
 
 procedure tChnCom.ChSend(Buff: Pointer; Len: Word);
 var
   R: tChResult;
   Written, Rest: LongInt;
+  Now, Start: QWord;
 begin
   if not ChSendAllowed(Buff, Len, True) then
     Exit;
@@ -897,6 +1030,25 @@ begin
     end;
     CH_RtsUp := True;
   end;
+  Now := ChnClockUs;
+  Start := ComTxStart(Now);
+  if Start > Now then
+  begin
+    { RTSB=, TURN=, IFG=: all of it waits here for its time (ComPumpTx) }
+    if Len > CH_TxCap then
+    begin
+      ReAllocMem(CH_TxBuf, Len);
+      CH_TxCap := Len;
+    end;
+    Move(Buff^, CH_TxBuf^, Len);
+    CH_TxLen := Len;
+    CH_TxPos := 0;
+    CH_TxAt := Start;
+    CH_SResult := res_Ok;
+    ChnWaitDue(CH_Wait, Start);
+    Exit;
+  end;
+  CH_LastTxEndUs := Now + QWord(ComLineUs(Len));
   { what the port takes now goes straight from the caller's buffer; only
     the rest is copied, to move on from later polls }
   R := CH_Port.Write(Buff^, Len, Written);
@@ -937,7 +1089,7 @@ begin
       ComPumpTx;
     end;
   end
-  else if CH_RtsUp and (CH_Fault = res_Ok) and (CH_Idle > 0) then
+  else if CH_RtsUp and (CH_Fault = res_Ok) and (CH_Idle > 0) and (CH_RtsDropAt = 0) then
   begin
     Sleep(1);                     { the last bytes are on the line }
     ComPumpTx;

@@ -64,10 +64,10 @@ type
 
   pChnLoop = ^tChnLoop;
   tChnLoop = object(tChnCom)
-    CH_Pair   : string[31];   { PAIR= }
-    CH_End    : Byte;         { END=, 1..LoopMaxEnds }
-    CH_LoopBaud: LongInt;     { BD= of the loop, 0: no speed }
-    CH_Bus    : Boolean;      { BUS=ON: half duplex even with two ends }
+    CH_Pair   : string[31];   {< PAIR= }
+    CH_End    : Byte;         {< END=, 1..LoopMaxEnds }
+    CH_LoopBaud: LongInt;     {< BD= of the loop, 0: no speed }
+    CH_Bus    : Boolean;      {< BUS=ON: half duplex even with two ends }
     constructor Init;
     constructor ChInitParam(const S: tParamStr);
     function  ChSetOneParam(const S: tWordString; var CmdL: tCmd): tChResult; virtual;
@@ -87,24 +87,26 @@ type
   { One end of a line. }
   tLoopEnd = record
     Open: Boolean;
-    Ring: tByteRing;            { what this end received; Buf nil while closed }
-    Wait: pChnWaitSource;       { this end in the shared wait }
-    Wire: PByte;                { what this end sent and nobody got yet }
+    Ring: tByteRing;            {< what this end received; Buf nil while closed }
+    Wait: pChnWaitSource;       {< this end in the shared wait }
+    Wire: PByte;                {< what this end sent and nobody got yet }
     WireCap, WireLen, WirePos: LongInt;
-    CharUs: LongInt;            { microseconds per character; 0: no speed }
-    WireAt: QWord;              { ChnClockUs when character WirePos begins }
-    LastEnd: QWord;             { when this end's last character ended }
-    GarbleTo: QWord;            { characters begun before this collided }
-    Overruns: LongWord;         { characters lost at this end's full ring }
-    Bus: Boolean;               { opened with BUS=ON }
+    CharUs: LongInt;            {< microseconds per character; 0: no speed }
+    WireAt: QWord;              {< ChnClockUs when character WirePos begins }
+    LastEnd: QWord;             {< when this end's last character ended }
+    GarbleTo: QWord;            {< characters begun before this collided }
+    Overruns: LongWord;         {< characters lost at this end's full ring }
+    Bus: Boolean;               {< opened with BUS=ON }
   end;
 
   tLoopPair = record
     Name: string[31];
     Ends: array[1..LoopMaxEnds] of tLoopEnd;
     OpenCount: LongInt;
-    Collisions: LongWord;       { two ends began sending over each other }
-    Garbled: LongWord;          { characters that reached the ends garbled }
+    Collisions: LongWord;       {< two ends began sending over each other }
+    Garbled: LongWord;          {< characters that reached the ends garbled }
+    Chars: QWord;               {< characters the line carried }
+    LineUs: QWord;              {< microseconds they took on the line (at a speed) }
     Next: pLoopPair;
   end;
 
@@ -115,11 +117,11 @@ type
     FPair: pLoopPair;
     FEnd: Byte;
   public
-    PairName: ShortString;      { set before Open }
+    PairName: ShortString;      {< set before Open }
     EndNo: Byte;
     RingSize: LongInt;
-    CharUs: LongInt;            { microseconds per character, 0: no speed }
-    Bus: Boolean;               { BUS=ON }
+    CharUs: LongInt;            {< microseconds per character, 0: no speed }
+    Bus: Boolean;               {< BUS=ON }
     { Path is ignored: the pair is PairName, the end EndNo. res_CannotOpen
       when that end is open in another stack. }
     function Open(const Path: tWordString): tChResult; override;
@@ -156,6 +158,10 @@ function LoopCharUs(const S: tPortSettings): LongInt;
   (two ends sending at once) and characters delivered garbled by them.
   False when no end of that pair is open. }
 function LoopLineStats(const Pair: ShortString; out Collisions, Garbled: LongWord): Boolean;
+{ Characters the line PAIR= Pair carried since its first end opened, and
+  the microseconds they took at its speed (the line's busy time, for a
+  share of the line used); False when no end of that pair is open. }
+function LoopLineLoad(const Pair: ShortString; out Chars, BusyUs: QWord): Boolean;
 
 implementation
 
@@ -202,6 +208,23 @@ begin
   LeaveCriticalSection(Lock);
 end;
 
+function LoopLineLoad(const Pair: ShortString; out Chars, BusyUs: QWord): Boolean;
+var
+  P: pLoopPair;
+begin
+  Chars := 0;
+  BusyUs := 0;
+  EnterCriticalSection(Lock);
+  P := FindPair(UpStr(Pair));
+  Result := P <> nil;
+  if Result then
+  begin
+    Chars := P^.Chars;
+    BusyUs := P^.LineUs;
+  end;
+  LeaveCriticalSection(Lock);
+end;
+
 { Hand N > 0 characters of end E's wire to every other open end (a
   garbled one inverted); at a full ring they are lost there (Overruns).
   Caller: the end whose call this is (it needs no wake-up). }
@@ -226,6 +249,8 @@ begin
           if RingPut(P^.Ends[L].Ring, @B, 1) = 0 then
             Inc(P^.Ends[L].Overruns);
     end;
+  Inc(P^.Chars, N);
+  Inc(P^.LineUs, QWord(N) * QWord(P^.Ends[E].CharUs));
   with P^.Ends[E] do
   begin
     Inc(WirePos, N);
@@ -296,7 +321,7 @@ begin
     end;
 end;
 
-{ ---------------------------------------------------------------- port }
+{- ---------------------------------------------------------------- port }
 
 function TChnPortLoop.Open(const Path: tWordString): tChResult;
 var
@@ -541,7 +566,7 @@ begin
   LeaveCriticalSection(Lock);
 end;
 
-{ --------------------------------------------------------------- layer }
+{- --------------------------------------------------------------- layer }
 
 constructor tChnLoop.Init;
 begin

@@ -40,12 +40,12 @@ type
   tPortFlow = (flowNone, flowRtsCts, flowXonXoff);
 
   tPortSettings = record
-    Baud    : LongInt;      { bits per second }
-    DataBits: Byte;         { 5..8 }
-    StopBits: Byte;         { 1 or 2 }
+    Baud    : LongInt;      {< bits per second }
+    DataBits: Byte;         {< 5..8 }
+    StopBits: Byte;         {< 1 or 2 }
     Parity  : tPortParity;
     Flow    : tPortFlow;
-    InQueue : LongInt;      { receive buffer size the OS should use, a hint }
+    InQueue : LongInt;      {< receive buffer size the OS should use, a hint }
   end;
 
   { Modem lines, for GetLines }
@@ -63,13 +63,17 @@ type
   protected
     FDevice: ShortString;
     FOpen: Boolean;
-    FOSError: LongInt;   { OS error code of the last failure, 0 if none }
-    FVirtual: Boolean;   { no physical line behind the device (a pty) }
+    FOSError: LongInt;   {< OS error code of the last failure, 0 if none }
+    FVirtual: Boolean;   {< no physical line behind the device (a pty) }
   public
     { After a failed Open or Configure: the parameter key at fault ('BD',
       'BIT', 'STOP', 'PAR', 'FLW', 'RS485', or '' for the device itself),
       so the layer can name the token in ChParamError. }
     FailKey: ShortString;
+    { Delays SetKernelRs485(True) gives the driver (Linux serial_rs485
+      delay_rts_before_send / delay_rts_after_send, ms); set them first.
+      Windows' RTS_CONTROL_TOGGLE has none. }
+    Rs485BeforeMs, Rs485AfterMs: LongInt;
     constructor Create; virtual;
     destructor Destroy; override;
     { Open Path ('/dev/ttyUSB0', '\\.\COM3') for exclusive use, raw and

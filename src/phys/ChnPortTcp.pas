@@ -42,29 +42,31 @@ type
     FAddrCount, FAddrNext: LongInt;
     FDec: tTelnetDecoder;
     FNeg: tTelnetNeg;
-    FOut: array of Byte;            { Telnet: encoded bytes not yet sent }
+    FOut: array of Byte;            {< Telnet: encoded bytes not yet sent }
     FOutLen: LongInt;
-    FEarly: array of Byte;          { data that arrived while negotiating }
+    FEarly: array of Byte;          {< data that arrived while negotiating }
     FEarlyLen, FEarlyPos: LongInt;
-    FWant: tPortSettings;           { what Configure asked for }
-    FAsked: array[CPO_SETBAUDRATE..CPO_SETCONTROL] of Boolean;  { answer due }
-    FBad: ShortString;                  { a setting the server answered otherwise }
-    FModem: Byte;                   { last NOTIFY-MODEMSTATE }
+    FWant: tPortSettings;           {< what Configure asked for }
+    FAsked: array[CPO_SETBAUDRATE..CPO_SETCONTROL] of Boolean;  {< answer due }
+    FBad: ShortString;                  {< a setting the server answered otherwise }
+    FModem: Byte;                   {< last NOTIFY-MODEMSTATE }
     FLineOverruns: LongWord;
     FConnecting: Boolean;
-    FSettingsDue: Boolean;          { SendSettings before the server's DO }
-    FEvent: PtrInt;                 { Windows: the client socket's wait event }
-    FDueUntil: QWord;               { ... which must come by then }
-    FLastInput: QWord;              { server: when the client last sent a byte }
-    FEarlyLost: LongWord;           { data beyond EarlyCap, dropped }
-    FBroken: Boolean;               { the peer broke the Telnet stream }
+    FSettingsDue: Boolean;          {< SendSettings before the server's DO }
+    FEvent: PtrInt;                 {< Windows: the client socket's wait event }
+    FDueUntil: QWord;               {< ... which must come by then }
+    FLastInput: QWord;              {< server: when the client last sent a byte }
+    FEarlyLost: LongWord;           {< data beyond EarlyCap, dropped }
+    FBroken: Boolean;               {< the peer broke the Telnet stream }
     FKicked, FIdleDropped: LongWord;
-    FSession: LongWord;             { this connection's number (NewSession) }
+    FSession: LongWord;             {< this connection's number (NewSession) }
+    FStandby: array of tSock;       {< server: connections kept besides the one served }
+    FStandbySession: array of LongWord;  {< their numbers }
     { server on Linux: the program-wide wait watches the listening socket
       and the client served through this one descriptor (SockGroupCreate) }
     FGroup: tSock;
-    FGroupSock: tSock;              { the client socket in FGroup }
-    FHeld: Boolean;                 { FEarly counted in ChnWaitHeld }
+    FGroupSock: tSock;              {< the client socket in FGroup }
+    FHeld: Boolean;                 {< FEarly counted in ChnWaitHeld }
     procedure NoteEarly;
     procedure NewSession;
     procedure GroupTakeClient;
@@ -98,6 +100,8 @@ type
     Kick       : Boolean;
     { server only: close a client that sent nothing for IdleMs (0 = never) }
     IdleMs     : LongInt;
+    MaxStandby : LongInt;           {< server only: further connections kept besides
+                                         the one served (IEC 104 redundancy); 0: turned away }
     constructor Create; override;
     function Open(const Path: tWordString): tChResult; override;
     function Connect: tChResult;
@@ -142,6 +146,16 @@ type
       process had; 0 while there is none. A protocol above that keeps
       state per connection (IEC 104's sequence numbers) sees a new one. }
     function Session: LongWord;
+    function StandbyCount: LongInt;
+    function StandbySession(I: LongInt): LongWord;
+    { non-blocking read / write on standby connection I; res_DeviceLost
+      when it is gone (StandbyHangUp it then) }
+    function StandbyRead(I: LongInt; var Buf; Size: LongInt; out Got: LongInt): tChResult;
+    function StandbyWrite(I: LongInt; const Buf; Len: LongInt): tChResult;
+    procedure StandbyHangUp(I: LongInt);
+    { standby connection I becomes the one served; the one served so far
+      takes its place among the standby ones }
+    procedure Promote(I: LongInt);
     { Close the connection served now (a protocol above found the peer
       broke it): a server waits for the next client, a client's next read
       finds no connection. }
@@ -355,9 +369,22 @@ end;
 procedure TChnPortTcp.TurnAway;
 var
   S: tSock;
+  Kept: LongWord;
 begin
   while (FSock <> NoSock) and (SockAccept(FListen, S) = seOk) do
-    if Kick then
+    if Length(FStandby) < MaxStandby then
+    begin
+      SetLength(FStandby, Length(FStandby) + 1);
+      SetLength(FStandbySession, Length(FStandby));
+      FStandby[High(FStandby)] := S;
+      if FGroup <> NoSock then
+        SockGroupAdd(FGroup, S);
+      Kept := FSession;              { the served one keeps its number }
+      NewSession;
+      FStandbySession[High(FStandby)] := FSession;
+      FSession := Kept;
+    end
+    else if Kick then
     begin
       DropClient;
       Inc(FKicked);
@@ -428,6 +455,73 @@ begin
     DropClient
   else
     SockClose(FSock);
+end;
+
+function TChnPortTcp.StandbyCount: LongInt;
+begin
+  Result := Length(FStandby);
+end;
+
+function TChnPortTcp.StandbySession(I: LongInt): LongWord;
+begin
+  Result := FStandbySession[I];
+end;
+
+function TChnPortTcp.StandbyRead(I: LongInt; var Buf; Size: LongInt; out Got: LongInt): tChResult;
+begin
+  Result := SockResult(SockRecv(FStandby[I], Buf, Size, Got));
+end;
+
+function TChnPortTcp.StandbyWrite(I: LongInt; const Buf; Len: LongInt): tChResult;
+var
+  Done: LongInt;
+begin
+  Result := SockResult(SockSend(FStandby[I], Buf, Len, Done));
+  if (Result = res_Ok) and (Done < Len) then
+    Result := res_Busy;             { a few bytes of U frames: the OS takes them }
+end;
+
+procedure TChnPortTcp.StandbyHangUp(I: LongInt);
+var
+  J: LongInt;
+begin
+  if FGroup <> NoSock then
+    SockGroupRemove(FGroup, FStandby[I]);
+  SockClose(FStandby[I]);
+  for J := I to High(FStandby) - 1 do
+  begin
+    FStandby[J] := FStandby[J + 1];
+    FStandbySession[J] := FStandbySession[J + 1];
+  end;
+  SetLength(FStandby, Length(FStandby) - 1);
+  SetLength(FStandbySession, Length(FStandby));
+end;
+
+procedure TChnPortTcp.Promote(I: LongInt);
+var
+  S: tSock;
+  N: LongWord;
+begin
+  S := FStandby[I];
+  N := FStandbySession[I];
+  if FSock <> NoSock then
+  begin
+    GroupLoseClient;
+    FStandby[I] := FSock;
+    FStandbySession[I] := FSession;
+    if FGroup <> NoSock then
+      SockGroupAdd(FGroup, FSock);
+  end
+  else
+    StandbyHangUp(I);               { nothing served: it only leaves the list }
+  if FGroup <> NoSock then
+    SockGroupRemove(FGroup, S);
+  FSock := S;
+  FSession := N;
+  FOutLen := 0;
+  FLastInput := GetTickCount64;
+  TelnetInit(FDec);
+  GroupTakeClient;
 end;
 
 procedure TChnPortTcp.DropClient;
@@ -1012,6 +1106,8 @@ begin
     FlushOut;                       { a last command (purge ...) still leaves }
   GroupLoseClient;
   SockClose(FSock);
+  while Length(FStandby) > 0 do
+    StandbyHangUp(0);
   SockClose(FListen);
   SockGroupFree(FGroup);
   SockEventFree(FEvent);

@@ -16,13 +16,13 @@ type
 
   tSockErr = (
     seOk,
-    seWouldBlock,     { nothing now (no data, no room, connect in progress) }
-    seNoHost,         { name not resolved }
-    seRefused,        { connection refused }
-    seTimeout,        { connect did not complete in time }
-    seLost,           { peer closed or reset the connection }
-    seInUse,          { address in use (listen) }
-    seAccess,         { not allowed (privileged port, firewall) }
+    seWouldBlock,     {< nothing now (no data, no room, connect in progress) }
+    seNoHost,         {< name not resolved }
+    seRefused,        {< connection refused }
+    seTimeout,        {< connect did not complete in time }
+    seLost,           {< peer closed or reset the connection }
+    seInUse,          {< address in use (listen) }
+    seAccess,         {< not allowed (privileged port, firewall) }
     seOther);
 
   { One resolved address, a struct sockaddr_storage in disguise. }

@@ -49,19 +49,20 @@ const
 type
   pChnTcp = ^tChnTcp;
   tChnTcp = object(tChnCom)
-    CH_Host    : tWordString;      { HOST= }
-    CH_TcpPort : LongInt;          { PORT=, 0 = not given }
-    CH_Listen  : tWordString;      { LISTEN= as given, '' = client }
-    CH_Cto     : LongInt;          { CTO= }
-    CH_Rfc     : Boolean;          { RFC2217= }
-    CH_Kick    : Boolean;          { KICK= (server) }
-    CH_IdleDrop: LongInt;          { IDLE= ms (server), 0 = off }
-    CH_RetryEnd: QWord;            { the reconnect in progress gives up then (CTO=) }
+    CH_Host    : tWordString;      {< HOST= }
+    CH_TcpPort : LongInt;          {< PORT=, 0 = not given }
+    CH_Listen  : tWordString;      {< LISTEN= as given, '' = client }
+    CH_Cto     : LongInt;          {< CTO= }
+    CH_Rfc     : Boolean;          {< RFC2217= }
+    CH_Kick    : Boolean;          {< KICK= (server) }
+    CH_IdleDrop: LongInt;          {< IDLE= ms (server), 0 = off }
+    CH_RetryEnd: QWord;            {< the reconnect in progress gives up then (CTO=) }
+    CH_Standby : LongInt;          {< standby connections a server keeps (ChSetStandby) }
     constructor Init;
     constructor ChInitParam(const S: tParamStr);
     function  ChSetOneParam(const S: tWordString; var CmdL: tCmd): tChResult; virtual;
     function  ChOwnParams: tParamStr; virtual;
-    { --- additions --- }
+    {- --- additions --- }
     { The local TCP port: with LISTEN=...:0 the one the OS picked. }
     function  ChLocalPort: Word;
     { A server (LISTEN=) has a client now. }
@@ -78,6 +79,19 @@ type
       broken: a server waits for its next client, a client is lost
       (res_DeviceLost; with RECON= it connects again). }
     procedure ChHangUp;
+    { Server: keep up to N further connections besides the one served
+      (before ChOpen; IEC 104 redundancy); 0 turns them away (default). }
+    procedure ChSetStandby(N: LongInt);
+    { The standby connections: how many, their numbers, non-blocking I/O
+      (res_DeviceLost: gone, hang it up), closing one, and making one the
+      connection served (the one served so far becomes a standby one; what
+      it had sent and was not read is dropped). }
+    function  ChStandbyCount: LongInt;
+    function  ChStandbySession(I: LongInt): LongWord;
+    function  ChStandbyRead(I: LongInt; var Buf; Size: LongInt; out Got: LongInt): tChResult;
+    function  ChStandbySend(I: LongInt; const Buf; Len: LongInt): tChResult;
+    procedure ChStandbyHangUp(I: LongInt);
+    procedure ChPromote(I: LongInt);
     { CTO= from a layer above that has its own name for it (IEC 104's t0) }
     procedure ChSetConnectMs(Ms: LongInt);
   protected
@@ -101,7 +115,7 @@ function SplitHostPort(const S: ShortString; out Host: ShortString; out Port: Lo
 implementation
 
 uses
-  SysUtils, uString;
+  SysUtils, uString, ChnRing;
 
 function SplitHostPort(const S: ShortString; out Host: ShortString; out Port: LongInt): Boolean;
 var
@@ -139,6 +153,7 @@ begin
   CH_TcpPort := 0;
   CH_Listen := '';
   CH_Cto := TcpDefaultCto;
+  CH_Standby := 0;
   CH_Rfc := False;
   CH_Kick := False;
   CH_IdleDrop := 0;
@@ -229,6 +244,7 @@ begin
     Result.IsServer := True;
     Result.Kick := CH_Kick;
     Result.IdleMs := CH_IdleDrop;
+    Result.MaxStandby := CH_Standby;
     Result.Host := H;
     Result.Port := N;
   end
@@ -377,6 +393,45 @@ begin
   TChnPortTcp(CH_Port).HangUp;
   if CH_Listen = '' then
     ComFault(res_DeviceLost);
+end;
+
+procedure tChnTcp.ChSetStandby(N: LongInt);
+begin
+  CH_Standby := N;
+end;
+
+function tChnTcp.ChStandbyCount: LongInt;
+begin
+  if CH_Port = nil then
+    Result := 0
+  else
+    Result := TChnPortTcp(CH_Port).StandbyCount;
+end;
+
+function tChnTcp.ChStandbySession(I: LongInt): LongWord;
+begin
+  Result := TChnPortTcp(CH_Port).StandbySession(I);
+end;
+
+function tChnTcp.ChStandbyRead(I: LongInt; var Buf; Size: LongInt; out Got: LongInt): tChResult;
+begin
+  Result := TChnPortTcp(CH_Port).StandbyRead(I, Buf, Size, Got);
+end;
+
+function tChnTcp.ChStandbySend(I: LongInt; const Buf; Len: LongInt): tChResult;
+begin
+  Result := TChnPortTcp(CH_Port).StandbyWrite(I, Buf, Len);
+end;
+
+procedure tChnTcp.ChStandbyHangUp(I: LongInt);
+begin
+  TChnPortTcp(CH_Port).StandbyHangUp(I);
+end;
+
+procedure tChnTcp.ChPromote(I: LongInt);
+begin
+  RingClear(CH_Ring);               { the bytes of the connection served so far }
+  TChnPortTcp(CH_Port).Promote(I);
 end;
 
 procedure tChnTcp.ChSetConnectMs(Ms: LongInt);

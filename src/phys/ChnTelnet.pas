@@ -67,8 +67,8 @@ const
   { NOTIFY-MODEMSTATE bits }
   CPM_CTS = $10; CPM_DSR = $20; CPM_RI = $40; CPM_CD = $80;
 
-  TelnetMaxSub = 64;      { longest subnegotiation kept (RFC 2217 needs 6) }
-  TelnetSubLimit = 256;   { bytes of one subnegotiation before it is broken }
+  TelnetMaxSub = 64;      {< longest subnegotiation kept (RFC 2217 needs 6) }
+  TelnetSubLimit = 256;   {< bytes of one subnegotiation before it is broken }
 
 type
   { teSubBroken: TelnetSubLimit bytes after IAC SB without IAC SE; the
@@ -76,21 +76,21 @@ type
   tTelnetEvent = (teNone, teData, teOption, teSub, teSubBroken);
 
   tTelnetDecoder = record
-    St      : Byte;           { automaton state, private }
-    Cmd     : Byte;           { teOption: TN_WILL/WONT/DO/DONT }
-    Opt     : Byte;           { teOption, teSub: the option }
-    Sub     : array[0..TelnetMaxSub - 1] of Byte;  { teSub: data after opt }
+    St      : Byte;           {< automaton state, private }
+    Cmd     : Byte;           {< teOption: TN_WILL/WONT/DO/DONT }
+    Opt     : Byte;           {< teOption, teSub: the option }
+    Sub     : array[0..TelnetMaxSub - 1] of Byte;  {< teSub: data after opt }
     SubLen  : Word;
-    SubCut  : Boolean;        { teSub: longer than TelnetMaxSub, cut }
-    SubSeen : Word;           { bytes since IAC SB opt, private }
+    SubCut  : Boolean;        {< teSub: longer than TelnetMaxSub, cut }
+    SubSeen : Word;           {< bytes since IAC SB opt, private }
   end;
 
   { What each side has agreed for one option (RFC 1143 "Q method" reduced
     to yes/no: this client never has two requests in flight). }
   tTelnetOptState = record
-    Us  : Boolean;            { we WILL (the peer said DO) }
-    Him : Boolean;            { the peer WILL (we said DO) }
-    UsAsked, HimAsked: Boolean;  { our WILL / DO is unanswered }
+    Us  : Boolean;            {< we WILL (the peer said DO) }
+    Him : Boolean;            {< the peer WILL (we said DO) }
+    UsAsked, HimAsked: Boolean;  {< our WILL / DO is unanswered }
   end;
   tTelnetNeg = array[Byte] of tTelnetOptState;
 

@@ -52,41 +52,41 @@ uses
 
 const
   cName = 'NOISE';
-  NoiseRandomByte = -1;   { BYTE=RND }
+  NoiseRandomByte = -1;   {< BYTE=RND }
 
 type
   tNoiseDir = (ndRx, ndTx);
 
   pChnNoise = ^tChnNoise;
   tChnNoise = object(tChnMiddle)
-    CH_Ber, CH_Drop, CH_Ins: Double;     { BER= DRP= INS= }
-    CH_BerT, CH_DropT, CH_InsT: LongWord; { the same as thresholds of 2^32 }
-    CH_Garbage : LongInt;     { BYTE=: 0..255 or NoiseRandomByte }
-    CH_Limit   : LongInt;     { CNT=: garbage bytes in all, 0 = no limit }
-    CH_DirRx, CH_DirTx: Boolean;  { DIR= }
-    CH_SeedSet : LongInt;     { SEED= as given (0: new at each ChOpen) }
-    CH_Seed    : LongInt;     { the seed in use }
-    CH_Pos     : array[tNoiseDir] of QWord;   { stream positions }
+    CH_Ber, CH_Drop, CH_Ins: Double;     {< BER= DRP= INS= }
+    CH_BerT, CH_DropT, CH_InsT: LongWord; {< the same as thresholds of 2^32 }
+    CH_Garbage : LongInt;     {< BYTE=: 0..255 or NoiseRandomByte }
+    CH_Limit   : LongInt;     {< CNT=: garbage bytes in all, 0 = no limit }
+    CH_DirRx, CH_DirTx: Boolean;  {< DIR= }
+    CH_SeedSet : LongInt;     {< SEED= as given (0: new at each ChOpen) }
+    CH_Seed    : LongInt;     {< the seed in use }
+    CH_Pos     : array[tNoiseDir] of QWord;   {< stream positions }
     CH_Passed  : array[tNoiseDir] of QWord;
     CH_Flipped, CH_Dropped, CH_Inserted: QWord;
-    CH_Pend    : array[0..1] of Byte;   { received bytes not yet handed up }
+    CH_Pend    : array[0..1] of Byte;   {< received bytes not yet handed up }
     CH_PendLen, CH_PendPos: Byte;
-    CH_TxBuf   : PByte;       { sent bytes after the damage }
+    CH_TxBuf   : PByte;       {< sent bytes after the damage }
     CH_TxSize  : LongInt;
     { chunk faults: LOS= STL= STM= ROR= }
     CH_Los, CH_Stl, CH_Ror: Double;
     CH_LosT, CH_StlT, CH_RorT: LongWord;
     CH_StallMs : LongInt;
-    CH_Chunk   : QWord;       { chunks sent since ChConnect }
-    CH_StallEnd: QWord;       { 0: no stall now }
-    CH_OutQ    : PByte;       { bytes for the layer below, in order }
+    CH_Chunk   : QWord;       {< chunks sent since ChConnect }
+    CH_StallEnd: QWord;       {< 0: no stall now }
+    CH_OutQ    : PByte;       {< bytes for the layer below, in order }
     CH_OutLen, CH_OutCap: LongInt;
-    CH_RorBuf  : PByte;       { a chunk held back to go after the next }
+    CH_RorBuf  : PByte;       {< a chunk held back to go after the next }
     CH_RorLen, CH_RorCap: LongInt;
     CH_RorEnd  : QWord;
-    CH_RxQ     : PByte;       { input held by a stall, then handed up first }
+    CH_RxQ     : PByte;       {< input held by a stall, then handed up first }
     CH_RxLen, CH_RxPos, CH_RxCap: LongInt;
-    CH_RxHeld  : Boolean;     { ChnWaitHeld's flag }
+    CH_RxHeld  : Boolean;     {< ChnWaitHeld's flag }
     CH_ChunksLost, CH_Stalls, CH_Reordered: QWord;
     constructor Init;
     constructor ChInitParam(const S: tParamStr);
@@ -377,7 +377,7 @@ begin
   ChunkReset;                    { what a stall held is gone with the line }
 end;
 
-{ ------------------------------------------------------- chunk faults }
+{- ------------------------------------------------------- chunk faults }
 
 function tChnNoise.ChunkFaults: Boolean;
 begin

@@ -35,10 +35,12 @@ uses
   ChnTypes, ChnTrcFormat;
 
 const
-  PcapMagic      = $A1B2C3D4;   { microsecond timestamps }
-  PcapMagicNano  = $A1B23C4D;   { nanosecond timestamps }
-  PcapLinkRtac   = 250;         { LINKTYPE_RTAC_SERIAL }
-  PcapSnapLen    = 65547;       { longest record: 12 + 65535 chunk bytes }
+  PcapMagic      = $A1B2C3D4;   {< microsecond timestamps }
+  PcapMagicNano  = $A1B23C4D;   {< nanosecond timestamps }
+  PcapLinkRtac   = 250;         {< LINKTYPE_RTAC_SERIAL }
+  PcapLinkIPv4   = 228;         {< LINKTYPE_IPV4: raw IPv4 packets (a TCP stream) }
+  PcapIec104Port = 2404;        {< the server side's port in a TCP stream (IEC 104's) }
+  PcapSnapLen    = 65547;       {< longest record: 12 + 65535 chunk bytes }
   RtacHeaderLen  = 12;
 
   { RTAC serial event types }
@@ -48,18 +50,18 @@ const
   RtacTxEnd        = 3;
   RtacRxEnd        = 4;
 
-  { results of the reader (texts registered for TrcLayer, after the
+  {- results of the reader (texts registered for TrcLayer, after the
     text reader's res_TrcShort / res_TrcLong) }
-  res_PcapNotPcap  = res_Proto + 2;   { no pcap magic, or a file header cut short }
-  res_PcapLinkType = res_Proto + 3;   { a pcap of another link type }
-  res_PcapCut      = res_Proto + 4;   { ends inside a record header, or a bad length }
+  res_PcapNotPcap  = res_Proto + 2;   {< no pcap magic, or a file header cut short }
+  res_PcapLinkType = res_Proto + 3;   {< a pcap of another link type }
+  res_PcapCut      = res_Proto + 4;   {< ends inside a record header, or a bad length }
 
 type
   tPcapFileHeader = packed record
     Magic   : LongWord;
-    VerMajor: Word;                { 2 }
-    VerMinor: Word;                { 4 }
-    ThisZone: LongInt;             { 0: times are UTC }
+    VerMajor: Word;                {< 2 }
+    VerMinor: Word;                {< 4 }
+    ThisZone: LongInt;             {< 0: times are UTC }
     SigFigs : LongWord;
     SnapLen : LongWord;
     LinkType: LongWord;
@@ -67,12 +69,14 @@ type
 
   tPcapRecHeader = packed record
     TsSec  : LongWord;
-    TsFrac : LongWord;             { microseconds (nanoseconds: PcapMagicNano) }
-    InclLen: LongWord;             { bytes in the file }
-    OrigLen: LongWord;             { bytes on the wire }
+    TsFrac : LongWord;             {< microseconds (nanoseconds: PcapMagicNano) }
+    InclLen: LongWord;             {< bytes in the file }
+    OrigLen: LongWord;             {< bytes on the wire }
   end;
 
-  tRtacHeader = packed record      { big-endian on the wire }
+  { The RTAC serial header before each record's bytes, big-endian on the
+    wire. }
+  tRtacHeader = packed record
     TsSec : LongWord;
     TsUSec: LongWord;
     Event : Byte;
@@ -81,16 +85,31 @@ type
   end;
 
   tPcapInfo = record
-    Records : LongInt;             { records read }
-    Skipped : LongInt;             { records of other event types or < 12 bytes }
-    Swapped : Boolean;             { the file is big-endian }
+    Records : LongInt;             {< records read }
+    Skipped : LongInt;             {< records of other event types or < 12 bytes }
+    Swapped : Boolean;             {< the file is big-endian }
     LinkType: LongWord;
-    ErrPos  : LongInt;             { byte offset of the culprit (result <> res_Ok) }
-    ErrText : ShortString;         { what is wrong there }
+    ErrPos  : LongInt;             {< byte offset of the culprit (result <> res_Ok) }
+    ErrText : ShortString;         {< what is wrong there }
+  end;
+
+  { A TCP stream written as IPv4 packets: the next sequence number of each
+    side, so Wireshark reassembles the stream. }
+  tPcapTcpFlow = record
+    SeqClient, SeqServer: LongWord;
   end;
 
 { The 24-byte file header (little-endian, link type 250). }
 function PcapFileHeaderBytes: AnsiString;
+{ The same of another link type (PcapLinkIPv4). }
+function PcapFileHeaderOf(LinkType: LongWord): AnsiString;
+{ One record of link type 228: an IPv4 + TCP header (client 10.0.0.1, port
+  50000; server 10.0.0.2, port ServerPort; PSH ACK, both checksums) and
+  Len bytes of Buf as its payload, sent by the server when FromServer. }
+function PcapTcpRecordBytes(Sec, USec: LongWord; FromServer: Boolean; ServerPort: Word;
+  var Flow: tPcapTcpFlow; const Buf; Len: LongInt): AnsiString;
+{ Head is a header of ours of that link type (appended to). }
+function PcapIsOwnHeaderOf(const Head: AnsiString; LinkType: LongWord): Boolean;
 { One record: pcap record header, RTAC header and Len bytes of Buf. }
 function PcapRecordBytes(Sec, USec: LongWord; Dir: tTrcDir; const Buf;
   Len: LongInt): AnsiString;
@@ -130,6 +149,11 @@ begin
 end;
 
 function PcapFileHeaderBytes: AnsiString;
+begin
+  Result := PcapFileHeaderOf(PcapLinkRtac);
+end;
+
+function PcapFileHeaderOf(LinkType: LongWord): AnsiString;
 var
   H: tPcapFileHeader;
 begin
@@ -139,7 +163,7 @@ begin
   H.ThisZone := 0;
   H.SigFigs := 0;
   H.SnapLen := NtoLE(LongWord(PcapSnapLen));
-  H.LinkType := NtoLE(LongWord(PcapLinkRtac));
+  H.LinkType := NtoLE(LinkType);
   SetLength(Result, SizeOf(H));
   Move(H, Result[1], SizeOf(H));
 end;
@@ -172,6 +196,11 @@ begin
 end;
 
 function PcapIsOwnHeader(const Head: AnsiString): Boolean;
+begin
+  Result := PcapIsOwnHeaderOf(Head, PcapLinkRtac);
+end;
+
+function PcapIsOwnHeaderOf(const Head: AnsiString; LinkType: LongWord): Boolean;
 var
   H: tPcapFileHeader;
 begin
@@ -179,7 +208,111 @@ begin
   if Length(Head) < SizeOf(H) then
     Exit;
   Move(Head[1], H, SizeOf(H));
-  Result := (LEtoN(H.Magic) = PcapMagic) and (LEtoN(H.LinkType) = PcapLinkRtac);
+  Result := (LEtoN(H.Magic) = PcapMagic) and (LEtoN(H.LinkType) = LinkType);
+end;
+
+{ The Internet checksum (RFC 1071) of P[0 .. Len - 1], Sum carried in. }
+function InetSum(const P: array of Byte; Len: LongInt; Sum: LongWord): LongWord;
+var
+  I: LongInt;
+begin
+  I := 0;
+  while I + 1 < Len do
+  begin
+    Inc(Sum, (LongWord(P[I]) shl 8) or P[I + 1]);
+    Inc(I, 2);
+  end;
+  if I < Len then
+    Inc(Sum, LongWord(P[I]) shl 8);
+  Result := Sum;
+end;
+
+function InetFold(Sum: LongWord): Word;
+begin
+  while Sum shr 16 <> 0 do
+    Sum := (Sum and $FFFF) + (Sum shr 16);
+  Result := not Word(Sum);
+end;
+
+procedure Put16(var P: array of Byte; At: LongInt; V: Word);
+begin
+  P[At] := V shr 8;
+  P[At + 1] := V and $FF;
+end;
+
+procedure Put32(var P: array of Byte; At: LongInt; V: LongWord);
+begin
+  Put16(P, At, V shr 16);
+  Put16(P, At + 2, V and $FFFF);
+end;
+
+function PcapTcpRecordBytes(Sec, USec: LongWord; FromServer: Boolean; ServerPort: Word;
+  var Flow: tPcapTcpFlow; const Buf; Len: LongInt): AnsiString;
+const
+  ClientIp = $0A000001;
+  ServerIp = $0A000002;
+  ClientPort = 50000;
+var
+  P: array of Byte;
+  R: tPcapRecHeader;
+  Src, Dst: LongWord;
+  Sum: LongWord;
+begin
+  if Len < 0 then
+    Len := 0;
+  SetLength(P, 40 + Len);
+  FillChar(P[0], 40, 0);
+  if FromServer then
+  begin
+    Src := ServerIp;
+    Dst := ClientIp;
+  end
+  else
+  begin
+    Src := ClientIp;
+    Dst := ServerIp;
+  end;
+  { IPv4: version 4, 20 octets, total length, DF, TTL 64, TCP }
+  P[0] := $45;
+  Put16(P, 2, 40 + Len);
+  P[6] := $40;
+  P[8] := 64;
+  P[9] := 6;
+  Put32(P, 12, Src);
+  Put32(P, 16, Dst);
+  Put16(P, 10, InetFold(InetSum(P, 20, 0)));
+  { TCP: ports, sequence and acknowledgement numbers, 20 octets, PSH ACK }
+  if FromServer then
+  begin
+    Put16(P, 20, ServerPort);
+    Put16(P, 22, ClientPort);
+    Put32(P, 24, Flow.SeqServer);
+    Put32(P, 28, Flow.SeqClient);
+    Inc(Flow.SeqServer, Len);
+  end
+  else
+  begin
+    Put16(P, 20, ClientPort);
+    Put16(P, 22, ServerPort);
+    Put32(P, 24, Flow.SeqClient);
+    Put32(P, 28, Flow.SeqServer);
+    Inc(Flow.SeqClient, Len);
+  end;
+  P[32] := $50;
+  P[33] := $18;
+  Put16(P, 34, $FFFF);
+  if Len > 0 then
+    Move(Buf, P[40], Len);
+  { pseudo header: addresses, protocol, TCP length }
+  Sum := (Src shr 16) + (Src and $FFFF) + (Dst shr 16) + (Dst and $FFFF) + 6 + LongWord(20 + Len);
+  Put16(P, 36, InetFold(InetSum(P[20..High(P)], 20 + Len, Sum)));
+  R.TsSec := NtoLE(Sec);
+  R.TsFrac := NtoLE(USec);
+  R.InclLen := NtoLE(LongWord(Length(P)));
+  R.OrigLen := R.InclLen;
+  SetLength(Result, SizeOf(R) + Length(P));
+  Move(R, Result[1], SizeOf(R));
+  Move(P[0], Result[1 + SizeOf(R)], Length(P));
 end;
 
 function PcapReadBytes(const Data: AnsiString; UtcOffsetSec: LongInt;

@@ -53,13 +53,16 @@ const
 type
   pChnTrc = ^tChnTrc;
   tChnTrc = object(tChnMiddle)
-    CH_File     : tWordString;  { FILE=: a path, STDERR or STDOUT }
-    CH_Mode     : tTrcMode;     { MOD=HEX|DEC: the text format }
-    CH_Pcap     : Boolean;      { MOD=PCAP: binary pcap instead of text }
-    CH_Handle   : THandle;      { the log while open }
-    CH_LogOpen  : Boolean;      { CH_Handle is valid }
-    CH_OwnHandle: Boolean;      { CH_Handle is a file this layer opened }
-    CH_LogErrors: LongInt;      { log writes that failed }
+    CH_File     : tWordString;  {< FILE=: a path, STDERR or STDOUT }
+    CH_Mode     : tTrcMode;     {< MOD=HEX|DEC: the text format }
+    CH_Pcap     : Boolean;      {< MOD=PCAP: binary pcap instead of text }
+    CH_Handle   : THandle;      {< the log while open }
+    CH_LogOpen  : Boolean;      {< CH_Handle is valid }
+    CH_OwnHandle: Boolean;      {< CH_Handle is a file this layer opened }
+    CH_LogErrors: LongInt;      {< log writes that failed }
+    CH_PcapTcp  : Boolean;      {< MOD=PCAP as a TCP stream (ChPcapAsTcp) }
+    CH_PcapServer: Boolean;     {< ... of which this side is the server }
+    CH_Flow     : tPcapTcpFlow; {< its sequence numbers }
     constructor Init;
     constructor ChInitParam(const S: tParamStr);
     destructor  Done; virtual;
@@ -75,6 +78,11 @@ type
     { Write one entry to the log (also usable by tools for their own notes). }
     procedure ChTrcLog(Dir: tTrcDir; Buff: Pointer; Len: Word);
     function  PcapStart: Boolean;
+    { For the layer above, before ChOpen: MOD=PCAP writes what passes as
+      the payload of a TCP stream (link type 228, IPv4 + TCP headers; the
+      server side on port 2404, so Wireshark's IEC 104 dissector reads it),
+      this side the server when Server. NAM=IEC104 asks for it. }
+    procedure ChPcapAsTcp(Server: Boolean);
     function  LogWrite(const Text: AnsiString): Boolean;
   end;
 
@@ -131,6 +139,8 @@ begin
   CH_File := TrcStdErr;
   CH_Mode := trcHex;
   CH_Pcap := False;
+  CH_PcapTcp := False;
+  CH_PcapServer := False;
   CH_Handle := 0;
   CH_LogOpen := False;
   CH_OwnHandle := False;
@@ -260,9 +270,14 @@ begin
   Size := 0;
   if CH_OwnHandle then
     Size := FileSeek(CH_Handle, Int64(0), fsFromEnd);
+  CH_Flow.SeqClient := 1;
+  CH_Flow.SeqServer := 1;
   if Size <= 0 then
   begin
-    Head := PcapFileHeaderBytes;
+    if CH_PcapTcp then
+      Head := PcapFileHeaderOf(PcapLinkIPv4)
+    else
+      Head := PcapFileHeaderBytes;
     Result := LogWrite(Head);
     Exit;
   end;
@@ -274,8 +289,17 @@ begin
   if Fd = THandle(-1) then
     Exit;
   if FileRead(Fd, Head[1], Length(Head)) = Length(Head) then
-    Result := PcapIsOwnHeader(Head);
+    if CH_PcapTcp then
+      Result := PcapIsOwnHeaderOf(Head, PcapLinkIPv4)
+    else
+      Result := PcapIsOwnHeader(Head);
   FileClose(Fd);
+end;
+
+procedure tChnTrc.ChPcapAsTcp(Server: Boolean);
+begin
+  CH_PcapTcp := True;
+  CH_PcapServer := Server;
 end;
 
 function tChnTrc.LogWrite(const Text: AnsiString): Boolean;
@@ -324,7 +348,11 @@ begin
   if CH_Pcap then
   begin
     UtcNow(Sec, USec);
-    Text := PcapRecordBytes(Sec, USec, Dir, Buff^, Len);
+    if CH_PcapTcp then
+      Text := PcapTcpRecordBytes(Sec, USec, (Dir = trcTx) = CH_PcapServer, PcapIec104Port,
+        CH_Flow, Buff^, Len)
+    else
+      Text := PcapRecordBytes(Sec, USec, Dir, Buff^, Len);
   end
   else
     Text := TrcFormat(TrcMsOfDay, Dir, Buff^, Len, CH_Mode, CH_Name);

@@ -42,18 +42,18 @@ uses
   ChnTypes;
 
 const
-  TrcHexPerLine = 30;        { bytes per line, HEX: 15 groups as in the capture }
-  TrcDecPerLine = 20;        { bytes per line, DEC: 79 characters }
+  TrcHexPerLine = 30;        {< bytes per line, HEX: 15 groups as in the capture }
+  TrcDecPerLine = 20;        {< bytes per line, DEC: 79 characters }
   TrcMsPerDay   = 86400000;
-  TrcMaxLen     = 65535;     { longest chunk the Ch* API can carry (Word) }
+  TrcMaxLen     = 65535;     {< longest chunk the Ch* API can carry (Word) }
 
   { the trace layer's name (ChnTrc.cName): the reader's result texts are
     registered for it, ChResultText(R, TrcLayer) }
   TrcLayer = 'TRC';
 
-  { results of the reader, per frame (texts registered for TrcLayer) }
-  res_TrcShort = res_Proto;      { fewer bytes than the header announces }
-  res_TrcLong  = res_Proto + 1;  { more bytes than the header announces }
+  {- results of the reader, per frame (texts registered for TrcLayer) }
+  res_TrcShort = res_Proto;      {< fewer bytes than the header announces }
+  res_TrcLong  = res_Proto + 1;  {< more bytes than the header announces }
 
 type
   tTrcDir  = (trcTx, trcRx);
@@ -61,14 +61,14 @@ type
   tTrcBytes = array of Byte;
 
   tTrcFrame = record
-    Line   : LongInt;        { line number of the header, 1-based }
-    TimeMs : LongInt;        { milliseconds since midnight }
+    Line   : LongInt;        {< line number of the header, 1-based }
+    TimeMs : LongInt;        {< milliseconds since midnight }
     Dir    : tTrcDir;
-    DirText: string[15];     { as written, e.g. 'rx;i' }
-    Tag    : string[63];     { text after '|' when it is not data ('S00') }
-    Len    : LongInt;        { length the header announces }
-    Data   : tTrcBytes;      { the bytes found, Length(Data) of them }
-    Status : tChResult;      { res_Ok, res_TrcShort or res_TrcLong }
+    DirText: string[15];     {< as written, e.g. 'rx;i' }
+    Tag    : string[63];     {< text after '|' when it is not data ('S00') }
+    Len    : LongInt;        {< length the header announces }
+    Data   : tTrcBytes;      {< the bytes found, Length(Data) of them }
+    Status : tChResult;      {< res_Ok, res_TrcShort or res_TrcLong }
   end;
   tTrcFrames = array of tTrcFrame;
 
@@ -79,10 +79,10 @@ type
     LineNo : LongInt;
     Count  : LongInt;
     Frames : tTrcFrames;
-    Skipped: LongInt;        { non-blank lines that were neither header nor data }
-    Pending: Boolean;        { Cur still waits for bytes }
+    Skipped: LongInt;        {< non-blank lines that were neither header nor data }
+    Pending: Boolean;        {< Cur still waits for bytes }
     Cur    : tTrcFrame;
-    CurFill: LongInt;        { bytes in Cur.Data so far }
+    CurFill: LongInt;        {< bytes in Cur.Data so far }
   end;
 
 { Writer. MsOfDay is taken modulo one day. }
@@ -115,7 +115,7 @@ const
   HexChars: array[0..15] of Char = '0123456789ABCDEF';
   DirName: array[tTrcDir] of string[2] = ('tx', 'rx');
 
-{ ------------------------------------------------------------------ writer }
+{- ------------------------------------------------------------------ writer }
 
 function Dec2(N: LongInt): ShortString;
 begin
@@ -216,7 +216,7 @@ begin
   Result := Text;
 end;
 
-{ ------------------------------------------------------------------ reader }
+{- ------------------------------------------------------------------ reader }
 
 { Next blank-separated token of Line from Pos (1-based). }
 function NextWord(const Line: AnsiString; var Pos: LongInt; var W: AnsiString): Boolean;

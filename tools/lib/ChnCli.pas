@@ -113,6 +113,10 @@ function CliUsageText(const Cli: tCli): AnsiString;
 procedure CliCheckParams(const Cli: tCli; const Params, TopLayer: AnsiString);
 { The same, but the channel (not opened) is the caller's. }
 function CliChannel(const Cli: tCli; const Params, TopLayer: AnsiString): pChnVirt;
+{ The check of CliCheckParams for a program that reports on its own (a
+  configuration file): '' when Params is good, else 'bad parameter
+  string: ...' with the token and what the key allows. }
+function CliParamsProblem(const Params, TopLayer: AnsiString): AnsiString;
 
 { The exit code for a result of the scheme above: res_Ok 0, res_Timeout 4,
   an answer that is wrong or an error reply (res_BadMessage, protocol
@@ -484,14 +488,21 @@ begin
     Result := Trim(Result + ' ' + Cli.Args[I]);
 end;
 
-function CliChannel(const Cli: tCli; const Params, TopLayer: AnsiString): pChnVirt;
+{ A channel of the top layer Params names (TopLayer when it names none),
+  given Params and not opened; nil with Why (and the token in Token). }
+function NewChannel(const Params, TopLayer: AnsiString; out Why, Token: AnsiString): pChnVirt;
 var
-  Layer, Rest, Why: AnsiString;
+  Layer, Rest: AnsiString;
   P: LongInt;
 begin
+  Why := '';
+  Token := '';
   if Length(Params) > High(tParamStr) then
-    CliUsageError(Cli, Format('parameter string longer than %d characters',
-      [High(tParamStr)]), '...' + Copy(Params, High(tParamStr) - 19, 20) + '...');
+  begin
+    Why := Format('parameter string longer than %d characters', [High(tParamStr)]);
+    Token := '...' + Copy(Params, High(tParamStr) - 19, 20) + '...';
+    Exit(nil);
+  end;
   Layer := TopLayer;
   Rest := Trim(Params);
   if UpStr(Copy(Rest, 1, 4)) = 'NAM=' then
@@ -502,15 +513,39 @@ begin
   end;
   Result := ChnCollection^.ChNewInit(Layer);
   if Result = nil then
-    CliUsageError(Cli, 'bad parameter string: ' + ChResultText(res_UnknownLayer),
-      ChUnknownLayerText(Layer));
+  begin
+    Why := 'bad parameter string: ' + ChResultText(res_UnknownLayer);
+    Token := ChUnknownLayerText(Layer);
+    Exit;
+  end;
   Result^.ChSetParam(Rest);
   if Result^.ChResult <> res_Ok then
   begin
-    Why := Result^.ChErrorText;     { the token and what it allows }
+    Why := 'bad parameter string: ' + Result^.ChErrorText;     { the token and what it allows }
     Dispose(Result, Done);
-    CliUsageError(Cli, 'bad parameter string: ' + Why, '');
+    Result := nil;
   end;
+end;
+
+function CliChannel(const Cli: tCli; const Params, TopLayer: AnsiString): pChnVirt;
+var
+  Why, Token: AnsiString;
+begin
+  Result := NewChannel(Params, TopLayer, Why, Token);
+  if Result = nil then
+    CliUsageError(Cli, Why, Token);
+end;
+
+function CliParamsProblem(const Params, TopLayer: AnsiString): AnsiString;
+var
+  Chn: pChnVirt;
+  Token: AnsiString;
+begin
+  Chn := NewChannel(Params, TopLayer, Result, Token);
+  if Chn <> nil then
+    Dispose(Chn, Done)
+  else if Token <> '' then
+    Result := Result + ' (' + Token + ')';
 end;
 
 procedure CliCheckParams(const Cli: tCli; const Params, TopLayer: AnsiString);

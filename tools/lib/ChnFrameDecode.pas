@@ -24,10 +24,11 @@ unit ChnFrameDecode;
 interface
 
 uses
-  Classes, ChnTypes, ChnTrcFormat, ChnDF1Codec, ChnFT12Codec, ChnICSCodec, ChnIec101Asdu;
+  Classes, ChnTypes, ChnTrcFormat, ChnDF1Codec, ChnFT12Codec, ChnICSCodec, ChnIec101Asdu,
+  ChnIec104Codec;
 
 type
-  tDecProto = (dpDF1, dpFT12, dpICS);
+  tDecProto = (dpDF1, dpFT12, dpICS, dpIec104);
 
   tDecOptions = record
     Proto    : tDecProto;
@@ -36,7 +37,7 @@ type
     MasterDir: tTrcDir;   { DF1 half duplex: direction of the master's bytes }
     AddrLen  : Byte;      { FT1.2: link address octets 0..2 }
     FixedLen : Byte;      { FT1.2: data octets of a fixed frame }
-    Asdu     : tIecParams; { FT1.2: the ASDU of a variable frame, decoded
+    Asdu     : tIecParams; { FT1.2, IEC 104: the ASDU of a variable frame / I frame, decoded
                             (--cot-size --ca-size --ioa-size, default 2 2 3) }
     FirstLine: LongInt;   { only chunks whose header line lies in }
     LastLine : LongInt;   { FirstLine..LastLine; 0 = no limit }
@@ -63,6 +64,8 @@ type
     DF1  : tDF1Decoder;
     FT   : tFT12Rx;
     ICS  : tICSState;
+    A104 : tApci104Feed;
+    Hunt104: Boolean;    { IEC 104: after a broken APDU, skip to the next 68h }
     Monitor: Boolean;    { DF1 half duplex: decode master frames for every station }
   end;
 
@@ -72,7 +75,7 @@ type
     TimeMs : LongInt;     { of the chunk in which the frame ended }
     Dir    : tTrcDir;
     Line   : LongInt;     { the chunk's header line / pcap record }
-    Proto  : string[5];   { DF1, FT1.2, ICS }
+    Proto  : string[7];   { DF1, FT1.2, ICS, IEC104 }
     Text   : AnsiString;  { the description chndecode prints after the protocol }
     IsError: Boolean;     { a broken frame }
     Refused: Boolean;     { a good frame that reports a failure: a DF1 reply
@@ -108,8 +111,8 @@ procedure DecodeSplitArg(const Arg: AnsiString; out Key, Value: AnsiString);
 const
   { the protocol options DecodeOption takes, without the leading '--':
     chndecode and chntap offer exactly these }
-  DecodeOptionNames: array[0..10] of ShortString = ('df1', 'crc', 'bcc', 'half',
-    'ft12', 'ics', 'adr', 'len', 'cot-size', 'ca-size', 'ioa-size');
+  DecodeOptionNames: array[0..11] of ShortString = ('df1', 'crc', 'bcc', 'half',
+    'ft12', 'ics', 'iec104', 'adr', 'len', 'cot-size', 'ca-size', 'ioa-size');
 
 function DecodeOption(const Key, Value: AnsiString; var Opt: tDecOptions;
   out Err: AnsiString): Boolean;
@@ -172,6 +175,7 @@ begin
   else if Key = '--half' then Opt.Half := True
   else if Key = '--ft12' then Opt.Proto := dpFT12
   else if Key = '--ics' then Opt.Proto := dpICS
+  else if Key = '--iec104' then Opt.Proto := dpIec104
   else if Key = '--adr' then
   begin
     if StrToNum(Value, 0, 2, N) then
@@ -525,6 +529,49 @@ begin
   end;
 end;
 
+{ ---------------------------------------------------------------- IEC 104 }
+
+procedure Iec104Byte(var Dec: tDecoder; Dir: tTrcDir; B: Byte);
+var
+  S: ^tDirState;
+  T: AnsiString;
+  A: tApci104;
+  E: ShortString;
+begin
+  S := @Dec.Dirs[Dir];
+  if S^.Hunt104 then
+  begin
+    if B <> Apci104Start then
+      Exit;
+    S^.Hunt104 := False;
+  end;
+  case Apci104Feed(S^.A104, B) of
+    fe104Apdu:
+      begin
+        if Apci104Decode(S^.A104.Buf, S^.A104.Pos, A, E) <> res_Ok then
+          Emit(Dec, Dir, 'IEC104', 'ERROR ' + E, True)
+        else
+        begin
+          T := Apci104Text(A);
+          if A.Format = af104I then
+            T := T + ': ' + IecAsduText(Dec.Opt.Asdu, S^.A104.Buf[6..S^.A104.Pos - 1], S^.A104.Pos - 6);
+          Emit(Dec, Dir, 'IEC104', T, False);
+        end;
+        Apci104FeedReset(S^.A104);
+      end;
+    fe104Error:
+      begin
+        if S^.A104.Error = res_ApciStart then
+          E := Format('octet $%.2x where an APDU starts', [B])
+        else
+          E := Format('length octet %d (4..253)', [B]);
+        Emit(Dec, Dir, 'IEC104', 'ERROR ' + E, True);
+        Apci104FeedReset(S^.A104);
+        S^.Hunt104 := True;
+      end;
+  end;
+end;
+
 { ----------------------------------------------------------------- run }
 
 function InFrame(const Opt: tDecOptions; const S: tDirState): Boolean;
@@ -533,6 +580,7 @@ begin
     dpDF1: Result := (S.DF1.State <> dsIdle) and not S.DF1.Ignore;
     dpFT12: Result := S.FT.Phase <> 0;        { 0 = hunting for a start }
     dpICS: Result := S.ICS.Phase <> ipHunt;
+    dpIec104: Result := S.A104.Pos <> 0;
   else
     Result := False;
   end;
@@ -562,6 +610,11 @@ begin
       dpDF1: DF1Init(D.Dirs[Dir], Opt, Dir);
       dpFT12: FTInit(D.Dirs[Dir], Opt);
       dpICS: ICSReset(D.Dirs[Dir].ICS);
+      dpIec104:
+        begin
+          Apci104FeedReset(D.Dirs[Dir].A104);
+          D.Dirs[Dir].Hunt104 := False;
+        end;
     end;
   end;
 end;
@@ -602,6 +655,7 @@ begin
       dpDF1: DF1Byte(D, F.Dir, F.Data[K]);
       dpFT12: FTByte(D, F.Dir, F.Data[K]);
       dpICS: ICSByte(D, F.Dir, F.Data[K]);
+      dpIec104: Iec104Byte(D, F.Dir, F.Data[K]);
     end;
 end;
 

@@ -38,7 +38,7 @@ type
   private
     FFd: cint;
     FOverrunBase: LongWord;
-    FNoCounters: Boolean;     { the driver refused TIOCGICOUNT once: never ask again }
+    FNoCounters: Boolean;     {< the driver refused TIOCGICOUNT once: never ask again }
     function Fail(Err: cint): tChResult;
     function Counters(out N: LongWord): Boolean;
     function Refuse(const Key: ShortString): tChResult;
@@ -547,7 +547,11 @@ begin
     Exit(res_WrongState);
   FillChar(R, SizeOf(R), 0);
   if On then
+  begin
     R.Flags := SER_RS485_ENABLED or SER_RS485_RTS_ON_SEND;
+    R.DelayRtsBeforeSend := Rs485BeforeMs;
+    R.DelayRtsAfterSend := Rs485AfterMs;
+  end;
   if FpIOCtl(FFd, TIOCSRS485, @R) <> 0 then
   begin
     Result := Fail(FpGetErrno);

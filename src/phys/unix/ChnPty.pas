@@ -56,7 +56,7 @@ function PtyUnlock(Fd: cint; out SlavePath: AnsiString): cint;
 function PtyCreate(out Fd: cint; out SlavePath: AnsiString): cint;
 
 var
-  PtyLastSlave: AnsiString = '';   { slave path of the last TChnPortPty opened }
+  PtyLastSlave: AnsiString = '';   {< slave path of the last TChnPortPty opened }
 
 implementation
 

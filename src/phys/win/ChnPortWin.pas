@@ -43,15 +43,15 @@ type
   private
     FH: THandle;
     FOutSize: DWORD;
-    FToggle: Boolean;          { RTS_CONTROL_TOGGLE requested }
+    FToggle: Boolean;          {< RTS_CONTROL_TOGGLE requested }
     FFlow: tPortFlow;
     FOverruns: LongWord;
-    FWaitOv: TOverlapped;      { the waiting read; its hEvent is the wait source }
-    FIoOv: TOverlapped;        { reads and writes that complete at once }
+    FWaitOv: TOverlapped;      {< the waiting read; its hEvent is the wait source }
+    FIoOv: TOverlapped;        {< reads and writes that complete at once }
     FWaitByte: Byte;
-    FWaitPending: Boolean;     { the waiting read is outstanding }
-    FWaitHas: Boolean;         { it completed with FWaitByte, not yet delivered }
-    FWaitErr: DWORD;           { it failed with this error (device lost ...) }
+    FWaitPending: Boolean;     {< the waiting read is outstanding }
+    FWaitHas: Boolean;         {< it completed with FWaitByte, not yet delivered }
+    FWaitErr: DWORD;           {< it failed with this error (device lost ...) }
     function Fail(E: DWORD): tChResult;
     function EscapeLine(Code: DWORD): tChResult;
     procedure ArmWait;

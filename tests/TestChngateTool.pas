@@ -1,0 +1,164 @@
+{ TestChngateTool - tools/chngate as it runs: df1sim on a pty as a live
+  PLC, a pty nobody answers as a dead one, Debian's mosquitto on a free
+  loopback port, mosquitto_sub and mosquitto_pub as the IT side. Values
+  arrive with their value and quality, a set reaches the PLC and its new
+  value comes back, a command to a read-only tag is refused on the error
+  topic, the dead device turns down, bad and demoted while the live one
+  keeps its rate, SIGKILL leaves the broker's last will (offline); and
+  --check. Skipped, with the reason, without mosquitto. }
+unit TestChngateTool;
+
+{$MODE OBJFPC}{$H+}
+
+interface
+
+uses
+  Classes, SysUtils, fpcunit, testregistry;
+
+type
+  TTestChngateTool = class(TTestCase)
+  published
+    procedure TestCheck;
+    {$IFDEF UNIX}
+    procedure TestGatewayEndToEnd;
+    {$ENDIF}
+  end;
+
+implementation
+
+uses
+  {$IFDEF UNIX}BaseUnix, PtyPair, MosquittoRun,{$ENDIF}
+  Process, BinSupport, TestTempDir;
+
+procedure TTestChngateTool.TestCheck;
+var
+  Dir, Output: string;
+  Code: LongInt;
+begin
+  AssertTrue(BinPath('chngate') + ' missing (make tools)', FileExists(BinPath('chngate')));
+  Dir := MakeTempDir('chn-gate');
+  try
+    WriteFileText(Dir + '/g.conf', '[mqtt]'#10'prefix = plant'#10#10'[device plc1]'#10 +
+      'line = NAM=DF1 NOD=0 DNO=1 NAM=COM DEV=/dev/ttyUSB0'#10'tags = N7:0[10] N7:20 F8:0'#10);
+    Code := RunBin('chngate', ['--check', Dir + '/g.conf'], 5000, Output);
+    AssertEquals('good: exit 0'#10 + Output, 0, Code);
+    AssertEquals(Dir + '/g.conf: good: 1 devices, 3 tags, 2 reads per scan' + LineEnding, Output);
+    WriteFileText(Dir + '/b.conf', '[mqtt]'#10'prefix = plant'#10'port = x'#10#10'[device plc1]'#10 +
+      'line = NAM=DF1 NOD=0 DNO=1 NAM=COM DEV=/dev/ttyUSB0'#10'tags = N7:0[10] X9:1'#10);
+    Code := RunBin('chngate', ['--check', Dir + '/b.conf'], 5000, Output);
+    AssertEquals('bad: exit 2'#10 + Output, 2, Code);
+    AssertTrue('the port'#10 + Output, Pos(Dir + '/b.conf:3: [mqtt] port: "x" is not a whole number 1..65535', Output) > 0);
+    AssertTrue('the tag'#10 + Output, Pos(Dir + '/b.conf:7: [device plc1] tags: "X9:1": ', Output) > 0);
+    { a bad configuration opens nothing, also without --check }
+    Code := RunBin('chngate', [Dir + '/b.conf'], 5000, Output);
+    AssertEquals('bad, run: exit 2'#10 + Output, 2, Code);
+    { the example the repository ships (and make install installs) }
+    Code := RunBin('chngate', ['--check', 'tools/chngate.conf'], 5000, Output);
+    AssertEquals('tools/chngate.conf: exit 0'#10 + Output, 0, Code);
+    AssertEquals('tools/chngate.conf: good: 1 devices, 5 tags, 5 reads per scan' + LineEnding, Output);
+    Code := RunBin('chngate', [Dir + '/none.conf'], 5000, Output);
+    AssertEquals('missing file: exit 2'#10 + Output, 2, Code);
+    AssertTrue('says so'#10 + Output, Pos('none.conf: cannot be read', Output) > 0);
+  finally
+    RemoveTempDir(Dir);
+  end;
+end;
+
+{$IFDEF UNIX}
+
+{ How often Needle occurs in S. }
+function Occurs(const Needle, S: string): LongInt;
+var
+  P: LongInt;
+begin
+  Result := 0;
+  P := Pos(Needle, S);
+  while P > 0 do
+  begin
+    Inc(Result);
+    P := Pos(Needle, S, P + 1);
+  end;
+end;
+
+procedure TTestChngateTool.TestGatewayEndToEnd;
+var
+  Broker: TMosquitto;
+  Sub: TMqttSub;
+  Sim, Gate: TProcess;
+  Dead: TPtyPair;
+  Dir, Pty, Before: string;
+  Clocks: LongInt;
+begin
+  if MosquittoMissing <> '' then
+    Ignore(MosquittoMissing);
+  Dir := MakeTempDir('chn-gate');
+  Broker := TMosquitto.Create;
+  Sub := nil;
+  Gate := nil;
+  Dead := TPtyPair.Create;
+  Sim := StartSimPty(['--quiet', '--timeout=60'], Pty);
+  try
+    AssertTrue('df1sim pty', Pty <> '');
+    WriteFileText(Dir + '/g.conf',
+      '[mqtt]'#10'port = ' + IntToStr(Broker.Port) + #10'prefix = plant'#10#10 +
+      '[device plc1]'#10'line = NAM=DF1 NOD=0 DNO=1 CRC=ON NAM=COM DEV=' + Pty + #10 +
+      'tags = N7:0[3] clock=S2:4@200 run=B3:0/5 F8:0'#10'scan = 300'#10'write = run'#10#10 +
+      '[device plc2]'#10'line = NAM=DF1 NOD=0 DNO=1 CRC=ON NAM=COM DEV=' + Dead.SlavePath + #10 +
+      'tags = N7:0'#10'scan = 200'#10'timeout = 100'#10'fails = 2'#10'demote = 500'#10);
+    Sub := TMqttSub.Create(Broker.Port, 'plant/#', []);
+    Sleep(200);
+    Gate := TProcess.Create(nil);
+    BinExecutable(Gate, BinPath('chngate'));
+    Gate.Parameters.Add(Dir + '/g.conf');
+    Gate.Options := [poUsePipes, poStderrToOutPut];
+    Gate.Execute;
+    { values, with their quality }
+    AssertTrue('N7:0[3]: ' + Sub.Text,
+      Sub.WaitFor('plant/plc1/N7:0[3] {"value":[0,10,20],"quality":"good","ts":"', 10000));
+    AssertTrue('F8:0: ' + Sub.Text, Sub.WaitFor('plant/plc1/F8:0 {"value":1.5,"quality":"good"', 5000));
+    AssertTrue('run: ' + Sub.Text, Sub.WaitFor('plant/plc1/run {"value":false,"quality":"good"', 5000));
+    AssertTrue('online: ' + Sub.Text, Sub.WaitFor('plant/$gateway/status online', 5000));
+    { the dead one: down and bad, then demoted }
+    AssertTrue('plc2 bad: ' + Sub.Text, Sub.WaitFor('plant/plc2/N7:0 {"value":null,"quality":"bad"', 10000));
+    AssertTrue('plc2 down: ' + Sub.Text, Sub.WaitFor('plant/plc2/$health {"state":"down"', 5000));
+    AssertTrue('plc2 demoted: ' + Sub.Text, Sub.WaitFor('plant/plc2/$health {"state":"demoted"', 5000));
+    { meanwhile the live one keeps its 200 ms clock: about 10 changes in 2 s }
+    Before := Sub.Text;
+    Sleep(2000);
+    Clocks := Occurs('plant/plc1/clock {', Sub.Text) - Occurs('plant/plc1/clock {', Before);
+    AssertTrue(Format('plc1 clock changes in 2 s while plc2 is demoted: %d', [Clocks]), Clocks >= 7);
+    { a set reaches the PLC; its new value comes back from it }
+    AssertEquals('mosquitto_pub', 0, MqttPub(Broker.Port, 'plant/plc1/run/set', 'true'));
+    AssertTrue('run back: ' + Sub.Text, Sub.WaitFor('plant/plc1/run {"value":true,"quality":"good"', 5000));
+    { a read-only tag: refused, with the reason }
+    AssertEquals('mosquitto_pub', 0, MqttPub(Broker.Port, 'plant/plc1/F8:0/set', '2'));
+    AssertTrue('refused: ' + Sub.Text, Sub.WaitFor(
+      'plant/$gateway/error {"topic":"plant/plc1/F8:0/set","error":"F8:0 is not writable"}', 5000));
+    { the gateway vanishes: the broker publishes its will }
+    FpKill(Gate.ProcessID, SIGKILL);
+    Gate.WaitOnExit;
+    AssertTrue('the will: ' + Sub.Text, Sub.WaitFor('plant/$gateway/status offline', 5000));
+  finally
+    if (Gate <> nil) and Gate.Running then
+    begin
+      FpKill(Gate.ProcessID, SIGKILL);
+      Gate.WaitOnExit;
+    end;
+    Gate.Free;
+    Sub.Free;
+    if Sim.Running then
+    begin
+      FpKill(Sim.ProcessID, SIGTERM);
+      Sim.WaitOnExit;
+    end;
+    Sim.Free;
+    Dead.Free;
+    Broker.Free;
+    RemoveTempDir(Dir);
+  end;
+end;
+{$ENDIF}
+
+initialization
+  RegisterTest(TTestChngateTool);
+end.

@@ -1,0 +1,118 @@
+{ chngate - a gateway: DF1 PLCs (SLC 500, MicroLogix, df1sim) south, an
+  MQTT broker north, from one configuration file (docs/chngate.md).
+
+    chngate CONFIG            run until SIGINT or SIGTERM; SIGHUP reads
+                              CONFIG again (the MQTT connection stays)
+    chngate --check CONFIG    check CONFIG and exit
+
+  Every tag is polled by the tag engine (ChnPcccTags: few merged reads,
+  scan classes, changes only, demotion of a dead PLC) and published on
+  PREFIX/DEVICE/TAG as a JSON object (value, quality, ts),
+  retained; PREFIX/DEVICE/$health holds the device's state and counters;
+  PREFIX/DEVICE/TAG/set writes a writable tag; PREFIX/$gateway/status is
+  online, or offline (the broker's last will when the gateway vanished).
+  One thread: every line and the broker's socket in one ChnWaitAny. }
+program chngate;
+
+{$MODE OBJFPC}{$H+}
+
+uses
+  {$IFDEF UNIX}cthreads, BaseUnix,{$ENDIF}
+  SysUtils, ChnWait, ChnLayers, ChnGateway, ChnCli;
+
+var
+  Stop: Boolean = False;
+  Reload: Boolean = False;
+
+{$IFDEF UNIX}
+procedure OnSignal(Sig: cint); cdecl;
+begin
+  if Sig = SIGHUP then
+    Reload := True
+  else
+    Stop := True;
+end;
+
+procedure CatchSignals;
+var
+  Act: SigActionRec;
+begin
+  FillChar(Act, SizeOf(Act), 0);
+  Act.sa_handler := SigActionHandler(@OnSignal);
+  FpSigAction(SIGINT, @Act, nil);
+  FpSigAction(SIGTERM, @Act, nil);
+  FpSigAction(SIGHUP, @Act, nil);
+end;
+{$ENDIF}
+
+procedure LogLine(const Line: AnsiString);
+begin
+  WriteLn(StdErr, 'chngate: ', Line);
+  Flush(StdErr);
+end;
+
+var
+  Cli: tCli;
+  Cfg, NewCfg: tGateConfig;
+  G: tGate;
+  Errors, Err, Name: AnsiString;
+
+begin
+  CliInit(Cli, 'chngate', '[--check] CONFIG',
+    'A gateway: reads the tags of DF1 PLCs (SLC 500, MicroLogix, df1sim) with few merged ' +
+    'requests and publishes their changes to an MQTT broker, from one INI configuration ' +
+    'file (docs/chngate.md); runs until SIGINT or SIGTERM, SIGHUP reads the configuration again.');
+  CliOption(Cli, 'check', #0, '', 'check the configuration, print a summary and exit');
+  CliEpilog(Cli, 'Topics:' + LineEnding +
+    '  PREFIX/DEVICE/TAG         {"value":...,"quality":"good","ts":"2026-12-04T10:00:00.123Z"} (retained)' + LineEnding +
+    '  PREFIX/DEVICE/$health     {"state":"ok","requests":...} (retained)' + LineEnding +
+    '  PREFIX/DEVICE/TAG/set     a number, true or false: written to a writable tag' + LineEnding +
+    '  PREFIX/$gateway/status    online, or offline (the last will)' + LineEnding +
+    '  PREFIX/$gateway/error     a refused command and why' + LineEnding + LineEnding +
+    'Example:' + LineEnding + '  chngate --check /etc/chngate.conf' + LineEnding);
+  CliExit(Cli, 0, 'ended by SIGINT or SIGTERM, or --check found the configuration good');
+  CliExit(Cli, 1, 'libmosquitto is missing');
+  CliExit(Cli, 2, 'a command-line error, or the configuration is bad (FILE:LINE: [section] key: why); ' +
+    'nothing was opened');
+  CliParse(Cli);
+  if CliArgCount(Cli) <> 1 then
+    CliUsageError(Cli, 'one configuration file', CliRest(Cli, 0));
+  Name := Cli.Args[0];
+  if not GateLoadConfig(Name, Cfg, Errors) then
+  begin
+    Write(StdErr, Errors);
+    Halt(CliExitUsage);
+  end;
+  if CliHas(Cli, 'check') then
+  begin
+    WriteLn(Name, ': good: ', GateSummary(Cfg));
+    Halt(0);
+  end;
+  {$IFDEF UNIX}
+  CatchSignals;
+  {$ENDIF}
+  G.Log := @LogLine;
+  if not GateStart(G, Cfg, Err) then
+  begin
+    LogLine(Err);
+    Halt(1);
+  end;
+  LogLine(Format('%s: %s; MQTT %s:%d, prefix %s', [Name, GateSummary(Cfg), Cfg.Host, Cfg.Port, Cfg.Prefix]));
+  while not Stop do
+  begin
+    ChnWaitAny(GateStep(G));
+    if Reload then
+    begin
+      Reload := False;
+      if GateLoadConfig(Name, NewCfg, Errors) then
+      begin
+        GateReload(G, NewCfg);
+        LogLine('SIGHUP: ' + Name + ' read again: ' + GateSummary(NewCfg));
+      end
+      else
+        LogLine('SIGHUP: ' + Name + ' is bad, the running configuration stays:' + LineEnding + Errors);
+    end;
+  end;
+  LogLine('signal: stopping');
+  GateStop(G, 2000);
+end.

@@ -1,0 +1,742 @@
+{ ChnGateway - the gateway of tools/chngate: its configuration (an INI file
+  read with FCL's IniFiles, checked completely before anything is opened:
+  every fault is "FILE:LINE: [section] key: what is wrong") and the loop
+  that joins the south devices (DF1 PLCs through the tag engine,
+  ChnPcccTags) to the north (MQTT through ChnMqtt), all in one
+  ChnWaitAny. docs/chngate.md is the reference. }
+unit ChnGateway;
+
+{$MODE OBJFPC}{$H+}
+
+interface
+
+uses
+  Classes, SysUtils, ChnTypes, ChnPccc, ChnPcccTags, ChnMqtt;
+
+const
+  GateHealthMs = 10000;     { $health is published on every change and this often }
+
+type
+  tGateTagCfg = record
+    Name, Address: AnsiString;
+    ScanMs: LongInt;
+    Writable: Boolean;
+  end;
+
+  tGateDeviceCfg = record
+    Name     : AnsiString;
+    Line     : AnsiString;
+    ScanMs   : LongInt;
+    Deadband : Double;
+    DemoteMs : LongInt;
+    DemoteAfter: LongInt;
+    TimeoutMs: LongInt;
+    Ioa      : LongInt;
+    Tags     : array of tGateTagCfg;
+  end;
+
+  tGateConfig = record
+    FileName : AnsiString;
+    Mqtt     : Boolean;      { an [mqtt] section is there }
+    Host     : AnsiString;
+    Port     : LongInt;
+    Prefix   : AnsiString;
+    Qos      : LongInt;
+    User, Password: AnsiString;
+    Tls      : Boolean;
+    CaFile   : AnsiString;
+    Queue    : LongInt;
+    ClientId : AnsiString;
+    KeepAlive: LongInt;
+    Devices  : array of tGateDeviceCfg;
+  end;
+
+  tGateLog = procedure(const Line: AnsiString);
+
+  tGate = record
+    Cfg    : tGateConfig;
+    Devs   : array of tPcccDevice;
+    OpenAt : array of QWord;      { when a device whose line failed is opened again }
+    Mqtt   : tMqttClient;
+    HealthAt: QWord;
+    Log    : tGateLog;
+    WriteId: LongInt;
+  end;
+
+{ Read and check FileName. False with Errors (one line per fault,
+  "FILE:LINE: [section] key: what is wrong"); nothing is opened. }
+function GateLoadConfig(const FileName: AnsiString; out Cfg: tGateConfig; out Errors: AnsiString): Boolean;
+{ The same for a text (FileName only names it in the messages). }
+function GateParseConfig(const FileName, Text: AnsiString; out Cfg: tGateConfig;
+  out Errors: AnsiString): Boolean;
+{ 'N devices, M tags, R reads per scan' of a checked configuration. }
+function GateSummary(const Cfg: tGateConfig): AnsiString;
+
+{ Open the north (MQTT) and the devices of Cfg. False with Err when the
+  MQTT library is missing; a device whose line cannot be opened is down
+  and opened again every DEMOTE ms. }
+function GateStart(var G: tGate; const Cfg: tGateConfig; out Err: AnsiString): Boolean;
+{ A new configuration (SIGHUP): the devices are closed and opened anew,
+  the north connection stays. }
+procedure GateReload(var G: tGate; const Cfg: tGateConfig);
+{ One round: step everything, publish what changed, apply commands.
+  Returns the ms the program may wait (ChnWaitAny) before the next. }
+function GateStep(var G: tGate): LongInt;
+{ Publish offline, give the queue up to Ms to go out, close everything. }
+procedure GateStop(var G: tGate; Ms: LongInt);
+
+{ The payload of a tag: an object with value, quality and ts (docs/chngate.md). }
+function GateTagPayload(const T: tPcccTag): AnsiString;
+{ The payload of a device's health. }
+function GateHealthPayload(const D: tPcccDevice): AnsiString;
+
+implementation
+
+uses
+  IniFiles, StrUtils, ChnWait, ChnPcccClient, ChnJson, ChnCli;
+
+{ ------------------------------------------------------------ configuration }
+
+type
+  tChecker = record
+    FileName: AnsiString;
+    Lines   : TStringList;
+    Errors  : AnsiString;
+  end;
+
+{ The line (1-based) of Key in Section, or of the section header when Key
+  is ''; 0 when not found. }
+function LineOf(const C: tChecker; const Section, Key: AnsiString): LongInt;
+var
+  I, Eq: LongInt;
+  S, Cur: AnsiString;
+begin
+  Cur := '';
+  for I := 0 to C.Lines.Count - 1 do
+  begin
+    S := Trim(C.Lines[I]);
+    if (S <> '') and (S[1] = '[') then
+    begin
+      Cur := LowerCase(Trim(Copy(S, 2, Pos(']', S) - 2)));
+      if (Key = '') and (Cur = LowerCase(Section)) then
+        Exit(I + 1);
+      Continue;
+    end;
+    Eq := Pos('=', S);
+    if (Key <> '') and (Eq > 0) and (Cur = LowerCase(Section)) and
+       (LowerCase(Trim(Copy(S, 1, Eq - 1))) = LowerCase(Key)) then
+      Exit(I + 1);
+  end;
+  Result := 0;
+end;
+
+procedure Bad(var C: tChecker; const Section, Key, Why: AnsiString);
+var
+  Where: AnsiString;
+begin
+  Where := C.FileName + ':' + IntToStr(LineOf(C, Section, Key)) + ': [' + Section + ']';
+  if Key <> '' then
+    Where := Where + ' ' + Key;
+  C.Errors := C.Errors + Where + ': ' + Why + LineEnding;
+end;
+
+{ The structure: sections known, keys known, no key or section twice,
+  every line a section, a key = value, a comment or blank. }
+procedure CheckLines(var C: tChecker);
+const
+  MqttKeys = ' host port prefix qos user password tls ca queue client_id keepalive ';
+  DeviceKeys = ' line tags scan write deadband demote fails timeout ioa ';
+var
+  I, Eq: LongInt;
+  S, Sec, Key, Keys: AnsiString;
+  Seen: TStringList;
+begin
+  Seen := TStringList.Create;
+  try
+    Seen.Sorted := True;
+    Seen.Duplicates := dupAccept;
+    Sec := '';
+    Keys := '';
+    for I := 0 to C.Lines.Count - 1 do
+    begin
+      S := Trim(C.Lines[I]);
+      if (S = '') or (S[1] in [';', '#']) then
+        Continue;
+      if S[1] = '[' then
+      begin
+        if S[Length(S)] <> ']' then
+        begin
+          C.Errors := C.Errors + Format('%s:%d: "%s": a section header is [NAME]', [C.FileName, I + 1, S]) + LineEnding;
+          Continue;
+        end;
+        Sec := Trim(Copy(S, 2, Length(S) - 2));
+        if Seen.IndexOf('[' + LowerCase(Sec)) >= 0 then
+          C.Errors := C.Errors + Format('%s:%d: [%s]: the section is there twice', [C.FileName, I + 1, Sec]) + LineEnding;
+        Seen.Add('[' + LowerCase(Sec));
+        if LowerCase(Sec) = 'mqtt' then
+          Keys := MqttKeys
+        else if (LowerCase(Copy(Sec, 1, 7)) = 'device ') and (Trim(Copy(Sec, 8, MaxInt)) <> '') then
+          Keys := DeviceKeys
+        else if LowerCase(Sec) = 'iec104' then
+        begin
+          C.Errors := C.Errors + Format('%s:%d: [%s]: IEC 104 north is not in this version of chngate',
+            [C.FileName, I + 1, Sec]) + LineEnding;
+          Keys := '*';
+        end
+        else
+        begin
+          C.Errors := C.Errors + Format('%s:%d: [%s]: unknown section (mqtt, device NAME)',
+            [C.FileName, I + 1, Sec]) + LineEnding;
+          Keys := '*';
+        end;
+        Continue;
+      end;
+      Eq := Pos('=', S);
+      if Eq = 0 then
+      begin
+        C.Errors := C.Errors + Format('%s:%d: "%s": not KEY = VALUE', [C.FileName, I + 1, S]) + LineEnding;
+        Continue;
+      end;
+      Key := LowerCase(Trim(Copy(S, 1, Eq - 1)));
+      if Sec = '' then
+        C.Errors := C.Errors + Format('%s:%d: %s: a key before the first section', [C.FileName, I + 1, Key]) + LineEnding
+      else if (Keys <> '*') and (Pos(' ' + Key + ' ', Keys) = 0) then
+        C.Errors := C.Errors + Format('%s:%d: [%s] %s: unknown key (%s)', [C.FileName, I + 1, Sec, Key,
+          Trim(Keys)]) + LineEnding
+      else if Seen.IndexOf(LowerCase(Sec) + #0 + Key) >= 0 then
+        C.Errors := C.Errors + Format('%s:%d: [%s] %s: given twice', [C.FileName, I + 1, Sec, Key]) + LineEnding;
+      Seen.Add(LowerCase(Sec) + #0 + Key);
+    end;
+  finally
+    Seen.Free;
+  end;
+end;
+
+function Num(var C: tChecker; Ini: TMemIniFile; const Sec, Key: AnsiString; Min, Max, Default: LongInt): LongInt;
+var
+  S: AnsiString;
+  Code: LongInt;
+begin
+  Result := Default;
+  S := Trim(Ini.ReadString(Sec, Key, ''));
+  if S = '' then
+    Exit;
+  Val(S, Result, Code);
+  if (Code <> 0) or (Result < Min) or (Result > Max) then
+  begin
+    Bad(C, Sec, Key, Format('"%s" is not a whole number %d..%d', [S, Min, Max]));
+    Result := Default;
+  end;
+end;
+
+function Flag(var C: tChecker; Ini: TMemIniFile; const Sec, Key: AnsiString): Boolean;
+var
+  S: AnsiString;
+begin
+  S := LowerCase(Trim(Ini.ReadString(Sec, Key, '')));
+  Result := (S = 'on') or (S = 'yes') or (S = 'true') or (S = '1');
+  if not Result and (S <> '') and (S <> 'off') and (S <> 'no') and (S <> 'false') and (S <> '0') then
+    Bad(C, Sec, Key, '"' + S + '" is not on or off');
+end;
+
+procedure ReadMqtt(var C: tChecker; Ini: TMemIniFile; var Cfg: tGateConfig);
+const
+  S = 'mqtt';
+begin
+  Cfg.Mqtt := Ini.SectionExists(S);
+  Cfg.Host := Trim(Ini.ReadString(S, 'host', '127.0.0.1'));
+  Cfg.Tls := Flag(C, Ini, S, 'tls');
+  if Cfg.Tls then
+    Cfg.Port := Num(C, Ini, S, 'port', 1, 65535, 8883)
+  else
+    Cfg.Port := Num(C, Ini, S, 'port', 1, 65535, 1883);
+  Cfg.Prefix := Trim(Ini.ReadString(S, 'prefix', ''));
+  Cfg.Qos := Num(C, Ini, S, 'qos', 0, 1, 1);
+  Cfg.User := Ini.ReadString(S, 'user', '');
+  Cfg.Password := Ini.ReadString(S, 'password', '');
+  Cfg.CaFile := Trim(Ini.ReadString(S, 'ca', ''));
+  Cfg.Queue := Num(C, Ini, S, 'queue', 1, 10000000, MqttQueueDefault);
+  Cfg.ClientId := Trim(Ini.ReadString(S, 'client_id', ''));
+  Cfg.KeepAlive := Num(C, Ini, S, 'keepalive', 5, 3600, MqttKeepAliveDefault);
+  if not Cfg.Mqtt then
+    Exit;
+  if Cfg.Prefix = '' then
+    Bad(C, S, 'prefix', 'missing: the first level of every topic (plant)')
+  else if (Pos('+', Cfg.Prefix) > 0) or (Pos('#', Cfg.Prefix) > 0) or (Cfg.Prefix[Length(Cfg.Prefix)] = '/') then
+    Bad(C, S, 'prefix', '"' + Cfg.Prefix + '": no wildcards (+ #) and no trailing /');
+  if Cfg.Host = '' then
+    Bad(C, S, 'host', 'empty');
+  if Cfg.Tls and (Cfg.CaFile <> '') and not FileExists(Cfg.CaFile) and not DirectoryExists(Cfg.CaFile) then
+    Bad(C, S, 'ca', '"' + Cfg.CaFile + '": no such file or directory');
+  if (Cfg.Password <> '') and (Cfg.User = '') then
+    Bad(C, S, 'password', 'given without user');
+end;
+
+procedure ReadDevice(var C: tChecker; Ini: TMemIniFile; const Sec: AnsiString; var D: tGateDeviceCfg;
+  var Probe: tPcccDevice);
+var
+  Words: TStringArray;
+  W, Name, Addr, Why, Layer: AnsiString;
+  P, At, Code, I, K, Scan: LongInt;
+  E: ShortString;
+  DB: Double;
+begin
+  D.Name := Trim(Copy(Sec, 8, MaxInt));
+  if (Pos('/', D.Name) > 0) or (Pos('+', D.Name) > 0) or (Pos('#', D.Name) > 0) or (Pos(' ', D.Name) > 0) then
+    Bad(C, Sec, '', '"' + D.Name + '": a device name is one topic level (no / + # or blanks)');
+  D.Line := Trim(Ini.ReadString(Sec, 'line', ''));
+  D.ScanMs := Num(C, Ini, Sec, 'scan', 10, 3600000, TagScanMsDefault);
+  D.DemoteMs := Num(C, Ini, Sec, 'demote', 100, 3600000, TagDemoteMsDefault);
+  D.DemoteAfter := Num(C, Ini, Sec, 'fails', 1, 1000, TagDemoteAfterDefault);
+  D.TimeoutMs := Num(C, Ini, Sec, 'timeout', 10, 60000, 1000);
+  D.Ioa := Num(C, Ini, Sec, 'ioa', 1, 16777215, 1);
+  D.Deadband := 0;
+  W := Trim(Ini.ReadString(Sec, 'deadband', ''));
+  if W <> '' then
+  begin
+    Val(W, DB, Code);
+    if (Code <> 0) or (DB < 0) then
+      Bad(C, Sec, 'deadband', '"' + W + '" is not a number 0 or above')
+    else
+      D.Deadband := DB;
+  end;
+  if D.Line = '' then
+    Bad(C, Sec, 'line', 'missing: the parameter string of the device''s line (NAM=DF1 ... NAM=COM ...)')
+  else
+  begin
+    Layer := UpperCase(ExtractWord(1, D.Line, [' ']));
+    if Layer = 'NAM=FT1_2' then
+      Bad(C, Sec, 'line', 'IEC 101 devices (NAM=FT1_2) are not in this version of chngate')
+    else if Layer <> 'NAM=DF1' then
+      Bad(C, Sec, 'line', '"' + ExtractWord(1, D.Line, [' ']) + '": the line starts with NAM=DF1')
+    else
+    begin
+      Why := CliParamsProblem(D.Line, 'DF1');
+      if Why <> '' then
+        Bad(C, Sec, 'line', Why);
+    end;
+  end;
+  { tags: [NAME=]ADDRESS[@MS] }
+  D.Tags := nil;
+  Words := Trim(Ini.ReadString(Sec, 'tags', '')).Split([' ', #9], TStringSplitOptions.ExcludeEmpty);
+  if Length(Words) = 0 then
+    Bad(C, Sec, 'tags', 'missing: the tags to read (N7:0[10] speed=F8:2 B3:0/5@500 ...)');
+  TagDeviceInit(Probe, D.Name);
+  for W in Words do
+  begin
+    Name := '';
+    Addr := W;
+    P := Pos('=', Addr);
+    if P > 0 then
+    begin
+      Name := Copy(Addr, 1, P - 1);
+      Addr := Copy(Addr, P + 1, MaxInt);
+      if (Name = '') or (Pos('/', Name) > 0) or (Pos('+', Name) > 0) or (Pos('#', Name) > 0) then
+        Bad(C, Sec, 'tags', '"' + W + '": a tag name is one topic level (not empty, no / + #)');
+    end;
+    Scan := D.ScanMs;
+    At := Pos('@', Addr);
+    if At > 0 then
+    begin
+      Val(Copy(Addr, At + 1, MaxInt), Scan, Code);
+      if (Code <> 0) or (Scan < 10) or (Scan > 3600000) then
+      begin
+        Bad(C, Sec, 'tags', '"' + W + '": the scan after @ is not a whole number 10..3600000 (ms)');
+        Scan := D.ScanMs;
+      end;
+      Addr := Copy(Addr, 1, At - 1);
+    end;
+    if TagAdd(Probe, Name, Addr, Scan, D.Deadband, False, E) <> res_Ok then
+    begin
+      Bad(C, Sec, 'tags', E);
+      Continue;
+    end;
+    Name := Probe.Tags[High(Probe.Tags)].Name;
+    for I := 0 to High(D.Tags) do
+      if D.Tags[I].Name = Name then
+        Bad(C, Sec, 'tags', '"' + Name + '" is there twice');
+    K := Length(D.Tags);
+    SetLength(D.Tags, K + 1);
+    D.Tags[K].Name := Name;
+    D.Tags[K].Address := Addr;
+    D.Tags[K].ScanMs := Scan;
+    D.Tags[K].Writable := False;
+  end;
+  { the writable ones, by name or address }
+  Words := Trim(Ini.ReadString(Sec, 'write', '')).Split([' ', #9], TStringSplitOptions.ExcludeEmpty);
+  for W in Words do
+  begin
+    K := TagFind(Probe, W);
+    if K < 0 then
+      Bad(C, Sec, 'write', '"' + W + '" is none of the device''s tags')
+    else if (Probe.Tags[K].Kind = pvString) or (PcccPlanValues(Probe.Tags[K].Plan) <> 1) then
+      Bad(C, Sec, 'write', '"' + W + '": only a tag of one integer, bit or float can be written')
+    else
+      D.Tags[K].Writable := True;
+  end;
+end;
+
+function GateParseConfig(const FileName, Text: AnsiString; out Cfg: tGateConfig;
+  out Errors: AnsiString): Boolean;
+var
+  C: tChecker;
+  Ini: TMemIniFile;
+  Secs: TStringList;
+  Sec: AnsiString;
+  Probe: tPcccDevice;
+  I: LongInt;
+begin
+  Finalize(Cfg);
+  FillChar(Cfg, SizeOf(Cfg), 0);
+  Cfg.FileName := FileName;
+  C.FileName := FileName;
+  C.Errors := '';
+  C.Lines := TStringList.Create;
+  Secs := TStringList.Create;
+  Ini := nil;
+  FillChar(Probe, SizeOf(Probe), 0);
+  try
+    C.Lines.Text := Text;
+    CheckLines(C);
+    Ini := TMemIniFile.Create('');
+    Ini.SetStrings(C.Lines);
+    ReadMqtt(C, Ini, Cfg);
+    Ini.ReadSections(Secs);
+    for Sec in Secs do
+      if (LowerCase(Copy(Sec, 1, 7)) = 'device ') and (Trim(Copy(Sec, 8, MaxInt)) <> '') then
+      begin
+        SetLength(Cfg.Devices, Length(Cfg.Devices) + 1);
+        ReadDevice(C, Ini, Sec, Cfg.Devices[High(Cfg.Devices)], Probe);
+        for I := 0 to High(Cfg.Devices) - 1 do
+          if SameText(Cfg.Devices[I].Name, Cfg.Devices[High(Cfg.Devices)].Name) then
+            Bad(C, Sec, '', 'a device of this name is there twice');
+        TagDeviceDone(Probe);
+      end;
+    if (C.Errors = '') and (Length(Cfg.Devices) = 0) then
+      C.Errors := FileName + ':0: no [device NAME] section: nothing to read' + LineEnding;
+    if (C.Errors = '') and not Cfg.Mqtt then
+      C.Errors := FileName + ':0: no [mqtt] section: nowhere to publish' + LineEnding;
+  finally
+    Ini.Free;
+    Secs.Free;
+    C.Lines.Free;
+  end;
+  Errors := C.Errors;
+  Result := Errors = '';
+end;
+
+function GateLoadConfig(const FileName: AnsiString; out Cfg: tGateConfig; out Errors: AnsiString): Boolean;
+var
+  L: TStringList;
+begin
+  L := TStringList.Create;
+  try
+    try
+      L.LoadFromFile(FileName);
+    except
+      on E: Exception do
+      begin
+        Finalize(Cfg);
+        FillChar(Cfg, SizeOf(Cfg), 0);
+        Errors := FileName + ': cannot be read: ' + E.Message + LineEnding;
+        Exit(False);
+      end;
+    end;
+    Result := GateParseConfig(FileName, L.Text, Cfg, Errors);
+  finally
+    L.Free;
+  end;
+end;
+
+{ The tag engine of configuration device D (not opened). }
+procedure BuildDevice(var Dev: tPcccDevice; const D: tGateDeviceCfg);
+var
+  T: tGateTagCfg;
+  E: ShortString;
+  Name: AnsiString;
+begin
+  TagDeviceInit(Dev, D.Name);
+  Dev.DemoteMs := D.DemoteMs;
+  Dev.DemoteAfter := D.DemoteAfter;
+  for T in D.Tags do
+  begin
+    Name := T.Name;
+    if SameText(Name, T.Address) then
+      Name := '';
+    TagAdd(Dev, Name, T.Address, T.ScanMs, D.Deadband, T.Writable, E);
+  end;
+  TagDeviceStart(Dev);
+end;
+
+function GateSummary(const Cfg: tGateConfig): AnsiString;
+var
+  D: tGateDeviceCfg;
+  Dev: tPcccDevice;
+  Tags, Reads: LongInt;
+begin
+  Tags := 0;
+  Reads := 0;
+  FillChar(Dev, SizeOf(Dev), 0);
+  for D in Cfg.Devices do
+  begin
+    BuildDevice(Dev, D);
+    Inc(Tags, Length(Dev.Tags));
+    Inc(Reads, TagDeviceReads(Dev));
+    TagDeviceDone(Dev);
+  end;
+  Result := Format('%d devices, %d tags, %d reads per scan', [Length(Cfg.Devices), Tags, Reads]);
+end;
+
+{ ------------------------------------------------------------ payloads }
+
+function ValueText(const T: tPcccTag; K: LongInt): AnsiString;
+begin
+  if TagIsBit(T) then
+    Result := IfThen(T.Values[K] <> 0, 'true', 'false')
+  else if T.Kind = pvFloat then
+    Result := JsonNumber(T.Values[K], 7)
+  else
+    Result := JsonNumber(T.Values[K]);
+end;
+
+function GateTagPayload(const T: tPcccTag): AnsiString;
+var
+  V: AnsiString;
+  K: LongInt;
+begin
+  if not T.Known then
+    V := 'null'
+  else if T.Kind = pvString then
+    V := JsonString(T.Text)
+  else if Length(T.Values) = 1 then
+    V := ValueText(T, 0)
+  else
+  begin
+    V := '[';
+    for K := 0 to High(T.Values) do
+    begin
+      if K > 0 then
+        V := V + ',';
+      V := V + ValueText(T, K);
+    end;
+    V := V + ']';
+  end;
+  Result := '{"value":' + V + ',"quality":"' + TagQualityNames[T.Quality] + '","ts":"' +
+    JsonTime(T.TimeMs) + '"}';
+end;
+
+function GateHealthPayload(const D: tPcccDevice): AnsiString;
+begin
+  Result := Format('{"state":"%s","requests":%d,"errors":%d,"retries":%d,"reads_per_scan":%d,' +
+    '"last_error":%s}', [TagStateNames[D.State], D.Requests, D.Errors, D.Retries,
+    TagDeviceReads(D), JsonString(D.LastError)]);
+end;
+
+{ ------------------------------------------------------------ running }
+
+procedure Say(const G: tGate; const S: AnsiString);
+begin
+  if Assigned(G.Log) then
+    G.Log(S);
+end;
+
+function Topic(const G: tGate; const Dev, Tag: AnsiString): AnsiString;
+begin
+  Result := G.Cfg.Prefix + '/' + Dev + '/' + Tag;
+end;
+
+procedure OpenDevice(var G: tGate; I: LongInt);
+var
+  R: tChResult;
+begin
+  R := PcccOpen(G.Devs[I].Client, G.Cfg.Devices[I].Line + ' IDL=0');
+  if R <> res_Ok then
+  begin
+    G.Devs[I].LastError := 'cannot open the line: ' + G.Devs[I].Client.Err;
+    if G.Devs[I].State <> tdDown then
+    begin
+      G.Devs[I].State := tdDown;
+      G.Devs[I].StateChanged := True;
+    end;
+    G.OpenAt[I] := GetTickCount64 + QWord(G.Devs[I].DemoteMs);
+    Say(G, G.Cfg.Devices[I].Name + ': ' + G.Devs[I].LastError);
+  end
+  else
+  begin
+    G.Devs[I].Client.TimeoutMs := G.Cfg.Devices[I].TimeoutMs;
+    G.OpenAt[I] := 0;
+  end;
+end;
+
+procedure OpenDevices(var G: tGate);
+var
+  I: LongInt;
+begin
+  SetLength(G.Devs, Length(G.Cfg.Devices));
+  SetLength(G.OpenAt, Length(G.Cfg.Devices));
+  for I := 0 to High(G.Devs) do
+  begin
+    BuildDevice(G.Devs[I], G.Cfg.Devices[I]);
+    G.Devs[I].StateChanged := True;      { a first $health }
+    OpenDevice(G, I);
+  end;
+end;
+
+procedure CloseDevices(var G: tGate);
+var
+  I: LongInt;
+begin
+  for I := 0 to High(G.Devs) do
+    TagDeviceDone(G.Devs[I]);
+  G.Devs := nil;
+  G.OpenAt := nil;
+end;
+
+function GateStart(var G: tGate; const Cfg: tGateConfig; out Err: AnsiString): Boolean;
+begin
+  G.Cfg := Cfg;
+  G.WriteId := 0;
+  MqttInit(G.Mqtt);
+  G.Mqtt.Host := Cfg.Host;
+  G.Mqtt.Port := Cfg.Port;
+  G.Mqtt.User := Cfg.User;
+  G.Mqtt.Password := Cfg.Password;
+  G.Mqtt.Tls := Cfg.Tls;
+  G.Mqtt.CaFile := Cfg.CaFile;
+  G.Mqtt.Qos := Cfg.Qos;
+  G.Mqtt.QueueMax := Cfg.Queue;
+  G.Mqtt.ClientId := Cfg.ClientId;
+  G.Mqtt.KeepAlive := Cfg.KeepAlive;
+  G.Mqtt.WillTopic := Cfg.Prefix + '/$gateway/status';
+  G.Mqtt.WillPayload := 'offline';
+  G.Mqtt.OnlinePayload := 'online';
+  Result := MqttOpen(G.Mqtt, Err);
+  if not Result then
+    Exit;
+  { PREFIX/DEVICE/TAG/set, also for tags with a '/' (B3:0/5) }
+  MqttSubscribe(G.Mqtt, Cfg.Prefix + '/+/+/set');
+  MqttSubscribe(G.Mqtt, Cfg.Prefix + '/+/+/+/set');
+  OpenDevices(G);
+  G.HealthAt := GetTickCount64 + GateHealthMs;
+end;
+
+procedure GateReload(var G: tGate; const Cfg: tGateConfig);
+begin
+  CloseDevices(G);
+  G.Cfg.Devices := Cfg.Devices;
+  OpenDevices(G);
+end;
+
+procedure Refuse(var G: tGate; const Topic_, Why: AnsiString);
+begin
+  Say(G, 'refused ' + Topic_ + ': ' + Why);
+  MqttPublish(G.Mqtt, G.Cfg.Prefix + '/$gateway/error',
+    '{"topic":' + JsonString(Topic_) + ',"error":' + JsonString(Why) + '}', False);
+end;
+
+procedure WriteTag(var G: tGate; const Topic_: AnsiString; Dev, Tag: LongInt; V: Double); forward;
+
+{ A message on PREFIX/DEVICE/TAG/set. }
+procedure Command(var G: tGate; const M: tMqttMessage);
+var
+  Rest, DevName, TagName, Err: AnsiString;
+  I, Dev, Tag: LongInt;
+  V: Double;
+begin
+  Rest := Copy(M.Topic, Length(G.Cfg.Prefix) + 2, MaxInt);
+  Rest := Copy(Rest, 1, Length(Rest) - 4);       { without /set }
+  I := Pos('/', Rest);
+  DevName := Copy(Rest, 1, I - 1);
+  TagName := Copy(Rest, I + 1, MaxInt);
+  Dev := -1;
+  for I := 0 to High(G.Devs) do
+    if G.Cfg.Devices[I].Name = DevName then
+      Dev := I;
+  Tag := -1;
+  if Dev >= 0 then
+    Tag := TagFind(G.Devs[Dev], TagName);
+  if Dev < 0 then
+    Refuse(G, M.Topic, 'no device "' + DevName + '"')
+  else if Tag < 0 then
+    Refuse(G, M.Topic, 'no tag "' + TagName + '" on ' + DevName)
+  else if not JsonParseValue(M.Payload, V, Err) then
+    Refuse(G, M.Topic, Err)
+  else
+    WriteTag(G, M.Topic, Dev, Tag, V);
+end;
+
+procedure WriteTag(var G: tGate; const Topic_: AnsiString; Dev, Tag: LongInt; V: Double);
+var
+  E: ShortString;
+begin
+  Inc(G.WriteId);
+  if not TagDeviceWrite(G.Devs[Dev], Tag, V, G.WriteId, E) then
+    Refuse(G, Topic_, E);
+end;
+
+function GateStep(var G: tGate): LongInt;
+var
+  I, Tag, W: LongInt;
+  M: tMqttMessage;
+  Wr: tTagWrite;
+  Now_: QWord;
+  Health: Boolean;
+begin
+  Now_ := GetTickCount64;
+  Health := Now_ >= G.HealthAt;
+  if Health then
+    G.HealthAt := Now_ + GateHealthMs;
+  MqttStep(G.Mqtt);
+  while MqttTakeMessage(G.Mqtt, M) do
+    Command(G, M);
+  Result := MqttWaitMs(G.Mqtt);
+  for I := 0 to High(G.Devs) do
+  begin
+    if (G.OpenAt[I] <> 0) and (Now_ >= G.OpenAt[I]) then
+      OpenDevice(G, I);
+    TagDeviceStep(G.Devs[I]);
+    while TagTakeChange(G.Devs[I], Tag) do
+      MqttPublish(G.Mqtt, Topic(G, G.Devs[I].Name, G.Devs[I].Tags[Tag].Name),
+        GateTagPayload(G.Devs[I].Tags[Tag]), True);
+    while TagTakeWrite(G.Devs[I], Wr) do
+      if Wr.Res <> res_Ok then
+        Refuse(G, Topic(G, G.Devs[I].Name, G.Devs[I].Tags[Wr.Tag].Name) + '/set', Wr.Err);
+    if TagTakeHealth(G.Devs[I]) then
+    begin
+      Say(G, G.Devs[I].Name + ': ' + TagStateNames[G.Devs[I].State] + ' ' + G.Devs[I].LastError);
+      MqttPublish(G.Mqtt, Topic(G, G.Devs[I].Name, '$health'), GateHealthPayload(G.Devs[I]), True);
+    end
+    else if Health then
+      MqttPublish(G.Mqtt, Topic(G, G.Devs[I].Name, '$health'), GateHealthPayload(G.Devs[I]), True);
+    W := TagDeviceWaitMs(G.Devs[I]);
+    if G.OpenAt[I] <> 0 then
+      W := ChnWaitLeft(G.OpenAt[I]);
+    if W < Result then
+      Result := W;
+  end;
+  { what was queued in this round goes out now }
+  MqttStep(G.Mqtt);
+  W := ChnWaitLeft(G.HealthAt);
+  if W < Result then
+    Result := W;
+end;
+
+procedure GateStop(var G: tGate; Ms: LongInt);
+var
+  Deadline: QWord;
+begin
+  CloseDevices(G);
+  if G.Mqtt.State = msConnected then
+  begin
+    MqttPublish(G.Mqtt, G.Cfg.Prefix + '/$gateway/status', 'offline', True);
+    Deadline := GetTickCount64 + QWord(Ms);
+    while (MqttQueued(G.Mqtt) > 0) and (G.Mqtt.State = msConnected) and (GetTickCount64 < Deadline) do
+    begin
+      MqttStep(G.Mqtt);
+      ChnWaitAny(ChnWaitLeft(Deadline));
+    end;
+  end;
+  MqttClose(G.Mqtt);
+end;
+
+end.
