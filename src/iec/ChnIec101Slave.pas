@@ -62,7 +62,7 @@ unit ChnIec101Slave;
 interface
 
 uses
-  ChnTypes, ChnVirt, ChnFT1_2, ChnFT12Link, ChnIec101Asdu, ChnIecTransport;
+  ChnTypes, ChnVirt, ChnFT1_2, ChnFT12Link, ChnFT12Station, ChnIec101Asdu, ChnIecTransport;
 
 const
   IecSlaveMaxPoints = 1024;
@@ -1012,7 +1012,7 @@ begin
     Exit(res_BadParam);
   end;
   S.Chn := Chn;
-  S.Balanced := S.Over104 or not pChnFT1_2(Chn)^.CH_MaSl;
+  S.Balanced := S.Over104 or pChnFT1_2(Chn)^.ChFT12Config.Balanced;
   if S.Balanced then
   begin
     Result := IecTransportInit(S.Link, Chn);
@@ -1022,7 +1022,7 @@ begin
   end
   else
   begin
-    if pChnFT1_2(Chn)^.CH_Master then
+    if pChnFT1_2(Chn)^.ChFT12Config.Primary then
     begin
       Err := 'an unbalanced slave needs MAS=SLAVE';
       Exit(res_BadMessage);
