@@ -50,6 +50,10 @@ type
     procedure TestBadLengthCloses;
     procedure TestQueueDropsOldestAndNoneTwice;
     procedure TestNeedsTcpBelow;
+    procedure TestHalfFrameThenSilenceCloses;
+    procedure TestSilentClientClosed;
+    procedure TestHundredClientsLeaveTheStartedOneAlone;
+    procedure TestStandbyTakesOverWithStartDt;
   end;
 
 implementation
@@ -378,6 +382,173 @@ begin
   PeerSend('68 04 0B 00 00 00');
   AssertTrue('the newest three', PeerGets('68 05 00 00 00 00 03 68 05 02 00 00 00 04 68 05 04 00 00 00 05'));
   AssertEquals('two dropped', 2, L^.CH_Dropped);
+end;
+
+procedure TTestChnIec104.TestHalfFrameThenSilenceCloses;
+begin
+  OpenPeerClient(OpenServerLayer('NAM=IEC104 T1=2 T2=1 T3=1'));
+  StartServer;
+  PeerSend('68 0E 00 00 00 00 64');             { 3 of 16 octets, then nothing }
+  AssertTrue('TESTFR act after t3', PeerGets('68 04 43 00 00 00', 2500));
+  Poll(2500);
+  AssertEquals('closed after t1', 1, L^.ChClosings);
+  AssertTrue(L^.ChCloseReason, Pos('no TESTFR con within t1', L^.ChCloseReason) > 0);
+  AssertEquals('nothing delivered', '', LayerGets(20));
+end;
+
+{ a client that connects and sends nothing: TESTFR act after t3, closed
+  after t1 without TESTFR con; the next client is served }
+procedure TTestChnIec104.TestSilentClientClosed;
+var
+  Port: Word;
+begin
+  Port := OpenServerLayer('NAM=IEC104 T1=2 T2=1 T3=1');
+  OpenPeerClient(Port);
+  AssertTrue('TESTFR act after t3', PeerGets('68 04 43 00 00 00', 2500));
+  Poll(2500);
+  AssertEquals('closed', 1, L^.ChClosings);
+  Dispose(Peer, Done);
+  Peer := nil;
+  OpenPeerClient(Port);
+  StartServer;
+end;
+
+{ A started connection, then 100 connections at once: the one-client TCP
+  server turns them away; the started connection goes on, nothing lost,
+  and the heap is where it was. }
+procedure TTestChnIec104.TestHundredClientsLeaveTheStartedOneAlone;
+var
+  Others: array[1..100] of pChnVirt;
+  Err: string;
+  I: Integer;
+  B: Byte;
+  Heap: PtrUInt;
+  Port: Word;
+begin
+  Port := OpenServerLayer('NAM=IEC104');
+  OpenPeerClient(Port);
+  StartServer;
+  B := 0;
+  Layer^.ChSend(@B, 1);                          { every buffer in use once }
+  AssertTrue('first', PeerGets('68 05 00 00 00 00 00'));
+  { a first hundred sizes the tables that grow to a high-water mark (the
+    program-wide wait's); the second must not add to the heap }
+  for I := 1 to 100 do
+    Others[I] := OpenStack('TCP', 'HOST=127.0.0.1 PORT=' + IntToStr(Port), Err);
+  Poll(20);
+  for I := 1 to 100 do
+    if Others[I] <> nil then
+      Dispose(Others[I], Done);
+  Poll(20);
+  Heap := GetHeapStatus.TotalAllocated;
+  for I := 1 to 100 do
+    Others[I] := OpenStack('TCP', 'HOST=127.0.0.1 PORT=' + IntToStr(Port), Err);
+  try
+    for I := 1 to 20 do
+    begin
+      B := I;
+      Layer^.ChSend(@B, 1);
+      Poll(5);
+    end;
+    AssertTrue('k = 12 sent', PeerGets('68 05 16 00 00 00 0B'));
+    PeerSend('68 05 00 00 18 00 AA');              { N(R) = 12 }
+    AssertEquals('the started peer is still served', 'AA', LayerGets);
+    AssertTrue('all 21 in order', PeerGets('68 05 28 00 02 00 14'));
+    AssertEquals('no closing', 0, L^.ChClosings);
+  finally
+    for I := 1 to 100 do
+      if Others[I] <> nil then
+        Dispose(Others[I], Done);
+  end;
+  Poll(50);
+  AssertTrue('heap flat: ' + IntToStr(GetHeapStatus.TotalAllocated) + ' after ' + IntToStr(Heap),
+    GetHeapStatus.TotalAllocated <= Heap + 1024);
+end;
+
+{ Redundancy, CON=2: A carries data; B is kept, answered and tested with
+  TESTFR, gets no data; B's STARTDT act makes it the one (numbers from 0),
+  A is a standby one from then; a third client is turned away. }
+procedure TTestChnIec104.TestStandbyTakesOverWithStartDt;
+var
+  Port: Word;
+  B, C: pChnVirt;
+  BBuf: array[0..1023] of Byte;
+  BGot, Err: string;
+  X: Byte;
+
+  function BGets(const Want: string; Ms: Integer = 3000): Boolean;
+  var
+    Deadline: QWord;
+    Len: Word;
+  begin
+    Deadline := GetTickCount64 + QWord(Ms);
+    repeat
+      Poll(1);
+      if B^.ChReceiveReady = CHS_ReceiveReady then
+      begin
+        B^.ChReceive(Len);
+        if Len > 0 then
+          BGot := BGot + ' ' + BytesToHex(BBuf, Len);
+      end;
+      if Pos(Want, BGot) > 0 then
+      begin
+        Delete(BGot, 1, Pos(Want, BGot) + Length(Want));
+        Exit(True);
+      end;
+    until GetTickCount64 >= Deadline;
+    Result := Want = '';
+  end;
+
+  procedure BSend(const HexText: string);
+  var
+    D: TBytes;
+  begin
+    D := HexToBytes(HexText);
+    B^.ChSend(@D[0], Length(D));
+    AssertTrue('B sent', WaitSent(B, 2000));
+  end;
+
+begin
+  Port := OpenServerLayer('NAM=IEC104 CON=2');
+  OpenPeerClient(Port);
+  StartServer;
+  B := OpenStack('TCP', 'HOST=127.0.0.1 PORT=' + IntToStr(Port), Err);
+  AssertNotNull(Err, B);
+  C := nil;
+  try
+    B^.ChReceiveBuffer(@BBuf, SizeOf(BBuf));
+    BGot := '';
+    BSend('68 04 43 00 00 00');
+    AssertTrue('standby B: TESTFR con', BGets('68 04 83 00 00 00'));
+    X := 1;
+    Layer^.ChSend(@X, 1);
+    AssertTrue('A carries data', PeerGets('68 05 00 00 00 00 01'));
+    BGets('', 100);
+    AssertEquals('B gets none', '', BGot);
+    { a third client: CON=2 is full }
+    C := OpenStack('TCP', 'HOST=127.0.0.1 PORT=' + IntToStr(Port), Err);
+    Poll(100);
+    BSend('68 04 07 00 00 00');
+    AssertTrue('B: STARTDT con', BGets('68 04 0B 00 00 00'));
+    AssertEquals('taken over', 1, L^.ChTakeOvers);
+    X := 2;
+    Layer^.ChSend(@X, 1);
+    AssertTrue('B carries data, numbers from 0', BGets('68 05 00 00 00 00 02'));
+    Poll(50);
+    AssertEquals('A gets no more data', '', Got);
+    PeerSend('68 04 43 00 00 00');
+    AssertTrue('A, standby now, is answered', PeerGets('68 04 83 00 00 00'));
+    AssertEquals('A sent one unacknowledged frame: dropped, not sent again', 1, L^.CH_Unconfirmed);
+    if C <> nil then
+    begin
+      C^.ChReceiveReady;
+      AssertEquals('the third one turned away', res_DeviceLost, C^.ChReceiveResult);
+    end;
+  finally
+    Dispose(B, Done);
+    if C <> nil then
+      Dispose(C, Done);
+  end;
 end;
 
 initialization

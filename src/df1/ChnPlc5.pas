@@ -96,6 +96,10 @@ function Plc5Plan(const A: tPcccAddr; Count: LongInt; Write: Boolean; MaxBytes: 
   any type parameter. }
 function Plc5BuildPlanRead(const P: tPcccPlan; Index: LongInt; Cmd: tPlc5Command; Tns: Word;
   var Req: tSendRecord; out ReqLen: Word; out Expect: Word): tChResult;
+{ A word range read (0F 01) of Bytes (even, 2..244) from A, PACKET
+  OFFSET 0: the tag engine's block reads (ChnPcccTags). }
+function Plc5BuildWordRead(const A: tPcccAddr; Bytes: Word; Tns: Word;
+  var Req: tSendRecord; out ReqLen: Word): tChResult;
 { Check a reply to read request Index (STS, length, type parameter) and
   find its data: Data[First..First+Expect-1]. res_PcccStatus, res_PcccReply
   with Err saying what is wrong. }
@@ -386,12 +390,7 @@ begin
     Exit(res_PcccCount);
   Expect := Units * P.UnitBytes;
   if ByWords(P, Cmd) then
-  begin
-    PutHead(CF_Plc5WordRead, Tns, Expect div 2, Req, N);
-    Plc5PutAddress(At, Req.Data, N);
-    Req.Data[N] := Expect;
-    Inc(N);
-  end
+    Exit(Plc5BuildWordRead(At, Expect, Tns, Req, ReqLen))
   else
   begin
     PutHead(CF_Plc5TypedRead, Tns, Units, Req, N);
@@ -401,6 +400,21 @@ begin
     Inc(N, 2);
   end;
   ReqLen := cSizeHead + N;
+  Result := res_Ok;
+end;
+
+function Plc5BuildWordRead(const A: tPcccAddr; Bytes: Word; Tns: Word;
+  var Req: tSendRecord; out ReqLen: Word): tChResult;
+var
+  N: Integer;
+begin
+  ReqLen := 0;
+  if (Bytes < 2) or Odd(Bytes) or (Bytes > MaxDataLen) then
+    Exit(res_PcccCount);
+  PutHead(CF_Plc5WordRead, Tns, Bytes div 2, Req, N);
+  Plc5PutAddress(A, Req.Data, N);
+  Req.Data[N] := Bytes;
+  ReqLen := cSizeHead + N + 1;
   Result := res_Ok;
 end;
 

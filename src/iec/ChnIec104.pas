@@ -46,12 +46,22 @@ type
     Data: array[0..Apci104MaxAsdu - 1] of Byte;
   end;
 
+  { A server's standby connection (CON=): tested with TESTFR, takes over
+    with STARTDT act. }
+  tIec104Standby = record
+    Session : LongWord;
+    Feed    : tApci104Feed;
+    LastRxAt: QWord;
+    TestAt  : QWord;              { TESTFR act sent then, 0: none pending }
+  end;
+
   pChnIec104 = ^tChnIec104;
   tChnIec104 = object(tChnProto)
     { parameters }
     CH_K, CH_W        : LongInt;
     CH_T0, CH_T1, CH_T2, CH_T3: LongInt;   {< seconds }
     CH_QueLen         : LongInt;
+    CH_Con            : LongInt;     {< server: connections at once (CON=), one carries data }
     { the connection (NAM=TCP's session number, 0: none) }
     CH_Session        : LongWord;
     CH_Client         : Boolean;     {< the layer below connects out }
@@ -77,6 +87,8 @@ type
     CH_Connections, CH_Closings, CH_Dropped, CH_Unconfirmed,
       CH_IRx, CH_ITx, CH_STx, CH_TestFr: LongWord;
     CH_Reason         : ShortString;
+    CH_Standby        : array of tIec104Standby;   {< server: the other connections' state }
+    CH_TakeOvers      : LongWord;    {< standby connections that took over by STARTDT }
 
     constructor Init;
     constructor ChInitParam(const S: tParamStr);
@@ -108,6 +120,8 @@ type
     { Connections closed by this layer, and why the last one was. }
     function  ChClosings: LongWord;
     function  ChCloseReason: ShortString;
+    { Server: standby connections taken over by STARTDT act. }
+    function  ChTakeOvers: LongWord;
   private
     function  LowTcp: pChnVirt;
     procedure SyncSession;
@@ -121,6 +135,8 @@ type
     function  TakeAck(Nr: Word): Boolean;
     function  TakeApdu: Boolean;
     procedure TakeU(Func: Byte);
+    procedure ServeStandby;
+    function  StandbyState(Session: LongWord): LongInt;
   end;
 
   pAddChnIec104 = ^tAddChnIec104;
@@ -144,6 +160,8 @@ begin
   CH_T2 := 10;
   CH_T3 := 20;
   CH_QueLen := Iec104DefaultQueue;
+  CH_Con := 4;
+  CH_TakeOvers := 0;
   CH_Session := 0;
   CH_Started := False;
   CH_QHead := 0;
@@ -174,6 +192,7 @@ begin
   inherited Done;
   SetLength(CH_Queue, 0);
   SetLength(CH_SentAt, 0);
+  SetLength(CH_Standby, 0);
 end;
 
 function tChnIec104.ChSetOneParam(const S: tWordString; var CmdL: tCmd): tChResult;
@@ -198,6 +217,8 @@ begin
     Result := ParamSetNum(S, 1, 172800, CmdL, CH_T3)
   else if Key = 'QUE' then
     Result := ParamSetNum(S, 1, 65535, CmdL, CH_QueLen)
+  else if Key = 'CON' then
+    Result := ParamSetNum(S, 1, 16, CmdL, CH_Con)
   else
     Result := inherited ChSetOneParam(S, CmdL);
 end;
@@ -246,7 +267,7 @@ function tChnIec104.ChOwnParams: tParamStr;
 begin
   Result := inherited ChOwnParams + ParamText('K', CH_K) + ParamText('W', CH_W) +
     ParamText('T0', CH_T0) + ParamText('T1', CH_T1) + ParamText('T2', CH_T2) +
-    ParamText('T3', CH_T3) + ParamText('QUE', CH_QueLen) + ChLsbText;
+    ParamText('T3', CH_T3) + ParamText('QUE', CH_QueLen) + ParamText('CON', CH_Con) + ChLsbText;
 end;
 
 function tChnIec104.LowTcp: pChnVirt;
@@ -271,6 +292,9 @@ begin
     end;
     pChnTcp(T)^.ChSetConnectMs(CH_T0 * 1000);
     CH_Client := not pChnTcp(T)^.ChIsServer;
+    if not CH_Client then
+      pChnTcp(T)^.ChSetStandby(CH_Con - 1);
+    SetLength(CH_Standby, 0);
     { a pcap trace between this layer and TCP is a TCP stream Wireshark
       dissects as IEC 104 }
     T := CH_Low;
@@ -625,6 +649,8 @@ begin
     Exit;
   SyncSession;
   inherited ChReceiveTick;          { the bytes: ChRxByte }
+  if not CH_Client then
+    ServeStandby;
   Timers;
   Pump;
   Flush;
@@ -684,6 +710,142 @@ begin
     Exit;
   SendU(U104StartDtAct);
   Flush;
+end;
+
+{ ------------------------------------------------------------ redundancy }
+
+function tChnIec104.StandbyState(Session: LongWord): LongInt;
+begin
+  for Result := 0 to High(CH_Standby) do
+    if CH_Standby[Result].Session = Session then
+      Exit;
+  Result := Length(CH_Standby);
+  SetLength(CH_Standby, Result + 1);
+  CH_Standby[Result].Session := Session;
+  Apci104FeedReset(CH_Standby[Result].Feed);
+  CH_Standby[Result].LastRxAt := ChMsTick;
+  CH_Standby[Result].TestAt := 0;
+end;
+
+{ The server's other connections: U frames only. TESTFR is answered and,
+  after t3 of silence, sent (no con within t1: closed); STARTDT act makes
+  the connection the one that carries data (the one before is stopped
+  and becomes a standby connection); an I frame or a broken APDU closes
+  it. }
+procedure tChnIec104.ServeStandby;
+var
+  T: pChnTcp;
+  I, J, K, Got: LongInt;
+  Buf: array[0..255] of Byte;
+  U: array[0..5] of Byte;
+  N: Word;
+  Why: ShortString;
+  A: tApci104;
+  E: ShortString;
+  TakeOver: Boolean;
+  Now_: QWord;
+  Keep: array of LongWord;
+begin
+  T := pChnTcp(LowTcp);
+  if T = nil then
+    Exit;
+  I := 0;
+  while I < T^.ChStandbyCount do
+  begin
+    K := StandbyState(T^.ChStandbySession(I));
+    Why := '';
+    TakeOver := False;
+    if T^.ChStandbyRead(I, Buf, SizeOf(Buf), Got) <> res_Ok then
+      Got := -1;
+    for J := 0 to Got - 1 do
+    begin
+      case Apci104Feed(CH_Standby[K].Feed, Buf[J]) of
+        fe104Error: Why := 'standby connection: broken APDU';
+        fe104Apdu:
+          begin
+            CH_Standby[K].LastRxAt := ChMsTick;
+            if Apci104Decode(CH_Standby[K].Feed.Buf, CH_Standby[K].Feed.Pos, A, E) <> res_Ok then
+              Why := 'standby connection: ' + E
+            else if A.Format = af104I then
+              Why := 'standby connection: I frame before STARTDT'
+            else if A.Format = af104U then
+              case A.UFunc of
+                U104TestFrAct, U104StopDtAct:
+                  begin
+                    Apci104EncodeU(Apci104ConOf(A.UFunc), U, N);
+                    T^.ChStandbySend(I, U, N);
+                  end;
+                U104TestFrCon: CH_Standby[K].TestAt := 0;
+                U104StartDtAct: TakeOver := True;
+              end;
+            Apci104FeedReset(CH_Standby[K].Feed);
+          end;
+      end;
+      if (Why <> '') or TakeOver then
+        Break;
+    end;
+    Now_ := ChMsTick;
+    if (Why = '') and not TakeOver then
+      if CH_Standby[K].TestAt = 0 then
+      begin
+        if Now_ - CH_Standby[K].LastRxAt >= QWord(CH_T3) * 1000 then
+        begin
+          Apci104EncodeU(U104TestFrAct, U, N);
+          T^.ChStandbySend(I, U, N);
+          CH_Standby[K].TestAt := Now_;
+        end;
+      end
+      else if Now_ - CH_Standby[K].TestAt >= QWord(CH_T1) * 1000 then
+        Why := 'standby connection: no TESTFR con within t1';
+    if Got < 0 then
+      T^.ChStandbyHangUp(I)         { it left }
+    else if Why <> '' then
+    begin
+      Inc(CH_Closings);
+      CH_Reason := Why;
+      T^.ChStandbyHangUp(I);
+    end
+    else if TakeOver then
+    begin
+      { the connection served so far is stopped: what it sent and was not
+        read is dropped with it, and it is a standby one from now }
+      ChLowDiscard;
+      Apci104FeedReset(CH_Feed);
+      T^.ChPromote(I);
+      Inc(CH_TakeOvers);
+      SyncSession;
+      SendU(U104StartDtCon);
+      CH_Started := True;
+      Flush;
+      Inc(I);
+    end
+    else
+      Inc(I);
+  end;
+  { forget the state of connections that are gone }
+  SetLength(Keep, T^.ChStandbyCount);
+  for I := 0 to High(Keep) do
+    Keep[I] := T^.ChStandbySession(I);
+  I := 0;
+  while I < Length(CH_Standby) do
+  begin
+    TakeOver := False;
+    for J := 0 to High(Keep) do
+      if Keep[J] = CH_Standby[I].Session then
+        TakeOver := True;
+    if TakeOver then
+      Inc(I)
+    else
+    begin
+      CH_Standby[I] := CH_Standby[High(CH_Standby)];
+      SetLength(CH_Standby, Length(CH_Standby) - 1);
+    end;
+  end;
+end;
+
+function tChnIec104.ChTakeOvers: LongWord;
+begin
+  Result := CH_TakeOvers;
 end;
 
 function tChnIec104.ChClosings: LongWord;

@@ -36,6 +36,9 @@ uses
 
 type
   TChnPortTcp = class(TChnPort)
+  protected
+    function DoRead(var Buf; Size: LongInt; out Got: LongInt): tChResult; override;
+    function DoWrite(const Buf; Len: LongInt; out Done: LongInt): tChResult; override;
   private
     FSock, FListen: tSock;
     FAddrs: tSockAddrs;
@@ -60,6 +63,8 @@ type
     FBroken: Boolean;               {< the peer broke the Telnet stream }
     FKicked, FIdleDropped: LongWord;
     FSession: LongWord;             {< this connection's number (NewSession) }
+    FStandby: array of tSock;       {< server: connections kept besides the one served }
+    FStandbySession: array of LongWord;  {< their numbers }
     { server on Linux: the program-wide wait watches the listening socket
       and the client served through this one descriptor (SockGroupCreate) }
     FGroup: tSock;
@@ -98,6 +103,8 @@ type
     Kick       : Boolean;
     { server only: close a client that sent nothing for IdleMs (0 = never) }
     IdleMs     : LongInt;
+    MaxStandby : LongInt;           {< server only: further connections kept besides
+                                         the one served (IEC 104 redundancy); 0: turned away }
     constructor Create; override;
     function Open(const Path: tWordString): tChResult; override;
     function Connect: tChResult;
@@ -109,10 +116,8 @@ type
     function Configure(const S: tPortSettings): tChResult; override;
     { Configure without waiting for the answers (after a reconnect) }
     procedure SendSettings(const S: tPortSettings);
-    function Read(var Buf; Size: LongInt; out Got: LongInt): tChResult; override;
     function WaitInput(Ms: LongInt): Boolean; override;
     function WaitOutput(Ms: LongInt): Boolean; override;
-    function Write(const Buf; Len: LongInt; out Done: LongInt): tChResult; override;
     function OutQueue(out N: LongInt): tChResult; override;
     function Drain: tChResult; override;
     function Flush(Input, Output: Boolean): tChResult; override;
@@ -142,6 +147,16 @@ type
       process had; 0 while there is none. A protocol above that keeps
       state per connection (IEC 104's sequence numbers) sees a new one. }
     function Session: LongWord;
+    function StandbyCount: LongInt;
+    function StandbySession(I: LongInt): LongWord;
+    { non-blocking read / write on standby connection I; res_DeviceLost
+      when it is gone (StandbyHangUp it then) }
+    function StandbyRead(I: LongInt; var Buf; Size: LongInt; out Got: LongInt): tChResult;
+    function StandbyWrite(I: LongInt; const Buf; Len: LongInt): tChResult;
+    procedure StandbyHangUp(I: LongInt);
+    { standby connection I becomes the one served; the one served so far
+      takes its place among the standby ones }
+    procedure Promote(I: LongInt);
     { Close the connection served now (a protocol above found the peer
       broke it): a server waits for the next client, a client's next read
       finds no connection. }
@@ -355,9 +370,22 @@ end;
 procedure TChnPortTcp.TurnAway;
 var
   S: tSock;
+  Kept: LongWord;
 begin
   while (FSock <> NoSock) and (SockAccept(FListen, S) = seOk) do
-    if Kick then
+    if Length(FStandby) < MaxStandby then
+    begin
+      SetLength(FStandby, Length(FStandby) + 1);
+      SetLength(FStandbySession, Length(FStandby));
+      FStandby[High(FStandby)] := S;
+      if FGroup <> NoSock then
+        SockGroupAdd(FGroup, S);
+      Kept := FSession;              { the served one keeps its number }
+      NewSession;
+      FStandbySession[High(FStandby)] := FSession;
+      FSession := Kept;
+    end
+    else if Kick then
     begin
       DropClient;
       Inc(FKicked);
@@ -428,6 +456,73 @@ begin
     DropClient
   else
     SockClose(FSock);
+end;
+
+function TChnPortTcp.StandbyCount: LongInt;
+begin
+  Result := Length(FStandby);
+end;
+
+function TChnPortTcp.StandbySession(I: LongInt): LongWord;
+begin
+  Result := FStandbySession[I];
+end;
+
+function TChnPortTcp.StandbyRead(I: LongInt; var Buf; Size: LongInt; out Got: LongInt): tChResult;
+begin
+  Result := SockResult(SockRecv(FStandby[I], Buf, Size, Got));
+end;
+
+function TChnPortTcp.StandbyWrite(I: LongInt; const Buf; Len: LongInt): tChResult;
+var
+  Done: LongInt;
+begin
+  Result := SockResult(SockSend(FStandby[I], Buf, Len, Done));
+  if (Result = res_Ok) and (Done < Len) then
+    Result := res_Busy;             { a few bytes of U frames: the OS takes them }
+end;
+
+procedure TChnPortTcp.StandbyHangUp(I: LongInt);
+var
+  J: LongInt;
+begin
+  if FGroup <> NoSock then
+    SockGroupRemove(FGroup, FStandby[I]);
+  SockClose(FStandby[I]);
+  for J := I to High(FStandby) - 1 do
+  begin
+    FStandby[J] := FStandby[J + 1];
+    FStandbySession[J] := FStandbySession[J + 1];
+  end;
+  SetLength(FStandby, Length(FStandby) - 1);
+  SetLength(FStandbySession, Length(FStandby));
+end;
+
+procedure TChnPortTcp.Promote(I: LongInt);
+var
+  S: tSock;
+  N: LongWord;
+begin
+  S := FStandby[I];
+  N := FStandbySession[I];
+  if FSock <> NoSock then
+  begin
+    GroupLoseClient;
+    FStandby[I] := FSock;
+    FStandbySession[I] := FSession;
+    if FGroup <> NoSock then
+      SockGroupAdd(FGroup, FSock);
+  end
+  else
+    StandbyHangUp(I);               { nothing served: it only leaves the list }
+  if FGroup <> NoSock then
+    SockGroupRemove(FGroup, S);
+  FSock := S;
+  FSession := N;
+  FOutLen := 0;
+  FLastInput := GetTickCount64;
+  TelnetInit(FDec);
+  GroupTakeClient;
 end;
 
 procedure TChnPortTcp.DropClient;
@@ -741,13 +836,10 @@ begin
   Result := res_Ok;
 end;
 
-function TChnPortTcp.Read(var Buf; Size: LongInt; out Got: LongInt): tChResult;
+function TChnPortTcp.DoRead(var Buf; Size: LongInt; out Got: LongInt): tChResult;
 var
   N: LongInt;
 begin
-  Got := 0;
-  if not FOpen then
-    Exit(res_WrongState);
   if FEarlyPos < FEarlyLen then
   begin
     N := FEarlyLen - FEarlyPos;
@@ -807,15 +899,12 @@ begin
     Result := SockWait([FSock], True, Ms);
 end;
 
-function TChnPortTcp.Write(const Buf; Len: LongInt; out Done: LongInt): tChResult;
+function TChnPortTcp.DoWrite(const Buf; Len: LongInt; out Done: LongInt): tChResult;
 var
   E: tSockErr;
   Dummy: Byte;
   Got: LongInt;
 begin
-  Done := 0;
-  if not FOpen then
-    Exit(res_WrongState);
   if FSock = NoSock then
     AcceptOne;
   if FSock = NoSock then
@@ -1012,6 +1101,8 @@ begin
     FlushOut;                       { a last command (purge ...) still leaves }
   GroupLoseClient;
   SockClose(FSock);
+  while Length(FStandby) > 0 do
+    StandbyHangUp(0);
   SockClose(FListen);
   SockGroupFree(FGroup);
   SockEventFree(FEvent);

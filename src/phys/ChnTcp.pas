@@ -3,8 +3,8 @@
   The physical layer of a serial device server (Moxa NPort, Lantronix,
   Digi, ser2net): the same contract as NAM=COM - a message is a chunk of raw
   bytes, polled with ChReceiveReady/ChReceive/ChSend/ChSendReady, IDL=, LRB=,
-  LSB= - because it is a tChnCom whose port is a TCP connection
-  (ChnPortTcp). Parameters (ChGetParam reports them all):
+  LSB= - because it is a tChnPhys (the physical base, unit ChnPhys) whose
+  port is a TCP connection (ChnPortTcp). Parameters (ChGetParam reports them all):
 
     HOST=name   server name or IPv4/IPv6 address (client)
     PORT=n      its TCP port, 1..65535
@@ -18,7 +18,7 @@
     RECON=ms    0 (default): a lost connection stays lost until ChClose +
                 ChOpen; n: try again every n ms by itself, results say
                 res_Reconnecting meanwhile (ignored with LISTEN=). The
-                mechanism is tChnCom's (ComReopen); this layer supplies the
+                mechanism is tChnPhys's (ComReopen); this layer supplies the
                 new connection: a non-blocking connect bounded by CTO, the
                 first at once after the loss, then BD.. FLW sent again
     RFC2217=OFF|ON  Telnet COM Port Control: BD BIT PAR STOP FLW set the
@@ -40,7 +40,7 @@ unit ChnTcp;
 interface
 
 uses
-  ChnTypes, ChnVirt, ChnPort, ChnCom, ChnPortTcp;
+  ChnTypes, ChnVirt, ChnPort, ChnPhys, ChnPortTcp;
 
 const
   cName = 'TCP';
@@ -48,7 +48,7 @@ const
 
 type
   pChnTcp = ^tChnTcp;
-  tChnTcp = object(tChnCom)
+  tChnTcp = object(tChnPhys)
     CH_Host    : tWordString;      {< HOST= }
     CH_TcpPort : LongInt;          {< PORT=, 0 = not given }
     CH_Listen  : tWordString;      {< LISTEN= as given, '' = client }
@@ -57,6 +57,7 @@ type
     CH_Kick    : Boolean;          {< KICK= (server) }
     CH_IdleDrop: LongInt;          {< IDLE= ms (server), 0 = off }
     CH_RetryEnd: QWord;            {< the reconnect in progress gives up then (CTO=) }
+    CH_Standby : LongInt;          {< standby connections a server keeps (ChSetStandby) }
     constructor Init;
     constructor ChInitParam(const S: tParamStr);
     function  ChSetOneParam(const S: tWordString; var CmdL: tCmd): tChResult; virtual;
@@ -78,6 +79,19 @@ type
       broken: a server waits for its next client, a client is lost
       (res_DeviceLost; with RECON= it connects again). }
     procedure ChHangUp;
+    { Server: keep up to N further connections besides the one served
+      (before ChOpen; IEC 104 redundancy); 0 turns them away (default). }
+    procedure ChSetStandby(N: LongInt);
+    { The standby connections: how many, their numbers, non-blocking I/O
+      (res_DeviceLost: gone, hang it up), closing one, and making one the
+      connection served (the one served so far becomes a standby one; what
+      it had sent and was not read is dropped). }
+    function  ChStandbyCount: LongInt;
+    function  ChStandbySession(I: LongInt): LongWord;
+    function  ChStandbyRead(I: LongInt; var Buf; Size: LongInt; out Got: LongInt): tChResult;
+    function  ChStandbySend(I: LongInt; const Buf; Len: LongInt): tChResult;
+    procedure ChStandbyHangUp(I: LongInt);
+    procedure ChPromote(I: LongInt);
     { CTO= from a layer above that has its own name for it (IEC 104's t0) }
     procedure ChSetConnectMs(Ms: LongInt);
   protected
@@ -101,7 +115,7 @@ function SplitHostPort(const S: ShortString; out Host: ShortString; out Port: Lo
 implementation
 
 uses
-  SysUtils, uString;
+  SysUtils, uString, ChnRing;
 
 function SplitHostPort(const S: ShortString; out Host: ShortString; out Port: LongInt): Boolean;
 var
@@ -139,6 +153,7 @@ begin
   CH_TcpPort := 0;
   CH_Listen := '';
   CH_Cto := TcpDefaultCto;
+  CH_Standby := 0;
   CH_Rfc := False;
   CH_Kick := False;
   CH_IdleDrop := 0;
@@ -185,20 +200,19 @@ begin
     Result := ParamFlag(S, 'OFF|ON', CmdL, CH_Kick)
   else if Key = 'IDLE' then
     Result := ParamSetNum(S, 0, 3600000, CmdL, CH_IdleDrop)
-  else if (Key = 'BD') or (Key = 'BIT') or (Key = 'STOP') or (Key = 'PAR') or
-    (Key = 'FLW') or (Key = 'LRB') or (Key = 'LSB') or (Key = 'IDL') or
-    (Key = 'RECON') then
-    Result := inherited ChSetOneParam(S, CmdL)
   else
-    { COM's device keys (COM DEV DRV RS485 IRQ ...) mean nothing here }
-    Result := tChnVirt.ChSetOneParam(S, CmdL);
+  begin
+    Result := PhysLineParam(S, CmdL);    { BD BIT STOP PAR FLW }
+    if Result = res_UnknownParam then
+      Result := inherited ChSetOneParam(S, CmdL);   { LRB LSB IDL RECON }
+  end;
 end;
 
 function tChnTcp.ChOwnParams: tParamStr;
 var
   R: string;
 begin
-  R := tChnVirt.ChOwnParams;
+  R := inherited ChOwnParams;
   if CH_Listen <> '' then
     R := R + ' LISTEN=' + CH_Listen + FlagText('KICK', 'OFF|ON', CH_Kick) +
       ParamText('IDLE', CH_IdleDrop)
@@ -229,6 +243,7 @@ begin
     Result.IsServer := True;
     Result.Kick := CH_Kick;
     Result.IdleMs := CH_IdleDrop;
+    Result.MaxStandby := CH_Standby;
     Result.Host := H;
     Result.Port := N;
   end
@@ -306,7 +321,7 @@ begin
   Result := False;
 end;
 
-{ RECON=, the parts tChnCom.ComReopen leaves to the port kind: a server
+{ RECON=, the parts tChnPhys.ComReopen leaves to the port kind: a server
   waits for its next client by itself and a refused setting stays; else
   the first attempt is at once (a reset connection usually has its server
   still there), the lost socket stays until a new one replaces it. }
@@ -377,6 +392,45 @@ begin
   TChnPortTcp(CH_Port).HangUp;
   if CH_Listen = '' then
     ComFault(res_DeviceLost);
+end;
+
+procedure tChnTcp.ChSetStandby(N: LongInt);
+begin
+  CH_Standby := N;
+end;
+
+function tChnTcp.ChStandbyCount: LongInt;
+begin
+  if CH_Port = nil then
+    Result := 0
+  else
+    Result := TChnPortTcp(CH_Port).StandbyCount;
+end;
+
+function tChnTcp.ChStandbySession(I: LongInt): LongWord;
+begin
+  Result := TChnPortTcp(CH_Port).StandbySession(I);
+end;
+
+function tChnTcp.ChStandbyRead(I: LongInt; var Buf; Size: LongInt; out Got: LongInt): tChResult;
+begin
+  Result := TChnPortTcp(CH_Port).StandbyRead(I, Buf, Size, Got);
+end;
+
+function tChnTcp.ChStandbySend(I: LongInt; const Buf; Len: LongInt): tChResult;
+begin
+  Result := TChnPortTcp(CH_Port).StandbyWrite(I, Buf, Len);
+end;
+
+procedure tChnTcp.ChStandbyHangUp(I: LongInt);
+begin
+  TChnPortTcp(CH_Port).StandbyHangUp(I);
+end;
+
+procedure tChnTcp.ChPromote(I: LongInt);
+begin
+  RingClear(CH_Ring);               { the bytes of the connection served so far }
+  TChnPortTcp(CH_Port).Promote(I);
 end;
 
 procedure tChnTcp.ChSetConnectMs(Ms: LongInt);
