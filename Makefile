@@ -77,7 +77,7 @@ FPCUNIT_SRC = /usr/share/fpcsrc/$(shell $(FPC) -iV)/packages/fcl-fpcunit/src
 # The units: fpmake.pp is the one list (tools/units.sh reads it); its
 # optional ones (the Synapse backend) build only with SYNAPSE_DIR.
 UNITS    := $(shell bash tools/units.sh $(OSDIR)) $(if $(SYNAPSE_DIR),$(shell bash tools/units.sh --optional))
-LIBSRC   := $(UNITS) $(wildcard src/*.inc src/*/$(OSDIR)/*.inc)
+LIBSRC   := $(UNITS) $(wildcard src/*.inc src/*/*.inc src/*/$(OSDIR)/*.inc)
 TOOLLIB  := $(wildcard tools/lib/*.pas)
 EXAMPLES := $(wildcard examples/*.pas)
 TOOLS    := $(wildcard tools/*.pas)
@@ -129,7 +129,7 @@ $(BUILD)/units.stamp: $(LIBSRC) fpmake.pp | check-fpc
 	@touch $@
 
 # The Lazarus package lists every unit of fpmake.pp (all OSes).
-chn.lpk: fpmake.pp $(wildcard src/*.inc src/*/*/*.inc) tools/mklpk.sh tools/units.sh
+chn.lpk: fpmake.pp $(wildcard src/*.inc src/*/*.inc src/*/*/*.inc) tools/mklpk.sh tools/units.sh
 	@bash tools/mklpk.sh
 
 # Which sources each program depends on (from the uses clauses).
@@ -242,6 +242,9 @@ FPCLIBDIR = $(if $(filter /usr,$(PREFIX)),$(PREFIX)/lib/$(MULTIARCH)/fpc,$(PREFI
 INSTALL_UNITDIR ?= $(FPCLIBDIR)/$(FPCVER)/units/$(FPCTARGET)/chn
 INSTALL_SRCDIR  ?= $(PREFIX)/share/chn
 
+# The library's version, written once (src/core/chnversion.inc)
+CHNVERSION = $(shell sed -n "s/^'\(.*\)'$$/\1/p" src/core/chnversion.inc)
+
 # The programs that are tools (docs/TOOLS.md, "Installed tools"): into
 # $(PREFIX)/bin, each with a man page made from its --help and --version
 # by Debian's help2man (without help2man the pages are left out, with a
@@ -258,7 +261,7 @@ man: $(addprefix $(MANDIR)/,$(addsuffix .1,$(TOOL_PROGRAMS)))
 $(MANDIR)/%.1: $(BINDIR)/%
 	@mkdir -p $(MANDIR)
 	@if command -v help2man >/dev/null 2>&1; then \
-	  help2man -N --no-discard-stderr -s 1 -m 'Chn tools' -S 'Chn $(shell sed -n "s/^  ChnVersion = '\(.*\)';/\1/p" tools/lib/ChnCli.pas)' \
+	  help2man -N --no-discard-stderr -s 1 -m 'Chn tools' -S 'Chn $(CHNVERSION)' \
 	    -n "$$($< --help | sed -n '2,/^$$/p' | tr '\n' ' ' | sed 's/ ([^)]*)//g; s/[.:;].*//')" -o $@ $< || exit 1; \
 	else echo "note: help2man not found (apt-get install help2man): no man page for $*"; fi
 
@@ -269,7 +272,7 @@ DOCSRC := $(sort $(wildcard src/*/*.pas src/*/*/*.pas))
 doc:
 	@command -v pasdoc >/dev/null 2>&1 || { echo "pasdoc not found: apt-get install pasdoc"; exit 1; }
 	@rm -rf $(BUILD)/doc; mkdir -p $(BUILD)/doc
-	@pasdoc --format html --output $(BUILD)/doc --title 'Chn library $(shell sed -n "s/^  ChnVersion = '\(.*\)';/\1/p" tools/lib/ChnCli.pas)' \
+	@pasdoc --format html --output $(BUILD)/doc --title 'Chn library $(CHNVERSION)' \
 	  --include src/ $(addprefix --include ,$(sort $(dir $(DOCSRC)))) --define FPC --define UNIX --define LINUX \
 	  --ignore-marker=- --write-uses-list --sort=structures,non-record-fields $(DOCSRC) >$(BUILD)/doc.log 2>&1 || { cat $(BUILD)/doc.log; exit 1; }
 	@if grep -E '^(Warning|Error)' $(BUILD)/doc.log; then echo "make doc: pasdoc warnings (above)"; exit 1; fi
@@ -295,7 +298,7 @@ install: units $(addprefix $(BINDIR)/,$(TOOL_PROGRAMS)) man
 	  install -m 644 $(UNITDIR)/$$u.ppu "$$d/$$l.ppu"; \
 	  if [ -f $(UNITDIR)/$$u.o ]; then install -m 644 $(UNITDIR)/$$u.o "$$d/$$l.o"; fi; done; \
 	$(if $(SYNAPSE_DIR),$(SYNAPSE_INSTALL);) \
-	for f in $(wildcard src/*.inc src/README.md src/*/*.pas src/*/*/*.pas src/*/*/*.inc); do \
+	for f in $(wildcard src/*.inc src/README.md src/*/*.pas src/*/*.inc src/*/*/*.pas src/*/*/*.inc); do \
 	  install -D -m 644 "$$f" "$$s/$$f"; done; install -m 644 chn.lpk COPYING COPYING.LGPL "$$s/"; \
 	for p in $(TOOL_PROGRAMS); do install -m 755 $(BINDIR)/$$p "$$b/$$p"; \
 	  if [ -f $(MANDIR)/$$p.1 ]; then mkdir -p "$$m"; install -m 644 $(MANDIR)/$$p.1 "$$m/$$p.1"; fi; done; \

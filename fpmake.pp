@@ -24,7 +24,7 @@ uses
   SysUtils, fpmkunit;
 
 const
-  Version = '1.0.0';
+  Version = {$I src/core/chnversion.inc};   { the library's version, written once }
   { units of src/ this package does not build (tools/units.sh reads it) }
   Optional = 'ChnPortSynapse.pas';
 
@@ -73,10 +73,16 @@ begin
 
     { ---- src/core: types, tokens, the layer contract, the wait }
     Part(P, 'core');
-    AddUnit(P, 'ChnTypes.pas', AllOSes, []);
+    T := AddUnit(P, 'ChnTypes.pas', AllOSes, []);
+      T.Dependencies.AddInclude('chnversion.inc');
     AddUnit(P, 'uString.pas', AllOSes, []);
     AddUnit(P, 'ChnRing.pas', AllOSes, ['ChnWait']);
-    AddUnit(P, 'ChnVirt.pas', AllOSes, ['ChnTypes', 'uString', 'ChnWait']);
+    { the parameter-string parser }
+    AddUnit(P, 'ChnParam.pas', AllOSes, ['ChnTypes', 'uString']);
+    { the layer contract and registry; the names legacy programs find in
+      it are an include file }
+    T := AddUnit(P, 'ChnVirt.pas', AllOSes, ['ChnTypes', 'uString', 'ChnParam', 'ChnWait']);
+      T.Dependencies.AddInclude('chnvirtnames.inc');
     { the program-wide wait; its OS parts are include files (in the
       source as unix/chnwait.inc, found here through the OS's include path) }
     T := AddUnit(P, 'ChnWait.pas', AllOSes, []);
@@ -103,17 +109,20 @@ begin
       T.Dependencies.AddUnit('ChnPortUnix', AllUnixOSes);
       T.Dependencies.AddUnit('ChnPty', AllUnixOSes);
       T.Dependencies.AddUnit('ChnPortWin', AllWindowsOSes);
-    AddUnit(P, 'ChnCom.pas', AllOSes, ['ChnTypes', 'ChnVirt', 'ChnRing', 'ChnWait', 'ChnPort',
-      'uString', 'ChnPorts']);
+    { the physical base: ring, transmit pump, drain, reconnect, wait }
+    AddUnit(P, 'ChnPhys.pas', AllOSes, ['ChnTypes', 'ChnVirt', 'ChnRing', 'ChnWait', 'ChnPort',
+      'uString']);
+    AddUnit(P, 'ChnCom.pas', AllOSes, ['ChnTypes', 'ChnVirt', 'ChnPort', 'ChnPhys', 'uString',
+      'ChnPorts']);
     AddUnit(P, 'ChnLoop.pas', AllOSes, ['ChnTypes', 'ChnVirt', 'ChnRing', 'ChnWait', 'ChnPort',
-      'ChnCom', 'uString']);
+      'ChnPhys', 'uString']);
     T := AddUnit(P, 'ChnSock.pas', AllOSes, ['uString']);
       T.Dependencies.AddUnit('ChnUnix', AllUnixOSes);
       T.Dependencies.AddInclude('chnsock.inc', AllUnixOSes);
       T.Dependencies.AddInclude('chnsock.inc', AllWindowsOSes);
     AddUnit(P, 'ChnTelnet.pas', AllOSes, []);
     AddUnit(P, 'ChnPortTcp.pas', AllOSes, ['ChnTypes', 'ChnPort', 'ChnWait', 'ChnSock', 'ChnTelnet']);
-    AddUnit(P, 'ChnTcp.pas', AllOSes, ['ChnTypes', 'ChnVirt', 'ChnPort', 'ChnCom', 'ChnPortTcp',
+    AddUnit(P, 'ChnTcp.pas', AllOSes, ['ChnTypes', 'ChnVirt', 'ChnPort', 'ChnPhys', 'ChnPortTcp',
       'uString', 'ChnRing']);
 
     { ---- src/trace: middle layers (fault injection, trace, capture files) }
@@ -137,24 +146,34 @@ begin
     AddUnit(P, 'ChnPcccClient.pas', AllOSes, ['ChnTypes', 'ChnVirt', 'ChnDF1Codec', 'ChnDF1Link', 'ChnDF1Poll',
       'ChnPccc', 'ChnPlc5', 'uString', 'ChnWait']);
     AddUnit(P, 'ChnPcccTags.pas', AllOSes, ['ChnTypes', 'ChnVirt', 'ChnDF1Codec', 'ChnDF1Link',
-      'ChnPccc', 'ChnPcccClient', 'ChnWait']);
+      'ChnPccc', 'ChnPlc5', 'ChnPcccClient', 'ChnWait']);
     { src/iec: FT 1.2 and IEC 60870-5-101 }
     Part(P, 'iec');
     AddUnit(P, 'ChnFT12Codec.pas', AllOSes, ['ChnTypes']);
     AddUnit(P, 'ChnFT1_2.pas', AllOSes, ['ChnTypes', 'ChnVirt', 'ChnProto', 'ChnFT12Codec', 'uString']);
-    AddUnit(P, 'ChnFT12Link.pas', AllOSes, ['ChnTypes', 'ChnVirt', 'ChnFT1_2', 'ChnFT12Codec', 'ChnWait']);
+    { the link procedures: what they share, then the primary, the
+      secondary and the balanced station }
+    AddUnit(P, 'ChnFT12Link.pas', AllOSes, ['ChnTypes', 'ChnVirt', 'ChnFT1_2', 'ChnFT12Codec']);
+    AddUnit(P, 'ChnFT12Primary.pas', AllOSes, ['ChnTypes', 'ChnVirt', 'ChnFT1_2', 'ChnFT12Link',
+      'ChnFT12Codec', 'ChnWait']);
+    AddUnit(P, 'ChnFT12Station.pas', AllOSes, ['ChnTypes', 'ChnVirt', 'ChnFT1_2', 'ChnFT12Link',
+      'ChnFT12Codec']);
+    AddUnit(P, 'ChnFT12Balanced.pas', AllOSes, ['ChnTypes', 'ChnVirt', 'ChnFT1_2', 'ChnFT12Link',
+      'ChnFT12Codec', 'ChnWait']);
     { IEC 60870-5-104: the APCI codec and the layer over NAM=TCP }
     AddUnit(P, 'ChnIec104Codec.pas', AllOSes, ['ChnTypes']);
     AddUnit(P, 'ChnIec104.pas', AllOSes, ['ChnTypes', 'ChnVirt', 'ChnProto', 'ChnIec104Codec',
       'uString', 'ChnTcp', 'ChnTrc']);
     { IEC 60870-5-101 application layer on the FT 1.2 link helpers or IEC 104 }
     AddUnit(P, 'ChnIec101Asdu.pas', AllOSes, ['ChnTypes']);
-    AddUnit(P, 'ChnIecTransport.pas', AllOSes, ['ChnTypes', 'ChnVirt', 'ChnFT1_2', 'ChnFT12Link',
+    { the IEC 101 information objects as JSON or a readable line, for tools }
+    AddUnit(P, 'ChnIec101Print.pas', AllOSes, ['ChnIec101Asdu']);
+    AddUnit(P, 'ChnIecTransport.pas', AllOSes, ['ChnTypes', 'ChnVirt', 'ChnFT1_2', 'ChnFT12Link', 'ChnFT12Balanced',
       'ChnIec104', 'ChnIec104Codec']);
     AddUnit(P, 'ChnIec101Master.pas', AllOSes, ['ChnTypes', 'ChnVirt', 'ChnFT1_2', 'ChnFT12Link',
-      'ChnIec101Asdu', 'ChnWait', 'ChnIecTransport', 'ChnFT12Codec']);
+      'ChnFT12Primary', 'ChnFT12Codec', 'ChnIec101Asdu', 'ChnWait', 'ChnIecTransport']);
     AddUnit(P, 'ChnIec101Slave.pas', AllOSes, ['ChnTypes', 'ChnVirt', 'ChnFT1_2', 'ChnFT12Link',
-      'ChnIec101Asdu', 'ChnIecTransport']);
+      'ChnFT12Station', 'ChnIec101Asdu', 'ChnIecTransport']);
     { src/ics: ICSlink }
     Part(P, 'ics');
     AddUnit(P, 'ChnICSCodec.pas', AllOSes, ['ChnTypes', 'uString']);

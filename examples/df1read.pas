@@ -23,6 +23,7 @@ var
   R: tPcccRequest;
   Params, Addr: string;
   Count, I, First: LongInt;
+  Err: ShortString;
 
 procedure Log(const Line: AnsiString);
 begin
@@ -80,9 +81,8 @@ begin
     CliUsageError(Cli, 'no parameter string (e.g. NAM=DF1 NOD=0 DNO=1 NAM=COM DEV=/dev/ttyUSB0)', '');
   PcccClientInit(C, nil);
   Family(C);
-  if not PcccStartRead(R, C, Addr, Count) and (R.Result <> res_WrongLayer) and
-     (R.Result <> res_WrongState) then
-    CliUsageError(Cli, R.Err, Addr);
+  if PcccCheckRead(C, Addr, Count, Err) <> res_Ok then
+    CliUsageError(Cli, Err, Addr);
   CliCheckParams(Cli, Params, ChnDF1.cName);
   if PcccOpen(C, Params) <> res_Ok then
     Fail(C.Err, 1);

@@ -65,7 +65,7 @@ begin
     WriteLn(StdErr, 'df1slave: ', Err);
     Halt(1);
   end;
-  if pChnDF1(Chn)^.CH_Master then
+  if pChnDF1(Chn)^.ChDF1Config.Master then
     WriteLn('df1slave: note: MAS=MASTER given; answering anyway');
   WriteLn('df1slave: ', Chn^.ChGetParam(''));
   SlcLoadDefault(Table);

@@ -27,8 +27,8 @@ program ft12balanced;
 {$MODE OBJFPC}{$H-}
 
 uses
-  SysUtils, uString, ChnTypes, ChnVirt, ChnLayers, ChnFT1_2, ChnFT12Link,
-  ChnIec101Asdu, Iec101Print, ChnFT12Gap, ChnCli;
+  SysUtils, uString, ChnTypes, ChnVirt, ChnLayers, ChnFT1_2, ChnFT12Balanced,
+  ChnIec101Asdu, ChnIec101Print, ChnFT12Gap, ChnCli;
 
 var
   Chn: pChnVirt;
@@ -50,7 +50,7 @@ begin
   Result := FormatDateTime('hh:nn:ss.zzz', Now) + ' ';
 end;
 
-{ The ASDU at Buf as one line (Iec101Print, lib60870's sizes 2/2/3). }
+{ The ASDU at Buf as one line (ChnIec101Print, lib60870's sizes 2/2/3). }
 function AsduText(Buf: PByte; Len: Word): string;
 begin
   if Len = 0 then
@@ -164,7 +164,7 @@ begin
     begin
       Shown := L.State;
       WriteLn(Stamp, 'link ', FT12BalStateName(Shown));
-      if (Shown = bsAvailable) and pChnFT1_2(Chn)^.CH_Dir and not Asked then
+      if (Shown = bsAvailable) and pChnFT1_2(Chn)^.ChFT12Config.Dir and not Asked then
       begin
         Asked := True;
         Obj := IecObject(0);

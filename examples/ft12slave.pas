@@ -148,7 +148,7 @@ begin
         FCM_UserDataReply: Answer(tpSACK, 0, 0);
         FCM_UserDataNoRep: ;
         FCM_CheckLink:
-          if pChnFT1_2(Chn)^.CH_MaSl then
+          if not pChnFT1_2(Chn)^.ChFT12Config.Balanced then
             Answer(tpSACK, 0, 0)      { unbalanced: E5, whatever LEN= is }
           else
             Answer(tpShortM, FCS_Ack, 0);
@@ -167,7 +167,7 @@ begin
       end;
     end;
     { no answer to a broadcast }
-    if HaveAns and (DNode <> FT12Broadcast(pChnFT1_2(Chn)^.CH_AdrLen)) then
+    if HaveAns and (DNode <> FT12Broadcast(pChnFT1_2(Chn)^.ChFT12Config.AddrLen)) then
     begin
       if Chn^.ChSendReady = CHS_SendReady then
         Chn^.ChSend(@Ans, LAns);

@@ -146,7 +146,7 @@ begin
   Chn^.ChConnect;
   if Chn^.ChResult <> res_Ok then
     Stop('connect', Chn^.ChResult);
-  WriteLn('icsslave: station ', pChnICS(Chn)^.CH_Node, ' listening for ', Seconds, ' s');
+  WriteLn('icsslave: station ', Chn^.CH_Node, ' listening for ', Seconds, ' s');
 
   Answered := 0;
   Deadline := ChMsTick + QWord(Seconds) * 1000;
@@ -166,7 +166,7 @@ begin
       Continue;
     end;
     Chn^.ChGetNode(SNode, DNode);
-    if DNode <> pChnICS(Chn)^.CH_Node then
+    if DNode <> Chn^.CH_Node then
       Continue;                               { for another station }
     WriteLn('from ', SNode, ': ', Req.OpCode, ' block ', Req.BlockNum,
       ' with ', (Len - 4) div SizeOf(tData), ' numbers');

@@ -2,7 +2,7 @@
   command line: sets up the link of every slave, runs the commands given,
   in order, for every slave, and prints every information object sent and
   received (the confirmations too), one line each: readable, or with
-  --json one JSON object per line (tools/lib/Iec101Print, docs/ChnIec101.md).
+  --json one JSON object per line (tools/lib/ChnIec101Print, docs/ChnIec101.md).
   Unbalanced or balanced as the parameter string says (MS=ON / MS=OFF).
 
   Usage:  iec101master [OPTION]... 'PARAMS' COMMAND...
@@ -17,7 +17,7 @@ program iec101master;
 
 uses
   SysUtils, Classes, uString, ChnTypes, ChnVirt, ChnLayers, ChnFT1_2, ChnFT12Link,
-  ChnIec101Asdu, ChnIec101Master, Iec101Print, ChnCli;
+  ChnIec101Asdu, ChnIec101Master, ChnIec101Print, ChnCli;
 
 const
   Prog = 'iec101master';

@@ -25,7 +25,7 @@ program iec101slave;
 uses
   {$IFDEF UNIX}BaseUnix,{$ENDIF}
   Classes, SysUtils, ChnTypes, ChnVirt, ChnWait, ChnLayers, ChnFT1_2, ChnIec101Asdu,
-  ChnIec101Slave, Iec101Print, Iec101Points, ChnCli;
+  ChnIec101Slave, ChnIec101Print, Iec101Points, ChnCli;
 
 const
   DefaultPoints =

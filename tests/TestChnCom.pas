@@ -129,16 +129,8 @@ type
 implementation
 
 {$IFDEF UNIX}
-type
-  tTermios2 = record
-    c_iflag, c_oflag, c_cflag, c_lflag: Cardinal;
-    c_line: Byte;
-    c_cc: array[0..18] of Byte;
-    c_ispeed, c_ospeed: Cardinal;
-  end;
-
 const
-  TCGETS2 = $802C542A;
+  { tTermios2 and TCGETS2 are ChnUnix's }
   KBOTHER = $1000;
   KCBAUD = $100F;
   { the c_cflag bits the layer is responsible for (Linux <asm/termbits.h>) }

@@ -11,7 +11,7 @@ interface
 
 uses
   SysUtils, fpcunit, testregistry, ChnTypes, ChnVirt, ChnLoop, ChnFT1_2,
-  ChnFT12Link, TestSupport, LoopTap;
+  ChnFT12Link, ChnFT12Primary, ChnFT12Station, TestSupport, LoopTap;
 
 type
   TTestChnFT12Link = class(TTestCase)
@@ -353,7 +353,7 @@ begin
   AssertEquals(2, FSt.Executed);
 end;
 
-{ Issue 24 on the unbalanced link, stepped (FT12PrimaryStart/Step): the
+{ Late answers on the unbalanced link, stepped (FT12PrimaryStart/Step): the
   line stalls longer than the timeout, the primary repeats AA; when the
   stall ends it gets the answer to the first transmission, and the next
   service (BB) is lost on the line; the answer to the repetition arrives

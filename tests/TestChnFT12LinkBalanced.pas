@@ -13,7 +13,7 @@ interface
 
 uses
   SysUtils, fpcunit, testregistry, ChnTypes, ChnVirt, ChnLoop, ChnFT1_2,
-  ChnFT12Link, TestSupport, LoopTap;
+  ChnFT12Balanced, TestSupport, LoopTap;
 
 type
   PSink = ^TSink;
@@ -270,7 +270,7 @@ begin
   AssertEquals(1, FLa.Confirmed);
 end;
 
-{ Issue 24, on the wire: the line stalls longer than the timeout, so A
+{ Late answers, on the wire: the line stalls longer than the timeout, so A
   repeats its user data; the stall ends and A gets the answer to the first
   transmission, and sends the next user data at once - which the line
   loses. The answer to the repetition comes after it: taken for the new

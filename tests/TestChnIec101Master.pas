@@ -14,7 +14,7 @@ interface
 
 uses
   Classes, SysUtils, fpcunit, testregistry, ChnTypes, ChnVirt, ChnLoop, ChnFT1_2,
-  ChnFT12Link, ChnWait, ChnIec101Asdu, ChnIec101Master, TestSupport, LoopHub, Iec101Sim;
+  ChnFT12Link, ChnFT12Balanced, ChnWait, ChnIec101Asdu, ChnIec101Master, TestSupport, LoopHub, Iec101Sim;
 
 type
   TTestChnIec101Master = class(TTestCase)

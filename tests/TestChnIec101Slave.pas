@@ -13,7 +13,7 @@ interface
 
 uses
   Classes, SysUtils, DateUtils, fpcunit, testregistry, ChnTypes, ChnVirt, ChnLoop,
-  ChnFT1_2, ChnFT12Link, ChnIec101Asdu, ChnIec101Slave, TestSupport;
+  ChnFT1_2, ChnFT12Link, ChnFT12Primary, ChnFT12Balanced, ChnIec101Asdu, ChnIec101Slave, TestSupport;
 
 type
   TTestChnIec101Slave = class(TTestCase)

@@ -48,7 +48,7 @@ type
 implementation
 
 uses
-  {$IFDEF UNIX}BaseUnix, ChnCom, ChnPty, ChnFT1_2, ChnFT12Link,{$ENDIF}
+  {$IFDEF UNIX}BaseUnix, ChnCom, ChnPty, ChnFT1_2, ChnFT12Link, ChnFT12Primary, ChnFT12Station,{$ENDIF}
   BinSupport,
   DateUtils, uString;
 

@@ -28,6 +28,7 @@ type
     procedure TestWriteComesBack;
     procedure TestRefusedRead;
     procedure TestDeadDeviceDemotedOtherKeepsItsRate;
+    procedure TestPlc5Device;
     {$ENDIF}
   end;
 
@@ -418,6 +419,51 @@ begin
     AssertEquals('the device answered', 'ok', TagStateNames[D.State]);
     AssertEquals('an error counted', 1, D.Errors);
     AssertTrue('last error names the read: ' + D.LastError, Pos('N40:0[1]: ', D.LastError) = 1);
+  finally
+    TagDeviceDone(D);
+    Sim.Free;
+  end;
+end;
+
+{ A PLC-5 (df1sim --plc5): PLC-5 addresses, blocks read by word range,
+  D words decoded from BCD, a write as the client's PLC-5 command. }
+procedure TTestChnPcccTags.TestPlc5Device;
+var
+  Sim: TSim;
+  D: tPcccDevice;
+  E: ShortString;
+  W: tTagWrite;
+begin
+  Sim := TSim.Create(['--plc5', '--quiet', '--timeout=20']);
+  TagDeviceInit(D, 'plc5');
+  try
+    OpenDevice(D, Sim.Pty);
+    TagDevicePlc5(D);
+    Added(D, 'I:012/05');
+    Added(D, 'D10:0[2]');
+    Added(D, 'N7:0[3]');
+    Added(D, 'T4:1.ACC');
+    Added(D, 'F8:3');
+    Added(D, 'ST9:0');
+    AssertEquals(E, res_Ok, TagAdd(D, 'bcd', 'D10:3', 60000, 0, True, E));
+    AssertEquals('an L file is no PLC-5 file', res_PcccAddress, TagAdd(D, '', 'L11:0', 500, 0, False, E));
+    TagDeviceStart(D);
+    StepAll([@D], 5000, @AllRead, @D);
+    AssertTrue('every tag read; last error: ' + D.LastError, AllRead(@D));
+    AssertEquals('I:012/05', D.Tags[0].Name);
+    AssertEquals('I:012/05', 1, D.Tags[0].Values[0], 0);
+    AssertEquals('D10:0 (BCD $1234)', 1234, D.Tags[1].Values[0], 0);
+    AssertEquals('D10:1 (BCD $9999)', 9999, D.Tags[1].Values[1], 0);
+    AssertEquals('N7:2', 20, D.Tags[2].Values[2], 0);
+    AssertEquals('T4:1.ACC', 7, D.Tags[3].Values[0], 0);
+    AssertEquals('F8:3', 1000000, D.Tags[4].Values[0], 0);
+    AssertEquals('ST9:0', 'hello', D.Tags[5].Text);
+    AssertTrue(E, TagDeviceWrite(D, 6, 4321, 1, E));
+    StepAll([@D], 5000, @HasWrite, @D);
+    AssertTrue('write done', TagTakeWrite(D, W));
+    AssertEquals('confirmed: ' + W.Err, res_Ok, W.Res);
+    StepAll([@D], 1000);
+    AssertEquals('D10:3 read back', 4321, D.Tags[6].Values[0], 0);
   finally
     TagDeviceDone(D);
     Sim.Free;

@@ -945,7 +945,7 @@ begin
   AssertEquals('after', Receive(Srv, nil, 5, 3000));
 end;
 
-{ The attack of issue 24: one client that connects and sends nothing held
+{ An attack: one client that connects and sends nothing held
   df1sim --listen's only line, and every legitimate read failed. df1sim
   serves with KICK=ON: each df1read takes the line. }
 procedure TTestChnTcp.TestDf1simListenOutlivesASquatter;

@@ -22,7 +22,7 @@ interface
 
 uses
   SysUtils, fpcunit, testregistry, ChnTypes, ChnVirt, ChnLoop, ChnFT1_2,
-  ChnFT12Codec, ChnFT12Link, ChnTrcFormat, TestSupport, TestTempDir, Ft12Capture;
+  ChnFT12Codec, ChnFT12Balanced, ChnTrcFormat, TestSupport, TestTempDir, Ft12Capture;
 
 type
   TTestFT12Lib60870Replay = class(TTestCase)

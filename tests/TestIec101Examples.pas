@@ -2,7 +2,7 @@
   TProcess against a slave in the test (tests/support/Iec101Sim: a
   tFT12Station on NAM=COM DRV=PTY, the program opens the pty's other
   side). The JSON lines expected are written out from the format of
-  issue 20 (docs/ChnIec101.md) for the octets the slave sends. Unix only
+  docs/ChnIec101.md for the octets the slave sends. Unix only
   (ptys). }
 unit TestIec101Examples;
 

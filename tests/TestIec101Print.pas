@@ -1,6 +1,6 @@
-{ Tests of tools/lib/Iec101Print, the one JSON and text form of IEC 101
+{ Tests of tools/lib/ChnIec101Print, the one JSON and text form of IEC 101
   information objects: the lines expected are written out from the JSON
-  format of issue 20 / docs/ChnIec101.md, from ASDUs given as octets. }
+  format of docs/ChnIec101.md, from ASDUs given as octets. }
 unit TestIec101Print;
 
 {$MODE OBJFPC}{$H+}
@@ -8,7 +8,7 @@ unit TestIec101Print;
 interface
 
 uses
-  SysUtils, fpcunit, testregistry, ChnIec101Asdu, Iec101Print, TestSupport;
+  SysUtils, fpcunit, testregistry, ChnIec101Asdu, ChnIec101Print, TestSupport;
 
 type
   TTestIec101Print = class(TTestCase)

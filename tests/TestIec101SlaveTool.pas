@@ -3,7 +3,7 @@
   refusal of a bad points line naming the line and the token, and a run
   on a pty against a ChnIec101Master in the test (interrogation, command,
   clock sync, unknown IOA), its JSON lines checked against the format of
-  issue 20 written out by hand. Unix only (ptys, SIGINT). }
+  docs/ChnIec101.md written out by hand. Unix only (ptys, SIGINT). }
 unit TestIec101SlaveTool;
 
 {$MODE OBJFPC}{$H+}
@@ -319,7 +319,7 @@ begin
     for I := 0 to Lst.Count - 1 do
       AssertTrue('only JSON on stdout: ' + Lst[I], (Copy(Lst[I], 1, 1) = '{') and
         (Copy(Lst[I], Length(Lst[I]), 1) = '}'));
-    { the keys of issue 20, written out by hand }
+    { the keys docs/ChnIec101.md gives, written out by hand }
     AssertTrue(Out, Lst.IndexOf('{"type":"C_SC_NA_1","ti":45,"cot":6,"negative":false,"test":false,'
       + '"oa":0,"ca":1,"ioa":5000,"value":true,"select":false,"quality":0}') >= 0);
     AssertTrue(Out, Lst.IndexOf('{"type":"C_SC_NA_1","ti":45,"cot":47,"negative":true,"test":false,'

@@ -1,4 +1,4 @@
-{ No silent truncation (issue 24 item 2): every entry point that takes a
+{ No silent truncation: every entry point that takes a
   parameter string takes a long one (AnsiString) and refuses more than the
   legacy 255 characters with res_ParamTooLong and a text naming the
   length and the limit, instead of cutting it to another string - a

@@ -45,7 +45,7 @@ else bad "package: files citing SPEC/seeds/../shared: $(echo $hits)"; fi
 perl tests/fpmakecheck.pl
 
 missing=""
-for f in src/*.inc src/*/*.pas src/*/*/*.pas src/*/*/*.inc; do
+for f in src/*.inc src/*/*.pas src/*/*.inc src/*/*/*.pas src/*/*/*.inc; do
   grep -q "<Filename Value=\"$f\"/>" chn.lpk || missing="$missing $f"
 done
 if [ -z "$missing" ]; then pass "package: chn.lpk lists every unit of src/ (its part folders and their unix/, win/)"

@@ -7,7 +7,7 @@
 set -eu
 cd "$(dirname "$0")/.."
 files=$({ bash tools/units.sh all; bash tools/units.sh --optional; } | LC_ALL=C sort -f)
-incs=$(ls src/*.inc src/*/*/*.inc | LC_ALL=C sort -f)
+incs=$(ls src/*.inc src/*/*.inc src/*/*/*.inc 2>/dev/null | LC_ALL=C sort -f)
 # the part folders (src/README.md), and the per-OS folder of src/phys
 parts=$(ls -d src/*/ | sed 's|/$||' | LC_ALL=C sort | tr '\n' ';')
 n=$(($(echo "$files" | wc -l) + $(echo "$incs" | wc -l)))

@@ -115,6 +115,9 @@ type
     { ChnWaitHeld := connected and (a frame waits or bytes wait in
       CH_LowBuf); called by the base after every change of either. }
     procedure ChHeldUpdate;
+    { The wire bytes of the last frame sent (CH_SBuff, Len of them), for
+      a helper that shows them; nil and 0 before the first. }
+    function  ChSentFrame(out Len: Word): PByte;
   end;
 
 { Register a protocol layer: its manager in ChnCollection and a readable
@@ -359,6 +362,12 @@ end;
 function tChnProto.ChSendCheck(Buff: Pointer; Len: Word): tChResult;
 begin
   Result := res_Ok;
+end;
+
+function tChnProto.ChSentFrame(out Len: Word): PByte;
+begin
+  Len := CH_SLen;
+  Result := CH_SBuff;
 end;
 
 procedure tChnProto.ChSent(Buff: Pointer);

@@ -22,6 +22,8 @@ type
   tChState    = Word;         {< state code, see CHS_* }
 
 const
+  { the library's version ('1.0.0'), written once in chnversion.inc }
+  ChnVersion = {$I chnversion.inc};
   { tCmd: ChSetParam validates the whole string first (cmd_Check, no side
     effects), then applies it (cmd_Set); so a bad token changes nothing.
     Checks that depend on several keys of one string are the layer's

@@ -1,4 +1,5 @@
 { ChnVirt - tChnVirt, the ancestor of every layer, and the layer registry.
+  The parameter-string parser the layers use is unit ChnParam.
 
   Reconstructed from the ChnDF1, ChnFT1_2 and ChnICS manuals (docs/PROTOCOLS.md
   section 4); identifiers legacy code uses are binding.
@@ -21,67 +22,9 @@ unit ChnVirt;
 interface
 
 uses
-  ChnTypes, uString;
+  ChnTypes, uString, ChnParam;
 
-{ The manuals' programs use tParamStr, res_Ok and CHS_* with only
-  "uses ChnVirt" (ChnTypes is not in their uses clauses), so ChnVirt
-  re-exports the ChnTypes names. These are aliases: the same types and
-  values, whichever unit a program names. }
-type
-  tParamStr   = ChnTypes.tParamStr;
-  tWordString = ChnTypes.tWordString;
-  tCmd        = ChnTypes.tCmd;
-  tNode       = ChnTypes.tNode;
-  tChResult   = ChnTypes.tChResult;
-  tChState    = ChnTypes.tChState;
-  tBcc8       = ChnTypes.tBcc8;
-  tCrc16      = ChnTypes.tCrc16;
-  tSum8       = ChnTypes.tSum8;
-  tXor8       = ChnTypes.tXor8;
-
-const
-  cmd_Set          = ChnTypes.cmd_Set;
-  cmd_Check        = ChnTypes.cmd_Check;
-  cmd_Peek         = ChnTypes.cmd_Peek;
-  CHS_Close        = ChnTypes.CHS_Close;
-  CHS_Open         = ChnTypes.CHS_Open;
-  CHS_Connect      = ChnTypes.CHS_Connect;
-  CHS_DisConnect   = ChnTypes.CHS_DisConnect;
-  CHS_SendReady    = ChnTypes.CHS_SendReady;
-  CHS_Sending      = ChnTypes.CHS_Sending;
-  CHS_ReceiveReady = ChnTypes.CHS_ReceiveReady;
-  CHS_Receiving    = ChnTypes.CHS_Receiving;
-  CHS_RecInactive  = ChnTypes.CHS_RecInactive;
-  CHS_Opening      = ChnTypes.CHS_Opening;
-  CHS_ProtoBase    = ChnTypes.CHS_ProtoBase;
-  res_Ok           = ChnTypes.res_Ok;
-  res_BadParam     = ChnTypes.res_BadParam;
-  res_UnknownParam = ChnTypes.res_UnknownParam;
-  res_DupParam     = ChnTypes.res_DupParam;
-  res_UnknownLayer = ChnTypes.res_UnknownLayer;
-  res_WrongState   = ChnTypes.res_WrongState;
-  res_CannotOpen   = ChnTypes.res_CannotOpen;
-  res_NoPermission = ChnTypes.res_NoPermission;
-  res_BadSetting   = ChnTypes.res_BadSetting;
-  res_IOError      = ChnTypes.res_IOError;
-  res_DeviceLost   = ChnTypes.res_DeviceLost;
-  res_NoRecBuff    = ChnTypes.res_NoRecBuff;
-  res_SmallRecBuff = ChnTypes.res_SmallRecBuff;
-  res_Busy         = ChnTypes.res_Busy;
-  res_TooLong      = ChnTypes.res_TooLong;
-  res_Overrun      = ChnTypes.res_Overrun;
-  res_NoLowLayer   = ChnTypes.res_NoLowLayer;
-  res_BadLen       = ChnTypes.res_BadLen;
-  res_BadMessage   = ChnTypes.res_BadMessage;
-  res_NoMessage    = ChnTypes.res_NoMessage;
-  res_Timeout      = ChnTypes.res_Timeout;
-  res_WrongLayer   = ChnTypes.res_WrongLayer;
-  res_HostUnknown  = ChnTypes.res_HostUnknown;
-  res_Refused      = ChnTypes.res_Refused;
-  res_Reconnecting = ChnTypes.res_Reconnecting;
-  res_ParamTooLong = ChnTypes.res_ParamTooLong;
-  res_BadStream    = ChnTypes.res_BadStream;
-  res_Proto        = ChnTypes.res_Proto;
+{$I chnvirtnames.inc}   {- ChnTypes' and ChnParam's names, for "uses ChnVirt" alone }
 
 const
   MaxLowChunk = 256;   {< bytes a protocol layer pulls from below at once }
@@ -91,23 +34,6 @@ const
   MaxChnManagers = 32;
 
 type
-  { One token of a parameter string, split once by ParamSplit. }
-  tParamToken = record
-    Text : tWordString;   {< KEY=VALUE as given }
-    Key  : string[31];    {< upper-cased KEY ('' when there is no '=') }
-    Ok   : Boolean;       {< of the form KEY=VALUE, VALUE not empty, one '=' }
-    Start: LongInt;       {< where it begins in the string }
-  end;
-  { A parameter string as tokens; while ChSetParam checks a layer's tokens,
-    Items[OwnFirst .. OwnEnd - 1] are that layer's own (OwnEnd: the NAM=
-    of the layer below, or Count). }
-  tParamList = record
-    Count   : LongInt;
-    Items   : array of tParamToken;
-    OwnFirst: LongInt;
-    OwnEnd  : LongInt;
-  end;
-
   pChnVirt = ^tChnVirt;
   tChnVirt = object
     CH_Type    : string[15];   {< layer type, the registry name ('DF1') }
@@ -311,54 +237,13 @@ function ChUsTick: QWord;
   helpers above a channel (the DF1 and FT 1.2 link procedures). }
 function ChSendWhenFree(Chn: pChnVirt; Buff: Pointer; Len: Word;
   TimeoutMs: LongInt): tChResult;
-
+{ The wait of ChSendWhenFree alone: res_Ok once Chn^.ChSendReady says
+  CHS_SendReady, res_Timeout after TimeoutMs, a channel fault at once. }
+function ChWaitSendReady(Chn: pChnVirt; TimeoutMs: LongInt): tChResult;
 { A protocol layer's send buffer: allocated with Default bytes when none is
   there yet (no LSB=, or LSB=0), freed by Done. }
 procedure ChSendBuffer(var Buf: Pointer; var Size: Word; Default: Word);
 procedure ChFreeSendBuffer(var Buf: Pointer; var Size: Word);
-
-{ Split a parameter string into tokens, once (ChSetParam). }
-procedure ParamSplit(const S: ShortString; var L: tParamList);
-{ Index of the first of a layer's own tokens with Key (upper case) while
-  ChCheckParams runs, -1 when the string does not give it. }
-function ParamFind(const L: tParamList; const Key: ShortString): LongInt;
-{ res_Ok when a parameter string of Len characters fits the legacy
-  tParamStr, else res_ParamTooLong and Why = 'N characters, the limit is
-  255' - for every entry point that takes a long string. }
-function ParamLengthCheck(Len: LongInt; var Why: ShortString): tChResult; overload;
-function ParamLengthCheck(Len: LongInt; var Why: AnsiString): tChResult; overload;
-
-{ Helpers for ChSetOneParam/ChOwnParams of every layer, so that number
-  parsing, range checks and ON/OFF live in one place. }
-{ A routine that returns a number by reference comes for LongInt and SmallInt
-  (a caller's plain "Integer" in any compiler mode). }
-function ParamKey(const S: tWordString): ShortString;
-function ParamValue(const S: tWordString): ShortString;
-function ParamNum(const S: tWordString; Min, Max: LongInt; var N: LongInt): tChResult; overload;
-function ParamNum(const S: tWordString; Min, Max: LongInt; var N: SmallInt): tChResult; overload;
-function ParamChoice(const S: tWordString; const Choices: ShortString; var Index: LongInt): tChResult; overload;
-function ParamChoice(const S: tWordString; const Choices: ShortString; var Index: SmallInt): tChResult; overload;
-function ParamText(const Key: ShortString; N: LongInt): ShortString;
-{ res_BadParam for a value a layer checks itself, with what the key
-  allows ('one of RTL|PTY'), for ChErrorText; ParamNum and ParamChoice
-  say it by themselves. }
-function ParamBad(const Allowed: ShortString): tChResult;
-{ A two-way choice kept in a Boolean. Choices lists the False word first
-  ('OFF|ON', 'SLAVE|MASTER'); Flag is set only when CmdL = cmd_Set. }
-function ParamFlag(const S: tWordString; const Choices: ShortString; CmdL: tCmd;
-  var Flag: Boolean): tChResult;
-{ A number kept in a LongInt field: checked as ParamNum, Field set only
-  when CmdL = cmd_Set. }
-function ParamSetNum(const S: tWordString; Min, Max: LongInt; CmdL: tCmd;
-  var Field: LongInt): tChResult; overload;
-function ParamSetNum(const S: tWordString; Min, Max: LongInt; CmdL: tCmd;
-  var Field: SmallInt): tChResult; overload;
-{ ' KEY=WORD' for a Boolean kept as in ParamFlag. }
-function FlagText(const Key, Choices: ShortString; Flag: Boolean): ShortString;
-
-const
-  OnOffChoice  = 'OFF|ON';
-  MasterChoice = 'SLAVE|MASTER';
 
 var
   ChnCollection: pChnCollection;
@@ -368,10 +253,8 @@ implementation
 uses
   SysUtils, ChnWait;
 
-var
-  { what the last failing ParamNum/ParamChoice allows, for ChErrorText
-    (one thread sets parameters: ChSetParam reads it right after) }
-  ParamAllowedText: ShortString = '';
+{$DEFINE CHNVIRT_BODIES}
+{$I chnvirtnames.inc}
 
 const
   { every layer name of the library and the unit that registers it }
@@ -412,11 +295,20 @@ end;
 
 function ChUsTick: QWord;
 begin
-  Result := ChnClockUs;          { the program-wide wait's time base }
+  Result := ChnClockUs;             { the wait's clock: one per OS, in its OS part }
 end;
 
 function ChSendWhenFree(Chn: pChnVirt; Buff: Pointer; Len: Word;
   TimeoutMs: LongInt): tChResult;
+begin
+  Result := ChWaitSendReady(Chn, TimeoutMs);
+  if Result <> res_Ok then
+    Exit;
+  Chn^.ChSend(Buff, Len);
+  Result := Chn^.ChSendResult;
+end;
+
+function ChWaitSendReady(Chn: pChnVirt; TimeoutMs: LongInt): tChResult;
 var
   Deadline: QWord;
 begin
@@ -432,8 +324,7 @@ begin
       draining with RTS raised) }
     ChnWaitUntil(Deadline + 1, 10);
   end;
-  Chn^.ChSend(Buff, Len);
-  Result := Chn^.ChSendResult;
+  Result := res_Ok;
 end;
 
 procedure ChSendBuffer(var Buf: Pointer; var Size: Word; Default: Word);
@@ -453,211 +344,7 @@ begin
   Size := 0;
 end;
 
-procedure ParamSplit(const S: ShortString; var L: tParamList);
-var
-  P, Start: LongInt;
-  Tok, K, V: ShortString;
-begin
-  L.Count := 0;
-  L.OwnFirst := 0;
-  L.OwnEnd := 0;
-  P := 1;
-  Start := 1;
-  while NextTokenAt(S, P, Tok, Start) do
-  begin
-    if L.Count >= Length(L.Items) then
-      SetLength(L.Items, 8 + 2 * L.Count);
-    with L.Items[L.Count] do
-    begin
-      Text := Tok;
-      K := '';
-      V := '';
-      Ok := SplitKeyValue(Tok, K, V) and (V <> '');
-      if Pos('=', Tok) > 1 then
-        Key := K
-      else
-        Key := '';
-    end;
-    L.Items[L.Count].Start := Start;
-    Inc(L.Count);
-  end;
-end;
-
-function ParamFind(const L: tParamList; const Key: ShortString): LongInt;
-var
-  I: LongInt;
-begin
-  for I := L.OwnFirst to L.OwnEnd - 1 do
-    if L.Items[I].Key = Key then
-      Exit(I);
-  Result := -1;
-end;
-
-function ParamLengthCheck(Len: LongInt; var Why: AnsiString): tChResult;
-var
-  W: ShortString;
-begin
-  W := '';
-  Result := ParamLengthCheck(Len, W);
-  if Result <> res_Ok then
-    Why := W;
-end;
-
-function ParamLengthCheck(Len: LongInt; var Why: ShortString): tChResult;
-begin
-  if Len <= High(tParamStr) then
-    Exit(res_Ok);
-  Why := NumStr(Len) + ' characters, the limit is ' + NumStr(High(tParamStr));
-  Result := res_ParamTooLong;
-end;
-
-function ParamKey(const S: tWordString): ShortString;
-var
-  K, V: ShortString;
-begin
-  if SplitKeyValue(S, K, V) then
-    Result := K
-  else
-    Result := '';
-end;
-
-function ParamValue(const S: tWordString): ShortString;
-var
-  K, V: ShortString;
-begin
-  if SplitKeyValue(S, K, V) then
-    Result := V
-  else
-    Result := '';
-end;
-
-{ ' KEY1 KEY2 ...': the keys of ' KEY1=VALUE KEY2=VALUE ...' }
-function ParamKeyList(const Tokens: AnsiString): ShortString;
-var
-  I: LongInt;
-  InKey: Boolean;
-begin
-  Result := '';
-  InKey := False;
-  for I := 1 to Length(Tokens) do
-    if Tokens[I] = ' ' then
-    begin
-      InKey := True;
-      if (Result <> '') and (Result[Length(Result)] <> ' ') then
-        Result := Result + ' ';
-    end
-    else if Tokens[I] = '=' then
-      InKey := False
-    else if InKey and (Length(Result) < 250) then
-    begin
-      if Result = '' then
-        Result := ' ';
-      Result := Result + Tokens[I];
-    end;
-  Result := TrimRight(Result);
-end;
-
-function ParamBad(const Allowed: ShortString): tChResult;
-begin
-  ParamAllowedText := Allowed;
-  Result := res_BadParam;
-end;
-
-function NumAllowed(Min, Max: LongInt): ShortString;
-begin
-  Result := 'a number ' + NumStr(Min) + '..' + NumStr(Max);
-end;
-
-function ParamNum(const S: tWordString; Min, Max: LongInt; var N: LongInt): tChResult;
-begin
-  if StrToNum(ParamValue(S), Min, Max, N) then
-    Result := res_Ok
-  else
-  begin
-    ParamAllowedText := NumAllowed(Min, Max);
-    Result := res_BadParam;
-  end;
-end;
-
-function ParamNum(const S: tWordString; Min, Max: LongInt; var N: SmallInt): tChResult;
-begin
-  if StrToNum(ParamValue(S), Min, Max, N) then
-    Result := res_Ok
-  else
-  begin
-    ParamAllowedText := NumAllowed(Min, Max);
-    Result := res_BadParam;
-  end;
-end;
-
-function ParamChoice(const S: tWordString; const Choices: ShortString; var Index: LongInt): tChResult;
-var
-  I: LongInt;
-begin
-  I := ChoiceIndex(ParamValue(S), Choices);
-  if I < 0 then
-  begin
-    ParamAllowedText := 'one of ' + Choices;
-    Exit(res_BadParam);
-  end;
-  Index := I;
-  Result := res_Ok;
-end;
-
-function ParamChoice(const S: tWordString; const Choices: ShortString; var Index: SmallInt): tChResult;
-var
-  I: LongInt;
-begin
-  I := 0;
-  Result := ParamChoice(S, Choices, I);
-  if Result = res_Ok then
-    Index := I;
-end;
-
-function ParamText(const Key: ShortString; N: LongInt): ShortString;
-begin
-  Result := ' ' + Key + '=' + NumStr(N);
-end;
-
-function ParamFlag(const S: tWordString; const Choices: ShortString; CmdL: tCmd;
-  var Flag: Boolean): tChResult;
-var
-  I: LongInt;
-begin
-  I := 0;
-  Result := ParamChoice(S, Choices, I);
-  if (Result = res_Ok) and (CmdL = cmd_Set) then
-    Flag := I = 1;
-end;
-
-function ParamSetNum(const S: tWordString; Min, Max: LongInt; CmdL: tCmd;
-  var Field: LongInt): tChResult;
-var
-  N: LongInt;
-begin
-  N := 0;
-  Result := ParamNum(S, Min, Max, N);
-  if (Result = res_Ok) and (CmdL = cmd_Set) then
-    Field := N;
-end;
-
-function ParamSetNum(const S: tWordString; Min, Max: LongInt; CmdL: tCmd;
-  var Field: SmallInt): tChResult;
-var
-  N: SmallInt;
-begin
-  N := 0;
-  Result := ParamNum(S, Min, Max, N);
-  if (Result = res_Ok) and (CmdL = cmd_Set) then
-    Field := N;
-end;
-
-function FlagText(const Key, Choices: ShortString; Flag: Boolean): ShortString;
-begin
-  Result := ' ' + Key + '=' + ChoiceWord(Choices, Ord(Flag));
-end;
-
-{- ---------------------------------------------------------------- tChnVirt }
+{ ---------------------------------------------------------------- tChnVirt }
 
 constructor tChnVirt.Init;
 begin
@@ -718,12 +405,12 @@ begin
       if L.Items[J].Key = L.Items[I].Key then
         Exit(res_DupParam);
     Cmd := cmd_Check;
-    ParamAllowedText := '';
+    ParamAllowedClear;
     Result := ChSetOneParam(L.Items[I].Text, Cmd);
     if Result = res_UnknownParam then
       CH_ErrWhy := CH_Type + ' takes' + ParamKeyList(ChOwnParams)
     else if Result <> res_Ok then
-      CH_ErrWhy := ParamAllowedText;
+      CH_ErrWhy := ParamAllowed;
     if Result <> res_Ok then
       Exit;
   end;

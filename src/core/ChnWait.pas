@@ -169,35 +169,10 @@ var
 
 {- ------------------------------------------------------------------ set }
 
-function ChnClockUs: QWord;
-{$IFDEF WINDOWS}
-var
-  C, F: Int64;
-begin
-  QueryPerformanceFrequency(F);
-  QueryPerformanceCounter(C);
-  Result := QWord(C div F) * 1000000 + QWord((C mod F) * 1000000 div F);
-end;
-{$ELSE}{$IFDEF LINUX}
-var
-  T: TTimeSpec;
-begin
-  clock_gettime(CLOCK_MONOTONIC, @T);
-  Result := QWord(T.tv_sec) * 1000000 + QWord(T.tv_nsec div 1000);
-end;
-{$ELSE}
-begin
-  Result := GetTickCount64 * 1000;
-end;
-{$ENDIF}{$ENDIF}
 
 function ChnWaitShared: Boolean;
 begin
-  {$IF DEFINED(LINUX) OR DEFINED(WINDOWS)}
-  Result := True;
-  {$ELSE}
-  Result := False;
-  {$ENDIF}
+  Result := OsKernelWait;
 end;
 
 function ChnWaitWatching(Src: pChnWaitSource): Boolean;
@@ -295,10 +270,8 @@ begin
       if Src^.Due = 0 then
         Inc(DueCount);
       Src^.Due := AtUs;
-      {$IF DEFINED(LINUX) OR DEFINED(WINDOWS)}
       if Blocked > 0 then
         OsWake(Blocked);            { they wait with the old timeout }
-      {$ENDIF}
     end;
   finally
     LeaveCriticalSection(Lock);
@@ -351,10 +324,8 @@ begin
     S^.Rearm := Rearm;
     S^.RearmData := RearmData;
     Inc(Members);
-    {$IF DEFINED(LINUX) OR DEFINED(WINDOWS)}
     OsReady;                          { the set itself, on first use }
     OsArm(S, True);
-    {$ENDIF}
     Result := S;
   finally
     LeaveCriticalSection(Lock);
@@ -371,9 +342,7 @@ begin
     begin
       ClearFired(Src);
       ClearDue(Src);
-      {$IF DEFINED(LINUX) OR DEFINED(WINDOWS)}
       OsForget(Src);
-      {$ENDIF}
       Src^.Used := False;
       Src^.Armed := False;
       Dec(Members);
@@ -397,12 +366,10 @@ begin
     begin
       ClearFired(Src);
       Src^.Hungry := Hungry;
-      {$IF DEFINED(LINUX) OR DEFINED(WINDOWS)}
       if Hungry and not Src^.Armed then
         OsArm(Src, False)
       else if not Hungry and Src^.Armed then
         OsDisarm(Src);
-      {$ENDIF}
     end;
   finally
     LeaveCriticalSection(Lock);
@@ -418,10 +385,8 @@ begin
     if Src^.Used and Src^.Armed then
     begin
       MarkFired(Src);
-      {$IF DEFINED(LINUX) OR DEFINED(WINDOWS)}
       if Blocked > 0 then
         OsWake(Blocked);
-      {$ENDIF}
     end;
   finally
     LeaveCriticalSection(Lock);
@@ -442,10 +407,8 @@ begin
       Src^.WantOut := Want;
       if Want then
         ClearFired(Src);            { the owner is looking at its send }
-      {$IF DEFINED(LINUX) OR DEFINED(WINDOWS)}
       if Src^.Armed or (Want and Src^.Hungry) then
         OsArm(Src, False);          { the new event mask, or back into the wait }
-      {$ENDIF}
     end;
   finally
     LeaveCriticalSection(Lock);
@@ -459,7 +422,8 @@ var
   Left: QWord;
 begin
   Result := False;
-  {$IF DEFINED(LINUX) OR DEFINED(WINDOWS)}
+  if not OsKernelWait then
+    Exit;                            { nothing to wait in: a poll loop }
   EnterCriticalSection(Lock);
   FireDue(Left);
   if FiredCount > 0 then
@@ -494,7 +458,6 @@ begin
   if FireDue(Left) then
     Result := True;
   LeaveCriticalSection(Lock);
-  {$ENDIF}
 end;
 
 function ChnWaitIdle(Src: pChnWaitSource; Ms: LongInt): Boolean;
@@ -556,9 +519,7 @@ begin
     Dispose(Slots[I]);
   SlotCount := 0;
   Slots := nil;
-  {$IF DEFINED(LINUX) OR DEFINED(WINDOWS)}
   OsDone;
-  {$ENDIF}
 end;
 
 initialization

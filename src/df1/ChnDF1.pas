@@ -217,6 +217,8 @@ type
     { DUP=ON: True (and the ACK sent) when the message just decoded repeats
       the last command from its source }
     function  ChDuplicate: Boolean;
+    { Repeated commands ACKed and not delivered since Init (CH_DupCount). }
+    function  ChDupCount: LongInt;
     { full duplex: True (and counted) when the reply just decoded is not
       addressed to this station: DST <> NOD, or SRC is neither DNO nor a
       station one of the last commands went to. Commands are never
@@ -290,6 +292,11 @@ begin
   Result.Node := Byte(CH_Node);
   Result.DNode := Byte(CH_DNode);
   Result.NakByte := CH_NakByte;
+end;
+
+function tChnDF1.ChDupCount: LongInt;
+begin
+  Result := CH_DupCount;
 end;
 
 function tChnDF1.ChSetOneParam(const S: tWordString; var CmdL: tCmd): tChResult;

@@ -216,9 +216,11 @@ begin
 end;
 
 function DF1WireText(Chn: pChnVirt): AnsiString;
+var
+  Len: Word;
 begin
   if IsDF1Channel(Chn) then
-    Result := HexBytes(pChnDF1(Chn)^.CH_SBuff, pChnDF1(Chn)^.CH_SLen)
+    Result := HexBytes(pChnDF1(Chn)^.ChSentFrame(Len), Len)
   else
     Result := '';
 end;
@@ -330,8 +332,8 @@ begin
   S.Chn := Chn;
   S.Handler := Handler;
   S.Data := Data;
-  S.FullDup := pChnDF1(Chn)^.CH_FullDup;
-  S.DupSeen := pChnDF1(Chn)^.CH_DupCount;
+  S.FullDup := pChnDF1(Chn)^.ChDF1Config.FullDup;
+  S.DupSeen := pChnDF1(Chn)^.ChDupCount;
   Chn^.ChReceiveBuffer(@S.RMess, SizeOf(S.RMess));
   Result := res_Ok;
 end;
@@ -691,7 +693,7 @@ begin
   M.Req := Req;
   M.ReqLen := ReqLen;
   M.TimeoutMs := TimeoutMs;
-  M.FullDup := pChnDF1(Chn)^.CH_FullDup;
+  M.FullDup := pChnDF1(Chn)^.ChDF1Config.FullDup;
   { the caller's receive buffer comes back at the end: M.Rep is often a
     local of the caller, the channel must not keep pointing at it }
   Chn^.ChGetReceiveBuffer(M.OldBuf, M.OldSize);

@@ -108,6 +108,12 @@ function PcccWriteString(var C: tPcccClient; const Addr: ShortString; const S: S
   True; then R.Result and R.Err hold the outcome. }
 function PcccStartRead(var R: tPcccRequest; var C: tPcccClient; const Addr: ShortString;
   Count: LongInt): Boolean;
+{ Whether a read of Count items at Addr can be made on C (address,
+  count, kind, in C's PLC family), with no channel needed and nothing
+  sent: res_Ok, or the result and the text PcccStartRead would give (a
+  tool checks its arguments with it before it opens the line). }
+function PcccCheckRead(var C: tPcccClient; const Addr: ShortString; Count: LongInt;
+  out Err: ShortString): tChResult;
 function PcccStartWriteInts(var R: tPcccRequest; var C: tPcccClient; const Addr: ShortString;
   const Values: array of LongInt): Boolean;
 function PcccStartWriteFloats(var R: tPcccRequest; var C: tPcccClient; const Addr: ShortString;
@@ -246,8 +252,8 @@ begin
 end;
 
 { Prepare R for an operation at Addr; False (R failed) on a bad address
-  or count. }
-function Prepare(var R: tPcccRequest; var C: tPcccClient; const Addr: ShortString;
+  or count. The client's channel is not looked at (Prepare does). }
+function PrepareRequest(var R: tPcccRequest; var C: tPcccClient; const Addr: ShortString;
   Count: LongInt; Op: tPcccOp): Boolean;
 var
   A: tPcccAddr;
@@ -291,9 +297,33 @@ begin
     Exit(Fail(R, Res, E));
   if (R.Kind = pvString) and (Count <> 1) then
     Exit(Fail(R, res_PcccCount, 'strings are read and written one at a time'));
-  if not IsDF1Channel(C.Chn) then
-    Exit(Fail(R, res_WrongLayer, 'the client has no DF1 channel'));
   Result := True;
+end;
+
+{ PrepareRequest, on a client with a DF1 channel. }
+function Prepare(var R: tPcccRequest; var C: tPcccClient; const Addr: ShortString;
+  Count: LongInt; Op: tPcccOp): Boolean;
+begin
+  Result := PrepareRequest(R, C, Addr, Count, Op);
+  if Result and not IsDF1Channel(C.Chn) then
+    Result := Fail(R, res_WrongLayer, 'the client has no DF1 channel');
+end;
+
+function PcccCheckRead(var C: tPcccClient; const Addr: ShortString; Count: LongInt;
+  out Err: ShortString): tChResult;
+var
+  R: tPcccRequest;
+begin
+  if PrepareRequest(R, C, Addr, Count, poRead) then
+  begin
+    Err := '';
+    Result := res_Ok;
+  end
+  else
+  begin
+    Err := R.Err;
+    Result := R.Result;
+  end;
 end;
 
 { Request R.Index to a PLC-5. }

@@ -40,7 +40,7 @@ unit ChnPcccTags;
 interface
 
 uses
-  ChnTypes, ChnVirt, ChnDF1Codec, ChnDF1Link, ChnPccc, ChnPcccClient;
+  ChnTypes, ChnVirt, ChnDF1Codec, ChnDF1Link, ChnPccc, ChnPlc5, ChnPcccClient;
 
 const
   TagMaxGapDefault      = 32;      {< bytes read in vain rather than a request more }
@@ -98,6 +98,7 @@ type
   tPcccDevice = record
     Name       : ShortString;
     Client     : tPcccClient;
+    Plc5       : Boolean;    {< a PLC-5 (TagDevicePlc5) }
     Tags       : array of tPcccTag;
     Blocks     : array of tPcccBlock;
     MaxGap     : LongInt;
@@ -135,6 +136,11 @@ function TagParse(const S: ShortString; out Addr: tPcccAddr; out Count: LongInt;
 
 { An empty device (no line yet). }
 procedure TagDeviceInit(var D: tPcccDevice; const Name: ShortString);
+{ The device is a PLC-5: its tags take PLC-5 addresses (unit ChnPlc5:
+  'I:012/05', 'D10:0' read as 0..9999), blocks are read by word range
+  (0F 01), writes go as the client's PLC-5 commands. Call after the line
+  is opened (PcccOpen sets the client up anew) and before TagAdd. }
+procedure TagDevicePlc5(var D: tPcccDevice);
 { Add a tag; res_Ok, or the parse result with Err. A tag whose bytes do
   not fit in one request (more than 244), or an array of strings, is
   refused (res_PcccCount). Call before TagDeviceStart. }
@@ -193,8 +199,17 @@ begin
   Result := Round((LocalTimeToUniversal(Now) - UnixDateDelta) * MSecsPerDay);
 end;
 
+function TagParseAs(Dialect: tPcccDialect; const S: ShortString; out Addr: tPcccAddr;
+  out Count: LongInt; out Err: ShortString): tChResult; forward;
+
 function TagParse(const S: ShortString; out Addr: tPcccAddr; out Count: LongInt;
   out Err: ShortString): tChResult;
+begin
+  Result := TagParseAs(pdSlc, S, Addr, Count, Err);
+end;
+
+function TagParseAs(Dialect: tPcccDialect; const S: ShortString; out Addr: tPcccAddr;
+  out Count: LongInt; out Err: ShortString): tChResult;
 var
   Base, N: ShortString;
   Open, Code: LongInt;
@@ -221,7 +236,7 @@ begin
     end;
     Base := Copy(Base, 1, Open - 1);
   end;
-  Result := PcccParseAddress(Base, Addr, Err);
+  Result := PcccParseAddressAs(Dialect, Base, Addr, Err);
   if Result <> res_Ok then
     Err := '"' + S + '": ' + Err;
 end;
@@ -236,6 +251,20 @@ begin
   D.DemoteAfter := TagDemoteAfterDefault;
   D.DemoteMs := TagDemoteMsDefault;
   D.Cur := -1;
+end;
+
+procedure TagDevicePlc5(var D: tPcccDevice);
+begin
+  D.Plc5 := True;
+  PcccClientPlc5(D.Client, p5WordRange);
+end;
+
+function Dialect(const D: tPcccDevice): tPcccDialect;
+begin
+  if D.Plc5 then
+    Result := pdPlc5
+  else
+    Result := pdSlc;
 end;
 
 function TagIsBit(const T: tPcccTag): Boolean;
@@ -263,7 +292,7 @@ var
   T: tPcccTag;
   N, Bytes: LongInt;
 begin
-  Result := TagParse(Address, T.Addr, T.Count, Err);
+  Result := TagParseAs(Dialect(D), Address, T.Addr, T.Count, Err);
   if Result <> res_Ok then
     Exit;
   Result := PcccPlan(T.Addr, T.Count, False, MaxDataLen, T.Plan, Err);
@@ -291,7 +320,7 @@ begin
     Err := '"' + Address + '": only a tag of one integer, bit or float can be written';
     Exit(res_PcccUsage);
   end;
-  T.Address := PcccAddressText(T.Addr);
+  T.Address := PcccAddressTextAs(Dialect(D), T.Addr);
   if T.Count > 1 then
     T.Address := T.Address + '[' + IntToStr(T.Count) + ']';
   if Name = '' then
@@ -488,7 +517,8 @@ begin
   else
   begin
     Len := T.Plan.Units * T.Plan.UnitBytes;
-    Result := PcccDecodePlanInts(T.Plan, 0, Data[Off..Off + Len - 1], Len, Ints);
+    { PLC-5 D words are BCD: Plc5DecodePlanInts gives 0..9999 }
+    Result := Plc5DecodePlanInts(T.Plan, 0, Data[Off..Off + Len - 1], Len, Ints);
   end;
   for J := 0 to High(Ints) do
     T.Values[J] := Ints[J];
@@ -627,9 +657,9 @@ var
 begin
   T := @D.Tags[D.Writes[0].Tag];
   if T^.Kind = pvFloat then
-    Ok := PcccStartWriteFloats(D.WriteReq, D.Client, PcccAddressText(T^.Addr), [D.Writes[0].Value])
+    Ok := PcccStartWriteFloats(D.WriteReq, D.Client, PcccAddressTextAs(Dialect(D), T^.Addr), [D.Writes[0].Value])
   else
-    Ok := PcccStartWriteInts(D.WriteReq, D.Client, PcccAddressText(T^.Addr),
+    Ok := PcccStartWriteInts(D.WriteReq, D.Client, PcccAddressTextAs(Dialect(D), T^.Addr),
       [Round(D.Writes[0].Value)]);
   D.Busy := tbWrite;
   if not Ok then
@@ -662,7 +692,10 @@ begin
   A.Elem := Word(B^.First);
   A.Bit := -1;
   D.Expect := B^.Elems * PcccElemSize(B^.FileType);
-  PcccBuildRead(A, D.Expect, D.Client.Tns, Req, Len);
+  if D.Plc5 then
+    Plc5BuildWordRead(A, D.Expect, D.Client.Tns, Req, Len)
+  else
+    PcccBuildRead(A, D.Expect, D.Client.Tns, Req, Len);
   D.Client.Tns := Word(D.Client.Tns + 1);
   D.Cur := Blk;
   D.Busy := tbRead;

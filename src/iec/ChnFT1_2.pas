@@ -159,9 +159,23 @@ type
     function  ChSendNeedsLen(Buff: Pointer): Boolean; virtual;
     function  ChSendCheck(Buff: Pointer; Len: Word): tChResult; virtual;
     function  ChEncode(Buff: Pointer; Len: Word; var N: Word): tChResult; virtual;
-    { codec settings from the parameters now in force (Primary = the role,
-      CH_Master) }
-    function  ChCodecConfig: tFT12Config;
+    { The settings now in force, as the codec takes them (Primary = the
+      role, CH_Master; Balanced = MS=OFF; AddrLen = ADR=; FixedLen = LEN=;
+      Dir = DIR=): what a helper above the layer asks, instead of reading
+      its fields. }
+    function  ChFT12Config: tFT12Config;
+    { The PRM bit of the frame the last ChReceive gave: True for a request
+      of the peer's primary (CH_RPrm). }
+    function  ChReceivedPrm: Boolean;
+    { Frames the receiver dropped because they were for another link
+      address (other stations' traffic on a bus), since ChOpen; LastAddr
+      the address the last of them carried. }
+    function  ChForeignFrames(out LastAddr: Word): LongWord;
+    { ChSendAs once the transmitter is free, waiting for it at most
+      TimeoutMs as ChSendWhenFree does (res_Timeout; a channel fault at
+      once); the result of the send. }
+    function  ChSendAsWhenFree(Primary: Boolean; Buff: Pointer; Len: Word;
+      TimeoutMs: LongInt): tChResult;
     { GAP= in milliseconds (0 = off) }
     function  ChGapMs: LongWord;
     { CH_LowBaud := the BD= of the stack below, 9600 if none }
@@ -206,7 +220,7 @@ begin
   CH_PriGiven := False;
   CH_DirGiven := False;
   FillChar(CH_Rx, SizeOf(CH_Rx), 0);
-  CH_Rx.Cfg := ChCodecConfig;
+  CH_Rx.Cfg := ChFT12Config;
   FT12RxReset(CH_Rx);
 end;
 
@@ -241,7 +255,7 @@ begin
     Result := 1;
 end;
 
-function tChnFT1_2.ChCodecConfig: tFT12Config;
+function tChnFT1_2.ChFT12Config: tFT12Config;
 begin
   FillChar(Result, SizeOf(Result), 0);
   Result.AddrLen := CH_AdrLen;
@@ -266,7 +280,7 @@ begin
   ChTakeLowBaud;                  { the stack below may be new }
   { new settings: a half-received frame starts afresh with them; a whole
     frame waiting for ChReceive is kept }
-  CH_Rx.Cfg := ChCodecConfig;
+  CH_Rx.Cfg := ChFT12Config;
   if CH_RCtrl <> CHS_ReceiveReady then
     FT12RxReset(CH_Rx);
 end;
@@ -400,6 +414,27 @@ begin
   inherited ChSend(Buff, Len);
 end;
 
+function tChnFT1_2.ChSendAsWhenFree(Primary: Boolean; Buff: Pointer; Len: Word;
+  TimeoutMs: LongInt): tChResult;
+begin
+  Result := ChWaitSendReady(@Self, TimeoutMs);
+  if Result <> res_Ok then
+    Exit;
+  ChSendAs(Primary, Buff, Len);
+  Result := ChSendResult;
+end;
+
+function tChnFT1_2.ChForeignFrames(out LastAddr: Word): LongWord;
+begin
+  LastAddr := CH_Rx.ForeignAddr;
+  Result := CH_Rx.Foreign;
+end;
+
+function tChnFT1_2.ChReceivedPrm: Boolean;
+begin
+  Result := CH_RPrm;
+end;
+
 function tChnFT1_2.ChSendNeedsLen(Buff: Pointer): Boolean;
 begin
   { Len is ignored for single characters (the manual), so 0 is fine there }
@@ -425,7 +460,7 @@ begin
     Addr := CH_DNode
   else
     Addr := CH_Node;
-  Cfg := ChCodecConfig;
+  Cfg := ChFT12Config;
   Cfg.Primary := CH_SPrimary;
   Result := FT12Encode(Cfg, pSendRecord(Buff)^, Len, Addr, CH_SBuff, CH_MSBuff, N);
   if (Result = res_Ok) and (N > 1) then
@@ -434,7 +469,7 @@ end;
 
 procedure tChnFT1_2.ChRxReset;
 begin
-  CH_Rx.Cfg := ChCodecConfig;
+  CH_Rx.Cfg := ChFT12Config;
   FT12RxReset(CH_Rx);
 end;
 

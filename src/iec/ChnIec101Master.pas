@@ -51,7 +51,7 @@ unit ChnIec101Master;
 interface
 
 uses
-  ChnTypes, ChnVirt, ChnFT1_2, ChnFT12Link, ChnIec101Asdu, ChnIecTransport;
+  ChnTypes, ChnVirt, ChnFT1_2, ChnFT12Link, ChnFT12Primary, ChnIec101Asdu, ChnIecTransport;
 
 const
   res_IecNegative    = res_Proto + 8;    {< negative confirmation (P/N = 1) }
@@ -292,7 +292,7 @@ begin
   M.Over104 := IecTransportIs104(Chn);
   if not M.Over104 and ((Chn = nil) or (Chn^.CH_Type <> ChnFT1_2.cName)) then
     Exit(res_WrongLayer);
-  M.Balanced := M.Over104 or not pChnFT1_2(Chn)^.CH_MaSl;
+  M.Balanced := M.Over104 or pChnFT1_2(Chn)^.ChFT12Config.Balanced;
   if M.Balanced then
   begin
     Result := IecTransportInit(M.Link, Chn);
@@ -302,7 +302,7 @@ begin
     SlaveInit(M.Slaves[0], Chn^.CH_DNode, M.DeadMinMs);
     M.SlaveCount := 1;
   end
-  else if not pChnFT1_2(Chn)^.CH_Master then
+  else if not pChnFT1_2(Chn)^.ChFT12Config.Primary then
     Result := res_BadMessage;
 end;
 
@@ -323,7 +323,7 @@ begin
   if M.Balanced then
     Exit(res_BadParam);
   { the broadcast address is no station: it never answers (SEND/NO REPLY only) }
-  AdrLen := pChnFT1_2(M.Chn)^.CH_AdrLen;
+  AdrLen := pChnFT1_2(M.Chn)^.ChFT12Config.AddrLen;
   if (IecMasterSlave(M, Addr) >= 0) or (Addr > $FFFF shr (8 * (2 - AdrLen))) or
      ((AdrLen > 0) and (Addr = FT12Broadcast(AdrLen))) then
     Exit(res_BadParam);
@@ -776,7 +776,7 @@ begin
   else
   begin
     Req.MessType := tpShortM;
-    Len := pChnFT1_2(M.Chn)^.CH_LenShortM;   { a fixed frame: LEN= zero octets }
+    Len := pChnFT1_2(M.Chn)^.ChFT12Config.FixedLen;   { a fixed frame: LEN= zero octets }
   end;
   Req.FC := FC;
   M.Job := Job;

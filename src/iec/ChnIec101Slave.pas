@@ -38,6 +38,10 @@
     of initialisation with COI 2 after the ACT_CON; QRP 2 drops
     the queued time-tagged events, never a confirmation), delay acquisition (C_CD_NA_1: COT 6 confirmed,
     COT 3 kept as the delay): ACT_CON;
+  * parameters of measured values (P_ME_NA_1..P_ME_NC_1: threshold,
+    smoothing, limits kept per IOA, a threshold in operation a deadband on
+    the spontaneous reports, reported after the points of a station
+    interrogation) and their activation (P_AC_NA_1): ACT_CON / DEACT_CON;
   * anything else is mirrored as a negative answer with COT 44 (unknown
     type), 45 (a cause the type does not take, or P/N = 1), 46 (another common
     address, or the broadcast address with a read or a command) or 47 (an
@@ -58,7 +62,7 @@ unit ChnIec101Slave;
 interface
 
 uses
-  ChnTypes, ChnVirt, ChnFT1_2, ChnFT12Link, ChnIec101Asdu, ChnIecTransport;
+  ChnTypes, ChnVirt, ChnFT1_2, ChnFT12Link, ChnFT12Station, ChnIec101Asdu, ChnIecTransport;
 
 const
   IecSlaveMaxPoints = 1024;
@@ -896,7 +900,7 @@ begin
   if IecIsMonitor(H.Ti) or (H.Ti > P_AC_NA_1) or (H.Count <> 1) or
      (S.Over104 and (H.Ti in [C_TS_NA_1, C_CD_NA_1])) then
   begin
-    { monitoring types, parameters, several objects: not taken here; 104
+    { monitoring types, file transfer, several objects: not taken here; 104
       does not use test without time tag and delay acquisition }
     Answer(S, A, Len, Cot_UnknownType, True);
     Exit;
@@ -1008,7 +1012,7 @@ begin
     Exit(res_BadParam);
   end;
   S.Chn := Chn;
-  S.Balanced := S.Over104 or not pChnFT1_2(Chn)^.CH_MaSl;
+  S.Balanced := S.Over104 or pChnFT1_2(Chn)^.ChFT12Config.Balanced;
   if S.Balanced then
   begin
     Result := IecTransportInit(S.Link, Chn);
@@ -1018,7 +1022,7 @@ begin
   end
   else
   begin
-    if pChnFT1_2(Chn)^.CH_Master then
+    if pChnFT1_2(Chn)^.ChFT12Config.Primary then
     begin
       Err := 'an unbalanced slave needs MAS=SLAVE';
       Exit(res_BadMessage);

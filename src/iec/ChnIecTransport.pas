@@ -14,7 +14,7 @@ unit ChnIecTransport;
 interface
 
 uses
-  ChnTypes, ChnVirt, ChnFT1_2, ChnFT12Link, ChnIec104, ChnIec104Codec;
+  ChnTypes, ChnVirt, ChnFT1_2, ChnFT12Link, ChnFT12Balanced, ChnIec104, ChnIec104Codec;
 
 type
   tIecTransportKind = (itFT12Balanced, itIec104);

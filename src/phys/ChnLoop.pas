@@ -2,9 +2,9 @@
 
   Channel stacks in one process talk to each other with no OS device:
     'NAM=DF1 NOD=1 NAM=LOOP PAIR=A END=1'   and   '... NAM=LOOP PAIR=A END=2'
-  Each end is a tChnLoop: a tChnCom whose port is TChnPortLoop, so the
-  receive ring, LRB=, IDL=, the transmit buffer and the program-wide wait
-  are COM's. The ends of one PAIR are one line: what an end sends, every
+  Each end is a tChnLoop: a tChnPhys (the physical base, unit ChnPhys)
+  whose port is TChnPortLoop, so the receive ring, LRB=, IDL=, the transmit
+  buffer and the program-wide wait are the base's. The ends of one PAIR are one line: what an end sends, every
   other open end of the pair receives (two ends: a null modem; more: a
   multidrop line such as RS-485, END=1..32; BUS=ON makes two ends one too).
   Bytes sent while nobody else
@@ -12,7 +12,7 @@
 
   Without BD= the line has no speed: a message goes at once into the
   receivers' rings (each LRB bytes); what does not fit stays pending at
-  the sender (COM's transmit buffer) and moves on as the receivers read,
+  the sender (the base's transmit buffer) and moves on as the receivers read,
   so the transfer is flow-controlled and never loses bytes (ChSendReady
   reports CHS_Sending meanwhile).
 
@@ -49,7 +49,7 @@ unit ChnLoop;
 interface
 
 uses
-  ChnTypes, ChnVirt, ChnRing, ChnWait, ChnPort, ChnCom;
+  ChnTypes, ChnVirt, ChnRing, ChnWait, ChnPort, ChnPhys;
 
 const
   cName = 'LOOP';
@@ -63,7 +63,7 @@ type
   pLoopPair = ^tLoopPair;
 
   pChnLoop = ^tChnLoop;
-  tChnLoop = object(tChnCom)
+  tChnLoop = object(tChnPhys)
     CH_Pair   : string[31];   {< PAIR= }
     CH_End    : Byte;         {< END=, 1..LoopMaxEnds }
     CH_LoopBaud: LongInt;     {< BD= of the loop, 0: no speed }
@@ -75,11 +75,13 @@ type
     procedure ChSend(Buff: Pointer; Len: Word); virtual;
     { CHS_Sending also while the port still holds part of the message. }
     function  ChSendReady: tChState; virtual;
-    { While COM's ring is empty, input is taken straight from the pair's
+    { While the base's ring is empty, input is taken straight from the pair's
       ring (one copy instead of two); otherwise as COM. }
     function  ChReceiveReady: tChState; virtual;
     procedure ChReceive(var Len: Word); virtual;
   protected
+    { LRB= IDL= of the base }
+    function  PhysKeys: ShortString; virtual;
     function  ComOpenPort(out Port: TChnPort): tChResult; virtual;
     function  ComDropsWhenFull: Boolean; virtual;
   end;
@@ -113,6 +115,13 @@ type
   { One end of a line as a port: Write puts the bytes on the wire, Read
     takes what reached this end. }
   TChnPortLoop = class(TChnPort)
+  protected
+    function DoRead(var Buf; Size: LongInt; out Got: LongInt): tChResult; override;
+    { Without a speed: takes a whole message or nothing (0 while the last
+      one is still on its way); it moves on as the other ends read, also
+      when this end is not polled. With a speed: takes it all, behind what
+      is still on the wire. }
+    function DoWrite(const Buf; Len: LongInt; out Done: LongInt): tChResult; override;
   private
     FPair: pLoopPair;
     FEnd: Byte;
@@ -125,12 +134,6 @@ type
     { Path is ignored: the pair is PairName, the end EndNo. res_CannotOpen
       when that end is open in another stack. }
     function Open(const Path: tWordString): tChResult; override;
-    function Read(var Buf; Size: LongInt; out Got: LongInt): tChResult; override;
-    { Without a speed: takes a whole message or nothing (0 while the last
-      one is still on its way); it moves on as the other ends read, also
-      when this end is not polled. With a speed: takes it all, behind what
-      is still on the wire. }
-    function Write(const Buf; Len: LongInt; out Done: LongInt): tChResult; override;
     { Bytes of what was sent not yet at the other ends. }
     function OutQueue(out N: LongInt): tChResult; override;
     { Whether bytes wait; never sleeps (the shared wait does that). }
@@ -403,7 +406,7 @@ begin
   inherited Close;
 end;
 
-function TChnPortLoop.Read(var Buf; Size: LongInt; out Got: LongInt): tChResult;
+function TChnPortLoop.DoRead(var Buf; Size: LongInt; out Got: LongInt): tChResult;
 begin
   EnterCriticalSection(Lock);
   try
@@ -457,15 +460,12 @@ begin
       end;
 end;
 
-function TChnPortLoop.Write(const Buf; Len: LongInt; out Done: LongInt): tChResult;
+function TChnPortLoop.DoWrite(const Buf; Len: LongInt; out Done: LongInt): tChResult;
 var
   Now: QWord;
   Idle: Boolean;
 begin
-  Done := 0;
   Result := res_Ok;
-  if Len <= 0 then
-    Exit;
   EnterCriticalSection(Lock);
   try
     Now := ChnClockUs;
@@ -631,19 +631,19 @@ begin
       CH_Bus := I = 1;
   end
   else if (Key = 'BIT') or (Key = 'STOP') or (Key = 'PAR') then
-    Result := tChnCom.ChSetOneParam(S, CmdL)   { COM's ranges }
-  else if Key = 'LRB' then         { COM's ranges, without its key chain }
-    Result := ParamSetNum(S, 1, 1 shl 24, CmdL, CH_LRB)
-  else if Key = 'IDL' then
-    Result := ParamSetNum(S, 0, 1000, CmdL, CH_Idle)
+    Result := PhysLineParam(S, CmdL)  { the serial line's ranges }
   else
-    { COM's device keys mean nothing on an in-memory line }
-    Result := tChnVirt.ChSetOneParam(S, CmdL);
+    Result := inherited ChSetOneParam(S, CmdL);   { LRB= IDL= }
+end;
+
+function tChnLoop.PhysKeys: ShortString;
+begin
+  Result := 'LRB IDL';              { an in-memory line is never lost, its messages never too long }
 end;
 
 function tChnLoop.ChOwnParams: tParamStr;
 begin
-  Result := tChnVirt.ChOwnParams + ' PAIR=' + CH_Pair + ParamText('END', CH_End);
+  Result := inherited ChOwnParams + ' PAIR=' + CH_Pair + ParamText('END', CH_End);
   if CH_LoopBaud > 0 then          { a line without speed reads as before }
     Result := Result + ParamText('BD', CH_LoopBaud) + ComCharText(CH_Set);
   if CH_Bus then

@@ -1,4 +1,4 @@
-{ ChnPort - the small serial-port interface under tChnCom (docs/PROTOCOLS.md section 3).
+{ ChnPort - the small serial-port interface under the physical layers (tChnPhys) (docs/PROTOCOLS.md section 3).
 
   One abstract class, TChnPort, in the spirit of Synapse's TBlockSerial: open
   a device, configure it, move bytes without blocking, wait for input for a
@@ -54,7 +54,7 @@ type
 
   TChnPortClass = class of TChnPort;
 
-  { The serial-port interface. A driver implements Open, Read, Write,
+  { The serial-port interface. A driver implements Open, DoRead, DoWrite,
     WaitInput and Close (calling inherited Close); every other method has
     a default for a device without that capability (below), so a driver
     overrides only what its device does. All return at once unless the
@@ -65,6 +65,10 @@ type
     FOpen: Boolean;
     FOSError: LongInt;   {< OS error code of the last failure, 0 if none }
     FVirtual: Boolean;   {< no physical line behind the device (a pty) }
+    { Read and Write of the driver, called by Read and Write once the
+      port is open and there is something to move (Size, Len > 0). }
+    function DoRead(var Buf; Size: LongInt; out Got: LongInt): tChResult; virtual; abstract;
+    function DoWrite(const Buf; Len: LongInt; out Done: LongInt): tChResult; virtual; abstract;
   public
     { After a failed Open or Configure: the parameter key at fault ('BD',
       'BIT', 'STOP', 'PAR', 'FLW', 'RS485', or '' for the device itself),
@@ -86,8 +90,9 @@ type
       with no line settings: only bytes cross it). }
     function Configure(const S: tPortSettings): tChResult; virtual;
     { Copy up to Size waiting bytes into Buf, never wait. Got = 0 with
-      res_Ok means nothing is waiting. }
-    function Read(var Buf; Size: LongInt; out Got: LongInt): tChResult; virtual; abstract;
+      res_Ok means nothing is waiting; res_WrongState while not open. The
+      checks are here, the reading is the driver's DoRead. }
+    function Read(var Buf; Size: LongInt; out Got: LongInt): tChResult; virtual;
     { Wait at most Ms milliseconds for input; True as soon as a byte (or a
       fault, which the next Read reports) is waiting. Ms = 0 only looks. }
     function WaitInput(Ms: LongInt): Boolean; virtual; abstract;
@@ -95,8 +100,9 @@ type
       True at once (no buffer the OS could fill). }
     function WaitOutput(Ms: LongInt): Boolean; virtual;
     { Hand up to Len bytes to the OS, never wait: Done tells how many were
-      taken (possibly 0 when the OS buffer is full). }
-    function Write(const Buf; Len: LongInt; out Done: LongInt): tChResult; virtual; abstract;
+      taken (possibly 0 when the OS buffer is full); res_WrongState while
+      not open. The checks are here, the writing is the driver's DoWrite. }
+    function Write(const Buf; Len: LongInt; out Done: LongInt): tChResult; virtual;
     { Bytes handed to the OS but not yet on the line; 0 where unknown (the
       default). }
     function OutQueue(out N: LongInt): tChResult; virtual;
@@ -128,11 +134,11 @@ type
       this port: a descriptor or an event handle, and for a handle the
       procedure that arms it again after it fired; or wkSignal for a
       device that signals its input itself (WaitJoined). False: nothing;
-      tChnCom then waits with WaitInput on this port alone. The default
+      tChnPhys then waits with WaitInput on this port alone. The default
       is False. }
     function WaitSource(out Kind: tChnWaitKind; out Os: PtrInt;
       out Rearm: tChnWaitRearm; out Data: Pointer): Boolean; virtual;
-    { The source tChnCom made of WaitSource in the program-wide wait, or
+    { The source tChnPhys made of WaitSource in the program-wide wait, or
       nil before it leaves it: a wkSignal port calls ChnWaitSignal on it
       when input arrives. Default: ignored. }
     procedure WaitJoined(Src: pChnWaitSource); virtual;
@@ -152,7 +158,7 @@ type
     procedure PollTimers; virtual;
     { True while the driver keeps input aside that its next Read returns
       but the OS no longer shows (so the wait would not end for it):
-      tChnCom then reads without waiting. The driver reports such input to
+      tChnPhys then reads without waiting. The driver reports such input to
       the program-wide wait itself (ChnWaitHeld), so ChnWaitAny ends at
       once. Default False. }
     function HoldsInput: Boolean; virtual;
@@ -179,7 +185,7 @@ type
   end;
 
 const
-  { Defaults of a new port and of tChnCom: 9600 8N1, no flow control }
+  { Defaults of a new port and of tChnPhys: 9600 8N1, no flow control }
   DefaultPortSettings: tPortSettings = (
     Baud: 9600; DataBits: 8; StopBits: 1; Parity: ppNone; Flow: flowNone;
     InQueue: 4096);
@@ -231,6 +237,26 @@ end;
 function TChnPort.Configure(const S: tPortSettings): tChResult;
 begin
   Result := res_Ok;
+end;
+
+function TChnPort.Read(var Buf; Size: LongInt; out Got: LongInt): tChResult;
+begin
+  Got := 0;
+  if not FOpen then
+    Exit(res_WrongState);
+  if Size <= 0 then
+    Exit(res_Ok);
+  Result := DoRead(Buf, Size, Got);
+end;
+
+function TChnPort.Write(const Buf; Len: LongInt; out Done: LongInt): tChResult;
+begin
+  Done := 0;
+  if not FOpen then
+    Exit(res_WrongState);
+  if Len <= 0 then
+    Exit(res_Ok);
+  Result := DoWrite(Buf, Len, Done);
 end;
 
 function TChnPort.WaitOutput(Ms: LongInt): Boolean;

@@ -58,6 +58,9 @@ type
   end;
 
   TChnPortSynapse = class(TChnPort)
+  protected
+    function DoRead(var Buf; Size: LongInt; out Got: LongInt): tChResult; override;
+    function DoWrite(const Buf; Len: LongInt; out Done: LongInt): tChResult; override;
   private
     FSer: TChnBlockSerial;
     function Check: tChResult;
@@ -66,10 +69,8 @@ type
   public
     function Open(const Path: tWordString): tChResult; override;
     function Configure(const S: tPortSettings): tChResult; override;
-    function Read(var Buf; Size: LongInt; out Got: LongInt): tChResult; override;
     function WaitInput(Ms: LongInt): Boolean; override;
     function WaitOutput(Ms: LongInt): Boolean; override;
-    function Write(const Buf; Len: LongInt; out Done: LongInt): tChResult; override;
     function OutQueue(out N: LongInt): tChResult; override;
     function Drain: tChResult; override;
     function Flush(Input, Output: Boolean): tChResult; override;
@@ -319,15 +320,10 @@ begin
   {$ENDIF}
 end;
 
-function TChnPortSynapse.Read(var Buf; Size: LongInt; out Got: LongInt): tChResult;
+function TChnPortSynapse.DoRead(var Buf; Size: LongInt; out Got: LongInt): tChResult;
 var
   N: Integer;
 begin
-  Got := 0;
-  if not FOpen then
-    Exit(res_WrongState);
-  if Size <= 0 then
-    Exit(res_Ok);
   N := FSer.WaitingData;
   Result := Check;
   if Result <> res_Ok then
@@ -392,15 +388,10 @@ begin
   Result := FOpen and FSer.CanWrite(Ms);
 end;
 
-function TChnPortSynapse.Write(const Buf; Len: LongInt; out Done: LongInt): tChResult;
+function TChnPortSynapse.DoWrite(const Buf; Len: LongInt; out Done: LongInt): tChResult;
 var
   N: Integer;
 begin
-  Done := 0;
-  if not FOpen then
-    Exit(res_WrongState);
-  if Len <= 0 then
-    Exit(res_Ok);
   {$IFDEF WINDOWS}
   { overlapped SendBuffer waits for completion: give it what fits now }
   N := WinOutBudget - FSer.SendingData;

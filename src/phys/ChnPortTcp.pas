@@ -36,6 +36,9 @@ uses
 
 type
   TChnPortTcp = class(TChnPort)
+  protected
+    function DoRead(var Buf; Size: LongInt; out Got: LongInt): tChResult; override;
+    function DoWrite(const Buf; Len: LongInt; out Done: LongInt): tChResult; override;
   private
     FSock, FListen: tSock;
     FAddrs: tSockAddrs;
@@ -113,10 +116,8 @@ type
     function Configure(const S: tPortSettings): tChResult; override;
     { Configure without waiting for the answers (after a reconnect) }
     procedure SendSettings(const S: tPortSettings);
-    function Read(var Buf; Size: LongInt; out Got: LongInt): tChResult; override;
     function WaitInput(Ms: LongInt): Boolean; override;
     function WaitOutput(Ms: LongInt): Boolean; override;
-    function Write(const Buf; Len: LongInt; out Done: LongInt): tChResult; override;
     function OutQueue(out N: LongInt): tChResult; override;
     function Drain: tChResult; override;
     function Flush(Input, Output: Boolean): tChResult; override;
@@ -835,13 +836,10 @@ begin
   Result := res_Ok;
 end;
 
-function TChnPortTcp.Read(var Buf; Size: LongInt; out Got: LongInt): tChResult;
+function TChnPortTcp.DoRead(var Buf; Size: LongInt; out Got: LongInt): tChResult;
 var
   N: LongInt;
 begin
-  Got := 0;
-  if not FOpen then
-    Exit(res_WrongState);
   if FEarlyPos < FEarlyLen then
   begin
     N := FEarlyLen - FEarlyPos;
@@ -901,15 +899,12 @@ begin
     Result := SockWait([FSock], True, Ms);
 end;
 
-function TChnPortTcp.Write(const Buf; Len: LongInt; out Done: LongInt): tChResult;
+function TChnPortTcp.DoWrite(const Buf; Len: LongInt; out Done: LongInt): tChResult;
 var
   E: tSockErr;
   Dummy: Byte;
   Got: LongInt;
 begin
-  Done := 0;
-  if not FOpen then
-    Exit(res_WrongState);
   if FSock = NoSock then
     AcceptOne;
   if FSock = NoSock then

@@ -3,8 +3,8 @@
   The physical layer of a serial device server (Moxa NPort, Lantronix,
   Digi, ser2net): the same contract as NAM=COM - a message is a chunk of raw
   bytes, polled with ChReceiveReady/ChReceive/ChSend/ChSendReady, IDL=, LRB=,
-  LSB= - because it is a tChnCom whose port is a TCP connection
-  (ChnPortTcp). Parameters (ChGetParam reports them all):
+  LSB= - because it is a tChnPhys (the physical base, unit ChnPhys) whose
+  port is a TCP connection (ChnPortTcp). Parameters (ChGetParam reports them all):
 
     HOST=name   server name or IPv4/IPv6 address (client)
     PORT=n      its TCP port, 1..65535
@@ -18,7 +18,7 @@
     RECON=ms    0 (default): a lost connection stays lost until ChClose +
                 ChOpen; n: try again every n ms by itself, results say
                 res_Reconnecting meanwhile (ignored with LISTEN=). The
-                mechanism is tChnCom's (ComReopen); this layer supplies the
+                mechanism is tChnPhys's (ComReopen); this layer supplies the
                 new connection: a non-blocking connect bounded by CTO, the
                 first at once after the loss, then BD.. FLW sent again
     RFC2217=OFF|ON  Telnet COM Port Control: BD BIT PAR STOP FLW set the
@@ -40,7 +40,7 @@ unit ChnTcp;
 interface
 
 uses
-  ChnTypes, ChnVirt, ChnPort, ChnCom, ChnPortTcp;
+  ChnTypes, ChnVirt, ChnPort, ChnPhys, ChnPortTcp;
 
 const
   cName = 'TCP';
@@ -48,7 +48,7 @@ const
 
 type
   pChnTcp = ^tChnTcp;
-  tChnTcp = object(tChnCom)
+  tChnTcp = object(tChnPhys)
     CH_Host    : tWordString;      {< HOST= }
     CH_TcpPort : LongInt;          {< PORT=, 0 = not given }
     CH_Listen  : tWordString;      {< LISTEN= as given, '' = client }
@@ -200,20 +200,19 @@ begin
     Result := ParamFlag(S, 'OFF|ON', CmdL, CH_Kick)
   else if Key = 'IDLE' then
     Result := ParamSetNum(S, 0, 3600000, CmdL, CH_IdleDrop)
-  else if (Key = 'BD') or (Key = 'BIT') or (Key = 'STOP') or (Key = 'PAR') or
-    (Key = 'FLW') or (Key = 'LRB') or (Key = 'LSB') or (Key = 'IDL') or
-    (Key = 'RECON') then
-    Result := inherited ChSetOneParam(S, CmdL)
   else
-    { COM's device keys (COM DEV DRV RS485 IRQ ...) mean nothing here }
-    Result := tChnVirt.ChSetOneParam(S, CmdL);
+  begin
+    Result := PhysLineParam(S, CmdL);    { BD BIT STOP PAR FLW }
+    if Result = res_UnknownParam then
+      Result := inherited ChSetOneParam(S, CmdL);   { LRB LSB IDL RECON }
+  end;
 end;
 
 function tChnTcp.ChOwnParams: tParamStr;
 var
   R: string;
 begin
-  R := tChnVirt.ChOwnParams;
+  R := inherited ChOwnParams;
   if CH_Listen <> '' then
     R := R + ' LISTEN=' + CH_Listen + FlagText('KICK', 'OFF|ON', CH_Kick) +
       ParamText('IDLE', CH_IdleDrop)
@@ -322,7 +321,7 @@ begin
   Result := False;
 end;
 
-{ RECON=, the parts tChnCom.ComReopen leaves to the port kind: a server
+{ RECON=, the parts tChnPhys.ComReopen leaves to the port kind: a server
   waits for its next client by itself and a refused setting stays; else
   the first attempt is at once (a reset connection usually has its server
   still there), the lost socket stays until a new one replaces it. }

@@ -3,7 +3,7 @@
 
     'NAM=DF1 NOD=1 DNO=2 NAM=TRC FILE=trace.log NAM=COM DEV=/dev/ttyUSB0'
 
-  Not in the SofCon manuals; an addition of the port (issue 6). Each chunk
+  Not in the SofCon manuals; an addition of the port. Each chunk
   handed down by ChSend is logged as 'tx', each chunk taken up by ChReceive
   as 'rx', in the RACOM capture format of the RACOM note (see ChnTrcFormat, which
   also reads the log back):

@@ -111,7 +111,7 @@ begin
     Exit(Result + 'NAM=LOOP PAIR=DEEP');
   end;
   if Random(20) = 0 then
-    { a token that ends at character 256 (the attack of issue 24: a cut
+    { a token that ends at character 256 (the attack: a cut
       string names another device) }
     Exit('NAM=DF1 NAM=COM DEV=/nonexistent/' + StringOfChar('a', 256 - 32 - 1) + 'B');
   Result := '';

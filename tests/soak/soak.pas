@@ -37,7 +37,7 @@ program soak;
 uses
   BaseUnix, SysUtils, Classes, Process,
   ChnTypes, ChnVirt, ChnCom, ChnLoop, ChnNoise, ChnPty, uString,
-  ChnDF1, ChnDF1Link, ChnPccc, ChnSlc, ChnFT1_2, ChnFT12Link, ChnICS, ChnWait, Math,
+  ChnDF1, ChnDF1Link, ChnPccc, ChnSlc, ChnFT1_2, ChnFT12Link, ChnFT12Primary, ChnFT12Station, ChnFT12Balanced, ChnICS, ChnWait, Math,
   TestSupport;
 
 const
@@ -76,7 +76,7 @@ const
     (Name: 'ber1e-5';  Params: 'BER=1E-5'),
     (Name: 'ber1e-3';  Params: 'BER=1E-3'),
     (Name: 'drop1%';   Params: 'DRP=0.01'));
-  { faults of whole frames for the FT 1.2 link procedures (issue 24): a
+  { faults of whole frames for the FT 1.2 link procedures (late answers, docs/ChnFT1_2.md): a
     stall longer than the 300 ms timeout, drops with stalls, reordering }
   FrameFaults: array[0..2] of TNoise = (
     (Name: 'stall';     Params: 'STL=0.05 STM=450'),

@@ -13,7 +13,7 @@ unit Iec101Sim;
 interface
 
 uses
-  Classes, SysUtils, ChnTypes, ChnVirt, ChnFT1_2, ChnFT12Link, ChnIec101Asdu, TestSupport;
+  Classes, SysUtils, ChnTypes, ChnVirt, ChnFT1_2, ChnFT12Station, ChnFT12Balanced, ChnIec101Asdu, TestSupport;
 
 const
   GiAnswer: array[0..2] of string = (

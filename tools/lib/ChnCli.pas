@@ -45,7 +45,6 @@ uses
   ChnTypes, ChnVirt, ChnLayers;
 
 const
-  ChnVersion = '1.0.0';
   CliExitUsage = 2;      { every command-line error }
 
 type

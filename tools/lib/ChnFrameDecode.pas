@@ -148,7 +148,7 @@ function DecodeBetterCheck(const Crc, Bcc: tDecStats): Boolean;
 implementation
 
 uses
-  SysUtils, uString, ChnDF1, ChnFT1_2, ChnICS, ChnPcccNames, Iec101Print;
+  SysUtils, uString, ChnDF1, ChnFT1_2, ChnICS, ChnPcccNames, ChnIec101Print;
 
 procedure DecodeSplitArg(const Arg: AnsiString; out Key, Value: AnsiString);
 begin

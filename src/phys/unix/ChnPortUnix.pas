@@ -35,6 +35,9 @@ uses
 
 type
   TChnPortUnix = class(TChnPort)
+  protected
+    function DoRead(var Buf; Size: LongInt; out Got: LongInt): tChResult; override;
+    function DoWrite(const Buf; Len: LongInt; out Done: LongInt): tChResult; override;
   private
     FFd: cint;
     FOverrunBase: LongWord;
@@ -51,10 +54,8 @@ type
     constructor Create; override;
     function Open(const Path: tWordString): tChResult; override;
     function Configure(const S: tPortSettings): tChResult; override;
-    function Read(var Buf; Size: LongInt; out Got: LongInt): tChResult; override;
     function WaitInput(Ms: LongInt): Boolean; override;
     function WaitOutput(Ms: LongInt): Boolean; override;
-    function Write(const Buf; Len: LongInt; out Done: LongInt): tChResult; override;
     function OutQueue(out N: LongInt): tChResult; override;
     function Drain: tChResult; override;
     function Flush(Input, Output: Boolean): tChResult; override;
@@ -111,13 +112,6 @@ const
 
 {$IFDEF LINUX}
 type
-  { struct termios2 of <asm-generic/termbits.h> }
-  tTermios2 = record
-    c_iflag, c_oflag, c_cflag, c_lflag: Cardinal;
-    c_line: Byte;
-    c_cc: array[0..18] of Byte;
-    c_ispeed, c_ospeed: Cardinal;
-  end;
   { struct serial_rs485 of <linux/serial.h> }
   tSerialRs485 = record
     Flags, DelayRtsBeforeSend, DelayRtsAfterSend: Cardinal;
@@ -130,9 +124,6 @@ type
   end;
 
 const
-  TCGETS2 = $802C542A;        { _IOR('T', 0x2A, struct termios2) }
-  TCSETS2 = $402C542B;        { _IOW('T', 0x2B, struct termios2) }
-  BOTHER = $1000;             { c_cflag speed code: rate in c_ispeed/c_ospeed }
   TIOCSRS485 = $542F;
   SER_RS485_ENABLED = 1;
   SER_RS485_RTS_ON_SEND = 2;  { RTS high while sending, low afterwards }
@@ -368,16 +359,11 @@ begin
   Result := res_Ok;
 end;
 
-function TChnPortUnix.Read(var Buf; Size: LongInt; out Got: LongInt): tChResult;
+function TChnPortUnix.DoRead(var Buf; Size: LongInt; out Got: LongInt): tChResult;
 var
   N: TSsize;
   E: cint;
 begin
-  Got := 0;
-  if not FOpen then
-    Exit(res_WrongState);
-  if Size <= 0 then
-    Exit(res_Ok);
   repeat
     N := FpRead(FFd, Buf, Size);
     E := FpGetErrno;
@@ -424,16 +410,11 @@ begin
   Result := PollFd(FFd, POLLOUT, Ms);
 end;
 
-function TChnPortUnix.Write(const Buf; Len: LongInt; out Done: LongInt): tChResult;
+function TChnPortUnix.DoWrite(const Buf; Len: LongInt; out Done: LongInt): tChResult;
 var
   N: TSsize;
   E: cint;
 begin
-  Done := 0;
-  if not FOpen then
-    Exit(res_WrongState);
-  if Len <= 0 then
-    Exit(res_Ok);
   repeat
     N := FpWrite(FFd, Buf, Len);
     E := FpGetErrno;

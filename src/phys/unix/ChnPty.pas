@@ -28,6 +28,11 @@ const
 
 type
   TChnPortPty = class(TChnPortUnix)
+  protected
+    { no client on the slave side (EIO) is no fault: nothing came, and
+      what was sent is gone as on a line with nobody listening }
+    function DoRead(var Buf; Size: LongInt; out Got: LongInt): tChResult; override;
+    function DoWrite(const Buf; Len: LongInt; out Done: LongInt): tChResult; override;
   private
     FSlavePath: AnsiString;
     FNoClient: Boolean;
@@ -36,8 +41,6 @@ type
     function Open(const Path: tWordString): tChResult; override;
     { No program on the slave side (never opened, or closed again) is an
       idle line here, not a lost device: a simulator outlives its clients. }
-    function Read(var Buf; Size: LongInt; out Got: LongInt): tChResult; override;
-    function Write(const Buf; Len: LongInt; out Done: LongInt): tChResult; override;
     { Without a client poll(2) answers POLLHUP at once, every time; that
       is no input, so wait the Ms as on an idle line (no busy loop). }
     function WaitInput(Ms: LongInt): Boolean; override;
@@ -125,9 +128,9 @@ begin
   PtyLastSlave := FSlavePath;
 end;
 
-function TChnPortPty.Read(var Buf; Size: LongInt; out Got: LongInt): tChResult;
+function TChnPortPty.DoRead(var Buf; Size: LongInt; out Got: LongInt): tChResult;
 begin
-  Result := inherited Read(Buf, Size, Got);
+  Result := inherited DoRead(Buf, Size, Got);
   FNoClient := (Result = res_DeviceLost) and (FOSError = ESysEIO);
   if FNoClient then
   begin
@@ -142,9 +145,9 @@ begin
   Result := not FNoClient;
 end;
 
-function TChnPortPty.Write(const Buf; Len: LongInt; out Done: LongInt): tChResult;
+function TChnPortPty.DoWrite(const Buf; Len: LongInt; out Done: LongInt): tChResult;
 begin
-  Result := inherited Write(Buf, Len, Done);
+  Result := inherited DoWrite(Buf, Len, Done);
   if (Result = res_DeviceLost) and (FOSError = ESysEIO) then
   begin
     FOSError := 0;

@@ -20,6 +20,23 @@ const
     calls without an O_CLOEXEC (pipe, socket, epoll_create) }
   FD_CLOEXEC = 1;
 
+{$IFDEF LINUX}
+type
+  { struct termios2 of <asm-generic/termbits.h>: any rate, in
+    c_ispeed/c_ospeed with BOTHER (ChnPortUnix sets it, tests read it) }
+  tTermios2 = record
+    c_iflag, c_oflag, c_cflag, c_lflag: LongWord;
+    c_line: Byte;
+    c_cc: array[0..18] of Byte;
+    c_ispeed, c_ospeed: LongWord;
+  end;
+
+const
+  TCGETS2 = $802C542A;        {< _IOR('T', 0x2A, struct termios2) }
+  TCSETS2 = $402C542B;        {< _IOW('T', 0x2B, struct termios2) }
+  BOTHER = $1000;             {< c_cflag speed code: rate in c_ispeed/c_ospeed }
+{$ENDIF}
+
 { Mark Fd close-on-exec. }
 procedure CloseOnExec(Fd: cint);
 

@@ -40,6 +40,9 @@ uses
 
 type
   TChnPortWin = class(TChnPort)
+  protected
+    function DoRead(var Buf; Size: LongInt; out Got: LongInt): tChResult; override;
+    function DoWrite(const Buf; Len: LongInt; out Done: LongInt): tChResult; override;
   private
     FH: THandle;
     FOutSize: DWORD;
@@ -65,10 +68,8 @@ type
     constructor Create; override;
     function Open(const Path: tWordString): tChResult; override;
     function Configure(const S: tPortSettings): tChResult; override;
-    function Read(var Buf; Size: LongInt; out Got: LongInt): tChResult; override;
     function WaitInput(Ms: LongInt): Boolean; override;
     function WaitOutput(Ms: LongInt): Boolean; override;
-    function Write(const Buf; Len: LongInt; out Done: LongInt): tChResult; override;
     function OutQueue(out N: LongInt): tChResult; override;
     function Drain: tChResult; override;
     function Flush(Input, Output: Boolean): tChResult; override;
@@ -401,16 +402,11 @@ begin
   Result := ApplyDcb(D);
 end;
 
-function TChnPortWin.Read(var Buf; Size: LongInt; out Got: LongInt): tChResult;
+function TChnPortWin.DoRead(var Buf; Size: LongInt; out Got: LongInt): tChResult;
 var
   N, InQ, OutQ: DWORD;
   P: PByte;
 begin
-  Got := 0;
-  if not FOpen then
-    Exit(res_WrongState);
-  if Size <= 0 then
-    Exit(res_Ok);
   P := @Buf;
   if FWaitPending then
   begin
@@ -473,16 +469,11 @@ begin
   until False;
 end;
 
-function TChnPortWin.Write(const Buf; Len: LongInt; out Done: LongInt): tChResult;
+function TChnPortWin.DoWrite(const Buf; Len: LongInt; out Done: LongInt): tChResult;
 var
   InQ, OutQ, N: DWORD;
   Room: LongInt;
 begin
-  Done := 0;
-  if not FOpen then
-    Exit(res_WrongState);
-  if Len <= 0 then
-    Exit(res_Ok);
   Result := Status(InQ, OutQ);
   if Result <> res_Ok then
     Exit;

@@ -1,4 +1,4 @@
-{ Iec101Print - the one way the IEC 101 tools (iec101master, iec101slave,
+{ ChnIec101Print - the one way the IEC 101 tools (iec101master, iec101slave,
   chndecode --ft12, the FT 1.2 examples) show an information object: a JSON
   object on one line, or one readable line; and an ASDU as one line.
 
@@ -16,10 +16,11 @@
   reset process, parameter activation and end of initialisation (COI); the
   pattern or counter of test commands; the ms of a delay acquisition; null
   for read and clock synchronisation. Commands add "select", protection
-  events "elapsed" (ms), parameters "qpm". }
-unit Iec101Print;
+  events "elapsed" (ms), parameters "qpm". A program of its own prints
+  what it receives the same way with these routines. }
+unit ChnIec101Print;
 
-{$MODE OBJFPC}{$H-}
+{$I chn.inc}
 
 interface
 
