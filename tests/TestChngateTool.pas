@@ -134,6 +134,13 @@ begin
     AssertEquals('mosquitto_pub', 0, MqttPub(Broker.Port, 'plant/plc1/F8:0/set', '2'));
     AssertTrue('refused: ' + Sub.Text, Sub.WaitFor(
       'plant/$gateway/error {"topic":"plant/plc1/F8:0/set","error":"F8:0 is not writable"}', 5000));
+    { SIGHUP: the configuration read again, a tag more; the MQTT
+      connection stays (online is not published a second time) }
+    WriteFileText(Dir + '/g.conf', StringReplace(ReadFileText(Dir + '/g.conf'),
+      'tags = N7:0[3] ', 'tags = N7:0[3] N7:5 ', []));
+    FpKill(Gate.ProcessID, SIGHUP);
+    AssertTrue('N7:5 after SIGHUP: ' + Sub.Text, Sub.WaitFor('plant/plc1/N7:5 {"value":50,"quality":"good"', 10000));
+    AssertEquals('one connection: ' + Sub.Text, 1, Occurs('plant/$gateway/status online', Sub.Text));
     { the gateway vanishes: the broker publishes its will }
     FpKill(Gate.ProcessID, SIGKILL);
     Gate.WaitOnExit;

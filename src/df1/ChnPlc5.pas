@@ -74,15 +74,15 @@ function Plc5ParseAddress(const S: ShortString; out A: tPcccAddr; out Err: Short
 function Plc5AddressText(const A: tPcccAddr): ShortString;
 
 { The logical binary address of A into Data[N..], N moved past it. }
-procedure Plc5PutAddress(const A: tPcccAddr; var Data: array of Byte; var N: Integer);
+procedure Plc5PutAddress(const A: tPcccAddr; var Data: array of Byte; var N: LongInt);
 { Read a logical binary address from Data[N..Len-1]: Levels[0..3] (absent
   levels 0); False when it is cut short or names more than four levels. }
-function Plc5TakeAddress(const Data: array of Byte; Len: Integer; var N: Integer;
+function Plc5TakeAddress(const Data: array of Byte; Len: LongInt; var N: LongInt;
   out Levels: array of LongInt): Boolean;
 { A type/data parameter into Data[N..]. }
-procedure Plc5PutTypeParam(TypeId: Byte; Size: Word; var Data: array of Byte; var N: Integer);
+procedure Plc5PutTypeParam(TypeId: Byte; Size: Word; var Data: array of Byte; var N: LongInt);
 { Read one from Data[N..Len-1]; False when cut short or wider than two bytes. }
-function Plc5TakeTypeParam(const Data: array of Byte; Len: Integer; var N: Integer;
+function Plc5TakeTypeParam(const Data: array of Byte; Len: LongInt; var N: LongInt;
   out TypeId: Word; out Size: Word): Boolean;
 { The type ID a PLC-5 file's elements travel as (a T/C/R word: integer). }
 function Plc5ElemType(const A: tPcccAddr): Byte;
@@ -150,7 +150,7 @@ end;
 
 {- ------------------------------------------------------------ encoding }
 
-procedure PutLevel(V: LongInt; var Data: array of Byte; var N: Integer);
+procedure PutLevel(V: LongInt; var Data: array of Byte; var N: LongInt);
 begin
   if V < 255 then
   begin
@@ -166,7 +166,7 @@ begin
   end;
 end;
 
-procedure Plc5PutAddress(const A: tPcccAddr; var Data: array of Byte; var N: Integer);
+procedure Plc5PutAddress(const A: tPcccAddr; var Data: array of Byte; var N: LongInt);
 begin
   if A.HasSub then
     Data[N] := $0F
@@ -180,11 +180,11 @@ begin
     PutLevel(A.Sub, Data, N);
 end;
 
-function Plc5TakeAddress(const Data: array of Byte; Len: Integer; var N: Integer;
+function Plc5TakeAddress(const Data: array of Byte; Len: LongInt; var N: LongInt;
   out Levels: array of LongInt): Boolean;
 var
   Mask: Byte;
-  L: Integer;
+  L: LongInt;
 begin
   for L := 0 to High(Levels) do
     Levels[L] := 0;
@@ -216,7 +216,7 @@ begin
 end;
 
 { The nibble for V, and how many bytes follow it (0 when V fits). }
-function Nibble(V: Word; out Extra: Integer): Byte;
+function Nibble(V: Word; out Extra: LongInt): Byte;
 begin
   if V <= 7 then
   begin
@@ -235,9 +235,9 @@ begin
   end;
 end;
 
-procedure PutExtra(V: Word; Extra: Integer; var Data: array of Byte; var N: Integer);
+procedure PutExtra(V: Word; Extra: LongInt; var Data: array of Byte; var N: LongInt);
 var
-  K: Integer;
+  K: LongInt;
 begin
   for K := 0 to Extra - 1 do
   begin
@@ -246,9 +246,9 @@ begin
   end;
 end;
 
-procedure Plc5PutTypeParam(TypeId: Byte; Size: Word; var Data: array of Byte; var N: Integer);
+procedure Plc5PutTypeParam(TypeId: Byte; Size: Word; var Data: array of Byte; var N: LongInt);
 var
-  TX, SX: Integer;
+  TX, SX: LongInt;
   TN, SN: Byte;
 begin
   TN := Nibble(TypeId, TX);
@@ -259,12 +259,12 @@ begin
   PutExtra(Size, SX, Data, N);
 end;
 
-function Plc5TakeTypeParam(const Data: array of Byte; Len: Integer; var N: Integer;
+function Plc5TakeTypeParam(const Data: array of Byte; Len: LongInt; var N: LongInt;
   out TypeId: Word; out Size: Word): Boolean;
 
   function Part(Nib: Byte; out V: Word): Boolean;
   var
-    K, Extra: Integer;
+    K, Extra: LongInt;
   begin
     V := Nib;
     Result := True;
@@ -309,7 +309,7 @@ end;
 
 function Plc5ToBcd(V: LongInt; out W: Word): Boolean;
 var
-  K: Integer;
+  K: LongInt;
 begin
   W := 0;
   Result := (V >= 0) and (V <= 9999);
@@ -324,7 +324,7 @@ end;
 
 function Plc5FromBcd(W: Word; out V: LongInt): Boolean;
 var
-  K, D: Integer;
+  K, D: LongInt;
 begin
   V := 0;
   for K := 3 downto 0 do
@@ -359,7 +359,7 @@ begin
 end;
 
 { Command head: CF, TNS, PACKET OFFSET 0, TOTAL TRANS. }
-procedure PutHead(CF: Word; Tns: Word; Total: Word; var Req: tSendRecord; out N: Integer);
+procedure PutHead(CF: Word; Tns: Word; Total: Word; var Req: tSendRecord; out N: LongInt);
 begin
   FillChar(Req, cSizeHead, 0);
   Req.MessType := tpDataMess;
@@ -382,7 +382,7 @@ function Plc5BuildPlanRead(const P: tPcccPlan; Index: LongInt; Cmd: tPlc5Command
 var
   At: tPcccAddr;
   Units: LongInt;
-  N: Integer;
+  N: LongInt;
 begin
   ReqLen := 0;
   Expect := 0;
@@ -406,7 +406,7 @@ end;
 function Plc5BuildWordRead(const A: tPcccAddr; Bytes: Word; Tns: Word;
   var Req: tSendRecord; out ReqLen: Word): tChResult;
 var
-  N: Integer;
+  N: LongInt;
 begin
   ReqLen := 0;
   if (Bytes < 2) or Odd(Bytes) or (Bytes > MaxDataLen) then
@@ -421,7 +421,7 @@ end;
 function Plc5CheckReadReply(const P: tPcccPlan; Cmd: tPlc5Command; const Rep: tRecRecord;
   RepLen: Word; Expect: Word; out First: Word; out Err: ShortString): tChResult;
 var
-  N, Len, ElemAt: Integer;
+  N, Len, ElemAt: LongInt;
   TypeId, Size, ElemType, ElemSize: Word;
   Want: Byte;
 begin
@@ -492,7 +492,7 @@ end;
 function BuildWrite(const P: tPcccPlan; const At: tPcccAddr; const Buf: array of Byte; Bytes: Word;
   Cmd: tPlc5Command; Tns: Word; var Req: tSendRecord; out ReqLen: Word): tChResult;
 var
-  N, EN: Integer;
+  N, EN: LongInt;
   Elems: Word;
   ElemParam: array[0..5] of Byte;
 begin
@@ -528,7 +528,7 @@ var
   Bytes, Mask, Bits, W: Word;
   Bcd: array of LongInt;
   I: LongInt;
-  N: Integer;
+  N: LongInt;
 begin
   ReqLen := 0;
   Err := '';
@@ -592,7 +592,7 @@ function Plc5BuildWriteString(const A: tPcccAddr; const S: ShortString; Tns: Wor
   var Req: tSendRecord; out ReqLen: Word; out Err: ShortString): tChResult;
 var
   Buf: array[0..2 + PcccStringChars - 1] of Byte;
-  N: Integer;
+  N: LongInt;
 begin
   ReqLen := 0;
   Result := PcccEncodeString(S, Buf, Err);

@@ -6,7 +6,7 @@
   ChnWaitAny. docs/chngate.md is the reference. }
 unit ChnGateway;
 
-{$MODE OBJFPC}{$H+}
+{$I chn.inc}
 
 interface
 

@@ -36,8 +36,8 @@ uses
 { Answer CMD 0F with FNC 68, 67, 01, 00 or 26 (DataLen bytes of Req.Data)
   into Rep (its STS and, on error, EXT STS); N the reply's data bytes.
   False when Fnc is none of them. }
-function Plc5SimHandle(var T: tSlcTable; Fnc: Byte; constref Req: tRecRecord; DataLen: Integer;
-  var Rep: tSendRecord; var N: Integer): Boolean;
+function Plc5SimHandle(var T: tSlcTable; Fnc: Byte; constref Req: tRecRecord; DataLen: LongInt;
+  var Rep: tSendRecord; var N: LongInt): Boolean;
 
 implementation
 
@@ -61,10 +61,10 @@ begin
   Result := Plc5ElemType(A);
 end;
 
-function Plc5SimHandle(var T: tSlcTable; Fnc: Byte; constref Req: tRecRecord; DataLen: Integer;
-  var Rep: tSendRecord; var N: Integer): Boolean;
+function Plc5SimHandle(var T: tSlcTable; Fnc: Byte; constref Req: tRecRecord; DataLen: LongInt;
+  var Rep: tSendRecord; var N: LongInt): Boolean;
 var
-  P, Start, K: Integer;
+  P, Start, K: LongInt;
   Offset, Size, Unit_, Bytes, At, ES: LongInt;
   Levels: array[0..3] of LongInt;
   HasSub: Boolean;

@@ -147,7 +147,7 @@ function Plc5LoadConfig(var T: tSlcTable; const Text: AnsiString;
   out ErrLine: LongInt; out Err: AnsiString): Boolean;
 { A reply's status: STS, and EXT STS as its first data byte when STS is
   $F0; N becomes the reply's data bytes (0 or 1). }
-procedure SlcSetSts(var Rep: tSendRecord; var N: Integer; Sts, Ext: Byte);
+procedure SlcSetSts(var Rep: tSendRecord; var N: LongInt; Sts, Ext: Byte);
 { Load Plc5DefaultConfig (a test loads it). }
 procedure Plc5LoadDefault(var T: tSlcTable);
 { SlcDefaultConfig1 and SlcDefaultConfig2, the built-in table. }
@@ -601,7 +601,7 @@ begin
   end;
 end;
 
-procedure SlcSetSts(var Rep: tSendRecord; var N: Integer; Sts, Ext: Byte);
+procedure SlcSetSts(var Rep: tSendRecord; var N: LongInt; Sts, Ext: Byte);
 begin
   Rep.Sts := Sts;
   N := 0;

@@ -2,7 +2,7 @@
   benchmarks: its CPU time and its resident memory. }
 unit ProcStat;
 
-{$MODE OBJFPC}{$H+}
+{$I chn.inc}
 
 interface
 
@@ -27,7 +27,7 @@ const
 function ProcCpu(Pid: TPid): Double;
 var
   F: TStringList;
-  S: string;
+  S: AnsiString;
   Fields: TStringArray;
 begin
   Result := 0;
@@ -48,7 +48,7 @@ function ProcRssKb(Pid: TPid): LongInt;
 var
   F: TStringList;
   I: LongInt;
-  S: string;
+  S: AnsiString;
 begin
   Result := -1;
   F := TStringList.Create;
