@@ -10,7 +10,9 @@
   duplex through the poll master (ChnDF1Poll) with one station and with
   four on one bus; FT 1.2 / IEC 60870-5-101 unbalanced (ChnIec101Master)
   interrogating 86 points of one slave (ChnIec101Slave) and of four on a
-  bus, and balanced with one; 9600 and 19200 Bd, DF1 8N1, FT 1.2 8E1.
+  bus, and balanced with one; ICSlink, a master reading 32 numbers of a
+  station (RD, answered at once); 9600 and 19200 Bd, DF1 8N1, FT 1.2 and
+  ICS 8E1.
   Run by "make bench". }
 program benchline;
 
@@ -18,7 +20,8 @@ program benchline;
 
 uses
   SysUtils, ChnTypes, ChnVirt, ChnWait, ChnLoop, ChnDF1, ChnDF1Link, ChnDF1Poll,
-  ChnPcccClient, ChnSlc, ChnFT1_2, ChnIec101Asdu, ChnIec101Master, ChnIec101Slave;
+  ChnPcccClient, ChnSlc, ChnFT1_2, ChnIec101Asdu, ChnIec101Master, ChnIec101Slave,
+  ChnICS, ChnICSCodec;
 
 const
   MaxSt = 4;
@@ -232,6 +235,73 @@ begin
   Dispose(Master, Done);
 end;
 
+{ ICSlink: RD of block 0, 3 numbers asked, 32 answered, over and over. }
+procedure RunIcs(const What: string; Bd: LongInt);
+var
+  A, B: pChnVirt;
+  Req, Ans, RA, RB: tICSRecord;
+  Pair, Line: string;
+  Len: Word;
+  I, Reads: LongInt;
+  T0, Stop: QWord;
+
+  function OpenIcs(const Params: string): pChnVirt;
+  begin
+    Result := ChnCollection^.ChNewInit('ICS');
+    Result^.ChSetParam(Params);
+    Result^.ChOpen;
+    Result^.ChConnect;
+    if Result^.ChResult <> res_Ok then
+    begin
+      WriteLn('benchline: cannot open ', Params, ': ', Result^.ChErrorText);
+      Halt(1);
+    end;
+  end;
+
+begin
+  Pair := Format('BLS%d', [Bd]);
+  Line := Format('NAM=LOOP PAIR=%s BD=%d PAR=E', [Pair, Bd]);
+  A := OpenIcs(Format('NAM=ICS MAS=MASTER NOD=1 DNO=2 %s END=1', [Line]));
+  B := OpenIcs(Format('NAM=ICS MAS=SLAVE NOD=2 DNO=1 %s END=2', [Line]));
+  A^.ChReceiveBuffer(@RA, SizeOf(RA));
+  B^.ChReceiveBuffer(@RB, SizeOf(RB));
+  FillChar(Req, SizeOf(Req), 0);
+  Req.OpCode := OCM_ReadData;
+  Req.Data[0] := 0;
+  Req.Data[1] := 10;
+  Req.Data[2] := 15;
+  Ans := Req;
+  for I := 0 to ICSMaxDataLen - 1 do
+    Ans.Data[I] := I * 100;
+  Reads := 0;
+  T0 := ChnClockUs;
+  Stop := ChMsTick + QWord(Seconds) * 1000;
+  while ChMsTick < Stop do
+  begin
+    A^.ChSend(@Req, 4 + 3 * SizeOf(tICSData));
+    if A^.ChSendResult <> res_Ok then
+      Break;
+    repeat
+      if B^.ChReceiveReady = CHS_ReceiveReady then
+      begin
+        B^.ChReceive(Len);
+        while B^.ChSendReady <> CHS_SendReady do
+          ChnWaitAny(5);
+        B^.ChSend(@Ans, 4 + ICSMaxDataLen * SizeOf(tICSData));
+      end
+      else if A^.ChReceiveReady <> CHS_ReceiveReady then
+        ChnWaitAny(5);
+    until (A^.ChReceiveReady = CHS_ReceiveReady) or (ChMsTick > Stop + 2000);
+    A^.ChReceive(Len);
+    Inc(Reads);
+    while A^.ChSendReady <> CHS_SendReady do
+      ChnWaitAny(5);
+  end;
+  Report(What, Bd, Reads, Pair, T0);
+  Dispose(A, Done);
+  Dispose(B, Done);
+end;
+
 const
   Rates: array[0..1] of LongInt = (9600, 19200);
 var
@@ -251,5 +321,6 @@ begin
     RunIec('FT 1.2 unbalanced, GI of 86, 1 slave', Bd, 1, False);
     RunIec('FT 1.2 unbalanced, GI of 86, 4 slaves', Bd, 4, False);
     RunIec('FT 1.2 balanced, GI of 86', Bd, 1, True);
+    RunIcs('ICSlink RD, 32 numbers', Bd);
   end;
 end.

@@ -203,14 +203,14 @@ const
      Wire: '68 00 00'; Events: '..E'; Err: res_ErrLen),
     (What: 'L = 1 is the smallest without address: CODE only, CS = CODE'; Primary: True;
      AddrLen: 0; CheckPrm: True; Wire: '68 01 01 68 0B 0B 16'; Events: '......F'; Err: res_Ok),
-    (What: '1 octet: L above 1 + 1 + 247 = $F9'; Primary: True; AddrLen: 1; CheckPrm: True;
-     Wire: '68 FA FA'; Events: '..E'; Err: res_ErrLen),
+    (What: '1 octet: L = $FF (253 data octets, above the manual''s 247) is legal'; Primary: True;
+     AddrLen: 1; CheckPrm: True; Wire: '68 FF FF'; Events: '...'; Err: res_Ok),
     (What: '1 octet: L = $F9 is allowed'; Primary: True; AddrLen: 1; CheckPrm: True;
      Wire: '68 F9 F9'; Events: '...'; Err: res_Ok),
     (What: '2 octets: L = $FA is allowed'; Primary: True; AddrLen: 2; CheckPrm: True;
      Wire: '68 FA FA'; Events: '...'; Err: res_Ok),
-    (What: '2 octets: L = $FB is not'; Primary: True; AddrLen: 2; CheckPrm: True;
-     Wire: '68 FB FB'; Events: '..E'; Err: res_ErrLen),
+    (What: '2 octets: L = $FF is legal too'; Primary: True; AddrLen: 2; CheckPrm: True;
+     Wire: '68 FF FF'; Events: '...'; Err: res_Ok),
     (What: 'second start character wrong'; Primary: True; AddrLen: 1; CheckPrm: True;
      Wire: '68 03 03 69'; Events: '...E'; Err: res_ErrFrame),
     (What: 'fixed frame without the end character'; Primary: False; AddrLen: 1; CheckPrm: True;
@@ -369,6 +369,8 @@ end;
 procedure TTestChnFT12Codec.TestEncodeErrors;
 var
   R: tFT12Record;
+  Big: tFT12MaxRecord;
+  PR: ^tFT12Record;
   B: array[0..cFT12MaxFrame - 1] of Byte;
   N: Word;
 begin
@@ -376,11 +378,24 @@ begin
   N := 1;
   AssertEquals('Len 0', res_BadLen, FT12Encode(Cfg(True, 1, 0), R, 0, 1, @B, SizeOf(B), N));
   AssertEquals('Len below header', res_BadLen, FT12Encode(Cfg(True, 1, 0), R, 3, 1, @B, SizeOf(B), N));
-  AssertEquals('too much data', res_TooLong,
-    FT12Encode(Cfg(True, 1, 0), R, 4 + MaxDataLen + 1, 1, @B, SizeOf(B), N));
-  AssertEquals('MaxDataLen fits', res_Ok,
-    FT12Encode(Cfg(True, 2, 0), R, 4 + MaxDataLen, 1, @B, SizeOf(B), N));
-  AssertEquals('longest frame', cFT12MaxFrame, N);
+  { L = 255 at most: 253 data octets with one address octet, 252 with two;
+    a record longer than tFT12Record (Len says) }
+  FillChar(Big, SizeOf(Big), $11);
+  Big.MessType := tpLongM;
+  Big.FC := 3;
+  PR := @Big;
+  AssertEquals('L = 256 with ADR=1', res_TooLong,
+    FT12Encode(Cfg(True, 1, 0), PR^, 4 + 253 + 1, 1, @B, SizeOf(B), N));
+  AssertEquals('L = 255 with ADR=1', res_Ok,
+    FT12Encode(Cfg(True, 1, 0), PR^, 4 + 253, 1, @B, SizeOf(B), N));
+  AssertEquals('longest frame with ADR=1', cFT12MaxFrame, N);
+  AssertEquals('L', $FF, B[1]);
+  AssertEquals('last data octet', $11, B[cFT12MaxFrame - 3]);
+  AssertEquals('L = 256 with ADR=2', res_TooLong,
+    FT12Encode(Cfg(True, 2, 0), PR^, 4 + 252 + 1, 1, @B, SizeOf(B), N));
+  AssertEquals('L = 255 with ADR=2', res_Ok,
+    FT12Encode(Cfg(True, 2, 0), PR^, 4 + 252, 1, @B, SizeOf(B), N));
+  AssertEquals('longest frame with ADR=2', cFT12MaxFrame, N);
   R.MessType := tpShortM;
   AssertEquals('fixed frame with other than LEN data', res_BadLen,
     FT12Encode(Cfg(True, 1, 0), R, 5, 1, @B, SizeOf(B), N));

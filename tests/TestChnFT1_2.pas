@@ -390,7 +390,11 @@ var
   C: pChnFT1_2;
   M, Raw: pChnVirt;
   R: tSendRecord;
+  Big: tFT12MaxRecord;
 begin
+  FillChar(Big, SizeOf(Big), 0);
+  Big.MessType := tpLongM;
+  Big.FC := 3;
   New(C, Init);
   try
     R := MakeRec(tpShortM, False, False, 9);
@@ -415,8 +419,8 @@ begin
   M^.ChSend(nil, 4);
   AssertEquals('nil', res_BadLen, M^.ChSendResult);
   R.MessType := tpLongM;
-  M^.ChSend(@R, 4 + 248);
-  AssertEquals('248 data bytes', res_TooLong, M^.ChSendResult);
+  M^.ChSend(@Big, 4 + 254);
+  AssertEquals('254 data bytes: L = 256', res_TooLong, M^.ChSendResult);
   M^.ChDestNode(256);
   R.MessType := tpShortM;
   M^.ChSend(@R, 4);
@@ -536,17 +540,16 @@ procedure TTestChnFT1_2.TestReceiveErrorsThenResync;
 const
   { each broken frame, the result it must give; after each the good
     frame 10 49 01 4A 16 must still be received }
-  Broken: array[1..8] of string = (
+  Broken: array[1..7] of string = (
     '10 49 01 4B 16',                 { checksum }
     '68 03 04 68 49 01 AA F4 16',     { the two L bytes differ }
     '68 01 01 68 49 49 16',           { L too small for CODE + ADDR }
-    '68 FA FA',                       { L too large: 1 + 1 + 247 = 249 max }
     '68 03 03 10 49 01 AA F4 16',     { wrong second start byte }
     '10 49 01 4A 00',                 { missing ED }
     '10 0B 01 0C 16',                 { PRM = 0 to a slave }
     '68 03 03 68 49 01 AA F4 17');    { variable frame, missing ED }
-  Expect: array[1..8] of tChResult = (res_ErrSum, res_ErrLen, res_ErrLen,
-    res_ErrLen, res_ErrFrame, res_ErrFrame, res_ErrCode, res_ErrFrame);
+  Expect: array[1..7] of tChResult = (res_ErrSum, res_ErrLen, res_ErrLen,
+    res_ErrFrame, res_ErrFrame, res_ErrCode, res_ErrFrame);
 var
   S, Raw: pChnVirt;
   Rec: tRecRecord;

@@ -56,6 +56,7 @@ type
     procedure TestBalancedControllingStationIsDir1;
     procedure TestBalancedWrongAddressSaysSo;
     procedure TestBalancedTwinDirSaysSo;
+    procedure TestLongestFramesTaken;
   end;
 
 implementation
@@ -698,6 +699,39 @@ begin
   AssertEquals(res_Timeout, IecInterrogation(M, 5, 1, Qoi_Station));
   AssertTrue(M.Cmd.Err, Pos('frames with this station''s own DIR bit ignored', M.Cmd.Err) > 0);
   AssertTrue(M.Link.Bal.BadDir > 0);
+end;
+
+{ L = 255 is the longest frame of IEC 60870-5-1/-2: up to 253 octets of
+  ASDU with one address octet (lib60870's slave sends up to 249). Those
+  above the manual's 247 were dropped as broken and the slave died. }
+procedure TTestChnIec101Master.TestLongestFramesTaken;
+var
+  A, B: string;
+  I: Integer;
+begin
+  Open('NAM=FT1_2 MS=ON MAS=MASTER LEN=0 NOD=0 DNO=5', [5]);
+  Sim(5).Manual := True;
+  { 22 x M_SP_TB_1 (30 = 1E), VSQ 22 = 16, COT 3, CA 1: 6 + 22 x 11 = 248
+    octets; IOA 1..22, SIQ 1, CP56Time2a 2026-01-01 00:00:00.000 }
+  A := '1E 16 03 00 01 00';
+  for I := 1 to 22 do
+    A := A + Format(' %.2X 00 00 01 00 00 00 00 01 01 1A', [I]);
+  { 122 x M_ST_NA_1 (5) in a sequence (VSQ 80 + 122 = FA), COT 20, IOA
+    1000 = E8 03 00, VTI 7 QDS 0 each: 6 + 3 + 244 = 253 octets, L = 255 }
+  B := '05 FA 14 00 01 00 E8 03 00';
+  for I := 1 to 122 do
+    B := B + ' 07 00';
+  AssertEquals(248, Length(HexToBytes(A)));
+  AssertEquals(253, Length(HexToBytes(B)));
+  Sim(5).Class2.Add(A);
+  Sim(5).Class2.Add(B);
+  IecPollFor(M, 300);
+  AssertEquals('slave 5 online', Ord(isOnline), Ord(M.Slaves[0].State));
+  AssertEquals(0, M.Slaves[0].Failures);
+  AssertEquals(0, M.BadAsdus);
+  AssertEquals(22 + 122, Objects.Count);
+  AssertEquals('5 M_SP_TB_1 3 22 = 1 00:00', Objects[21]);
+  AssertEquals('5 M_ST_NA_1 20 1121', Objects[143]);
 end;
 
 initialization

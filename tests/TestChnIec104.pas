@@ -24,7 +24,7 @@ type
     function OpenServerLayer(const Extra: string): Word;
     procedure OpenPeerClient(Port: Word);
     function OpenPeerServer: Word;
-    procedure OpenClientLayer(Port: Word; const Extra: string);
+    procedure OpenClientLayer(Port: Word; const Extra: string; const TcpExtra: string = '');
     procedure PeerSend(const HexText: string);
     { poll both until the peer has received Want (hex) after what it had;
       False after TimeoutMs }
@@ -54,6 +54,7 @@ type
     procedure TestSilentClientClosed;
     procedure TestHundredClientsLeaveTheStartedOneAlone;
     procedure TestStandbyTakesOverWithStartDt;
+    procedure TestClientReconnectsAndSendsWhatWaited;
   end;
 
 implementation
@@ -104,11 +105,12 @@ begin
   Got := '';
 end;
 
-procedure TTestChnIec104.OpenClientLayer(Port: Word; const Extra: string);
+procedure TTestChnIec104.OpenClientLayer(Port: Word; const Extra: string; const TcpExtra: string);
 var
   Err: string;
 begin
-  Layer := OpenStack('IEC104', Extra + ' NAM=TCP HOST=127.0.0.1 PORT=' + IntToStr(Port), Err);
+  Layer := OpenStack('IEC104', Extra + ' NAM=TCP HOST=127.0.0.1 PORT=' + IntToStr(Port) + ' ' +
+    TcpExtra, Err);
   AssertNotNull(Err, Layer);
   Layer^.ChReceiveBuffer(@LBuf, SizeOf(LBuf));
 end;
@@ -463,6 +465,39 @@ begin
   Poll(50);
   AssertTrue('heap flat: ' + IntToStr(GetHeapStatus.TotalAllocated) + ' after ' + IntToStr(Heap),
     GetHeapStatus.TotalAllocated <= Heap + 1024);
+end;
+
+{ A client with RECON=: the connection is lost with one I frame
+  unacknowledged; ASDUs given meanwhile wait; after the reconnect STARTDT
+  act, and once confirmed the waiting ASDUs go with numbers from 0 - the
+  unacknowledged one is counted, not sent again. }
+procedure TTestChnIec104.TestClientReconnectsAndSendsWhatWaited;
+var
+  Port: Word;
+  X: Byte;
+begin
+  Port := OpenPeerServer;
+  OpenClientLayer(Port, 'NAM=IEC104', 'RECON=100');
+  AssertTrue('STARTDT act', PeerGets('68 04 07 00 00 00'));
+  PeerSend('68 04 0B 00 00 00');
+  X := 1;
+  Layer^.ChSend(@X, 1);
+  AssertTrue('first', PeerGets('68 05 00 00 00 00 01'));
+  pChnTcp(Peer)^.ChHangUp;                       { the server drops the client }
+  Poll(50);
+  X := 2;
+  Layer^.ChSend(@X, 1);
+  X := 3;
+  Layer^.ChSend(@X, 1);
+  AssertEquals('waiting', 2, L^.ChQueued);
+  AssertTrue('STARTDT act again', PeerGets('68 04 07 00 00 00', 5000));
+  Poll(50);
+  AssertEquals('nothing before STARTDT con', '', Got);
+  PeerSend('68 04 0B 00 00 00');
+  AssertTrue('the two that waited, from 0', PeerGets('68 05 00 00 00 00 02 68 05 02 00 00 00 03'));
+  AssertEquals('the unacknowledged one counted', 1, L^.CH_Unconfirmed);
+  Poll(50);
+  AssertEquals('none twice', '', Got);
 end;
 
 { Redundancy, CON=2: A carries data; B is kept, answered and tested with

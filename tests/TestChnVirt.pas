@@ -147,7 +147,7 @@ begin
   SetParamExpect('CNT=1001', res_BadParam, 'CNT=1001');
   SetParamExpect('MOD=D', res_BadParam, 'MOD=D');
   SetParamExpect('FLG=YES', res_BadParam, 'FLG=YES');
-  SetParamExpect('NAM=LOOP END=3', res_BadParam, 'END=3');
+  SetParamExpect('NAM=LOOP END=33', res_BadParam, 'END=33');
   SetParamExpect('NAM=LOOP LRB=0', res_BadParam, 'LRB=0');
   SetParamExpect('NAM=LOOP IDL=1001', res_BadParam, 'IDL=1001');
   SetParamExpect('NAM=LOOP PAIR=a/b', res_BadParam, 'PAIR=a/b');
@@ -257,7 +257,7 @@ var
 begin
   SetParamExpect('NOD=1 NAM=LOOP PAIR=OLD END=2', res_Ok, '');
   OldLow := Chn^.CH_Low;
-  SetParamExpect('NOD=4 NAM=LOOP PAIR=NEW END=7', res_BadParam, 'END=7');
+  SetParamExpect('NOD=4 NAM=LOOP PAIR=NEW END=77', res_BadParam, 'END=77');
   AssertEquals(1, Chn^.CH_Node);
   AssertTrue('same lower layer object', OldLow = Chn^.CH_Low);
   AssertEquals('OLD', pChnLoop(Chn^.CH_Low)^.CH_Pair);

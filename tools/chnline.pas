@@ -138,7 +138,6 @@ begin
     'each character delivered when a line at that speed and character format ' +
     'would have; on a bus two programs writing at once collide and both arrive ' +
     'garbled.');
-  CliNoArgsOk(Cli);
   CliOption(Cli, 'ends', 'n', 'N', 'number of ptys, 2..32 (default 2)');
   CliOption(Cli, 'bus', #0, '', 'half duplex (RS-485) also with two ends: writes that overlap collide');
   CliOption(Cli, 'bd', #0, 'N', 'baud rate, 50..4000000 (default 9600); 0: no speed');

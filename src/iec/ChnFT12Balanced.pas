@@ -41,7 +41,7 @@ type
     (the channel writes into RMess). }
   tFT12Balanced = record
     Chn        : pChnVirt;
-    RMess      : tRecRecord;
+    RMess      : tFT12MaxRecord; {< any frame, L up to 255 }
     {- settings (FT12BalancedInit gives the defaults) }
     TimeoutMs  : LongInt;     {< wait for an answer (FT12LinkTimeoutMs) }
     Retries    : SmallInt;    {< repetitions before the link counts as lost }

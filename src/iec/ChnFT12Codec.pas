@@ -54,8 +54,14 @@ const
   cSizeHeadSndMsg = 1 + 1 + 1 + 1;   {< MessType, FCB_ACD, FCV_DFC, FC }
   cSizeHeadRecMsg = cSizeHeadSndMsg;
 
-  { Longest frame: 68 L L 68 CODE ADDR(2) DATA(247) SUM 16 }
-  cFT12MaxFrame = 4 + 1 + 2 + MaxDataLen + 2;
+  { User data of the longest frame IEC 60870-5-1/-2 allow: L = 255 counts
+    the control octet, the link address (0..2 octets) and the data, so up
+    to 254 data octets (253 with ADR=1, lib60870's default ASDU of 249
+    fits). The manual's records (tFT12Record) hold MaxDataLen = 247. }
+  FT12MaxUserData = 255 - 1;
+
+  { Longest frame: 68 L L 68, L = 255 octets (CODE ADDR DATA), SUM 16 }
+  cFT12MaxFrame = 4 + 255 + 2;
 
 type
   tMessType = (tpSACK, tpSNAK, tpShortM, tpLongM);
@@ -69,6 +75,16 @@ type
     FCV_DFC : Boolean;
     FC      : Byte;
     Data    : tData;
+  end;
+
+  { The same with room for any frame (L up to 255): the link helpers
+    receive into it. }
+  tFT12MaxRecord = record
+    MessType: tMessType;
+    FCB_ACD : Boolean;
+    FCV_DFC : Boolean;
+    FC      : Byte;
+    Data    : array[1..FT12MaxUserData] of Byte;
   end;
 
   { What the codec needs to know about this station and the link. }
@@ -108,7 +124,7 @@ type
     Sum     : tSum8;
     Err     : tChResult;  {< code of the last fe_Error }
     LastTime: QWord;      {< time of the previous byte, for the gap }
-    Data    : array[0..MaxDataLen - 1] of Byte;
+    Data    : array[0..FT12MaxUserData - 1] of Byte;
     { counters for diagnostics }
     Frames, Errors, Ignored, GapDrops: LongWord;
     { garbage or a broken frame since the last whole frame: a single
@@ -132,8 +148,8 @@ function FT12Code(const Cfg: tFT12Config; const Rec: tFT12Record): Byte;
 { Encode Rec (Len = cSizeHeadSndMsg + data octets; ignored for SACK and
   SNAK) with link address Addr into Dest[0..DestSize-1].
   Results: res_Ok; res_BadLen (Len 0 or below the header, a fixed frame
-  whose data length is not Cfg.FixedLen); res_TooLong (more than
-  MaxDataLen data octets, or the frame does not fit DestSize);
+  whose data length is not Cfg.FixedLen); res_TooLong (L would
+  exceed 255, or the frame does not fit DestSize);
   res_BadMessage (MessType out of range, FC > 15, SACK/SNAK from a primary,
   Addr too large for Cfg.AddrLen). On error DestLen = 0 and Dest is not
   touched. Only the first Len bytes of Rec are read. }
@@ -239,7 +255,7 @@ begin
   if Len < cSizeHeadSndMsg then
     Exit(res_BadLen);
   N := Len - cSizeHeadSndMsg;
-  if N > MaxDataLen then
+  if N > FT12MaxUserData - Cfg.AddrLen then
     Exit(res_TooLong);
   if (Rec.MessType = tpShortM) and (N <> Cfg.FixedLen) then
     Exit(res_BadLen);
@@ -274,11 +290,10 @@ begin
     Frame[P] := Hi(Addr);
     Inc(P);
   end;
-  for I := 1 to N do
-  begin
-    Frame[P] := Rec.Data[I];
-    Inc(P);
-  end;
+  { the caller's record may be longer than tFT12Record (Len says) }
+  if N > 0 then
+    Move(tFT12MaxRecord(Pointer(@Rec)^).Data[1], Frame[P], N);
+  Inc(P, N);
   if Rec.MessType = tpShortM then
     Sum := Sum8Block(Frame[1], P - 1)
   else
@@ -426,8 +441,7 @@ begin
     rxL2:
       if B <> S.L then
         Result := Fail(S, res_ErrLen)
-      else if (S.L < 1 + S.Cfg.AddrLen) or
-              (S.L > 1 + S.Cfg.AddrLen + MaxDataLen) then
+      else if S.L < 1 + S.Cfg.AddrLen then     { any L up to 255 is legal }
         Result := Fail(S, res_ErrLen)
       else
         S.Phase := rxStart2;
@@ -467,7 +481,7 @@ begin
     rxData:
       begin
         S.Sum := Sum8Add(S.Sum, B);
-        if S.DataPos < SizeOf(S.Data) then   { DataLen <= MaxDataLen always }
+        if S.DataPos < SizeOf(S.Data) then   { DataLen <= FT12MaxUserData always }
           S.Data[S.DataPos] := B;
         Inc(S.DataPos);
         if S.DataPos >= S.DataLen then

@@ -142,7 +142,7 @@ function FT12ReplyFits(Req: Byte; T: tMessType; FC: Byte): Boolean;
 { The answer to SEND/CONFIRM user data (FC 3) of Len record octets: ACK
   when the application takes it, NACK when it refuses or has no callback. }
 function FT12UserDataAnswer(F: tFT12UserDataFunc; Data: Pointer;
-  constref R: tRecRecord; Len: Word): Byte;
+  constref R: tFT12MaxRecord; Len: Word): Byte;
 
 implementation
 
@@ -228,7 +228,7 @@ end;
 { The answer to SEND/CONFIRM user data (FC 3) of Len record octets: ACK
   when the application takes it, NACK when it refuses or has no callback. }
 function FT12UserDataAnswer(F: tFT12UserDataFunc; Data: Pointer;
-  constref R: tRecRecord; Len: Word): Byte;
+  constref R: tFT12MaxRecord; Len: Word): Byte;
 begin
   if Assigned(F) and F(Data, @R.Data[1], Len - cSizeHeadRecMsg, True) then
     Result := FCS_Ack

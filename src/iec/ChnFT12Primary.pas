@@ -49,7 +49,7 @@ type
     ReqLen   : Word;
     Out      : tSendRecord;     {< what goes on the line: the reset or the service }
     OutLen   : Word;
-    Rep      : tRecRecord;
+    Rep      : tFT12MaxRecord;  {< any answer, L up to 255 }
     RepLen   : Word;
     State    : tFT12PrimaryState;
     Result   : tChResult;
@@ -423,10 +423,15 @@ begin
       else
         ChnWaitUntil(FT12PrimaryWaitEnd(P));   { the program-wide wait }
     until FT12PrimaryStep(P);
-  if P.RepLen > 0 then
-    Move(P.Rep, Rep, SizeOf(Rep));
-  RepLen := P.RepLen;
   Result := P.Result;
+  if P.RepLen > SizeOf(Rep) then
+    Result := res_ErrLen                { longer than the manual's record holds }
+  else
+  begin
+    if P.RepLen > 0 then
+      Move(P.Rep, Rep, P.RepLen);
+    RepLen := P.RepLen;
+  end;
 end;
 
 { A fixed frame with function FC and the channel's LEN= zero octets. }

@@ -15,7 +15,7 @@ uses
 type
   tFT12Station = record
     Chn        : pChnVirt;
-    RMess      : tRecRecord;
+    RMess      : tFT12MaxRecord; {< any frame, L up to 255 }
     Reply      : tSendRecord;  {< last reply to an FCV = 1 frame or a reset }
     ReplyLen   : Word;
     HasReply   : Boolean;

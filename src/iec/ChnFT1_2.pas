@@ -39,6 +39,7 @@ const
   cName  = 'FT1_2';
   MaxTBuf = 65500;                {< largest send buffer (LSB=) }
   MaxDataLen = ChnFT12Codec.MaxDataLen;
+  FT12MaxUserData = ChnFT12Codec.FT12MaxUserData;   {< L = 255: 254 - ADR octets }
 
   { control characters (manual 4.1) }
   SD1  = ChnFT12Codec.SD1;
@@ -93,6 +94,7 @@ type
   tRec = (Znk, NoZnk, Err);
   tMessType = ChnFT12Codec.tMessType;
   tData = ChnFT12Codec.tData;
+  tFT12MaxRecord = ChnFT12Codec.tFT12MaxRecord;   {< a tRecRecord for any L }
 
   pSendRecord = ^tSendRecord;
   tSendRecord = ChnFT12Codec.tFT12Record;

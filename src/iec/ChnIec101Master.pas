@@ -157,7 +157,7 @@ type
     JobSlave : LongInt;
     LinkResult: tChResult;
     Prim     : tFT12Primary;
-    Rep      : tRecRecord;
+    Rep      : tFT12MaxRecord;
     RepLen   : Word;
     Run      : LongInt;    {< services in a row of the slave whose turn it is }
   end;

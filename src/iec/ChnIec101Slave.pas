@@ -858,7 +858,7 @@ end;
 { One ASDU from the master. }
 procedure TakeAsdu(var S: tIecSlaveStation; Buf: PByte; Len: Word);
 var
-  A: array[0..MaxDataLen - 1] of Byte;
+  A: array[0..IecMaxAsdu - 1] of Byte;
   H: tIecAsdu;
   O: tIecObject;
   R: tChResult;
@@ -866,8 +866,8 @@ var
   Ca: Word;
   HeadLen: Word;
 begin
-  if Len > MaxDataLen then
-    Len := MaxDataLen;
+  if Len > IecMaxAsdu then
+    Len := IecMaxAsdu;                   { L = 255 with ADR=0: no ASDU is that long }
   Move(Buf^, A[0], Len);
   Inc(S.Asdus);
   if Assigned(S.OnAsdu) then

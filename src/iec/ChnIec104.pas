@@ -52,7 +52,7 @@ type
     Session : LongWord;
     Feed    : tApci104Feed;
     LastRxAt: QWord;
-    TestAt  : QWord;              { TESTFR act sent then, 0: none pending }
+    TestAt  : QWord;              {< TESTFR act sent then, 0: none pending }
   end;
 
   pChnIec104 = ^tChnIec104;

@@ -39,6 +39,10 @@ type
       (AcdStuck); this ASDU in every class 1 answer (Stream); status and
       reset answered, class polls never (HalfDead) }
     AcdStuck, HalfDead: Boolean;
+    { the link by hand, as HalfDead, but class 2 polls answered from
+      Class2 with frames of any length (L up to 255, longer than a
+      tFT12Station's reply record holds), class 1 with "no data" }
+    Manual: Boolean;
     Stream: string;
     HalfDeadPolls: LongInt;        { class polls a HalfDead slave left unanswered }
     constructor Create(const Params: string; IsBalanced: Boolean; LinkMs: LongInt = 40);
@@ -224,7 +228,9 @@ end;
 function HalfDeadStep(S: TSim): Boolean;
 var
   Len: Word;
-  Rep: tSendRecord;
+  Rep: tFT12MaxRecord;
+  B: TBytes;
+  I: Integer;
 begin
   Result := S.Chn^.ChReceiveReady = CHS_ReceiveReady;
   if not Result then
@@ -233,23 +239,39 @@ begin
   S.Chn^.ChReceive(Len);
   if (S.Chn^.ChReceiveResult <> res_Ok) or (S.St.RMess.MessType <> tpShortM) then
     Exit;
-  if S.St.RMess.FC in [FCM_ReqUserData1, FCM_ReqUserData2] then
+  if S.HalfDead and (S.St.RMess.FC in [FCM_ReqUserData1, FCM_ReqUserData2]) then
     Inc(S.HalfDeadPolls);
-  if not (S.St.RMess.FC in [FCM_ReqLinkState, FCM_1stSetTransmit]) then
-    Exit;
   FillChar(Rep, SizeOf(Rep), 0);
   Rep.MessType := tpShortM;
-  if S.St.RMess.FC = FCM_ReqLinkState then
-    Rep.FC := FCS_LinkSAccesReq
+  Len := cSizeHeadSndMsg + pChnFT1_2(S.Chn)^.CH_LenShortM;
+  case S.St.RMess.FC of
+    FCM_ReqLinkState: Rep.FC := FCS_LinkSAccesReq;
+    FCM_1stSetTransmit: Rep.FC := FCS_Ack;
+    FCM_ReqUserData1, FCM_ReqUserData2:
+      if S.HalfDead then
+        Exit
+      else if (S.St.RMess.FC = FCM_ReqUserData2) and (S.Class2.Count > 0) then
+      begin
+        B := HexToBytes(S.Class2[0]);
+        S.Class2.Delete(0);
+        Rep.MessType := tpLongM;
+        Rep.FC := FCS_UserData;
+        for I := 0 to High(B) do
+          Rep.Data[I + 1] := B[I];
+        Len := cSizeHeadSndMsg + Length(B);
+      end
+      else
+        Rep.FC := FCS_DataNotAcces;
   else
-    Rep.FC := FCS_Ack;
-  ChSendWhenFree(S.Chn, @Rep, cSizeHeadSndMsg + pChnFT1_2(S.Chn)^.CH_LenShortM, 100);
+    Exit;
+  end;
+  ChSendWhenFree(S.Chn, @Rep, Len, 100);
 end;
 
 function TSim.Step: Boolean;
 begin
   Result := False;
-  if Alive and HalfDead and not Balanced then
+  if Alive and (HalfDead or Manual) and not Balanced then
     Result := HalfDeadStep(Self)
   else if Alive then
     if Balanced then
