@@ -21,7 +21,7 @@ uses
   SysUtils, Classes, fpcunit, testregistry,
   {$IFDEF UNIX}BaseUnix, Unix, TermIO, Linux, Process, PtyPair, ChnPortUnix, ChnUnix, ChnPty, BinSupport,{$ENDIF}
   {$IFDEF CHN_SYNAPSE}ChnPortSynapse,{$ENDIF}
-  ChnTypes, ChnVirt, ChnPort, ChnCom, ChnDF1, TestSupport, FakePort;
+  ChnTypes, ChnVirt, ChnPort, ChnCom, ChnDF1, TestSupport, FakePort, StackCase;
 
 type
   {$IFDEF UNIX}
@@ -84,10 +84,9 @@ type
 
   { The virtual line: a pty slave, a socat link to one, DRV=PTY, on the
     real drivers (RTL, and SYNAPSE when built in). }
-  TTestChnComVirtual = class(TTestCase)
+  TTestChnComVirtual = class(TStackCase)
   private
     FPty: TPtyPair;
-    FStacks: array of pChnVirt;
     FBuf: array[0..1023] of Byte;
     function Open(const Params: string): pChnVirt;
     procedure Pass(A, B: pChnVirt; const What: string);
@@ -1247,27 +1246,18 @@ end;
 procedure TTestChnComVirtual.SetUp;
 begin
   FPty := TPtyPair.Create;
-  FStacks := nil;
 end;
 
 procedure TTestChnComVirtual.TearDown;
-var
-  I: Integer;
 begin
-  for I := High(FStacks) downto 0 do
-    Dispose(FStacks[I], Done);
-  FStacks := nil;
+  CloseStacks;
   FPty.Free;
+  inherited TearDown;
 end;
 
 function TTestChnComVirtual.Open(const Params: string): pChnVirt;
-var
-  Err: string;
 begin
-  Result := OpenStack('COM', Params, Err);
-  AssertTrue('open ' + Params + ': ' + Err, Result <> nil);
-  SetLength(FStacks, Length(FStacks) + 1);
-  FStacks[High(FStacks)] := Result;
+  Result := Stack('COM', Params);
   Result^.ChReceiveBuffer(@FBuf, SizeOf(FBuf));
 end;
 
@@ -1317,8 +1307,7 @@ var
 begin
   for I := Low(Cases) to High(Cases) do
   begin
-    C := OpenStack('COM', 'NAM=COM DRV=' + Drv + ' DEV=' + FPty.SlavePath + ' ' + Cases[I], Line);
-    AssertTrue(Drv + ' ' + Cases[I] + ': ' + Line, C <> nil);
+    C := Stack('COM', 'NAM=COM DRV=' + Drv + ' DEV=' + FPty.SlavePath + ' ' + Cases[I]);
     Line := C^.ChGetParam('BD') + ' ' + C^.ChGetParam('BIT') + ' ' +
       C^.ChGetParam('STOP') + ' ' + C^.ChGetParam('PAR') + ' ' + C^.ChGetParam('FLW');
     AssertEquals(Drv + ': reported as given', Cases[I], Line);
@@ -1328,7 +1317,7 @@ begin
     AssertEquals(Cases[I] + ': CS8, no PARENB/CSTOPB/CRTSCTS', KCS8,
       T.c_cflag and (KCSIZE or KPARENB or KCSTOPB or KCRTSCTS or KCMSPAR));
     AssertEquals(Cases[I] + ': no IXON/IXOFF', 0, T.c_iflag and (IXON or IXOFF));
-    Dispose(C, Done);
+    CloseStacks;
   end;
 end;
 
@@ -1396,15 +1385,11 @@ end;
 procedure TTestChnComVirtual.TestManualStringOnPty;
 var
   Host, Client: pChnVirt;
-  Err: string;
 begin
   Host := Open('NAM=COM DRV=PTY');
-  Client := OpenStack('DF1',
+  Client := Stack('DF1',
     'NAM=DF1 LSB=500 NOD=1 DNO=2 FHD=FULL CRC=ON NAM=COM COM=1 IRQ=4 BD=9600 ' +
-    'BIT=8 STOP=1 PAR=E LRB=1000 DEV=' + PtyLastSlave, Err);
-  AssertTrue('opens: ' + Err, Client <> nil);
-  SetLength(FStacks, Length(FStacks) + 1);
-  FStacks[High(FStacks)] := Client;
+    'BIT=8 STOP=1 PAR=E LRB=1000 DEV=' + PtyLastSlave);
   AssertEquals('', Client^.ChParamError);
 end;
 
