@@ -150,7 +150,7 @@ $(PROGBINS) $(BENCHBINS): src/chn.inc | $(BUILD)/units.stamp
 # test unit needs no edit anywhere else. Units that need Unix as a whole
 # (ptys) are listed here and built only there; single Unix-only tests are
 # {$IFDEF UNIX} in their unit.
-UNIX_TESTS := TestChnPty TestChnTcpSer2net TestFT12Examples TestFaultCycling TestIec101Examples \
+UNIX_TESTS := TestChnPty TestChnComVirtual TestChnTcpSer2net TestFT12Examples TestFaultCycling TestIec101Examples \
               TestIec101SlaveTool TestIec101Docs TestIec104Tools TestIec104Docs
 comma := ,
 uses_entry = $(if $(filter $(1),$(UNIX_TESTS)),'{$$IFDEF UNIX}$(1)$(comma){$$ENDIF}','$(1)$(comma)')
@@ -169,6 +169,8 @@ test: all $(BUILD)/testunits.inc $(BUILD)/fpcunit/stamp
 	@mkdir -p $(TUNITDIR) $(TBINDIR)
 	@$(FPC) $(TESTFLAGS) tests/runtests.pas >$(BUILD)/test-build.log 2>&1 || { cat $(BUILD)/test-build.log; echo "0 passed, 1 failed"; exit 1; }
 	@$(FPC) $(SOAKFLAGS) tests/soak/soak.pas >>$(BUILD)/test-build.log 2>&1 || { cat $(BUILD)/test-build.log; echo "0 passed, 1 failed"; exit 1; }
+	@# iec101master with the test flags (heaptrc): its leaks at exit are tested
+	@$(FPC) $(SOAKFLAGS) examples/iec101master.pas >>$(BUILD)/test-build.log 2>&1 || { cat $(BUILD)/test-build.log; echo "0 passed, 1 failed"; exit 1; }
 	@BUILD=$(BUILD) FPC=$(FPC) T="$(T)" bash tests/run.sh
 
 # only the four programs it runs: a first make demo builds the library

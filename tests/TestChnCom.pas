@@ -4,12 +4,11 @@
   which takes every setting as given; to test the strict path a real UART
   takes (read-back, refusals naming the token), these tests open the pty
   through a test driver (RTLSTRICT, SYNSTRICT) that is the backend with the
-  virtual-line detection switched off. TTestChnComVirtual checks the
-  virtual line itself, on the real drivers. Settings are checked by
-  reading the kernel's termios of the open descriptor, not through the code
-  under test. TTestChnComLogic covers parameters and the RS-485/overrun
-  logic of tChnCom on a scripted fake port. On Windows only the logic
-  tests are built (no ptys there; tools/wintest.sh runs ChnPortWin on a
+  virtual-line detection switched off. Settings are checked by reading the
+  kernel's termios of the open descriptor, not through the code under
+  test. The virtual line itself is TestChnComVirtual's, the parameters and
+  the RS-485/overrun logic on a scripted port TestChnComLogic's; on Windows
+  this unit is empty (no ptys there; tools/wintest.sh runs ChnPortWin on a
   Wine COM port instead). }
 unit TestChnCom;
 
@@ -21,7 +20,8 @@ uses
   SysUtils, Classes, fpcunit, testregistry,
   {$IFDEF UNIX}BaseUnix, Unix, TermIO, Linux, Process, PtyPair, ChnPortUnix, ChnUnix, ChnPty, BinSupport,{$ENDIF}
   {$IFDEF CHN_SYNAPSE}ChnPortSynapse,{$ENDIF}
-  ChnTypes, ChnVirt, ChnPort, ChnCom, ChnDF1, TestSupport, FakePort;
+  {$IFDEF UNIX}ComPtySupport,{$ENDIF}
+  ChnTypes, ChnVirt, ChnPort, ChnCom, ChnDF1, TestSupport;
 
 type
   {$IFDEF UNIX}
@@ -82,63 +82,11 @@ type
   end;
   {$ENDIF}
 
-  { The virtual line: a pty slave, a socat link to one, DRV=PTY, on the
-    real drivers (RTL, and SYNAPSE when built in). }
-  TTestChnComVirtual = class(TTestCase)
-  private
-    FPty: TPtyPair;
-    FStacks: array of pChnVirt;
-    FBuf: array[0..1023] of Byte;
-    function Open(const Params: string): pChnVirt;
-    procedure Pass(A, B: pChnVirt; const What: string);
-    procedure TakesAsGiven(const Drv: string);
-  protected
-    procedure SetUp; override;
-    procedure TearDown; override;
-  published
-    procedure TestPtySlaveTakesSettingsAsGiven;
-    procedure TestDrvPtyTakesSettingsAsGiven;
-    procedure TestSocatLinkIsVirtual;
-    procedure TestManualStringOnPty;
-    procedure TestExamplesPrintTheToken;
-  end;
   {$ENDIF UNIX}
-
-  TTestChnComLogic = class(TTestCase)
-  protected
-    procedure SetUp; override;
-  published
-    procedure TestDefaultParams;
-    procedure TestGetParamRoundTrip;
-    procedure TestBadParamsChangeNothing;
-    procedure TestDosKeysAcceptedAndIgnored;
-    procedure TestComNumberNamesTtyS;
-    procedure TestRs485RtsRaisedUntilLastBitLeft;
-    procedure TestRs485AutoPrefersKernel;
-    procedure TestRs485AutoFallsBackToRts;
-    procedure TestOsOverrunReported;
-    procedure TestSendErrors;
-    procedure TestSettingRefusedLeavesClosed;
-    procedure TestModemLinesReachThePort;
-    procedure TestPortDriverNames;
-    {$IFDEF WINDOWS}
-    procedure TestMissingPortSaysTheOsReason;
-    {$ENDIF}
-  end;
 
 implementation
 
 {$IFDEF UNIX}
-const
-  { tTermios2 and TCGETS2 are ChnUnix's }
-  KBOTHER = $1000;
-  KCBAUD = $100F;
-  { the c_cflag bits the layer is responsible for (Linux <asm/termbits.h>) }
-  KCSIZE = $30; KCS5 = $00; KCS6 = $10; KCS7 = $20; KCS8 = $30;
-  KCSTOPB = $40; KPARENB = $100; KPARODD = $200;
-  KCMSPAR = $40000000; KCRTSCTS = $80000000;
-  KB50 = $1; KB1200 = $9; KB9600 = $D; KB115200 = $1002; KB4000000 = $100F;
-
 function Pattern(I: LongInt): Byte; inline;
 begin
   Result := Byte((I * 7) xor (I shr 8) xor (I shr 16));
@@ -543,35 +491,12 @@ end;
   dropped to nobody (65534) first; the child's exit code carries ChResult. }
 procedure TTestChnComPty.TestNoPermission;
 var
-  Pid: TPid;
-  Status: cint;
-  C: pChnVirt;
-  Code: Integer;
+  Code: LongInt;
 begin
   AssertEquals('chmod 000', 0, FpChmod(PChar(FPty.SlavePath), 0));
-  Pid := FpFork;
-  AssertTrue('fork', Pid >= 0);
-  if Pid = 0 then
-  begin
-    { child: no FPCUnit here, only an exit code }
-    if FpGetuid = 0 then
-      if (FpSetgid(65534) <> 0) or (FpSetuid(65534) <> 0) then
-        FpExit(90);
-    if FpGetuid = 0 then
-      FpExit(91);
-    C := ChnCollection^.ChNewInit(ChnCom.cName);
-    C^.ChSetParam('DRV=' + Drv + ' DEV=' + FPty.SlavePath);
-    C^.ChOpen;
-    Code := C^.ChResult;
-    if C^.ChReady <> CHS_Close then
-      Code := Code + 50;
-    FpExit(Code);
-  end;
-  Status := 0;
-  AssertEquals('wait', Pid, FpWaitPid(Pid, @Status, 0));
-  AssertTrue('child exited', WIFEXITED(Status));
-  Code := WEXITSTATUS(Status);
-  AssertTrue('child could drop root (code ' + IntToStr(Code) + ')', Code < 90);
+  Code := OpenComAsNobody('DRV=' + Drv + ' DEV=' + FPty.SlavePath, True);
+  AssertTrue('child forked and exited (code ' + IntToStr(Code) + ')', Code >= 0);
+  AssertTrue('child could drop root (code ' + IntToStr(Code) + ')', Code < NobodyNotDropped);
   AssertEquals('no permission, state closed', res_NoPermission, Code);
 end;
 
@@ -604,33 +529,15 @@ end;
   user. The second open runs in a child as nobody, as in TestNoPermission. }
 procedure TTestChnComPty.TestOtherUserCanOpenAfterClose;
 var
-  Pid: TPid;
-  Status: cint;
-  C: pChnVirt;
-  Code: Integer;
+  Code: LongInt;
 begin
   AssertEquals('first open', res_Ok, OpenCom(''));
   FChn^.ChClose;
   if FpGetuid = 0 then
     AssertEquals('chown to nobody', 0, FpChown(PChar(FPty.SlavePath), 65534, 65534));
-  Pid := FpFork;
-  AssertTrue('fork', Pid >= 0);
-  if Pid = 0 then
-  begin
-    if FpGetuid = 0 then
-      if (FpSetgid(65534) <> 0) or (FpSetuid(65534) <> 0) then
-        FpExit(90);
-    C := ChnCollection^.ChNewInit(ChnCom.cName);
-    C^.ChSetParam('DRV=' + Drv + ' DEV=' + FPty.SlavePath);
-    C^.ChOpen;
-    Code := C^.ChResult;
-    FpExit(Code);
-  end;
-  Status := 0;
-  AssertEquals('wait', Pid, FpWaitPid(Pid, @Status, 0));
-  AssertTrue('child exited', WIFEXITED(Status));
-  Code := WEXITSTATUS(Status);
-  AssertTrue('child could drop root (code ' + IntToStr(Code) + ')', Code < 90);
+  Code := OpenComAsNobody('DRV=' + Drv + ' DEV=' + FPty.SlavePath, False);
+  AssertTrue('child forked and exited (code ' + IntToStr(Code) + ')', Code >= 0);
+  AssertTrue('child could drop root (code ' + IntToStr(Code) + ')', Code < NobodyNotDropped);
   AssertEquals('another user opens the closed device', res_Ok, Code);
 end;
 
@@ -1242,198 +1149,6 @@ begin
   end;
 end;
 
-{ ------------------------------------------------------------ virtual line }
-
-procedure TTestChnComVirtual.SetUp;
-begin
-  FPty := TPtyPair.Create;
-  FStacks := nil;
-end;
-
-procedure TTestChnComVirtual.TearDown;
-var
-  I: Integer;
-begin
-  for I := High(FStacks) downto 0 do
-    Dispose(FStacks[I], Done);
-  FStacks := nil;
-  FPty.Free;
-end;
-
-function TTestChnComVirtual.Open(const Params: string): pChnVirt;
-var
-  Err: string;
-begin
-  Result := OpenStack('COM', Params, Err);
-  AssertTrue('open ' + Params + ': ' + Err, Result <> nil);
-  SetLength(FStacks, Length(FStacks) + 1);
-  FStacks[High(FStacks)] := Result;
-  Result^.ChReceiveBuffer(@FBuf, SizeOf(FBuf));
-end;
-
-{ All 256 byte values (XON, XOFF, DLE among them) from A to B, unchanged. }
-procedure TTestChnComVirtual.Pass(A, B: pChnVirt; const What: string);
-var
-  Msg: array[0..255] of Byte;
-  Got, I: LongInt;
-  Len: Word;
-  Deadline: QWord;
-begin
-  for I := 0 to 255 do
-    Msg[I] := I;
-  AssertTrue(What + ': idle', WaitSent(A, 2000));
-  A^.ChSend(@Msg, 256);
-  AssertEquals(What + ': send', res_Ok, A^.ChSendResult);
-  Got := 0;
-  Deadline := GetTickCount64 + 3000;
-  while (Got < 256) and (GetTickCount64 < Deadline) do
-  begin
-    A^.ChSendReady;
-    if B^.ChReceiveReady = CHS_ReceiveReady then
-    begin
-      Len := 0;
-      B^.ChReceiveBuffer(@FBuf[Got], SizeOf(FBuf) - Got);
-      B^.ChReceive(Len);
-      Inc(Got, Len);
-    end;
-  end;
-  AssertEquals(What + ': every byte arrives', 256, Got);
-  for I := 0 to 255 do
-    AssertEquals(What + ': byte ' + IntToStr(I), I, FBuf[I]);
-end;
-
-procedure TTestChnComVirtual.TakesAsGiven(const Drv: string);
-const
-  Cases: array[0..3] of string = (
-    'BD=19200 BIT=7 STOP=2 PAR=E FLW=NONE',
-    'BD=12345 BIT=5 STOP=1 PAR=M FLW=RTSCTS',
-    'BD=4000000 BIT=6 STOP=2 PAR=S FLW=XONXOFF',
-    'BD=50 BIT=8 STOP=1 PAR=O FLW=NONE');
-var
-  I: Integer;
-  C: pChnVirt;
-  T: Termios;
-  Line: string;
-begin
-  for I := Low(Cases) to High(Cases) do
-  begin
-    C := OpenStack('COM', 'NAM=COM DRV=' + Drv + ' DEV=' + FPty.SlavePath + ' ' + Cases[I], Line);
-    AssertTrue(Drv + ' ' + Cases[I] + ': ' + Line, C <> nil);
-    Line := C^.ChGetParam('BD') + ' ' + C^.ChGetParam('BIT') + ' ' +
-      C^.ChGetParam('STOP') + ' ' + C^.ChGetParam('PAR') + ' ' + C^.ChGetParam('FLW');
-    AssertEquals(Drv + ': reported as given', Cases[I], Line);
-    AssertTrue(Drv + ': virtual', pChnCom(C)^.CH_Port.VirtualLine);
-    { the pty itself is left raw, 8 bits, no parity, no flow control }
-    AssertEquals('tcgetattr', 0, TCGetAttr(pChnCom(C)^.CH_Port.OsHandle, T));
-    AssertEquals(Cases[I] + ': CS8, no PARENB/CSTOPB/CRTSCTS', KCS8,
-      T.c_cflag and (KCSIZE or KPARENB or KCSTOPB or KCRTSCTS or KCMSPAR));
-    AssertEquals(Cases[I] + ': no IXON/IXOFF', 0, T.c_iflag and (IXON or IXOFF));
-    Dispose(C, Done);
-  end;
-end;
-
-procedure TTestChnComVirtual.TestPtySlaveTakesSettingsAsGiven;
-begin
-  TakesAsGiven('RTL');
-  {$IFDEF CHN_SYNAPSE}
-  TakesAsGiven('SYNAPSE');
-  {$ENDIF}
-end;
-
-procedure TTestChnComVirtual.TestDrvPtyTakesSettingsAsGiven;
-var
-  Host, Client: pChnVirt;
-begin
-  Host := Open('NAM=COM DRV=PTY BD=9600 BIT=7 PAR=E STOP=2 FLW=XONXOFF');
-  AssertEquals('as given', 'PAR=E', Host^.ChGetParam('PAR'));
-  AssertEquals('FLW=XONXOFF', Host^.ChGetParam('FLW'));
-  Client := Open('NAM=COM DEV=' + PtyLastSlave + ' BD=9600 BIT=7 PAR=E STOP=2 FLW=XONXOFF');
-  Pass(Host, Client, 'host -> client');
-  Pass(Client, Host, 'client -> host');
-end;
-
-{ socat's pty link= is a symlink to /dev/pts/N: a virtual line as well }
-procedure TTestChnComVirtual.TestSocatLinkIsVirtual;
-var
-  P: TProcess;
-  Dir, A, B: string;
-  Deadline: QWord;
-  CA, CB: pChnVirt;
-begin
-  if FileSearch('socat', GetEnvironmentVariable('PATH')) = '' then
-    Ignore('socat is not installed (Debian package socat): the socat link is not checked');
-  Dir := GetTempDir(False) + 'chn-socat-' + IntToStr(FpGetPid);
-  CreateDir(Dir);
-  A := Dir + '/ttyA';
-  B := Dir + '/ttyB';
-  P := TProcess.Create(nil);
-  try
-    P.Executable := FileSearch('socat', GetEnvironmentVariable('PATH'));
-    P.Parameters.Add('pty,raw,echo=0,link=' + A);
-    P.Parameters.Add('pty,raw,echo=0,link=' + B);
-    P.Execute;
-    Deadline := GetTickCount64 + 5000;
-    while not (FileExists(A) and FileExists(B)) and (GetTickCount64 < Deadline) do
-      Sleep(10);
-    AssertTrue('socat made its links', FileExists(A) and FileExists(B));
-    { the manuals' line settings on both ends }
-    CA := Open('NAM=COM DEV=' + A + ' BD=9600 BIT=8 STOP=1 PAR=E IRQ=4 LRB=1000');
-    CB := Open('NAM=COM DEV=' + B + ' BD=9600 BIT=8 STOP=1 PAR=E IRQ=4 LRB=1000');
-    AssertEquals('PAR=E', CA^.ChGetParam('PAR'));
-    Pass(CA, CB, 'A -> B');
-    Pass(CB, CA, 'B -> A');
-  finally
-    P.Terminate(0);
-    P.WaitOnExit;
-    P.Free;
-    DeleteFile(A);
-    DeleteFile(B);
-    RemoveDir(Dir);
-  end;
-end;
-
-{ The manual's whole parameter string, pointed at a pty by DEV= }
-procedure TTestChnComVirtual.TestManualStringOnPty;
-var
-  Host, Client: pChnVirt;
-  Err: string;
-begin
-  Host := Open('NAM=COM DRV=PTY');
-  Client := OpenStack('DF1',
-    'NAM=DF1 LSB=500 NOD=1 DNO=2 FHD=FULL CRC=ON NAM=COM COM=1 IRQ=4 BD=9600 ' +
-    'BIT=8 STOP=1 PAR=E LRB=1000 DEV=' + PtyLastSlave, Err);
-  AssertTrue('opens: ' + Err, Client <> nil);
-  SetLength(FStacks, Length(FStacks) + 1);
-  FStacks[High(FStacks)] := Client;
-  AssertEquals('', Client^.ChParamError);
-end;
-
-{ What the example programs print when ChOpen refuses: the token, whichever
-  way they open (plain ChOpen, DF1OpenStack). Expected texts by hand. }
-procedure TTestChnComVirtual.TestExamplesPrintTheToken;
-var
-  Output: string;
-begin
-  AssertTrue(BinPath('comraw') + ' missing (make examples)', FileExists(BinPath('comraw')));
-  AssertEquals('comraw exit code', 1, RunBin('comraw', ['DEV=/dev/null BD=9600'], 10000, Output));
-  AssertTrue('comraw: ' + Output, Pos('comraw: device refuses the setting (DEV=/dev/null): ' +
-    'Inappropriate ioctl for device', Output) > 0);
-  { the OS's reason through DF1 on top, and a bad value with what it takes }
-  RunBin('df1read', ['N7:0', '1', 'NAM=DF1 NOD=0 DNO=1 NAM=COM DEV=/dev/chn-no-such-tty'],
-    10000, Output);
-  AssertTrue('df1read: ' + Output, Pos('device cannot be opened (DEV=/dev/chn-no-such-tty): ' +
-    'No such file or directory', Output) > 0);
-  RunBin('df1read', ['N7:0', '1', 'NAM=DF1 NOD=0 DNO=1 NAM=COM DEV=/tmp BD=abc'], 10000, Output);
-  AssertTrue('df1read: ' + Output, Pos('df1read: bad parameter string: bad parameter (BD=abc): ' +
-    'a number 50..4000000', Output) > 0);
-  { a pty has no RS-485: refused, and named, through DF1 on top }
-  RunBin('df1read', ['N7:0', '1', 'NAM=DF1 NOD=0 DNO=1 NAM=COM DEV=' + FPty.SlavePath +
-    ' RS485=KERNEL'], 10000, Output);
-  AssertTrue('df1read: ' + Output, Pos('device refuses the setting (RS485=KERNEL)', Output) > 0);
-  RunBin('ft12master', ['NAM=FT1_2 MAS=MASTER NAM=COM DEV=/dev/null', '100'], 10000, Output);
-  AssertTrue('ft12master: ' + Output, Pos('(DEV=/dev/null)', Output) > 0);
-end;
-
 {$IFDEF CHN_SYNAPSE}
 function TTestChnComSynapse.Drv: string;
 begin
@@ -1442,430 +1157,13 @@ end;
 {$ENDIF}
 {$ENDIF UNIX}
 
-{ --------------------------------------------------- fake port, logic tests }
-
-{ the scripted port (DRV=FAKE) is TFakePort of tests/support/FakePort }
-
-procedure TTestChnComLogic.SetUp;
-begin
-  RegisterPortDriver('FAKE', TFakePort);
-  TFakePort.Reset;
-end;
-
-procedure TTestChnComLogic.TestDefaultParams;
-var
-  C: pChnVirt;
-begin
-  C := ChnCollection^.ChNewInit('COM');
-  try
-    AssertEquals('defaults of the manual (COM=1 9600 8N1) and the port',
-      'NAM=COM DRV=' + DefaultPortDriver + ' COM=1 BD=9600 BIT=8 STOP=1 PAR=N ' +
-      'FLW=NONE RS485=OFF LRB=4096 LSB=65535 IDL=1', C^.ChGetParam(''));
-  finally
-    Dispose(C, Done);
-  end;
-end;
-
-procedure TTestChnComLogic.TestGetParamRoundTrip;
-const
-  P = 'NAM=COM DRV=FAKE DEV=/dev/serial/by-id/usb-FTDI_FT232R_USB_UART_A50285BI-if00-port0 ' +
-      'BD=19200 BIT=7 STOP=2 PAR=E FLW=RTSCTS RS485=AUTO LRB=1000 LSB=500 IDL=5 IRQ=4 ADR=$3F8';
-var
-  A, B: pChnVirt;
-begin
-  A := ChnCollection^.ChNewInit('COM');
-  B := ChnCollection^.ChNewInit('COM');
-  try
-    A^.ChSetParam(P);
-    AssertEquals('set ' + A^.ChParamError, res_Ok, A^.ChResult);
-    AssertEquals('reported as given', P, A^.ChGetParam(''));
-    B^.ChSetParam(A^.ChGetParam(''));
-    AssertEquals('rebuilt', A^.ChGetParam(''), B^.ChGetParam(''));
-    AssertEquals('one key', 'BD=19200', A^.ChGetParam('BD'));
-  finally
-    Dispose(A, Done);
-    Dispose(B, Done);
-  end;
-end;
-
-procedure TTestChnComLogic.TestBadParamsChangeNothing;
-const
-  Bad: array[0..14] of string = ('BD=49', 'BD=4000001', 'BD=96OO', 'BIT=4', 'BIT=9',
-    'STOP=0', 'STOP=3', 'PAR=X', 'FLW=CTS', 'RS485=YES', 'LRB=0', 'LSB=65536',
-    'IDL=1001', 'COM=0', 'DRV=NOPE');
-  Allowed: array[0..14] of string = ('a number 50..4000000', 'a number 50..4000000',
-    'a number 50..4000000', 'a number 5..8', 'a number 5..8', 'a number 1..2',
-    'a number 1..2', 'one of N|E|O|M|S', 'one of NONE|RTSCTS|XONXOFF',
-    'one of OFF|RTS|KERNEL|AUTO', 'a number 1..16777216', 'a number 1..65535',
-    'a number 0..1000', 'a number 1..256', 'one of @DRIVERS');
-var
-  C: pChnVirt;
-  Before: string;
-  I: Integer;
-begin
-  C := ChnCollection^.ChNewInit('COM');
-  try
-    Before := C^.ChGetParam('');
-    for I := Low(Bad) to High(Bad) do
-    begin
-      C^.ChSetParam('IRQ=4 ' + Bad[I]);
-      AssertEquals(Bad[I], res_BadParam, C^.ChResult);
-      AssertEquals(Bad[I] + ' named', Bad[I], C^.ChParamError);
-      AssertEquals(Bad[I] + ' changed nothing', Before, C^.ChGetParam(''));
-      AssertEquals(Bad[I] + ': what it allows', 'bad parameter (' + Bad[I] + '): ' +
-        StringReplace(Allowed[I], '@DRIVERS', PortDriverNames, []), C^.ChErrorText);
-    end;
-    C^.ChSetParam('XYZ=1');
-    AssertEquals('unknown key', res_UnknownParam, C^.ChResult);
-    AssertEquals('unknown parameter key (XYZ=1): COM takes DRV COM BD BIT STOP PAR FLW RS485 LRB LSB IDL',
-      C^.ChErrorText);
-    C^.ChSetParam('NAM=DF1');
-    AssertEquals('nothing below a physical layer', res_BadParam, C^.ChResult);
-  finally
-    Dispose(C, Done);
-  end;
-end;
-
-procedure TTestChnComLogic.TestDosKeysAcceptedAndIgnored;
-var
-  C: pChnVirt;
-begin
-  C := ChnCollection^.ChNewInit('COM');
-  try
-    { the manuals' example line, with the port's DEV= added }
-    C^.ChSetParam('NAM=COM COM=1 IRQ=4 BD=9600 BIT=8 STOP=1 PAR=E LRB=1000 DRV=FAKE DEV=/x');
-    AssertEquals('manual example', res_Ok, C^.ChResult);
-    C^.ChOpen;
-    AssertEquals('open', res_Ok, C^.ChResult);
-    AssertEquals('IRQ does not reach the port', 'open /x;cfg 9600 8E1;', TFakePort.Log);
-    AssertEquals('IRQ reported back', 'IRQ=4', C^.ChGetParam('IRQ'));
-    C^.ChClose;
-    C^.ChSetParam('PORT=$2F8');
-    AssertEquals('port address', res_Ok, C^.ChResult);
-    C^.ChSetParam('BASE=3F8h');
-    AssertEquals('base address in any notation', res_Ok, C^.ChResult);
-    { kept as text for ChGetParam, so their length is bounded: IRQ= value
-      up to 15 characters, an ADR=/BASE=/PORT= token up to 31 }
-    C^.ChSetParam('IRQ=' + StringOfChar('1', 15));
-    AssertEquals('IRQ, 15 characters', res_Ok, C^.ChResult);
-    C^.ChSetParam('IRQ=' + StringOfChar('1', 16));
-    AssertEquals('IRQ, 16 characters', res_BadParam, C^.ChResult);
-    AssertEquals('IRQ kept', 'IRQ=' + StringOfChar('1', 15), C^.ChGetParam('IRQ'));
-    C^.ChSetParam('ADR=' + StringOfChar('3', 27));
-    AssertEquals('ADR token, 31 characters', res_Ok, C^.ChResult);
-    C^.ChSetParam('ADR=' + StringOfChar('3', 28));
-    AssertEquals('ADR token, 32 characters', res_BadParam, C^.ChResult);
-  finally
-    Dispose(C, Done);
-  end;
-end;
-
-procedure TTestChnComLogic.TestComNumberNamesTtyS;
-var
-  C: pChnVirt;
-begin
-  C := ChnCollection^.ChNewInit('COM');
-  try
-    C^.ChSetParam('DRV=FAKE COM=3');
-    C^.ChOpen;
-    {$IFDEF WINDOWS}
-    AssertEquals('COM3', 'open \\.\COM3;cfg 9600 8N1;', TFakePort.Log);
-    {$ELSE}
-    AssertEquals('COM=3 is the third UART', 'open /dev/ttyS2;cfg 9600 8N1;', TFakePort.Log);
-    {$ENDIF}
-    C^.ChClose;
-    TFakePort.Log := '';
-    C^.ChSetParam('DEV=/dev/ttyUSB0');
-    C^.ChOpen;
-    AssertEquals('DEV overrides COM', 'open /dev/ttyUSB0;cfg 9600 8N1;', TFakePort.Log);
-  finally
-    Dispose(C, Done);
-  end;
-end;
-
-procedure TTestChnComLogic.TestRs485RtsRaisedUntilLastBitLeft;
-var
-  C: pChnVirt;
-  Msg: array[0..249] of Byte;
-begin
-  C := ChnCollection^.ChNewInit('COM');
-  try
-    C^.ChSetParam('DRV=FAKE DEV=/x RS485=RTS IDL=0');
-    C^.ChOpen;
-    AssertEquals('open', res_Ok, C^.ChResult);
-    AssertEquals('receive direction after open', 'open /x;cfg 9600 8N1;rts0;', TFakePort.Log);
-    TFakePort.Log := '';
-    FillChar(Msg, SizeOf(Msg), $55);
-    C^.ChSend(@Msg, SizeOf(Msg));
-    AssertEquals('send', res_Ok, C^.ChSendResult);
-    AssertEquals('RTS before the first byte', 'rts1;w100;w100;w50;q250;', TFakePort.Log);
-    AssertEquals('150 bytes still queued', CHS_Sending, C^.ChSendReady);
-    C^.ChSend(@Msg, 1);               { looks at the queue once more: 50 left }
-    AssertEquals('no new message while RTS is up', res_Busy, C^.ChSendResult);
-    AssertEquals('queue empty, drained, RTS down', CHS_SendReady, C^.ChSendReady);
-    AssertEquals('sequence', 'rts1;w100;w100;w50;q250;q150;q50;q0;drain;rts0;', TFakePort.Log);
-  finally
-    Dispose(C, Done);
-  end;
-end;
-
-procedure TTestChnComLogic.TestRs485AutoPrefersKernel;
-var
-  C: pChnVirt;
-  Msg: array[0..9] of Byte;
-begin
-  TFakePort.KernelOk := True;
-  C := ChnCollection^.ChNewInit('COM');
-  try
-    C^.ChSetParam('DRV=FAKE DEV=/x RS485=AUTO');
-    C^.ChOpen;
-    FillChar(Msg, SizeOf(Msg), 0);
-    C^.ChSend(@Msg, 10);
-    AssertEquals('sent', CHS_SendReady, C^.ChSendReady);
-    AssertEquals('the driver switches, not the layer', 'open /x;cfg 9600 8N1;k1;w10;', TFakePort.Log);
-  finally
-    Dispose(C, Done);
-  end;
-end;
-
-procedure TTestChnComLogic.TestRs485AutoFallsBackToRts;
-var
-  C: pChnVirt;
-  Msg: array[0..9] of Byte;
-begin
-  C := ChnCollection^.ChNewInit('COM');
-  try
-    C^.ChSetParam('DRV=FAKE DEV=/x RS485=AUTO IDL=0');
-    C^.ChOpen;
-    AssertEquals('open', res_Ok, C^.ChResult);
-    FillChar(Msg, SizeOf(Msg), 0);
-    C^.ChSend(@Msg, 10);
-    C^.ChSendReady;
-    AssertEquals('layer toggles RTS', 'open /x;cfg 9600 8N1;rts0;rts1;w10;q10;q0;drain;rts0;',
-      TFakePort.Log);
-    C^.ChSetParam('RS485=KERNEL');
-    C^.ChClose;
-    C^.ChOpen;
-    AssertEquals('KERNEL alone is refused', res_BadSetting, C^.ChResult);
-    AssertEquals('closed', CHS_Close, C^.ChReady);
-    TFakePort.KernelOk := True;
-    C^.ChSetParam('RS485=AUTO FLW=RTSCTS');
-    C^.ChOpen;
-    AssertEquals('RTS is either handshake or direction', res_BadSetting, C^.ChResult);
-    AssertEquals('closed too', CHS_Close, C^.ChReady);
-  finally
-    Dispose(C, Done);
-  end;
-end;
-
-procedure TTestChnComLogic.TestOsOverrunReported;
-var
-  C: pChnVirt;
-  Buf: array[0..15] of Byte;
-  Len: Word;
-begin
-  C := ChnCollection^.ChNewInit('COM');
-  try
-    C^.ChSetParam('DRV=FAKE DEV=/x');
-    C^.ChOpen;
-    C^.ChReceiveBuffer(@Buf, SizeOf(Buf));
-    C^.ChConnect;
-    TFakePort.OsLost := 5;          { the UART lost 5 bytes }
-    TFakePort.RxData := 'abc';
-    AssertEquals('ready', CHS_ReceiveReady, C^.ChReceiveReady);
-    C^.ChReceive(Len);
-    AssertEquals('3 bytes', 3, Len);
-    AssertEquals('overrun', res_Overrun, C^.ChReceiveResult);
-    AssertEquals('counted', 5, pChnCom(C)^.ChLostBytes);
-    TFakePort.RxData := 'd';
-    AssertEquals('ready again', CHS_ReceiveReady, C^.ChReceiveReady);
-    C^.ChReceive(Len);
-    AssertEquals('reported once', res_Ok, C^.ChReceiveResult);
-    AssertEquals('byte', Ord('d'), Buf[0]);
-    { a small application buffer takes the rest on the next call }
-    TFakePort.RxData := StringOfChar('x', 20);
-    C^.ChReceiveReady;
-    C^.ChReceive(Len);
-    AssertEquals('buffer size', 16, Len);
-    AssertEquals('rest waits', CHS_ReceiveReady, C^.ChReceiveReady);
-    C^.ChReceive(Len);
-    AssertEquals('rest', 4, Len);
-    C^.ChReceive(Len);
-    AssertEquals('nothing', 0, Len);
-    AssertEquals('no message', res_NoMessage, C^.ChReceiveResult);
-  finally
-    Dispose(C, Done);
-  end;
-end;
-
-procedure TTestChnComLogic.TestSendErrors;
-var
-  C: pChnVirt;
-  Msg: array[0..99] of Byte;
-begin
-  C := ChnCollection^.ChNewInit('COM');
-  try
-    C^.ChSetParam('DRV=FAKE DEV=/x LSB=50');
-    FillChar(Msg, SizeOf(Msg), 0);
-    C^.ChSend(@Msg, 10);
-    AssertEquals('closed', res_WrongState, C^.ChSendResult);
-    C^.ChOpen;
-    TFakePort.Log := '';
-    C^.ChOpen;
-    AssertEquals('open twice', res_WrongState, C^.ChResult);
-    AssertEquals('no second port opened', '', TFakePort.Log);
-    AssertEquals('still open', CHS_Open, C^.ChReady);
-    C^.ChSend(@Msg, 0);
-    AssertEquals('empty', res_BadLen, C^.ChSendResult);
-    C^.ChSend(nil, 5);
-    AssertEquals('nil', res_BadLen, C^.ChSendResult);
-    TFakePort.Log := '';
-    C^.ChSend(@Msg, 51);
-    AssertEquals('above LSB', res_TooLong, C^.ChSendResult);
-    AssertEquals('nothing written', '', TFakePort.Log);
-    C^.ChSend(@Msg, 50);
-    AssertEquals('LSB itself', res_Ok, C^.ChSendResult);
-    C^.ChClose;
-    C^.ChClose;
-    AssertEquals('close twice', res_WrongState, C^.ChResult);
-  finally
-    Dispose(C, Done);
-  end;
-end;
-
-procedure TTestChnComLogic.TestSettingRefusedLeavesClosed;
-var
-  C: pChnVirt;
-begin
-  TFakePort.RefuseConfig := True;
-  C := ChnCollection^.ChNewInit('COM');
-  try
-    C^.ChSetParam('DRV=FAKE DEV=/x PAR=M');
-    C^.ChOpen;
-    AssertEquals('refused', res_BadSetting, C^.ChResult);
-    AssertEquals('the port''s key, as a token', 'PAR=M', C^.ChParamError);
-    AssertEquals('closed', CHS_Close, C^.ChReady);
-    AssertEquals('port closed again', 'open /x;close;', TFakePort.Log);
-    TFakePort.RefuseConfig := False;
-    TFakePort.Log := '';
-    C^.ChOpen;
-    AssertEquals('opens', res_Ok, C^.ChResult);
-    AssertEquals('no token after success', '', C^.ChParamError);
-  finally
-    Dispose(C, Done);
-  end;
-end;
-
-procedure TTestChnComLogic.TestModemLinesReachThePort;
-var
-  C: pChnCom;
-  Lines: tPortLines;
-  Buf: array[0..15] of Byte;
-begin
-  New(C, Init);
-  try
-    C^.ChSetParam('DRV=FAKE DEV=/x');
-    Lines := [plRing];
-    AssertEquals('RTS while closed', res_WrongState, C^.ChSetRts(True));
-    AssertEquals('DTR while closed', res_WrongState, C^.ChSetDtr(True));
-    AssertEquals('lines while closed', res_WrongState, C^.ChModemLines(Lines));
-    AssertTrue('no lines while closed', Lines = []);
-    C^.ChOpen;
-    AssertEquals(res_Ok, C^.ChResult);
-    TFakePort.Log := '';
-    AssertEquals(res_Ok, C^.ChSetRts(True));
-    AssertEquals(res_Ok, C^.ChSetDtr(False));
-    AssertEquals(res_Ok, C^.ChSetRts(False));
-    AssertEquals(res_Ok, C^.ChSetDtr(True));
-    TFakePort.LineState := [plCts, plCarrier];
-    AssertEquals(res_Ok, C^.ChModemLines(Lines));
-    AssertTrue('CTS and CD as the port reports them', Lines = [plCts, plCarrier]);
-    AssertEquals('each call reaches the port, in order',
-      'rts1;dtr0;rts0;dtr1;lines;', TFakePort.Log);
-    { once the device failed, the calls say so and leave the port alone }
-    TFakePort.ReadFault := res_DeviceLost;
-    C^.ChReceiveBuffer(@Buf, SizeOf(Buf));
-    C^.ChConnect;
-    C^.ChReceiveReady;
-    AssertEquals('the fault', res_DeviceLost, C^.ChResult);
-    TFakePort.Log := '';
-    Lines := [plDsr];
-    AssertEquals(res_DeviceLost, C^.ChSetRts(True));
-    AssertEquals(res_DeviceLost, C^.ChSetDtr(True));
-    AssertEquals(res_DeviceLost, C^.ChModemLines(Lines));
-    AssertTrue('no lines from a lost device', Lines = []);
-    AssertEquals('nothing reached the port', '', TFakePort.Log);
-    C^.ChClose;
-    AssertEquals('closed again', res_WrongState, C^.ChSetDtr(False));
-  finally
-    Dispose(C, Done);
-  end;
-end;
-
-{$IFDEF WINDOWS}
-{ A COM port that is not there: ChErrorText ends with Windows' own text
-  for ERROR_FILE_NOT_FOUND (FormatMessage; its words differ between
-  Windows and Wine, so only its presence is checked). }
-procedure TTestChnComLogic.TestMissingPortSaysTheOsReason;
-var
-  C: pChnVirt;
-  T, Head: string;
-begin
-  C := ChnCollection^.ChNewInit('COM');
-  try
-    C^.ChSetParam('DEV=\\.\COM199');
-    C^.ChOpen;
-    AssertEquals(res_CannotOpen, C^.ChResult);
-    T := C^.ChErrorText;
-    Head := 'device cannot be opened (DEV=\\.\COM199): ';
-    AssertTrue(T, (Pos(Head, T) = 1) and (Length(T) > Length(Head) + 3));
-    AssertTrue('no full stop or line break at the end: ' + T, not (T[Length(T)] in ['.', #10, #13]));
-  finally
-    Dispose(C, Done);
-  end;
-end;
-{$ENDIF}
-
-procedure TTestChnComLogic.TestPortDriverNames;
-var
-  Names, Seen, Name: string;
-  P: Integer;
-begin
-  RegisterPortDriver('fake', TFakePort);   { again, in lower case: replaces }
-  Names := PortDriverNames;
-  AssertTrue(Names, (Names <> '') and (Names[1] <> '|') and (Names[Length(Names)] <> '|'));
-  Seen := '|';
-  P := 1;
-  while P <= Length(Names) do
-  begin
-    Name := '';
-    while (P <= Length(Names)) and (Names[P] <> '|') do
-    begin
-      Name := Name + Names[P];
-      Inc(P);
-    end;
-    Inc(P);
-    AssertEquals('upper case', UpperCase(Name), Name);
-    AssertTrue(Name + ' is found', FindPortDriver(Name) <> nil);
-    AssertEquals(Name + ' once', 0, Pos('|' + Name + '|', Seen));
-    Seen := Seen + Name + '|';
-  end;
-  AssertTrue('the default backend', Pos('|' + DefaultPortDriver + '|', Seen) > 0);
-  AssertTrue('the test''s own', Pos('|FAKE|', Seen) > 0);
-  {$IFDEF UNIX}
-  AssertTrue('pty pairs', Pos('|PTY|', Seen) > 0);
-  {$ENDIF}
-end;
-
 initialization
   {$IFDEF UNIX}
   RegisterPortDriver('RTLSTRICT', TStrictRtlPort);
   RegisterTest(TTestChnComRtl);
-  RegisterTest(TTestChnComVirtual);
   {$IFDEF CHN_SYNAPSE}
   RegisterPortDriver('SYNSTRICT', TStrictSynapsePort);
   RegisterTest(TTestChnComSynapse);
   {$ENDIF}
   {$ENDIF}
-  RegisterTest(TTestChnComLogic);
 end.

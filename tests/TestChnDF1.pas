@@ -10,7 +10,8 @@ unit TestChnDF1;
 interface
 
 uses
-  SysUtils, fpcunit, testregistry, ChnTypes, ChnVirt, ChnLoop, ChnDF1, ChnDF1Codec, TestSupport;
+  SysUtils, fpcunit, testregistry, ChnTypes, ChnVirt, ChnLoop, ChnDF1, ChnDF1Codec, TestSupport,
+  StackCase;
 
 type
   { the test's DF1 slave: answers commands like a small PLC }
@@ -37,9 +38,8 @@ type
     TwoWire: Boolean;
   end;
 
-  TTestChnDF1 = class(TTestCase)
+  TTestChnDF1 = class(TStackCase)
   private
-    FStacks: array of pChnVirt;
     function Open(const Params: string): pChnVirt;
     function OpenRaw(const Pair: string): pChnVirt;
     function ReadRaw(Raw: pChnVirt): string;
@@ -51,8 +51,6 @@ type
     procedure HalfDuplexSession(TwoWire: Boolean; const Tag: string);
     function MasterExchange(M: pChnVirt; var S: TSlaveSim; CF, Tns: Word;
       const Data: array of Byte; var Rep: tRecRecord): Word;
-  protected
-    procedure TearDown; override;
   published
     procedure TestRegistryAndDefaults;
     procedure TestParameters;
@@ -79,32 +77,13 @@ const
   EchoCrc = '10 02 02 01 06 00 0A 00 00 41 68 6F 6A 10 03 E3 88';
 
 function TTestChnDF1.Open(const Params: string): pChnVirt;
-var
-  Err: string;
 begin
-  Result := OpenStack('DF1', Params, Err);
-  AssertTrue('open ' + Params + ': ' + Err, Result <> nil);
-  SetLength(FStacks, Length(FStacks) + 1);
-  FStacks[High(FStacks)] := Result;
+  Result := Stack('DF1', Params);
 end;
 
 function TTestChnDF1.OpenRaw(const Pair: string): pChnVirt;
-var
-  Err: string;
 begin
-  Result := OpenStack('LOOP', 'NAM=LOOP PAIR=' + Pair + ' END=2', Err);
-  AssertTrue('open raw ' + Pair + ': ' + Err, Result <> nil);
-  SetLength(FStacks, Length(FStacks) + 1);
-  FStacks[High(FStacks)] := Result;
-end;
-
-procedure TTestChnDF1.TearDown;
-var
-  I: Integer;
-begin
-  for I := High(FStacks) downto 0 do
-    Dispose(FStacks[I], Done);
-  FStacks := nil;
+  Result := Stack('LOOP', 'NAM=LOOP PAIR=' + Pair + ' END=2');
 end;
 
 function TTestChnDF1.ReadRaw(Raw: pChnVirt): string;
@@ -347,8 +326,7 @@ var
 begin
   C := ChnCollection^.ChNewInit(ChnDF1.cName);
   AssertTrue(C <> nil);
-  SetLength(FStacks, 1);
-  FStacks[0] := C;
+  Keep(C);
   D := pChnDF1(C);
   AssertEquals('DF1', C^.CH_Type);
   AssertEquals('DF1', C^.CH_Name);
@@ -374,11 +352,8 @@ var
   D: pChnDF1;
   P: string;
 begin
-  SetLength(FStacks, 2);
-  C := ChnCollection^.ChNewInit('DF1');
-  FStacks[0] := C;
-  C2 := ChnCollection^.ChNewInit('DF1');
-  FStacks[1] := C2;
+  C := Keep(ChnCollection^.ChNewInit('DF1'));
+  C2 := Keep(ChnCollection^.ChNewInit('DF1'));
   D := pChnDF1(C);
   C^.ChSetParam('NAM=DF1 LSB=500 NOD=3 DNO=16 MAS=SLAVE FHD=HALF CRC=OFF NAK=0F NAM=LOOP PAIR=DF1P END=2');
   AssertEquals(C^.ChParamError, res_Ok, C^.ChResult);
@@ -418,9 +393,7 @@ var
   end;
 
 begin
-  SetLength(FStacks, 1);
-  C := ChnCollection^.ChNewInit('DF1');
-  FStacks[0] := C;
+  C := Keep(ChnCollection^.ChNewInit('DF1'));
   C^.ChSetParam('NOD=1 DNO=2');
   AssertEquals(res_Ok, C^.ChResult);
   Bad('CRC=OFF MAS=BOSS', res_BadParam);
@@ -738,17 +711,13 @@ var
   M, Raw: pChnVirt;
   R: tSendRecord;
   Got: string;
-  Err: string;
   Deadline: QWord;
 begin
   M := Open('NAM=DF1 NOD=1 DNO=2 CRC=OFF NAM=LOOP PAIR=DF1Y END=1');
   { a 4-byte receive ring at the far end: the frame stays pending. (LOOP
     copies what it is given, so this cannot show that CH_SBuff is left
     alone; it shows res_Busy and an intact first frame.) }
-  Raw := OpenStack('LOOP', 'NAM=LOOP PAIR=DF1Y END=2 LRB=4', Err);
-  AssertTrue(Err, Raw <> nil);
-  SetLength(FStacks, Length(FStacks) + 1);
-  FStacks[High(FStacks)] := Raw;
+  Raw := Stack('LOOP', 'NAM=LOOP PAIR=DF1Y END=2 LRB=4');
   FillChar(R, SizeOf(R), 0);
   R.MessType := tpDataMess;
   R.CF := CF_Echo;

@@ -13,18 +13,15 @@ interface
 
 uses
   SysUtils, fpcunit, testregistry, ChnTypes, ChnVirt, ChnLoop, ChnCom,
-  {$IFDEF UNIX}ChnPty,{$ENDIF} ChnDF1, TestSupport;
+  {$IFDEF UNIX}ChnPty,{$ENDIF} ChnDF1, TestSupport, StackCase;
 
 type
-  TTestChnDF1Reply = class(TTestCase)
+  TTestChnDF1Reply = class(TStackCase)
   private
-    FStacks: array of pChnVirt;
     function Open(const Params: string): pChnVirt;
     procedure Send(Chn: pChnVirt; CF, Tns: Word; const Data: array of Byte);
     function Recv(Chn, Other: pChnVirt; var Rec: tRecRecord): Word;
     procedure OutOfOrder(A, B: pChnVirt; const Tag: string);
-  protected
-    procedure TearDown; override;
   published
     procedure TestLogMatchesTnsAndCommand;
     procedure TestLogKeepsSixteenNewestFirst;
@@ -54,22 +51,8 @@ begin
 end;
 
 function TTestChnDF1Reply.Open(const Params: string): pChnVirt;
-var
-  Err: string;
 begin
-  Result := OpenStack('DF1', Params, Err);
-  AssertTrue('open ' + Params + ': ' + Err, Result <> nil);
-  SetLength(FStacks, Length(FStacks) + 1);
-  FStacks[High(FStacks)] := Result;
-end;
-
-procedure TTestChnDF1Reply.TearDown;
-var
-  I: Integer;
-begin
-  for I := High(FStacks) downto 0 do
-    Dispose(FStacks[I], Done);
-  FStacks := nil;
+  Result := Stack('DF1', Params);
 end;
 
 procedure TTestChnDF1Reply.Send(Chn: pChnVirt; CF, Tns: Word; const Data: array of Byte);
@@ -168,15 +151,11 @@ end;
 procedure TTestChnDF1Reply.TestReplyOnTheWireHasNoFnc;
 var
   A, Raw: pChnVirt;
-  Err: string;
   Buf: array[0..63] of Byte;
   N: Word;
 begin
   A := Open('NAM=DF1 NOD=1 DNO=2 CRC=OFF NAM=LOOP PAIR=DRW END=1');
-  Raw := OpenStack('LOOP', 'NAM=LOOP PAIR=DRW END=2', Err);
-  AssertTrue(Err, Raw <> nil);
-  SetLength(FStacks, Length(FStacks) + 1);
-  FStacks[High(FStacks)] := Raw;
+  Raw := Stack('LOOP', 'NAM=LOOP PAIR=DRW END=2');
   { a reply built as the manuals build it: CF_DiagnosticSts or MskCF_Reply,
     TNS 5, data $AA. Wire: DLE STX 02 01 46 00 05 00 AA DLE ETX BCC with
     BCC = -(2+1+$46+5+$AA) = -$F8 = $08; no FNC byte $03 anywhere }

@@ -5,7 +5,9 @@
   example (scaled IOA 100..102 = -1, 23, 2300, single points 104, 105,
   a CP56-tagged single point 300). A balanced peer runs on a
   tFT12Balanced. Everything runs in one thread: the master's Idle steps
-  the bus and the slaves while a link service waits. }
+  the bus and the slaves while a link service waits. The share of a
+  timed line (BD=9600) the polling keeps busy is measured against
+  ChnIec101Slave stations. }
 unit TestChnIec101Master;
 
 {$MODE OBJFPC}{$H+}
@@ -14,7 +16,7 @@ interface
 
 uses
   Classes, SysUtils, fpcunit, testregistry, ChnTypes, ChnVirt, ChnLoop, ChnFT1_2,
-  ChnFT12Link, ChnFT12Balanced, ChnWait, ChnIec101Asdu, ChnIec101Master, TestSupport, LoopHub, Iec101Sim;
+  ChnFT12Link, ChnFT12Balanced, ChnWait, ChnIec101Asdu, ChnIec101Master, ChnIec101Slave, TestSupport, LoopHub, Iec101Sim;
 
 type
   TTestChnIec101Master = class(TTestCase)
@@ -57,6 +59,7 @@ type
     procedure TestBalancedWrongAddressSaysSo;
     procedure TestBalancedTwinDirSaysSo;
     procedure TestLongestFramesTaken;
+    procedure TestInterrogationKeepsATimedLineBusy;
   end;
 
 implementation
@@ -732,6 +735,105 @@ begin
   AssertEquals(22 + 122, Objects.Count);
   AssertEquals('5 M_SP_TB_1 3 22 = 1 00:00', Objects[21]);
   AssertEquals('5 M_ST_NA_1 20 1121', Objects[143]);
+end;
+
+{ On a line at 9600 Bd 8E1 (NAM=LOOP BD= delivers each character when the
+  line would have), station interrogations of ChnIec101Slave stations keep
+  the line busy: after an answer with data the master polls again at
+  once. The 24 points alternate single point / float, so each answer ASDU
+  carries one point (the slave packs consecutive points of one type) and
+  the answer is many short frames, as lib60870's slaves send it: polling
+  class 2 only every CycleMs (100 ms), as the master did before, uses
+  about a quarter of the line here (43 % against a lib60870 slave's 86
+  points). The bounds are low enough for a loaded machine and still fail
+  on CycleMs-paced polling. }
+var
+  TimedSlaves: array[1..4] of tIecSlaveStation;
+  TimedCount: LongInt;
+
+procedure StepTimedSlaves(Data: Pointer);
+var
+  I: LongInt;
+  Busy: Boolean;
+begin
+  Busy := False;
+  for I := 1 to TimedCount do
+    if IecSlaveStep(TimedSlaves[I]) then
+      Busy := True;
+  if not Busy then
+    ChnWaitAny(5);                      { woken when the line's characters arrive }
+end;
+
+procedure TTestChnIec101Master.TestInterrogationKeepsATimedLineBusy;
+
+  function Share(N: LongInt; const Pair: string): Double;
+  const
+    Line = ' BD=9600 PAR=E';
+  var
+    Err: string;
+    E: ShortString;
+    Chn: array[0..4] of pChnVirt;
+    I, K: LongInt;
+    O: tIecObject;
+    Chars0, Busy0, Chars, Busy, T0: QWord;
+  begin
+    FillChar(Chn, SizeOf(Chn), 0);
+    try
+      Chn[0] := OpenStack(ChnFT1_2.cName, 'NAM=FT1_2 MS=ON MAS=MASTER LEN=0 NOD=0 DNO=1 NAM=LOOP PAIR='
+        + Pair + ' END=1' + Line, Err);
+      AssertEquals(Err, '', Err);
+      TimedCount := N;
+      for I := 1 to N do
+      begin
+        Chn[I] := OpenStack(ChnFT1_2.cName, Format('NAM=FT1_2 MS=ON MAS=SLAVE LEN=0 NOD=%d DNO=0 NAM=LOOP PAIR=%s END=%d',
+          [I, Pair, I + 1]) + Line, Err);
+        AssertEquals(Err, '', Err);
+        AssertEquals(E, res_Ok, IecSlaveInit(TimedSlaves[I], Chn[I], IecDefaultParams, 1, E));
+        for K := 0 to 23 do
+        begin
+          FillChar(O, SizeOf(O), 0);
+          O.Ioa := 100 + K;
+          O.Int := 1;
+          O.Number := K * 1.5;
+          if not Odd(K) then
+            AssertEquals(E, res_Ok, IecSlaveAddPoint(TimedSlaves[I], M_SP_NA_1, O, 0, E))
+          else
+            AssertEquals(E, res_Ok, IecSlaveAddPoint(TimedSlaves[I], M_ME_NC_1, O, 0, E));
+        end;
+      end;
+      AssertEquals(res_Ok, IecMasterInit(M, Chn[0], IecDefaultParams));
+      for I := 1 to N do
+        IecMasterAddSlave(M, I);
+      M.Idle := @StepTimedSlaves;
+      M.OnObject := nil;
+      { the links set up first: the share is that of the interrogations }
+      IecPollFor(M, 300);
+      for I := 0 to N - 1 do
+        AssertEquals('slave online', Ord(isOnline), Ord(M.Slaves[I].State));
+      LoopLineLoad(Pair, Chars0, Busy0);
+      T0 := ChnClockUs;
+      for I := 1 to N do
+        AssertEquals(M.Cmd.Err, res_Ok, IecInterrogation(M, I, 1, Qoi_Station));
+      T0 := ChnClockUs - T0;
+      LoopLineLoad(Pair, Chars, Busy);
+      AssertTrue(Format('the interrogations carried their answers (%d characters, %.1f %%)',
+        [Chars - Chars0, 100.0 * (Busy - Busy0) / T0]), Chars - Chars0 > QWord(N) * 24 * 15);
+      Result := 100.0 * (Busy - Busy0) / T0;
+    finally
+      TimedCount := 0;
+      for I := 0 to N do
+        if Chn[I] <> nil then
+          Dispose(Chn[I], Done);
+    end;
+  end;
+
+var
+  P: Double;
+begin
+  P := Share(1, 'IMT1');
+  AssertTrue(Format('one slave: %.1f %% of the line', [P]), P >= 70);
+  P := Share(4, 'IMT4');
+  AssertTrue(Format('four slaves on one line: %.1f %% of the line', [P]), P >= 65);
 end;
 
 initialization

@@ -160,6 +160,10 @@ type
     Rep      : tFT12MaxRecord;
     RepLen   : Word;
     Run      : LongInt;    {< services in a row of the slave whose turn it is }
+    { the command's main ASDU, encoded by its Start (again only when a
+      clock synchronisation takes the time it leaves at) and sent as it is }
+    CmdAsdu  : array[0..IecMaxAsdu - 1] of Byte;
+    CmdLen   : Word;
   end;
   pIecMaster = ^tIecMaster;
 
@@ -274,6 +278,7 @@ function OnBalancedData(Data: Pointer; Buf: PByte; Len: Word; Confirm: Boolean):
 function IecMasterInit(var M: tIecMaster; Chn: pChnVirt; const P: tIecParams): tChResult;
 var
   E: ShortString;
+  Primary: Boolean;
 begin
   FillChar(M, SizeOf(M), 0);
   M.Chn := Chn;
@@ -289,20 +294,18 @@ begin
   Result := IecCheckParams(P, E);
   if Result <> res_Ok then
     Exit;
-  M.Over104 := IecTransportIs104(Chn);
-  if not M.Over104 and ((Chn = nil) or (Chn^.CH_Type <> ChnFT1_2.cName)) then
-    Exit(res_WrongLayer);
-  M.Balanced := M.Over104 or pChnFT1_2(Chn)^.ChFT12Config.Balanced;
+  Result := IecLinkKind(Chn, M.Over104, M.Balanced, Primary);
+  if Result <> res_Ok then
+    Exit;
   if M.Balanced then
   begin
-    Result := IecTransportInit(M.Link, Chn);
+    Result := IecTransportStart(M.Link, Chn, @OnBalancedData, @M);
     if Result <> res_Ok then
       Exit;
-    IecTransportHandler(M.Link, @OnBalancedData, @M);
     SlaveInit(M.Slaves[0], Chn^.CH_DNode, M.DeadMinMs);
     M.SlaveCount := 1;
   end
-  else if not pChnFT1_2(Chn)^.ChFT12Config.Primary then
+  else if not Primary then
     Result := res_BadMessage;
 end;
 
@@ -391,8 +394,30 @@ var
   Ti, Cot: Byte;
   O: tIecObject;
 begin
+  if M.Cmd.Stage = stMain then
+  begin
+    { encoded once, by Start (EncodeMain) }
+    Move(M.CmdAsdu[0], Buf[0], M.CmdLen);
+    Len := M.CmdLen;
+    Err := '';
+    Exit(res_Ok);
+  end;
   StageAsdu(M, Ti, Cot, O);
   Result := IecEncodeOne(M.Params, Ti, Cot, M.Cmd.Ca, O, Buf, Len, Err);
+end;
+
+{ The main stage's ASDU into M.CmdAsdu, whatever stage is under way. }
+function EncodeMain(var M: tIecMaster; out Err: ShortString): tChResult;
+var
+  Ti, Cot: Byte;
+  O: tIecObject;
+  Stage: tIecCmdStage;
+begin
+  Stage := M.Cmd.Stage;
+  M.Cmd.Stage := stMain;
+  StageAsdu(M, Ti, Cot, O);
+  M.Cmd.Stage := Stage;
+  Result := IecEncodeOne(M.Params, Ti, Cot, M.Cmd.Ca, O, M.CmdAsdu, M.CmdLen, Err);
 end;
 
 function Start(var M: tIecMaster; Addr, Ca: Word; Ti: Byte; const Obj: tIecObject;
@@ -402,7 +427,6 @@ var
   Len: Word;
   E: ShortString;
   R: tChResult;
-  First: tIecCmdStage;
 begin
   if not IecCommandDone(M) then
   begin
@@ -429,15 +453,13 @@ begin
     Finish(M, res_IecNoSlave, 'no slave with link address ' + IntToStr(Addr));
     Exit(False);
   end;
-  { every stage this command will send must encode: refuse now }
-  R := StageEncode(M, Buf, Len, E);
-  if (R = res_Ok) and (M.Cmd.Stage <> stMain) then
-  begin
-    First := M.Cmd.Stage;
-    M.Cmd.Stage := stMain;
+  { every stage this command will send must encode: refuse now; the main
+    ASDU is kept for the send }
+  R := res_Ok;
+  if M.Cmd.Stage <> stMain then
     R := StageEncode(M, Buf, Len, E);
-    M.Cmd.Stage := First;
-  end;
+  if R = res_Ok then
+    R := EncodeMain(M, E);
   if R <> res_Ok then
   begin
     Finish(M, R, E);
@@ -571,6 +593,9 @@ end;
 
 { The stage answered positively: on to the next, or done. }
 procedure StageConfirmed(var M: tIecMaster);
+var
+  R: tChResult;
+  E: ShortString;
 begin
   case M.Cmd.Stage of
     stDelayAct:
@@ -584,8 +609,13 @@ begin
         M.Cmd.Stage := stMain;
         M.Cmd.Phase := cpSend;
         if M.Cmd.Ti = C_CS_NA_1 then
+        begin
           { the time leaves now: the slave adds the delay it was sent }
           M.Cmd.Obj.Time := IecTimeFromDateTime(Now);
+          R := EncodeMain(M, E);
+          if R <> res_Ok then
+            Finish(M, R, E);            { cannot happen: checked at the start }
+        end;
       end;
   else
     if M.Cmd.WaitTerm then

@@ -992,6 +992,8 @@ end;
 
 function IecSlaveInit(var S: tIecSlaveStation; Chn: pChnVirt; const P: tIecParams; Ca: Word;
   out Err: ShortString): tChResult;
+var
+  Balanced, Primary: Boolean;
 begin
   FillChar(S, SizeOf(S), 0);
   S.Params := P;
@@ -1000,11 +1002,11 @@ begin
   Result := IecCheckParams(P, Err);
   if Result <> res_Ok then
     Exit;
-  S.Over104 := IecTransportIs104(Chn);
-  if not S.Over104 and ((Chn = nil) or (Chn^.CH_Type <> ChnFT1_2.cName)) then
+  Result := IecLinkKind(Chn, S.Over104, Balanced, Primary);
+  if Result <> res_Ok then
   begin
     Err := 'the channel is no FT 1.2 or IEC 104 stack';
-    Exit(res_WrongLayer);
+    Exit;
   end;
   if Ca > IecMaxCa(P) then
   begin
@@ -1012,17 +1014,12 @@ begin
     Exit(res_BadParam);
   end;
   S.Chn := Chn;
-  S.Balanced := S.Over104 or pChnFT1_2(Chn)^.ChFT12Config.Balanced;
+  S.Balanced := Balanced;
   if S.Balanced then
-  begin
-    Result := IecTransportInit(S.Link, Chn);
-    if Result <> res_Ok then
-      Exit;
-    IecTransportHandler(S.Link, @OnUserData, @S);
-  end
+    Result := IecTransportStart(S.Link, Chn, @OnUserData, @S)
   else
   begin
-    if pChnFT1_2(Chn)^.ChFT12Config.Primary then
+    if Primary then
     begin
       Err := 'an unbalanced slave needs MAS=SLAVE';
       Exit(res_BadMessage);

@@ -31,6 +31,15 @@ type
     Data      : Pointer;
   end;
 
+{ What Chn is to an IEC 101 helper (the master and the slave set up on
+  it the same way): Over104 on a NAM=IEC104 stack; Balanced there and on
+  a tChnFT1_2 with MS=OFF; Primary: the tChnFT1_2's MAS=MASTER (False on
+  IEC 104). res_WrongLayer when Chn is neither. }
+function IecLinkKind(Chn: pChnVirt; out Over104, Balanced, Primary: Boolean): tChResult;
+{ IecTransportInit, then (when it worked) IecTransportHandler: a balanced
+  helper's set-up. }
+function IecTransportStart(var T: tIecTransport; Chn: pChnVirt; F: tFT12UserDataFunc;
+  Data: Pointer): tChResult;
 { The transport of Chn: a balanced tChnFT1_2 or a NAM=IEC104 stack.
   res_WrongLayer (neither), res_BadMessage (FT 1.2 with MS=ON). T must not
   move afterwards (the channel receives into it). }
@@ -59,6 +68,28 @@ implementation
 function IecTransportIs104(Chn: pChnVirt): Boolean;
 begin
   Result := (Chn <> nil) and (Chn^.CH_Type = ChnIec104.cName);
+end;
+
+function IecLinkKind(Chn: pChnVirt; out Over104, Balanced, Primary: Boolean): tChResult;
+begin
+  Over104 := IecTransportIs104(Chn);
+  Balanced := Over104;
+  Primary := False;
+  if Over104 then
+    Exit(res_Ok);
+  if (Chn = nil) or (Chn^.CH_Type <> ChnFT1_2.cName) then
+    Exit(res_WrongLayer);
+  Balanced := pChnFT1_2(Chn)^.ChFT12Config.Balanced;
+  Primary := pChnFT1_2(Chn)^.ChFT12Config.Primary;
+  Result := res_Ok;
+end;
+
+function IecTransportStart(var T: tIecTransport; Chn: pChnVirt; F: tFT12UserDataFunc;
+  Data: Pointer): tChResult;
+begin
+  Result := IecTransportInit(T, Chn);
+  if Result = res_Ok then
+    IecTransportHandler(T, F, Data);
 end;
 
 function IecTransportInit(var T: tIecTransport; Chn: pChnVirt): tChResult;
