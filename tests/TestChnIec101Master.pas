@@ -55,6 +55,7 @@ type
     procedure TestConfirmationMustMirrorTheCommand;
     procedure TestAnswerForAnotherObjectIgnored;
     procedure TestReadAnsweredWithAnotherIoaIgnored;
+    procedure TestDelayIsHalfTheRoundTrip;
     procedure TestHostileSlavesLeaveHalfTheLine;
     procedure TestDataPolledAgainAtOnce;
     procedure TestBalancedControllingStationIsDir1;
@@ -635,6 +636,27 @@ begin
   AssertEquals('66 01 05 00 01 00 64 00 00', Sim(5).Got[Sim(5).Got.Count - 1]);
   Sim(5).ReadOtherIoa := False;
   AssertEquals(M.Cmd.Err, res_Ok, IecRead(M, 5, 1, 100));
+end;
+
+{ IEC 60870-5-5 6.7: the transmission delay is half the time from the
+  delay acquisition (C_CD_NA_1, COT 6) to its ACT_CON. The slave holds the
+  ACT_CON 1000 ms: the delay sent (C_CD_NA_1, COT 3, octets 9-10) is at
+  least 500 ms and, the line adding less than 1000 ms, under 1000. }
+procedure TTestChnIec101Master.TestDelayIsHalfTheRoundTrip;
+var
+  B: TBytes;
+  D: LongInt;
+begin
+  Open('NAM=FT1_2 MS=ON MAS=MASTER LEN=0 NOD=0 DNO=5', [5]);
+  M.CommandMs := 5000;
+  Sim(5).DelayConMs := 1000;
+  AssertEquals(M.Cmd.Err, res_Ok, IecClockSync(M, 5, 1, IecTimeFromDateTime(Now), True));
+  AssertEquals(3, Sim(5).Got.Count);
+  AssertEquals('6A 01 03', Copy(Sim(5).Got[1], 1, 8));
+  B := HexToBytes(Sim(5).Got[1]);
+  D := B[9] or (B[10] shl 8);
+  AssertTrue('delay ' + IntToStr(D) + ' ms >= 500', D >= 500);
+  AssertTrue('delay ' + IntToStr(D) + ' ms < 1000: half the round trip', D < 1000);
 end;
 
 { Class 2 polls slave 5 (idle, answers E5 / no data) gets in Ms. }

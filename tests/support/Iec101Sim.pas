@@ -41,6 +41,11 @@ type
     MisWhat: string;
     MisPhase: LongInt;
     ReadOtherIoa: Boolean;         { hostile: a read of IOA 100 answered with IOA 101 }
+    { a delay acquisition's ACT_CON held this long (unbalanced), to see
+      the master take half the round trip }
+    DelayConMs: LongInt;
+    Held: string;
+    HeldUntil: QWord;
     { hostile links: ACD in every answer, none of it class 1 data
       (AcdStuck); this ASDU in every class 1 answer (Stream); status and
       reset answered, class polls never (HalfDead) }
@@ -230,7 +235,12 @@ begin
     C_CS_NA_1, C_TS_NA_1, C_RP_NA_1:
       Send(Mirror(Cot_ActCon, False), True);
     C_CD_NA_1:
-      if Cot = Cot_Activation then
+      if (Cot = Cot_Activation) and (DelayConMs > 0) and not Balanced then
+      begin
+        Held := Mirror(Cot_ActCon, False);
+        HeldUntil := ChMsTick + QWord(DelayConMs);
+      end
+      else if Cot = Cot_Activation then
         Send(Mirror(Cot_ActCon, False), True);   { spontaneous: the delay, no answer }
   else
     Send(Mirror(Cot_UnknownType, True), True);
@@ -285,6 +295,11 @@ end;
 function TSim.Step: Boolean;
 begin
   Result := False;
+  if (Held <> '') and (ChMsTick >= HeldUntil) then
+  begin
+    Send(Held, True);
+    Held := '';
+  end;
   if Alive and (HalfDead or Manual) and not Balanced then
     Result := HalfDeadStep(Self)
   else if Alive then
