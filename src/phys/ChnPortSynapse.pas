@@ -33,9 +33,9 @@
     its own overlapped calls on the handle, and an outstanding read of our
     own (what ChnPortWin waits on) would take bytes from under them, while
     WaitCommEvent ends at once under Wine, so it could not be checked
-    either. There a poll waits on this port alone (WaitInput below), as
-    before: a program with many Synapse lines on Windows should use the
-    RTL backend for the shared wait. }
+    either. There a poll waits on this port alone (WaitInput in
+    win/chnportsynapse.inc), as before: a program with many Synapse lines
+    on Windows should use the RTL backend for the shared wait. }
 unit ChnPortSynapse;
 
 {$I chn.inc}
