@@ -76,7 +76,7 @@ type
     function ReadableAnyway: Boolean;
     function WouldBlock: Boolean;
     { RecvBuffer gave N: True when that settles the read (R) }
-    function ReadEnded(N: Integer; out R: tChResult): Boolean;
+    function ReadEnded(N: LongInt; out R: tChResult): Boolean;
     { how much of Len a write may hand the driver now }
     function WriteRoom(Len: LongInt): LongInt;
   public
