@@ -384,7 +384,8 @@ begin
   begin
     WriteLn(StdErr, Prog, ': cannot open the line: ', Chn^.ChErrorText);
     Dispose(Chn, Done);
-    Halt(ExitLine);
+    ExitCode := ExitLine;
+    Exit;
   end;
   Worst := ExitOk;
   for I := 0 to High(Cmds) do
@@ -413,5 +414,7 @@ begin
           [Prog, Addr, IecSlaveStateName(State), Class1, Class2, Asdus, Objects, BadAsdus,
            Failures, Resets, IecLineShowed(M, I)]));
   Dispose(Chn, Done);
-  Halt(Worst);
+  { not Halt: the end of the program frees its strings and variables, which
+    Halt leaves (heaptrc would count them) }
+  ExitCode := Worst;
 end.

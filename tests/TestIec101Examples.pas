@@ -12,13 +12,14 @@ interface
 
 uses
   SysUtils, Classes, Process, fpcunit, testregistry, ChnTypes, ChnVirt, ChnCom, ChnPty,
-  ChnFT1_2, ChnWait, BinSupport, Iec101Sim;
+  ChnFT1_2, ChnWait, BinSupport, Iec101Sim, TestTempDir;
 
 type
   TTestIec101Examples = class(TTestCase)
   private
     FSim: TSim;
     FOut, FErr: string;
+    FExe, FHeapLog: string;   { the program run; heaptrc's report there when set }
     function Run(const Args: array of string; Serve: Boolean = True): Integer;
     function MasterParams: string;
   protected
@@ -34,6 +35,7 @@ type
     procedure TestBalancedLine;
     procedure TestSeveralSlavesOneDead;
     procedure TestBalancedWrongAddressNamed;
+    procedure TestNothingLeftAtExit;
   end;
 
 implementation
@@ -43,6 +45,8 @@ begin
   FSim := TSim.Create('NAM=FT1_2 MS=ON MAS=SLAVE LEN=0 NOD=5 NAM=COM DRV=PTY', False);
   FOut := '';
   FErr := '';
+  FExe := BinPath('iec101master');
+  FHeapLog := '';
 end;
 
 procedure TTestIec101Examples.TearDown;
@@ -79,10 +83,19 @@ var
   end;
 
 begin
-  AssertTrue(BinPath('iec101master') + ' missing (make examples)', FileExists(BinPath('iec101master')));
+  AssertTrue(FExe + ' missing (make examples)', FileExists(FExe));
   P := TProcess.Create(nil);
   try
-    BinExecutable(P, BinPath('iec101master'));
+    BinExecutable(P, FExe);
+    if FHeapLog <> '' then
+    begin
+      { the environment as it is, heaptrc's report to a file of its own }
+      for I := 1 to GetEnvironmentVariableCount do
+        if Pos('HEAPTRC=', GetEnvironmentString(I)) <> 1 then
+          P.Environment.Add(GetEnvironmentString(I));
+      P.Environment.Add('HEAPTRC=log=' + FHeapLog);
+      DeleteFile(FHeapLog);
+    end;
     for I := 0 to High(Args) do
       P.Parameters.Add(Args[I]);
     P.Options := [poUsePipes];
@@ -271,6 +284,49 @@ begin
   AssertTrue(FErr, Pos('C_IC_NA_1 to slave 5: ', FErr) > 0);
   AssertTrue(FErr, Pos(' — ', FErr) > 0);
   AssertTrue(FErr, Pos(' frames from link address 2 ignored', FErr) > 0);
+end;
+
+{ The program as make test builds it with heaptrc (build/test-bin): the
+  usage, --help and --version (which end inside the option parser), an
+  interrogation answered and one not answered free all they took.
+  heaptrc's report must be there (the build is heaptrc's) and say 0
+  unfreed blocks. (A command-line error ends the program where it is
+  found, a caller's strings not freed: not checked.) }
+procedure TTestIec101Examples.TestNothingLeftAtExit;
+var
+  Dir, Build: string;
+
+  procedure Check(const What: string; Want, Got: Integer);
+  var
+    Report: AnsiString;
+  begin
+    AssertEquals(What + ': exit code; ' + FErr, Want, Got);
+    AssertTrue(What + ': no heaptrc report in ' + FHeapLog, FileExists(FHeapLog));
+    Report := ReadFileText(FHeapLog);
+    AssertTrue(What + ': ' + Report, Pos(LineEnding + '0 unfreed memory blocks : 0' + LineEnding,
+      LineEnding + Report) > 0);
+    FOut := '';
+    FErr := '';
+  end;
+
+begin
+  Build := GetEnvironmentVariable('BUILD');
+  if Build = '' then
+    Build := 'build';
+  FExe := Build + '/test-bin/iec101master' {$IFDEF WINDOWS} + '.exe'{$ENDIF};
+  if not FileExists(FExe) then
+    Ignore(FExe + ' is not built (make test builds it with heaptrc; make mutate does not)');
+  Dir := MakeTempDir('iec101leak');
+  try
+    FHeapLog := Dir + '/heap.log';
+    Check('no arguments', 2, Run([], False));
+    Check('--help', 0, Run(['--help'], False));
+    Check('--version', 0, Run(['--version'], False));
+    Check('gi answered', 0, Run(['--timeout=200', MasterParams, 'gi']));
+    Check('gi not answered', 4, Run(['--timeout=50', '--retries=0', '--wait=2000', MasterParams, 'gi'], False));
+  finally
+    RemoveTempDir(Dir);
+  end;
 end;
 
 initialization

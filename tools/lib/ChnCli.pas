@@ -300,7 +300,25 @@ var
     so they live as long as the program }
   Orig: array of AnsiString;
 
-procedure CliParse(var Cli: tCli);
+{ The usage on F, its text freed when this returns (a Halt right after
+  would leave a temporary of the caller unfreed). }
+procedure WriteUsage(var F: Text; const Cli: tCli);
+begin
+  Write(F, CliUsageText(Cli));
+end;
+
+{ End the program at once (--help, --version, no arguments): Halt frees
+  neither a caller's strings nor the main program's variables, so the
+  description is emptied first and heaptrc finds nothing left. }
+procedure EndNow(var Cli: tCli; Code: LongInt);
+begin
+  Finalize(Cli);
+  Halt(Code);
+end;
+
+{ CliParse up to --help or --version (then 0, the text written: the caller
+  ends the program once this function's strings are freed), else -1. }
+function ParseArgs(var Cli: tCli): LongInt;
 var
   Long: array of TOption;
   Shorts, Tok, Name: AnsiString;
@@ -309,8 +327,8 @@ var
 begin
   if (ParamCount = 0) and not Cli.NoArgsOk then
   begin
-    Write(StdErr, CliUsageText(Cli));
-    Halt(CliExitUsage);
+    WriteUsage(StdErr, Cli);
+    EndNow(Cli, CliExitUsage);
   end;
   { getopts' tables: long options (value = #1 + index), short letters;
     '-' first: arguments come back in order, as option #0 }
@@ -405,15 +423,13 @@ begin
           Cli.Options[K].Token := Tok + ' ' + OptArg
         else
           Cli.Options[K].Token := Tok;
-        if Cli.Options[K].Name = 'help' then
+        if (Cli.Options[K].Name = 'help') or (Cli.Options[K].Name = 'version') then
         begin
-          Write(CliUsageText(Cli));
-          Halt(0);
-        end;
-        if Cli.Options[K].Name = 'version' then
-        begin
-          WriteLn(Cli.Prog, ' (Chn) ', ChnVersion);
-          Halt(0);
+          if Cli.Options[K].Name = 'help' then
+            WriteUsage(Output, Cli)
+          else
+            WriteLn(Cli.Prog, ' (Chn) ', ChnVersion);
+          Exit(0);
         end;
       end;
     end;
@@ -425,6 +441,16 @@ begin
     Cli.Args[High(Cli.Args)] := Orig[I];
   end;
   RestoreArgv(Orig);
+  Result := -1;
+end;
+
+procedure CliParse(var Cli: tCli);
+var
+  Code: LongInt;
+begin
+  Code := ParseArgs(Cli);
+  if Code >= 0 then
+    EndNow(Cli, Code);
 end;
 
 function CliHas(const Cli: tCli; const Name: AnsiString): Boolean;
