@@ -54,6 +54,7 @@ type
     procedure TestBroadcastAddressIsNoSlave;
     procedure TestConfirmationMustMirrorTheCommand;
     procedure TestAnswerForAnotherObjectIgnored;
+    procedure TestReadAnsweredWithAnotherIoaIgnored;
     procedure TestHostileSlavesLeaveHalfTheLine;
     procedure TestDataPolledAgainAtOnce;
     procedure TestBalancedControllingStationIsDir1;
@@ -621,6 +622,19 @@ begin
   Sim(5).MisWhat := '';
   AssertEquals(M.Cmd.Err, res_Ok, IecCommand(M, 5, 1, C_SC_NA_1, O, True));
   AssertEquals(M.Cmd.Err, res_Ok, IecInterrogation(M, 5, 1, Qoi_Station));
+end;
+
+{ A read of IOA 100 answered (COT 5) with M_ME_NB_1 of IOA 101 is not its
+  answer: the read waits out its time; answered with IOA 100 it is done. }
+procedure TTestChnIec101Master.TestReadAnsweredWithAnotherIoaIgnored;
+begin
+  Open('NAM=FT1_2 MS=ON MAS=MASTER LEN=0 NOD=0 DNO=5', [5]);
+  M.CommandMs := 300;
+  Sim(5).ReadOtherIoa := True;
+  AssertEquals('IOA 101 for 100', res_Timeout, IecRead(M, 5, 1, 100));
+  AssertEquals('66 01 05 00 01 00 64 00 00', Sim(5).Got[Sim(5).Got.Count - 1]);
+  Sim(5).ReadOtherIoa := False;
+  AssertEquals(M.Cmd.Err, res_Ok, IecRead(M, 5, 1, 100));
 end;
 
 { Class 2 polls slave 5 (idle, answers E5 / no data) gets in Ms. }

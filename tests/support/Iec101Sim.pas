@@ -40,6 +40,7 @@ type
       the IOA's low octet with bit 0 flipped, 'ca': the CA's }
     MisWhat: string;
     MisPhase: LongInt;
+    ReadOtherIoa: Boolean;         { hostile: a read of IOA 100 answered with IOA 101 }
     { hostile links: ACD in every answer, none of it class 1 data
       (AcdStuck); this ASDU in every class 1 answer (Stream); status and
       reset answered, class polls never (HalfDead) }
@@ -220,7 +221,9 @@ begin
       end;
     C_SE_NC_1: Send(Mirror(Cot_ActCon, True), True);      { refused }
     C_RD_NA_1:
-      if Ioa = 100 then
+      if (Ioa = 100) and ReadOtherIoa then
+        Send('0B 01 05 00 01 00 65 00 00 FF FF 00', True)
+      else if Ioa = 100 then
         Send('0B 01 05 00 01 00 64 00 00 FF FF 00', True)
       else
         Send(Mirror(Cot_UnknownIoa, True), True);
