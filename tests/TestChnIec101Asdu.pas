@@ -34,6 +34,9 @@ type
     procedure TestImpossibleEncodesAreRefused;
     procedure TestTimeConversion;
     procedure TestNaNFromTheLineDoesNotTrap;
+    procedure TestSequenceUpToTheLargestIoa;
+    procedure TestReservedTimeBitsIgnored;
+    procedure TestSetCotKeepsTheTestBit;
   end;
 
 implementation
@@ -688,6 +691,69 @@ begin
   DecodeOne(IecDefaultParams, '0D 01 03 00 01 00 01 00 00 00 00 80 FF 00', H, O);
   AssertTrue('minus infinity', IsInfinite(O.Number) and (O.Number < 0));
   AssertEquals('0D 01 03 00 01 00 01 00 00 00 00 80 FF 00', Enc(IecDefaultParams, M_ME_NC_1, Cot_Spontaneous, 1, O));
+end;
+
+{ IOA of 2 octets: a sequence (SQ=1) of two single points from IOA 65534
+  ends on 65535, the largest, and is taken; from 65535 its second object
+  would be 65536, and it is refused.
+  01 82 14 01 FE FF 01 00: M_SP_NA_1, SQ=1 N=2, COT 20, CA 1, IOA 65534, SIQ 1, 0. }
+procedure TTestChnIec101Asdu.TestSequenceUpToTheLargestIoa;
+var
+  P: tIecParams;
+  B: TBytes;
+  H: tIecAsdu;
+  O: tIecObject;
+  E: ShortString;
+begin
+  P := Params(1, 1, 2);
+  B := HexToBytes('01 82 14 01 FE FF 01 00');
+  AssertEquals(E, res_Ok, IecDecodeHeader(P, B, Length(B), H, E));
+  AssertEquals(res_Ok, IecDecodeObject(P, H, B, 1, O));
+  AssertEquals('last IOA', 65535, O.Ioa);
+  AssertEquals('last value', 0, O.Int);
+  CheckRefused(P, '01 82 14 01 FF FF 01 00', res_AsduIoa, 'runs past IOA 65535');
+end;
+
+{ CP56Time2a (IEC 60870-5-101 7.2.6.18): RES1 is bit 6 of the minute octet
+  (the minute 0..59 in bits 0-5, IV in bit 7), RES2 bits 5-6 of the hour octet, RES3 bits 4-7 of the month, RES4 bit 7
+  of the year: set on the line, none of them shows in the value.
+  1E 01 03 00 01 00 | 2C 01 00 | 01 | E8 03 45 6A 21 3C 9A: M_SP_TB_1, COT
+  3, CA 1, IOA 300, SIQ on, 1000 ms, minute 5 + RES1, hour 10 + RES2,
+  Monday the 1st, month 12 + RES3, year 26 + RES4. }
+procedure TTestChnIec101Asdu.TestReservedTimeBitsIgnored;
+var
+  H: tIecAsdu;
+  O: tIecObject;
+begin
+  DecodeOne(IecDefaultParams, '1E 01 03 00 01 00 2C 01 00 01 E8 03 45 6A 21 3C 9A', H, O);
+  AssertEquals('ms', 1000, O.Time.Msec);
+  AssertEquals('minute without RES1', 5, O.Time.Minute);
+  AssertFalse('IV', O.Time.Invalid);
+  AssertEquals('hour without RES2', 10, O.Time.Hour);
+  AssertFalse('SU', O.Time.Summer);
+  AssertEquals('day', 1, O.Time.Day);
+  AssertEquals('day of week', 1, O.Time.DayOfWeek);
+  AssertEquals('month without RES3', 12, O.Time.Month);
+  AssertEquals('year without RES4', 26, O.Time.Year);
+end;
+
+{ IecSetCot changes the cause and P/N, never T (bit 7 of the COT octet):
+  86 (T, activation) -> 87 (T, ACT_CON); 86 -> CA (T, P/N, ACT_TERM 10);
+  06 -> 47 (P/N, ACT_CON). }
+procedure TTestChnIec101Asdu.TestSetCotKeepsTheTestBit;
+var
+  B: TBytes;
+begin
+  B := HexToBytes('2D 01 86 00 01 00 88 13 00 01');
+  AssertTrue(IecSetCot(B, Length(B), Cot_ActCon, False));
+  AssertEquals('2D 01 87 00 01 00 88 13 00 01', BytesToHex(B, Length(B)));
+  B[2] := $86;
+  AssertTrue(IecSetCot(B, Length(B), 10, True));
+  AssertEquals('T and P/N', '2D 01 CA 00 01 00 88 13 00 01', BytesToHex(B, Length(B)));
+  B[2] := $06;
+  AssertTrue(IecSetCot(B, Length(B), Cot_ActCon, True));
+  AssertEquals('no T', '2D 01 47 00 01 00 88 13 00 01', BytesToHex(B, Length(B)));
+  AssertFalse('cause 64', IecSetCot(B, Length(B), 64, False));
 end;
 
 initialization

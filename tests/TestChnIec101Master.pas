@@ -53,6 +53,8 @@ type
     procedure TestStepNeverWaitsForADeadSlave;
     procedure TestBroadcastAddressIsNoSlave;
     procedure TestConfirmationMustMirrorTheCommand;
+    procedure TestAnswerForAnotherObjectIgnored;
+    procedure TestReadAnsweredWithAnotherIoaIgnored;
     procedure TestHostileSlavesLeaveHalfTheLine;
     procedure TestDataPolledAgainAtOnce;
     procedure TestBalancedControllingStationIsDir1;
@@ -587,6 +589,52 @@ begin
   Sim(5).ConfirmInTest := False;
   AssertEquals(M.Cmd.Err, res_Ok, IecCommand(M, 5, 1, C_SC_NA_1, O, True));
   AssertEquals('select, execute', 4, Sim(5).Got.Count);
+end;
+
+{ In each phase - a select's ACT_CON, an execute's ACT_CON, an
+  interrogation's ACT_TERM - an answer for another IOA (5001 for 5000, 1
+  for 0) or another CA (0 for 1) answers nothing: the command waits out its
+  time. The same answers for the right object complete it. }
+procedure TTestChnIec101Master.TestAnswerForAnotherObjectIgnored;
+var
+  O: tIecObject;
+  What: string;
+  Before: Integer;
+begin
+  Open('NAM=FT1_2 MS=ON MAS=MASTER LEN=0 NOD=0 DNO=5', [5]);
+  M.CommandMs := 300;
+  O := IecObject(5000);
+  O.Int := 1;
+  for What in ['ioa', 'ca'] do
+  begin
+    Sim(5).MisWhat := What;
+    Sim(5).MisPhase := 1;
+    Before := Sim(5).Got.Count;
+    AssertEquals(What + ' select', res_Timeout, IecCommand(M, 5, 1, C_SC_NA_1, O, True));
+    AssertEquals(What + ': the select only', Before + 1, Sim(5).Got.Count);
+    Sim(5).MisPhase := 2;
+    Before := Sim(5).Got.Count;
+    AssertEquals(What + ' execute', res_Timeout, IecCommand(M, 5, 1, C_SC_NA_1, O, True));
+    AssertEquals(What + ': select and execute', Before + 2, Sim(5).Got.Count);
+    Sim(5).MisPhase := 3;
+    AssertEquals(What + ' ACT_TERM', res_Timeout, IecInterrogation(M, 5, 1, Qoi_Station));
+  end;
+  Sim(5).MisWhat := '';
+  AssertEquals(M.Cmd.Err, res_Ok, IecCommand(M, 5, 1, C_SC_NA_1, O, True));
+  AssertEquals(M.Cmd.Err, res_Ok, IecInterrogation(M, 5, 1, Qoi_Station));
+end;
+
+{ A read of IOA 100 answered (COT 5) with M_ME_NB_1 of IOA 101 is not its
+  answer: the read waits out its time; answered with IOA 100 it is done. }
+procedure TTestChnIec101Master.TestReadAnsweredWithAnotherIoaIgnored;
+begin
+  Open('NAM=FT1_2 MS=ON MAS=MASTER LEN=0 NOD=0 DNO=5', [5]);
+  M.CommandMs := 300;
+  Sim(5).ReadOtherIoa := True;
+  AssertEquals('IOA 101 for 100', res_Timeout, IecRead(M, 5, 1, 100));
+  AssertEquals('66 01 05 00 01 00 64 00 00', Sim(5).Got[Sim(5).Got.Count - 1]);
+  Sim(5).ReadOtherIoa := False;
+  AssertEquals(M.Cmd.Err, res_Ok, IecRead(M, 5, 1, 100));
 end;
 
 { Class 2 polls slave 5 (idle, answers E5 / no data) gets in Ms. }

@@ -55,6 +55,7 @@ type
     procedure TestResetOfTaggedEventsKeepsConfirmations;
     procedure TestTestBitAndPnBitNeverExecuted;
     procedure TestExecuteMustCarryTheSelection;
+    procedure TestQoiCountAndCauseOfCommands;
     procedure TestEndOfInitOctets;
     procedure TestParameterLoadingOctets;
     procedure TestThresholdIsADeadband;
@@ -912,6 +913,28 @@ begin
   AssertEquals('C_SC_NA_1 5000 1 select=False', Cmds[3]);
   AssertEquals(1, S.Points[IecSlaveFind(S, 5000)].Obj.Int);
   AssertEquals(2, S.Refused);
+end;
+
+{ IEC 60870-5-101 7.2.6.22: QOI 20 station, 21..36 groups 1..16; 37 is
+  not one (negative ACT_CON, $47). A command carries one object (7.3.2):
+  two are refused as unknown type (44, $6C), nothing executed. A command
+  comes with cause 6 or 8: COT 7 (ACT_CON, the slave's own) is an unknown
+  cause (45, $6D). QOI 36 is taken (positive ACT_CON). }
+procedure TTestChnIec101Slave.TestQoiCountAndCauseOfCommands;
+begin
+  Open;
+  AddStd;
+  Send('64 01 06 00 01 00 00 00 00 25');
+  AssertEquals('QOI 37', '64 01 47 00 01 00 00 00 00 25', Poll(1));
+  Send('2D 02 06 00 01 00 88 13 00 01 89 13 00 01');
+  AssertEquals('two objects', '2D 02 6C 00 01 00 88 13 00 01 89 13 00 01', Poll(1));
+  Send('2D 01 07 00 01 00 88 13 00 01');
+  AssertEquals('COT 7', '2D 01 6D 00 01 00 88 13 00 01', Poll(1));
+  AssertEquals('nothing executed', 0, Cmds.Count);
+  AssertEquals(0, S.Points[IecSlaveFind(S, 5000)].Obj.Int);
+  AssertEquals(0, S.Interrogations);
+  Send('64 01 06 00 01 00 00 00 00 24');
+  AssertEquals('QOI 36', '64 01 07 00 01 00 00 00 00 24', Poll(1));
 end;
 
 initialization

@@ -48,12 +48,24 @@ begin
   Result := Result + '/bin/' + Name {$IFDEF WINDOWS} + '.exe'{$ENDIF};
 end;
 
+{ $BUILD/test-bin/, where make test puts the test builds of programs. }
+function TestBinDir: string;
+begin
+  Result := GetEnvironmentVariable('BUILD');
+  if Result = '' then
+    Result := 'build';
+  Result := Result + '/test-bin/';
+end;
+
 procedure BinExecutable(P: TProcess; const Exe: string);
 var
   Emu: string;
 begin
   Emu := GetEnvironmentVariable('CHN_EXEC');
-  if (Emu = '') or (Copy(Exe, 1, Length(BinPath(''))) <> BinPath('')) then
+  { the tools (build/bin) and the heap-checked builds of them the suite
+    makes (build/test-bin) are target programs; anything else is the host's }
+  if (Emu = '') or ((Copy(Exe, 1, Length(BinPath(''))) <> BinPath('')) and
+    (Copy(Exe, 1, Length(TestBinDir)) <> TestBinDir)) then
     P.Executable := Exe
   else
   begin

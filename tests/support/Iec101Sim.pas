@@ -35,6 +35,12 @@ type
     RefuseNext: Boolean;           { the next command gets a negative ACT_CON }
     { hostile: a select's ACT_CON with S/E = 0; every ACT_CON with T = 1 }
     SelectConfirmedAsExecute, ConfirmInTest: Boolean;
+    { hostile: the answer of phase MisPhase (1 a select's ACT_CON, 2 any
+      other ACT_CON, 3 an ACT_TERM) for another object - MisWhat 'ioa':
+      the IOA's low octet with bit 0 flipped, 'ca': the CA's }
+    MisWhat: string;
+    MisPhase: LongInt;
+    ReadOtherIoa: Boolean;         { hostile: a read of IOA 100 answered with IOA 101 }
     { hostile links: ACD in every answer, none of it class 1 data
       (AcdStuck); this ASDU in every class 1 answer (Stream); status and
       reset answered, class polls never (HalfDead) }
@@ -163,6 +169,12 @@ var
       C[2] := C[2] or $80;
     if (NewCot = Cot_ActCon) and SelectConfirmedAsExecute and (Ti in [C_SC_NA_1, C_DC_NA_1, C_SE_NB_1]) then
       C[Length(C) - 1] := C[Length(C) - 1] and $7F;
+    if (MisWhat <> '') and (MisPhase = Ord(NewCot = Cot_ActTerm) * 3 + Ord(NewCot = Cot_ActCon)
+      * (2 - Ord((Ti in [C_SC_NA_1, C_DC_NA_1, C_SE_NB_1]) and (B[Length(B) - 1] and $80 <> 0)))) then
+      if MisWhat = 'ioa' then
+        C[6] := C[6] xor 1
+      else
+        C[4] := C[4] xor 1;
     Result := BytesToHex(C, Length(C));
   end;
 
@@ -209,7 +221,9 @@ begin
       end;
     C_SE_NC_1: Send(Mirror(Cot_ActCon, True), True);      { refused }
     C_RD_NA_1:
-      if Ioa = 100 then
+      if (Ioa = 100) and ReadOtherIoa then
+        Send('0B 01 05 00 01 00 65 00 00 FF FF 00', True)
+      else if Ioa = 100 then
         Send('0B 01 05 00 01 00 64 00 00 FF FF 00', True)
       else
         Send(Mirror(Cot_UnknownIoa, True), True);
