@@ -33,9 +33,9 @@
     its own overlapped calls on the handle, and an outstanding read of our
     own (what ChnPortWin waits on) would take bytes from under them, while
     WaitCommEvent ends at once under Wine, so it could not be checked
-    either. There a poll waits on this port alone (WaitInput below), as
-    before: a program with many Synapse lines on Windows should use the
-    RTL backend for the shared wait. }
+    either. There a poll waits on this port alone (WaitInput in
+    win/chnportsynapse.inc), as before: a program with many Synapse lines
+    on Windows should use the RTL backend for the shared wait. }
 unit ChnPortSynapse;
 
 {$I chn.inc}
@@ -66,6 +66,19 @@ type
     function Check: tChResult;
     function MapError(E: LongInt): tChResult;
     function Refuse(const Key: ShortString): tChResult;
+    { what differs per OS (unix/ or win/chnportsynapse.inc) }
+    procedure BeforeConnect;
+    function AfterConnect(const Path: tWordString): tChResult;
+    function BeforeConfig(const S: tPortSettings): tChResult;
+    { the settings the driver took against those Config asked for }
+    function ReadBack: tChResult;
+    { nothing queued, yet a read would tell something (a hang-up) }
+    function ReadableAnyway: Boolean;
+    function WouldBlock: Boolean;
+    { RecvBuffer gave N: True when that settles the read (R) }
+    function ReadEnded(N: LongInt; out R: tChResult): Boolean;
+    { how much of Len a write may hand the driver now }
+    function WriteRoom(Len: LongInt): LongInt;
   public
     function Open(const Path: tWordString): tChResult; override;
     function Configure(const S: tPortSettings): tChResult; override;
@@ -79,11 +92,9 @@ type
     function GetLines(out Lines: tPortLines): tChResult; override;
     function SetKernelRs485(On: Boolean): tChResult; override;
     function OsOverruns(out N: LongWord): tChResult; override;
-    {$IFDEF UNIX}
     function SetLatency(Ms: LongInt): tChResult; override;
     function WaitSource(out Kind: tChnWaitKind; out Os: PtrInt;
       out Rearm: tChnWaitRearm; out Data: Pointer): Boolean; override;
-    {$ENDIF}
     function OsHandle: PtrInt; override;
     { synaser's words for its own codes (9991 'Port owned by other
       process'), the OS's for the others }
@@ -94,100 +105,17 @@ type
 
 implementation
 
-{$IFDEF UNIX}
-uses
-  BaseUnix, Unix, TermIO, ChnUnix;
+{ the uses clause, SynapseMaxBaud and what differs per OS }
+{$IFDEF UNIX}{$I unix/chnportsynapse.inc}{$ENDIF}
+{$IFDEF WINDOWS}{$I win/chnportsynapse.inc}{$ENDIF}
 
 const
-  { c_cflag bits set by synaser's Config and read back }
-  CheckedCFlags = CBAUD or CSIZE or CSTOPB or PARENB or PARODD or CRTSCTS;
-{$ELSE}
-uses
-  Windows;
-{$ENDIF}
-
-const
-  { the rates in synaser's table for this OS }
-  {$IFDEF UNIX}
-  SynapseMaxBaud = 4000000;
-  {$ELSE}
-  SynapseMaxBaud = 256000;
-  {$ENDIF}
-  {$IFDEF WINDOWS}
-  WinOutBudget = 4096;   { bytes handed to the driver ahead of the line }
-  {$ENDIF}
   SynapseBauds: array[0..29] of LongInt = (
     50, 75, 110, 134, 150, 200, 300, 600, 1200, 1800, 2400, 4800, 9600,
     19200, 38400, 57600, 115200, 230400, 460800, 500000, 576000, 921600,
     1000000, 1152000, 1500000, 2000000, 2500000, 3000000, 3500000, 4000000);
 
-{ LastError as synaser's own Purge leaves it (Connect looks at it) }
-procedure TChnBlockSerial.Purge;
-begin
-  {$IFDEF UNIX}
-  if TCFlush(cint(Handle), TCIFLUSH) = 0 then
-    SetSynaError(sOK)
-  else
-    SetSynaError(FpGetErrno);
-  {$ELSE}
-  if PurgeComm(Handle, PURGE_RXABORT or PURGE_RXCLEAR) then
-    SetSynaError(sOK)
-  else
-    SetSynaError(GetLastError);
-  {$ENDIF}
-end;
 
-function TChnPortSynapse.MapError(E: LongInt): tChResult;
-begin
-  FOSError := E;
-  if E = 0 then
-    Exit(res_Ok);
-  {$IFDEF UNIX}
-  case E of
-    ESysEACCES, ESysEPERM, ErrAccessDenied:
-      Result := res_NoPermission;
-    ESysENOENT, ESysENODEV, ESysENXIO, ESysEBUSY, ESysEISDIR, ESysENOTDIR,
-    ESysELOOP, ErrAlreadyOwned, ErrAlreadyInUse, ErrNoDeviceAnswer:
-      if FOpen then
-        Result := res_DeviceLost
-      else
-        Result := res_CannotOpen;
-    ESysEIO, ESysEBADF, ESysEPIPE:
-      Result := res_DeviceLost;
-    ESysENOTTY, ESysEINVAL, ErrWrongParameter:
-      Result := res_BadSetting;
-    ErrOverrun, ErrRxOver:
-      Result := res_Overrun;
-  else
-    Result := res_IOError;
-  end;
-  {$ELSE}
-  case E of
-    ERROR_ACCESS_DENIED:
-      if FOpen then
-        Result := res_DeviceLost
-      else
-        Result := res_NoPermission;
-    ERROR_FILE_NOT_FOUND, ERROR_PATH_NOT_FOUND, ERROR_SHARING_VIOLATION:
-      Result := res_CannotOpen;
-    ERROR_INVALID_PARAMETER, ERROR_NOT_SUPPORTED, ErrWrongParameter:
-      Result := res_BadSetting;
-    ERROR_INVALID_HANDLE, ERROR_INVALID_FUNCTION:
-      if FOpen then
-        Result := res_DeviceLost
-      else
-        Result := res_BadSetting;   { opened, but no comm calls: not a port }
-    ERROR_BAD_COMMAND, ERROR_GEN_FAILURE, ERROR_OPERATION_ABORTED,
-    1167 { ERROR_DEVICE_NOT_CONNECTED },
-    ERROR_NOT_READY:                { Wine's word for EIO: a tty hung up }
-      Result := res_DeviceLost;
-    ErrOverrun, ErrRxOver:
-      Result := res_Overrun;
-  else
-    Result := res_IOError;
-  end;
-  {$ENDIF}
-end;
 
 function TChnPortSynapse.OSErrorText: ShortString;
 begin
@@ -218,24 +146,11 @@ begin
   FVirtual := False;
   FSer := TChnBlockSerial.Create;
   FSer.RaiseExcept := False;
-  {$IFDEF UNIX}
-  FSer.LinuxLock := False;
-  {$ENDIF}
+  BeforeConnect;
   FSer.Connect(Path);
   Result := Check;
-  {$IFDEF UNIX}
-  if (Result = res_Ok) and (FpFlock(cint(FSer.Handle), LOCK_EX or LOCK_NB) <> 0) then
-  begin
-    FOSError := FpGetErrno;
-    Result := res_CannotOpen;     { in use by another program }
-  end;
   if Result = res_Ok then
-  begin
-    FpFcntl(cint(FSer.Handle), F_SETFL,
-      FpFcntl(cint(FSer.Handle), F_GETFL) or O_NONBLOCK);
-    FVirtual := PortIsPty(cint(FSer.Handle), Path);
-  end;
-  {$ENDIF}
+    Result := AfterConnect(Path);
   if Result <> res_Ok then
   begin
     FSer.Free;                    { closes the handle }
@@ -251,11 +166,6 @@ const
 var
   I: Integer;
   Known: Boolean;
-  {$IFDEF UNIX}
-  Want: Cardinal;
-  {$ELSE}
-  Want: TDCB;
-  {$ENDIF}
 begin
   if not FOpen then
     Exit(res_WrongState);
@@ -276,13 +186,9 @@ begin
   end;
   if not Known or (S.Baud > SynapseMaxBaud) then
     Exit(Refuse('BD'));
-  {$IFDEF UNIX}
-  if S.Parity in [ppMark, ppSpace] then
-    Exit(Refuse('PAR'));          { synaser sets no CMSPAR }
-  {$ENDIF}
-  {$IFDEF WINDOWS}
-  FSer.SizeRecvBuffer := S.InQueue;
-  {$ENDIF}
+  Result := BeforeConfig(S);
+  if Result <> res_Ok then
+    Exit;
   if S.StopBits = 2 then
     I := SB2
   else
@@ -297,27 +203,7 @@ begin
     Exit;
   end;
   { synaser does not look at what the driver really took: read it back }
-  {$IFDEF UNIX}
-  Want := FSer.TermiosStruc.c_cflag;
-  FSer.GetCommState;
-  Result := Check;
-  if (Result = res_Ok) and ((FSer.TermiosStruc.c_cflag and CheckedCFlags) <>
-     (Want and CheckedCFlags)) then
-    Result := Refuse(PortCFlagKey(FSer.TermiosStruc.c_cflag, Want, CheckedCFlags));
-  {$ELSE}
-  Want := FSer.DCB;
-  FSer.GetCommState;
-  Result := Check;
-  if Result = res_Ok then
-    if FSer.DCB.BaudRate <> Want.BaudRate then
-      Result := Refuse('BD')
-    else if FSer.DCB.ByteSize <> Want.ByteSize then
-      Result := Refuse('BIT')
-    else if FSer.DCB.Parity <> Want.Parity then
-      Result := Refuse('PAR')
-    else if FSer.DCB.StopBits <> Want.StopBits then
-      Result := Refuse('STOP');
-  {$ENDIF}
+  Result := ReadBack;
 end;
 
 function TChnPortSynapse.DoRead(var Buf; Size: LongInt; out Got: LongInt): tChResult;
@@ -330,25 +216,15 @@ begin
     Exit;
   if N <= 0 then
   begin
-    {$IFDEF UNIX}
-    { FIONREAD says 0 both for "nothing yet" and for a hung-up line; poll
-      tells them apart, and the read then shows the hang-up }
-    if not FSer.CanRead(0) then
+    if not ReadableAnyway then
       Exit(res_Ok);
     N := 1;
-    {$ELSE}
-    Exit(res_Ok);
-    {$ENDIF}
   end;
   if N > Size then
     N := Size;
   N := FSer.RecvBuffer(@Buf, N);
-  {$IFDEF UNIX}
-  if N = 0 then
-    Exit(MapError(ESysEIO))       { end of file: the line was hung up }
-  else if (N < 0) and ((FSer.LastError = ESysEAGAIN) or (FSer.LastError = ESysEWOULDBLOCK)) then
-    Exit(res_Ok);
-  {$ENDIF}
+  if ReadEnded(N, Result) then
+    Exit;
   Result := Check;
   if (Result = res_Ok) or (Result = res_Overrun) then
     if N > 0 then
@@ -357,31 +233,6 @@ begin
     Result := res_Ok;              { counted by OsOverruns on Windows }
 end;
 
-function TChnPortSynapse.WaitInput(Ms: LongInt): Boolean;
-{$IFDEF WINDOWS}
-var
-  Deadline: QWord;
-begin
-  { synaser's CanRead waits with WaitCommEvent, which under Wine ends at
-    once (ERROR_OPERATION_ABORTED): poll the input queue in 1 ms steps, as
-    ChnPortWin does }
-  Result := False;
-  if not FOpen then
-    Exit;
-  Deadline := GetTickCount64 + QWord(Ms);
-  repeat
-    if (FSer.WaitingData > 0) or (FSer.LastError <> 0) then
-      Exit(True);                   { a byte, or a fault the read reports }
-    if GetTickCount64 >= Deadline then
-      Exit;
-    Sleep(1);
-  until False;
-end;
-{$ELSE}
-begin
-  Result := FOpen and FSer.CanRead(Ms);
-end;
-{$ENDIF}
 
 function TChnPortSynapse.WaitOutput(Ms: LongInt): Boolean;
 begin
@@ -392,19 +243,12 @@ function TChnPortSynapse.DoWrite(const Buf; Len: LongInt; out Done: LongInt): tC
 var
   N: Integer;
 begin
-  {$IFDEF WINDOWS}
-  { overlapped SendBuffer waits for completion: give it what fits now }
-  N := WinOutBudget - FSer.SendingData;
-  if N <= 0 then
+  Len := WriteRoom(Len);
+  if Len <= 0 then
     Exit(res_Ok);
-  if Len > N then
-    Len := N;
-  {$ENDIF}
   N := FSer.SendBuffer(@Buf, Len);
-  {$IFDEF UNIX}
-  if (N < 0) and ((FSer.LastError = ESysEAGAIN) or (FSer.LastError = ESysEWOULDBLOCK)) then
+  if (N < 0) and WouldBlock then
     Exit(res_Ok);
-  {$ENDIF}
   Result := Check;
   if (Result = res_Ok) and (N > 0) then
     Done := N;
@@ -427,35 +271,6 @@ begin
   Result := Check;
 end;
 
-function TChnPortSynapse.Flush(Input, Output: Boolean): tChResult;
-var
-  Q: {$IFDEF UNIX}cint{$ELSE}DWORD{$ENDIF};
-begin
-  if not FOpen then
-    Exit(res_WrongState);
-  { synaser's Purge would take both directions: the OS call directly }
-  {$IFDEF UNIX}
-  if Input and Output then
-    Q := TCIOFLUSH
-  else if Input then
-    Q := TCIFLUSH
-  else if Output then
-    Q := TCOFLUSH
-  else
-    Exit(res_Ok);
-  if TCFlush(cint(FSer.Handle), Q) <> 0 then
-    Exit(MapError(FpGetErrno));
-  {$ELSE}
-  Q := 0;
-  if Input then
-    Q := Q or PURGE_RXCLEAR or PURGE_RXABORT;
-  if Output then
-    Q := Q or PURGE_TXCLEAR or PURGE_TXABORT;
-  if (Q <> 0) and not PurgeComm(FSer.Handle, Q) then
-    Exit(MapError(GetLastError));
-  {$ENDIF}
-  Result := res_Ok;
-end;
 
 function TChnPortSynapse.SetRts(On: Boolean): tChResult;
 begin
@@ -510,31 +325,6 @@ begin
   Result := res_Ok;
 end;
 
-{$IFDEF UNIX}
-{ the adapter's latency timer is the driver's, whichever backend drives it }
-function TChnPortSynapse.SetLatency(Ms: LongInt): tChResult;
-var
-  E: cint;
-begin
-  if not FOpen then
-    Exit(res_WrongState);
-  Result := PortSetLatency(FDevice, Ms, E);
-  if Result <> res_Ok then
-    FOSError := E;
-end;
-
-{ synaser's descriptor is an ordinary tty descriptor: it joins the
-  program-wide wait as one (see the unit header for Windows) }
-function TChnPortSynapse.WaitSource(out Kind: tChnWaitKind; out Os: PtrInt;
-  out Rearm: tChnWaitRearm; out Data: Pointer): Boolean;
-begin
-  Kind := wkDescriptor;
-  Os := OsHandle;
-  Rearm := nil;
-  Data := nil;
-  Result := FOpen;
-end;
-{$ENDIF}
 
 function TChnPortSynapse.OsHandle: PtrInt;
 begin
