@@ -10,7 +10,7 @@ interface
 
 uses
   SysUtils, fpcunit, testregistry, ChnTypes, ChnVirt, ChnLoop, ChnFT1_2,
-  TestSupport, LoopHub, ChnBaudTestLayer;
+  TestSupport, LoopHub, ChnBaudTestLayer, ChnWait;
 
 type
   TTestChnFT1_2 = class(TTestCase)
@@ -49,6 +49,7 @@ type
     procedure TestFlushAndDisConnect;
     procedure TestChInitParam;
     procedure TestResultTexts;
+    procedure TestLineIdleBetweenFramesOnATimedLine;
   end;
 
 implementation
@@ -1124,6 +1125,46 @@ begin
   finally
     Dispose(C, Done);
   end;
+end;
+
+{ IEC 60870-5-1: at least 33 bit times of idle line between frames. On a
+  line with a speed the FT 1.2 layer gives the line below IFG=33 unless a
+  larger IFG= is given. Two 5-octet frames at 1200 Bd 8E1 (9.17 ms per
+  character) sent one after the other reach the other end complete after
+  10 characters (91.7 ms) plus the 33 bit times (27.5 ms): 119 ms, not 92. }
+procedure TTestChnFT1_2.TestLineIdleBetweenFramesOnATimedLine;
+var
+  M, Raw: pChnVirt;
+  Err, Got: string;
+  T0, Took: QWord;
+  Deadline: QWord;
+begin
+  M := Open(1, 'NAM=FT1_2 MS=ON MAS=MASTER LEN=0 NOD=0 DNO=1 NAM=LOOP PAIR=FTIFG END=1 BD=1200 PAR=E');
+  AssertTrue(M^.ChGetParam(''), Pos(' BD=1200 BIT=8 STOP=1 PAR=E IFG=33 ', M^.ChGetParam('')) > 0);
+  Raw := OpenStack(ChnLoop.cName, 'PAIR=FTIFG END=2 BD=1200 PAR=E', Err);
+  AssertTrue(Err, Raw <> nil);
+  FChn[2] := Raw;
+  Got := '';
+  T0 := ChnClockUs;
+  SendRec(M, MakeRec(tpShortM, False, False, FCM_ReqLinkState), 4);
+  SendRec(M, MakeRec(tpShortM, False, False, FCM_ReqLinkState), 4);
+  Deadline := ChMsTick + 2000;
+  while (Length(Got) < 29) and (ChMsTick < Deadline) do
+  begin
+    M^.ChSendReady;                     { a held frame leaves at a poll when its time has come }
+    Got := Trim(Got + ' ' + RawRead(Raw));
+    if Length(Got) < 29 then
+      ChnWaitAny(5);
+  end;
+  Took := ChnClockUs - T0;
+  AssertEquals('10 49 01 4A 16 10 49 01 4A 16', Got);
+  AssertTrue(Format('two frames took %d us', [Took]), Took >= 112000);
+  { a larger IFG= given stays }
+  M := Open(3, 'NAM=FT1_2 MS=ON MAS=MASTER LEN=0 NOD=0 DNO=1 NAM=LOOP PAIR=FTIFH END=1 BD=1200 IFG=40');
+  AssertTrue(M^.ChGetParam(''), Pos(' IFG=40', M^.ChGetParam('')) > 0);
+  { no speed: nothing asked }
+  M := Open(4, 'NAM=FT1_2 MS=ON MAS=MASTER LEN=0 NOD=0 DNO=1 NAM=LOOP PAIR=FTIFI END=1');
+  AssertEquals(M^.ChGetParam(''), 0, Pos('IFG', M^.ChGetParam('')));
 end;
 
 initialization

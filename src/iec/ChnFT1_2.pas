@@ -182,6 +182,7 @@ type
     function  ChGapMs: LongWord;
     { CH_LowBaud := the BD= of the stack below, 9600 if none }
     procedure ChTakeLowBaud;
+    procedure ChAskLineIdle;
   end;
 
   pAddChnFT1_2 = ^tAddChnFT1_2;
@@ -197,6 +198,7 @@ uses
 const
   cBitsPerChar = 11;     { FT 1.2 character: start, 8 data, even parity, stop }
   cDefaultBaud = 9600;   { for GAP= when no layer below has BD= }
+  cMinIdleBits = 33;     { IEC 60870-5-1: idle line between frames, bit times }
 
 constructor tChnFT1_2.Init;
 begin
@@ -246,6 +248,26 @@ begin
   end;
 end;
 
+{ IEC 60870-5-1 wants at least 33 bit times of idle line between frames.
+  A line below with a speed (BD= reported: COM, LOOP BD=) and less IFG=
+  is given IFG=33 through its parameters, as a user would write it; a
+  larger IFG= stays, a layer without BD= (TCP) is left alone. }
+procedure tChnFT1_2.ChAskLineIdle;
+var
+  Tok: string;
+  P: Integer;
+  Ifg: LongInt;
+begin
+  if (CH_Low = nil) or (CH_Low^.ChGetParam('BD') = '') then
+    Exit;
+  Ifg := 0;
+  P := 1;
+  if NextToken(CH_Low^.ChGetParam('IFG'), P, Tok) then
+    StrToNum(ParamValue(Tok), 0, 10000, Ifg);
+  if Ifg < cMinIdleBits then
+    CH_Low^.ChSetParam('IFG=33');     { cMinIdleBits }
+end;
+
 function tChnFT1_2.ChGapMs: LongWord;
 begin
   if CH_Gap = 0 then
@@ -280,6 +302,7 @@ procedure tChnFT1_2.ChSetParam(const S: tParamStr);
 begin
   inherited ChSetParam(S);
   ChTakeLowBaud;                  { the stack below may be new }
+  ChAskLineIdle;
   { new settings: a half-received frame starts afresh with them; a whole
     frame waiting for ChReceive is kept }
   CH_Rx.Cfg := ChFT12Config;

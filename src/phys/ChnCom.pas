@@ -176,8 +176,6 @@ begin
     Result := ParamSetNum(S, 0, 1000, CmdL, CH_RtsAfter)
   else if Key = 'TURN' then
     Result := ParamSetNum(S, 0, 10000, CmdL, CH_Turn)
-  else if Key = 'IFG' then
-    Result := ParamSetNum(S, 0, 10000, CmdL, CH_Ifg)
   else if Key = 'IRQ' then
   begin
     Result := res_Ok;             { DOS only: accepted and ignored }

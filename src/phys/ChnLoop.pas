@@ -33,7 +33,9 @@
   Parameters: PAIR=name (default A), END=1..32 (default 1; PAIR= and END=
   cannot change while the end is open: res_WrongState), BUS=OFF|ON
   (default OFF), BD=50..4000000 or
-  0 (default 0: no speed; reported with the character only when given), BIT=5..8, STOP=1|2, PAR=N|E|O|M|S, LRB=receive
+  0 (default 0: no speed; reported with the character only when given), BIT=5..8, STOP=1|2, PAR=N|E|O|M|S,
+  IFG=0..10000 bit times of idle line before a send, at BD= (as COM's),
+  LRB=receive
   ring size (default 4096, taken at the next ChOpen), IDL=ms to wait in
   ChReceiveReady when nothing is waiting (default 0: the peer usually runs
   in the same thread, where waiting only adds latency; give IDL when the
@@ -637,7 +639,11 @@ begin
     if (Result = res_Ok) and (N > 0) and (N < 50) then
       Result := res_BadParam;       { COM's lowest rate }
     if (Result = res_Ok) and (CmdL = cmd_Set) then
+    begin
       CH_LoopBaud := N;
+      if N > 0 then
+        CH_Set.Baud := N;           { the line time of a send (IFG=) }
+    end;
   end
   else if Key = 'BUS' then
   begin
@@ -645,7 +651,7 @@ begin
     if (Result = res_Ok) and (CmdL = cmd_Set) then
       CH_Bus := I = 1;
   end
-  else if (Key = 'BIT') or (Key = 'STOP') or (Key = 'PAR') then
+  else if (Key = 'BIT') or (Key = 'STOP') or (Key = 'PAR') or (Key = 'IFG') then
     Result := PhysLineParam(S, CmdL)  { the serial line's ranges }
   else
     Result := inherited ChSetOneParam(S, CmdL);   { LRB= IDL= }
@@ -661,6 +667,8 @@ begin
   Result := inherited ChOwnParams + ' PAIR=' + CH_Pair + ParamText('END', CH_End);
   if CH_LoopBaud > 0 then          { a line without speed reads as before }
     Result := Result + ParamText('BD', CH_LoopBaud) + ComCharText(CH_Set);
+  if CH_Ifg > 0 then
+    Result := Result + ParamText('IFG', CH_Ifg);
   if CH_Bus then
     Result := Result + ' BUS=ON';
   Result := Result + ParamText('LRB', CH_LRB) + ParamText('IDL', CH_Idle);

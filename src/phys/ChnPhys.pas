@@ -272,6 +272,8 @@ begin
   I := 0;
   if Key = 'BD' then
     Result := ParamSetNum(S, 50, 4000000, CmdL, CH_Set.Baud)
+  else if Key = 'IFG' then
+    Result := ParamSetNum(S, 0, 10000, CmdL, CH_Ifg)
   else if Key = 'BIT' then
   begin
     Result := ParamNum(S, 5, 8, N);
