@@ -23,8 +23,8 @@ uses
   {$IFDEF UNIX}ComPtySupport,{$ENDIF}
   ChnTypes, ChnVirt, ChnPort, ChnCom, ChnDF1, TestSupport;
 
+{$IFDEF UNIX}
 type
-  {$IFDEF UNIX}
   TTestChnComPty = class(TTestCase)
   protected
     FPty: TPtyPair;

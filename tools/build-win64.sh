@@ -68,6 +68,13 @@ if [ ! -f "$RTLU/strutils.ppu" ]; then
     >"$WORK/strutils-build.log" 2>&1 \
     || { tail -n 20 "$WORK/strutils-build.log"; echo "win64 StrUtils build failed"; exit 1; }
 fi
+# IniFiles (fcl-base), which the gateway's configuration reader uses
+if [ ! -f "$RTLU/inifiles.ppu" ]; then
+  P="$FPCSRC/packages/fcl-base/src"
+  $PPC -Twin64 -Px86_64 -n -v0 -Fu"$RTLU" -FU"$RTLU" -Fu"$P" -Fi"$P" "$P/inifiles.pp" \
+    >"$WORK/inifiles-build.log" 2>&1 \
+    || { tail -n 20 "$WORK/inifiles-build.log"; echo "win64 IniFiles build failed"; exit 1; }
+fi
 mkdir -p "$OUT/units" "$OUT/bin"
 # the part folders of src/ (src/README.md) and the Windows folder of src/phys
 PARTS=$(for d in src/*/; do printf -- '-Fu%s ' "${d%/}"; done)
