@@ -178,15 +178,8 @@ var
   Lock: TRTLCriticalSection;    { guards Pairs and everything in them }
 
 function LoopCharUs(const S: tPortSettings): LongInt;
-var
-  Bits: LongInt;
 begin
-  if S.Baud <= 0 then
-    Exit(0);
-  Bits := 1 + S.DataBits + S.StopBits;    { start, data, stop }
-  if S.Parity <> ppNone then
-    Inc(Bits);
-  Result := (Int64(Bits) * 1000000 + S.Baud - 1) div S.Baud;
+  Result := LineTime(S, 1, 1000000);
 end;
 
 function FindPair(const Name: ShortString): pLoopPair;

@@ -172,6 +172,11 @@ function ComLineText(const S: tPortSettings): ShortString;
 { ' BIT=.. STOP=.. PAR=..', the character alone. }
 function ComCharText(const S: tPortSettings): ShortString;
 
+{ The time N characters take on a line of settings S (start, data, parity
+  and stop bits at S.Baud), in units of 1/PerSecond s, rounded up; 0 when
+  no speed is set. }
+function LineTime(const S: tPortSettings; N, PerSecond: LongInt): LongInt;
+
 implementation
 
 uses
@@ -675,16 +680,21 @@ begin
   end;
 end;
 
-function tChnPhys.ComLineUs(N: LongInt): LongInt;
+function LineTime(const S: tPortSettings; N, PerSecond: LongInt): LongInt;
 var
   Bits: LongInt;
 begin
-  Bits := 1 + CH_Set.DataBits + CH_Set.StopBits;    { start, data, stop }
-  if CH_Set.Parity <> ppNone then
-    Inc(Bits);
-  if CH_Set.Baud <= 0 then
+  if S.Baud <= 0 then
     Exit(0);
-  Result := (Int64(N) * Bits * 1000000 + CH_Set.Baud - 1) div CH_Set.Baud;
+  Bits := 1 + S.DataBits + S.StopBits;    { start, data, stop }
+  if S.Parity <> ppNone then
+    Inc(Bits);
+  Result := (Int64(N) * Bits * PerSecond + S.Baud - 1) div S.Baud;
+end;
+
+function tChnPhys.ComLineUs(N: LongInt): LongInt;
+begin
+  Result := LineTime(CH_Set, N, 1000000);
 end;
 
 { The earliest a message handed over now may start (ChnClockUs): RTSB=
@@ -718,15 +728,8 @@ begin
 end;
 
 function tChnPhys.ComLineMs(N: LongInt): LongInt;
-var
-  Bits: LongInt;
 begin
-  Bits := 1 + CH_Set.DataBits + CH_Set.StopBits;    { start, data, stop }
-  if CH_Set.Parity <> ppNone then
-    Inc(Bits);
-  if CH_Set.Baud <= 0 then
-    Exit(0);
-  Result := (Int64(N) * Bits * 1000 + CH_Set.Baud - 1) div CH_Set.Baud;
+  Result := LineTime(CH_Set, N, 1000);
 end;
 
 { A message handed to ChSend just before ChClose (an answer, then exit)
