@@ -97,6 +97,27 @@ begin
   end;
 end;
 
+{ chngate CONF, its output in a pipe }
+function StartGate(const Conf: string): TProcess;
+begin
+  Result := TProcess.Create(nil);
+  BinExecutable(Result, BinPath('chngate'));
+  Result.Parameters.Add(Conf);
+  Result.Options := [poUsePipes, poStderrToOutPut];
+  Result.Execute;
+end;
+
+{ Stop P (with Sig) if it still runs, and free it. }
+procedure Ended(var P: TProcess; Sig: cint);
+begin
+  if (P <> nil) and P.Running then
+  begin
+    FpKill(P.ProcessID, Sig);
+    P.WaitOnExit;
+  end;
+  FreeAndNil(P);
+end;
+
 procedure TTestChngateTool.TestGatewayEndToEnd;
 var
   Broker: TMosquitto;
@@ -124,11 +145,7 @@ begin
       'tags = N7:0'#10'scan = 200'#10'timeout = 100'#10'fails = 2'#10'demote = 500'#10);
     Sub := TMqttSub.Create(Broker.Port, 'plant/#', []);
     Sleep(200);
-    Gate := TProcess.Create(nil);
-    BinExecutable(Gate, BinPath('chngate'));
-    Gate.Parameters.Add(Dir + '/g.conf');
-    Gate.Options := [poUsePipes, poStderrToOutPut];
-    Gate.Execute;
+    Gate := StartGate(Dir + '/g.conf');
     { values, with their quality }
     AssertTrue('N7:0[3]: ' + Sub.Text,
       Sub.WaitFor('plant/plc1/N7:0[3] {"value":[0,10,20],"quality":"good","ts":"', 10000));
@@ -163,19 +180,9 @@ begin
     Gate.WaitOnExit;
     AssertTrue('the will: ' + Sub.Text, Sub.WaitFor('plant/$gateway/status offline', 5000));
   finally
-    if (Gate <> nil) and Gate.Running then
-    begin
-      FpKill(Gate.ProcessID, SIGKILL);
-      Gate.WaitOnExit;
-    end;
-    Gate.Free;
+    Ended(Gate, SIGKILL);
     Sub.Free;
-    if Sim.Running then
-    begin
-      FpKill(Sim.ProcessID, SIGTERM);
-      Sim.WaitOnExit;
-    end;
-    Sim.Free;
+    Ended(Sim, SIGTERM);
     Dead.Free;
     Broker.Free;
     RemoveTempDir(Dir);
@@ -207,11 +214,7 @@ begin
       'family = plc5'#10'tags = in=I:012/05 D10:0[2] N7:0[3] bcd=D10:3'#10'scan = 200'#10'write = bcd'#10);
     Sub := TMqttSub.Create(Broker.Port, 'plant/#', []);
     Sleep(200);
-    Gate := TProcess.Create(nil);
-    BinExecutable(Gate, BinPath('chngate'));
-    Gate.Parameters.Add(Dir + '/g.conf');
-    Gate.Options := [poUsePipes, poStderrToOutPut];
-    Gate.Execute;
+    Gate := StartGate(Dir + '/g.conf');
     AssertTrue('I:012/05: ' + Sub.Text, Sub.WaitFor('plant/p5/in {"value":true,"quality":"good"', 10000));
     AssertTrue('D10:0[2] from BCD $1234 $9999: ' + Sub.Text,
       Sub.WaitFor('plant/p5/D10:0[2] {"value":[1234,9999],"quality":"good"', 5000));
@@ -220,19 +223,9 @@ begin
     AssertEquals('mosquitto_pub', 0, MqttPub(Broker.Port, 'plant/p5/bcd/set', '4321'));
     AssertTrue('bcd back: ' + Sub.Text, Sub.WaitFor('plant/p5/bcd {"value":4321,"quality":"good"', 5000));
   finally
-    if (Gate <> nil) and Gate.Running then
-    begin
-      FpKill(Gate.ProcessID, SIGTERM);
-      Gate.WaitOnExit;
-    end;
-    Gate.Free;
+    Ended(Gate, SIGTERM);
     Sub.Free;
-    if Sim.Running then
-    begin
-      FpKill(Sim.ProcessID, SIGTERM);
-      Sim.WaitOnExit;
-    end;
-    Sim.Free;
+    Ended(Sim, SIGTERM);
     Broker.Free;
     RemoveTempDir(Dir);
   end;
