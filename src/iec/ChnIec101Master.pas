@@ -1105,7 +1105,8 @@ begin
       end;
     end
     else
-      Finish(M, R, '');
+      Finish(M, R, 'the link refused the ASDU of ' + IntToStr(M.CmdLen) + ' octets ('
+        + ChResultText(R) + ')');
     Result := True;
   end;
 end;

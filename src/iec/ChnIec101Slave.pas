@@ -259,6 +259,9 @@ begin
   begin
     F^.Params := S.Params;
     F^.Ca := S.Ca;
+    { the longest ASDU the slave's queues hold (FT 1.2's record, 247) }
+    if F^.MaxAsdu > MaxDataLen then
+      F^.MaxAsdu := MaxDataLen;
   end;
 end;
 
@@ -1108,6 +1111,8 @@ begin
   Result := False;
   if S.Chn = nil then
     Exit;
+  if S.Files <> nil then
+    IecFileServerReady(S.Files^);        { its timer: a transfer left ends }
   if S.Balanced then
   begin
     Result := IecTransportStep(S.Link);

@@ -71,7 +71,7 @@ type
   tIecFileClient = record
     M        : pIecMaster;
     Addr, Ca : Word;
-    MaxAsdu  : Word;        {< ASDUs at most this long (249) }
+    MaxAsdu  : Word;        {< ASDUs at most this long (249 on IEC 104, 247 on FT 1.2) }
     SectionSize: LongInt;   {< put: octets per section (1024) }
     TimeoutMs: LongInt;     {< each answer within (10000) }
     SectionRetries: LongInt;   {< a section with a bad checksum asked again this often (1) }
@@ -120,7 +120,7 @@ function IecFilePut(var C: tIecFileClient; Addr, Ca: Word; Ioa: LongWord; Nof: W
 implementation
 
 uses
-  SysUtils, ChnVirt;
+  SysUtils, ChnVirt, ChnFT12Codec;
 
 procedure OnAsdu(Data: Pointer; Addr: Word; const Buf: array of Byte; Len: Word); forward;
 
@@ -129,7 +129,11 @@ begin
   Finalize(C);
   FillChar(C, SizeOf(C), 0);
   C.M := @M;
-  C.MaxAsdu := 249;
+  { the longest ASDU of the transport: IEC 104's APDU, FT 1.2's record }
+  if M.Over104 then
+    C.MaxAsdu := 249
+  else
+    C.MaxAsdu := MaxDataLen;
   C.SectionSize := 1024;
   C.TimeoutMs := 10000;
   C.SectionRetries := 1;
