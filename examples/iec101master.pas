@@ -17,7 +17,7 @@ program iec101master;
 
 uses
   SysUtils, Classes, uString, ChnTypes, ChnVirt, ChnLayers, ChnFT1_2, ChnFT12Link,
-  ChnIec101Asdu, ChnIec101Master, ChnIec101Print, ChnCli, ChnIecFile, ChnIecFileClient;
+  ChnIec101Asdu, ChnIec101Master, ChnIec101Print, ChnCli, ChnIecFile, ChnIecFileClient, ChnIecFileServer;
 
 const
   Prog = 'iec101master';
@@ -334,55 +334,38 @@ function RunFile(const C: tCmd; Addr: Word): tChResult;
 var
   Content: AnsiString;
   I: Integer;
-  F: TFileStream;
+  E: ShortString;
 begin
   Content := '';
-  try
-    case C.Kind of
-      ckDir:
-        begin
-          Result := IecFileDir(Files, Addr, Ca);
-          for I := 0 to Files.DirCount - 1 do
-            with Files.Dir[I] do
-              if Json then
-                WriteLn(Format('{"slave":%d,"file":%d,"nof":%d,"length":%d,"sof":%d,"time":"%s"}',
-                  [Addr, Ioa, Nof, Lof, Sof, IecTimeText(Time, tkCP56)]))
-              else
-                WriteLn(Format('file IOA %d NOF %d %d octets SOF 0x%.2x %s',
-                  [Ioa, Nof, Lof, Sof, IecTimeText(Time, tkCP56)]));
-        end;
-      ckGet:
-        begin
-          Result := IecFileGet(Files, Addr, Ca, C.Ioa, Nof_Transparent, Content);
-          if Result = res_Ok then
-          begin
-            F := TFileStream.Create(C.Path, fmCreate);
-            try
-              if Content <> '' then
-                F.WriteBuffer(Content[1], Length(Content));
-            finally
-              F.Free;
-            end;
-          end;
-        end;
-    else
+  case C.Kind of
+    ckDir:
       begin
-        F := TFileStream.Create(C.Path, fmOpenRead or fmShareDenyNone);
-        try
-          SetLength(Content, F.Size);
-          if F.Size > 0 then
-            F.ReadBuffer(Content[1], F.Size);
-        finally
-          F.Free;
-        end;
-        Result := IecFilePut(Files, Addr, Ca, C.Ioa, Nof_Transparent, Content);
+        Result := IecFileDir(Files, Addr, Ca);
+        for I := 0 to Files.DirCount - 1 do
+          with Files.Dir[I] do
+            if Json then
+              WriteLn(Format('{"slave":%d,"file":%d,"nof":%d,"length":%d,"sof":%d,"time":"%s"}',
+                [Addr, Ioa, Nof, Lof, Sof, IecTimeText(Time, tkCP56)]))
+            else
+              WriteLn(Format('file IOA %d NOF %d %d octets SOF 0x%.2x %s',
+                [Ioa, Nof, Lof, Sof, IecTimeText(Time, tkCP56)]));
       end;
-    end;
-  except
-    on X: Exception do
+    ckGet:
+      begin
+        Result := IecFileGet(Files, Addr, Ca, C.Ioa, Nof_Transparent, Content);
+        if (Result = res_Ok) and not IecFileSave(C.Path, Content, E) then
+        begin
+          Files.Err := E;
+          Result := res_BadParam;
+        end;
+      end;
+  else
+    if IecFileLoad(C.Path, Content, E) then
+      Result := IecFilePut(Files, Addr, Ca, C.Ioa, Nof_Transparent, Content)
+    else
     begin
-      Files.Err := C.Path + ': ' + X.Message;
-      Exit(res_BadParam);
+      Files.Err := E;
+      Result := res_BadParam;
     end;
   end;
   if (Result = res_Ok) and (C.Kind <> ckDir) and not Json then

@@ -91,6 +91,16 @@ type
     Stop  : tIecTime;    {< F_SC_NB_1: end of the range }
   end;
 
+  { A file's octets in transit, section by section: what both roles
+    keep, sending (ChnIecFileServer's files, ChnIecFileClient's put) or
+    receiving. }
+  tIecFileXfer = record
+    Content: AnsiString;   {< the file, or what was received so far }
+    Nos    : Byte;         {< the section under way }
+    SecStart, SecLen, SecDone: LongInt;   {< the section in Content, octets sent/received }
+    SecChs : Byte;         {< sending: the sum of the octets sent of the section }
+  end;
+
 { 'F_SG_NA_1' for 120..127, '' otherwise. }
 function IecFileTypeName(Ti: Byte): ShortString;
 function IecIsFileType(Ti: Byte): Boolean;
@@ -118,6 +128,26 @@ function IecFileEncode(const P: tIecParams; Ti, Cot: Byte; Negative: Boolean; Ca
   res_AsduLength (the length does not fit the type, count and LOS). }
 function IecFileDecode(const P: tIecParams; const Buf: array of Byte; Len: Word;
   Index: LongInt; out H: tIecAsdu; out F: tIecFileObj; out Err: ShortString): tChResult;
+
+{ Sending: section Nos (1..) of X.Content in sections of SectionSize;
+  False past the last one. }
+function IecXferSection(var X: tIecFileXfer; Nos: Byte; SectionSize: LongInt): Boolean;
+{ Sending: the next segment of the section into O (SegLen, Seg; at most
+  MaxSeg octets); False once the section is out (O.Chs: its checksum). }
+function IecXferSegment(var X: tIecFileXfer; MaxSeg: LongInt; var O: tIecFileObj): Boolean;
+{ Receiving: section Nos of Len octets comes next. }
+procedure IecXferExpect(var X: tIecFileXfer; Nos: Byte; Len: LongInt);
+{ Receiving: a segment's octets; False (nothing taken) when the section
+  would be longer than announced. }
+function IecXferTake(var X: tIecFileXfer; const O: tIecFileObj): Boolean;
+{ Receiving: the checksum of the section received so far; whether all of
+  it came. }
+function IecXferSectionSum(const X: tIecFileXfer): Byte;
+function IecXferSectionWhole(const X: tIecFileXfer): Boolean;
+{ Receiving: forget the section (its checksum failed: it comes again). }
+procedure IecXferDrop(var X: tIecFileXfer);
+{ The checksum of a whole file. }
+function IecFileSum(const Content: AnsiString): Byte;
 
 implementation
 
@@ -170,6 +200,83 @@ begin
   for I := 0 to Len - 1 do
     Sum := Sum + Buf[I];
   Result := Sum and $FF;
+end;
+
+function IecFileSum(const Content: AnsiString): Byte;
+begin
+  if Content = '' then
+    Result := 0
+  else
+    Result := IecFileChecksum(0, PByteArray(@Content[1])^[0..Length(Content) - 1], Length(Content));
+end;
+
+function IecXferSection(var X: tIecFileXfer; Nos: Byte; SectionSize: LongInt): Boolean;
+begin
+  X.Nos := Nos;
+  X.SecStart := (Nos - 1) * SectionSize;
+  X.SecLen := Length(X.Content) - X.SecStart;
+  if X.SecLen > SectionSize then
+    X.SecLen := SectionSize;
+  X.SecDone := 0;
+  X.SecChs := 0;
+  Result := X.SecLen > 0;
+end;
+
+function IecXferSegment(var X: tIecFileXfer; MaxSeg: LongInt; var O: tIecFileObj): Boolean;
+var
+  N: LongInt;
+begin
+  N := X.SecLen - X.SecDone;
+  Result := N > 0;
+  if not Result then
+  begin
+    O.Chs := X.SecChs;
+    Exit;
+  end;
+  if N > MaxSeg then
+    N := MaxSeg;
+  O.SegLen := N;
+  Move(X.Content[X.SecStart + X.SecDone + 1], O.Seg[0], N);
+  X.SecChs := IecFileChecksum(X.SecChs, O.Seg, N);
+  Inc(X.SecDone, N);
+end;
+
+procedure IecXferExpect(var X: tIecFileXfer; Nos: Byte; Len: LongInt);
+begin
+  X.Nos := Nos;
+  X.SecStart := Length(X.Content);
+  X.SecLen := Len;
+  X.SecDone := 0;
+end;
+
+function IecXferTake(var X: tIecFileXfer; const O: tIecFileObj): Boolean;
+begin
+  Result := X.SecDone + O.SegLen <= X.SecLen;
+  if not Result then
+    Exit;
+  SetLength(X.Content, X.SecStart + X.SecDone + O.SegLen);
+  if O.SegLen > 0 then
+    Move(O.Seg[0], X.Content[X.SecStart + X.SecDone + 1], O.SegLen);
+  Inc(X.SecDone, O.SegLen);
+end;
+
+function IecXferSectionSum(const X: tIecFileXfer): Byte;
+begin
+  if X.SecDone = 0 then
+    Result := 0
+  else
+    Result := IecFileChecksum(0, PByteArray(@X.Content[X.SecStart + 1])^[0..X.SecDone - 1], X.SecDone);
+end;
+
+function IecXferSectionWhole(const X: tIecFileXfer): Boolean;
+begin
+  Result := X.SecDone = X.SecLen;
+end;
+
+procedure IecXferDrop(var X: tIecFileXfer);
+begin
+  SetLength(X.Content, X.SecStart);
+  X.SecDone := 0;
 end;
 
 function IecFileErrorName(Cause: Byte): ShortString;

@@ -79,11 +79,8 @@ type
     Wait     : tIecFileWait;
     Ioa      : LongWord;
     Nof      : Word;
-    Content  : AnsiString;  {< get: what arrived; put: what goes }
+    X        : tIecFileXfer;   {< get: what arrived; put: what goes }
     Lof      : LongWord;
-    Nos      : Byte;
-    SecStart, SecLen, SecDone: LongInt;
-    SecChs   : Byte;
     Repeats  : LongInt;     {< of the section under way }
     Dir      : array[0..IecFileMaxDir - 1] of tIecFileDirEntry;
     DirCount : LongInt;
@@ -222,7 +219,7 @@ begin
   C.Ca := Ca;
   C.Ioa := Ioa;
   C.Nof := Nof;
-  C.Content := '';
+  C.X.Content := '';
   C.DirCount := 0;
   C.Repeats := 0;
   C.Sending := False;
@@ -269,7 +266,7 @@ begin
       + IntToStr(C.SectionSize) + ' octets');
     Exit(False);
   end;
-  C.Content := Content;
+  C.X.Content := Content;
   C.Lof := Length(Content);
   O := Obj(C, 0, 0);
   O.Lof := C.Lof;
@@ -286,26 +283,17 @@ procedure PutSection(var C: tIecFileClient; Nos: Byte);
 var
   O: tIecFileObj;
 begin
-  C.Nos := Nos;
-  C.SecStart := (Nos - 1) * C.SectionSize;
-  C.SecLen := Length(C.Content) - C.SecStart;
-  if C.SecLen > C.SectionSize then
-    C.SecLen := C.SectionSize;
-  C.SecDone := 0;
-  C.SecChs := 0;
-  if C.SecLen <= 0 then
+  if not IecXferSection(C.X, Nos, C.SectionSize) then
   begin
     O := Obj(C, Nos - 1, Lsq_File);
-    O.Chs := 0;
-    if C.Content <> '' then
-      O.Chs := IecFileChecksum(0, PByteArray(@C.Content[1])^[0..Length(C.Content) - 1], Length(C.Content));
+    O.Chs := IecFileSum(C.X.Content);
     Send(C, F_LS_NA_1, Cot_File, O);
     Expect(C, fwFileAck);
   end
   else
   begin
     O := Obj(C, Nos, 0);
-    O.Lof := C.SecLen;
+    O.Lof := C.X.SecLen;
     Send(C, F_SR_NA_1, Cot_File, O);
     Expect(C, fwCallSection);
   end;
@@ -315,25 +303,16 @@ end;
 procedure PutNext(var C: tIecFileClient);
 var
   O: tIecFileObj;
-  N: LongInt;
 begin
-  O := Obj(C, C.Nos, 0);
-  N := C.SecLen - C.SecDone;
-  if N > 0 then
+  O := Obj(C, C.X.Nos, 0);
+  if IecXferSegment(C.X, IecFileMaxSegment(C.M^.Params, C.MaxAsdu), O) then
   begin
-    if N > IecFileMaxSegment(C.M^.Params, C.MaxAsdu) then
-      N := IecFileMaxSegment(C.M^.Params, C.MaxAsdu);
-    O.SegLen := N;
-    Move(C.Content[C.SecStart + C.SecDone + 1], O.Seg[0], N);
-    C.SecChs := IecFileChecksum(C.SecChs, O.Seg, N);
-    Inc(C.SecDone, N);
     Send(C, F_SG_NA_1, Cot_File, O);
     Expect(C, fwSending);
   end
   else
   begin
-    O.Q := Lsq_Section;
-    O.Chs := C.SecChs;
+    O.Q := Lsq_Section;                  { O.Chs: the section's }
     Send(C, F_LS_NA_1, Cot_File, O);
     Expect(C, fwSectionAck);
   end;
@@ -352,19 +331,13 @@ procedure GetSegments(var C: tIecFileClient; const H: tIecAsdu; const O: tIecFil
 var
   Sum: Byte;
 begin
-  if (H.Ti = F_SG_NA_1) and (C.Wait = fwSegments) and (O.Nos = C.Nos) then
+  if (H.Ti = F_SG_NA_1) and (C.Wait = fwSegments) and (O.Nos = C.X.Nos) then
   begin
-    if C.SecDone + O.SegLen > C.SecLen then
-    begin
-      Finish(C, res_IecFileSequence, 'section ' + IntToStr(C.Nos) + ' longer than its '
-        + IntToStr(C.SecLen) + ' octets');
-      Exit;
-    end;
-    SetLength(C.Content, Length(C.Content) + O.SegLen);
-    if O.SegLen > 0 then
-      Move(O.Seg[0], C.Content[C.SecStart + C.SecDone + 1], O.SegLen);
-    Inc(C.SecDone, O.SegLen);
-    Expect(C, fwSegments);
+    if IecXferTake(C.X, O) then
+      Expect(C, fwSegments)
+    else
+      Finish(C, res_IecFileSequence, 'section ' + IntToStr(C.X.Nos) + ' longer than its '
+        + IntToStr(C.X.SecLen) + ' octets');
     Exit;
   end;
   if (H.Ti <> F_LS_NA_1) then
@@ -378,32 +351,30 @@ begin
         Unexpected(C, H, O)
       else
       begin
-        Sum := 0;
-        if C.SecDone > 0 then
-          Sum := IecFileChecksum(0, PByteArray(@C.Content[C.SecStart + 1])^[0..C.SecDone - 1], C.SecDone);
-        if (Sum = O.Chs) and (C.SecDone = C.SecLen) then
+        Sum := IecXferSectionSum(C.X);
+        if (Sum = O.Chs) and IecXferSectionWhole(C.X) then
         begin
-          Send(C, F_AF_NA_1, Cot_File, Obj(C, C.Nos, Afq_SectionOk));
+          Send(C, F_AF_NA_1, Cot_File, Obj(C, C.X.Nos, Afq_SectionOk));
           Expect(C, fwSectionReady);
           C.Repeats := 0;
         end
         else
         begin
           Inc(C.BadChecksums);
-          SetLength(C.Content, C.SecStart);
+          IecXferDrop(C.X);
           if C.Repeats < C.SectionRetries then
           begin
             Inc(C.Repeats);
-            Send(C, F_AF_NA_1, Cot_File, Obj(C, C.Nos, Afq_SectionBad or (Fe_Checksum shl 4)));
+            Send(C, F_AF_NA_1, Cot_File, Obj(C, C.X.Nos, Afq_SectionBad or (Fe_Checksum shl 4)));
             Expect(C, fwSectionReady);
           end
           else
           begin
-            Finish(C, res_IecFileChecksum, 'section ' + IntToStr(C.Nos) + ': checksum '
+            Finish(C, res_IecFileChecksum, 'section ' + IntToStr(C.X.Nos) + ': checksum '
               + IntToStr(O.Chs) + ' received, ' + IntToStr(Sum) + ' computed over '
-              + IntToStr(C.SecDone) + ' of ' + IntToStr(C.SecLen) + ' octets (asked '
+              + IntToStr(C.X.SecDone) + ' of ' + IntToStr(C.X.SecLen) + ' octets (asked '
               + IntToStr(C.Repeats + 1) + ' times)');
-            Send(C, F_AF_NA_1, Cot_File, Obj(C, C.Nos, Afq_FileBad or (Fe_Checksum shl 4)));
+            Send(C, F_AF_NA_1, Cot_File, Obj(C, C.X.Nos, Afq_FileBad or (Fe_Checksum shl 4)));
           end;
         end;
       end;
@@ -412,10 +383,8 @@ begin
         Unexpected(C, H, O)
       else
       begin
-        Sum := 0;
-        if C.Content <> '' then
-          Sum := IecFileChecksum(0, PByteArray(@C.Content[1])^[0..Length(C.Content) - 1], Length(C.Content));
-        if (Sum = O.Chs) and (LongWord(Length(C.Content)) = C.Lof) then
+        Sum := IecFileSum(C.X.Content);
+        if (Sum = O.Chs) and (LongWord(Length(C.X.Content)) = C.Lof) then
         begin
           Send(C, F_AF_NA_1, Cot_File, Obj(C, O.Nos, Afq_FileOk));
           Finish(C, res_Ok, '');
@@ -424,14 +393,14 @@ begin
         begin
           Inc(C.BadChecksums);
           Finish(C, res_IecFileChecksum, 'file checksum ' + IntToStr(O.Chs) + ' received, '
-            + IntToStr(Sum) + ' computed; ' + IntToStr(Length(C.Content)) + ' octets of '
+            + IntToStr(Sum) + ' computed; ' + IntToStr(Length(C.X.Content)) + ' octets of '
             + IntToStr(C.Lof) + ' announced');
           Send(C, F_AF_NA_1, Cot_File, Obj(C, O.Nos, Afq_FileBad or (Fe_Checksum shl 4)));
         end;
       end;
     Lsq_FileDeact, Lsq_SectionDeact:
       Finish(C, res_IecFileAborted, 'the slave ended the transfer (F_LS_NA_1 LSQ ' + IntToStr(O.Q)
-        + ') after ' + IntToStr(Length(C.Content)) + ' of ' + IntToStr(C.Lof) + ' octets');
+        + ') after ' + IntToStr(Length(C.X.Content)) + ' of ' + IntToStr(C.Lof) + ' octets');
   else
     Unexpected(C, H, O);
   end;
@@ -459,11 +428,8 @@ begin
           Finish(C, res_IecFileRefused, 'section ' + IntToStr(O.Nos) + ' not ready');
           Exit;
         end;
-        C.Nos := O.Nos;
-        C.SecStart := Length(C.Content);
-        C.SecLen := O.Lof;
-        C.SecDone := 0;
-        Send(C, F_SC_NA_1, Cot_File, Obj(C, C.Nos, Scq_CallSection));
+        IecXferExpect(C.X, O.Nos, O.Lof);
+        Send(C, F_SC_NA_1, Cot_File, Obj(C, O.Nos, Scq_CallSection));
         Expect(C, fwSegments);
       end
       else
@@ -485,7 +451,7 @@ begin
       else
         Unexpected(C, H, O);
     fwCallSection:
-      if (H.Ti = F_SC_NA_1) and (O.Q and $0F = Scq_CallSection) and (O.Nos = C.Nos) then
+      if (H.Ti = F_SC_NA_1) and (O.Q and $0F = Scq_CallSection) and (O.Nos = C.X.Nos) then
         PutNext(C)
       else
         Unexpected(C, H, O);
@@ -498,7 +464,7 @@ begin
             if C.Wait = fwSectionAck then
             begin
               C.Repeats := 0;
-              PutSection(C, C.Nos + 1);
+              PutSection(C, C.X.Nos + 1);
             end
             else
               Unexpected(C, H, O);
@@ -507,10 +473,10 @@ begin
             begin
               Inc(C.Repeats);
               Inc(C.BadChecksums);
-              PutSection(C, C.Nos);
+              PutSection(C, C.X.Nos);
             end
             else
-              Finish(C, res_IecFileChecksum, 'section ' + IntToStr(C.Nos) + ' refused by the slave ('
+              Finish(C, res_IecFileChecksum, 'section ' + IntToStr(C.X.Nos) + ' refused by the slave ('
                 + IecFileErrorName(O.Q shr 4) + ')');
           Afq_FileOk:
             if C.Wait = fwFileAck then
@@ -596,8 +562,8 @@ end;
 function Progress(const C: tIecFileClient): ShortString;
 begin
   case C.Job of
-    fjGet: Result := ' (' + IntToStr(Length(C.Content)) + ' of ' + IntToStr(C.Lof) + ' octets received)';
-    fjPut: Result := ' (' + IntToStr(C.SecStart + C.SecDone) + ' of ' + IntToStr(C.Lof) + ' octets sent)';
+    fjGet: Result := ' (' + IntToStr(Length(C.X.Content)) + ' of ' + IntToStr(C.Lof) + ' octets received)';
+    fjPut: Result := ' (' + IntToStr(C.X.SecStart + C.X.SecDone) + ' of ' + IntToStr(C.Lof) + ' octets sent)';
   else
     Result := ' (' + IntToStr(C.DirCount) + ' entries received)';
   end;
@@ -666,7 +632,7 @@ begin
   else
     Result := C.Result;
   if Result = res_Ok then
-    Content := C.Content
+    Content := C.X.Content
   else
     Content := '';
 end;

@@ -89,11 +89,8 @@ type
     Ioa      : LongWord;
     Nof      : Word;
     Oa       : Byte;
-    Content  : AnsiString;  {< the file sent, or what was received so far }
+    X        : tIecFileXfer;   {< the file sent, or what was received so far }
     Lof      : LongWord;    {< receiving: the length announced }
-    Nos      : Byte;        {< section under way }
-    SecStart, SecLen, SecDone: LongInt;   {< the section in Content, octets sent/received }
-    SecChs, FileChs: Byte;
     Until_   : QWord;       {< the peer's next message before this }
     { what is to go out before anything else }
     Out      : array[0..IecMaxAsdu - 1] of Byte;
@@ -121,6 +118,10 @@ function IecFileServerBusy(const F: tIecFileServer): Boolean;
 { The next ASDU to send (False: none now). }
 function IecFileServerNext(var F: tIecFileServer; var Buf: array of Byte; out Len: Word): Boolean;
 function IecFileServerStateName(S: tIecFileServerState): ShortString;
+{ A whole file into Content / Content into a file: False with Err
+  (the path and the OS's reason). }
+function IecFileLoad(const Path: AnsiString; out Content: AnsiString; out Err: ShortString): Boolean;
+function IecFileSave(const Path: AnsiString; const Content: AnsiString; out Err: ShortString): Boolean;
 
 implementation
 
@@ -188,24 +189,46 @@ begin
   Result := StrToInt(Digits);
 end;
 
-function ReadWhole(const Path: AnsiString; out Content: AnsiString): Boolean;
+function IecFileLoad(const Path: AnsiString; out Content: AnsiString; out Err: ShortString): Boolean;
 var
   S: TFileStream;
 begin
   Content := '';
+  Err := '';
   try
     S := TFileStream.Create(Path, fmOpenRead or fmShareDenyNone);
     try
       SetLength(Content, S.Size);
       if S.Size > 0 then
         S.ReadBuffer(Content[1], S.Size);
-      Result := True;
     finally
       S.Free;
     end;
   except
-    Result := False;
+    on X: Exception do
+      Err := Path + ': ' + X.Message;
   end;
+  Result := Err = '';
+end;
+
+function IecFileSave(const Path: AnsiString; const Content: AnsiString; out Err: ShortString): Boolean;
+var
+  S: TFileStream;
+begin
+  Err := '';
+  try
+    S := TFileStream.Create(Path, fmCreate);
+    try
+      if Content <> '' then
+        S.WriteBuffer(Content[1], Length(Content));
+    finally
+      S.Free;
+    end;
+  except
+    on X: Exception do
+      Err := Path + ': ' + X.Message;
+  end;
+  Result := Err = '';
 end;
 
 { Every file there is: the program's, then the directory's (sorted by
@@ -263,6 +286,8 @@ var
 
 function VisitFind(var F: tIecFileServer; const E: tIecFileEntry; const Path: AnsiString;
   Size: Int64): Boolean;
+var
+  Err: ShortString;
 begin
   Result := E.Ioa = Want;
   if not Result then
@@ -270,9 +295,9 @@ begin
   FoundNof := E.Nof;
   if Path = '' then
     Found := E.Content
-  else if not ReadWhole(Path, Found) then
+  else if not IecFileLoad(Path, Found, Err) then
   begin
-    F.LastError := 'file ' + Path + ': cannot read it';
+    F.LastError := 'file: ' + Err;
     Result := False;
   end;
 end;
@@ -336,7 +361,7 @@ end;
 procedure Stop(var F: tIecFileServer; const Why: ShortString);
 begin
   F.State := fsIdle;
-  F.Content := '';
+  F.X.Content := '';
   if Why <> '' then
     F.LastError := Why;
 end;
@@ -352,36 +377,20 @@ procedure SectionReady(var F: tIecFileServer; Nos: Byte);
 var
   O: tIecFileObj;
 begin
-  F.Nos := Nos;
-  F.SecStart := (Nos - 1) * F.SectionSize;
-  F.SecLen := Length(F.Content) - F.SecStart;
-  if F.SecLen > F.SectionSize then
-    F.SecLen := F.SectionSize;
-  F.SecDone := 0;
-  F.SecChs := 0;
-  if F.SecLen <= 0 then
+  if not IecXferSection(F.X, Nos, F.SectionSize) then
   begin
     O := Obj(F.Ioa, F.Nof, Nos - 1, Lsq_File);
-    O.Chs := F.FileChs;
+    O.Chs := IecFileSum(F.X.Content);
     Answer(F, F_LS_NA_1, Cot_File, False, O);
     F.State := fsFileAck;
   end
   else
   begin
     O := Obj(F.Ioa, F.Nof, Nos, 0);
-    O.Lof := F.SecLen;
+    O.Lof := F.X.SecLen;
     Answer(F, F_SR_NA_1, Cot_File, False, O);
     F.State := fsSectionReady;
   end;
-end;
-
-{ The file checksum of the whole content. }
-function FileSum(const C: AnsiString): Byte;
-begin
-  if C = '' then
-    Result := 0
-  else
-    Result := IecFileChecksum(0, PByteArray(@C[1])^[0..Length(C) - 1], Length(C));
 end;
 
 procedure Select(var F: tIecFileServer; const O: tIecFileObj);
@@ -407,38 +416,25 @@ begin
     Answer(F, F_FR_NA_1, Cot_File, False, R);
     Exit;
   end;
-  F.Content := C;
+  F.X.Content := C;
   if Nof <> 0 then
     F.Nof := Nof;
   R.Nof := F.Nof;
   R.Lof := Length(C);
   Answer(F, F_FR_NA_1, Cot_File, False, R);
-  F.FileChs := FileSum(C);
   F.State := fsSelected;
   Touch(F);
 end;
 
 procedure Deliver(var F: tIecFileServer);
 var
-  S: TFileStream;
+  E: ShortString;
 begin
   Inc(F.Received);
   if Assigned(F.OnReceived) then
-    F.OnReceived(F.Data, F.Ioa, F.Nof, F.Content);
-  if F.Dir = '' then
-    Exit;
-  try
-    S := TFileStream.Create(IncludeTrailingPathDelimiter(F.Dir) + IntToStr(F.Ioa), fmCreate);
-    try
-      if F.Content <> '' then
-        S.WriteBuffer(F.Content[1], Length(F.Content));
-    finally
-      S.Free;
-    end;
-  except
-    on X: Exception do
-      F.LastError := 'file IOA ' + IntToStr(F.Ioa) + ' received, not written: ' + X.Message;
-  end;
+    F.OnReceived(F.Data, F.Ioa, F.Nof, F.X.Content);
+  if (F.Dir <> '') and not IecFileSave(IncludeTrailingPathDelimiter(F.Dir) + IntToStr(F.Ioa), F.X.Content, E) then
+    F.LastError := 'file IOA ' + IntToStr(F.Ioa) + ' received, not written: ' + E;
 end;
 
 { The peer's file ready: take it (call file) or refuse it. }
@@ -461,7 +457,6 @@ begin
     Exit;
   end;
   F.Lof := O.Lof;
-  F.FileChs := 0;
   Answer(F, F_SC_NA_1, Cot_File, False, Obj(F.Ioa, F.Nof, 0, Scq_CallFile));
   F.State := fsReceiveReady;
   Touch(F);
@@ -477,12 +472,9 @@ begin
     Lsq_Section:
       if F.State = fsReceiving then
       begin
-        Sum := 0;
-        if F.SecDone > 0 then
-          Sum := IecFileChecksum(0, PByteArray(@F.Content[F.SecStart + 1])^[0..F.SecDone - 1], F.SecDone);
+        Sum := IecXferSectionSum(F.X);
         if Sum = O.Chs then
         begin
-          F.FileChs := Byte(F.FileChs + Sum);
           Answer(F, F_AF_NA_1, Cot_File, False, Obj(F.Ioa, F.Nof, O.Nos, Afq_SectionOk));
         end
         else
@@ -491,7 +483,7 @@ begin
           Inc(F.BadChecksums);
           F.LastError := What(F) + ' section ' + IntToStr(O.Nos) + ': checksum '
             + IntToStr(O.Chs) + ' received, ' + IntToStr(Sum) + ' computed';
-          SetLength(F.Content, F.SecStart);
+          IecXferDrop(F.X);
           Answer(F, F_AF_NA_1, Cot_File, False,
             Obj(F.Ioa, F.Nof, O.Nos, Afq_SectionBad or (Fe_Checksum shl 4)));
         end;
@@ -502,17 +494,18 @@ begin
       if F.State = fsReceiveReady then
       begin
         Cause := Fe_None;
-        if O.Chs <> F.FileChs then
+        Sum := IecFileSum(F.X.Content);
+        if O.Chs <> Sum then
         begin
           Cause := Fe_Checksum;
           Inc(F.BadChecksums);
           F.LastError := What(F) + ': file checksum ' + IntToStr(O.Chs) + ' received, '
-            + IntToStr(F.FileChs) + ' computed';
+            + IntToStr(Sum) + ' computed';
         end
-        else if LongWord(Length(F.Content)) <> F.Lof then
+        else if LongWord(Length(F.X.Content)) <> F.Lof then
         begin
           Cause := Fe_Unexpected;
-          F.LastError := What(F) + ': ' + IntToStr(Length(F.Content)) + ' octets received, '
+          F.LastError := What(F) + ': ' + IntToStr(Length(F.X.Content)) + ' octets received, '
             + IntToStr(F.Lof) + ' announced';
         end;
         if Cause = Fe_None then
@@ -541,13 +534,13 @@ begin
     Afq_SectionOk:
       if F.State = fsSectionAck then
       begin
-          SectionReady(F, F.Nos + 1);
+          SectionReady(F, F.X.Nos + 1);
         Touch(F);
       end;
     Afq_SectionBad:
       if F.State = fsSectionAck then
       begin
-        SectionReady(F, F.Nos);          { once more }
+        SectionReady(F, F.X.Nos);        { once more }
         Touch(F);
       end;
     Afq_FileOk:
@@ -578,7 +571,7 @@ begin
       else
         Mirror(F, Buf, Len, Cot_File);
     Scq_CallSection:
-      if (F.State = fsSectionReady) and (O.Ioa = F.Ioa) and (O.Nos = F.Nos) then
+      if (F.State = fsSectionReady) and (O.Ioa = F.Ioa) and (O.Nos = F.X.Nos) then
       begin
         F.State := fsSending;
         Touch(F);
@@ -597,23 +590,13 @@ begin
 end;
 
 procedure Segment(var F: tIecFileServer; const O: tIecFileObj);
-var
-  At: LongInt;
 begin
-  if (F.State <> fsReceiving) or (O.Ioa <> F.Ioa) or (O.Nos <> F.Nos) then
+  if (F.State <> fsReceiving) or (O.Ioa <> F.Ioa) or (O.Nos <> F.X.Nos) then
     Exit;
-  if F.SecDone + O.SegLen > F.SecLen then
-  begin
-    { more than the section announced: drop it, the checksum will fail }
+  if IecXferTake(F.X, O) then
+    Touch(F)
+  else                                   { dropped: the checksum will fail }
     F.LastError := What(F) + ' section ' + IntToStr(O.Nos) + ': longer than announced';
-    Exit;
-  end;
-  At := Length(F.Content);
-  SetLength(F.Content, At + O.SegLen);
-  if O.SegLen > 0 then
-    Move(O.Seg[0], F.Content[At + 1], O.SegLen);
-  Inc(F.SecDone, O.SegLen);
-  Touch(F);
 end;
 
 procedure IecFileServerTake(var F: tIecFileServer; const Buf: array of Byte; Len: Word);
@@ -654,10 +637,7 @@ begin
     F_SR_NA_1:
       if (F.State = fsReceiveReady) and (O.Ioa = F.Ioa) then
       begin
-        F.Nos := O.Nos;
-        F.SecStart := Length(F.Content);
-        F.SecLen := O.Lof;
-        F.SecDone := 0;
+        IecXferExpect(F.X, O.Nos, O.Lof);
         Answer(F, F_SC_NA_1, Cot_File, False, Obj(F.Ioa, F.Nof, O.Nos, Scq_CallSection));
         F.State := fsReceiving;
         Touch(F);
@@ -754,7 +734,6 @@ function IecFileServerNext(var F: tIecFileServer; var Buf: array of Byte; out Le
 var
   O: tIecFileObj;
   E: ShortString;
-  N: LongInt;
 begin
   Len := 0;
   Result := IecFileServerReady(F);
@@ -770,22 +749,12 @@ begin
   if F.DirAt >= 0 then
     Exit(DirNext(F, Buf, Len));
   { fsSending: the next segment, or the section's last }
-  O := Obj(F.Ioa, F.Nof, F.Nos, 0);
-  N := F.SecLen - F.SecDone;
-  if N > 0 then
-  begin
-    if N > IecFileMaxSegment(F.Params, F.MaxAsdu) then
-      N := IecFileMaxSegment(F.Params, F.MaxAsdu);
-    O.SegLen := N;
-    Move(F.Content[F.SecStart + F.SecDone + 1], O.Seg[0], N);
-    F.SecChs := IecFileChecksum(F.SecChs, O.Seg, N);
-    Inc(F.SecDone, N);
-    Result := IecFileEncode(F.Params, F_SG_NA_1, Cot_File, False, F.Ca, [O], 1, Buf, Len, E) = res_Ok;
-  end
+  O := Obj(F.Ioa, F.Nof, F.X.Nos, 0);
+  if IecXferSegment(F.X, IecFileMaxSegment(F.Params, F.MaxAsdu), O) then
+    Result := IecFileEncode(F.Params, F_SG_NA_1, Cot_File, False, F.Ca, [O], 1, Buf, Len, E) = res_Ok
   else
   begin
-    O.Q := Lsq_Section;
-    O.Chs := F.SecChs;
+    O.Q := Lsq_Section;                  { O.Chs: the section's }
     Result := IecFileEncode(F.Params, F_LS_NA_1, Cot_File, False, F.Ca, [O], 1, Buf, Len, E) = res_Ok;
     F.State := fsSectionAck;
   end;
