@@ -444,7 +444,7 @@ begin
     Exit(res_AsduIoa);
   end;
   if S.Over104 then
-    Ti := Cp56Counterpart(Ti);
+    Ti := Cp56Counterpart(Ti);          { no CP24 over IEC 104 }
   if (IecTypeTime(S.Points[I].Ti) <> tkNone) or (IecTypeTime(Ti) = tkNone) or not IecIsMonitor(Ti) or
      (IecTypeKind(Ti) <> IecTypeKind(S.Points[I].Ti)) then
   begin
