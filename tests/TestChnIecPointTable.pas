@@ -90,7 +90,8 @@ begin
   AssertEquals(res_Ok, IecMasterAddSlave(M, 1));
   M.CycleMs := 20;
   M.TimeoutMs := TimeoutMs;
-  M.Retries := 0;
+  if TimeoutMs < 1000 then
+    M.Retries := 0;      { a dead slave found at once }
   M.DeadMinMs := 2 * TimeoutMs;
   M.DeadMaxMs := 8 * TimeoutMs;
   M.CommandMs := 3000;
