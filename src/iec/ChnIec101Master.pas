@@ -256,6 +256,17 @@ procedure IecPollFor(var M: tIecMaster; Ms: LongInt);
   is due (Limit at the latest; at most one second). }
 procedure IecMasterWait(var M: tIecMaster; Limit: QWord);
 
+{ What the master knows of slave index S (0..SlaveCount - 1), for a
+  program that shows its health: a copy of its record (State, BackoffMs,
+  Probation, the counters; Link.Repeats the link's repetitions). False
+  when there is no such slave. }
+function IecMasterSlaveInfo(const M: tIecMaster; S: LongInt; out Info: tIecSlave): Boolean;
+{ The outcome of the last command that ended (res_Ok also while none
+  ended yet) and its text. }
+function IecCommandResult(const M: tIecMaster; out Err: ShortString): tChResult;
+{ res_Ok, or how the channel itself failed (res_DeviceLost ...). }
+function IecMasterLineResult(const M: tIecMaster): tChResult;
+
 implementation
 
 uses
@@ -1290,6 +1301,26 @@ function IecParamActivation(var M: tIecMaster; Addr, Ca: Word; Ioa: LongWord; Qp
 begin
   AwaitAuto(M);
   Result := Blocking(M, IecStartParamActivation(M, Addr, Ca, Ioa, Qpa));
+end;
+
+function IecMasterSlaveInfo(const M: tIecMaster; S: LongInt; out Info: tIecSlave): Boolean;
+begin
+  Result := (S >= 0) and (S < M.SlaveCount);
+  if Result then
+    Info := M.Slaves[S]
+  else
+    FillChar(Info, SizeOf(Info), 0);
+end;
+
+function IecCommandResult(const M: tIecMaster; out Err: ShortString): tChResult;
+begin
+  Result := M.Cmd.Result;
+  Err := M.Cmd.Err;
+end;
+
+function IecMasterLineResult(const M: tIecMaster): tChResult;
+begin
+  Result := M.LineResult;
 end;
 
 initialization
