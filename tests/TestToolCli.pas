@@ -33,6 +33,7 @@ type
     procedure TestValueOptionBothForms;
     procedure TestNoCzechInMessages;
     procedure TestUnknownLayerNamesItsUnit;
+    procedure TestErrorExitsFreeEverything;
     {$IFDEF LINUX}
     procedure TestOpenIsNoticed;
     procedure TestNothingOpenedOnABadCommandLine;
@@ -43,7 +44,7 @@ implementation
 
 uses
   {$IFDEF UNIX}BaseUnix,{$ENDIF} ChnTypes, ChnVirt, ChnLayers, ChnCom, ChnTcp, ChnLoop,
-  ChnTrc, ChnNoise, ChnDF1, ChnFT1_2, ChnICS;
+  ChnTrc, ChnNoise, ChnDF1, ChnFT1_2, ChnICS, TestTempDir;
 
 function ReadAvail(S: TStream): string;
 var
@@ -456,6 +457,80 @@ begin
   Check('iec101slave', ['--ca-size=1', '--ca=300', 'NAM=FT1_2 MS=ON MAS=SLAVE NAM=COM DEV=@DEV']);
 end;
 {$ENDIF}
+
+{ A command-line error found deep inside a program (getopts' table under
+  way, a parameter string being checked, inside an exception handler,
+  after a file was read) or a line that cannot be opened ends it with its
+  code, and everything it allocated is freed on the way (heaptrc: 0
+  unfreed blocks). The programs' test builds (build/test-bin, with
+  heaptrc) are run; they ended with Halt before, leaving the strings of
+  every routine under way. }
+procedure TTestToolCli.TestErrorExitsFreeEverything;
+var
+  Dir, HeapLog, Report: string;
+
+  procedure Check(const Prog: string; const Args: array of string; Want: Integer; const Says: string);
+  var
+    P: TProcess;
+    A: string;
+    I: Integer;
+    Deadline: QWord;
+  begin
+    FOut := '';
+    FErr := '';
+    DeleteFile(HeapLog);
+    P := TProcess.Create(nil);
+    try
+      BinExecutable(P, TestBinDir + Prog {$IFDEF WINDOWS} + '.exe'{$ENDIF});
+      for I := 1 to GetEnvironmentVariableCount do
+        if Pos('HEAPTRC=', GetEnvironmentString(I)) <> 1 then
+          P.Environment.Add(GetEnvironmentString(I));
+      P.Environment.Add('HEAPTRC=log=' + HeapLog);
+      for A in Args do
+        P.Parameters.Add(A);
+      P.Options := [poUsePipes];
+      P.Execute;
+      Deadline := ChMsTick + 10000;
+      while P.Running and (ChMsTick < Deadline) do
+      begin
+        FOut := FOut + ReadAvail(P.Output);
+        FErr := FErr + ReadAvail(P.Stderr);
+        Sleep(2);
+      end;
+      if P.Running then
+        P.Terminate(255);
+      P.WaitOnExit;
+      FErr := FErr + ReadAvail(P.Stderr);
+      AssertEquals(Prog + ' ' + Args[0] + ': exit code; ' + FErr, Want, P.ExitCode);
+    finally
+      P.Free;
+    end;
+    AssertTrue(Prog + ': ' + FErr, Pos(Says, FErr) > 0);
+    AssertTrue(Prog + ' ' + Args[0] + ': no heaptrc report in ' + HeapLog, FileExists(HeapLog));
+    Report := ReadFileText(HeapLog);
+    AssertTrue(Prog + ' ' + Args[0] + ': ' + Report,
+      Pos(LineEnding + '0 unfreed memory blocks : 0' + LineEnding, LineEnding + Report) > 0);
+  end;
+
+begin
+  if not FileExists(TestBinDir + 'df1write' {$IFDEF WINDOWS} + '.exe'{$ENDIF}) then
+    Ignore('the heap-checked programs are not built (make test builds them; make mutate does not)');
+  Dir := MakeTempDir('clileak');
+  try
+    HeapLog := Dir + '/heap.log';
+    Check('df1write', ['N7:0', '--bogus'], 2, 'df1write: unknown option (--bogus)');
+    Check('df1write', ['N7:0', '5', 'NAM=XYZ'], 2, 'unknown layer name (NAM=XYZ)');
+    Check('chntap', ['--frames=xyz'], 2, 'chntap: unknown option (--frames=xyz)');
+    Check('df1sim', ['--msg-to=3'], 2, '--msg-to needs --half');
+    Check('df1sim', ['--pty', '--config=' + Dir + '/none.conf'], 2, 'cannot read the data table');
+    WriteFileText(Dir + '/bad.points', 'M_XX_NA_1 1 0' + LineEnding);
+    Check('iec101slave', ['--points=' + Dir + '/bad.points', 'NAM=FT1_2 NAM=COM DEV=' + Dir + '/none'], 2,
+      'bad.points');
+    Check('iec101slave', ['NAM=FT1_2 MS=ON MAS=SLAVE NAM=COM DEV=' + Dir + '/none'], 1, 'iec101slave: ');
+  finally
+    RemoveTempDir(Dir);
+  end;
+end;
 
 initialization
   RegisterTest(TTestToolCli);
