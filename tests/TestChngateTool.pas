@@ -21,6 +21,7 @@ type
     procedure TestCheck;
     {$IFDEF UNIX}
     procedure TestGatewayEndToEnd;
+    procedure TestPlc5Device;
     {$ENDIF}
   end;
 
@@ -56,6 +57,22 @@ begin
     Code := RunBin('chngate', ['--check', 'tools/chngate.conf'], 5000, Output);
     AssertEquals('tools/chngate.conf: exit 0'#10 + Output, 0, Code);
     AssertEquals('tools/chngate.conf: good: 1 devices, 5 tags, 5 reads per scan' + LineEnding, Output);
+    { family = plc5: PLC-5 addresses; an SLC device refuses them }
+    WriteFileText(Dir + '/p.conf', '[mqtt]'#10'prefix = plant'#10#10'[device p5]'#10 +
+      'line = NAM=DF1 NOD=0 DNO=1 NAM=COM DEV=/dev/ttyUSB0'#10'family = plc5'#10'tags = I:012/05 D10:0[2]'#10);
+    Code := RunBin('chngate', ['--check', Dir + '/p.conf'], 5000, Output);
+    AssertEquals('plc5: exit 0'#10 + Output, 0, Code);
+    AssertEquals(Dir + '/p.conf: good: 1 devices, 2 tags, 2 reads per scan' + LineEnding, Output);
+    WriteFileText(Dir + '/p.conf', '[mqtt]'#10'prefix = plant'#10#10'[device p5]'#10 +
+      'line = NAM=DF1 NOD=0 DNO=1 NAM=COM DEV=/dev/ttyUSB0'#10'family = plc6'#10'tags = D10:0 L11:0'#10);
+    Code := RunBin('chngate', ['--check', Dir + '/p.conf'], 5000, Output);
+    AssertEquals('plc6: exit 2'#10 + Output, 2, Code);
+    AssertTrue('the family'#10 + Output, Pos(Dir + '/p.conf:6: [device p5] family: "plc6" is neither slc', Output) > 0);
+    AssertTrue('D10:0 is no SLC address'#10 + Output, Pos(Dir + '/p.conf:7: [device p5] tags: "D10:0": ', Output) > 0);
+    WriteFileText(Dir + '/p.conf', '[mqtt]'#10'prefix = plant'#10#10'[device p5]'#10 +
+      'line = NAM=DF1 NOD=0 DNO=1 NAM=COM DEV=/dev/ttyUSB0'#10'family = plc5'#10'tags = L11:0'#10);
+    Code := RunBin('chngate', ['--check', Dir + '/p.conf'], 5000, Output);
+    AssertTrue('L11:0 is no PLC-5 address'#10 + Output, Pos(Dir + '/p.conf:7: [device p5] tags: "L11:0": ', Output) > 0);
     Code := RunBin('chngate', [Dir + '/none.conf'], 5000, Output);
     AssertEquals('missing file: exit 2'#10 + Output, 2, Code);
     AssertTrue('says so'#10 + Output, Pos('none.conf: cannot be read', Output) > 0);
@@ -78,6 +95,27 @@ begin
     Inc(Result);
     P := Pos(Needle, S, P + 1);
   end;
+end;
+
+{ chngate CONF, its output in a pipe }
+function StartGate(const Conf: string): TProcess;
+begin
+  Result := TProcess.Create(nil);
+  BinExecutable(Result, BinPath('chngate'));
+  Result.Parameters.Add(Conf);
+  Result.Options := [poUsePipes, poStderrToOutPut];
+  Result.Execute;
+end;
+
+{ Stop P (with Sig) if it still runs, and free it. }
+procedure Ended(var P: TProcess; Sig: cint);
+begin
+  if (P <> nil) and P.Running then
+  begin
+    FpKill(P.ProcessID, Sig);
+    P.WaitOnExit;
+  end;
+  FreeAndNil(P);
 end;
 
 procedure TTestChngateTool.TestGatewayEndToEnd;
@@ -107,11 +145,7 @@ begin
       'tags = N7:0'#10'scan = 200'#10'timeout = 100'#10'fails = 2'#10'demote = 500'#10);
     Sub := TMqttSub.Create(Broker.Port, 'plant/#', []);
     Sleep(200);
-    Gate := TProcess.Create(nil);
-    BinExecutable(Gate, BinPath('chngate'));
-    Gate.Parameters.Add(Dir + '/g.conf');
-    Gate.Options := [poUsePipes, poStderrToOutPut];
-    Gate.Execute;
+    Gate := StartGate(Dir + '/g.conf');
     { values, with their quality }
     AssertTrue('N7:0[3]: ' + Sub.Text,
       Sub.WaitFor('plant/plc1/N7:0[3] {"value":[0,10,20],"quality":"good","ts":"', 10000));
@@ -146,20 +180,52 @@ begin
     Gate.WaitOnExit;
     AssertTrue('the will: ' + Sub.Text, Sub.WaitFor('plant/$gateway/status offline', 5000));
   finally
-    if (Gate <> nil) and Gate.Running then
-    begin
-      FpKill(Gate.ProcessID, SIGKILL);
-      Gate.WaitOnExit;
-    end;
-    Gate.Free;
+    Ended(Gate, SIGKILL);
     Sub.Free;
-    if Sim.Running then
-    begin
-      FpKill(Sim.ProcessID, SIGTERM);
-      Sim.WaitOnExit;
-    end;
-    Sim.Free;
+    Ended(Sim, SIGTERM);
     Dead.Free;
+    Broker.Free;
+    RemoveTempDir(Dir);
+  end;
+end;
+
+{ family = plc5 against df1sim --plc5: PLC-5 addresses read by word
+  range (an octal I/O bit, BCD D words), a set written with the PLC-5's
+  command and read back. }
+procedure TTestChngateTool.TestPlc5Device;
+var
+  Broker: TMosquitto;
+  Sub: TMqttSub;
+  Sim, Gate: TProcess;
+  Dir, Pty: string;
+begin
+  if MosquittoMissing <> '' then
+    Ignore(MosquittoMissing);
+  Dir := MakeTempDir('chn-gate');
+  Broker := TMosquitto.Create;
+  Sub := nil;
+  Gate := nil;
+  Sim := StartSimPty(['--plc5', '--quiet', '--timeout=60'], Pty);
+  try
+    AssertTrue('df1sim pty', Pty <> '');
+    WriteFileText(Dir + '/g.conf',
+      '[mqtt]'#10'port = ' + IntToStr(Broker.Port) + #10'prefix = plant'#10#10 +
+      '[device p5]'#10'line = NAM=DF1 NOD=0 DNO=1 CRC=ON NAM=COM DEV=' + Pty + #10 +
+      'family = plc5'#10'tags = in=I:012/05 D10:0[2] N7:0[3] bcd=D10:3'#10'scan = 200'#10'write = bcd'#10);
+    Sub := TMqttSub.Create(Broker.Port, 'plant/#', []);
+    Sleep(200);
+    Gate := StartGate(Dir + '/g.conf');
+    AssertTrue('I:012/05: ' + Sub.Text, Sub.WaitFor('plant/p5/in {"value":true,"quality":"good"', 10000));
+    AssertTrue('D10:0[2] from BCD $1234 $9999: ' + Sub.Text,
+      Sub.WaitFor('plant/p5/D10:0[2] {"value":[1234,9999],"quality":"good"', 5000));
+    AssertTrue('N7:0[3]: ' + Sub.Text, Sub.WaitFor('plant/p5/N7:0[3] {"value":[0,10,20],"quality":"good"', 5000));
+    AssertTrue('health: ' + Sub.Text, Sub.WaitFor('plant/p5/$health {"state":"ok"', 5000));
+    AssertEquals('mosquitto_pub', 0, MqttPub(Broker.Port, 'plant/p5/bcd/set', '4321'));
+    AssertTrue('bcd back: ' + Sub.Text, Sub.WaitFor('plant/p5/bcd {"value":4321,"quality":"good"', 5000));
+  finally
+    Ended(Gate, SIGTERM);
+    Sub.Free;
+    Ended(Sim, SIGTERM);
     Broker.Free;
     RemoveTempDir(Dir);
   end;

@@ -23,7 +23,8 @@ type
   TTestToolCli = class(TTestCase)
   private
     FOut, FErr: string;
-    function RunProg(const Prog: string; const Args: array of string): Integer;
+    function RunProg(const Prog: string; const Args: array of string; const Exe: string = '';
+      const HeapLog: string = ''): Integer;
     function Programs: TStringList;
   published
     procedure TestHelpOnStdoutExit0;
@@ -46,34 +47,32 @@ uses
   {$IFDEF UNIX}BaseUnix,{$ENDIF} ChnTypes, ChnVirt, ChnLayers, ChnCom, ChnTcp, ChnLoop,
   ChnTrc, ChnNoise, ChnDF1, ChnFT1_2, ChnICS, TestTempDir;
 
-function ReadAvail(S: TStream): string;
-var
-  Buf: array[0..4095] of Char;
-  N: Integer;
-begin
-  Result := '';
-  while (S as TInputPipeStream).NumBytesAvailable > 0 do
-  begin
-    N := S.Read(Buf, SizeOf(Buf));
-    if N <= 0 then
-      Break;
-    Result := Result + Copy(Buf, 0, N);
-  end;
-end;
-
 { Prog with Args, standard output and standard error apart; exit code,
-  -1 if it still ran after 10 s. }
-function TTestToolCli.RunProg(const Prog: string; const Args: array of string): Integer;
+  -1 if it still ran after 10 s. Exe: another build of it than
+  build/bin's; HeapLog: heaptrc's report into this file. }
+function TTestToolCli.RunProg(const Prog: string; const Args: array of string; const Exe: string;
+  const HeapLog: string): Integer;
 var
   P: TProcess;
   A: string;
+  I: Integer;
   Deadline: QWord;
 begin
   FOut := '';
   FErr := '';
   P := TProcess.Create(nil);
   try
-    BinExecutable(P, BinPath(Prog));
+    if Exe <> '' then
+      BinExecutable(P, Exe)
+    else
+      BinExecutable(P, BinPath(Prog));
+    if HeapLog <> '' then
+    begin
+      for I := 1 to GetEnvironmentVariableCount do
+        if Pos('HEAPTRC=', GetEnvironmentString(I)) <> 1 then
+          P.Environment.Add(GetEnvironmentString(I));
+      P.Environment.Add('HEAPTRC=log=' + HeapLog);
+    end;
     for A in Args do
       P.Parameters.Add(A);
     P.Options := [poUsePipes];
@@ -81,8 +80,8 @@ begin
     Deadline := ChMsTick + 10000;
     while P.Running and (ChMsTick < Deadline) do
     begin
-      FOut := FOut + ReadAvail(P.Output);
-      FErr := FErr + ReadAvail(P.Stderr);
+      FOut := FOut + PipeText(P.Output);
+      FErr := FErr + PipeText(P.Stderr);
       Sleep(2);
     end;
     if P.Running then
@@ -93,8 +92,8 @@ begin
     end
     else
       Result := P.ExitCode;
-    FOut := FOut + ReadAvail(P.Output);
-    FErr := FErr + ReadAvail(P.Stderr);
+    FOut := FOut + PipeText(P.Output);
+    FErr := FErr + PipeText(P.Stderr);
   finally
     P.Free;
   end;
@@ -471,40 +470,11 @@ var
 
   procedure Check(const Prog: string; const Args: array of string; Want: Integer; const Says: string);
   var
-    P: TProcess;
-    A: string;
-    I: Integer;
-    Deadline: QWord;
+    Code: Integer;
   begin
-    FOut := '';
-    FErr := '';
     DeleteFile(HeapLog);
-    P := TProcess.Create(nil);
-    try
-      BinExecutable(P, TestBinDir + Prog {$IFDEF WINDOWS} + '.exe'{$ENDIF});
-      for I := 1 to GetEnvironmentVariableCount do
-        if Pos('HEAPTRC=', GetEnvironmentString(I)) <> 1 then
-          P.Environment.Add(GetEnvironmentString(I));
-      P.Environment.Add('HEAPTRC=log=' + HeapLog);
-      for A in Args do
-        P.Parameters.Add(A);
-      P.Options := [poUsePipes];
-      P.Execute;
-      Deadline := ChMsTick + 10000;
-      while P.Running and (ChMsTick < Deadline) do
-      begin
-        FOut := FOut + ReadAvail(P.Output);
-        FErr := FErr + ReadAvail(P.Stderr);
-        Sleep(2);
-      end;
-      if P.Running then
-        P.Terminate(255);
-      P.WaitOnExit;
-      FErr := FErr + ReadAvail(P.Stderr);
-      AssertEquals(Prog + ' ' + Args[0] + ': exit code; ' + FErr, Want, P.ExitCode);
-    finally
-      P.Free;
-    end;
+    Code := RunProg(Prog, Args, TestBinDir + Prog {$IFDEF WINDOWS} + '.exe'{$ENDIF}, HeapLog);
+    AssertEquals(Prog + ' ' + Args[0] + ': exit code; ' + FErr, Want, Code);
     AssertTrue(Prog + ': ' + FErr, Pos(Says, FErr) > 0);
     AssertTrue(Prog + ' ' + Args[0] + ': no heaptrc report in ' + HeapLog, FileExists(HeapLog));
     Report := ReadFileText(HeapLog);

@@ -59,7 +59,7 @@ var
 
 begin
   CliInit(Cli, 'chngate', '[--check] CONFIG',
-    'A gateway: reads the tags of DF1 PLCs (SLC 500, MicroLogix, df1sim) with few merged ' +
+    'A gateway: reads the tags of DF1 PLCs (SLC 500, MicroLogix, PLC-5, df1sim) with few merged ' +
     'requests and publishes their changes to an MQTT broker, from one INI configuration ' +
     'file (docs/chngate.md); runs until SIGINT or SIGTERM, SIGHUP reads the configuration again.');
   CliOption(Cli, 'check', #0, '', 'check the configuration, print a summary and exit');

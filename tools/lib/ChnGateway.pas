@@ -32,6 +32,7 @@ type
     DemoteAfter: LongInt;
     TimeoutMs: LongInt;
     Ioa      : LongInt;
+    Plc5     : Boolean;      { family = plc5: PLC-5 addresses and commands }
     Tags     : array of tGateTagCfg;
   end;
 
@@ -145,7 +146,7 @@ end;
 procedure CheckLines(var C: tChecker);
 const
   MqttKeys = ' host port prefix qos user password tls ca queue client_id keepalive ';
-  DeviceKeys = ' line tags scan write deadband demote fails timeout ioa ';
+  DeviceKeys = ' line family tags scan write deadband demote fails timeout ioa ';
 var
   I, Eq: LongInt;
   S, Sec, Key, Keys: AnsiString;
@@ -290,6 +291,10 @@ begin
   D.DemoteAfter := Num(C, Ini, Sec, 'fails', 1, 1000, TagDemoteAfterDefault);
   D.TimeoutMs := Num(C, Ini, Sec, 'timeout', 10, 60000, 1000);
   D.Ioa := Num(C, Ini, Sec, 'ioa', 1, 16777215, 1);
+  W := LowerCase(Trim(Ini.ReadString(Sec, 'family', 'slc')));
+  D.Plc5 := W = 'plc5';
+  if (W <> 'slc') and not D.Plc5 then
+    Bad(C, Sec, 'family', '"' + W + '" is neither slc (SLC 500, MicroLogix) nor plc5');
   D.Deadband := 0;
   W := Trim(Ini.ReadString(Sec, 'deadband', ''));
   if W <> '' then
@@ -322,6 +327,8 @@ begin
   if Length(Words) = 0 then
     Bad(C, Sec, 'tags', 'missing: the tags to read (N7:0[10] speed=F8:2 B3:0/5@500 ...)');
   TagDeviceInit(Probe, D.Name);
+  if D.Plc5 then
+    TagDevicePlc5(Probe);
   for W in Words do
   begin
     Name := '';
@@ -456,6 +463,8 @@ var
   Name: AnsiString;
 begin
   TagDeviceInit(Dev, D.Name);
+  if D.Plc5 then
+    TagDevicePlc5(Dev);
   Dev.DemoteMs := D.DemoteMs;
   Dev.DemoteAfter := D.DemoteAfter;
   for T in D.Tags do
@@ -563,6 +572,8 @@ begin
   end
   else
   begin
+    if G.Cfg.Devices[I].Plc5 then
+      TagDevicePlc5(G.Devs[I]);     { PcccOpen set the client up anew }
     G.Devs[I].Client.TimeoutMs := G.Cfg.Devices[I].TimeoutMs;
     G.OpenAt[I] := 0;
   end;
