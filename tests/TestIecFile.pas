@@ -749,7 +749,10 @@ begin
     FillChar(O, SizeOf(O), 0);
     O.Ioa := 7;
     O.Nof := Nof_Transparent;
-    { call file before a select: mirrored negative (COT 13 + P/N = 4D) }
+    { call file when no file is selected (the selection deactivated):
+      mirrored negative (COT 13 + P/N = 4D) }
+    AssertEquals('78 01 0D 00 01 00 07 00 00 01 00 FA 00 00 00', Ask(F_SC_NA_1, Scq_SelectFile, 0));
+    AssertEquals('', Ask(F_SC_NA_1, Scq_DeactFile, 0));
     AssertEquals('7A 01 4D 00 01 00 07 00 00 01 00 00 02', Ask(F_SC_NA_1, Scq_CallFile, 0));
     { select: file ready, 250 = FA 00 00 }
     AssertEquals('78 01 0D 00 01 00 07 00 00 01 00 FA 00 00 00', Ask(F_SC_NA_1, Scq_SelectFile, 0));
@@ -769,7 +772,7 @@ begin
     { deactivation: over }
     AssertEquals('', Ask(F_SC_NA_1, Scq_DeactFile, 0));
     AssertTrue(Srv.State = fsIdle);
-    AssertEquals(1, Srv.Aborted);
+    AssertEquals(2, Srv.Aborted);
     AssertEquals(3, Srv.Refused);
   finally
     Finalize(Srv);
