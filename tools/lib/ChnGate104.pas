@@ -361,26 +361,26 @@ begin
     Say(N, 'IOA ' + IntToStr(Pt^.Ioa) + ': ' + E);
 end;
 
-procedure Gate104Change(var N: tGate104; const Devs: array of tPcccDevice; Dev, Tag: LongInt);
+{ Refresh the points of device Dev's tag Tag (every tag: -1). }
+procedure RefreshTags(var N: tGate104; const Devs: array of tPcccDevice; Dev, Tag: LongInt);
 var
   P: LongInt;
 begin
   if N.S = nil then
     Exit;
   for P := 0 to High(N.Points) do
-    if (N.Points[P].Dev = Dev) and (N.Points[P].Tag = Tag) then
+    if (N.Points[P].Dev = Dev) and ((Tag < 0) or (N.Points[P].Tag = Tag)) then
       Refresh(N, Devs, P);
 end;
 
-procedure Gate104Health(var N: tGate104; const Devs: array of tPcccDevice; Dev: LongInt);
-var
-  P: LongInt;
+procedure Gate104Change(var N: tGate104; const Devs: array of tPcccDevice; Dev, Tag: LongInt);
 begin
-  if N.S = nil then
-    Exit;
-  for P := 0 to High(N.Points) do
-    if N.Points[P].Dev = Dev then
-      Refresh(N, Devs, P);
+  RefreshTags(N, Devs, Dev, Tag);
+end;
+
+procedure Gate104Health(var N: tGate104; const Devs: array of tPcccDevice; Dev: LongInt);
+begin
+  RefreshTags(N, Devs, Dev, -1);
 end;
 
 { The value a command carries, as the tag engine writes it. }

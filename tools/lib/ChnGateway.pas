@@ -283,8 +283,9 @@ end;
 procedure ReadIec104(var C: tChecker; Ini: TMemIniFile; var Cfg: tGateConfig);
 const
   S = 'iec104';
-  Windows_: array[0..2] of string[3] = ('con', 'k', 'w');
-  Timers: array[0..3] of string[2] = ('t0', 't1', 't2', 't3');
+  { the keys NAM=IEC104 takes as they are, and their largest values }
+  Keys: array[0..6] of string[3] = ('con', 'k', 'w', 't0', 't1', 't2', 't3');
+  Most: array[0..6] of LongInt = (16, 32767, 32767, 255, 255, 255, 172800);
 var
   N: tGate104Cfg;
   Why: AnsiString;
@@ -295,17 +296,11 @@ begin
   N.Ca := Num(C, Ini, S, 'ca', 1, 65534, 1);
   N.CommandMs := Num(C, Ini, S, 'command_timeout', 100, 600000, Gate104CommandMsDefault);
   N.Params := '';
-  for I := 0 to 2 do
+  for I := 0 to High(Keys) do
   begin
-    V := Num(C, Ini, S, Windows_[I], 1, 32767, 0);
+    V := Num(C, Ini, S, Keys[I], 1, Most[I], 0);
     if V > 0 then
-      N.Params := N.Params + UpperCase(Windows_[I]) + '=' + IntToStr(V) + ' ';
-  end;
-  for I := 0 to 3 do
-  begin
-    V := Num(C, Ini, S, Timers[I], 1, 172800, 0);
-    if V > 0 then
-      N.Params := N.Params + UpperCase(Timers[I]) + '=' + IntToStr(V) + ' ';
+      N.Params := N.Params + UpperCase(Keys[I]) + '=' + IntToStr(V) + ' ';
   end;
   Cfg.Iec104 := N;
   if not N.Present then
