@@ -96,7 +96,7 @@ type
 
   tIecQueued = record
     Len : Word;
-    Data: array[0..MaxDataLen - 1] of Byte;
+    Data: array[0..IecMaxAsdu - 1] of Byte;
   end;
 
   tIecQueue = record
@@ -250,7 +250,7 @@ function IecSlaveDeferred(const S: tIecSlaveStation): LongInt;
 implementation
 
 uses
-  SysUtils, DateUtils;
+  SysUtils, DateUtils, Math, ChnIec104Codec;
 
 {- ---------------------------------------------------------------- queues }
 
@@ -258,7 +258,7 @@ function QueuePut(var Q: tIecQueue; const Buf: array of Byte; Len: Word): Boolea
 var
   Slot: Integer;
 begin
-  Result := (Q.Count < IecSlaveQueueLen) and (Len <= MaxDataLen);
+  Result := (Q.Count < IecSlaveQueueLen) and (Len <= IecMaxAsdu);
   if not Result then
     Exit;
   Slot := (Q.Head + Q.Count) mod IecSlaveQueueLen;
@@ -350,7 +350,7 @@ end;
 { Can Obj be sent as type Ti? (the encoder's own checks) }
 function CheckObject(const S: tIecSlaveStation; Ti: Byte; const Obj: tIecObject; out Err: ShortString): tChResult;
 var
-  Buf: array[0..MaxDataLen - 1] of Byte;
+  Buf: array[0..IecMaxAsdu - 1] of Byte;
   Len: Word;
 begin
   Result := IecEncodeOne(S.Params, Ti, Cot_Spontaneous, S.Ca, Obj, Buf, Len, Err);
@@ -459,7 +459,7 @@ end;
 { Encode one object of type Ti with cause Cot into the class 1 queue. }
 function QueueObject(var S: tIecSlaveStation; Ti, Cot: Byte; const O: tIecObject): tChResult;
 var
-  Buf: array[0..MaxDataLen - 1] of Byte;
+  Buf: array[0..IecMaxAsdu - 1] of Byte;
   Len: Word;
   Err: ShortString;
 begin
@@ -604,6 +604,17 @@ begin
   end;
 end;
 
+{ The longest ASDU the link takes: IEC 104's APDU of 253 octets less
+  its control field (249); FT 1.2's frame of L = 255 less the control
+  octet and the link address (253 with ADR=1; no ASDU exceeds IecMaxAsdu). }
+function MaxAsdu(const S: tIecSlaveStation): Word;
+begin
+  if S.Over104 then
+    Result := Apci104MaxAsdu
+  else
+    Result := Min(IecMaxAsdu, FT12MaxData(S.Chn));
+end;
+
 { The next answer ASDU of the interrogation: consecutive points of one
   type, as many as fit; False when none is left (then ACT_TERM is queued). }
 function GiNextAsdu(var S: tIecSlaveStation; var Out: tIecQueued): Boolean;
@@ -633,7 +644,7 @@ begin
   end;
   Ti := S.Points[S.GiNext].Ti;
   Size := S.Params.IoaSize + IecElementSize(Ti);
-  Room := (MaxDataLen - IecHeadLen(S.Params)) div Size;
+  Room := (MaxAsdu(S) - IecHeadLen(S.Params)) div Size;
   if Room > IecMaxObjects then
     Room := IecMaxObjects;
   N := 0;
@@ -700,9 +711,9 @@ end;
 { The received ASDU mirrored with Cot (negative or not) into class 1. }
 procedure Answer(var S: tIecSlaveStation; const Buf: array of Byte; Len: Word; Cot: Byte; Negative: Boolean);
 var
-  Out: array[0..MaxDataLen - 1] of Byte;
+  Out: array[0..IecMaxAsdu - 1] of Byte;
 begin
-  if (Len = 0) or (Len > MaxDataLen) then
+  if (Len = 0) or (Len > IecMaxAsdu) then
     Exit;
   Move(Buf[0], Out[0], Len);
   IecSetCot(Out, Len, Cot, Negative);
@@ -1147,7 +1158,7 @@ begin
     S.OnAsdu(S.Data, True, @Q.Data[0], Q.Len);
 end;
 
-function OnClassData(Data: Pointer; ClassNo: Byte; var Rep: tSendRecord; var Len: Word): Boolean;
+function OnClassData(Data: Pointer; ClassNo: Byte; var Rep: tFT12MaxRecord; var Len: Word): Boolean;
 var
   S: pIecSlaveStation;
   Q: ^tIecQueue;
@@ -1212,7 +1223,7 @@ begin
     end;
     FT12StationInit(S.Station, Chn);
     S.Station.OnUserData := @OnUserData;
-    S.Station.OnClassData := @OnClassData;
+    S.Station.OnLongClassData := @OnClassData;
     S.Station.OnClass1 := @OnClass1;
     S.Station.Data := @S;
   end;

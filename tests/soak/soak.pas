@@ -21,8 +21,9 @@
   Every scenario prints one line, 'ok    soak NAME: ...' or 'FAIL  soak
   NAME: ... (why)', with: messages (application messages completed),
   retries (link repetitions and application re-sends), timeouts, losses,
-  duplicates, bad (a reply with wrong data or status accepted: a checksum
-  that let damage through), RSS and open descriptors of both processes at
+  duplicates, bad (a reply with wrong data or status accepted, or - DF1 -
+  a command the peer refused as malformed: a checksum that let damage
+  through), RSS and open descriptors of both processes at
   start (after a warm-up) and end, and the seed. A scenario fails on a
   loss, a duplicate (on FT 1.2: beyond one per message sent again after
   its transaction failed and the link was reset), bad data on a CRC line,
@@ -440,13 +441,16 @@ begin
   end;
 end;
 
-{ Read diagnostic counter 7 (commands executed) of the station Chn talks
-  to. Lost: the command got no answer. Bad: an answer with the wrong shape
-  (damage the checksum let through); the command ran all the same. }
+{ Read diagnostic counters 5..7 (error replies, repeated commands,
+  commands answered) of the station Chn talks to: N the commands it
+  answered, Errs those it refused (an error status). Lost: the read got no
+  answer. Bad: an answer with the wrong shape (damage the checksum let
+  through), Refused: an answer with an error status; the read ran all the
+  same. }
 type
-  TReadResult = (rrOk, rrLost, rrBad);
+  TReadResult = (rrOk, rrLost, rrBad, rrRefused);
 
-function ReadExecuted(Chn: pChnVirt; Tns: Word; var St: TStats; out N: Word): TReadResult;
+function ReadExecuted(Chn: pChnVirt; Tns: Word; var St: TStats; out N, Errs: Word): TReadResult;
 var
   Req: ChnDF1.tSendRecord;
   Rep: ChnDF1.tRecRecord;
@@ -456,18 +460,20 @@ begin
   Req.MessType := ChnDF1.tpDataMess;
   Req.CF := CF_ReadDiagnCounts;
   Req.Tns := Tns;
-  Req.Data[0] := 2 * dgCommands;
+  Req.Data[0] := 2 * dgErrReplies;
   Req.Data[1] := 0;
-  Req.Data[2] := 2;
+  Req.Data[2] := 2 * (dgCommands - dgErrReplies + 1);
   N := 0;
+  Errs := 0;
   if not DF1Do(Chn, Req, 8 + 3, Rep, RepLen, St) then
     Exit(rrLost);
-  if (RepLen <> 8 + 2) or (Rep.Sts <> 0) then
-  begin
-    Inc(St.Bad);
+  Inc(St.Bad, Ord((RepLen <> 8 + Req.Data[2]) or (Rep.Sts <> 0)));
+  if Rep.Sts <> 0 then
+    Exit(rrRefused);
+  if RepLen <> 8 + Req.Data[2] then
     Exit(rrBad);
-  end;
-  N := Rep.Data[0] or (Rep.Data[1] shl 8);
+  Errs := Rep.Data[0] or (Rep.Data[1] shl 8);
+  N := Rep.Data[4] or (Rep.Data[5] shl 8);
   Result := rrOk;
 end;
 
@@ -478,8 +484,11 @@ procedure DF1Master(Chn: pChnVirt; Stations: LongInt; PeerPid: TPid; var St: TSt
 var
   Req: ChnDF1.tSendRecord;
   Rep: ChnDF1.tRecRecord;
-  Len, RepLen, Tns, Got, Value: Word;
+  Len, RepLen, Tns, Got, Errs, Value: Word;
   Sent: array[1..HDStations] of Word;   { commands each station executed, mod 65536 }
+  { error replies: each station's count at the last check, and those the
+    master saw since (an answer with an error status) }
+  Refused, SeenRefused: array[1..HDStations] of Word;
   Synced: array[1..HDStations] of Boolean;
   S: LongInt;
   Start: QWord;
@@ -487,20 +496,22 @@ var
 
   function Check(Stn: LongInt): Boolean;
   var
-    T: LongInt;
+    T, Unseen: LongInt;
     R: TReadResult;
   begin
     Chn^.ChDestNode(Stn);
     for T := 1 to AppTries do
     begin
       Tns := Word(Tns + 1);      { wraps, as TNS does }
-      R := ReadExecuted(Chn, Tns, St, Got);
+      R := ReadExecuted(Chn, Tns, St, Got, Errs);
       if R = rrLost then
         Exit(False);
       if R = rrOk then
         Break;
       if Synced[Stn] then
         Sent[Stn] := Word(Sent[Stn] + 1);   { it ran; its answer was damaged }
+      if Synced[Stn] and (R = rrRefused) then
+        SeenRefused[Stn] := Word(SeenRefused[Stn] + 1);
     end;
     if R <> rrOk then
       Exit(False);
@@ -509,7 +520,23 @@ var
       Sent[Stn] := Got;             { what ran before this soak }
       Synced[Stn] := True;
     end
-    else if Got <> Sent[Stn] then
+    else
+    begin
+      { The soak's commands are never refused: a refusal is a command
+        damaged on the way in a way the checksum let through (on a BCC
+        line a dropped $0F and a dropped byte further on can cancel). One
+        the master never saw (its refusal was damaged or lost too) was
+        answered all the same: it counts as sent, and as bad. An answer
+        with an error status the master saw may also be a damaged answer
+        to a command that ran: those are bad already. }
+      Unseen := SmallInt(Word(Errs - Refused[Stn] - SeenRefused[Stn]));
+      if Unseen > 0 then
+      begin
+        Sent[Stn] := Word(Sent[Stn] + Unseen);
+        Inc(St.Bad, Unseen);
+      end;
+    end;
+    if Got <> Sent[Stn] then
     begin
       Inc(St.Dups, SmallInt(Word(Got - Sent[Stn])));
       if SmallInt(Word(Got - Sent[Stn])) < 0 then
@@ -517,6 +544,8 @@ var
       Sent[Stn] := Got;
     end;
     Sent[Stn] := Word(Sent[Stn] + 1);   { the read itself }
+    Refused[Stn] := Errs;
+    SeenRefused[Stn] := 0;
     Result := True;
   end;
 
@@ -526,6 +555,8 @@ begin
   begin
     Synced[S] := False;
     Sent[S] := 0;
+    Refused[S] := 0;
+    SeenRefused[S] := 0;
   end;
   for S := 1 to Stations do
     if not Check(S) then
@@ -551,7 +582,10 @@ begin
     Sent[S] := Word(Sent[S] + 1);
     Inc(St.Messages);
     if Rep.Sts <> 0 then
-      Inc(St.Bad)
+    begin
+      Inc(St.Bad);
+      SeenRefused[S] := Word(SeenRefused[S] + 1);
+    end
     else if Odd(I) then
     begin
       if (RepLen <> 8 + 2) or (Rep.Data[0] or (Rep.Data[1] shl 8) <> Value) then

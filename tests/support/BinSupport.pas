@@ -12,6 +12,9 @@ uses
 
 { $BUILD/bin/Name (BUILD defaults to build; Name.exe on Windows). }
 function BinPath(const Name: string): string;
+{ $BUILD/test-bin/, where make test puts the test builds of programs
+  (heaptrc, run-time checks). }
+function TestBinDir: string;
 { Make P run Exe: directly, or, when the environment names an emulator in
   CHN_EXEC (make crosstest: qemu-aarch64, qemu-arm - a process under
   qemu-user cannot start another target program by itself), programs of
