@@ -1,6 +1,6 @@
-{ chngate - a gateway: DF1 PLCs (SLC 500, MicroLogix, df1sim) south, an
-  MQTT broker and an IEC 104 server north, from one configuration file
-  (docs/chngate.md).
+{ chngate - a gateway: DF1 PLCs (SLC 500, MicroLogix, df1sim) and IEC
+  60870-5-101 RTUs (iec101slave) south, an MQTT broker and an IEC 104
+  server north, from one configuration file (docs/chngate.md).
 
     chngate CONFIG            run until SIGINT or SIGTERM; SIGHUP reads
                               CONFIG again (the north connections stay)
@@ -64,7 +64,8 @@ var
 begin
   CliInit(Cli, 'chngate', '[--check] CONFIG',
     'A gateway: reads the tags of DF1 PLCs (SLC 500, MicroLogix, PLC-5, df1sim) with few merged ' +
-    'requests and publishes their changes to an MQTT broker and serves them to IEC 104 control ' +
+    'requests and the points of IEC 60870-5-101 RTUs (line = NAM=FT1_2 ..., polled by an IEC 101 ' +
+    'master) and publishes their changes to an MQTT broker and serves them to IEC 104 control ' +
     'centres, from one INI configuration ' +
     'file (docs/chngate.md); runs until SIGINT or SIGTERM, SIGHUP reads the configuration again.');
   CliOption(Cli, 'check', #0, '', 'check the configuration, print a summary and exit');
