@@ -177,8 +177,12 @@ begin
       'ChnIec104', 'ChnIec104Codec']);
     AddUnit(P, 'ChnIec101Master.pas', AllOSes, ['ChnTypes', 'ChnVirt', 'ChnFT1_2', 'ChnFT12Link',
       'ChnFT12Primary', 'ChnFT12Codec', 'ChnIec101Asdu', 'ChnWait', 'ChnIecTransport']);
+    { file transfer (types 120..127): codec, controlled and controlling station }
+    AddUnit(P, 'ChnIecFile.pas', AllOSes, ['ChnTypes', 'ChnIec101Asdu']);
+    AddUnit(P, 'ChnIecFileServer.pas', AllOSes, ['ChnTypes', 'ChnVirt', 'ChnIec101Asdu', 'ChnIecFile']);
+    AddUnit(P, 'ChnIecFileClient.pas', AllOSes, ['ChnTypes', 'ChnVirt', 'ChnFT12Codec', 'ChnIec101Asdu', 'ChnIec101Master', 'ChnIecFile']);
     AddUnit(P, 'ChnIec101Slave.pas', AllOSes, ['ChnTypes', 'ChnVirt', 'ChnFT1_2', 'ChnFT12Link',
-      'ChnFT12Station', 'ChnIec101Asdu', 'ChnIecTransport']);
+      'ChnFT12Station', 'ChnIec101Asdu', 'ChnIecTransport', 'ChnIecFile', 'ChnIecFileServer']);
     { the points a master receives: value, quality, time; slave health; commands }
     AddUnit(P, 'ChnIecPointTable.pas', AllOSes, ['ChnTypes', 'ChnVirt', 'ChnWait', 'ChnIec101Asdu',
       'ChnIec101Master']);

@@ -49,6 +49,10 @@
     smoothing, limits kept per IOA, a threshold in operation a deadband on
     the spontaneous reports, reported after the points of a station
     interrogation) and their activation (P_AC_NA_1): ACT_CON / DEACT_CON;
+  * file transfer (types 120..127) when the program gave a file server
+    (IecSlaveServeFiles, ChnIecFileServer): its answers and segments go
+    in class 1, one segment whenever class 1 is empty, so a long file
+    never fills the queue; without one they are of an unknown type;
   * anything else is mirrored as a negative answer with COT 44 (unknown
     type), 45 (a cause the type does not take, or P/N = 1), 46 (another common
     address, or the broadcast address with a read or a command) or 47 (an
@@ -69,7 +73,8 @@ unit ChnIec101Slave;
 interface
 
 uses
-  ChnTypes, ChnVirt, ChnFT1_2, ChnFT12Link, ChnFT12Station, ChnIec101Asdu, ChnIecTransport;
+  ChnTypes, ChnVirt, ChnFT1_2, ChnFT12Link, ChnFT12Station, ChnIec101Asdu, ChnIecTransport,
+  ChnIecFile, ChnIecFileServer;
 
 const
   IecSlaveMaxPoints = 1024;
@@ -158,6 +163,7 @@ type
     OnAsdu   : tIecSlaveAsduFunc;
     OnBad    : tIecSlaveBadFunc;
     OnReset  : tIecSlaveResetFunc;
+    Files    : pIecFileServer;  {< file transfer (nil: none) }
     Data     : Pointer;
     { counters }
     Asdus, BadAsdus, Commands, Refused, ClockSyncs, Interrogations,
@@ -229,6 +235,10 @@ function IecSlavePending(const S: tIecSlaveStation): Boolean;
   link is up (balanced FT 1.2, IEC 104). A general reset of process
   (C_RP_NA_1, QRP 1) sends one with Coi_RemoteReset by itself. }
 procedure IecSlaveEndOfInit(var S: tIecSlaveStation; Coi: Byte);
+{ Serve file transfer with F (ChnIecFileServer; its application parameters
+  and common address become the slave's); nil: no file transfer. F must
+  not move while the slave runs. }
+procedure IecSlaveServeFiles(var S: tIecSlaveStation; F: pIecFileServer);
 
 { Deferred confirmation of a command. Called from OnCommand (which then
   returns True): the command's ACT_CON waits for IecSlaveConfirm with the
@@ -294,6 +304,34 @@ procedure Queue1(var S: tIecSlaveStation; const Buf: array of Byte; Len: Word);
 begin
   if not QueuePut(S.Class1, Buf, Len) then
     Inc(S.Overflows);
+end;
+
+procedure IecSlaveServeFiles(var S: tIecSlaveStation; F: pIecFileServer);
+begin
+  S.Files := F;
+  if F <> nil then
+  begin
+    F^.Params := S.Params;
+    F^.Ca := S.Ca;
+    { the longest ASDU the slave's queues hold (FT 1.2's record, 247) }
+    if F^.MaxAsdu > MaxDataLen then
+      F^.MaxAsdu := MaxDataLen;
+  end;
+end;
+
+{ Class 1 is empty: the file server's next ASDU into it. }
+procedure FeedFiles(var S: tIecSlaveStation);
+var
+  Buf: array[0..IecMaxAsdu - 1] of Byte;
+  Len: Word;
+begin
+  if (S.Files <> nil) and (S.Class1.Count = 0) and IecFileServerNext(S.Files^, Buf, Len) then
+    Queue1(S, Buf, Len);
+end;
+
+function FilesReady(var S: tIecSlaveStation): Boolean;
+begin
+  Result := (S.Files <> nil) and IecFileServerReady(S.Files^);
 end;
 
 {- ---------------------------------------------------------------- points }
@@ -1068,6 +1106,11 @@ begin
   Inc(S.Asdus);
   if Assigned(S.OnAsdu) then
     S.OnAsdu(S.Data, False, @A[0], Len);
+  if (Len > 0) and IecIsFileType(A[0]) and (S.Files <> nil) then
+  begin
+    IecFileServerTake(S.Files^, A, Len);
+    Exit;
+  end;
   R := IecDecodeHeader(S.Params, A, Len, H, Err);
   HeadLen := IecHeadLen(S.Params);
   if R = res_AsduType then
@@ -1169,6 +1212,8 @@ begin
     Q := @S^.Class1
   else
     Q := @S^.Class2;
+  if ClassNo = 1 then
+    FeedFiles(S^);
   if (ClassNo = 2) and (Q^.Count = 0) and S^.GiActive then
     if GiNextAsdu(S^, G) then
       QueuePut(Q^, G.Data, G.Len);
@@ -1183,7 +1228,7 @@ end;
 
 function OnClass1(Data: Pointer): Boolean;
 begin
-  Result := pIecSlaveStation(Data)^.Class1.Count > 0;
+  Result := (pIecSlaveStation(Data)^.Class1.Count > 0) or FilesReady(pIecSlaveStation(Data)^);
 end;
 
 function IecSlaveInit(var S: tIecSlaveStation; Chn: pChnVirt; const P: tIecParams; Ca: Word;
@@ -1238,6 +1283,7 @@ var
 begin
   while IecTransportRoom(S.Link) do
   begin
+    FeedFiles(S);
     if S.Class1.Count > 0 then
       Q := @S.Class1
     else
@@ -1262,6 +1308,8 @@ begin
   Result := False;
   if S.Chn = nil then
     Exit;
+  if S.Files <> nil then
+    IecFileServerReady(S.Files^);        { its timer: a transfer left ends }
   if S.Balanced then
   begin
     Result := IecTransportStep(S.Link);
@@ -1273,7 +1321,8 @@ end;
 
 function IecSlavePending(const S: tIecSlaveStation): Boolean;
 begin
-  Result := (S.Class1.Count > 0) or (S.Class2.Count > 0) or S.GiActive;
+  Result := (S.Class1.Count > 0) or (S.Class2.Count > 0) or S.GiActive or
+    ((S.Files <> nil) and IecFileServerBusy(S.Files^));
 end;
 
 function IecSlaveWaitMs(const S: tIecSlaveStation): LongInt;

@@ -116,6 +116,10 @@ function CliChannel(const Cli: tCli; const Params, TopLayer: AnsiString): pChnVi
 { The check of CliCheckParams for a program that reports on its own (a
   configuration file): '' when Params is good, else 'bad parameter
   string: ...' with the token and what the key allows. }
+{ The channel of Params (not opened), or nil with Why: what is wrong and
+  the token ('bad parameter string: ... (BD=abc)'). For a program that
+  must not exit on a bad string (a gateway reading its configuration). }
+function CliNewChannel(const Params, TopLayer: AnsiString; out Why: AnsiString): pChnVirt;
 function CliParamsProblem(const Params, TopLayer: AnsiString): AnsiString;
 
 { The exit code for a result of the scheme above: res_Ok 0, res_Timeout 4,
@@ -600,16 +604,22 @@ begin
     CliUsageError(Cli, Why, Token);
 end;
 
+function CliNewChannel(const Params, TopLayer: AnsiString; out Why: AnsiString): pChnVirt;
+var
+  Token: AnsiString;
+begin
+  Result := NewChannel(Params, TopLayer, Why, Token);
+  if (Result = nil) and (Token <> '') then
+    Why := Why + ' (' + Token + ')';
+end;
+
 function CliParamsProblem(const Params, TopLayer: AnsiString): AnsiString;
 var
   Chn: pChnVirt;
-  Token: AnsiString;
 begin
-  Chn := NewChannel(Params, TopLayer, Result, Token);
+  Chn := CliNewChannel(Params, TopLayer, Result);
   if Chn <> nil then
-    Dispose(Chn, Done)
-  else if Token <> '' then
-    Result := Result + ' (' + Token + ')';
+    Dispose(Chn, Done);
 end;
 
 procedure CliCheckParams(const Cli: tCli; const Params, TopLayer: AnsiString);
