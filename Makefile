@@ -173,9 +173,9 @@ test: all $(BUILD)/testunits.inc $(BUILD)/fpcunit/stamp
 	@for p in $(HEAPPROGS); do $(FPC) $(SOAKFLAGS) $$p >>$(BUILD)/test-build.log 2>&1 || { cat $(BUILD)/test-build.log; echo "0 passed, 1 failed"; exit 1; }; done
 	@BUILD=$(BUILD) FPC=$(FPC) T="$(T)" bash tests/run.sh
 
-# only the four programs it runs: a first make demo builds the library
+# only the programs it runs: a first make demo builds the library
 # and those, not every example
-demo: $(addprefix $(BINDIR)/,df1sim df1echo df1read chndecode)
+demo: $(addprefix $(BINDIR)/,df1sim df1echo df1read chndecode chngate iec101slave)
 	@bash tools/demo.sh $(BUILD)
 
 bench: $(BENCHBINS) $(BINDIR)/chntap $(BINDIR)/plcconc $(BINDIR)/df1sim

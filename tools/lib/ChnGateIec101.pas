@@ -53,8 +53,7 @@ type
     T       : tIecPointTable;
     OpenAt  : QWord;         {< when a line that failed is opened again (0: open) }
     LineError: AnsiString;
-    HealthChanged: Boolean;
-    Shown   : tIecHealth;    {< the state last reported }
+    Shown   : AnsiString;    {< the states and line error last reported }
   end;
 
 { Point entries 'NAME=IOA' or 'NAME=ADDR:IOA' (the slave's link address,
@@ -361,8 +360,6 @@ begin
   end;
   if D^.Chn = nil then
   begin
-    if D^.LineError <> 'cannot open the line: ' + Err then
-      D^.HealthChanged := True;
     D^.LineError := 'cannot open the line: ' + Err;
     D^.OpenAt := ChMsTick + QWord(D^.Cfg.DemoteMs);
     Exit;
@@ -382,7 +379,6 @@ begin
   Dispose(D^.Chn, Done);
   D^.Chn := nil;
   D^.OpenAt := ChMsTick + QWord(D^.Cfg.DemoteMs);
-  D^.HealthChanged := True;
 end;
 
 function GateIecNew(const Name, Line: AnsiString; const C: tGateIecCfg): pGateIecDevice;
@@ -392,8 +388,7 @@ begin
   Result^.Name := Name;
   Result^.Line := Line;
   Result^.Cfg := C;
-  Result^.Shown := ihDown;
-  Result^.HealthChanged := True;       { a first $health }
+  Result^.Shown := '-';
   OpenLine(Result);
 end;
 
@@ -451,17 +446,15 @@ end;
 function GateIecTakeHealth(D: pGateIecDevice): Boolean;
 var
   S: LongInt;
+  Now_: AnsiString;
 begin
-  Result := D^.HealthChanged;
-  D^.HealthChanged := False;
-  if D^.Chn <> nil then
-    while IecTableTakeHealth(D^.T, S) do
-      Result := True;
-  if GateIecState(D) <> D^.Shown then
-  begin
-    D^.Shown := GateIecState(D);
-    Result := True;
-  end;
+  while IecTableTakeHealth(D^.T, S) do;
+  { reported when the device's, a slave's state or the line's trouble changed }
+  Now_ := IecHealthNames[GateIecState(D)] + ' ' + D^.LineError;
+  for S := 0 to High(D^.T.Slaves) do
+    Now_ := Now_ + ' ' + IecHealthNames[D^.T.Slaves[S].Health];
+  Result := Now_ <> D^.Shown;
+  D^.Shown := Now_;
 end;
 
 function GateIecPointName(D: pGateIecDevice; P: LongInt): AnsiString;
