@@ -113,13 +113,13 @@ function CliUsageText(const Cli: tCli): AnsiString;
 procedure CliCheckParams(const Cli: tCli; const Params, TopLayer: AnsiString);
 { The same, but the channel (not opened) is the caller's. }
 function CliChannel(const Cli: tCli; const Params, TopLayer: AnsiString): pChnVirt;
-{ The check of CliCheckParams for a program that reports on its own (a
-  configuration file): '' when Params is good, else 'bad parameter
-  string: ...' with the token and what the key allows. }
 { The channel of Params (not opened), or nil with Why: what is wrong and
   the token ('bad parameter string: ... (BD=abc)'). For a program that
   must not exit on a bad string (a gateway reading its configuration). }
 function CliNewChannel(const Params, TopLayer: AnsiString; out Why: AnsiString): pChnVirt;
+{ The check of CliCheckParams for a program that reports on its own (a
+  configuration file): '' when Params is good, else 'bad parameter
+  string: ...' with the token and what the key allows. }
 function CliParamsProblem(const Params, TopLayer: AnsiString): AnsiString;
 
 { The exit code for a result of the scheme above: res_Ok 0, res_Timeout 4,
