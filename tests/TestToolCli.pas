@@ -55,11 +55,7 @@ function TTestToolCli.RunProg(const Prog: string; const Args: array of string; c
 var
   P: TProcess;
   A: string;
-  I: Integer;
-  Deadline: QWord;
 begin
-  FOut := '';
-  FErr := '';
   P := TProcess.Create(nil);
   try
     if Exe <> '' then
@@ -67,33 +63,10 @@ begin
     else
       BinExecutable(P, BinPath(Prog));
     if HeapLog <> '' then
-    begin
-      for I := 1 to GetEnvironmentVariableCount do
-        if Pos('HEAPTRC=', GetEnvironmentString(I)) <> 1 then
-          P.Environment.Add(GetEnvironmentString(I));
-      P.Environment.Add('HEAPTRC=log=' + HeapLog);
-    end;
+      HeapLogTo(P, HeapLog);
     for A in Args do
       P.Parameters.Add(A);
-    P.Options := [poUsePipes];
-    P.Execute;
-    Deadline := ChMsTick + 10000;
-    while P.Running and (ChMsTick < Deadline) do
-    begin
-      FOut := FOut + PipeText(P.Output);
-      FErr := FErr + PipeText(P.Stderr);
-      Sleep(2);
-    end;
-    if P.Running then
-    begin
-      P.Terminate(255);
-      P.WaitOnExit;
-      Result := -1;
-    end
-    else
-      Result := P.ExitCode;
-    FOut := FOut + PipeText(P.Output);
-    FErr := FErr + PipeText(P.Stderr);
+    Result := RunProcess(P, 10000, FOut, FErr);
   finally
     P.Free;
   end;
