@@ -560,9 +560,14 @@ function MqttWaitMs(const C: tMqttClient): LongInt;
 begin
   case C.State of
     msWaiting: Result := ChnWaitLeft(C.RetryAt);
-    msConnecting, msConnected:
-      { the keep-alive: loop_misc sends the ping when it is due }
+    msConnecting:
       Result := 1000;
+    msConnected:
+      { the keep-alive: loop_misc sends the ping once KeepAlive s passed
+        without traffic; looking every quarter of it sends it by 1.25
+        KeepAlive, before the broker gives up (1.5 KeepAlive), and an
+        idle program wakes no more often than that }
+      Result := C.KeepAlive * 250;
   else
     Result := High(LongInt);
   end;
