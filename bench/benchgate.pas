@@ -1,7 +1,7 @@
 { benchgate - tools/chngate under load (Linux; "make bench",
   docs/chngate.md "Speed and size").
 
-  Eight DF1 lines at 19200 Bd, 100 tags each (N7:0, N7:2 .. N7:198), scan
+  Eight DF1 lines at 19200 Bd (or BD), 100 tags each (N7:0, N7:2 .. N7:198), scan
   500 ms, a mosquitto broker on a free loopback port. The lines are real
   in time: chngate opens a pty per line; this program passes its bytes to
   an SLC station (tools/lib ChnSlc, df1sim's table) over an in-memory
@@ -28,8 +28,9 @@
     anonymous memory of heap and stacks, each library).
   Skipped with the reason when mosquitto or libmosquitto is missing.
 
-    benchgate          10 s under load, 20 s idle (the gateway and the floor each)
-    benchgate quick    4 s and 5 s
+    benchgate [quick] [BD]   10 s under load, 20 s idle (the gateway and
+                             the floor each); quick: 4 s and 5 s; BD the
+                             lines' rate (default 19200)
   Internal role: --floor N MS (the idle floor: N pty lines, ChnWaitAny(MS)
   until killed). }
 program benchgate;
@@ -45,7 +46,6 @@ const
   Lines = 8;
   TagsPerLine = 100;
   ScanMs = 500;
-  Bd = 19200;
   ChangeEveryMs = 25;
   FirstValue = 1000;        { change n writes FirstValue + n }
   MaxChanges = 30000;
@@ -64,6 +64,7 @@ type
   end;
 
 var
+  Bd: LongInt = 19200;
   L: array[0..Lines - 1] of tLine;
   Buf: array[0..4095] of Byte;
   Quick: Boolean;
@@ -455,7 +456,12 @@ begin
     Floor(StrToInt(ParamStr(2)), StrToInt(ParamStr(3)));
     Halt(0);
   end;
-  Quick := ParamStr(1) = 'quick';
+  Quick := False;
+  for I := 1 to ParamCount do
+    if ParamStr(I) = 'quick' then
+      Quick := True
+    else
+      Bd := StrToIntDef(ParamStr(I), Bd);
   if Quick then LoadMs := 4000 else LoadMs := 10000;
   if Quick then IdleMs := 5000 else IdleMs := 20000;
   if not MqttLoad(Err) then

@@ -22,8 +22,10 @@ function ProcRunNs(Pid: TPid): Int64;
   wake-ups; -1 when unknown. }
 function ProcSleeps(Pid: TPid): Int64;
 { Its resident set by what is mapped (/proc/PID/smaps): "NAME KiB" per
-  file (the base name) and "anonymous KiB" for the heap, stacks and the
-  libraries' own data, largest first, comma-separated. }
+  file (the base name), "[heap] KiB" for the C library's malloc (brk),
+  "[stack] KiB", and "anonymous KiB" for the other memory not backed by a
+  file (a Free Pascal program's heap, the libraries' zeroed data), largest
+  first, comma-separated. }
 function ProcRssByMapping(Pid: TPid): AnsiString;
 
 implementation
@@ -159,6 +161,8 @@ begin
         { a mapping's header: ADDR-ADDR PERMS OFFSET DEV INODE [PATH] }
         if (Length(Words) >= 6) and (Words[5][1] = '/') then
           Name := ExtractFileName(Words[5])
+        else if Length(Words) >= 6 then
+          Name := Words[5]           { [heap] (the C library's malloc), [stack] }
         else
           Name := 'anonymous';
       end
