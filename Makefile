@@ -153,7 +153,7 @@ $(PROGBINS) $(BENCHBINS): src/chn.inc | $(BUILD)/units.stamp
 # (ptys) are listed here and built only there; single Unix-only tests are
 # {$IFDEF UNIX} in their unit.
 UNIX_TESTS := TestChnPty TestChnComVirtual TestChnTcpSer2net TestFT12Examples TestFaultCycling TestIec101Examples \
-              TestIec101SlaveTool TestIec101Docs TestIec104Tools TestIec104Docs
+              TestIec101SlaveTool TestIec101Docs TestIec104Tools TestIec104Docs TestChnIecPointTable
 comma := ,
 uses_entry = $(if $(filter $(1),$(UNIX_TESTS)),'{$$IFDEF UNIX}$(1)$(comma){$$ENDIF}','$(1)$(comma)')
 $(BUILD)/testunits.inc: $(TESTUNITS)

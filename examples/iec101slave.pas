@@ -42,6 +42,10 @@ var
   Params: tIecParams;
   LineParams, PointsFile: AnsiString;
   Stop: Boolean = False;
+  { --return: a command point's monitoring point (return information) }
+  Returns: array of record Cmd, Mon: LongWord; end;
+  { executed commands whose return information is still to be sent }
+  Pending: array of tIecObject;
 
 {$IFDEF UNIX}
 procedure OnSignal(Sig: cint); cdecl;
@@ -49,6 +53,31 @@ begin
   Stop := True;
 end;
 {$ENDIF}
+
+{ --return CMD=MON,...: pairs of IOAs. }
+procedure ParseReturns;
+var
+  L: TStringList;
+  I, Eq, C, M, Code1, Code2: LongInt;
+begin
+  L := TStringList.Create;
+  try
+    L.CommaText := CliValue(Cli, 'return', '');
+    SetLength(Returns, L.Count);
+    for I := 0 to L.Count - 1 do
+    begin
+      Eq := Pos('=', L[I]);
+      Val(Copy(L[I], 1, Eq - 1), C, Code1);
+      Val(Copy(L[I], Eq + 1, MaxInt), M, Code2);
+      if (Eq = 0) or (Code1 <> 0) or (Code2 <> 0) or (C < 0) or (M < 0) or (C > $FFFFFF) or (M > $FFFFFF) then
+        CliUsageError(Cli, '--return wants CMD=MON pairs of IOAs', L[I]);
+      Returns[I].Cmd := C;
+      Returns[I].Mon := M;
+    end;
+  finally
+    L.Free;
+  end;
+end;
 
 procedure ParseArgs;
 begin
@@ -67,6 +96,9 @@ begin
   CliOption(Cli, 'select-ms', #0, 'MS', 'select-before-operate timeout (default ' +
     IntToStr(IecSlaveSelectMs) + ')');
   CliOption(Cli, 'refuse', #0, '', 'refuse every command (negative ACT_CON)');
+  CliOption(Cli, 'return', #0, 'CMD=MON,...', 'return information: an executed command to ' +
+    'command point CMD sets monitoring point MON to its value, sent as a spontaneous event ' +
+    'after the ACT_CON (5000=104,5101=101)');
   CliOption(Cli, 'json', #0, '', 'one JSON object per line on stdout, nothing else');
   CliOption(Cli, 'no-init', #0, '', 'send no end of initialisation (M_EI_NA_1, COT 4, COI 0) ' +
     'after the start');
@@ -87,6 +119,7 @@ begin
   Params.CaSize := CliNum(Cli, 'ca-size', 1, 2, Params.CaSize);
   Params.IoaSize := CliNum(Cli, 'ioa-size', 1, 3, Params.IoaSize);
   SelectMs := CliNum(Cli, 'select-ms', 1, 3600000, IecSlaveSelectMs);
+  ParseReturns;
   if CliArgCount(Cli) = 0 then
     CliUsageError(Cli, 'no parameter string (''NAM=FT1_2 ... NAM=COM DEV=...'')', '');
   if CliArgCount(Cli) > 1 then
@@ -129,8 +162,32 @@ begin
 end;
 
 function OnCommand(Data: Pointer; const H: tIecAsdu; const O: tIecObject): Boolean;
+var
+  I: Integer;
 begin
   Result := not Refuse;
+  if Result and not O.Select then
+    for I := 0 to High(Returns) do
+      if Returns[I].Cmd = O.Ioa then
+      begin
+        { sent after the ACT_CON the slave is about to queue }
+        SetLength(Pending, Length(Pending) + 1);
+        Pending[High(Pending)] := O;
+        Pending[High(Pending)].Ioa := Returns[I].Mon;
+      end;
+end;
+
+{ The return information of the commands just executed. }
+procedure SendReturns;
+var
+  I: Integer;
+  E: ShortString;
+begin
+  for I := 0 to High(Pending) do
+    if IecSlaveUpdate(Slave, Pending[I].Ioa, Pending[I], True, E) <> res_Ok then
+      WriteLn(StdErr, FormatDateTime('hh:nn:ss.zzz ', Now), 'return information to IOA ',
+        Pending[I].Ioa, ': ', E);
+  Pending := nil;
 end;
 
 procedure OnClock(Data: Pointer; const T: tIecTime; OffsetMs: Int64);
@@ -179,6 +236,10 @@ begin
   end;
   if not IecLoadPoints(Table, TableName, Text, Err) then
     CliUsageError(Cli, Err, '');
+  for I := 0 to High(Returns) do
+    if (IecSlaveFind(Table, Returns[I].Cmd) < 0) or (IecSlaveFind(Table, Returns[I].Mon) < 0) then
+      CliUsageError(Cli, '--return: IOA ' + IntToStr(Returns[I].Cmd) + ' or ' + IntToStr(Returns[I].Mon) +
+        ' is not in the ' + TableName, IntToStr(Returns[I].Cmd) + '=' + IntToStr(Returns[I].Mon));
   { the slave on its channel, not yet opened }
   Chn := CliChannel(Cli, LineParams, ChnFT1_2.cName);
   if IecSlaveInit(Slave, Chn, Params, Ca, E) <> res_Ok then
@@ -219,7 +280,9 @@ begin
       R := Chn^.ChResult;
       Break;
     end;
-    if not IecSlaveStep(Slave) then
+    if IecSlaveStep(Slave) then
+      SendReturns
+    else
       ChnWaitAny(IecSlaveWaitMs(Slave));
   end;
   with Slave do

@@ -108,25 +108,15 @@ end;
 
 function TTestFT12Examples.Finish: string;
 var
-  Buf: array[0..4095] of Char;
-  N: Integer;
   Deadline: QWord;
 begin
   Deadline := ChMsTick + 10000;
   while FProc.Running and (ChMsTick < Deadline) do
   begin
-    while FProc.Output.NumBytesAvailable > 0 do
-    begin
-      N := FProc.Output.Read(Buf, SizeOf(Buf));
-      FOut := FOut + Copy(Buf, 0, N);
-    end;
+    Drain(FProc, FOut);
     Sleep(5);
   end;
-  while FProc.Output.NumBytesAvailable > 0 do
-  begin
-    N := FProc.Output.Read(Buf, SizeOf(Buf));
-    FOut := FOut + Copy(Buf, 0, N);
-  end;
+  Drain(FProc, FOut);
   AssertFalse('ended in time', FProc.Running);
   AssertEquals('exit code' + LineEnding + FOut, 0, FProc.ExitCode);
   Result := FOut;

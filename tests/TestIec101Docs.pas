@@ -82,19 +82,6 @@ begin
   AssertTrue(Output, FileExists(Result));
 end;
 
-function ReadAll(P: TProcess): string;
-var
-  Buf: array[0..4095] of Char;
-  N: Integer;
-begin
-  Result := '';
-  while P.Output.NumBytesAvailable > 0 do
-  begin
-    N := P.Output.Read(Buf, SizeOf(Buf));
-    Result := Result + Copy(Buf, 0, N);
-  end;
-end;
-
 procedure TTestIec101Docs.TestMasterProgram;
 var
   Exe, Out, Err: string;
@@ -126,9 +113,9 @@ begin
     begin
       if not IecSlaveStep(S) then
         Sleep(1);
-      Out := Out + ReadAll(P);
+      Out := Out + PipeText(P.Output);
     end;
-    Out := Out + ReadAll(P);
+    Out := Out + PipeText(P.Output);
     AssertFalse('ended', P.Running);
     Err := 'C_IC_NA_1 ACTIVATION_CON IOA 0 = 20' + LineEnding +
       'M_ME_NB_1 INTERROGATED_BY_STATION IOA 100 = -1' + LineEnding +
@@ -214,9 +201,9 @@ begin
     begin
       IecMasterStep(M);
       Sleep(5);
-      Out := Out + ReadAll(P);
+      Out := Out + PipeText(P.Output);
     end;
-    Out := Out + ReadAll(P);
+    Out := Out + PipeText(P.Output);
     AssertFalse('ended', P.Running);
     AssertEquals('C_SC_NA_1 IOA 5000 = 1 select TRUE' + LineEnding +
       'C_SC_NA_1 IOA 5000 = 1 select FALSE' + LineEnding + 'Ok' + LineEnding, Out);

@@ -64,22 +64,13 @@ end;
 function TTestIec101Examples.Run(const Args: array of string; Serve: Boolean): Integer;
 var
   P: TProcess;
-  I, N: Integer;
-  Buf: array[0..4095] of Char;
+  I: Integer;
   Deadline: QWord;
 
   procedure Take;
   begin
-    while P.Output.NumBytesAvailable > 0 do
-    begin
-      N := P.Output.Read(Buf, SizeOf(Buf));
-      FOut := FOut + Copy(Buf, 0, N);
-    end;
-    while P.Stderr.NumBytesAvailable > 0 do
-    begin
-      N := P.Stderr.Read(Buf, SizeOf(Buf));
-      FErr := FErr + Copy(Buf, 0, N);
-    end;
+    FOut := FOut + PipeText(P.Output);
+    FErr := FErr + PipeText(P.Stderr);
   end;
 
 begin

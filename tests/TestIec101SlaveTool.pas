@@ -238,8 +238,7 @@ var
   P: TProcess;
   Lst: TStringList;
   O: tIecObject;
-  Buf: array[0..4095] of Char;
-  N, I: Integer;
+  I: Integer;
   Deadline: QWord;
 begin
   AssertTrue(FileExists(BinPath('iec101slave')));
@@ -296,23 +295,11 @@ begin
     Deadline := ChMsTick + 5000;
     while (P.Running or (P.Output.NumBytesAvailable > 0)) and (ChMsTick < Deadline) do
     begin
-      while P.Output.NumBytesAvailable > 0 do
-      begin
-        N := P.Output.Read(Buf, SizeOf(Buf));
-        Out := Out + Copy(Buf, 0, N);
-      end;
-      while P.Stderr.NumBytesAvailable > 0 do
-      begin
-        N := P.Stderr.Read(Buf, SizeOf(Buf));
-        Errs := Errs + Copy(Buf, 0, N);
-      end;
+      Out := Out + PipeText(P.Output);
+      Errs := Errs + PipeText(P.Stderr);
       Sleep(10);
     end;
-    while P.Stderr.NumBytesAvailable > 0 do
-    begin
-      N := P.Stderr.Read(Buf, SizeOf(Buf));
-      Errs := Errs + Copy(Buf, 0, N);
-    end;
+    Errs := Errs + PipeText(P.Stderr);
     AssertFalse('ended', P.Running);
     AssertEquals(Errs, 0, P.ExitCode);
     Lst.Text := Out;

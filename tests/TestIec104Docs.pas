@@ -38,19 +38,6 @@ begin
   RemoveTempDir(FDir);
 end;
 
-function ReadAll(P: TProcess): string;
-var
-  Buf: array[0..4095] of Char;
-  N: Integer;
-begin
-  Result := '';
-  while P.Output.NumBytesAvailable > 0 do
-  begin
-    N := P.Output.Read(Buf, SizeOf(Buf));
-    Result := Result + Copy(Buf, 0, N);
-  end;
-end;
-
 procedure TTestIec104Docs.TestClientProgram;
 var
   Doc, Prog: TStringList;
@@ -111,9 +98,9 @@ begin
     begin
       if not IecSlaveStep(S) then
         ChnWaitAny(5);
-      Out := Out + ReadAll(P);
+      Out := Out + PipeText(P.Output);
     end;
-    Out := Out + ReadAll(P);
+    Out := Out + PipeText(P.Output);
     AssertFalse('ended', P.Running);
     Want := 'C_IC_NA_1 ACTIVATION_CON IOA 0 = 20' + LineEnding +
       'M_ME_NB_1 INTERROGATED_BY_STATION IOA 100 = -1' + LineEnding +

@@ -2,7 +2,10 @@
   process, the slave stepped while the master waits): the same
   procedures as on FT 1.2, with 104's differences - no link polling,
   CP24 types served as their CP56 counterparts, C_TS_NA_1 refused with
-  COT 44, events made while no connection is started sent after STARTDT. }
+  COT 44, events made while no connection is started sent after STARTDT;
+  a command confirmed later (IecSlaveDefer / IecSlaveConfirm) and a
+  command point sharing the IOA of the value it sets, whose events go
+  with CP56 time tags (IecSlaveEventType). }
 unit TestIec104Helpers;
 
 {$MODE OBJFPC}{$H+}
@@ -20,6 +23,9 @@ type
     SChn, MChn: pChnVirt;
     Objects: TStringList;
     Commands: Integer;
+    Defer: Boolean;
+    Ticket: LongWord;
+    Last: tIecObject;
     procedure OpenPair(const Extra: string = ''; const Below: string = '');
     procedure StepSlave;
   protected
@@ -36,6 +42,8 @@ type
     procedure TestTestWithoutTimeTagRefusedWithCot44;
     procedure TestEventsQueuedUntilStartDt;
     procedure TestPcapIsATcpStreamTsharkDissects;
+    procedure TestDeferredConfirmation;
+    procedure TestSharedIoaAndCp56Events;
   end;
 
 implementation
@@ -44,11 +52,17 @@ procedure OnObj(Data: Pointer; Addr: Word; const H: tIecAsdu; const O: tIecObjec
 begin
   TTestIec104Helpers(Data).Objects.Add(IecTypeName(H.Ti) + ' COT ' + IntToStr(H.Cot) +
     ' IOA ' + IntToStr(O.Ioa));
+  TTestIec104Helpers(Data).Last := O;
 end;
 
 function OnCmd(Data: Pointer; const H: tIecAsdu; const O: tIecObject): Boolean;
 begin
-  Inc(TTestIec104Helpers(Data).Commands);
+  with TTestIec104Helpers(Data) do
+  begin
+    Inc(Commands);
+    if Defer then
+      Ticket := IecSlaveDefer(S);
+  end;
   Result := True;
 end;
 
@@ -69,6 +83,8 @@ begin
   SChn := nil;
   MChn := nil;
   Commands := 0;
+  Defer := False;
+  Ticket := 0;
 end;
 
 procedure TTestIec104Helpers.TearDown;
@@ -270,6 +286,116 @@ begin
   finally
     RemoveTempDir(Dir);
   end;
+end;
+
+{ Step master and slave for Ms or until the command ended. }
+procedure StepBoth(T: TTestIec104Helpers; Ms: LongInt);
+var
+  Deadline: QWord;
+begin
+  Deadline := GetTickCount64 + QWord(Ms);
+  repeat
+    IecMasterStep(T.M);
+    T.StepSlave;
+  until IecCommandDone(T.M) or (GetTickCount64 > Deadline);
+end;
+
+procedure TTestIec104Helpers.TestDeferredConfirmation;
+var
+  O: tIecObject;
+  First: LongWord;
+begin
+  OpenPair;
+  AssertEquals('no command handed over: nothing to defer', 0, IecSlaveDefer(S));
+  Defer := True;
+  O := IecObject(5000);
+  O.Int := 1;
+  AssertTrue(M.Cmd.Err, IecStartCommand(M, 0, 1, C_SC_NA_1, O, False));
+  StepBoth(Self, 500);
+  AssertEquals('handed over', 1, Commands);
+  AssertTrue('a ticket', Ticket > 0);
+  AssertEquals('waiting', 1, IecSlaveDeferred(S));
+  AssertFalse('no ACT_CON before the program confirmed', IecCommandDone(M));
+  AssertEquals('not counted yet', 0, S.Commands);
+  AssertEquals(res_Ok, IecSlaveConfirm(S, Ticket, True));
+  StepBoth(Self, 3000);
+  AssertTrue('ACT_CON after IecSlaveConfirm', IecCommandDone(M));
+  AssertEquals(M.Cmd.Err, res_Ok, IecFinish(M));
+  AssertEquals('counted', 1, S.Commands);
+  AssertEquals('none waits', 0, IecSlaveDeferred(S));
+  AssertEquals('the command point took the value', 1, S.Points[IecSlaveFind(S, 5000)].Obj.Int);
+  AssertEquals('a ticket once', res_BadParam, IecSlaveConfirm(S, Ticket, True));
+  { refused later: negative ACT_CON }
+  First := Ticket;
+  O.Int := 0;
+  AssertTrue(M.Cmd.Err, IecStartCommand(M, 0, 1, C_SC_NA_1, O, False));
+  StepBoth(Self, 300);
+  AssertFalse('waits', IecCommandDone(M));
+  AssertTrue('a new ticket', (Ticket > 0) and (Ticket <> First));
+  AssertEquals(res_Ok, IecSlaveConfirm(S, Ticket, False));
+  StepBoth(Self, 3000);
+  AssertEquals('negative ACT_CON', res_IecNegative, IecFinish(M));
+  AssertEquals('refused', 1, S.Refused);
+  AssertEquals('the value stays', 1, S.Points[IecSlaveFind(S, 5000)].Obj.Int);
+  { a general reset drops a waiting command: its ticket is gone }
+  M.CommandMs := 300;
+  AssertEquals('the master gives up', res_Timeout, IecCommand(M, 0, 1, C_SC_NA_1, O, False));
+  AssertEquals('still waiting', 1, IecSlaveDeferred(S));
+  M.CommandMs := 3000;
+  Defer := False;
+  AssertEquals(M.Cmd.Err, res_Ok, IecResetProcess(M, 0, 1, Qrp_General));
+  AssertEquals('dropped', 0, IecSlaveDeferred(S));
+  AssertEquals('dropped', res_BadParam, IecSlaveConfirm(S, Ticket, True));
+end;
+
+procedure TTestIec104Helpers.TestSharedIoaAndCp56Events;
+var
+  O: tIecObject;
+  E: ShortString;
+  I: LongInt;
+  Before, At: TDateTime;
+begin
+  OpenPair;
+  { the measured value 400 and its set point at the same IOA }
+  O := IecObject(400);
+  O.Int := 7;
+  AssertEquals(E, res_Ok, IecSlaveAddPoint(S, M_ME_NB_1, O, 0, E));
+  AssertEquals(E, res_Ok, IecSlaveAddPoint(S, C_SE_NB_1, IecObject(400), 0, E));
+  AssertEquals(E, res_Ok, IecSlaveAddPoint(S, C_SE_TB_1, IecObject(400), 0, E));
+  AssertEquals('a second set point of one type', res_BadParam, IecSlaveAddPoint(S, C_SE_NB_1, IecObject(400), 0, E));
+  AssertEquals('point 400: IOA twice', E);
+  AssertEquals('a second value', res_BadParam, IecSlaveAddPoint(S, M_ME_NC_1, IecObject(400), 0, E));
+  AssertEquals('the monitoring point', M_ME_NB_1, S.Points[IecSlaveFind(S, 400)].Ti);
+  AssertEquals('not the same information', res_AsduType, IecSlaveEventType(S, 400, M_ME_TF_1, E));
+  AssertEquals('point 400: M_ME_TF_1 is not M_ME_NB_1 with a time tag', E);
+  AssertEquals('no time tag', res_AsduType, IecSlaveEventType(S, 400, M_ME_NB_1, E));
+  AssertEquals('no such point', res_AsduIoa, IecSlaveEventType(S, 401, M_ME_TE_1, E));
+  AssertEquals(E, res_Ok, IecSlaveEventType(S, 400, M_ME_TB_1, E));   { CP24: CP56 over 104 }
+  AssertEquals('CP56', M_ME_TE_1, S.Points[IecSlaveFind(S, 400)].EventTi);
+  { interrogated as itself, read as itself }
+  AssertEquals(M.Cmd.Err, res_Ok, IecInterrogation(M, 0, 1, Qoi_Station));
+  AssertTrue(Objects.Text, Objects.IndexOf('M_ME_NB_1 COT 20 IOA 400') >= 0);
+  AssertEquals(M.Cmd.Err, res_Ok, IecRead(M, 0, 1, 400));
+  AssertTrue(Objects.Text, Objects.IndexOf('M_ME_NB_1 COT 5 IOA 400') >= 0);
+  { a change: an event with a CP56 time tag of now }
+  Objects.Clear;
+  Before := Now;
+  O.Int := -5;
+  AssertEquals(E, res_Ok, IecSlaveUpdate(S, 400, O, True, E));
+  for I := 1 to 100 do
+  begin
+    IecMasterStep(M);
+    StepSlave;
+  end;
+  AssertEquals(Objects.Text, 'M_ME_TE_1 COT 3 IOA 400', Trim(Objects.Text));
+  AssertEquals('the value', -5, Last.Int);
+  AssertTrue('a CP56 time', IecTimeToDateTime(Last.Time, At));
+  AssertTrue('of the change: ' + DateTimeToStr(At), (At >= Before - 1 / SecsPerDay) and (At <= Now + 1 / SecsPerDay));
+  AssertEquals('the table keeps the type', M_ME_NB_1, S.Points[IecSlaveFind(S, 400)].Ti);
+  AssertTrue('a set point to the shared IOA', IecCommand(M, 0, 1, C_SE_NB_1, O, False) = res_Ok);
+  AssertTrue('and its CP56 form', IecCommand(M, 0, 1, C_SE_TB_1, O, False) = res_Ok);
+  AssertEquals('another type: COT 47', res_IecUnknownIoa, IecCommand(M, 0, 1, C_SE_NC_1, O, False));
+  AssertEquals(2, Commands);
 end;
 
 initialization

@@ -45,21 +45,6 @@ uses
   {$IFDEF UNIX}BaseUnix,{$ENDIF} ChnTypes, ChnVirt, ChnLayers, ChnCom, ChnTcp, ChnLoop,
   ChnTrc, ChnNoise, ChnDF1, ChnFT1_2, ChnICS;
 
-function ReadAvail(S: TStream): string;
-var
-  Buf: array[0..4095] of Char;
-  N: Integer;
-begin
-  Result := '';
-  while (S as TInputPipeStream).NumBytesAvailable > 0 do
-  begin
-    N := S.Read(Buf, SizeOf(Buf));
-    if N <= 0 then
-      Break;
-    Result := Result + Copy(Buf, 0, N);
-  end;
-end;
-
 { Prog with Args, standard output and standard error apart; exit code,
   -1 if it still ran after 10 s. }
 function TTestToolCli.RunProg(const Prog: string; const Args: array of string): Integer;
@@ -80,8 +65,8 @@ begin
     Deadline := ChMsTick + 10000;
     while P.Running and (ChMsTick < Deadline) do
     begin
-      FOut := FOut + ReadAvail(P.Output);
-      FErr := FErr + ReadAvail(P.Stderr);
+      FOut := FOut + PipeText(P.Output);
+      FErr := FErr + PipeText(P.Stderr);
       Sleep(2);
     end;
     if P.Running then
@@ -92,8 +77,8 @@ begin
     end
     else
       Result := P.ExitCode;
-    FOut := FOut + ReadAvail(P.Output);
-    FErr := FErr + ReadAvail(P.Stderr);
+    FOut := FOut + PipeText(P.Output);
+    FErr := FErr + PipeText(P.Stderr);
   finally
     P.Free;
   end;

@@ -114,9 +114,17 @@ function Sum8Block(const Buf; Len: Word): tSum8;
 function Xor8Add(X: tXor8; B: Byte): tXor8; inline;
 function Xor8Block(const Buf; Len: Word): tXor8;
 
+{ UTC milliseconds since 1970, now (the time stamps of values). }
+function ChUtcMs: Int64;
+
 implementation
 
-uses SysUtils;
+uses SysUtils, DateUtils;
+
+function ChUtcMs: Int64;
+begin
+  Result := Round((LocalTimeToUniversal(Now) - UnixDateDelta) * MSecsPerDay);
+end;
 
 const
   MaxResultTexts = 96;

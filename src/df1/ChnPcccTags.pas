@@ -194,11 +194,11 @@ function TagUtcMs: Int64;
 implementation
 
 uses
-  SysUtils, DateUtils, ChnWait;
+  SysUtils, ChnWait;
 
 function TagUtcMs: Int64;
 begin
-  Result := Round((LocalTimeToUniversal(Now) - UnixDateDelta) * MSecsPerDay);
+  Result := ChUtcMs;
 end;
 
 function TagParseAs(Dialect: tPcccDialect; const S: ShortString; out Addr: tPcccAddr;

@@ -160,10 +160,13 @@ type
     Rep      : tFT12MaxRecord;
     RepLen   : Word;
     Run      : LongInt;    {< services in a row of the slave whose turn it is }
-    { the command's main ASDU, encoded by its Start (again only when a
-      clock synchronisation takes the time it leaves at) and sent as it is }
+    { the ASDU of the command's stage under way, encoded once as the stage
+      begins (BeginStage) and sent as it is (again after a busy NACK); its
+      type, cause and object for OnSent and for matching the answers }
     CmdAsdu  : array[0..IecMaxAsdu - 1] of Byte;
     CmdLen   : Word;
+    StageTi, StageCot: Byte;
+    StageObj : tIecObject;
   end;
   pIecMaster = ^tIecMaster;
 
@@ -236,6 +239,17 @@ function IecParamFloat(var M: tIecMaster; Addr, Ca: Word; Ioa: LongWord; Value: 
 function IecParamActivation(var M: tIecMaster; Addr, Ca: Word; Ioa: LongWord; Qpa: Byte): tChResult;
 { Step for Ms milliseconds (polling, objects to OnObject). }
 procedure IecPollFor(var M: tIecMaster; Ms: LongInt);
+
+{ What the master knows of slave index S (0..SlaveCount - 1), for a
+  program that shows its health: a copy of its record (State, BackoffMs,
+  Probation, the counters; Link.Repeats the link's repetitions). False
+  when there is no such slave. }
+function IecMasterSlaveInfo(const M: tIecMaster; S: LongInt; out Info: tIecSlave): Boolean;
+{ The outcome of the last command that ended (res_Ok also while none
+  ended yet) and its text. }
+function IecCommandResult(const M: tIecMaster; out Err: ShortString): tChResult;
+{ res_Ok, or how the channel itself failed (res_DeviceLost ...). }
+function IecMasterLineResult(const M: tIecMaster): tChResult;
 
 implementation
 
@@ -359,23 +373,31 @@ begin
     M.Cmd.Err := CmdName(M) + ': ' + Text;
 end;
 
-{ The type, cause and object the current stage sends. }
-procedure StageAsdu(var M: tIecMaster; out Ti, Cot: Byte; out O: tIecObject);
+{ Stage St of the command begins: its ASDU is encoded, once, into
+  M.CmdAsdu (res_AsduParam ... with Err: it cannot be sent). The delay
+  acquisition carries the time it began (SDT), the delay sent the one
+  measured; a clock synchronisation after them the time it begins at
+  (the slave adds the delay). }
+function BeginStage(var M: tIecMaster; St: tIecCmdStage; out Err: ShortString): tChResult;
+var
+  O: tIecObject;
 begin
+  M.Cmd.Stage := St;
+  M.Cmd.Phase := cpSend;
   O := M.Cmd.Obj;
-  Ti := M.Cmd.Ti;
-  Cot := Cot_Activation;
-  case M.Cmd.Stage of
+  M.StageTi := M.Cmd.Ti;
+  M.StageCot := Cot_Activation;
+  case St of
     stDelayAct:
       begin
-        Ti := C_CD_NA_1;
+        M.StageTi := C_CD_NA_1;
         O := IecObject(0);
-        O.Elapsed := ChMsTick mod 60000;   { SDT: when it leaves }
+        O.Elapsed := ChMsTick mod 60000;
       end;
     stDelaySend:
       begin
-        Ti := C_CD_NA_1;
-        Cot := Cot_Spontaneous;
+        M.StageTi := C_CD_NA_1;
+        M.StageCot := Cot_Spontaneous;
         O := IecObject(0);
         O.Elapsed := M.Cmd.DelayMs;
       end;
@@ -383,48 +405,22 @@ begin
     stMain:
       begin
         O.Select := False;
-        if Ti = C_RD_NA_1 then
-          Cot := Cot_Request;
+        if M.Cmd.Ti = C_RD_NA_1 then
+          M.StageCot := Cot_Request
+        else if (M.Cmd.Ti = C_CS_NA_1) and M.Cmd.Delay then
+        begin
+          O.Time := IecTimeFromDateTime(Now);
+          M.Cmd.Obj.Time := O.Time;
+        end;
       end;
   end;
-end;
-
-function StageEncode(var M: tIecMaster; var Buf: array of Byte; out Len: Word; out Err: ShortString): tChResult;
-var
-  Ti, Cot: Byte;
-  O: tIecObject;
-begin
-  if M.Cmd.Stage = stMain then
-  begin
-    { encoded once, by Start (EncodeMain) }
-    Move(M.CmdAsdu[0], Buf[0], M.CmdLen);
-    Len := M.CmdLen;
-    Err := '';
-    Exit(res_Ok);
-  end;
-  StageAsdu(M, Ti, Cot, O);
-  Result := IecEncodeOne(M.Params, Ti, Cot, M.Cmd.Ca, O, Buf, Len, Err);
-end;
-
-{ The main stage's ASDU into M.CmdAsdu, whatever stage is under way. }
-function EncodeMain(var M: tIecMaster; out Err: ShortString): tChResult;
-var
-  Ti, Cot: Byte;
-  O: tIecObject;
-  Stage: tIecCmdStage;
-begin
-  Stage := M.Cmd.Stage;
-  M.Cmd.Stage := stMain;
-  StageAsdu(M, Ti, Cot, O);
-  M.Cmd.Stage := Stage;
-  Result := IecEncodeOne(M.Params, Ti, Cot, M.Cmd.Ca, O, M.CmdAsdu, M.CmdLen, Err);
+  M.StageObj := O;
+  Result := IecEncodeOne(M.Params, M.StageTi, M.StageCot, M.Cmd.Ca, O, M.CmdAsdu, M.CmdLen, Err);
 end;
 
 function Start(var M: tIecMaster; Addr, Ca: Word; Ti: Byte; const Obj: tIecObject;
   Sbo, WaitTerm, Delay: Boolean): Boolean;
 var
-  Buf: array[0..IecMaxAsdu - 1] of Byte;
-  Len: Word;
   E: ShortString;
   R: tChResult;
 begin
@@ -442,31 +438,27 @@ begin
   M.Cmd.WaitTerm := WaitTerm;
   M.Cmd.Delay := Delay;
   M.Cmd.Slave := IecMasterSlave(M, Addr);
-  if Sbo then
-    M.Cmd.Stage := stSelect
-  else if Delay then
-    M.Cmd.Stage := stDelayAct
-  else
-    M.Cmd.Stage := stMain;
   if M.Cmd.Slave < 0 then
   begin
     Finish(M, res_IecNoSlave, 'no slave with link address ' + IntToStr(Addr));
     Exit(False);
   end;
-  { every stage this command will send must encode: refuse now; the main
-    ASDU is kept for the send }
-  R := res_Ok;
-  if M.Cmd.Stage <> stMain then
-    R := StageEncode(M, Buf, Len, E);
-  if R = res_Ok then
-    R := EncodeMain(M, E);
+  { a command that does not encode is refused now. The first stage is
+    checked: the stages after it (the execute after its select, the delay
+    and the time after a delay acquisition) have the same common address
+    and object, their own values taken as they come }
+  if Sbo then
+    R := BeginStage(M, stSelect, E)
+  else if Delay then
+    R := BeginStage(M, stDelayAct, E)
+  else
+    R := BeginStage(M, stMain, E);
   if R <> res_Ok then
   begin
     Finish(M, R, E);
     Exit(False);
   end;
   M.Cmd.Result := res_Ok;
-  M.Cmd.Phase := cpSend;
   M.Cmd.Deadline := ChMsTick + QWord(M.CommandMs);
   Result := True;
 end;
@@ -597,32 +589,23 @@ var
   R: tChResult;
   E: ShortString;
 begin
+  R := res_Ok;
   case M.Cmd.Stage of
     stDelayAct:
       begin
         M.Cmd.DelayMs := (ChMsTick - M.Cmd.SentAt) div 2;
-        M.Cmd.Stage := stDelaySend;
-        M.Cmd.Phase := cpSend;
+        R := BeginStage(M, stDelaySend, E);
       end;
     stDelaySend, stSelect:
-      begin
-        M.Cmd.Stage := stMain;
-        M.Cmd.Phase := cpSend;
-        if M.Cmd.Ti = C_CS_NA_1 then
-        begin
-          { the time leaves now: the slave adds the delay it was sent }
-          M.Cmd.Obj.Time := IecTimeFromDateTime(Now);
-          R := EncodeMain(M, E);
-          if R <> res_Ok then
-            Finish(M, R, E);            { cannot happen: checked at the start }
-        end;
-      end;
+      R := BeginStage(M, stMain, E);
   else
     if M.Cmd.WaitTerm then
       M.Cmd.Phase := cpTerm
     else
       Finish(M, res_Ok, '');
   end;
+  if R <> res_Ok then
+    Finish(M, R, E);                    { cannot happen: the first stage encoded }
 end;
 
 { Does a command of type Ti carry the S/E bit? }
@@ -634,13 +617,14 @@ end;
 { An ASDU from slave index S: does it answer the command? }
 procedure MatchCommand(var M: tIecMaster; S: Integer; const H: tIecAsdu; const O: tIecObject);
 var
-  Ti, Cot: Byte;
+  Ti: Byte;
   Want: tIecObject;
   What: ShortString;
 begin
   if (M.Cmd.Slave <> S) or not (M.Cmd.Phase in [cpConfirm, cpTerm]) then
     Exit;
-  StageAsdu(M, Ti, Cot, Want);
+  Ti := M.StageTi;
+  Want := M.StageObj;
   if H.Ca <> M.Cmd.Ca then
     Exit;
   if (M.Cmd.Ti = C_RD_NA_1) and (M.Cmd.Stage = stMain) and (H.Cot = Cot_Request)
@@ -771,18 +755,15 @@ end;
 procedure StageSent(var M: tIecMaster; S: Integer);
 var
   H: tIecAsdu;
-  O: tIecObject;
-  Ti, Cot: Byte;
 begin
   if not Assigned(M.OnSent) then
     Exit;
-  StageAsdu(M, Ti, Cot, O);
   FillChar(H, SizeOf(H), 0);
-  H.Ti := Ti;
+  H.Ti := M.StageTi;
   H.Count := 1;
-  H.Cot := Cot;
+  H.Cot := M.StageCot;
   H.Ca := M.Cmd.Ca;
-  M.OnSent(M.Data, M.Slaves[S].Addr, H, O);
+  M.OnSent(M.Data, M.Slaves[S].Addr, H, M.StageObj);
 end;
 
 {- ------------------------------------------------------------ unbalanced }
@@ -885,10 +866,7 @@ end;
 { Start the service slave S is due for. }
 procedure Serve(var M: tIecMaster; S: LongInt);
 var
-  R: tChResult;
-  Buf: array[0..IecMaxAsdu - 1] of Byte;
-  Len: Word;
-  E: ShortString;
+  Buf: array[0..0] of Byte;
   Sl: ^tIecSlave;
   Retries: LongInt;
 begin
@@ -903,14 +881,8 @@ begin
   else
     if (M.Cmd.Slave = S) and (M.Cmd.Phase = cpSend) then
     begin
-      R := StageEncode(M, Buf, Len, E);
-      if R <> res_Ok then
-        Finish(M, R, E)                 { cannot happen: checked at the start }
-      else
-      begin
-        M.Cmd.SentAt := ChMsTick;
-        LinkStart(M, S, ljCommand, FCM_UserDataReply, Buf, Len, Retries);
-      end;
+      M.Cmd.SentAt := ChMsTick;
+      LinkStart(M, S, ljCommand, FCM_UserDataReply, M.CmdAsdu, M.CmdLen, Retries);
     end
     else
     begin
@@ -1065,9 +1037,6 @@ end;
 
 function StepBalanced(var M: tIecMaster): Boolean;
 var
-  Buf: array[0..IecMaxAsdu - 1] of Byte;
-  Len: Word;
-  E: ShortString;
   R: tChResult;
 begin
   Result := IecTransportStep(M.Link);
@@ -1079,9 +1048,7 @@ begin
     M.Slaves[0].State := isOffline;
   if (M.Cmd.Phase = cpSend) and IecTransportUp(M.Link) and IecTransportRoom(M.Link) then
   begin
-    R := StageEncode(M, Buf, Len, E);
-    if R = res_Ok then
-      R := IecTransportSend(M.Link, @Buf, Len);
+    R := IecTransportSend(M.Link, @M.CmdAsdu, M.CmdLen);
     if R = res_Ok then
     begin
       Inc(M.Slaves[0].Commands);
@@ -1096,7 +1063,7 @@ begin
       end;
     end
     else
-      Finish(M, R, E);
+      Finish(M, R, '');
     Result := True;
   end;
 end;
@@ -1275,6 +1242,26 @@ function IecParamActivation(var M: tIecMaster; Addr, Ca: Word; Ioa: LongWord; Qp
 begin
   AwaitAuto(M);
   Result := Blocking(M, IecStartParamActivation(M, Addr, Ca, Ioa, Qpa));
+end;
+
+function IecMasterSlaveInfo(const M: tIecMaster; S: LongInt; out Info: tIecSlave): Boolean;
+begin
+  Result := (S >= 0) and (S < M.SlaveCount);
+  if Result then
+    Info := M.Slaves[S]
+  else
+    FillChar(Info, SizeOf(Info), 0);
+end;
+
+function IecCommandResult(const M: tIecMaster; out Err: ShortString): tChResult;
+begin
+  Result := M.Cmd.Result;
+  Err := M.Cmd.Err;
+end;
+
+function IecMasterLineResult(const M: tIecMaster): tChResult;
+begin
+  Result := M.LineResult;
 end;
 
 initialization

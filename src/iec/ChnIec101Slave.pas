@@ -17,9 +17,16 @@
   * spontaneous changes (IecSlaveUpdate): class 1 events with COT 3, ACD
     set in every reply while one waits; a time-tagged type takes the time
     of the change (the station clock: PC clock + the offset of the last
-    clock synchronisation);
-  * commands (types 45..51, 58..64) to command points of the table:
-    handed to OnCommand (True accepts: positive ACT_CON, False: negative);
+    clock synchronisation); a point may send its events as the
+    time-tagged type of its information (IecSlaveEventType: M_ME_TE_1
+    events of an M_ME_NB_1 point) while interrogations and reads keep its
+    own type;
+  * commands (types 45..51, 58..64) to command points of the table (a
+    command point may share its IOA with the monitoring point it acts on):
+    handed to OnCommand (True accepts: positive ACT_CON, False: negative;
+    a program whose device below must confirm first calls IecSlaveDefer
+    in OnCommand and gives the outcome later with IecSlaveConfirm: the
+    ACT_CON, positive or negative, waits until then);
     a select (S/E = 1) is remembered for SelectMs, the execute that
     follows it in time is passed on, one after the timeout is refused
     (negative ACT_CON, OnCommand not called), and so is an execute with
@@ -68,6 +75,7 @@ const
   IecSlaveMaxPoints = 1024;
   IecSlaveQueueLen  = 64;        {< ASDUs waiting per class }
   IecSlaveSelectMs  = 10000;     {< default select-before-operate timeout }
+  IecSlaveMaxDeferred = 16;      {< commands waiting for IecSlaveConfirm at once }
 
 type
   { One entry of the point table. }
@@ -82,6 +90,7 @@ type
     ParOn : Boolean;      {< the parameters are in operation (POP 0, or P_AC_NA_1) }
     Reported: Double;     {< the value of the last spontaneous report (the deadband's base) }
     HasReported: Boolean;
+    EventTi: Byte;        {< type of its spontaneous events (IecSlaveEventType), 0: Ti }
   end;
   pIecPoint = ^tIecPoint;
 
@@ -93,6 +102,15 @@ type
   tIecQueue = record
     Items: array[0..IecSlaveQueueLen - 1] of tIecQueued;
     Head, Count: LongInt;
+  end;
+
+  { A command whose confirmation waits for IecSlaveConfirm. }
+  tIecDeferred = record
+    Ticket: LongWord;     {< 0: the slot is free }
+    Point : LongInt;      {< its command point }
+    Obj   : tIecObject;
+    Select: Boolean;
+    Asdu  : tIecQueued;   {< the command, mirrored as its ACT_CON }
   end;
 
   { A command for the program: H the ASDU's identifier (Ti, Cot, Ca ...),
@@ -146,6 +164,12 @@ type
       CounterInterrogations, Reads, Events, Negatives, Overflows, EndOfInits,
       Parameters, Suppressed: LongInt;
     LastBad  : ShortString;
+    { commands waiting for IecSlaveConfirm; DeferSlot: the one OnCommand
+      deferred (-1: none), InCommand: OnCommand is running }
+    Deferred : array[0..IecSlaveMaxDeferred - 1] of tIecDeferred;
+    NextTicket: LongWord;
+    DeferSlot: LongInt;
+    InCommand: Boolean;
   end;
   pIecSlaveStation = ^tIecSlaveStation;
 
@@ -156,15 +180,28 @@ type
   afterwards (the channel receives into it). }
 function IecSlaveInit(var S: tIecSlaveStation; Chn: pChnVirt; const P: tIecParams; Ca: Word;
   out Err: ShortString): tChResult;
-{ Add a point; Obj.Ioa is its address. res_AsduType (not a monitoring or
-  command type, or end of initialisation), res_AsduIoa (above the IOA
-  size), res_BadParam (IOA twice, group above 16 / 4 for counters),
+{ Add a point; Obj.Ioa is its address. One monitoring point per IOA; a
+  command point may share its IOA with a monitoring point (the value it
+  sets), one command point per IOA and type. res_AsduType (not a
+  monitoring or command type, or end of initialisation), res_AsduIoa
+  (above the IOA size), res_BadParam (IOA twice, group above 16 / 4 for
+  counters),
   res_Busy (table full), res_AsduValue (a value its type cannot carry);
   Err names the point and what is wrong. }
 function IecSlaveAddPoint(var S: tIecSlaveStation; Ti: Byte; const Obj: tIecObject; Group: Byte;
   out Err: ShortString): tChResult;
-{ Index of the point with this IOA, -1 when there is none. }
+{ Index of the point with this IOA (its monitoring point when a command
+  point shares the IOA), -1 when there is none. }
 function IecSlaveFind(const S: tIecSlaveStation; Ioa: LongWord): LongInt;
+{ The spontaneous events of monitoring point Ioa go as type Ti, the
+  same information with a time tag (M_SP_TB_1 for M_SP_NA_1, M_ME_TE_1
+  for M_ME_NB_1, M_ME_TF_1 for M_ME_NC_1, M_BO_TB_1 for M_BO_NA_1 ...; a
+  CP24 type is taken as its CP56 counterpart over IEC 104), stamped with
+  the station clock; interrogations and reads keep the point's own type.
+  res_AsduIoa (no monitoring point Ioa), res_AsduType (Ti is not the
+  point's information with a time tag; Err says why). }
+function IecSlaveEventType(var S: tIecSlaveStation; Ioa: LongWord; Ti: Byte;
+  out Err: ShortString): tChResult;
 { New value and quality of point Ioa (the value fields of Obj; its IOA,
   and a counter's sequence number, are the table's); a time-tagged type
   takes the station clock's time. With
@@ -192,6 +229,23 @@ function IecSlavePending(const S: tIecSlaveStation): Boolean;
   link is up (balanced FT 1.2, IEC 104). A general reset of process
   (C_RP_NA_1, QRP 1) sends one with Coi_RemoteReset by itself. }
 procedure IecSlaveEndOfInit(var S: tIecSlaveStation; Coi: Byte);
+
+{ Deferred confirmation of a command. Called from OnCommand (which then
+  returns True): the command's ACT_CON waits for IecSlaveConfirm with the
+  ticket returned (above 0) - for a program that passes the command to a
+  device and may confirm it only when the device did. 0 when no command
+  is being handed to OnCommand or IecSlaveMaxDeferred commands wait
+  already: then OnCommand's result confirms it at once, as without. A
+  general reset of process (C_RP_NA_1, QRP 1) drops the waiting ones. }
+function IecSlaveDefer(var S: tIecSlaveStation): LongWord;
+{ The outcome of deferred command Ticket: a positive (Ok) or negative
+  ACT_CON, in class 1; accepted, an execute sets its command point's
+  value and a select starts the selection (SelectMs from now).
+  res_BadParam when no command waits with this ticket (confirmed
+  already, or dropped by a general reset). }
+function IecSlaveConfirm(var S: tIecSlaveStation; Ticket: LongWord; Ok: Boolean): tChResult;
+{ Commands waiting for IecSlaveConfirm. }
+function IecSlaveDeferred(const S: tIecSlaveStation): LongInt;
 
 implementation
 
@@ -259,14 +313,38 @@ begin
   Result := IncMilliSecond(Now, S.ClockOffsetMs);
 end;
 
-function IecSlaveFind(const S: tIecSlaveStation; Ioa: LongWord): LongInt;
+{ The monitoring point at Ioa; -1 when none. }
+function FindMonitor(const S: tIecSlaveStation; Ioa: LongWord): LongInt;
 var
   I: Integer;
 begin
   for I := 0 to S.PointCount - 1 do
-    if S.Points[I].Obj.Ioa = Ioa then
+    if (S.Points[I].Obj.Ioa = Ioa) and not IsCommand(S.Points[I].Ti) then
       Exit(I);
   Result := -1;
+end;
+
+{ The command point of type Ti at Ioa; -1 when none. }
+function FindCommand(const S: tIecSlaveStation; Ioa: LongWord; Ti: Byte): LongInt;
+var
+  I: Integer;
+begin
+  for I := 0 to S.PointCount - 1 do
+    if (S.Points[I].Obj.Ioa = Ioa) and (S.Points[I].Ti = Ti) then
+      Exit(I);
+  Result := -1;
+end;
+
+function IecSlaveFind(const S: tIecSlaveStation; Ioa: LongWord): LongInt;
+var
+  I: Integer;
+begin
+  Result := FindMonitor(S, Ioa);
+  if Result >= 0 then
+    Exit;
+  for I := 0 to S.PointCount - 1 do
+    if S.Points[I].Obj.Ioa = Ioa then
+      Exit(I);
 end;
 
 { Can Obj be sent as type Ti? (the encoder's own checks) }
@@ -320,7 +398,8 @@ begin
       ' (IOA size ' + IntToStr(S.Params.IoaSize) + ')';
     Exit(res_AsduIoa);
   end;
-  if IecSlaveFind(S, Obj.Ioa) >= 0 then
+  if (IsCommand(Ti) and (FindCommand(S, Obj.Ioa, Ti) >= 0)) or
+     (not IsCommand(Ti) and (FindMonitor(S, Obj.Ioa) >= 0)) then
   begin
     Err := 'point ' + IntToStr(Obj.Ioa) + ': IOA twice';
     Exit(res_BadParam);
@@ -350,6 +429,31 @@ begin
   P^.Group := Group;
   P^.Obj := O;
   Inc(S.PointCount);
+end;
+
+function IecSlaveEventType(var S: tIecSlaveStation; Ioa: LongWord; Ti: Byte;
+  out Err: ShortString): tChResult;
+var
+  I: LongInt;
+begin
+  Err := '';
+  I := FindMonitor(S, Ioa);
+  if I < 0 then
+  begin
+    Err := 'no monitoring point with IOA ' + IntToStr(Ioa);
+    Exit(res_AsduIoa);
+  end;
+  if S.Over104 then
+    Ti := Cp56Counterpart(Ti);          { no CP24 over IEC 104 }
+  if (IecTypeTime(S.Points[I].Ti) <> tkNone) or (IecTypeTime(Ti) = tkNone) or not IecIsMonitor(Ti) or
+     (IecTypeKind(Ti) <> IecTypeKind(S.Points[I].Ti)) then
+  begin
+    Err := 'point ' + IntToStr(Ioa) + ': ' + IecTypeName(Ti) + ' is not ' +
+      IecTypeName(S.Points[I].Ti) + ' with a time tag';
+    Exit(res_AsduType);
+  end;
+  S.Points[I].EventTi := Ti;
+  Result := res_Ok;
 end;
 
 { Encode one object of type Ti with cause Cot into the class 1 queue. }
@@ -406,7 +510,7 @@ function IecSlaveUpdate(var S: tIecSlaveStation; Ioa: LongWord; const Obj: tIecO
 var
   I: Integer;
   O: tIecObject;
-  Quality: Byte;
+  Quality, EvTi: Byte;
 begin
   Err := '';
   I := IecSlaveFind(S, Ioa);
@@ -438,7 +542,12 @@ begin
   begin
     S.Points[I].Reported := MeasuredValue(S.Points[I].Ti, O);
     S.Points[I].HasReported := True;
-    Result := QueueObject(S, S.Points[I].Ti, Cot_Spontaneous, O);
+    EvTi := S.Points[I].EventTi;
+    if EvTi = 0 then
+      EvTi := S.Points[I].Ti
+    else
+      O.Time := IecTimeFromDateTime(IecSlaveNow(S));
+    Result := QueueObject(S, EvTi, Cot_Spontaneous, O);
     if Result = res_Ok then
       Inc(S.Events);
     if Result = res_Busy then
@@ -618,14 +727,50 @@ begin
 end;
 
 { A command of types 45..51 / 58..64 with cause 6 or 8. }
+{ The end of an accepted (Ok) or refused command to point I: the
+  selection, the command point's value, the ACT_CON. }
+procedure EndCommand(var S: tIecSlaveStation; const Buf: array of Byte; Len: Word;
+  I: LongInt; const O: tIecObject; Select, Ok: Boolean);
+var
+  Ti: Byte;
+begin
+  Ti := S.Points[I].Ti;
+  if Ok then
+  begin
+    Inc(S.Commands);
+    if Select then
+    begin
+      S.SelActive := True;
+      S.SelTi := Ti;
+      S.SelIoa := O.Ioa;
+      S.SelUntil := ChMsTick + QWord(S.SelectMs);
+      S.SelObj := O;
+    end
+    else
+    begin
+      if S.SelActive and (S.SelTi = Ti) and (S.SelIoa = O.Ioa) then
+        S.SelActive := False;
+      { the command point keeps the last value executed }
+      S.Points[I].Obj.Int := O.Int;
+      S.Points[I].Obj.Bits := O.Bits;
+      S.Points[I].Obj.Number := O.Number;
+      S.Points[I].Obj.Qu := O.Qu;
+    end;
+  end
+  else
+    Inc(S.Refused);
+  Answer(S, Buf, Len, Cot_ActCon, not Ok);
+end;
+
 procedure TakeCommand(var S: tIecSlaveStation; const Buf: array of Byte; Len: Word;
   const H: tIecAsdu; const O: tIecObject);
 var
   I: Integer;
   Ok, Select: Boolean;
+  D: ^tIecDeferred;
 begin
-  I := IecSlaveFind(S, O.Ioa);
-  if (I < 0) or (S.Points[I].Ti <> H.Ti) then
+  I := FindCommand(S, O.Ioa, H.Ti);
+  if I < 0 then
   begin
     Answer(S, Buf, Len, Cot_UnknownIoa, True);
     Exit;
@@ -658,32 +803,71 @@ begin
     Answer(S, Buf, Len, Cot_ActCon, True);
     Exit;
   end;
+  S.DeferSlot := -1;
+  S.InCommand := True;
   Ok := not Assigned(S.OnCommand) or S.OnCommand(S.Data, H, O);
-  if Ok then
+  S.InCommand := False;
+  if S.DeferSlot >= 0 then
   begin
-    Inc(S.Commands);
-    if Select then
+    D := @S.Deferred[S.DeferSlot];
+    if Ok then
     begin
-      S.SelActive := True;
-      S.SelTi := H.Ti;
-      S.SelIoa := O.Ioa;
-      S.SelUntil := ChMsTick + QWord(S.SelectMs);
-      S.SelObj := O;
-    end
-    else
-    begin
-      if S.SelActive and (S.SelTi = H.Ti) and (S.SelIoa = O.Ioa) then
-        S.SelActive := False;
-      { the command point keeps the last value executed }
-      S.Points[I].Obj.Int := O.Int;
-      S.Points[I].Obj.Bits := O.Bits;
-      S.Points[I].Obj.Number := O.Number;
-      S.Points[I].Obj.Qu := O.Qu;
+      { the confirmation waits for IecSlaveConfirm }
+      D^.Point := I;
+      D^.Obj := O;
+      D^.Select := Select;
+      D^.Asdu.Len := Len;
+      Move(Buf[0], D^.Asdu.Data[0], Len);
+      Exit;
     end;
-  end
-  else
-    Inc(S.Refused);
-  Answer(S, Buf, Len, Cot_ActCon, not Ok);
+    D^.Ticket := 0;                  { refused all the same: at once }
+  end;
+  EndCommand(S, Buf, Len, I, O, Select, Ok);
+end;
+
+function IecSlaveDefer(var S: tIecSlaveStation): LongWord;
+var
+  I: LongInt;
+begin
+  Result := 0;
+  if not S.InCommand or (S.DeferSlot >= 0) then
+    Exit;
+  for I := 0 to IecSlaveMaxDeferred - 1 do
+    if S.Deferred[I].Ticket = 0 then
+    begin
+      Inc(S.NextTicket);
+      if S.NextTicket = 0 then
+        S.NextTicket := 1;
+      S.Deferred[I].Ticket := S.NextTicket;
+      S.DeferSlot := I;
+      Exit(S.NextTicket);
+    end;
+end;
+
+function IecSlaveConfirm(var S: tIecSlaveStation; Ticket: LongWord; Ok: Boolean): tChResult;
+var
+  I: LongInt;
+begin
+  if Ticket <> 0 then
+    for I := 0 to IecSlaveMaxDeferred - 1 do
+      if S.Deferred[I].Ticket = Ticket then
+      begin
+        S.Deferred[I].Ticket := 0;
+        EndCommand(S, S.Deferred[I].Asdu.Data, S.Deferred[I].Asdu.Len, S.Deferred[I].Point,
+          S.Deferred[I].Obj, S.Deferred[I].Select, Ok);
+        Exit(res_Ok);
+      end;
+  Result := res_BadParam;
+end;
+
+function IecSlaveDeferred(const S: tIecSlaveStation): LongInt;
+var
+  I: LongInt;
+begin
+  Result := 0;
+  for I := 0 to IecSlaveMaxDeferred - 1 do
+    if S.Deferred[I].Ticket <> 0 then
+      Inc(Result);
 end;
 
 procedure TakeClock(var S: tIecSlaveStation; const Buf: array of Byte; Len: Word; const O: tIecObject);
@@ -786,6 +970,7 @@ begin
   S.Class2.Count := 0;
   S.GiActive := False;
   S.SelActive := False;
+  FillChar(S.Deferred, SizeOf(S.Deferred), 0);
   Answer(S, Buf, Len, Cot_ActCon, False);
   if Assigned(S.OnReset) then
     S.OnReset(S.Data, Qrp_General);
@@ -999,6 +1184,7 @@ begin
   S.Params := P;
   S.Ca := Ca;
   S.SelectMs := IecSlaveSelectMs;
+  S.DeferSlot := -1;
   Result := IecCheckParams(P, Err);
   if Result <> res_Ok then
     Exit;

@@ -135,6 +135,8 @@ type
       where the line itself holds the sender back (flow control, TCP). }
     function  ComDropsWhenFull: Boolean; virtual;
     procedure ComPull;
+    { up to IDL= ms for input: True when this port's came }
+    function  ComIdleWait: Boolean;
     { RECON=: after a device loss, reopen the device in the polls }
     procedure ComReopen;
     { RECON=: CH_Fault (a fault, or res_Reconnecting) becomes res_Reconnecting
@@ -897,9 +899,26 @@ begin
     Result := CHS_Sending;
 end;
 
+{ Up to IDL= ms for input: True when this port's came. The program-wide
+  wait (ChnWaitUse) ends at the first input on any channel; without one
+  the port's own wait; a port that failed has nothing to wait on and
+  sleeps (still no busy loop). }
+function tChnPhys.ComIdleWait: Boolean;
+begin
+  if CH_Wait <> nil then
+    Result := ChnWaitIdle(CH_Wait, CH_Idle)
+  else if CH_Fault <> res_Ok then
+  begin
+    Sleep(CH_Idle);
+    Result := False;
+  end
+  else
+    Result := CH_Port.WaitInput(CH_Idle);
+end;
+
 function tChnPhys.ChReceiveReady: tChState;
 var
-  Waited: Boolean;
+  Watched: Boolean;
 begin
   if CH_State <> CHS_Connect then
     Exit(CHS_RecInactive);
@@ -909,32 +928,17 @@ begin
   if CH_RCtrl <> CHS_ReceiveReady then
   begin
     ComPumpTx;                    { a long message keeps moving meanwhile }
-    Waited := (CH_Idle > 0) and (CH_Ring.Count = 0) and ChnWaitWatching(CH_Wait) and
+    { one path: read what has come; nothing: wait up to IDL= ms and read
+      if it came. When the shared wait watches this port (and the port
+      holds nothing read already) the read before the wait is left out:
+      input that came ends the wait at once, so an idle poll makes no read
+      that finds nothing }
+    Watched := (CH_Idle > 0) and (CH_Ring.Count = 0) and ChnWaitWatching(CH_Wait) and
       not CH_Port.HoldsInput;
-    if Waited then
-    begin
-      { the shared wait watches this port: input that came would end the
-        wait at once, so read only when it says so (no read that finds
-        nothing, once per idle poll) }
-      if ChnWaitIdle(CH_Wait, CH_Idle) then
-        ComPull;
-    end
-    else
+    if not Watched then
       ComPull;
-    if (CH_Ring.Count = 0) and (CH_Idle > 0) and not Waited then
-    begin
-      if CH_Wait <> nil then
-      begin
-        { the program-wide wait: ends at the first input on any channel;
-          True only when it was this port's }
-        if ChnWaitIdle(CH_Wait, CH_Idle) then
-          ComPull;
-      end
-      else if CH_Fault <> res_Ok then
-        Sleep(CH_Idle)            { nothing to wait on; still no busy loop }
-      else if CH_Port.WaitInput(CH_Idle) then
-        ComPull;
-    end;
+    if (CH_Ring.Count = 0) and (CH_Idle > 0) and ComIdleWait then
+      ComPull;
     if CH_Ring.Count > 0 then
       CH_RCtrl := CHS_ReceiveReady
     else

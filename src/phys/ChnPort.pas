@@ -55,7 +55,8 @@ type
   TChnPortClass = class of TChnPort;
 
   { The serial-port interface. A driver implements Open, DoRead, DoWrite,
-    WaitInput and Close (calling inherited Close); every other method has
+    WaitInput and Close (calling inherited Close); Read and Write are not
+    virtual: their checks hold for every driver. Every other method has
     a default for a device without that capability (below), so a driver
     overrides only what its device does. All return at once unless the
     text says otherwise. }
@@ -92,7 +93,7 @@ type
     { Copy up to Size waiting bytes into Buf, never wait. Got = 0 with
       res_Ok means nothing is waiting; res_WrongState while not open. The
       checks are here, the reading is the driver's DoRead. }
-    function Read(var Buf; Size: LongInt; out Got: LongInt): tChResult; virtual;
+    function Read(var Buf; Size: LongInt; out Got: LongInt): tChResult;
     { Wait at most Ms milliseconds for input; True as soon as a byte (or a
       fault, which the next Read reports) is waiting. Ms = 0 only looks. }
     function WaitInput(Ms: LongInt): Boolean; virtual; abstract;
@@ -102,7 +103,7 @@ type
     { Hand up to Len bytes to the OS, never wait: Done tells how many were
       taken (possibly 0 when the OS buffer is full); res_WrongState while
       not open. The checks are here, the writing is the driver's DoWrite. }
-    function Write(const Buf; Len: LongInt; out Done: LongInt): tChResult; virtual;
+    function Write(const Buf; Len: LongInt; out Done: LongInt): tChResult;
     { Bytes handed to the OS but not yet on the line; 0 where unknown (the
       default). }
     function OutQueue(out N: LongInt): tChResult; virtual;

@@ -8,7 +8,7 @@ unit BinSupport;
 interface
 
 uses
-  SysUtils, Classes, Process;
+  SysUtils, Classes, Process, Pipes;
 
 { $BUILD/bin/Name (BUILD defaults to build; Name.exe on Windows). }
 function BinPath(const Name: string): string;
@@ -31,6 +31,8 @@ function RunExe(const Exe: string; const Args: array of string; TimeoutMs: Integ
   out Output: string): Integer;
 { Move what P's output pipe holds to Output (never waits). }
 procedure Drain(P: TProcess; var Output: string);
+{ What a pipe of a process (P.Output, P.Stderr) holds now (never waits). }
+function PipeText(S: TInputPipeStream): string;
 { Start tools/df1sim --pty with Args; Pty gets the device it printed on its
   first line ('' if none came within 3 s). The caller frees the process. }
 function StartSimPty(const Args: array of string; out Pty: string): TProcess;
@@ -81,19 +83,24 @@ begin
     Result := GetEnvironmentVariable('CHN_EXEC') + ' ' + Result;
 end;
 
-{ Move what the pipe holds to Output. }
-procedure Drain(P: TProcess; var Output: string);
+function PipeText(S: TInputPipeStream): string;
 var
   Buf: array[0..4095] of Char;
   N: Integer;
 begin
-  while P.Output.NumBytesAvailable > 0 do
+  Result := '';
+  while S.NumBytesAvailable > 0 do
   begin
-    N := P.Output.Read(Buf, SizeOf(Buf));
+    N := S.Read(Buf, SizeOf(Buf));
     if N <= 0 then
       Break;
-    Output := Output + Copy(Buf, 0, N);
+    Result := Result + Copy(Buf, 0, N);
   end;
+end;
+
+procedure Drain(P: TProcess; var Output: string);
+begin
+  Output := Output + PipeText(P.Output);
 end;
 
 function RunBin(const Name: string; const Args: array of string; TimeoutMs: Integer;

@@ -24,6 +24,9 @@ uses
 
 type
   TFakePort = class(TChnPort)
+  protected
+    function DoRead(var Buf; Size: LongInt; out Got: LongInt): tChResult; override;
+    function DoWrite(const Buf; Len: LongInt; out Done: LongInt): tChResult; override;
   public
     class var Log: string;
     class var KernelOk: Boolean;
@@ -37,9 +40,7 @@ type
     class procedure Reset;
     function Open(const Path: tWordString): tChResult; override;
     function Configure(const S: tPortSettings): tChResult; override;
-    function Read(var Buf; Size: LongInt; out Got: LongInt): tChResult; override;
     function WaitInput(Ms: LongInt): Boolean; override;
-    function Write(const Buf; Len: LongInt; out Done: LongInt): tChResult; override;
     function OutQueue(out N: LongInt): tChResult; override;
     function Drain: tChResult; override;
     function SetRts(On: Boolean): tChResult; override;
@@ -51,13 +52,14 @@ type
   end;
 
   TEndlessPort = class(TChnPort)
+  protected
+    function DoRead(var Buf; Size: LongInt; out Got: LongInt): tChResult; override;
+    function DoWrite(const Buf; Len: LongInt; out Done: LongInt): tChResult; override;
   public
     class var Produced: Int64;       { bytes handed out since Open }
     class var MaxRead: LongInt;      { bytes a Read gives at most, 0: no bound }
     function Open(const Path: tWordString): tChResult; override;
-    function Read(var Buf; Size: LongInt; out Got: LongInt): tChResult; override;
     function WaitInput(Ms: LongInt): Boolean; override;
-    function Write(const Buf; Len: LongInt; out Done: LongInt): tChResult; override;
   end;
 
 { Byte I of TEndlessPort's stream. }
@@ -96,7 +98,7 @@ begin
   Result := res_Ok;
 end;
 
-function TFakePort.Read(var Buf; Size: LongInt; out Got: LongInt): tChResult;
+function TFakePort.DoRead(var Buf; Size: LongInt; out Got: LongInt): tChResult;
 begin
   if ReadFault <> res_Ok then
   begin
@@ -117,7 +119,7 @@ begin
   Result := RxData <> '';
 end;
 
-function TFakePort.Write(const Buf; Len: LongInt; out Done: LongInt): tChResult;
+function TFakePort.DoWrite(const Buf; Len: LongInt; out Done: LongInt): tChResult;
 begin
   Done := Len;
   if Done > 100 then
@@ -196,7 +198,7 @@ begin
   Result := res_Ok;
 end;
 
-function TEndlessPort.Read(var Buf; Size: LongInt; out Got: LongInt): tChResult;
+function TEndlessPort.DoRead(var Buf; Size: LongInt; out Got: LongInt): tChResult;
 var
   I: LongInt;
   P: PByte;
@@ -217,7 +219,7 @@ begin
   Result := True;
 end;
 
-function TEndlessPort.Write(const Buf; Len: LongInt; out Done: LongInt): tChResult;
+function TEndlessPort.DoWrite(const Buf; Len: LongInt; out Done: LongInt): tChResult;
 begin
   Done := Len;
   Result := res_Ok;
