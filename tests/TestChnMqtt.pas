@@ -36,7 +36,7 @@ type
 implementation
 
 uses
-  {$IFDEF UNIX}BaseUnix, MosquittoRun, TestTempDir,{$ENDIF}
+  {$IFDEF UNIX}BaseUnix, MosquittoRun, TestTempDir, TestSupport,{$ENDIF}
   ChnWait, ChnMqtt;
 
 procedure TTestChnMqtt.TestStateTextAndDefaults;
@@ -223,18 +223,17 @@ begin
   end;
 end;
 
-{ How often Needle occurs in S. }
-function Occurs(const Needle, S: string): LongInt;
+{ Open C, publish Payload on Topic: the broker acknowledges it and the
+  subscriber Sub gets it. }
+procedure AssertPublished(var C: tMqttClient; Sub: TMqttSub; const Topic, Payload: string);
 var
-  P: LongInt;
+  Err: AnsiString;
 begin
-  Result := 0;
-  P := Pos(Needle, S);
-  while P > 0 do
-  begin
-    Inc(Result);
-    P := Pos(Needle, S, P + 1);
-  end;
+  TAssert.AssertTrue(Err, MqttOpen(C, Err));
+  TAssert.AssertTrue('connected: ' + C.LastError, StepUntil(C, @Connected, 5000));
+  MqttPublish(C, Topic, Payload, False);
+  TAssert.AssertTrue('acknowledged', StepUntil(C, @Emptied, 5000));
+  TAssert.AssertTrue('the subscriber got it: ' + Sub.Text, Sub.WaitFor(Topic + ' ' + Payload + #10, 5000));
 end;
 
 { Messages Topic/1 .. Topic/N each exactly once in Text: '' or which not. }
@@ -355,11 +354,7 @@ begin
     C.Port := Broker.Port;
     C.User := 'gate';
     C.Password := 's3cret';
-    AssertTrue(Err, MqttOpen(C, Err));
-    AssertTrue('connected: ' + C.LastError, StepUntil(C, @Connected, 5000));
-    MqttPublish(C, 'pw/x', '1', False);
-    AssertTrue('acknowledged', StepUntil(C, @Emptied, 5000));
-    AssertTrue('the subscriber got it: ' + Sub.Text, Sub.WaitFor('pw/x 1'#10, 5000));
+    AssertPublished(C, Sub, 'pw/x', '1');
     { a wrong password: refused, the broker and the reason named }
     Bad.Port := Broker.Port;
     Bad.User := 'gate';
@@ -403,11 +398,7 @@ begin
     C.Port := Broker.Port;
     C.Tls := True;
     C.CaFile := Dir + 'ca.crt';
-    AssertTrue(Err, MqttOpen(C, Err));
-    AssertTrue('connected: ' + C.LastError, StepUntil(C, @Connected, 5000));
-    MqttPublish(C, 'tls/x', 'secret', False);
-    AssertTrue('acknowledged', StepUntil(C, @Emptied, 5000));
-    AssertTrue('the subscriber got it: ' + Sub.Text, Sub.WaitFor('tls/x secret'#10, 5000));
+    AssertPublished(C, Sub, 'tls/x', 'secret');
     { without TLS the broker's TLS listener never lets a client in }
     Plain.Port := Broker.Port;
     AssertTrue(Err, MqttOpen(Plain, Err));

@@ -30,7 +30,7 @@ type
 implementation
 
 uses
-  {$IFDEF UNIX}BaseUnix, PtyPair, MosquittoRun,{$ENDIF}
+  {$IFDEF UNIX}BaseUnix, PtyPair, MosquittoRun, TestSupport,{$ENDIF}
   Process, BinSupport, TestTempDir;
 
 procedure TTestChngateTool.TestCheck;
@@ -84,20 +84,6 @@ begin
 end;
 
 {$IFDEF UNIX}
-
-{ How often Needle occurs in S. }
-function Occurs(const Needle, S: string): LongInt;
-var
-  P: LongInt;
-begin
-  Result := 0;
-  P := Pos(Needle, S);
-  while P > 0 do
-  begin
-    Inc(Result);
-    P := Pos(Needle, S, P + 1);
-  end;
-end;
 
 { chngate CONF, its output in a pipe }
 function StartGate(const Conf: string): TProcess;

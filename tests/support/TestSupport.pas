@@ -17,6 +17,8 @@ type
   or an odd number of digits raises, so a typo fails the test }
 function HexToBytes(const S: string): TBytes;
 function BytesToHex(const B: array of Byte; Len: Integer): string;
+{ How often Needle occurs in S (a message in a subscriber's output ...). }
+function Occurs(const Needle, S: string): LongInt;
 { Poll Chn^.ChReceiveReady (and, if given, Other^.ChReceiveReady /
   ChSendReady to keep a peer moving) until a message waits or TimeoutMs. }
 function WaitReceive(Chn: pChnVirt; TimeoutMs: Integer; Other: pChnVirt = nil): Boolean;
@@ -47,6 +49,19 @@ uses
   {$IFDEF LINUX}Linux, UnixType,{$ENDIF} SysUtils, uString, ChnNoise;
 
 {$IFDEF LINUX}
+function Occurs(const Needle, S: string): LongInt;
+var
+  P: LongInt;
+begin
+  Result := 0;
+  P := Pos(Needle, S);
+  while P > 0 do
+  begin
+    Inc(Result);
+    P := Pos(Needle, S, P + 1);
+  end;
+end;
+
 function CpuMs: Double;
 var
   Ts: TTimeSpec;
