@@ -21,7 +21,8 @@
     read -> MQTT: from the read that saw it (the payload's ts) on;
   - chngate's CPU under load (% of one core), and idle (scan 60 s, nothing
     to read) against the idle floor: the program-wide wait alone
-    (ChnWaitAny over as many descriptors - 8 lines and a socket - woken as
+    (ChnWaitAny over as many descriptors - 9 serial lines on ptys for the
+    gateway's 8 lines and its socket - woken as
     often as the gateway was), run as a child in the same run: CPU per
     second and the ratio;
   - chngate's resident memory, and by what is mapped (its own code, the

@@ -53,7 +53,7 @@ type
   tTagDeviceState = (tdOk, tdDown, tdDemoted);
 
   tPcccTag = record
-    { AnsiStrings, not ShortStrings: four of 256 bytes were most of a
+    {- AnsiStrings, not ShortStrings: four of 256 bytes were most of a
       gateway's memory (800 tags: 0.8 MB) }
     Name    : AnsiString;    {< the name it is published under (default: Address) }
     Address : AnsiString;    {< as parsed, canonical: 'N7:0[10]', 'T4:1.ACC' }
