@@ -171,13 +171,13 @@ test: all $(BUILD)/testunits.inc $(BUILD)/fpcunit/stamp
 	@mkdir -p $(TUNITDIR) $(TBINDIR)
 	@$(FPC) $(TESTFLAGS) tests/runtests.pas >$(BUILD)/test-build.log 2>&1 || { cat $(BUILD)/test-build.log; echo "0 passed, 1 failed"; exit 1; }
 	@$(FPC) $(SOAKFLAGS) tests/soak/soak.pas >>$(BUILD)/test-build.log 2>&1 || { cat $(BUILD)/test-build.log; echo "0 passed, 1 failed"; exit 1; }
-	@# iec101master with the test flags (heaptrc): its leaks at exit are tested
-	@$(FPC) $(SOAKFLAGS) examples/iec101master.pas >>$(BUILD)/test-build.log 2>&1 || { cat $(BUILD)/test-build.log; echo "0 passed, 1 failed"; exit 1; }
+	@# programs with the test flags (heaptrc): what they leave at exit is tested
+	@for p in $(HEAPPROGS); do $(FPC) $(SOAKFLAGS) $$p >>$(BUILD)/test-build.log 2>&1 || { cat $(BUILD)/test-build.log; echo "0 passed, 1 failed"; exit 1; }; done
 	@BUILD=$(BUILD) FPC=$(FPC) T="$(T)" bash tests/run.sh
 
-# only the four programs it runs: a first make demo builds the library
+# only the programs it runs: a first make demo builds the library
 # and those, not every example
-demo: $(addprefix $(BINDIR)/,df1sim df1echo df1read chndecode)
+demo: $(addprefix $(BINDIR)/,df1sim df1echo df1read chndecode chngate iec101slave)
 	@bash tools/demo.sh $(BUILD)
 
 bench: $(BENCHBINS) $(BINDIR)/chntap $(BINDIR)/plcconc $(BINDIR)/df1sim
@@ -192,6 +192,10 @@ SECONDS ?= 10
 FUZZERS := fuzzcodecs fuzzpccc fuzzasdu fuzzparams
 # the soak program: test flags, on the units the test build just made
 SOAKFLAGS = $(filter-out -B,$(TESTFLAGS))
+# programs make test also builds with the test flags into $(TBINDIR): the
+# suite checks with heaptrc that they free everything at exit (usage
+# errors too)
+HEAPPROGS := examples/iec101master.pas examples/iec101slave.pas examples/df1write.pas tools/chntap.pas tools/df1sim.pas
 fuzz: units
 	@mkdir -p $(TUNITDIR) $(TBINDIR)
 	@rm -f $(BUILD)/fuzz-build.log

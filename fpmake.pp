@@ -76,6 +76,13 @@ begin
     T := AddUnit(P, 'ChnTypes.pas', AllOSes, []);
       T.Dependencies.AddInclude('chnversion.inc');
     AddUnit(P, 'uString.pas', AllOSes, []);
+    { the OS's services the portable units ask for (an error code's words,
+      COM=N's device, the UTC clock, a log file shared by its writers);
+      its OS parts are include files, as ChnWait's }
+    T := AddUnit(P, 'ChnOs.pas', AllOSes, ['uString']);
+      T.Dependencies.AddUnit('ChnUnix', AllUnixOSes);
+      T.Dependencies.AddInclude('chnos.inc', AllUnixOSes);
+      T.Dependencies.AddInclude('chnos.inc', AllWindowsOSes);
     AddUnit(P, 'ChnRing.pas', AllOSes, ['ChnWait']);
     { the parameter-string parser }
     AddUnit(P, 'ChnParam.pas', AllOSes, ['ChnTypes', 'uString']);
@@ -92,16 +99,14 @@ begin
     { the protocol base }
     AddUnit(P, 'ChnProto.pas', AllOSes, ['ChnTypes', 'ChnVirt', 'ChnWait']);
     { every layer at once, for programs that take any parameter string }
-    T := AddUnit(P, 'ChnLayers.pas', AllOSes, ['ChnCom', 'ChnTcp', 'ChnLoop', 'ChnTrc', 'ChnNoise',
+    AddUnit(P, 'ChnLayers.pas', AllOSes, ['ChnCom', 'ChnTcp', 'ChnLoop', 'ChnTrc', 'ChnNoise',
       'ChnDF1', 'ChnFT1_2', 'ChnICS', 'ChnIec104']);
-      T.Dependencies.AddUnit('ChnPty', AllUnixOSes);
 
     { ---- src/phys: the physical layers, their port drivers, sockets }
     Part(P, 'phys');
     { what the Unix parts share }
     AddUnit(P, 'ChnUnix.pas', AllUnixOSes, ['ChnTypes']);
-    T := AddUnit(P, 'ChnPort.pas', AllOSes, ['ChnTypes', 'ChnWait', 'uString']);
-      T.Dependencies.AddUnit('ChnUnix', AllUnixOSes);
+    AddUnit(P, 'ChnPort.pas', AllOSes, ['ChnTypes', 'ChnWait', 'ChnOs', 'uString']);
     AddUnit(P, 'ChnPortUnix.pas', AllUnixOSes, ['ChnTypes', 'ChnWait', 'ChnPort', 'ChnUnix']);
     AddUnit(P, 'ChnPty.pas', AllUnixOSes, ['ChnTypes', 'ChnPort', 'ChnPortUnix', 'ChnUnix']);
     AddUnit(P, 'ChnPortWin.pas', AllWindowsOSes, ['ChnTypes', 'ChnWait', 'ChnPort']);
@@ -130,7 +135,7 @@ begin
     AddUnit(P, 'ChnNoise.pas', AllOSes, ['ChnTypes', 'ChnVirt', 'uString', 'ChnWait']);
     AddUnit(P, 'ChnTrcFormat.pas', AllOSes, ['ChnTypes', 'uString']);
     AddUnit(P, 'ChnPcap.pas', AllOSes, ['ChnTypes', 'ChnTrcFormat', 'uString']);
-    AddUnit(P, 'ChnTrc.pas', AllOSes, ['ChnTypes', 'ChnVirt', 'ChnTrcFormat', 'ChnPcap', 'uString']);
+    AddUnit(P, 'ChnTrc.pas', AllOSes, ['ChnTypes', 'ChnVirt', 'ChnTrcFormat', 'ChnPcap', 'ChnOs', 'uString']);
 
     { ---- protocols: per protocol codec, layer, link helpers }
     { src/df1: DF1 and PCCC }
@@ -172,8 +177,12 @@ begin
       'ChnIec104', 'ChnIec104Codec']);
     AddUnit(P, 'ChnIec101Master.pas', AllOSes, ['ChnTypes', 'ChnVirt', 'ChnFT1_2', 'ChnFT12Link',
       'ChnFT12Primary', 'ChnFT12Codec', 'ChnIec101Asdu', 'ChnWait', 'ChnIecTransport']);
+    { file transfer (types 120..127): codec, controlled and controlling station }
+    AddUnit(P, 'ChnIecFile.pas', AllOSes, ['ChnTypes', 'ChnIec101Asdu']);
+    AddUnit(P, 'ChnIecFileServer.pas', AllOSes, ['ChnTypes', 'ChnVirt', 'ChnIec101Asdu', 'ChnIecFile']);
+    AddUnit(P, 'ChnIecFileClient.pas', AllOSes, ['ChnTypes', 'ChnVirt', 'ChnFT12Codec', 'ChnIec101Asdu', 'ChnIec101Master', 'ChnIecFile']);
     AddUnit(P, 'ChnIec101Slave.pas', AllOSes, ['ChnTypes', 'ChnVirt', 'ChnFT1_2', 'ChnFT12Link',
-      'ChnFT12Station', 'ChnIec101Asdu', 'ChnIecTransport']);
+      'ChnFT12Station', 'ChnIec101Asdu', 'ChnIecTransport', 'ChnIecFile', 'ChnIecFileServer']);
     { the points a master receives: value, quality, time; slave health; commands }
     AddUnit(P, 'ChnIecPointTable.pas', AllOSes, ['ChnTypes', 'ChnVirt', 'ChnWait', 'ChnIec101Asdu',
       'ChnIec101Master']);

@@ -17,20 +17,22 @@ program iec101master;
 
 uses
   SysUtils, Classes, uString, ChnTypes, ChnVirt, ChnLayers, ChnFT1_2, ChnFT12Link,
-  ChnIec101Asdu, ChnIec101Master, ChnIec101Print, ChnCli;
+  ChnIec101Asdu, ChnIec101Master, ChnIec101Print, ChnCli, ChnIecFile, ChnIecFileClient, ChnIecFileServer;
 
 const
   Prog = 'iec101master';
   ExitOk = 0; ExitLine = 1; ExitAnswer = 3; ExitNoAnswer = 4;
 
 type
-  tCmdKind = (ckGi, ckCi, ckRead, ckClock, ckTest, ckSc, ckDc, ckScaled, ckFloat, ckPoll);
+  tCmdKind = (ckGi, ckCi, ckRead, ckClock, ckTest, ckSc, ckDc, ckScaled, ckFloat, ckPoll,
+    ckDir, ckGet, ckPut);
   tCmd = record
     Kind : tCmdKind;
     Ioa  : LongWord;
     Int  : LongInt;
     Num  : Double;
     Token: string;
+    Path : string;    {< get, put: the local file }
   end;
 
 var
@@ -41,6 +43,7 @@ var
   Slaves : array of Word;
   Json, Sbo, Delay: Boolean;
   M      : tIecMaster;
+  Files  : tIecFileClient;
 
 procedure Show(Addr: Word; const H: tIecAsdu; const O: tIecObject; const Dir: string);
 begin
@@ -101,6 +104,9 @@ begin
     '  setpoint-scaled IOA=N   set point, scaled value (-32768..32767)' + LineEnding +
     '  setpoint-float IOA=X    set point, short float' + LineEnding +
     '  poll SECONDS            keep polling and print what arrives' + LineEnding +
+    '  dir                     the slave''s directory of files (F_DR_TA_1)' + LineEnding +
+    '  get IOA=PATH            fetch the file of IOA into PATH (file transfer)' + LineEnding +
+    '  put IOA=PATH            send the file PATH as the file of IOA' + LineEnding +
     LineEnding + 'Example:' + LineEnding +
     '  iec101master --json ''NAM=FT1_2 MS=ON MAS=MASTER LEN=0 DNO=1 NAM=COM DEV=/dev/ttyUSB0 ' +
     'BD=9600 PAR=E'' gi sc 5000=1 poll 10' + LineEnding);
@@ -216,6 +222,23 @@ begin
       if not StrToReal(V, -3.4e38, 3.4e38, C.Num) then
         CliUsageError(Cli, 'setpoint-float wants IOA=X, a short float', C.Token);
     end
+    else if W = 'dir' then C.Kind := ckDir
+    else if (W = 'get') or (W = 'put') then
+    begin
+      Tok := Next('IOA=PATH');
+      C.Token := W + ' ' + Tok;
+      SplitAssign(W, Tok, C.Ioa, C.Path);
+      if C.Path = '' then
+        CliUsageError(Cli, W + ' wants IOA=PATH', C.Token);
+      if W = 'get' then
+        C.Kind := ckGet
+      else
+      begin
+        C.Kind := ckPut;
+        if not FileExists(C.Path) then
+          CliUsageError(Cli, 'no such file', C.Path);
+      end;
+    end
     else if W = 'poll' then
     begin
       C.Kind := ckPoll;
@@ -286,6 +309,8 @@ begin
   M.OnBad := @OnBad;
   M.NoGiAfterInit := CliHas(Cli, 'no-gi-after-init');
   M.Data := nil;
+  IecFileClientInit(Files, M);
+  Files.TimeoutMs := M.CommandMs;
   if M.Balanced then
   begin
     if Length(Slaves) > 1 then
@@ -302,6 +327,52 @@ begin
         Dispose(Chn, Done);
         CliUsageError(Cli, 'slave address twice, too large for ADR= or the broadcast address', IntToStr(Slaves[I]));
       end;
+end;
+
+{ A file command (dir, get, put) to one slave: ChnIecFileClient. }
+function RunFile(const C: tCmd; Addr: Word): tChResult;
+var
+  Content: AnsiString;
+  I: Integer;
+  E: ShortString;
+begin
+  Content := '';
+  case C.Kind of
+    ckDir:
+      begin
+        Result := IecFileDir(Files, Addr, Ca);
+        for I := 0 to Files.DirCount - 1 do
+          with Files.Dir[I] do
+            if Json then
+              WriteLn(Format('{"slave":%d,"file":%d,"nof":%d,"length":%d,"sof":%d,"time":"%s"}',
+                [Addr, Ioa, Nof, Lof, Sof, IecTimeText(Time, tkCP56)]))
+            else
+              WriteLn(Format('file IOA %d NOF %d %d octets SOF 0x%.2x %s',
+                [Ioa, Nof, Lof, Sof, IecTimeText(Time, tkCP56)]));
+      end;
+    ckGet:
+      begin
+        Result := IecFileGet(Files, Addr, Ca, C.Ioa, Nof_Transparent, Content);
+        if (Result = res_Ok) and not IecFileSave(C.Path, Content, E) then
+        begin
+          Files.Err := E;
+          Result := res_BadParam;
+        end;
+      end;
+  else
+    if IecFileLoad(C.Path, Content, E) then
+      Result := IecFilePut(Files, Addr, Ca, C.Ioa, Nof_Transparent, Content)
+    else
+    begin
+      Files.Err := E;
+      Result := res_BadParam;
+    end;
+  end;
+  if (Result = res_Ok) and (C.Kind <> ckDir) and not Json then
+    WriteLn(Format('%s file IOA %d: %d octets', [C.Token, C.Ioa, Length(Content)]))
+  else if (Result = res_Ok) and (C.Kind <> ckDir) then
+    WriteLn(Format('{"slave":%d,"%s":%d,"length":%d}', [Addr, Copy(C.Token, 1, 3), C.Ioa, Length(Content)]));
+  Flush(Output);
 end;
 
 { One command to one slave; the exit code it earns. }
@@ -327,6 +398,7 @@ begin
     ckDc: R := IecCommand(M, Addr, Ca, C_DC_NA_1, O, Sbo);
     ckScaled: R := IecCommand(M, Addr, Ca, C_SE_NB_1, O, Sbo);
     ckFloat: R := IecCommand(M, Addr, Ca, C_SE_NC_1, O, Sbo);
+    ckDir, ckGet, ckPut: R := RunFile(C, Addr);
   else
     begin
       IecPollFor(M, C.Int * 1000);
@@ -340,10 +412,14 @@ begin
   end;
   if R = res_Ok then
     Exit(ExitOk);
-  WriteLn(StdErr, Prog, ': ', M.Cmd.Err, ' (', C.Token, ')');
+  if C.Kind in [ckDir, ckGet, ckPut] then
+    WriteLn(StdErr, Prog, ': ', Files.Err, ' (', C.Token, ')')
+  else
+    WriteLn(StdErr, Prog, ': ', M.Cmd.Err, ' (', C.Token, ')');
   case R of
     res_Timeout: Result := ExitNoAnswer;
-    res_IecNegative, res_IecUnknownType, res_IecUnknownCot, res_IecUnknownCa, res_IecUnknownIoa:
+    res_IecNegative, res_IecUnknownType, res_IecUnknownCot, res_IecUnknownCa, res_IecUnknownIoa,
+    res_IecFileRefused, res_IecFileChecksum, res_IecFileAborted, res_IecFileSequence:
       Result := ExitAnswer;
   else
     Result := ExitLine;

@@ -23,9 +23,9 @@ program iec101slave;
 {$MODE OBJFPC}{$H+}
 
 uses
-  {$IFDEF UNIX}BaseUnix,{$ENDIF}
+  {$IFDEF UNIX}BaseUnix, ChnPty,{$ENDIF}
   Classes, SysUtils, ChnTypes, ChnVirt, ChnWait, ChnLayers, ChnFT1_2, ChnIec101Asdu,
-  ChnIec101Slave, ChnIec101Print, Iec101Points, ChnCli;
+  ChnIec101Slave, ChnIec101Print, Iec101Points, ChnCli, ChnIecFileServer;
 
 const
   DefaultPoints =
@@ -40,7 +40,7 @@ var
   Json, Refuse: Boolean;
   Seconds, Ca, SelectMs: LongInt;
   Params: tIecParams;
-  LineParams, PointsFile: AnsiString;
+  LineParams, PointsFile, FilesDir: AnsiString;
   Stop: Boolean = False;
   { --return: a command point's monitoring point (return information) }
   Returns: array of record Cmd, Mon: LongWord; end;
@@ -100,6 +100,8 @@ begin
     'command point CMD sets monitoring point MON to its value, sent as a spontaneous event ' +
     'after the ACT_CON (5000=104,5101=101)');
   CliOption(Cli, 'json', #0, '', 'one JSON object per line on stdout, nothing else');
+  CliOption(Cli, 'files', #0, 'DIR', 'file transfer: serve the files of DIR named by their IOA ' +
+    '(30000, 30000.dat ...) and keep the files received there as DIR/IOA');
   CliOption(Cli, 'no-init', #0, '', 'send no end of initialisation (M_EI_NA_1, COT 4, COI 0) ' +
     'after the start');
   CliEpilog(Cli, 'Example:' + LineEnding +
@@ -112,6 +114,9 @@ begin
   Json := CliHas(Cli, 'json');
   Refuse := CliHas(Cli, 'refuse');
   PointsFile := CliValue(Cli, 'points', '');
+  FilesDir := CliValue(Cli, 'files', '');
+  if (FilesDir <> '') and not DirectoryExists(FilesDir) then
+    CliUsageError(Cli, 'no such directory', FilesDir);
   Seconds := CliNum(Cli, 'seconds', 1, 1000000, 0);
   Ca := CliNum(Cli, 'ca', 0, 65535, 1);
   Params := IecDefaultParams;
@@ -132,6 +137,7 @@ end;
 
 var
   Slave, Table: tIecSlaveStation;
+  Files: tIecFileServer;
 
 procedure Show(Data: Pointer; Sent: Boolean; Buf: PByte; Len: Word);
 var
@@ -148,7 +154,8 @@ begin
   Move(Buf^, A[0], Len);
   if IecDecodeHeader(Slave.Params, A, Len, H, E) <> res_Ok then
   begin
-    { not decodable (an unknown type): said on stderr, JSON stays clean }
+    { not decodable here (file transfer, an unknown type): said on
+      stderr, JSON stays clean }
     WriteLn(StdErr, FormatDateTime('hh:nn:ss.zzz ', Now), Arrow, IecAsduText(Slave.Params, A, Len));
     Exit;
   end;
@@ -254,6 +261,12 @@ begin
   Slave.OnCommand := @OnCommand;
   Slave.OnClock := @OnClock;
   Slave.OnBad := @OnBad;
+  if FilesDir <> '' then
+  begin
+    IecFileServerInit(Files, Params, Ca);
+    Files.Dir := FilesDir;
+    IecSlaveServeFiles(Slave, @Files);
+  end;
   { the station has initialised: the master learns it (and interrogates) }
   if not CliHas(Cli, 'no-init') then
     IecSlaveEndOfInit(Slave, Coi_PowerOn);
@@ -266,7 +279,13 @@ begin
     Dispose(Chn, Done);
     CliFail(Cli, Err, LineParams, 1);
   end;
+  {$IFDEF UNIX}
+  { a pty it made (NAM=COM DRV=PTY): the device the master opens }
+  if Pos('DRV=PTY', UpperCase(LineParams)) > 0 then
+    WriteLn(StdErr, 'iec101slave: PTY ', PtyLastSlave);
+  {$ENDIF}
   WriteLn(StdErr, 'iec101slave: ', Chn^.ChGetParam(''), ', ', Slave.PointCount, ' points, CA ', Ca);
+  Flush(StdErr);
   {$IFDEF UNIX}
   FpSignal(SIGINT, @OnSignal);
   FpSignal(SIGTERM, @OnSignal);
@@ -290,6 +309,11 @@ begin
       + '%d counter interrogations, %d reads, %d commands (%d refused), %d clock syncs, '
       + '%d events, %d negative answers, %d lost', [Asdus, BadAsdus, Interrogations,
       CounterInterrogations, Reads, Commands, Refused, ClockSyncs, Events, Negatives, Overflows]));
+  if FilesDir <> '' then
+    with Files do
+      WriteLn(StdErr, Format('iec101slave: files: %d sent, %d received, %d failed, %d aborted, '
+        + '%d bad checksums, %d refused%s', [Sent, Received, Failed, Aborted, BadChecksums, Refused,
+        BoolToStr(LastError <> '', ' (last: ' + LastError + ')', '')]));
   if R <> res_Ok then
   begin
     Err := Chn^.ChResultStr(R);

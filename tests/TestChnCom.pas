@@ -1,15 +1,15 @@
-{ Tests of ChnCom over real pseudo-terminal pairs (no hardware): the pty
-  tests run once per port backend built in (TTestChnComRtl always,
-  TTestChnComSynapse with make SYNAPSE_DIR=...). A pty is a virtual line,
-  which takes every setting as given; to test the strict path a real UART
-  takes (read-back, refusals naming the token), these tests open the pty
-  through a test driver (RTLSTRICT, SYNSTRICT) that is the backend with the
-  virtual-line detection switched off. Settings are checked by reading the
-  kernel's termios of the open descriptor, not through the code under
-  test. The virtual line itself is TestChnComVirtual's, the parameters and
-  the RS-485/overrun logic on a scripted port TestChnComLogic's; on Windows
-  this unit is empty (no ptys there; tools/wintest.sh runs ChnPortWin on a
-  Wine COM port instead). }
+{ Tests of ChnCom's line over real pseudo-terminal pairs (no hardware):
+  the settings the kernel took, all byte values at several settings, flow
+  control, large transfers both ways, a close that loses nothing and is
+  bounded, overrun and flow-control reporting, the idle wait and the CPU
+  of a legacy polling loop. Once per port backend built in
+  (TTestChnComRtl always, TTestChnComSynapse with make SYNAPSE_DIR=...),
+  on the fixture of ComPtyCase (the strict drivers RTLSTRICT, SYNSTRICT).
+  Opening, refusals and the loss of the device are TestChnComOpen's, the
+  virtual line itself TestChnComVirtual's, the parameters and the
+  RS-485/overrun logic on a scripted port TestChnComLogic's; on Windows
+  this unit is empty (no ptys there; tools/wintest.sh runs ChnPortWin on
+  a Wine COM port instead). }
 unit TestChnCom;
 
 {$MODE OBJFPC}{$H+}
@@ -18,29 +18,13 @@ interface
 
 uses
   SysUtils, Classes, fpcunit, testregistry,
-  {$IFDEF UNIX}BaseUnix, Unix, TermIO, Linux, Process, PtyPair, ChnPortUnix, ChnUnix, ChnPty, BinSupport,{$ENDIF}
-  {$IFDEF CHN_SYNAPSE}ChnPortSynapse,{$ENDIF}
-  {$IFDEF UNIX}ComPtySupport,{$ENDIF}
+  {$IFDEF UNIX}BaseUnix, Unix, TermIO, Linux, Process, PtyPair, ChnPortUnix, ChnUnix, ChnPty, BinSupport,
+  ComPtySupport, ComPtyCase,{$ENDIF}
   ChnTypes, ChnVirt, ChnPort, ChnCom, ChnDF1, TestSupport;
 
 {$IFDEF UNIX}
 type
-  TTestChnComPty = class(TTestCase)
-  protected
-    FPty: TPtyPair;
-    FChn: pChnVirt;
-    FRBuf: array[0..65534] of Byte;
-    function Drv: string; virtual; abstract;
-    procedure SetUp; override;
-    procedure TearDown; override;
-    { NAM=COM DRV=<Drv> DEV=<slave> + Extra, then ChOpen; ChConnect when the
-      open worked. Returns ChResult of the open. }
-    function OpenCom(const Extra: string): tChResult;
-    function Com: pChnCom;
-    { Receive exactly N bytes from the channel into Dst within TimeoutMs. }
-    function ChnReceiveAll(Dst: PByte; N: LongInt; TimeoutMs: LongInt): LongInt;
-    procedure CheckTermios(const What: string; CFlag: Cardinal; Speed: Cardinal);
-    procedure ExchangeAllByteValues(const What: string);
+  TTestChnComPty = class(TComPtyCase)
   published
     procedure TestBytesBothWaysAtSeveralSettings;
     procedure TestSettingsThePtyRefuses;
@@ -48,26 +32,13 @@ type
     procedure TestNonStandardBaud;
     procedure TestOneMiBBothWaysNoLoss;
     procedure TestLargeWritesCompleteThroughSendReady;
-    procedure TestMissingDevice;
-    procedure TestNoPermission;
-    procedure TestNotATerminalIsRefused;
-    procedure TestDeviceInUse;
-    procedure TestOtherUserCanOpenAfterClose;
-    procedure TestDeviceLostThenReopen;
-    procedure TestReconnectsAfterDeviceLoss;
-    procedure TestReconnectStopsAtARefusedSetting;
-    procedure TestLatencyRefusedWithoutTheTimer;
-    procedure TestLatencyWrittenWhereTheDriverHasIt;
     procedure TestCloseRightAfterSendLosesNothing;
     procedure TestCloseWaitsUntilALongMessageLeft;
     procedure TestCloseIsBoundedWhenNobodyReads;
     procedure TestOverrunReportedWithoutFlowControl;
     procedure TestFlowControlPausesInsteadOfDropping;
-    procedure TestRs485RefusedOnPty;
     procedure TestIdleWaitReturnsOnFirstByte;
     procedure TestLegacyPollingLoopCpu;
-    procedure TestRefusalNamesTheToken;
-    procedure TestOpenErrorsSayTheOsReason;
   end;
 
   TTestChnComRtl = class(TTestChnComPty)
@@ -82,148 +53,11 @@ type
   end;
   {$ENDIF}
 
-  {$ENDIF UNIX}
+{$ENDIF UNIX}
 
 implementation
 
 {$IFDEF UNIX}
-function Pattern(I: LongInt): Byte; inline;
-begin
-  Result := Byte((I * 7) xor (I shr 8) xor (I shr 16));
-end;
-
-{ Whether termios on this system keeps the rate code Code: qemu-user 7.2
-  translates only codes up to B460800 and drops the rest. Asked of the
-  pty master, not through the code under test. }
-function SystemKeepsRate(Pty: TPtyPair; Code: Cardinal): Boolean;
-var
-  T, Old: Termios;
-begin
-  Result := False;
-  if TCGetAttr(Pty.Master, Old) <> 0 then
-    Exit;
-  T := Old;
-  CFSetOSpeed(T, Code);
-  CFSetISpeed(T, Code);
-  if TCSetAttr(Pty.Master, TCSANOW, T) <> 0 then
-    Exit;
-  Result := (TCGetAttr(Pty.Master, T) = 0) and (T.c_cflag and KCBAUD = Code);
-  TCSetAttr(Pty.Master, TCSANOW, Old);
-end;
-
-{ ------------------------------------------------------------ pty tests }
-
-procedure TTestChnComPty.SetUp;
-begin
-  FPty := TPtyPair.Create;
-  FChn := nil;
-end;
-
-procedure TTestChnComPty.TearDown;
-begin
-  if FChn <> nil then
-    Dispose(FChn, Done);
-  FChn := nil;
-  FPty.Free;
-end;
-
-function TTestChnComPty.Com: pChnCom;
-begin
-  Result := pChnCom(FChn);
-end;
-
-function TTestChnComPty.OpenCom(const Extra: string): tChResult;
-begin
-  if FChn <> nil then
-    Dispose(FChn, Done);
-  FChn := ChnCollection^.ChNewInit(ChnCom.cName);
-  AssertTrue('COM registered', FChn <> nil);
-  FChn^.ChSetParam('NAM=COM DRV=' + Drv + ' DEV=' + FPty.SlavePath + ' ' + Extra);
-  AssertEquals('params ' + Extra + ' ' + FChn^.ChParamError, res_Ok, FChn^.ChResult);
-  FChn^.ChOpen;
-  Result := FChn^.ChResult;
-  if Result = res_Ok then
-  begin
-    FChn^.ChReceiveBuffer(@FRBuf, SizeOf(FRBuf));
-    FChn^.ChConnect;
-    AssertEquals('connect', res_Ok, FChn^.ChResult);
-  end;
-end;
-
-function TTestChnComPty.ChnReceiveAll(Dst: PByte; N: LongInt; TimeoutMs: LongInt): LongInt;
-var
-  Deadline: QWord;
-  Len: Word;
-  Take: LongInt;
-begin
-  Result := 0;
-  Deadline := GetTickCount64 + QWord(TimeoutMs);
-  while (Result < N) and (GetTickCount64 <= Deadline) do
-    if FChn^.ChReceiveReady = CHS_ReceiveReady then
-    begin
-      Len := 0;
-      FChn^.ChReceive(Len);
-      AssertEquals('receive result', res_Ok, FChn^.ChReceiveResult);
-      Take := Len;
-      if Take > N - Result then
-        Take := N - Result;   { more than asked for: the test reads too little }
-      AssertEquals('no extra bytes', Take, Len);
-      Move(FRBuf, Dst[Result], Take);
-      Inc(Result, Take);
-    end;
-end;
-
-procedure TTestChnComPty.CheckTermios(const What: string; CFlag: Cardinal; Speed: Cardinal);
-var
-  T: tTermios2;
-  Classic: Termios;
-  Mask: Cardinal;
-begin
-  FillChar(T, SizeOf(T), 0);
-  if FpIOCtl(Com^.CH_Port.OsHandle, TCGETS2, @T) <> 0 then
-  begin
-    { the device refuses termios2 (qemu-user 7.2): classic termios holds
-      the same flags, and a rate code for every rate the layer could set }
-    AssertTrue(What + ': rate needs termios2', Speed <> KBOTHER);
-    AssertEquals(What + ': tcgetattr', 0, TCGetAttr(Com^.CH_Port.OsHandle, Classic));
-    T.c_cflag := Classic.c_cflag;
-    T.c_lflag := Classic.c_lflag;
-  end;
-  Mask := KCSIZE or KCSTOPB or KPARENB or KPARODD or KCMSPAR or KCRTSCTS;
-  AssertEquals(What + ': c_cflag bits', IntToHex(CFlag and Mask, 8),
-    IntToHex(T.c_cflag and Mask, 8));
-  if Speed = KBOTHER then
-    AssertEquals(What + ': rate code', KBOTHER, T.c_cflag and KCBAUD)
-  else
-    AssertEquals(What + ': rate code', Speed, T.c_cflag and KCBAUD);
-  AssertEquals(What + ': raw (no ICANON/ECHO)', 0, T.c_lflag and (ICANON or ECHO));
-end;
-
-{ all 256 byte values from the channel to the master and back }
-procedure TTestChnComPty.ExchangeAllByteValues(const What: string);
-var
-  Out, Back: array[0..255] of Byte;
-  I: Integer;
-begin
-  for I := 0 to 255 do
-    Out[I] := I;
-  AssertEquals(What + ': send ready', CHS_SendReady, FChn^.ChSendReady);
-  FChn^.ChSend(@Out, 256);
-  AssertEquals(What + ': send result', res_Ok, FChn^.ChSendResult);
-  AssertTrue(What + ': sent', WaitSent(FChn, 2000));
-  FillChar(Back, SizeOf(Back), 0);
-  AssertEquals(What + ': master got all', 256, FPty.MasterReadAll(Back, 256, 2000));
-  for I := 0 to 255 do
-    AssertEquals(What + ': byte to master ' + IntToStr(I), I, Back[I]);
-  for I := 0 to 255 do
-    Out[I] := 255 - I;
-  AssertTrue(What + ': master write', FPty.MasterWriteAll(Out, 256, 2000));
-  FillChar(Back, SizeOf(Back), 0);
-  AssertEquals(What + ': channel got all', 256, ChnReceiveAll(@Back, 256, 2000));
-  for I := 0 to 255 do
-    AssertEquals(What + ': byte from master ' + IntToStr(I), 255 - I, Back[I]);
-end;
-
 procedure TTestChnComPty.TestBytesBothWaysAtSeveralSettings;
 type
   tCase = record
@@ -465,307 +299,6 @@ begin
   AssertEquals('transmitter idle', CHS_SendReady, FChn^.ChSendReady);
 end;
 
-procedure TTestChnComPty.TestMissingDevice;
-begin
-  FChn := ChnCollection^.ChNewInit(ChnCom.cName);
-  FChn^.ChSetParam('DRV=' + Drv + ' DEV=/dev/chn-no-such-tty');
-  AssertEquals('params', res_Ok, FChn^.ChResult);
-  FChn^.ChOpen;
-  AssertEquals('missing device', res_CannotOpen, FChn^.ChResult);
-  AssertEquals('state', CHS_Close, FChn^.ChReady);
-  FChn^.ChSend(@FRBuf, 1);
-  AssertEquals('send on closed', res_WrongState, FChn^.ChSendResult);
-  { the path is the device: a typo in COM's directory is just as missing }
-  FChn^.ChSetParam('DEV=/nonexistent-dir/ttyUSB0');
-  FChn^.ChOpen;
-  AssertEquals('missing directory', res_CannotOpen, FChn^.ChResult);
-  { a directory is no device either }
-  FChn^.ChSetParam('DEV=/tmp');
-  FChn^.ChOpen;
-  AssertEquals('a directory', res_CannotOpen, FChn^.ChResult);
-  AssertEquals('state after all', CHS_Close, FChn^.ChReady);
-end;
-
-{ Opening a device the user may not access. Root may access everything, so
-  when the suite runs as root the open is tried in a forked child that has
-  dropped to nobody (65534) first; the child's exit code carries ChResult. }
-procedure TTestChnComPty.TestNoPermission;
-var
-  Code: LongInt;
-begin
-  AssertEquals('chmod 000', 0, FpChmod(PChar(FPty.SlavePath), 0));
-  Code := OpenComAsNobody('DRV=' + Drv + ' DEV=' + FPty.SlavePath, True);
-  AssertTrue('child forked and exited (code ' + IntToStr(Code) + ')', Code >= 0);
-  AssertTrue('child could drop root (code ' + IntToStr(Code) + ')', Code < NobodyNotDropped);
-  AssertEquals('no permission, state closed', res_NoPermission, Code);
-end;
-
-procedure TTestChnComPty.TestNotATerminalIsRefused;
-var
-  Path: string;
-  F: THandle;
-begin
-  Path := GetTempDir + 'chn-com-not-a-tty-' + IntToStr(FpGetPid);
-  F := FileCreate(Path);
-  AssertTrue('temp file', F <> THandle(-1));
-  FileClose(F);
-  try
-    FChn := ChnCollection^.ChNewInit(ChnCom.cName);
-    FChn^.ChSetParam('DRV=' + Drv + ' DEV=' + Path);
-    FChn^.ChOpen;
-    AssertEquals('regular file refuses serial settings', res_BadSetting, FChn^.ChResult);
-    AssertEquals('state', CHS_Close, FChn^.ChReady);
-    FChn^.ChSetParam('DEV=/dev/null');
-    FChn^.ChOpen;
-    AssertEquals('/dev/null refuses serial settings', res_BadSetting, FChn^.ChResult);
-    AssertEquals('state', CHS_Close, FChn^.ChReady);
-  finally
-    DeleteFile(Path);
-  end;
-end;
-
-{ Exclusive use ends with ChClose: TIOCEXCL would outlive the descriptor
-  on a pty slave (its master stays open) and lock out every other non-root
-  user. The second open runs in a child as nobody, as in TestNoPermission. }
-procedure TTestChnComPty.TestOtherUserCanOpenAfterClose;
-var
-  Code: LongInt;
-begin
-  AssertEquals('first open', res_Ok, OpenCom(''));
-  FChn^.ChClose;
-  if FpGetuid = 0 then
-    AssertEquals('chown to nobody', 0, FpChown(PChar(FPty.SlavePath), 65534, 65534));
-  Code := OpenComAsNobody('DRV=' + Drv + ' DEV=' + FPty.SlavePath, False);
-  AssertTrue('child forked and exited (code ' + IntToStr(Code) + ')', Code >= 0);
-  AssertTrue('child could drop root (code ' + IntToStr(Code) + ')', Code < NobodyNotDropped);
-  AssertEquals('another user opens the closed device', res_Ok, Code);
-end;
-
-procedure TTestChnComPty.TestDeviceInUse;
-var
-  Second: pChnVirt;
-begin
-  AssertEquals('first open', res_Ok, OpenCom(''));
-  Second := ChnCollection^.ChNewInit(ChnCom.cName);
-  try
-    Second^.ChSetParam('DRV=' + Drv + ' DEV=' + FPty.SlavePath);
-    Second^.ChOpen;
-    AssertEquals('second open of the same device', res_CannotOpen, Second^.ChResult);
-    AssertEquals('second stays closed', CHS_Close, Second^.ChReady);
-    FChn^.ChClose;
-    Second^.ChOpen;
-    AssertEquals('free again after close', res_Ok, Second^.ChResult);
-  finally
-    Dispose(Second, Done);
-  end;
-end;
-
-procedure TTestChnComPty.TestDeviceLostThenReopen;
-var
-  B: array[0..2] of Byte;
-  T0: QWord;
-begin
-  AssertEquals('open', res_Ok, OpenCom(''));
-  B[0] := 1; B[1] := 2; B[2] := 3;
-  AssertTrue('master write', FPty.MasterWriteAll(B, 3, 1000));
-  AssertEquals('3 bytes before the loss', 3, ChnReceiveAll(@B, 3, 2000));
-  FPty.CloseMaster;                 { the USB adapter is pulled }
-  FChn^.ChReceiveReady;             { the next tick notices }
-  AssertEquals('ChResult', res_DeviceLost, FChn^.ChResult);
-  AssertEquals('ChReceiveResult', res_DeviceLost, FChn^.ChReceiveResult);
-  FChn^.ChSend(@B, 3);
-  AssertEquals('ChSendResult', res_DeviceLost, FChn^.ChSendResult);
-  AssertEquals('still open until the application closes', CHS_Connect, FChn^.ChReady);
-  { a lost device must not turn a polling loop into a busy loop or a hang }
-  T0 := GetTickCount64;
-  AssertEquals('nothing to receive', CHS_Receiving, FChn^.ChReceiveReady);
-  { IDL=1: a poll takes about 1 ms; a hang never returns. 500 ms leaves
-    room for a loaded CI machine }
-  AssertTrue('poll returns', GetTickCount64 - T0 < 500);
-  FChn^.ChClose;
-  AssertEquals('close', res_Ok, FChn^.ChResult);
-  AssertEquals('closed', CHS_Close, FChn^.ChReady);
-  { the adapter comes back (here: a new pty) }
-  FPty.Free;
-  FPty := TPtyPair.Create;
-  FChn^.ChSetParam('DEV=' + FPty.SlavePath);
-  FChn^.ChOpen;
-  AssertEquals('reopen', res_Ok, FChn^.ChResult);
-  FChn^.ChReceiveBuffer(@FRBuf, SizeOf(FRBuf));
-  FChn^.ChConnect;
-  ExchangeAllByteValues('after reopen');
-end;
-
-{ RECON=: the device is a symlink, as /dev/serial/by-id/... is; it goes
-  away with the adapter and comes back pointing at another tty. The layer
-  reports res_Reconnecting with the device named, polls keep waiting IDL
-  (no busy loop), and once the device is back the layer has reopened it
-  by itself with every setting (read from the kernel) and bytes flow. }
-procedure TTestChnComPty.TestReconnectsAfterDeviceLoss;
-var
-  Link: string;
-  T0: QWord;
-  C0, Used: Double;
-  Polls: LongInt;
-begin
-  Link := GetTempDir(False) + 'chn-recon-' + IntToStr(FpGetPid) + '-' + Drv;
-  DeleteFile(Link);
-  AssertEquals('symlink', 0, FpSymlink(PChar(FPty.SlavePath), PChar(Link)));
-  try
-    FChn := ChnCollection^.ChNewInit(ChnCom.cName);
-    FChn^.ChSetParam('NAM=COM DRV=' + Drv + ' DEV=' + Link + ' BD=19200 STOP=2 RECON=50 IDL=5');
-    AssertEquals('params ' + FChn^.ChParamError, res_Ok, FChn^.ChResult);
-    AssertTrue('reported back', Pos('RECON=50', FChn^.ChGetParam('')) > 0);
-    FChn^.ChOpen;
-    AssertEquals('open', res_Ok, FChn^.ChResult);
-    FChn^.ChReceiveBuffer(@FRBuf, SizeOf(FRBuf));
-    FChn^.ChConnect;
-    ExchangeAllByteValues('before the loss');
-    { the adapter is pulled: its tty hangs up, its by-id link goes }
-    FPty.CloseMaster;
-    DeleteFile(Link);
-    T0 := GetTickCount64;
-    C0 := CpuMs;
-    Polls := 0;
-    while GetTickCount64 - T0 < 600 do
-    begin
-      AssertEquals('receiving', CHS_Receiving, FChn^.ChReceiveReady);
-      Inc(Polls);
-    end;
-    Used := CpuMs - C0;
-    AssertEquals('ChResult while away', res_Reconnecting, FChn^.ChResult);
-    AssertEquals('ChReceiveResult', res_Reconnecting, FChn^.ChReceiveResult);
-    AssertEquals('the device named', 'DEV=' + Link, FChn^.ChParamError);
-    FChn^.ChSend(@FRBuf, 1);
-    AssertEquals('ChSendResult', res_Reconnecting, FChn^.ChSendResult);
-    AssertEquals('still connected for the program', CHS_Connect, FChn^.ChReady);
-    { IDL=5: about 120 polls in 600 ms, each waiting; a spinning loop
-      makes thousands and burns the CPU }
-    AssertTrue('polls waited (' + IntToStr(Polls) + ' polls)', Polls < 1000);
-    AssertTrue('no busy loop (' + FloatToStrF(Used, ffFixed, 8, 1) + ' ms CPU in 600 ms)',
-      Used < IdleCpuBound(200));
-    { the adapter comes back: another tty behind the same name }
-    FPty.Free;
-    FPty := TPtyPair.Create;
-    AssertEquals('symlink again', 0, FpSymlink(PChar(FPty.SlavePath), PChar(Link)));
-    T0 := GetTickCount64;
-    while (FChn^.ChResult <> res_Ok) and (GetTickCount64 - T0 < 3000) do
-      FChn^.ChReceiveReady;
-    AssertEquals('reconnected by itself', res_Ok, FChn^.ChResult);
-    AssertEquals('receive result', res_Ok, FChn^.ChReceiveResult);
-    AssertEquals('no token named', '', FChn^.ChParamError);
-    CheckTermios('settings re-applied', KCS8 or KCSTOPB, $E { B19200 });
-    ExchangeAllByteValues('after the reconnect');
-  finally
-    DeleteFile(Link);
-  end;
-end;
-
-{ A device that comes back but is not what was configured (here: not a
-  terminal at all) ends the reconnect with the refusal named; a device
-  that never comes back stays res_Reconnecting until ChClose. }
-procedure TTestChnComPty.TestReconnectStopsAtARefusedSetting;
-var
-  Link: string;
-  T0: QWord;
-begin
-  Link := GetTempDir(False) + 'chn-recon2-' + IntToStr(FpGetPid) + '-' + Drv;
-  DeleteFile(Link);
-  AssertEquals('symlink', 0, FpSymlink(PChar(FPty.SlavePath), PChar(Link)));
-  try
-    FChn := ChnCollection^.ChNewInit(ChnCom.cName);
-    FChn^.ChSetParam('NAM=COM DRV=' + Drv + ' DEV=' + Link + ' RECON=20 IDL=5');
-    FChn^.ChOpen;
-    AssertEquals('open', res_Ok, FChn^.ChResult);
-    FChn^.ChReceiveBuffer(@FRBuf, SizeOf(FRBuf));
-    FChn^.ChConnect;
-    FPty.CloseMaster;
-    DeleteFile(Link);
-    T0 := GetTickCount64;
-    while GetTickCount64 - T0 < 300 do
-      FChn^.ChReceiveReady;
-    AssertEquals('never back (yet)', res_Reconnecting, FChn^.ChResult);
-    AssertEquals('the device named', 'DEV=' + Link, FChn^.ChParamError);
-    AssertEquals('back as something else', 0, FpSymlink(PChar('/dev/null'), PChar(Link)));
-    T0 := GetTickCount64;
-    while (FChn^.ChResult = res_Reconnecting) and (GetTickCount64 - T0 < 3000) do
-      FChn^.ChReceiveReady;
-    AssertEquals('refused', res_BadSetting, FChn^.ChResult);
-    AssertEquals('the token', 'DEV=' + Link, FChn^.ChParamError);
-    { no further attempts: a good device now changes nothing }
-    DeleteFile(Link);
-    FPty.Free;
-    FPty := TPtyPair.Create;
-    AssertEquals('symlink again', 0, FpSymlink(PChar(FPty.SlavePath), PChar(Link)));
-    T0 := GetTickCount64;
-    while GetTickCount64 - T0 < 200 do
-      FChn^.ChReceiveReady;
-    AssertEquals('stays refused', res_BadSetting, FChn^.ChResult);
-    FChn^.ChClose;
-    AssertEquals('close', res_Ok, FChn^.ChResult);
-    FChn^.ChOpen;
-    AssertEquals('ChClose + ChOpen starts again', res_Ok, FChn^.ChResult);
-  finally
-    DeleteFile(Link);
-  end;
-end;
-
-{ LAT=: a pty (like a UART or a CDC-ACM modem) has no latency timer: the
-  open is refused with the token named; LAT=0 leaves it alone. }
-procedure TTestChnComPty.TestLatencyRefusedWithoutTheTimer;
-begin
-  AssertEquals('LAT=1 on a pty', res_BadSetting, OpenCom('LAT=1'));
-  AssertEquals('the token', 'LAT=1', FChn^.ChParamError);
-  AssertEquals('closed', CHS_Close, FChn^.ChReady);
-  AssertTrue('reported back', Pos(' LAT=1', FChn^.ChGetParam('')) > 0);
-  AssertEquals('LAT=0 opens', res_Ok, OpenCom('LAT=0'));
-  FChn^.ChSetParam('LAT=256');
-  AssertEquals('LAT=256 is no value', res_BadParam, FChn^.ChResult);
-  AssertEquals('LAT=256 named', 'LAT=256', FChn^.ChParamError);
-end;
-
-{ Where the driver has the timer (ftdi_sio: <sysfs tty>/ttyUSB0/device/
-  latency_timer), LAT= writes it and reads it back. A folder of the test
-  stands in for /sys/class/tty, named after this pty (/dev/pts/N: N). }
-procedure TTestChnComPty.TestLatencyWrittenWhereTheDriverHasIt;
-var
-  Root, F: string;
-  T: Text;
-  Line: string;
-  Saved: ShortString;
-begin
-  Root := GetTempDir(False) + 'chn-sysfs-' + IntToStr(FpGetPid) + '-' + Drv + '/';
-  F := Root + ExtractFileName(FPty.SlavePath) + '/device/latency_timer';
-  ForceDirectories(ExtractFilePath(F));
-  AssignFile(T, F);
-  Rewrite(T);
-  WriteLn(T, '16');                 { ftdi_sio's default }
-  CloseFile(T);
-  Saved := PortSysfsTty;
-  PortSysfsTty := Root;
-  try
-    AssertEquals('LAT=2 open', res_Ok, OpenCom('LAT=2'));
-    AssertEquals('no token', '', FChn^.ChParamError);
-    AssignFile(T, F);
-    Reset(T);
-    ReadLn(T, Line);
-    CloseFile(T);
-    AssertEquals('written', '2', Trim(Line));
-    if FpGetUid <> 0 then
-    begin
-      FpChmod(F, &444);
-      AssertEquals('read-only timer', res_NoPermission, OpenCom('LAT=1'));
-      AssertEquals('the token', 'LAT=1', FChn^.ChParamError);
-    end;
-  finally
-    PortSysfsTty := Saved;
-    DeleteFile(F);
-    RemoveDir(ExtractFilePath(F));
-    RemoveDir(Root + ExtractFileName(FPty.SlavePath));
-    RemoveDir(Root);
-  end;
-end;
-
 { An answer sent just before the program closes the line (icsslave: answer,
   exit) must reach the peer: 50 times open, send a frame, close at once;
   the peer reads only afterwards and finds all 50 in order. (synaser's
@@ -910,18 +443,6 @@ begin
   AssertEquals('nothing lost', 0, Com^.ChLostBytes);
 end;
 
-procedure TTestChnComPty.TestRs485RefusedOnPty;
-begin
-  { a pty has neither RS-485 support nor an RTS line: every mode that needs
-    one is refused instead of silently sending without direction control }
-  AssertEquals('KERNEL', res_BadSetting, OpenCom('RS485=KERNEL'));
-  AssertEquals('KERNEL closed', CHS_Close, FChn^.ChReady);
-  AssertEquals('RTS', res_BadSetting, OpenCom('RS485=RTS'));
-  AssertEquals('RTS closed', CHS_Close, FChn^.ChReady);
-  AssertEquals('AUTO', res_BadSetting, OpenCom('RS485=AUTO'));
-  AssertEquals('OFF opens', res_Ok, OpenCom('RS485=OFF'));
-end;
-
 type
   TDelayedWriter = class(TThread)
     Pty: TPtyPair;
@@ -1015,143 +536,6 @@ begin
   Result := 'RTLSTRICT';
 end;
 
-{ The pty as a stand-in for a real UART: the backend with the virtual-line
-  detection off, so Configure checks what the kernel took. }
-type
-  TStrictRtlPort = class(TChnPortUnix)
-  public
-    function Open(const Path: tWordString): tChResult; override;
-  end;
-
-function TStrictRtlPort.Open(const Path: tWordString): tChResult;
-begin
-  Result := inherited Open(Path);
-  FVirtual := False;
-end;
-
-{$IFDEF CHN_SYNAPSE}
-type
-  TStrictSynapsePort = class(TChnPortSynapse)
-  public
-    function Open(const Path: tWordString): tChResult; override;
-  end;
-
-function TStrictSynapsePort.Open(const Path: tWordString): tChResult;
-begin
-  Result := inherited Open(Path);
-  FVirtual := False;
-end;
-{$ENDIF}
-
-{ Every refusal of ChOpen names its token in ChParamError, also through a
-  protocol layer above, and a later good open clears it. }
-procedure TTestChnComPty.TestRefusalNamesTheToken;
-var
-  D: pChnVirt;
-begin
-  AssertEquals('BIT=7 PAR=E', res_BadSetting, OpenCom('BIT=7 PAR=E'));
-  AssertEquals('the data bits go first', 'BIT=7', FChn^.ChParamError);
-  AssertEquals(res_BadSetting, OpenCom('PAR=O'));
-  AssertEquals('PAR=O', FChn^.ChParamError);
-  AssertEquals(res_BadSetting, OpenCom('PAR=M'));
-  AssertEquals('PAR=M', FChn^.ChParamError);
-  AssertEquals(res_BadSetting, OpenCom('RS485=KERNEL'));
-  AssertEquals('RS485=KERNEL', FChn^.ChParamError);
-  AssertEquals(res_Ok, OpenCom('PAR=N'));
-  AssertEquals('cleared by a good open', '', FChn^.ChParamError);
-  FChn^.ChClose;
-  FChn^.ChSetParam('DEV=/dev/null');
-  FChn^.ChOpen;
-  AssertEquals(res_BadSetting, FChn^.ChResult);
-  AssertEquals('not a terminal: the device', 'DEV=/dev/null', FChn^.ChParamError);
-  FChn^.ChSetParam('DEV=/dev/chn-no-such-tty');
-  FChn^.ChOpen;
-  AssertEquals(res_CannotOpen, FChn^.ChResult);
-  AssertEquals('DEV=/dev/chn-no-such-tty', FChn^.ChParamError);
-  { through a protocol layer: the top layer names it too }
-  D := ChnCollection^.ChNewInit('DF1');
-  AssertTrue('DF1 is linked in (TestChnDF1)', D <> nil);
-  try
-    D^.ChSetParam('NAM=DF1 NAM=COM DRV=' + Drv + ' DEV=' + FPty.SlavePath + ' PAR=O');
-    AssertEquals(res_Ok, D^.ChResult);
-    D^.ChOpen;
-    AssertEquals(res_BadSetting, D^.ChResult);
-    AssertEquals('the top layer', 'PAR=O', D^.ChParamError);
-  finally
-    Dispose(D, Done);
-  end;
-end;
-
-{ ChErrorText after a refused open: the result, the token and the OS's
-  own words for why (the C library's texts, as ls or cat print them),
-  through a protocol layer above as well. }
-procedure TTestChnComPty.TestOpenErrorsSayTheOsReason;
-var
-  Second, D: pChnVirt;
-  InUse: string;   { root: flock says EAGAIN; others: TIOCEXCL refuses the open, EBUSY }
-
-  procedure OpenAs(const Dev: string);
-  begin
-    FChn^.ChSetParam('DRV=' + Drv + ' DEV=' + Dev);
-    AssertEquals(Dev + ' params', res_Ok, FChn^.ChResult);
-    FChn^.ChOpen;
-  end;
-
-begin
-  FChn := ChnCollection^.ChNewInit(ChnCom.cName);
-  OpenAs('/dev/chn-no-such-tty');
-  AssertEquals('device cannot be opened (DEV=/dev/chn-no-such-tty): No such file or directory',
-    FChn^.ChErrorText);
-  OpenAs('/nonexistent-dir/ttyUSB0');
-  AssertEquals('device cannot be opened (DEV=/nonexistent-dir/ttyUSB0): No such file or directory',
-    FChn^.ChErrorText);
-  OpenAs('/tmp');
-  AssertEquals('device cannot be opened (DEV=/tmp): Is a directory', FChn^.ChErrorText);
-  OpenAs('/dev/null');
-  AssertEquals('device refuses the setting (DEV=/dev/null): Inappropriate ioctl for device',
-    FChn^.ChErrorText);
-  { a good open says nothing more }
-  OpenAs(FPty.SlavePath);
-  AssertEquals('ok', res_Ok, FChn^.ChResult);
-  AssertEquals('ok', FChn^.ChErrorText);
-  { the pty in use: for root flock says it would have to wait; for other
-    users the kernel already refuses the open because of TIOCEXCL }
-  Second := ChnCollection^.ChNewInit(ChnCom.cName);
-  try
-    Second^.ChSetParam('DRV=' + Drv + ' DEV=' + FPty.SlavePath);
-    Second^.ChOpen;
-    InUse := 'device cannot be opened (DEV=' + FPty.SlavePath + '): Resource temporarily unavailable';
-    if Second^.ChErrorText <> InUse then
-      InUse := 'device cannot be opened (DEV=' + FPty.SlavePath + '): Device or resource busy';
-    AssertEquals(InUse, Second^.ChErrorText);
-  finally
-    Dispose(Second, Done);
-  end;
-  { through a protocol layer: the top layer's text is the same }
-  D := ChnCollection^.ChNewInit('DF1');
-  try
-    D^.ChSetParam('NAM=DF1 NAM=COM DRV=' + Drv + ' DEV=/tmp');
-    AssertEquals(res_Ok, D^.ChResult);
-    D^.ChOpen;
-    AssertEquals('device cannot be opened (DEV=/tmp): Is a directory', D^.ChErrorText);
-    { and a bad value below says what the key takes }
-    D^.ChSetParam('NAM=DF1 NAM=COM DRV=' + Drv + ' DEV=/tmp BD=abc');
-    AssertEquals('bad parameter (BD=abc): a number 50..4000000', D^.ChErrorText);
-    { the pty in use, then free: the reason does not outlive the failure }
-    FChn^.ChClose;
-    FChn^.ChOpen;
-    D^.ChSetParam('NAM=DF1 NAM=COM DRV=' + Drv + ' DEV=' + FPty.SlavePath);
-    D^.ChOpen;
-    AssertEquals(InUse, D^.ChErrorText);
-    FChn^.ChClose;
-    D^.ChOpen;
-    AssertEquals('opened', res_Ok, D^.ChResult);
-    AssertEquals('no reason left', '', D^.CH_ErrWhy);
-  finally
-    Dispose(D, Done);
-  end;
-end;
-
 {$IFDEF CHN_SYNAPSE}
 function TTestChnComSynapse.Drv: string;
 begin
@@ -1162,10 +546,8 @@ end;
 
 initialization
   {$IFDEF UNIX}
-  RegisterPortDriver('RTLSTRICT', TStrictRtlPort);
   RegisterTest(TTestChnComRtl);
   {$IFDEF CHN_SYNAPSE}
-  RegisterPortDriver('SYNSTRICT', TStrictSynapsePort);
   RegisterTest(TTestChnComSynapse);
   {$ENDIF}
   {$ENDIF}

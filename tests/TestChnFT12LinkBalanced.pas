@@ -522,13 +522,15 @@ end;
 procedure TTestChnFT12LinkBalanced.TestSendNoReplyAndQueueLimits;
 var
   I: Integer;
-  Big: array[0..MaxDataLen] of Byte;
+  Big: array[0..FT12MaxUserData] of Byte;
 begin
   SetUpPair;
   BringUp;
   FillChar(Big, SizeOf(Big), 0);
   AssertEquals(res_BadLen, FT12BalancedSend(FLa, @Big, 0, True));
-  AssertEquals(res_TooLong, FT12BalancedSend(FLa, @Big, MaxDataLen + 1, True));
+  { L = 255 counts the control octet and the one address octet: 253 data
+    octets at most (more than the manual's records hold, 247) }
+  AssertEquals(res_TooLong, FT12BalancedSend(FLa, @Big, 254, True));
   Big[0] := $55;
   AssertEquals(res_Ok, FT12BalancedSend(FLa, @Big, 1, False));
   for I := 2 to FT12BalQueueLen do

@@ -190,8 +190,9 @@ var
   S: tIecSlave;
   L: LongInt;
 begin
-  AssertEquals('SizeOf(tIecCommand)', 328, SizeOf(tIecCommand));
-  AssertEquals('Auto@327, last', 327, PtrUInt(@C.Auto) - PtrUInt(@C));
+  AssertEquals('SizeOf(tIecCommand)', 329, SizeOf(tIecCommand));
+  AssertEquals('Auto@327', 327, PtrUInt(@C.Auto) - PtrUInt(@C));
+  AssertEquals('Raw@328, last', 328, PtrUInt(@C.Raw) - PtrUInt(@C));
   AssertEquals('Slave@2', 2, PtrUInt(@C.Slave) - PtrUInt(@C));
   AssertEquals('Obj@9', 9, PtrUInt(@C.Obj) - PtrUInt(@C));
   AssertEquals('SentAt@49', 49, PtrUInt(@C.SentAt) - PtrUInt(@C));

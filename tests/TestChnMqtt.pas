@@ -244,7 +244,7 @@ begin
   Result := '';
   for I := 1 to N do
   begin
-    K := Occurs(Topic + '/' + IntToStr(I) + ' ' + IntToStr(I) + #10, Text);
+    K := CountOf(Topic + '/' + IntToStr(I) + ' ' + IntToStr(I) + #10, Text);
     if K <> 1 then
       Result := Result + Format(' %s/%d %d times', [Topic, I, K]);
   end;
@@ -322,7 +322,7 @@ begin
     AssertTrue('the new ones: ' + Sub.Text, Sub.WaitFor('a/8 8'#10, 3000));
     Sleep(300);
     AssertEquals('none of the acknowledged ones again: ' + Sub.Text, 0, Pos('a/1 1'#10, Sub.Text));
-    AssertEquals('each new one once: ' + Sub.Text, 1, Occurs('a/6 6'#10, Sub.Text));
+    AssertEquals('each new one once: ' + Sub.Text, 1, CountOf('a/6 6'#10, Sub.Text));
   finally
     MqttClose(C);
     Sub.Free;

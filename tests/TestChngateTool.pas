@@ -147,7 +147,7 @@ begin
     { meanwhile the live one keeps its 200 ms clock: about 10 changes in 2 s }
     Before := Sub.Text;
     Sleep(2000);
-    Clocks := Occurs('plant/plc1/clock {', Sub.Text) - Occurs('plant/plc1/clock {', Before);
+    Clocks := CountOf('plant/plc1/clock {', Sub.Text) - CountOf('plant/plc1/clock {', Before);
     AssertTrue(Format('plc1 clock changes in 2 s while plc2 is demoted: %d', [Clocks]), Clocks >= 7);
     { a set reaches the PLC; its new value comes back from it }
     AssertEquals('mosquitto_pub', 0, MqttPub(Broker.Port, 'plant/plc1/run/set', 'true'));
@@ -162,7 +162,7 @@ begin
       'tags = N7:0[3] ', 'tags = N7:0[3] N7:5 ', []));
     FpKill(Gate.ProcessID, SIGHUP);
     AssertTrue('N7:5 after SIGHUP: ' + Sub.Text, Sub.WaitFor('plant/plc1/N7:5 {"value":50,"quality":"good"', 10000));
-    AssertEquals('one connection: ' + Sub.Text, 1, Occurs('plant/$gateway/status online', Sub.Text));
+    AssertEquals('one connection: ' + Sub.Text, 1, CountOf('plant/$gateway/status online', Sub.Text));
     { the gateway vanishes: the broker publishes its will }
     FpKill(Gate.ProcessID, SIGKILL);
     Gate.WaitOnExit;

@@ -35,13 +35,14 @@ type
     procedure PollUntil(const What: string; Ms: LongInt; Cond: TFunc);
     procedure StartAndInterrogate(K: tPairKind);
     procedure RemoteResetInterrogatesAgain(K: tPairKind);
+    procedure InterrogationFillsEachAsdu(K: tPairKind; const Want: array of string);
   protected
     procedure SetUp; override;
     procedure TearDown; override;
   public
     M: tIecMaster;
     S: tIecSlaveStation;
-    Objects, Inits: TStringList;
+    Objects, Inits, Answers: TStringList;
     Resets, Commands: Integer;
   published
     procedure TestUnbalancedStartThenInterrogation;
@@ -55,6 +56,9 @@ type
     procedure TestParametersUnbalanced;
     procedure TestParameters104Stepped;
     procedure TestEveryCommandType104;
+    procedure TestInterrogationFillsEachFT12Frame;
+    procedure TestInterrogationFillsEachBalancedFrame;
+    procedure TestInterrogationFillsEach104Apdu;
   end;
 
 implementation
@@ -81,6 +85,14 @@ begin
   Inc(TTestIecStation(Data).Resets);
 end;
 
+{ the interrogation's answers (COT 20) the slave hands to its link:
+  type, VSQ and length }
+procedure OnSlaveAsdu(Data: Pointer; Sent: Boolean; Buf: PByte; Len: Word);
+begin
+  if Sent and (Len > 2) and (Buf[2] = Cot_Interrogated) then
+    TTestIecStation(Data).Answers.Add(Format('%.2X %.2X: %d', [Buf[0], Buf[1], Len]));
+end;
+
 procedure IdleSlave(Data: Pointer);
 begin
   TTestIecStation(Data).StepSlave;
@@ -96,6 +108,7 @@ procedure TTestIecStation.SetUp;
 begin
   Objects := TStringList.Create;
   Inits := TStringList.Create;
+  Answers := TStringList.Create;
   SChn := nil;
   MChn := nil;
   Resets := 0;
@@ -107,6 +120,7 @@ begin
   if SChn <> nil then Dispose(SChn, Done);
   Objects.Free;
   Inits.Free;
+  Answers.Free;
 end;
 
 procedure TTestIecStation.OpenPair(K: tPairKind);
@@ -225,6 +239,71 @@ end;
 procedure TTestIecStation.Test104StartThenInterrogation;
 begin
   StartAndInterrogate(pk104);
+end;
+
+{ A station interrogation packs consecutive points of one type into as
+  few ASDUs as the link carries (the slave sends SQ = 0: each object with
+  its IOA), and no more. IecDefaultParams: TI, VSQ, COT (2), CA (2) = 6
+  octets of head; M_SP_NA_1 is IOA (3) + SIQ = 4 octets an object,
+  M_ME_NB_1 IOA (3) + value (2) + QDS = 6.
+  FT 1.2, ADR=1 (unbalanced and balanced alike): L = 255 counts the
+  control and address octets, so an ASDU has up to 253 octets: singles
+  (253 - 6) div 4 = 61 (250 octets; 62 would be 254), scaled
+  (253 - 6) div 6 = 41 (252; 42 would be 258). The manual's 247-octet
+  record gave 60 and 40.
+  IEC 104: the APDU length is at most 253, the control field takes 4:
+  ASDUs up to 249 octets, singles 243 div 4 = 60 (246; 61 would be 250),
+  scaled 243 div 6 = 40 (246; 41 would be 252).
+  The table: single point IOA 100 (the pair's own), a counter (not in a
+  station interrogation; it ends the run of singles), 70 singles IOA
+  1001..1070, 45 scaled values IOA 2001..2045. Every one reaches the
+  master. }
+procedure TTestIecStation.InterrogationFillsEachAsdu(K: tPairKind; const Want: array of string);
+var
+  I: Integer;
+  O: tIecObject;
+  E: ShortString;
+begin
+  OpenPair(K);
+  for I := 1 to 70 do
+  begin
+    O := IecObject(1000 + I);
+    O.Int := I and 1;
+    AssertEquals(E, res_Ok, IecSlaveAddPoint(S, M_SP_NA_1, O, 0, E));
+  end;
+  for I := 1 to 45 do
+  begin
+    O := IecObject(2000 + I);
+    O.Int := I;
+    AssertEquals(E, res_Ok, IecSlaveAddPoint(S, M_ME_NB_1, O, 0, E));
+  end;
+  S.OnAsdu := @OnSlaveAsdu;
+  AssertEquals(M.Cmd.Err, res_Ok, IecInterrogation(M, Addr, 1, Qoi_Station));
+  AssertEquals(Answers.Text, Length(Want), Answers.Count);
+  for I := 0 to High(Want) do
+    AssertEquals('answer ' + IntToStr(I + 1), Want[I], Answers[I]);
+  { on the line and taken: 1 + 70 singles, 45 scaled values }
+  AssertEquals('M_SP_NA_1 COT 20 IOA 1061', Objects[Objects.IndexOf('M_SP_NA_1 COT 20 IOA 1001') + 60]);
+  AssertTrue(Objects.IndexOf('M_SP_NA_1 COT 20 IOA 1070') > 0);
+  AssertEquals('M_ME_NB_1 COT 20 IOA 2045', Objects[Objects.IndexOf('M_ME_NB_1 COT 20 IOA 2001') + 44]);
+  AssertEquals(0, M.BadAsdus);
+end;
+
+procedure TTestIecStation.TestInterrogationFillsEachFT12Frame;
+begin
+  { VSQ 3D = 61, 09 = 9, 29 = 41, 04 = 4 }
+  InterrogationFillsEachAsdu(pkUnbalanced, ['01 01: 10', '01 3D: 250', '01 09: 42', '0B 29: 252', '0B 04: 30']);
+end;
+
+procedure TTestIecStation.TestInterrogationFillsEachBalancedFrame;
+begin
+  InterrogationFillsEachAsdu(pkBalanced, ['01 01: 10', '01 3D: 250', '01 09: 42', '0B 29: 252', '0B 04: 30']);
+end;
+
+procedure TTestIecStation.TestInterrogationFillsEach104Apdu;
+begin
+  { VSQ 3C = 60, 0A = 10, 28 = 40, 05 = 5 }
+  InterrogationFillsEachAsdu(pk104, ['01 01: 10', '01 3C: 246', '01 0A: 46', '0B 28: 246', '0B 05: 36']);
 end;
 
 procedure TTestIecStation.RemoteResetInterrogatesAgain(K: tPairKind);

@@ -23,7 +23,8 @@ type
   TTestToolCli = class(TTestCase)
   private
     FOut, FErr: string;
-    function RunProg(const Prog: string; const Args: array of string): Integer;
+    function RunProg(const Prog: string; const Args: array of string; const Exe: string = '';
+      const HeapLog: string = ''): Integer;
     function Programs: TStringList;
   published
     procedure TestHelpOnStdoutExit0;
@@ -33,6 +34,7 @@ type
     procedure TestValueOptionBothForms;
     procedure TestNoCzechInMessages;
     procedure TestUnknownLayerNamesItsUnit;
+    procedure TestErrorExitsFreeEverything;
     {$IFDEF LINUX}
     procedure TestOpenIsNoticed;
     procedure TestNothingOpenedOnABadCommandLine;
@@ -43,42 +45,28 @@ implementation
 
 uses
   {$IFDEF UNIX}BaseUnix,{$ENDIF} ChnTypes, ChnVirt, ChnLayers, ChnCom, ChnTcp, ChnLoop,
-  ChnTrc, ChnNoise, ChnDF1, ChnFT1_2, ChnICS;
+  ChnTrc, ChnNoise, ChnDF1, ChnFT1_2, ChnICS, TestTempDir;
 
 { Prog with Args, standard output and standard error apart; exit code,
-  -1 if it still ran after 10 s. }
-function TTestToolCli.RunProg(const Prog: string; const Args: array of string): Integer;
+  -1 if it still ran after 10 s. Exe: another build of it than
+  build/bin's; HeapLog: heaptrc's report into this file. }
+function TTestToolCli.RunProg(const Prog: string; const Args: array of string; const Exe: string;
+  const HeapLog: string): Integer;
 var
   P: TProcess;
   A: string;
-  Deadline: QWord;
 begin
-  FOut := '';
-  FErr := '';
   P := TProcess.Create(nil);
   try
-    BinExecutable(P, BinPath(Prog));
+    if Exe <> '' then
+      BinExecutable(P, Exe)
+    else
+      BinExecutable(P, BinPath(Prog));
+    if HeapLog <> '' then
+      HeapLogTo(P, HeapLog);
     for A in Args do
       P.Parameters.Add(A);
-    P.Options := [poUsePipes];
-    P.Execute;
-    Deadline := ChMsTick + 10000;
-    while P.Running and (ChMsTick < Deadline) do
-    begin
-      FOut := FOut + PipeText(P.Output);
-      FErr := FErr + PipeText(P.Stderr);
-      Sleep(2);
-    end;
-    if P.Running then
-    begin
-      P.Terminate(255);
-      P.WaitOnExit;
-      Result := -1;
-    end
-    else
-      Result := P.ExitCode;
-    FOut := FOut + PipeText(P.Output);
-    FErr := FErr + PipeText(P.Stderr);
+    Result := RunProcess(P, 10000, FOut, FErr);
   finally
     P.Free;
   end;
@@ -441,6 +429,51 @@ begin
   Check('iec101slave', ['--ca-size=1', '--ca=300', 'NAM=FT1_2 MS=ON MAS=SLAVE NAM=COM DEV=@DEV']);
 end;
 {$ENDIF}
+
+{ A command-line error found deep inside a program (getopts' table under
+  way, a parameter string being checked, inside an exception handler,
+  after a file was read) or a line that cannot be opened ends it with its
+  code, and everything it allocated is freed on the way (heaptrc: 0
+  unfreed blocks). The programs' test builds (build/test-bin, with
+  heaptrc) are run; they ended with Halt before, leaving the strings of
+  every routine under way. }
+procedure TTestToolCli.TestErrorExitsFreeEverything;
+var
+  Dir, HeapLog, Report: string;
+
+  procedure Check(const Prog: string; const Args: array of string; Want: Integer; const Says: string);
+  var
+    Code: Integer;
+  begin
+    DeleteFile(HeapLog);
+    Code := RunProg(Prog, Args, TestBinDir + Prog {$IFDEF WINDOWS} + '.exe'{$ENDIF}, HeapLog);
+    AssertEquals(Prog + ' ' + Args[0] + ': exit code; ' + FErr, Want, Code);
+    AssertTrue(Prog + ': ' + FErr, Pos(Says, FErr) > 0);
+    AssertTrue(Prog + ' ' + Args[0] + ': no heaptrc report in ' + HeapLog, FileExists(HeapLog));
+    Report := ReadFileText(HeapLog);
+    AssertTrue(Prog + ' ' + Args[0] + ': ' + Report,
+      Pos(LineEnding + '0 unfreed memory blocks : 0' + LineEnding, LineEnding + Report) > 0);
+  end;
+
+begin
+  if not FileExists(TestBinDir + 'df1write' {$IFDEF WINDOWS} + '.exe'{$ENDIF}) then
+    Ignore('the heap-checked programs are not built (make test builds them; make mutate does not)');
+  Dir := MakeTempDir('clileak');
+  try
+    HeapLog := Dir + '/heap.log';
+    Check('df1write', ['N7:0', '--bogus'], 2, 'df1write: unknown option (--bogus)');
+    Check('df1write', ['N7:0', '5', 'NAM=XYZ'], 2, 'unknown layer name (NAM=XYZ)');
+    Check('chntap', ['--frames=xyz'], 2, 'chntap: unknown option (--frames=xyz)');
+    Check('df1sim', ['--msg-to=3'], 2, '--msg-to needs --half');
+    Check('df1sim', ['--pty', '--config=' + Dir + '/none.conf'], 2, 'cannot read the data table');
+    WriteFileText(Dir + '/bad.points', 'M_XX_NA_1 1 0' + LineEnding);
+    Check('iec101slave', ['--points=' + Dir + '/bad.points', 'NAM=FT1_2 NAM=COM DEV=' + Dir + '/none'], 2,
+      'bad.points');
+    Check('iec101slave', ['NAM=FT1_2 MS=ON MAS=SLAVE NAM=COM DEV=' + Dir + '/none'], 1, 'iec101slave: ');
+  finally
+    RemoveTempDir(Dir);
+  end;
+end;
 
 initialization
   RegisterTest(TTestToolCli);

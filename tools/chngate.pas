@@ -1,5 +1,5 @@
-{ chngate - a gateway: DF1 PLCs (SLC 500, MicroLogix, df1sim) south, an
-  MQTT broker north, from one configuration file (docs/chngate.md).
+{ chngate - a gateway: DF1 PLCs (SLC 500, MicroLogix, df1sim) and IEC
+  60870-5-101 RTUs (iec101slave) south, an MQTT broker north, from one configuration file (docs/chngate.md).
 
     chngate CONFIG            run until SIGINT or SIGTERM; SIGHUP reads
                               CONFIG again (the MQTT connection stays)
@@ -60,7 +60,8 @@ var
 begin
   CliInit(Cli, 'chngate', '[--check] CONFIG',
     'A gateway: reads the tags of DF1 PLCs (SLC 500, MicroLogix, PLC-5, df1sim) with few merged ' +
-    'requests and publishes their changes to an MQTT broker, from one INI configuration ' +
+    'requests and the points of IEC 60870-5-101 RTUs (line = NAM=FT1_2 ..., polled by an IEC 101 ' +
+    'master) and publishes their changes to an MQTT broker, from one INI configuration ' +
     'file (docs/chngate.md); runs until SIGINT or SIGTERM, SIGHUP reads the configuration again.');
   CliOption(Cli, 'check', #0, '', 'check the configuration, print a summary and exit');
   CliEpilog(Cli, 'Topics:' + LineEnding +

@@ -8,8 +8,8 @@
   links fewer units gets, for a layer it lacks, "unknown layer name
   (NAM=TRC: add ChnTrc to the uses clause)" (ChnVirt.ChUnknownLayerText).
 
-  Per-OS units only under $IFDEF, so the unit builds on Linux and Windows.
-  The unit has nothing of its own. }
+  DRV=PTY (Unix) comes with NAM=COM: ChnCom links the port drivers of the
+  OS (ChnPorts). The unit has nothing of its own. }
 unit ChnLayers;
 
 {$I chn.inc}
@@ -17,8 +17,7 @@ unit ChnLayers;
 interface
 
 uses
-  ChnCom, ChnTcp, ChnLoop, ChnTrc, ChnNoise, ChnDF1, ChnFT1_2, ChnICS, ChnIec104
-  {$IFDEF UNIX}, ChnPty{$ENDIF};
+  ChnCom, ChnTcp, ChnLoop, ChnTrc, ChnNoise, ChnDF1, ChnFT1_2, ChnICS, ChnIec104;
 
 implementation
 

@@ -31,7 +31,7 @@ type
   tFT12BalUserData = record
     Len    : Word;
     Confirm: Boolean;         {< FC 3 (SEND/CONFIRM) or FC 4 (SEND/NO REPLY) }
-    Data   : tData;
+    Data   : array[1..FT12MaxUserData] of Byte;   {< up to the longest frame }
   end;
 
   { One balanced link (IEC 60870-5-2 balanced transmission): both
@@ -51,7 +51,7 @@ type
     { primary }
     State      : tFT12BalState;
     Pending    : Boolean;     {< a request is out and its answer awaited }
-    Out        : tSendRecord; {< that request, for repetitions }
+    Out        : tFT12MaxRecord; {< that request, for repetitions }
     OutLen     : Word;
     Fcb        : Boolean;     {< FCB of the next new FCV = 1 transmission }
     Tries      : SmallInt;    {< transmissions of Out so far }
@@ -102,7 +102,8 @@ type
 function FT12BalancedInit(var B: tFT12Balanced; Chn: pChnVirt): tChResult;
 { Queue Len octets of user data for SEND/CONFIRM (Confirm) or SEND/NO
   REPLY; sent in order once the link is available. res_Busy when the queue
-  is full, res_TooLong above MaxDataLen, res_BadLen for 0. }
+  is full, res_TooLong above what the longest frame carries (L = 255:
+  FT12MaxData, 254 octets less the link address), res_BadLen for 0. }
 function FT12BalancedSend(var B: tFT12Balanced; Buf: PByte; Len: Word;
   Confirm: Boolean): tChResult;
 { Take every frame already received (at most FT12MaxFramesPerStep) and act
@@ -151,7 +152,7 @@ var
 begin
   if Len = 0 then
     Exit(res_BadLen);
-  if Len > MaxDataLen then
+  if Len > FT12MaxData(B.Chn) then
     Exit(res_TooLong);
   if B.QCount >= FT12BalQueueLen then
     Exit(res_Busy);

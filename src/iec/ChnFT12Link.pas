@@ -110,11 +110,15 @@ type
       False refuses it (NACK, FC 1); the result of FC 4 is not sent.
     ClassData: data of class 1 or 2 for the reply; put up to MaxDataLen
       octets in Rep.Data and their count in Len; False: none (FC 9).
+    LongClassData: the same into a record with room for the longest
+      frame: up to FT12MaxUserData minus the link address octets.
     Class1Waiting: ACD of every reply; nil = never. }
   tFT12UserDataFunc = function(Data: Pointer; Buf: PByte; Len: Word;
     Confirm: Boolean): Boolean;
   tFT12ClassDataFunc = function(Data: Pointer; ClassNo: Byte;
     var Rep: tSendRecord; var Len: Word): Boolean;
+  tFT12LongClassDataFunc = function(Data: Pointer; ClassNo: Byte;
+    var Rep: tFT12MaxRecord; var Len: Word): Boolean;
   tFT12Class1Func = function(Data: Pointer): Boolean;
 
 procedure FT12LinkInit(var Link: tFT12Link; Addr: Word);
@@ -136,6 +140,10 @@ function FT12IgnoredText(OtherAddr: LongInt; OtherLast: Word; OwnDir: LongInt): 
 procedure FT12NoteForeign(Chn: pChnVirt; var Seen: LongWord; var Count: LongInt; var Last: Word);
 { Send once the transmitter is free (bounded wait). }
 function FT12SendNow(Chn: pChnVirt; constref R: tSendRecord; Len: Word): tChResult;
+function FT12SendNow(Chn: pChnVirt; constref R: tFT12MaxRecord; Len: Word): tChResult;
+{ User data octets the longest frame (L = 255) carries on this channel:
+  FT12MaxUserData minus its link address octets (ADR=). }
+function FT12MaxData(Chn: pChnVirt): Word;
 { Does a secondary's reply of type T and function FC answer primary
   function Req? (IEC 60870-5-2 table of services) }
 function FT12ReplyFits(Req: Byte; T: tMessType; FC: Byte): Boolean;
@@ -202,6 +210,16 @@ end;
 function FT12SendNow(Chn: pChnVirt; constref R: tSendRecord; Len: Word): tChResult;
 begin
   Result := ChSendWhenFree(Chn, @R, Len, FT12LinkTimeoutMs);
+end;
+
+function FT12SendNow(Chn: pChnVirt; constref R: tFT12MaxRecord; Len: Word): tChResult;
+begin
+  Result := ChSendWhenFree(Chn, @R, Len, FT12LinkTimeoutMs);
+end;
+
+function FT12MaxData(Chn: pChnVirt): Word;
+begin
+  Result := FT12MaxUserData - pChnFT1_2(Chn)^.ChFT12Config.AddrLen;
 end;
 
 { Does a secondary's reply of type T and function FC answer primary

@@ -16,7 +16,7 @@ type
   tFT12Station = record
     Chn        : pChnVirt;
     RMess      : tFT12MaxRecord; {< any frame, L up to 255 }
-    Reply      : tSendRecord;  {< last reply to an FCV = 1 frame or a reset }
+    Reply      : tFT12MaxRecord; {< last reply to an FCV = 1 frame or a reset (any length) }
     ReplyLen   : Word;
     HasReply   : Boolean;
     LinkReset  : Boolean;      {< a reset of remote link was received }
@@ -24,7 +24,8 @@ type
     Dfc        : Boolean;      {< DFC sent in every reply (set by the application) }
     SingleAck  : Boolean;      {< ACK as E5 when no class 1 data is waiting }
     OnUserData : tFT12UserDataFunc;
-    OnClassData: tFT12ClassDataFunc;
+    OnClassData: tFT12ClassDataFunc;       {< class data up to MaxDataLen octets }
+    OnLongClassData: tFT12LongClassDataFunc; {< instead: up to the longest frame (L = 255) }
     OnClass1   : tFT12Class1Func;
     Data       : Pointer;
     {- counters }
@@ -82,8 +83,13 @@ var
 begin
   FillChar(S.Reply, SizeOf(S.Reply), 0);
   Len := 0;
-  Got := Assigned(S.OnClassData) and S.OnClassData(S.Data, ClassNo, S.Reply, Len);
-  if Got and (Len <= MaxDataLen) then
+  if Assigned(S.OnLongClassData) then
+    Got := S.OnLongClassData(S.Data, ClassNo, S.Reply, Len) and (Len <= FT12MaxData(S.Chn))
+  else
+    { the manual's record: MaxDataLen octets }
+    Got := Assigned(S.OnClassData) and S.OnClassData(S.Data, ClassNo, tSendRecord(Pointer(@S.Reply)^), Len)
+      and (Len <= MaxDataLen);
+  if Got then
   begin
     S.Reply.MessType := tpLongM;
     S.Reply.FCB_ACD := Assigned(S.OnClass1) and S.OnClass1(S.Data);

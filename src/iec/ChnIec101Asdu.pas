@@ -26,7 +26,8 @@
   Every refusal is a result code (res_Asdu*, texts registered for the
   layer name Iec101Layer) and a text that names the part that is wrong.
   Nothing here reads or writes past the arrays it is given.
-  Not covered: file transfer (120..127) and the types of IEC 60870-5-104
+  File transfer (120..127) has its own codec, ChnIecFile, on the
+  identifier, IOA and time helpers below. Not covered: the types of IEC 60870-5-104
   alone (the commands with CP56Time2a, 58..64, and C_TS_TA_1, 107, are
   here: IEC 101 stations and lib60870 use them too). }
 unit ChnIec101Asdu;
@@ -256,7 +257,9 @@ function IecEncodeOne(const P: tIecParams; Ti, Cot: Byte; Ca: Word; const Obj: t
   length is exactly what its type and count need: res_AsduShort,
   res_AsduType, res_AsduCount (number 0), res_AsduLength (Err: the octets
   needed and got), res_AsduIoa (a sequence running past the largest IOA),
-  res_AsduParam. Len above Length(Buf) is res_AsduLength. }
+  res_AsduParam. Len above Length(Buf) is res_AsduLength. With
+  res_AsduType H holds the identifier all the same (Ti ... Ca, HeadLen,
+  Len): the codec of another family of types (ChnIecFile) takes it on. }
 function IecDecodeHeader(const P: tIecParams; const Buf: array of Byte; Len: Word;
   out H: tIecAsdu; out Err: ShortString): tChResult;
 { Object Index (0..H.Count-1) of an ASDU whose header IecDecodeHeader
@@ -280,6 +283,19 @@ function IecTimeCheck(const T: tIecTime; Short: Boolean; out Err: ShortString): 
 
 { A zero object (Quality 0, Time 0) with the IOA given. }
 function IecObject(Ioa: LongWord): tIecObject;
+
+{ The pieces other codecs of this family (file transfer) build on:
+  IecPutIdent writes TI VSQ COT [OA] CA of H into Buf (At: the octets
+  written) after checking cause, originator and common address (Err names
+  the field); IecPutIoa / IecGetIoa one IOA of P.IoaSize octets at At;
+  IecPutTime / IecGetTime a CP24Time2a or CP56Time2a at At. The callers
+  check that Buf is long enough. }
+function IecPutIdent(const P: tIecParams; const H: tIecAsdu; var Buf: array of Byte;
+  out At: Word; out Err: ShortString): tChResult;
+procedure IecPutIoa(const P: tIecParams; Ioa: LongWord; var Buf: array of Byte; At: LongInt);
+function IecGetIoa(const P: tIecParams; const Buf: array of Byte; At: LongInt): LongWord;
+procedure IecPutTime(const T: tIecTime; K: tIecTimeKind; var B: array of Byte; At: LongInt);
+procedure IecGetTime(const B: array of Byte; At: LongInt; K: tIecTimeKind; out T: tIecTime);
 { Set the cause and P/N bit of the ASDU in Buf (the test bit, the OA and
   the rest stay): an activation answered as its confirmation or
   termination in place. False (nothing changed) when Len < 3 or Cot > 63. }
@@ -939,6 +955,82 @@ begin
   Result := 'object ' + IntToStr(Index + 1);
 end;
 
+function IdentFits(const P: tIecParams; const H: tIecAsdu; out Err: ShortString): tChResult;
+begin
+  Result := res_Ok;
+  Err := '';
+  if H.Cot > 63 then
+    Exit(Refuse(res_AsduValue, 'cause of transmission ' + IntToStr(H.Cot) + ' (0..63)', Err));
+  if (P.CotSize = 1) and (H.Oa <> 0) then
+    Exit(Refuse(res_AsduValue, 'originator address ' + IntToStr(H.Oa)
+      + ' with a one-octet cause of transmission', Err));
+  if H.Ca > IecMaxCa(P) then
+    Exit(Refuse(res_AsduValue, 'common address ' + IntToStr(H.Ca) + ' too large for '
+      + IntToStr(P.CaSize) + ' octet(s)', Err));
+end;
+
+procedure PutIdent(const P: tIecParams; const H: tIecAsdu; var Buf: array of Byte; out At: Integer);
+begin
+  Buf[0] := H.Ti;
+  Buf[1] := H.Count or (Ord(H.Sq) shl 7);
+  Buf[2] := H.Cot or (Ord(H.Negative) shl 6) or (Ord(H.Test) shl 7);
+  At := 3;
+  if P.CotSize = 2 then
+  begin
+    Buf[At] := H.Oa;
+    Inc(At);
+  end;
+  Buf[At] := Lo(H.Ca);
+  if P.CaSize = 2 then
+    Buf[At + 1] := Hi(H.Ca);
+  Inc(At, P.CaSize);
+end;
+
+function IecPutIdent(const P: tIecParams; const H: tIecAsdu; var Buf: array of Byte;
+  out At: Word; out Err: ShortString): tChResult;
+var
+  A: Integer;
+begin
+  At := 0;
+  Result := IecCheckParams(P, Err);
+  if Result = res_Ok then
+    Result := IdentFits(P, H, Err);
+  if Result <> res_Ok then
+    Exit;
+  if Length(Buf) < IecHeadLen(P) then
+    Exit(Refuse(res_AsduLength, 'no room for the data unit identifier', Err));
+  PutIdent(P, H, Buf, A);
+  At := A;
+end;
+
+procedure IecPutIoa(const P: tIecParams; Ioa: LongWord; var Buf: array of Byte; At: LongInt);
+begin
+  Buf[At] := Ioa and $FF;
+  if P.IoaSize > 1 then
+    Buf[At + 1] := (Ioa shr 8) and $FF;
+  if P.IoaSize > 2 then
+    Buf[At + 2] := (Ioa shr 16) and $FF;
+end;
+
+function IecGetIoa(const P: tIecParams; const Buf: array of Byte; At: LongInt): LongWord;
+begin
+  Result := Buf[At];
+  if P.IoaSize > 1 then
+    Result := Result or (LongWord(Buf[At + 1]) shl 8);
+  if P.IoaSize > 2 then
+    Result := Result or (LongWord(Buf[At + 2]) shl 16);
+end;
+
+procedure IecPutTime(const T: tIecTime; K: tIecTimeKind; var B: array of Byte; At: LongInt);
+begin
+  PutTime(T, K, B, At);
+end;
+
+procedure IecGetTime(const B: array of Byte; At: LongInt; K: tIecTimeKind; out T: tIecTime);
+begin
+  GetTime(B, At, K, T);
+end;
+
 function IecEncodeAsdu(const P: tIecParams; const H: tIecAsdu; const Objs: array of tIecObject;
   var Buf: array of Byte; out Len: Word; out Err: ShortString): tChResult;
 var
@@ -957,14 +1049,9 @@ begin
   if H.Count > Length(Objs) then
     Exit(Refuse(res_AsduCount, 'number of objects ' + IntToStr(H.Count) + ' but '
       + IntToStr(Length(Objs)) + ' given', Err));
-  if H.Cot > 63 then
-    Exit(Refuse(res_AsduValue, 'cause of transmission ' + IntToStr(H.Cot) + ' (0..63)', Err));
-  if (P.CotSize = 1) and (H.Oa <> 0) then
-    Exit(Refuse(res_AsduValue, 'originator address ' + IntToStr(H.Oa)
-      + ' with a one-octet cause of transmission', Err));
-  if H.Ca > IecMaxCa(P) then
-    Exit(Refuse(res_AsduValue, 'common address ' + IntToStr(H.Ca) + ' too large for '
-      + IntToStr(P.CaSize) + ' octet(s)', Err));
+  Result := IdentFits(P, H, Err);
+  if Result <> res_Ok then
+    Exit;
   ElemLen := Types[TI].Size;
   if H.Sq then
     Need := IecHeadLen(P) + P.IoaSize + H.Count * ElemLen
@@ -973,19 +1060,7 @@ begin
   if (Need > Length(Buf)) or (Need > IecMaxAsdu) then
     Exit(Refuse(res_AsduLength, Types[TI].Name + ' with ' + IntToStr(H.Count) + ' objects needs '
       + IntToStr(Need) + ' octets, room for ' + IntToStr(Min(Length(Buf), IecMaxAsdu)), Err));
-  Buf[0] := H.Ti;
-  Buf[1] := H.Count or (Ord(H.Sq) shl 7);
-  Buf[2] := H.Cot or (Ord(H.Negative) shl 6) or (Ord(H.Test) shl 7);
-  At := 3;
-  if P.CotSize = 2 then
-  begin
-    Buf[At] := H.Oa;
-    Inc(At);
-  end;
-  Buf[At] := Lo(H.Ca);
-  if P.CaSize = 2 then
-    Buf[At + 1] := Hi(H.Ca);
-  Inc(At, P.CaSize);
+  PutIdent(P, H, Buf, At);
   for I := 0 to H.Count - 1 do
   begin
     Ioa := Objs[I].Ioa;
@@ -997,11 +1072,7 @@ begin
         + IntToStr(Objs[0].Ioa) + ' in a sequence', Err));
     if (I = 0) or not H.Sq then
     begin
-      Buf[At] := Ioa and $FF;
-      if P.IoaSize > 1 then
-        Buf[At + 1] := (Ioa shr 8) and $FF;
-      if P.IoaSize > 2 then
-        Buf[At + 2] := (Ioa shr 16) and $FF;
+      IecPutIoa(P, Ioa, Buf, At);
       Inc(At, P.IoaSize);
     end;
     if not PutElement(H.Ti, Objs[I], Buf, At, E) then
@@ -1078,11 +1149,7 @@ begin
       + IntToStr(Len), Err));
   if H.Sq then
   begin
-    Ioa := Buf[H.HeadLen];
-    if P.IoaSize > 1 then
-      Ioa := Ioa or (LongWord(Buf[H.HeadLen + 1]) shl 8);
-    if P.IoaSize > 2 then
-      Ioa := Ioa or (LongWord(Buf[H.HeadLen + 2]) shl 16);
+    Ioa := IecGetIoa(P, Buf, H.HeadLen);
     if Ioa + H.Count - 1 > IecMaxIoa(P) then
       Exit(Refuse(res_AsduIoa, Types[TI].Name + ': sequence of ' + IntToStr(H.Count)
         + ' objects from IOA ' + IntToStr(Ioa) + ' runs past IOA ' + IntToStr(IecMaxIoa(P)), Err));
@@ -1107,11 +1174,7 @@ begin
     At := H.HeadLen + Index * (P.IoaSize + H.ElemLen);
   if At + P.IoaSize + (Index * Ord(H.Sq) + 1) * H.ElemLen > H.Len then
     Exit(res_AsduCount);
-  Ioa := Buf[At];
-  if P.IoaSize > 1 then
-    Ioa := Ioa or (LongWord(Buf[At + 1]) shl 8);
-  if P.IoaSize > 2 then
-    Ioa := Ioa or (LongWord(Buf[At + 2]) shl 16);
+  Ioa := IecGetIoa(P, Buf, At);
   Inc(At, P.IoaSize);
   if H.Sq then
   begin

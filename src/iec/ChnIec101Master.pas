@@ -96,6 +96,8 @@ type
   tIecBadFunc = procedure(Data: Pointer; Addr: Word; const Err: ShortString);
   { A slave's end of initialisation: its common address and COI. }
   tIecInitFunc = procedure(Data: Pointer; Addr, Ca: Word; Coi: Byte);
+  { An ASDU of file transfer (types 120..127) from slave Addr, undecoded. }
+  tIecFileAsduFunc = procedure(Data: Pointer; Addr: Word; const Buf: array of Byte; Len: Word);
 
   tIecCmdPhase = (cpNone, cpSend, cpConfirm, cpTerm, cpDone);
   { what the link service under way is for }
@@ -119,6 +121,7 @@ type
     Result  : tChResult;
     Err     : ShortString;
     Auto    : Boolean;     {< the master's own, after an end of initialisation }
+    Raw     : Boolean;     {< an ASDU of another procedure (IecStartAsdu): done once sent }
   end;
 
   tIecMaster = record
@@ -144,6 +147,10 @@ type
     OnEndOfInit: tIecInitFunc;   {< a slave's end of initialisation (nil: none) }
     NoGiAfterInit: Boolean;      {< do not interrogate a slave after its end of initialisation }
     CiAfterInit: Byte;     {< QCC of a counter interrogation after it too (0: none) }
+    { file transfer (ChnIecFileClient): its ASDUs go here, not to OnObject
+      (nil: counted as ASDUs of an unknown type, BadAsdus) }
+    OnFileAsdu: tIecFileAsduFunc;
+    FileData : Pointer;
     Data     : Pointer;
     Idle     : tFT12Idle;  {< blocking forms: called instead of waiting (tests: the slave) }
     IdleData : Pointer;
@@ -220,6 +227,11 @@ function IecStartParamNormal(var M: tIecMaster; Addr, Ca: Word; Ioa: LongWord; V
 function IecStartParamScaled(var M: tIecMaster; Addr, Ca: Word; Ioa: LongWord; Value: LongInt; Qpm: Byte): Boolean;
 function IecStartParamFloat(var M: tIecMaster; Addr, Ca: Word; Ioa: LongWord; Value: Double; Qpm: Byte): Boolean;
 function IecStartParamActivation(var M: tIecMaster; Addr, Ca: Word; Ioa: LongWord; Qpa: Byte): Boolean;
+{ One ASDU built by another procedure (file transfer, ChnIecFileClient)
+  to slave Addr: ends res_Ok once the link took it (unbalanced: its
+  SEND/CONFIRM confirmed; balanced, IEC 104: handed to the transport);
+  the answers come to OnFileAsdu. False when refused as the others. }
+function IecStartAsdu(var M: tIecMaster; Addr: Word; const Asdu: array of Byte; Len: Word): Boolean;
 function IecCommandDone(const M: tIecMaster): Boolean;
 { Step a started command to its end (Idle, or ChnWaitAny); its result. }
 function IecFinish(var M: tIecMaster): tChResult;
@@ -239,6 +251,10 @@ function IecParamFloat(var M: tIecMaster; Addr, Ca: Word; Ioa: LongWord; Value: 
 function IecParamActivation(var M: tIecMaster; Addr, Ca: Word; Ioa: LongWord; Qpa: Byte): tChResult;
 { Step for Ms milliseconds (polling, objects to OnObject). }
 procedure IecPollFor(var M: tIecMaster; Ms: LongInt);
+{ The pause of a loop whose step did nothing: Idle when set, else
+  ChnWaitAny until the line has something or the master's next service
+  is due (Limit at the latest; at most one second). }
+procedure IecMasterWait(var M: tIecMaster; Limit: QWord);
 
 { What the master knows of slave index S (0..SlaveCount - 1), for a
   program that shows its health: a copy of its record (State, BackoffMs,
@@ -356,6 +372,8 @@ end;
 function CmdName(const M: tIecMaster): ShortString;
 begin
   Result := IecTypeName(M.Cmd.Ti);
+  if Result = '' then
+    Result := 'ASDU type ' + IntToStr(M.Cmd.Ti);
   if IecTypeKind(M.Cmd.Ti) in [ikSingleCmd, ikDoubleCmd, ikStepCmd, ikSetNormal, ikSetScaled,
     ikSetFloat, ikBitsCmd, ikRead] then
     Result := Result + ' IOA ' + IntToStr(M.Cmd.Obj.Ioa);
@@ -578,6 +596,36 @@ begin
   Result := StartParam(M, Addr, Ca, P_AC_NA_1, Ioa, Qpa, 0, 0);
 end;
 
+function IecStartAsdu(var M: tIecMaster; Addr: Word; const Asdu: array of Byte; Len: Word): Boolean;
+begin
+  Result := False;
+  if not IecCommandDone(M) then
+  begin
+    M.Cmd.Err := 'ASDU: a command is under way (' + CmdName(M) + ')';
+    Exit;
+  end;
+  FillChar(M.Cmd, SizeOf(M.Cmd), 0);
+  M.Cmd.Raw := True;
+  M.Cmd.Stage := stMain;
+  M.Cmd.Slave := IecMasterSlave(M, Addr);
+  if (Len >= 1) and (Len <= Length(Asdu)) then
+    M.Cmd.Ti := Asdu[0];
+  if M.Cmd.Slave < 0 then
+    Finish(M, res_IecNoSlave, 'no slave with link address ' + IntToStr(Addr))
+  else if (Len < 1) or (Len > Length(Asdu)) or (Len > IecMaxAsdu) then
+    Finish(M, res_AsduLength, 'an ASDU of ' + IntToStr(Len) + ' octets')
+  else
+  begin
+    Move(Asdu[0], M.CmdAsdu[0], Len);
+    M.CmdLen := Len;
+    M.StageTi := Asdu[0];
+    M.Cmd.Result := res_Ok;
+    M.Cmd.Phase := cpSend;
+    M.Cmd.Deadline := ChMsTick + QWord(M.CommandMs);
+    Result := True;
+  end;
+end;
+
 function IecCommandDone(const M: tIecMaster): Boolean;
 begin
   Result := M.Cmd.Phase in [cpNone, cpDone];
@@ -728,6 +776,11 @@ var
 begin
   Inc(M.Asdus);
   Inc(M.Slaves[S].Asdus);
+  if (Len > 0) and (Buf[0] >= 120) and (Buf[0] <= 127) and Assigned(M.OnFileAsdu) then
+  begin
+    M.OnFileAsdu(M.FileData, M.Slaves[S].Addr, Buf, Len);   { file transfer }
+    Exit;
+  end;
   if IecDecodeHeader(M.Params, Buf, Len, H, E) <> res_Ok then
   begin
     Inc(M.BadAsdus);
@@ -756,7 +809,7 @@ procedure StageSent(var M: tIecMaster; S: Integer);
 var
   H: tIecAsdu;
 begin
-  if not Assigned(M.OnSent) then
+  if not Assigned(M.OnSent) or M.Cmd.Raw then
     Exit;
   FillChar(H, SizeOf(H), 0);
   H.Ti := M.StageTi;
@@ -938,7 +991,7 @@ begin
         SlaveServes(M, S);
         Inc(Sl^.Commands);
         StageSent(M, S);
-        if M.Cmd.Stage = stDelaySend then
+        if (M.Cmd.Stage = stDelaySend) or M.Cmd.Raw then
           StageConfirmed(M)             { the delay is no activation: nothing confirms it }
         else
         begin
@@ -1054,7 +1107,7 @@ begin
       Inc(M.Slaves[0].Commands);
       StageSent(M, 0);
       M.Cmd.SentAt := ChMsTick;
-      if M.Cmd.Stage = stDelaySend then
+      if (M.Cmd.Stage = stDelaySend) or M.Cmd.Raw then
         StageConfirmed(M)
       else
       begin
@@ -1063,7 +1116,8 @@ begin
       end;
     end
     else
-      Finish(M, R, '');
+      Finish(M, R, 'the link refused the ASDU of ' + IntToStr(M.CmdLen) + ' octets ('
+        + ChResultText(R) + ')');
     Result := True;
   end;
 end;
@@ -1133,6 +1187,11 @@ begin
     Until_ := T + 1000;
   if Until_ > T then
     ChnWaitAny(Until_ - T);
+end;
+
+procedure IecMasterWait(var M: tIecMaster; Limit: QWord);
+begin
+  WaitABit(M, Limit);
 end;
 
 function IecFinish(var M: tIecMaster): tChResult;

@@ -49,6 +49,10 @@
     smoothing, limits kept per IOA, a threshold in operation a deadband on
     the spontaneous reports, reported after the points of a station
     interrogation) and their activation (P_AC_NA_1): ACT_CON / DEACT_CON;
+  * file transfer (types 120..127) when the program gave a file server
+    (IecSlaveServeFiles, ChnIecFileServer): its answers and segments go
+    in class 1, one segment whenever class 1 is empty, so a long file
+    never fills the queue; without one they are of an unknown type;
   * anything else is mirrored as a negative answer with COT 44 (unknown
     type), 45 (a cause the type does not take, or P/N = 1), 46 (another common
     address, or the broadcast address with a read or a command) or 47 (an
@@ -69,7 +73,8 @@ unit ChnIec101Slave;
 interface
 
 uses
-  ChnTypes, ChnVirt, ChnFT1_2, ChnFT12Link, ChnFT12Station, ChnIec101Asdu, ChnIecTransport;
+  ChnTypes, ChnVirt, ChnFT1_2, ChnFT12Link, ChnFT12Station, ChnIec101Asdu, ChnIecTransport,
+  ChnIecFile, ChnIecFileServer;
 
 const
   IecSlaveMaxPoints = 1024;
@@ -96,7 +101,7 @@ type
 
   tIecQueued = record
     Len : Word;
-    Data: array[0..MaxDataLen - 1] of Byte;
+    Data: array[0..IecMaxAsdu - 1] of Byte;
   end;
 
   tIecQueue = record
@@ -158,6 +163,7 @@ type
     OnAsdu   : tIecSlaveAsduFunc;
     OnBad    : tIecSlaveBadFunc;
     OnReset  : tIecSlaveResetFunc;
+    Files    : pIecFileServer;  {< file transfer (nil: none) }
     Data     : Pointer;
     { counters }
     Asdus, BadAsdus, Commands, Refused, ClockSyncs, Interrogations,
@@ -229,6 +235,10 @@ function IecSlavePending(const S: tIecSlaveStation): Boolean;
   link is up (balanced FT 1.2, IEC 104). A general reset of process
   (C_RP_NA_1, QRP 1) sends one with Coi_RemoteReset by itself. }
 procedure IecSlaveEndOfInit(var S: tIecSlaveStation; Coi: Byte);
+{ Serve file transfer with F (ChnIecFileServer; its application parameters
+  and common address become the slave's); nil: no file transfer. F must
+  not move while the slave runs. }
+procedure IecSlaveServeFiles(var S: tIecSlaveStation; F: pIecFileServer);
 
 { Deferred confirmation of a command. Called from OnCommand (which then
   returns True): the command's ACT_CON waits for IecSlaveConfirm with the
@@ -250,7 +260,7 @@ function IecSlaveDeferred(const S: tIecSlaveStation): LongInt;
 implementation
 
 uses
-  SysUtils, DateUtils;
+  SysUtils, DateUtils, Math, ChnIec104Codec;
 
 {- ---------------------------------------------------------------- queues }
 
@@ -258,7 +268,7 @@ function QueuePut(var Q: tIecQueue; const Buf: array of Byte; Len: Word): Boolea
 var
   Slot: Integer;
 begin
-  Result := (Q.Count < IecSlaveQueueLen) and (Len <= MaxDataLen);
+  Result := (Q.Count < IecSlaveQueueLen) and (Len <= IecMaxAsdu);
   if not Result then
     Exit;
   Slot := (Q.Head + Q.Count) mod IecSlaveQueueLen;
@@ -294,6 +304,45 @@ procedure Queue1(var S: tIecSlaveStation; const Buf: array of Byte; Len: Word);
 begin
   if not QueuePut(S.Class1, Buf, Len) then
     Inc(S.Overflows);
+end;
+
+{ The longest ASDU the link takes: IEC 104's APDU of 253 octets less
+  its control field (249); FT 1.2's frame of L = 255 less the control
+  octet and the link address (253 with ADR=1; no ASDU exceeds IecMaxAsdu). }
+function MaxAsdu(const S: tIecSlaveStation): Word;
+begin
+  if S.Over104 then
+    Result := Apci104MaxAsdu
+  else
+    Result := Min(IecMaxAsdu, FT12MaxData(S.Chn));
+end;
+
+procedure IecSlaveServeFiles(var S: tIecSlaveStation; F: pIecFileServer);
+begin
+  S.Files := F;
+  if F <> nil then
+  begin
+    F^.Params := S.Params;
+    F^.Ca := S.Ca;
+    { no longer than the link takes }
+    if F^.MaxAsdu > MaxAsdu(S) then
+      F^.MaxAsdu := MaxAsdu(S);
+  end;
+end;
+
+{ Class 1 is empty: the file server's next ASDU into it. }
+procedure FeedFiles(var S: tIecSlaveStation);
+var
+  Buf: array[0..IecMaxAsdu - 1] of Byte;
+  Len: Word;
+begin
+  if (S.Files <> nil) and (S.Class1.Count = 0) and IecFileServerNext(S.Files^, Buf, Len) then
+    Queue1(S, Buf, Len);
+end;
+
+function FilesReady(var S: tIecSlaveStation): Boolean;
+begin
+  Result := (S.Files <> nil) and IecFileServerReady(S.Files^);
 end;
 
 {- ---------------------------------------------------------------- points }
@@ -350,7 +399,7 @@ end;
 { Can Obj be sent as type Ti? (the encoder's own checks) }
 function CheckObject(const S: tIecSlaveStation; Ti: Byte; const Obj: tIecObject; out Err: ShortString): tChResult;
 var
-  Buf: array[0..MaxDataLen - 1] of Byte;
+  Buf: array[0..IecMaxAsdu - 1] of Byte;
   Len: Word;
 begin
   Result := IecEncodeOne(S.Params, Ti, Cot_Spontaneous, S.Ca, Obj, Buf, Len, Err);
@@ -459,7 +508,7 @@ end;
 { Encode one object of type Ti with cause Cot into the class 1 queue. }
 function QueueObject(var S: tIecSlaveStation; Ti, Cot: Byte; const O: tIecObject): tChResult;
 var
-  Buf: array[0..MaxDataLen - 1] of Byte;
+  Buf: array[0..IecMaxAsdu - 1] of Byte;
   Len: Word;
   Err: ShortString;
 begin
@@ -633,7 +682,7 @@ begin
   end;
   Ti := S.Points[S.GiNext].Ti;
   Size := S.Params.IoaSize + IecElementSize(Ti);
-  Room := (MaxDataLen - IecHeadLen(S.Params)) div Size;
+  Room := (MaxAsdu(S) - IecHeadLen(S.Params)) div Size;
   if Room > IecMaxObjects then
     Room := IecMaxObjects;
   N := 0;
@@ -700,9 +749,9 @@ end;
 { The received ASDU mirrored with Cot (negative or not) into class 1. }
 procedure Answer(var S: tIecSlaveStation; const Buf: array of Byte; Len: Word; Cot: Byte; Negative: Boolean);
 var
-  Out: array[0..MaxDataLen - 1] of Byte;
+  Out: array[0..IecMaxAsdu - 1] of Byte;
 begin
-  if (Len = 0) or (Len > MaxDataLen) then
+  if (Len = 0) or (Len > IecMaxAsdu) then
     Exit;
   Move(Buf[0], Out[0], Len);
   IecSetCot(Out, Len, Cot, Negative);
@@ -1057,6 +1106,11 @@ begin
   Inc(S.Asdus);
   if Assigned(S.OnAsdu) then
     S.OnAsdu(S.Data, False, @A[0], Len);
+  if (Len > 0) and IecIsFileType(A[0]) and (S.Files <> nil) then
+  begin
+    IecFileServerTake(S.Files^, A, Len);
+    Exit;
+  end;
   R := IecDecodeHeader(S.Params, A, Len, H, Err);
   HeadLen := IecHeadLen(S.Params);
   if R = res_AsduType then
@@ -1147,7 +1201,7 @@ begin
     S.OnAsdu(S.Data, True, @Q.Data[0], Q.Len);
 end;
 
-function OnClassData(Data: Pointer; ClassNo: Byte; var Rep: tSendRecord; var Len: Word): Boolean;
+function OnClassData(Data: Pointer; ClassNo: Byte; var Rep: tFT12MaxRecord; var Len: Word): Boolean;
 var
   S: pIecSlaveStation;
   Q: ^tIecQueue;
@@ -1158,6 +1212,8 @@ begin
     Q := @S^.Class1
   else
     Q := @S^.Class2;
+  if ClassNo = 1 then
+    FeedFiles(S^);
   if (ClassNo = 2) and (Q^.Count = 0) and S^.GiActive then
     if GiNextAsdu(S^, G) then
       QueuePut(Q^, G.Data, G.Len);
@@ -1172,7 +1228,7 @@ end;
 
 function OnClass1(Data: Pointer): Boolean;
 begin
-  Result := pIecSlaveStation(Data)^.Class1.Count > 0;
+  Result := (pIecSlaveStation(Data)^.Class1.Count > 0) or FilesReady(pIecSlaveStation(Data)^);
 end;
 
 function IecSlaveInit(var S: tIecSlaveStation; Chn: pChnVirt; const P: tIecParams; Ca: Word;
@@ -1212,7 +1268,7 @@ begin
     end;
     FT12StationInit(S.Station, Chn);
     S.Station.OnUserData := @OnUserData;
-    S.Station.OnClassData := @OnClassData;
+    S.Station.OnLongClassData := @OnClassData;
     S.Station.OnClass1 := @OnClass1;
     S.Station.Data := @S;
   end;
@@ -1227,6 +1283,7 @@ var
 begin
   while IecTransportRoom(S.Link) do
   begin
+    FeedFiles(S);
     if S.Class1.Count > 0 then
       Q := @S.Class1
     else
@@ -1251,6 +1308,8 @@ begin
   Result := False;
   if S.Chn = nil then
     Exit;
+  if S.Files <> nil then
+    IecFileServerReady(S.Files^);        { its timer: a transfer left ends }
   if S.Balanced then
   begin
     Result := IecTransportStep(S.Link);
@@ -1262,7 +1321,8 @@ end;
 
 function IecSlavePending(const S: tIecSlaveStation): Boolean;
 begin
-  Result := (S.Class1.Count > 0) or (S.Class2.Count > 0) or S.GiActive;
+  Result := (S.Class1.Count > 0) or (S.Class2.Count > 0) or S.GiActive or
+    ((S.Files <> nil) and IecFileServerBusy(S.Files^));
 end;
 
 function IecSlaveWaitMs(const S: tIecSlaveStation): LongInt;

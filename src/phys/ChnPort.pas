@@ -208,7 +208,7 @@ function DefaultPortDriver: ShortString;
 implementation
 
 uses
-  {$IFDEF UNIX}ChnUnix,{$ENDIF} SysUtils, uString;
+  ChnOs, SysUtils, uString;
 
 const
   MaxDrivers = 8;
@@ -322,14 +322,7 @@ function TChnPort.OSErrorText: ShortString;
 begin
   if FOSError = 0 then
     Exit('');
-  {$IFDEF UNIX}
-  Result := ChnUnix.OsErrorText(FOSError);
-  {$ELSE}
-  { Windows ends its messages with a full stop and a line break }
-  Result := TrimRight(SysErrorMessage(FOSError));
-  while (Result <> '') and (Result[Length(Result)] = '.') do
-    SetLength(Result, Length(Result) - 1);
-  {$ENDIF}
+  Result := ChnOs.OsErrorText(FOSError);
 end;
 
 procedure TChnPort.Close;
@@ -416,11 +409,7 @@ end;
 
 function ComDevicePath(N: LongInt): ShortString;
 begin
-  {$IFDEF WINDOWS}
-  Result := '\\.\COM' + NumStr(N);
-  {$ELSE}
-  Result := '/dev/ttyS' + NumStr(N - 1);
-  {$ENDIF}
+  Result := OsComDevicePath(N);
 end;
 
 function DefaultPortDriver: ShortString;

@@ -97,8 +97,7 @@ function TrcMsOfDay: LongInt;
 implementation
 
 uses
-  {$IFDEF UNIX}BaseUnix, Unix,{$ENDIF}
-  SysUtils, DateUtils, uString;
+  ChnOs, SysUtils, uString;
 
 const
   ModeNames = 'HEX|DEC|PCAP';
@@ -111,26 +110,6 @@ begin
   DecodeTime(Now, H, M, S, Ms);
   Result := ((LongInt(H) * 60 + M) * 60 + S) * 1000 + Ms;
 end;
-
-{ UTC seconds since 1970 and microseconds, for a pcap record. }
-procedure UtcNow(out Sec, USec: LongWord);
-{$IFDEF UNIX}
-var
-  T: TTimeVal;
-begin
-  fpgettimeofday(@T, nil);
-  Sec := T.tv_sec;
-  USec := T.tv_usec;
-end;
-{$ELSE}
-var
-  N: TDateTime;
-begin
-  N := LocalTimeToUniversal(Now);
-  Sec := DateTimeToUnix(N);
-  USec := MilliSecondOf(N) * 1000;
-end;
-{$ENDIF}
 
 constructor tChnTrc.Init;
 begin
@@ -216,21 +195,8 @@ begin
     CH_Handle := StdOutputHandle
   else
   begin
-    {$IFDEF UNIX}
-    { O_APPEND: several layers (both ends of a test) may share one file.
-      O_NONBLOCK: a FIFO nobody reads would block open(2) for ever; so it
-      fails at once (ENXIO), and writes block again as for any file }
-    CH_Handle := FpOpen(CH_File, O_WRONLY or O_CREAT or O_APPEND or O_NONBLOCK, &666);
-    if CH_Handle <> THandle(-1) then
-      FpFcntl(CH_Handle, F_SETFL, FpFcntl(CH_Handle, F_GETFL) and not O_NONBLOCK);
-    {$ELSE}
-    { shared like the Unix file: FileCreate alone would open it exclusively
-      and lock out a second layer on the same log and any reader }
-    if FileExists(CH_File) then
-      CH_Handle := FileOpen(CH_File, fmOpenWrite or fmShareDenyNone)
-    else
-      CH_Handle := FileCreate(CH_File, fmShareDenyNone, 0);
-    {$ENDIF}
+    { appended to: several layers (both ends of a test) may share one file }
+    CH_Handle := OsOpenAppend(CH_File);
     if CH_Handle = THandle(-1) then
     begin
       CH_Result := res_CannotOpen;
@@ -306,10 +272,8 @@ function tChnTrc.LogWrite(const Text: AnsiString): Boolean;
 var
   Written, N: LongInt;
 begin
-  {$IFNDEF UNIX}
   if CH_OwnHandle then
-    FileSeek(CH_Handle, 0, fsFromEnd);
-  {$ENDIF}
+    OsBeforeAppend(CH_Handle);
   Written := 0;
   while Written < Length(Text) do        { a pipe may take it in pieces }
   begin
@@ -347,7 +311,7 @@ begin
     Exit;
   if CH_Pcap then
   begin
-    UtcNow(Sec, USec);
+    OsUtcNow(Sec, USec);
     if CH_PcapTcp then
       Text := PcapTcpRecordBytes(Sec, USec, (Dir = trcTx) = CH_PcapServer, PcapIec104Port,
         CH_Flow, Buff^, Len)

@@ -97,7 +97,8 @@ function CliArgCount(const Cli: tCli): LongInt;
   a parameter string given as one argument or as several. }
 function CliRest(const Cli: tCli; First: LongInt): AnsiString;
 
-{ "PROG: What (Token)" on standard error, exit Code. Token '' = none. }
+{ "PROG: What (Token)" on standard error, exit Code (without a Halt here:
+  what the routines under way hold is freed on the way out). Token '' = none. }
 procedure CliFail(const Cli: tCli; const What, Token: AnsiString; Code: LongInt);
 { A usage error: CliFail with CliExitUsage. }
 procedure CliUsageError(const Cli: tCli; const What, Token: AnsiString);
@@ -112,6 +113,10 @@ function CliUsageText(const Cli: tCli): AnsiString;
 procedure CliCheckParams(const Cli: tCli; const Params, TopLayer: AnsiString);
 { The same, but the channel (not opened) is the caller's. }
 function CliChannel(const Cli: tCli; const Params, TopLayer: AnsiString): pChnVirt;
+{ The channel of Params (not opened), or nil with Why: what is wrong and
+  the token ('bad parameter string: ... (BD=abc)'). For a program that
+  must not exit on a bad string (a gateway reading its configuration). }
+function CliNewChannel(const Params, TopLayer: AnsiString; out Why: AnsiString): pChnVirt;
 { The check of CliCheckParams for a program that reports on its own (a
   configuration file): '' when Params is good, else 'bad parameter
   string: ...' with the token and what the key allows. }
@@ -260,13 +265,51 @@ begin
   end;
 end;
 
+{ Ending the program from deep inside it: a Halt there would leave every
+  string and dynamic array of the routines under way (and of the main
+  program's block) unfreed, and skip their finally parts. CliFail raises
+  a TCliExit instead: on its way out every routine frees its own, and
+  the program's try/finally parts run; no handler takes it (it is no
+  Exception), so the run-time library hands it to CliExceptProc, which
+  drops it and ends the program with its code. }
+type
+  TCliExit = class
+    Code: LongInt;
+  end;
+
+var
+  OtherExceptProc: TExceptProc;
+
+{ the run-time library's own: takes the exception off its stack (and
+  frees the stack entry), returns the object }
+function PopExceptObject: TObject; external name 'FPC_POPOBJECTSTACK';
+
+procedure CliExceptProc(Obj: TObject; Addr: CodePointer; FrameCount: LongInt; Frame: PCodePointer);
+var
+  Code: LongInt;
+begin
+  if not (Obj is TCliExit) then
+  begin
+    if Assigned(OtherExceptProc) then
+      OtherExceptProc(Obj, Addr, FrameCount, Frame);
+    Exit;
+  end;
+  Code := TCliExit(Obj).Code;
+  PopExceptObject.Free;
+  Halt(Code);
+end;
+
 procedure CliFail(const Cli: tCli; const What, Token: AnsiString; Code: LongInt);
+var
+  E: TCliExit;
 begin
   if Token <> '' then
     WriteLn(StdErr, Cli.Prog, ': ', What, ' (', Token, ')')
   else
     WriteLn(StdErr, Cli.Prog, ': ', What);
-  Halt(Code);
+  E := TCliExit.Create;
+  E.Code := Code;
+  raise E;
 end;
 
 procedure CliUsageError(const Cli: tCli; const What, Token: AnsiString);
@@ -561,16 +604,22 @@ begin
     CliUsageError(Cli, Why, Token);
 end;
 
+function CliNewChannel(const Params, TopLayer: AnsiString; out Why: AnsiString): pChnVirt;
+var
+  Token: AnsiString;
+begin
+  Result := NewChannel(Params, TopLayer, Why, Token);
+  if (Result = nil) and (Token <> '') then
+    Why := Why + ' (' + Token + ')';
+end;
+
 function CliParamsProblem(const Params, TopLayer: AnsiString): AnsiString;
 var
   Chn: pChnVirt;
-  Token: AnsiString;
 begin
-  Chn := NewChannel(Params, TopLayer, Result, Token);
+  Chn := CliNewChannel(Params, TopLayer, Result);
   if Chn <> nil then
-    Dispose(Chn, Done)
-  else if Token <> '' then
-    Result := Result + ' (' + Token + ')';
+    Dispose(Chn, Done);
 end;
 
 procedure CliCheckParams(const Cli: tCli; const Params, TopLayer: AnsiString);
@@ -593,4 +642,7 @@ begin
     Result := 1;
 end;
 
+initialization
+  OtherExceptProc := ExceptProc;
+  ExceptProc := @CliExceptProc;
 end.

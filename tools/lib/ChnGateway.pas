@@ -11,7 +11,7 @@ unit ChnGateway;
 interface
 
 uses
-  Classes, SysUtils, ChnTypes, ChnPccc, ChnPcccTags, ChnMqtt;
+  Classes, SysUtils, ChnTypes, ChnPccc, ChnPcccTags, ChnMqtt, ChnGateIec101;
 
 const
   GateHealthMs = 10000;     { $health is published on every change and this often }
@@ -34,6 +34,8 @@ type
     Ioa      : LongInt;
     Plc5     : Boolean;      { family = plc5: PLC-5 addresses and commands }
     Tags     : array of tGateTagCfg;
+    Iec      : Boolean;      { NAM=FT1_2: an IEC 101 device (ChnGateIec101) }
+    Iec101   : tGateIecCfg;
   end;
 
   tGateConfig = record
@@ -57,6 +59,7 @@ type
   tGate = record
     Cfg    : tGateConfig;
     Devs   : array of tPcccDevice;
+    Iecs   : array of pGateIecDevice;  { the IEC 101 devices (nil for a DF1 one) }
     OpenAt : array of QWord;      { when a device whose line failed is opened again }
     Mqtt   : tMqttClient;
     HealthAt: QWord;
@@ -94,7 +97,7 @@ function GateHealthPayload(const D: tPcccDevice): AnsiString;
 implementation
 
 uses
-  IniFiles, StrUtils, ChnWait, ChnPcccClient, ChnJson, ChnCli;
+  IniFiles, StrUtils, ChnWait, ChnPcccClient, ChnJson, ChnCli, ChnIecPointTable;
 
 { ------------------------------------------------------------ configuration }
 
@@ -146,7 +149,8 @@ end;
 procedure CheckLines(var C: tChecker);
 const
   MqttKeys = ' host port prefix qos user password tls ca queue client_id keepalive ';
-  DeviceKeys = ' line family tags scan write deadband demote fails timeout ioa ';
+  DeviceKeys = ' line family tags scan write deadband demote fails timeout ioa ' +
+    'slaves ca cot_size ca_size ioa_size points gi cycle ';
 var
   I, Eq: LongInt;
   S, Sec, Key, Keys: AnsiString;
@@ -273,6 +277,82 @@ begin
     Bad(C, S, 'password', 'given without user');
 end;
 
+function Deadband(var C: tChecker; Ini: TMemIniFile; const Sec: AnsiString): Double;
+var
+  W: AnsiString;
+  Code: LongInt;
+begin
+  Result := 0;
+  W := Trim(Ini.ReadString(Sec, 'deadband', ''));
+  if W = '' then
+    Exit;
+  Val(W, Result, Code);
+  if (Code <> 0) or (Result < 0) then
+  begin
+    Bad(C, Sec, 'deadband', '"' + W + '" is not a number 0 or above');
+    Result := 0;
+  end;
+end;
+
+const
+  IecOnlyKeys: array[0..7] of AnsiString = ('slaves', 'ca', 'cot_size', 'ca_size', 'ioa_size', 'points',
+    'gi', 'cycle');
+
+{ An IEC 101 device: the master's options; the point entries and the
+  line are checked by ChnGateIec101. }
+procedure ReadIecDevice(var C: tChecker; Ini: TMemIniFile; const Sec: AnsiString; var D: tGateDeviceCfg);
+var
+  K, W, Err: AnsiString;
+  A: LongInt;
+  LineOk: Boolean;
+begin
+  D.Iec := True;
+  for K in ['tags', 'scan', 'fails', 'family'] do
+    if Ini.ValueExists(Sec, K) then
+      Bad(C, Sec, K, 'not for an IEC 101 device (the master demotes a slave by its own back-off)');
+  with D.Iec101 do
+  begin
+    Params.CotSize := Num(C, Ini, Sec, 'cot_size', 1, 2, 2);
+    Params.CaSize := Num(C, Ini, Sec, 'ca_size', 1, 2, 2);
+    Params.IoaSize := Num(C, Ini, Sec, 'ioa_size', 1, 3, 3);
+    Ca := Num(C, Ini, Sec, 'ca', 0, 65535, 1);
+    IoaOffset := Num(C, Ini, Sec, 'ioa', 0, 16777215, 0);
+    TimeoutMs := Num(C, Ini, Sec, 'timeout', 10, 60000, 1000);
+    DemoteMs := Num(C, Ini, Sec, 'demote', 100, 3600000, TagDemoteMsDefault);
+    CycleMs := Num(C, Ini, Sec, 'cycle', 10, 3600000, 100);
+    GiMs := Num(C, Ini, Sec, 'gi', 0, 86400000, 0);
+    Deadband := ChnGateway.Deadband(C, Ini, Sec);
+    Slaves := nil;
+    for W in Trim(Ini.ReadString(Sec, 'slaves', '')).Split([' ', #9, ','], TStringSplitOptions.ExcludeEmpty) do
+    begin
+      A := StrToIntDef(W, -1);
+      if (A < 0) or (A > 65535) then
+        Bad(C, Sec, 'slaves', '"' + W + '" is not a link address 0..65535')
+      else
+      begin
+        SetLength(Slaves, Length(Slaves) + 1);
+        Slaves[High(Slaves)] := A;
+      end;
+    end;
+    Points := nil;
+    LineOk := GateIecCheckLine(D.Line, D.Iec101, Err);
+    if not LineOk then
+    begin
+      if Pos('slave ', Err) = 1 then
+        Bad(C, Sec, 'slaves', Err)
+      else if Pos('ca ', Err) = 1 then
+        Bad(C, Sec, 'ca', Err)
+      else
+        Bad(C, Sec, 'line', Err);
+      Exit;
+    end;
+    if not GateIecParsePoints(Ini.ReadString(Sec, 'points', ''), D.Iec101, Err) then
+      Bad(C, Sec, 'points', Err);
+    if not GateIecParseWrite(Ini.ReadString(Sec, 'write', ''), D.Iec101, Err) then
+      Bad(C, Sec, 'write', Err);
+  end;
+end;
+
 procedure ReadDevice(var C: tChecker; Ini: TMemIniFile; const Sec: AnsiString; var D: tGateDeviceCfg;
   var Probe: tPcccDevice);
 var
@@ -286,6 +366,14 @@ begin
   if (Pos('/', D.Name) > 0) or (Pos('+', D.Name) > 0) or (Pos('#', D.Name) > 0) or (Pos(' ', D.Name) > 0) then
     Bad(C, Sec, '', '"' + D.Name + '": a device name is one topic level (no / + # or blanks)');
   D.Line := Trim(Ini.ReadString(Sec, 'line', ''));
+  if UpperCase(ExtractWord(1, D.Line, [' '])) = 'NAM=FT1_2' then
+  begin
+    ReadIecDevice(C, Ini, Sec, D);
+    Exit;
+  end;
+  for W in IecOnlyKeys do
+    if Ini.ValueExists(Sec, W) then
+      Bad(C, Sec, W, 'only for an IEC 101 device (line = NAM=FT1_2 ...)');
   D.ScanMs := Num(C, Ini, Sec, 'scan', 10, 3600000, TagScanMsDefault);
   D.DemoteMs := Num(C, Ini, Sec, 'demote', 100, 3600000, TagDemoteMsDefault);
   D.DemoteAfter := Num(C, Ini, Sec, 'fails', 1, 1000, TagDemoteAfterDefault);
@@ -295,25 +383,14 @@ begin
   D.Plc5 := W = 'plc5';
   if (W <> 'slc') and not D.Plc5 then
     Bad(C, Sec, 'family', '"' + W + '" is neither slc (SLC 500, MicroLogix) nor plc5');
-  D.Deadband := 0;
-  W := Trim(Ini.ReadString(Sec, 'deadband', ''));
-  if W <> '' then
-  begin
-    Val(W, DB, Code);
-    if (Code <> 0) or (DB < 0) then
-      Bad(C, Sec, 'deadband', '"' + W + '" is not a number 0 or above')
-    else
-      D.Deadband := DB;
-  end;
+  D.Deadband := Deadband(C, Ini, Sec);
   if D.Line = '' then
     Bad(C, Sec, 'line', 'missing: the parameter string of the device''s line (NAM=DF1 ... NAM=COM ...)')
   else
   begin
     Layer := UpperCase(ExtractWord(1, D.Line, [' ']));
-    if Layer = 'NAM=FT1_2' then
-      Bad(C, Sec, 'line', 'IEC 101 devices (NAM=FT1_2) are not in this version of chngate')
-    else if Layer <> 'NAM=DF1' then
-      Bad(C, Sec, 'line', '"' + ExtractWord(1, D.Line, [' ']) + '": the line starts with NAM=DF1')
+    if Layer <> 'NAM=DF1' then
+      Bad(C, Sec, 'line', '"' + ExtractWord(1, D.Line, [' ']) + '": the line starts with NAM=DF1 or NAM=FT1_2')
     else
     begin
       Why := CliParamsProblem(D.Line, 'DF1');
@@ -481,10 +558,11 @@ function GateSummary(const Cfg: tGateConfig): AnsiString;
 var
   D: tGateDeviceCfg;
   Dev: tPcccDevice;
-  Tags, Reads: LongInt;
+  Tags, Reads, Slaves: LongInt;
 begin
   Tags := 0;
   Reads := 0;
+  Slaves := 0;
   FillChar(Dev, SizeOf(Dev), 0);
   for D in Cfg.Devices do
   begin
@@ -492,8 +570,12 @@ begin
     Inc(Tags, Length(Dev.Tags));
     Inc(Reads, TagDeviceReads(Dev));
     TagDeviceDone(Dev);
+    if D.Iec then
+      Inc(Slaves, Length(D.Iec101.Slaves));
   end;
   Result := Format('%d devices, %d tags, %d reads per scan', [Length(Cfg.Devices), Tags, Reads]);
+  if Slaves > 0 then
+    Result := Result + Format(', %d IEC 101 slaves', [Slaves]);
 end;
 
 { ------------------------------------------------------------ payloads }
@@ -585,11 +667,16 @@ var
 begin
   SetLength(G.Devs, Length(G.Cfg.Devices));
   SetLength(G.OpenAt, Length(G.Cfg.Devices));
+  SetLength(G.Iecs, Length(G.Cfg.Devices));
   for I := 0 to High(G.Devs) do
   begin
     BuildDevice(G.Devs[I], G.Cfg.Devices[I]);
     G.Devs[I].StateChanged := True;      { a first $health }
-    OpenDevice(G, I);
+    G.Iecs[I] := nil;
+    if G.Cfg.Devices[I].Iec then
+      G.Iecs[I] := GateIecNew(G.Cfg.Devices[I].Name, G.Cfg.Devices[I].Line, G.Cfg.Devices[I].Iec101)
+    else
+      OpenDevice(G, I);
   end;
 end;
 
@@ -598,9 +685,13 @@ var
   I: LongInt;
 begin
   for I := 0 to High(G.Devs) do
+  begin
     TagDeviceDone(G.Devs[I]);
+    GateIecFree(G.Iecs[I]);
+  end;
   G.Devs := nil;
   G.OpenAt := nil;
+  G.Iecs := nil;
 end;
 
 function GateStart(var G: tGate; const Cfg: tGateConfig; out Err: AnsiString): Boolean;
@@ -664,10 +755,14 @@ begin
     if G.Cfg.Devices[I].Name = DevName then
       Dev := I;
   Tag := -1;
-  if Dev >= 0 then
+  if (Dev >= 0) and (G.Iecs[Dev] <> nil) then
+    Tag := GateIecFind(G.Iecs[Dev], TagName)
+  else if Dev >= 0 then
     Tag := TagFind(G.Devs[Dev], TagName);
   if Dev < 0 then
     Refuse(G, M.Topic, 'no device "' + DevName + '"')
+  else if (Tag < 0) and (G.Iecs[Dev] <> nil) then
+    Refuse(G, M.Topic, 'no point "' + TagName + '" on ' + DevName)
   else if Tag < 0 then
     Refuse(G, M.Topic, 'no tag "' + TagName + '" on ' + DevName)
   else if not JsonParseValue(M.Payload, V, Err) then
@@ -679,9 +774,15 @@ end;
 procedure WriteTag(var G: tGate; const Topic_: AnsiString; Dev, Tag: LongInt; V: Double);
 var
   E: ShortString;
+  Err: AnsiString;
 begin
   Inc(G.WriteId);
-  if not TagDeviceWrite(G.Devs[Dev], Tag, V, G.WriteId, E) then
+  if G.Iecs[Dev] <> nil then
+  begin
+    if not GateIecWrite(G.Iecs[Dev], Tag, V, G.WriteId, Err) then
+      Refuse(G, Topic_, Err);
+  end
+  else if not TagDeviceWrite(G.Devs[Dev], Tag, V, G.WriteId, E) then
     Refuse(G, Topic_, E);
 end;
 
@@ -696,6 +797,38 @@ begin
     Say(G, Format('MQTT %s:%d: connected', [G.Mqtt.Host, G.Mqtt.Port]))
   else if G.Mqtt.State = msWaiting then
     Say(G, Format('MQTT: %s (again in %d ms)', [G.Mqtt.LastError, ChnWaitLeft(G.Mqtt.RetryAt)]));
+end;
+
+{ One round of IEC 101 device I; the ms it may wait. }
+function StepIec(var G: tGate; I: LongInt; Health: Boolean): LongInt;
+var
+  D: pGateIecDevice;
+  P: LongInt;
+  Wr: tIecTableWrite;
+  Name: AnsiString;
+begin
+  D := G.Iecs[I];
+  if GateIecStep(D) then
+    Result := 0
+  else
+    Result := GateIecWaitMs(D);
+  while IecTableTakeChange(D^.T, P) do
+    MqttPublish(G.Mqtt, Topic(G, D^.Name, GateIecPointName(D, P)), GateIecPointPayload(D^.T.Points[P]), True);
+  while IecTableTakeWrite(D^.T, Wr) do
+  begin
+    Name := Topic(G, D^.Name, GateIecPointName(D, Wr.Point)) + '/set';
+    if Wr.Res = res_Ok then
+      Say(G, Name + ' ' + JsonNumber(Wr.Value) + ': positive ACT_CON')
+    else
+      Refuse(G, Name, Wr.Err);
+  end;
+  if GateIecTakeHealth(D) then
+  begin
+    Say(G, D^.Name + ': ' + GateIecHealthPayload(D));
+    Health := True;
+  end;
+  if Health then
+    MqttPublish(G.Mqtt, Topic(G, D^.Name, '$health'), GateIecHealthPayload(D), True);
 end;
 
 function GateStep(var G: tGate): LongInt;
@@ -716,6 +849,13 @@ begin
   Result := MqttWaitMs(G.Mqtt);
   for I := 0 to High(G.Devs) do
   begin
+    if G.Iecs[I] <> nil then
+    begin
+      W := StepIec(G, I, Health);
+      if W < Result then
+        Result := W;
+      Continue;
+    end;
     if (G.OpenAt[I] <> 0) and (Now_ >= G.OpenAt[I]) then
       OpenDevice(G, I);
     TagDeviceStep(G.Devs[I]);

@@ -1,0 +1,35 @@
+{ ChnOs - the few services of the operating system the portable units
+  ask for, each answered by the OS's part (unix/chnos.inc, win/chnos.inc):
+  the words for an OS error code, the device of COM=N, the UTC clock of a
+  capture record, and a log file several writers append to. }
+unit ChnOs;
+
+{$I chn.inc}
+
+interface
+
+{ The system's words for error code Code ('No such file or directory'), no
+  full stop at the end. }
+function OsErrorText(Code: LongInt): ShortString;
+{ The device of serial port N (1 = the first): /dev/ttyS<N-1>, \\.\COM<N>. }
+function OsComDevicePath(N: LongInt): ShortString;
+{ UTC seconds since 1970 and microseconds (a pcap record's time). }
+procedure OsUtcNow(out Sec, USec: LongWord);
+{ Open the file Name for appending, created if missing, shared: several
+  writers (both ends of a test) and any reader may have it open at once.
+  THandle(-1) when it cannot be opened; a FIFO nobody reads fails at once
+  instead of blocking. }
+function OsOpenAppend(const Name: AnsiString): THandle;
+{ Before each write to a file of OsOpenAppend: where the OS does not
+  append by itself (Windows), to its end. }
+procedure OsBeforeAppend(H: THandle);
+
+implementation
+
+uses
+  {$IFDEF UNIX}BaseUnix, Unix, ChnUnix,{$ENDIF} SysUtils, DateUtils, uString;
+
+{$IFDEF UNIX}{$I unix/chnos.inc}{$ENDIF}
+{$IFDEF WINDOWS}{$I win/chnos.inc}{$ENDIF}
+
+end.

@@ -1,0 +1,805 @@
+{ File transfer of IEC 60870-5-101/104 (types 120..127): the codec
+  (ChnIecFile) against octets worked out by hand from the standard; two
+  captures of our master against lib60870-C's file servers
+  (tests/data/iec101-lib60870-files.trc over FT 1.2, iec104-lib60870-
+  files.trc over IEC 104) decoded, their octets and checksums checked by
+  hand, and our server fed the same requests answering as lib60870's did;
+  our master (ChnIecFileClient) against our slave (ChnIecFileServer) on a
+  pty (FT 1.2 unbalanced) and on loopback TCP (IEC 104): directory, a file
+  of several sections and segments both ways, an unknown file, a hostile
+  line flipping an octet (the section asked again, then the transfer
+  failed), an interrupted transfer on both sides; and, when lib60870's
+  examples are there (CHN_LIB60870 = its build directory), the live run
+  against them. One thread: the master's Idle steps the slave. }
+unit TestIecFile;
+
+{$MODE OBJFPC}{$H+}
+
+interface
+
+uses
+  SysUtils, Classes, Process, BaseUnix, fpcunit, testregistry, ChnTypes, ChnVirt, ChnTcp, ChnPty,
+  ChnFT1_2, ChnIec104, ChnIec104Codec, ChnIec101Asdu, ChnIec101Master, ChnIec101Slave, ChnIecFile,
+  ChnIecFileServer, ChnIecFileClient, ChnWait, TestSupport, TestTempDir, BinSupport,
+  Ft12Capture, Iec104Capture;
+
+type
+  tPair = (pPty, p104);
+  TBoolArray = array of Boolean;
+  TByteArrays = array of TBytes;
+
+  TTestIecFile = class(TTestCase)
+  private
+    SChn, MChn: pChnVirt;
+    FDir: string;
+    Addr: Word;
+    procedure OpenPair(K: tPair);
+    procedure StepSlave;
+    procedure PutFile(const Name: string; const Content: AnsiString);
+    function CaptureAsdus(const Name: string; Is104: Boolean; out Tx: TBoolArray): TByteArrays;
+    procedure CheckCapture(const Name: string; Is104: Boolean);
+    procedure DirGetPut(K: tPair);
+  protected
+    procedure SetUp; override;
+    procedure TearDown; override;
+  public
+    M: tIecMaster;
+    S: tIecSlaveStation;
+    F: tIecFileServer;
+    C: tIecFileClient;
+    Mute: Boolean;          { the slave stops answering }
+    MuteAfterSegment: Boolean;
+    FlipSegments: Integer;  { octets of received segments to corrupt (master side) }
+    FlipPutSegments: Integer;  { the same on the slave side }
+    Received: TStringList;
+    OrigFile: tIecFileAsduFunc;
+  published
+    procedure TestCodecOctets;
+    procedure TestCodecRefusals;
+    procedure TestChecksum;
+    procedure TestLib60870CaptureFt12;
+    procedure TestLib60870Capture104;
+    procedure TestDirGetPutPty;
+    procedure TestDirGetPut104;
+    procedure TestUnknownFileAndEmptyDirectory;
+    procedure TestFlippedOctetSectionAskedAgain;
+    procedure TestFlippedOctetEveryTimeFails;
+    procedure TestFlippedOctetOnPutFails;
+    procedure TestInterruptedGet;
+    procedure TestServerAbandonsALeftTransfer;
+    procedure TestLiveLib60870;
+  end;
+
+implementation
+
+{ The file of lib60870's file server examples: 800 octets in two sections
+  of 400, section 1 octet i = i mod 256, section 2 octet i = (i + 1) mod 256. }
+function Lib60870File: AnsiString;
+var
+  I: Integer;
+begin
+  SetLength(Result, 800);
+  for I := 0 to 399 do
+  begin
+    Result[I + 1] := Chr(I mod 256);
+    Result[I + 401] := Chr((I + 1) mod 256);
+  end;
+end;
+
+{ The file we sent to lib60870: 600 octets, octet i = (7 i + 3) mod 256. }
+function PutContent: AnsiString;
+var
+  I: Integer;
+begin
+  SetLength(Result, 600);
+  for I := 0 to 599 do
+    Result[I + 1] := Chr((7 * I + 3) mod 256);
+end;
+
+{ A file of N octets that no section boundary repeats: octet i = (i * 31 + i div 256) mod 256. }
+function Pattern(N: Integer): AnsiString;
+var
+  I: Integer;
+begin
+  SetLength(Result, N);
+  for I := 0 to N - 1 do
+    Result[I + 1] := Chr((I * 31 + I div 256) mod 256);
+end;
+
+function Hex(const B: array of Byte; Len: Integer): string;
+begin
+  Result := BytesToHex(B, Len);
+end;
+
+procedure IdleSlave(Data: Pointer);
+begin
+  TTestIecFile(Data).StepSlave;
+end;
+
+{ The slave's view of each ASDU: a received segment may be corrupted in
+  place before the slave takes it (a hostile line). }
+procedure OnSlaveAsdu(Data: Pointer; Sent: Boolean; Buf: PByte; Len: Word);
+var
+  T: TTestIecFile;
+begin
+  T := TTestIecFile(Data);
+  if (Len > 20) and (Buf[0] = F_SG_NA_1) then
+    if not Sent and (T.FlipPutSegments > 0) then
+    begin
+      Dec(T.FlipPutSegments);
+      Buf[20] := Buf[20] xor $01;
+    end;
+end;
+
+{ The master's view: a segment with one octet flipped, FlipSegments times;
+  after the first segment the slave may fall silent. }
+procedure OnMasterFile(Data: Pointer; Addr: Word; const Buf: array of Byte; Len: Word);
+var
+  T: TTestIecFile;
+  B: array[0..IecMaxAsdu - 1] of Byte;
+begin
+  T := TTestIecFile(Data);
+  Move(Buf[0], B[0], Len);
+  if (Len > 20) and (B[0] = F_SG_NA_1) and (T.FlipSegments > 0) then
+  begin
+    Dec(T.FlipSegments);
+    B[20] := B[20] xor $80;
+  end;
+  if (B[0] = F_SG_NA_1) and T.MuteAfterSegment then
+    T.Mute := True;
+  T.OrigFile(@T.C, Addr, B, Len);
+end;
+
+procedure OnReceived(Data: Pointer; Ioa: LongWord; Nof: Word; const Content: AnsiString);
+begin
+  TTestIecFile(Data).Received.Add(Format('%d %d %d', [Ioa, Nof, Length(Content)]));
+end;
+
+procedure TTestIecFile.StepSlave;
+begin
+  if not Mute then
+    IecSlaveStep(S);
+  ChnWaitAny(2);
+end;
+
+procedure TTestIecFile.SetUp;
+begin
+  SChn := nil;
+  MChn := nil;
+  Mute := False;
+  MuteAfterSegment := False;
+  FlipSegments := 0;
+  FlipPutSegments := 0;
+  FDir := MakeTempDir('iecfile');
+  Received := TStringList.Create;
+end;
+
+procedure TTestIecFile.TearDown;
+begin
+  if MChn <> nil then Dispose(MChn, Done);
+  if SChn <> nil then Dispose(SChn, Done);
+  Finalize(F);
+  Finalize(C);
+  Received.Free;
+  RemoveTempDir(FDir);
+end;
+
+procedure TTestIecFile.PutFile(const Name: string; const Content: AnsiString);
+begin
+  WriteFileText(FDir + '/' + Name, Content);
+end;
+
+procedure TTestIecFile.OpenPair(K: tPair);
+var
+  Err: string;
+  E: ShortString;
+  Port: Word;
+begin
+  if K = pPty then
+  begin
+    Addr := 1;
+    MChn := OpenStack(ChnFT1_2.cName, 'NAM=FT1_2 MS=ON MAS=MASTER LEN=0 NOD=0 DNO=1 NAM=COM DRV=PTY BD=115200', Err);
+    AssertNotNull(Err, MChn);
+    SChn := OpenStack(ChnFT1_2.cName, 'NAM=FT1_2 MS=ON MAS=SLAVE NOD=1 LEN=0 NAM=COM DEV=' + PtyLastSlave +
+      ' BD=115200', Err);
+  end
+  else
+  begin
+    Addr := 0;
+    SChn := OpenStack('IEC104', 'NAM=IEC104 NAM=TCP LISTEN=127.0.0.1:0', Err);
+    AssertNotNull(Err, SChn);
+    Port := pChnTcp(SChn^.CH_Low)^.ChLocalPort;
+    MChn := OpenStack('IEC104', 'NAM=IEC104 NAM=TCP HOST=127.0.0.1 PORT=' + IntToStr(Port) + ' RECON=200', Err);
+  end;
+  AssertNotNull(Err, SChn);
+  AssertNotNull(Err, MChn);
+  AssertEquals('slave', res_Ok, IecSlaveInit(S, SChn, IecDefaultParams, 1, E));
+  S.OnAsdu := @OnSlaveAsdu;
+  S.Data := Self;
+  IecFileServerInit(F, IecDefaultParams, 1);
+  F.Dir := FDir;
+  F.SectionSize := 1000;
+  F.OnReceived := @OnReceived;
+  F.Data := Self;
+  IecSlaveServeFiles(S, @F);
+  AssertEquals('master', res_Ok, IecMasterInit(M, MChn, IecDefaultParams));
+  if K = pPty then
+  begin
+    AssertEquals(res_Ok, IecMasterAddSlave(M, 1));
+    M.CycleMs := 10;
+  end;
+  M.CommandMs := 3000;
+  M.Idle := @IdleSlave;
+  M.IdleData := Self;
+  IecFileClientInit(C, M);
+  C.TimeoutMs := 3000;
+  C.SectionSize := 700;
+  { the hostile line's hook in front of the client's (OnSlaveAsdu: the
+    slave's side) }
+  OrigFile := M.OnFileAsdu;
+  M.OnFileAsdu := @OnMasterFile;
+  M.FileData := Self;
+end;
+
+{- ------------------------------------------------------------ codec }
+
+procedure TTestIecFile.TestCodecOctets;
+var
+  O: tIecFileObj;
+  Objs: array[0..1] of tIecFileObj;
+  B: array[0..IecMaxAsdu - 1] of Byte;
+  Len: Word;
+  E: ShortString;
+  H: tIecAsdu;
+  P: tIecParams;
+begin
+  P := IecDefaultParams;     { COT 2 octets, CA 2, IOA 3 }
+  { select file: TI 122 = 7A, VSQ 01, COT 13 = 0D, OA 00, CA 01 00,
+    IOA 30000 = 30 75 00, NOF 1 = 01 00, NOS 00, SCQ 1 }
+  FillChar(O, SizeOf(O), 0);
+  O.Ioa := 30000;
+  O.Nof := Nof_Transparent;
+  O.Q := Scq_SelectFile;
+  AssertEquals(E, res_Ok, IecFileEncode(P, F_SC_NA_1, Cot_File, False, 1, [O], 1, B, Len, E));
+  AssertEquals('7A 01 0D 00 01 00 30 75 00 01 00 00 01', Hex(B, Len));
+  { file ready: TI 120 = 78, NOF 01 00, LOF 800 = 20 03 00, FRQ 00 }
+  O.Q := 0;
+  O.Lof := 800;
+  AssertEquals(E, res_Ok, IecFileEncode(P, F_FR_NA_1, Cot_File, False, 1, [O], 1, B, Len, E));
+  AssertEquals('78 01 0D 00 01 00 30 75 00 01 00 20 03 00 00', Hex(B, Len));
+  { section ready: TI 121 = 79, NOF, NOS 01, LOF 400 = 90 01 00, SRQ 00 }
+  O.Nos := 1;
+  O.Lof := 400;
+  AssertEquals(E, res_Ok, IecFileEncode(P, F_SR_NA_1, Cot_File, False, 1, [O], 1, B, Len, E));
+  AssertEquals('79 01 0D 00 01 00 30 75 00 01 00 01 90 01 00 00', Hex(B, Len));
+  { segment: TI 125 = 7D, NOF, NOS 01, LOS 03, the octets 00 01 02 }
+  O.SegLen := 3;
+  O.Seg[0] := 0; O.Seg[1] := 1; O.Seg[2] := 2;
+  AssertEquals(E, res_Ok, IecFileEncode(P, F_SG_NA_1, Cot_File, False, 1, [O], 1, B, Len, E));
+  AssertEquals('7D 01 0D 00 01 00 30 75 00 01 00 01 03 00 01 02', Hex(B, Len));
+  AssertEquals(res_Ok, IecFileDecode(P, B, Len, 0, H, O, E));
+  AssertEquals(3, O.SegLen);
+  AssertEquals(2, O.Seg[2]);
+  { last segment: TI 123 = 7B, NOF, NOS 01, LSQ 3, CHS B8 }
+  O.Q := Lsq_Section;
+  O.Chs := $B8;
+  AssertEquals(E, res_Ok, IecFileEncode(P, F_LS_NA_1, Cot_File, False, 1, [O], 1, B, Len, E));
+  AssertEquals('7B 01 0D 00 01 00 30 75 00 01 00 01 03 B8', Hex(B, Len));
+  { negative section ack: TI 124 = 7C, NOS 01, AFQ 4 + cause 2 << 4 = 24 }
+  O.Q := Afq_SectionBad or (Fe_Checksum shl 4);
+  AssertEquals(E, res_Ok, IecFileEncode(P, F_AF_NA_1, Cot_File, False, 1, [O], 1, B, Len, E));
+  AssertEquals('7C 01 0D 00 01 00 30 75 00 01 00 01 24', Hex(B, Len));
+  { a directory of two entries (SQ = 0), COT 5: TI 126 = 7E, VSQ 02;
+    entry: IOA, NOF, LOF 800, SOF 00, CP56Time2a of 2026-12-04 23:30:00.000
+    Friday: ms 00 00, minute 30 = 1E, hour 23 = 17, day 4 + weekday 5 << 5
+    = A4, month 0C, year 26 = 1A; the second: IOA 30001, LOF 1 = 01 00 00,
+    SOF 20 (LFD: last file), the same time }
+  FillChar(Objs, SizeOf(Objs), 0);
+  Objs[0].Ioa := 30000;
+  Objs[0].Nof := 1;
+  Objs[0].Lof := 800;
+  Objs[0].Time.Minute := 30;
+  Objs[0].Time.Hour := 23;
+  Objs[0].Time.Day := 4;
+  Objs[0].Time.DayOfWeek := 5;
+  Objs[0].Time.Month := 12;
+  Objs[0].Time.Year := 26;
+  Objs[1] := Objs[0];
+  Objs[1].Ioa := 30001;
+  Objs[1].Lof := 1;
+  Objs[1].Q := Sof_LastFile;
+  AssertEquals(E, res_Ok, IecFileEncode(P, F_DR_TA_1, Cot_Request, False, 1, Objs, 2, B, Len, E));
+  AssertEquals('7E 02 05 00 01 00 30 75 00 01 00 20 03 00 00 00 00 1E 17 A4 0C 1A ' +
+    '31 75 00 01 00 01 00 00 20 00 00 1E 17 A4 0C 1A', Hex(B, Len));
+  AssertEquals(res_Ok, IecFileDecode(P, B, Len, 1, H, O, E));
+  AssertEquals(30001, O.Ioa);
+  AssertEquals(Sof_LastFile, O.Q);
+  AssertEquals(12, O.Time.Month);
+  { the same directory as a sequence (SQ = 1): the second entry's IOA is
+    the first's + 1 }
+  B[1] := $82;
+  Move(B[25], B[22], 13);
+  AssertEquals(E, res_Ok, IecFileDecode(P, B, 35, 1, H, O, E));
+  AssertEquals(30001, O.Ioa);
+  AssertEquals(1, O.Lof);
+  { query log (127 = 7F): NOF, start and stop CP56Time2a }
+  FillChar(O, SizeOf(O), 0);
+  O.Ioa := 5;
+  O.Nof := Nof_Disturbance;
+  O.Time := Objs[0].Time;
+  O.Stop := Objs[0].Time;
+  O.Stop.Hour := 0;
+  AssertEquals(E, res_Ok, IecFileEncode(P, F_SC_NB_1, Cot_Request, False, 1, [O], 1, B, Len, E));
+  AssertEquals('7F 01 05 00 01 00 05 00 00 02 00 00 00 1E 17 A4 0C 1A 00 00 1E 00 A4 0C 1A', Hex(B, Len));
+  AssertEquals(res_Ok, IecFileDecode(P, B, Len, 0, H, O, E));
+  AssertEquals(0, O.Stop.Hour);
+  AssertEquals(23, O.Time.Hour);
+end;
+
+procedure TTestIecFile.TestCodecRefusals;
+var
+  O: tIecFileObj;
+  B: array[0..IecMaxAsdu - 1] of Byte;
+  Len: Word;
+  E: ShortString;
+  H: tIecAsdu;
+  P: tIecParams;
+  Seg: array[0..2] of Byte = ($7D, $01, $0D);
+begin
+  P := IecDefaultParams;
+  FillChar(O, SizeOf(O), 0);
+  AssertEquals(res_AsduType, IecFileEncode(P, 45, Cot_File, False, 1, [O], 1, B, Len, E));
+  O.Lof := $1000000;
+  AssertEquals(res_AsduValue, IecFileEncode(P, F_FR_NA_1, Cot_File, False, 1, [O], 1, B, Len, E));
+  AssertTrue(E, Pos('16777215', E) > 0);
+  O.Lof := 0;
+  O.SegLen := 240;           { 6 + 3 + 4 + 240 = 253 octets: fits IecMaxAsdu }
+  AssertEquals(E, res_Ok, IecFileEncode(P, F_SG_NA_1, Cot_File, False, 1, [O], 1, B, Len, E));
+  O.SegLen := 241;
+  AssertEquals(res_AsduLength, IecFileEncode(P, F_SG_NA_1, Cot_File, False, 1, [O], 1, B, Len, E));
+  { a segment whose LOS says more than is there }
+  O.SegLen := 3;
+  AssertEquals(res_Ok, IecFileEncode(P, F_SG_NA_1, Cot_File, False, 1, [O], 1, B, Len, E));
+  AssertEquals(res_AsduLength, IecFileDecode(P, B, Len - 1, 0, H, O, E));
+  AssertTrue(E, Pos('F_SG_NA_1', E) > 0);
+  AssertEquals(res_AsduShort, IecFileDecode(P, Seg, 3, 0, H, O, E));
+  { two objects of a type that has one }
+  B[1] := 2;
+  AssertEquals(res_AsduCount, IecFileDecode(P, B, Len, 0, H, O, E));
+  AssertEquals(236, IecFileMaxSegment(P, 249));
+  AssertEquals(234, IecFileMaxSegment(P, 247));
+end;
+
+procedure TTestIecFile.TestChecksum;
+var
+  Txt: AnsiString;
+begin
+  { CHS: arithmetic sum modulo 256. lib60870's section 1 (i mod 256, i <
+    400): 0 + .. + 255 = 32640, 0 + .. + 143 = 10296, 42936 mod 256 = 184
+    = B8; section 2 ((i + 1) mod 256): 32640 + (1 + .. + 144 = 10440) =
+    43080, mod 256 = 72 = 48; the file: B8 + 48 = 100 -> 00. Our 600
+    octets (7 i + 3): 7 * 179700 + 1800 = 1259700, mod 256 = 180 = B4. }
+  Txt := Lib60870File;
+  AssertEquals($B8, IecFileChecksum(0, PByteArray(@Txt[1])^[0..399], 400));
+  AssertEquals($48, IecFileChecksum(0, PByteArray(@Txt[401])^[0..399], 400));
+  AssertEquals($00, IecFileChecksum(0, PByteArray(@Txt[1])^[0..799], 800));
+  { a running sum: the file's from section 1's }
+  AssertEquals($00, IecFileChecksum($B8, PByteArray(@Txt[401])^[0..399], 400));
+  Txt := PutContent;
+  AssertEquals($B4, IecFileChecksum(0, PByteArray(@Txt[1])^[0..599], 600));
+end;
+
+{- ------------------------------------------------------------ captures }
+
+function TTestIecFile.CaptureAsdus(const Name: string; Is104: Boolean; out Tx: TBoolArray): TByteArrays;
+var
+  A: TApdus104;
+  Fr: TCapFrames;
+  I, N: Integer;
+  B: TBytes;
+begin
+  Result := nil;
+  Tx := nil;
+  if Is104 then
+  begin
+    A := Cap104Load('tests/data/' + Name);
+    for I := 0 to High(A) do
+      if (A[I].Apci.Format = af104I) and (Length(A[I].Bytes) > 6) and IecIsFileType(A[I].Bytes[6]) then
+      begin
+        N := Length(Result);
+        SetLength(Result, N + 1);
+        SetLength(Tx, N + 1);
+        Result[N] := Copy(A[I].Bytes, 6, MaxInt);
+        Tx[N] := A[I].Tx;
+      end;
+  end
+  else
+  begin
+    Fr := CapLoad('tests/data/' + Name);
+    for I := 0 to High(Fr) do
+    begin
+      B := Fr[I].Data;
+      if (Fr[I].Kind = tpLongM) and (Length(B) > 6) and IecIsFileType(B[0]) then
+      begin
+        N := Length(Result);
+        SetLength(Result, N + 1);
+        SetLength(Tx, N + 1);
+        Result[N] := B;
+        Tx[N] := Fr[I].Tx;
+      end;
+    end;
+  end;
+end;
+
+{ The file transfer ASDUs of a capture of examples/iec101master against
+  lib60870's file server (get IOA 30000, then put IOA 30001; how it was
+  made: tests/data/README). Worked out by hand: our select, call file,
+  call section (7A .. 00 01 / 00 02 / 01 06), its file ready (LOF 800 = 20
+  03 00), section ready (NOS 1 and 2, LOF 400 = 90 01 00), last segments
+  with CHS B8 and 48, its last section (LSQ 1, CHS 00; lib60870 names it
+  NOS 3, one past the last), our acks (7C ... 03 and ... 01); our offer
+  (78 ... 31 75 00 01 00 58 02 00 00: LOF 600), its call file and call
+  section, our last segment and last section with CHS B4, its acks. The
+  segments put together are the files (computed, not captured). Then our
+  server, set up as lib60870's example (the file, 400-octet sections, ASDUs
+  of 249), fed our requests, answers each as lib60870 did, octet for octet
+  (but for that NOS). }
+procedure TTestIecFile.CheckCapture(const Name: string; Is104: Boolean);
+const
+  Want: array[0..15] of string = (
+    'tx 7A 01 0D 00 01 00 30 75 00 01 00 00 01',
+    'rx 78 01 0D 00 01 00 30 75 00 01 00 20 03 00 00',
+    'tx 7A 01 0D 00 01 00 30 75 00 01 00 00 02',
+    'rx 79 01 0D 00 01 00 30 75 00 01 00 01 90 01 00 00',
+    'tx 7A 01 0D 00 01 00 30 75 00 01 00 01 06',
+    'rx 7B 01 0D 00 01 00 30 75 00 01 00 01 03 B8',
+    'tx 7C 01 0D 00 01 00 30 75 00 01 00 01 03',
+    'rx 79 01 0D 00 01 00 30 75 00 01 00 02 90 01 00 00',
+    'tx 7A 01 0D 00 01 00 30 75 00 01 00 02 06',
+    'rx 7B 01 0D 00 01 00 30 75 00 01 00 02 03 48',
+    'tx 7C 01 0D 00 01 00 30 75 00 01 00 02 03',
+    'rx 7B 01 0D 00 01 00 30 75 00 01 00 03 01 00',
+    'tx 7C 01 0D 00 01 00 30 75 00 01 00 03 01',
+    'tx 78 01 0D 00 01 00 31 75 00 01 00 58 02 00 00',
+    'rx 7A 01 0D 00 01 00 31 75 00 01 00 00 02',
+    'tx 79 01 0D 00 01 00 31 75 00 01 00 01 58 02 00 00');
+  WantPut: array[0..4] of string = (
+    'rx 7A 01 0D 00 01 00 31 75 00 01 00 01 06',
+    'tx 7B 01 0D 00 01 00 31 75 00 01 00 01 03 B4',
+    'rx 7C 01 0D 00 01 00 31 75 00 01 00 01 03',
+    'tx 7B 01 0D 00 01 00 31 75 00 01 00 01 01 B4',
+    'rx 7C 01 0D 00 01 00 31 75 00 01 00 01 01');
+var
+  A: TByteArrays;
+  Tx: TBoolArray;
+  Lines: TStringList;
+  I, J: Integer;
+  H: tIecAsdu;
+  O: tIecFileObj;
+  E: ShortString;
+  Got, Put: AnsiString;
+  Srv: tIecFileServer;
+  Out: array[0..IecMaxAsdu - 1] of Byte;
+  OutLen: Word;
+  Answers: TStringList;
+  Dir: string;
+begin
+  A := CaptureAsdus(Name, Is104, Tx);
+  Lines := TStringList.Create;
+  Answers := TStringList.Create;
+  try
+    Got := '';
+    Put := '';
+    for I := 0 to High(A) do
+    begin
+      AssertEquals('ASDU ' + IntToStr(I) + ' decodes', res_Ok,
+        IecFileDecode(IecDefaultParams, A[I], Length(A[I]), 0, H, O, E));
+      if H.Ti = F_SG_NA_1 then
+      begin
+        SetLength(Got, Length(Got) + Ord(O.Ioa = 30000) * O.SegLen);
+        SetLength(Put, Length(Put) + Ord(O.Ioa = 30001) * O.SegLen);
+        if O.Ioa = 30000 then
+          Move(O.Seg[0], Got[Length(Got) - O.SegLen + 1], O.SegLen)
+        else
+          Move(O.Seg[0], Put[Length(Put) - O.SegLen + 1], O.SegLen);
+        Continue;                          { the segments: put together below }
+      end;
+      Lines.Add(BoolToStr(Tx[I], 'tx ', 'rx ') + Hex(A[I], Length(A[I])));
+    end;
+    for I := 0 to High(Want) do
+      AssertEquals(Name + ' ASDU ' + IntToStr(I), Want[I], Lines[I]);
+    for I := 0 to High(WantPut) do
+      AssertEquals(Name + ' ASDU ' + IntToStr(I + 16), WantPut[I], Lines[16 + I]);
+    AssertEquals(21, Lines.Count);
+    AssertTrue('the file got is lib60870''s', Got = Lib60870File);
+    AssertTrue('the file put is ours', Put = PutContent);
+    { our server, fed our requests, answers as lib60870 }
+    Dir := FDir;
+    IecFileServerInit(Srv, IecDefaultParams, 1);
+    try
+      Srv.SectionSize := 400;
+      Srv.MaxAsdu := 249;
+      Srv.Dir := Dir;                      { the file put lands here }
+      AssertEquals(res_Ok, IecFileServerAdd(Srv, 30000, Nof_Transparent, Lib60870File, IecTimeFromDateTime(Now)));
+      for I := 0 to High(A) do
+        if Tx[I] then
+        begin
+          IecFileServerTake(Srv, A[I], Length(A[I]));
+          while IecFileServerNext(Srv, Out, OutLen) do
+            Answers.Add(Hex(Out, OutLen));
+        end;
+      J := 0;
+      for I := 0 to High(A) do
+        if not Tx[I] then
+        begin
+          if (A[I][0] = F_LS_NA_1) and (A[I][12] = Lsq_File) then
+            A[I][11] := 2;                 { lib60870: NOS 3, one past the last section; ours: 2 }
+          AssertTrue(Name + ': our server answered ' + IntToStr(Answers.Count) + ' times', J < Answers.Count);
+          AssertEquals(Name + ' answer ' + IntToStr(J), Hex(A[I], Length(A[I])), Answers[J]);
+          Inc(J);
+        end;
+      AssertEquals('as many answers', J, Answers.Count);
+      AssertEquals('file sent', 1, Srv.Sent);
+      AssertEquals('file received', 1, Srv.Received);
+      AssertTrue('and kept as ' + Dir + '/30001', ReadFileText(Dir + '/30001') = PutContent);
+    finally
+      Finalize(Srv);
+    end;
+  finally
+    Lines.Free;
+    Answers.Free;
+  end;
+end;
+
+procedure TTestIecFile.TestLib60870CaptureFt12;
+begin
+  CheckCapture('iec101-lib60870-files.trc', False);
+end;
+
+procedure TTestIecFile.TestLib60870Capture104;
+begin
+  CheckCapture('iec104-lib60870-files.trc', True);
+end;
+
+{- ------------------------------------------------------------ on the wire }
+
+procedure TTestIecFile.DirGetPut(K: tPair);
+var
+  Got: AnsiString;
+  T: tIecTime;
+  T0: QWord;
+begin
+  PutFile('30000', Pattern(800));
+  PutFile('30001.dat', Pattern(3000));    { three sections of 1000, 5 segments each }
+  PutFile('notes.txt', 'not a file of an IOA');
+  OpenPair(K);
+  T := IecTimeFromDateTime(EncodeDate(2026, 12, 4));
+  { a disturbance record the program keeps in memory }
+  AssertEquals(res_Ok, IecFileServerAdd(F, 40000, Nof_Disturbance, Pattern(10), T));
+  AssertEquals(C.Err, res_Ok, IecFileDir(C, Addr, 1));
+  AssertEquals('entries', 3, C.DirCount);
+  AssertEquals(40000, C.Dir[0].Ioa);
+  AssertEquals(Nof_Disturbance, C.Dir[0].Nof);
+  AssertEquals(10, C.Dir[0].Lof);
+  AssertEquals(4, C.Dir[0].Time.Day);
+  AssertEquals(30000, C.Dir[1].Ioa);
+  AssertEquals(800, C.Dir[1].Lof);
+  AssertEquals(30001, C.Dir[2].Ioa);
+  AssertEquals(3000, C.Dir[2].Lof);
+  AssertEquals('only the last has LFD', Sof_LastFile, C.Dir[2].Sof and Sof_LastFile);
+  AssertEquals(0, C.Dir[1].Sof and Sof_LastFile);
+  AssertEquals(C.Err, res_Ok, IecFileGet(C, Addr, 1, 30001, Nof_Transparent, Got));
+  AssertEquals(3000, Length(Got));
+  AssertTrue('the file as it is', Got = Pattern(3000));
+  AssertEquals(C.Err, res_Ok, IecFileGet(C, Addr, 1, 40000, Nof_Disturbance, Got));
+  AssertTrue('the record as it is', Got = Pattern(10));
+  { the slave counts a file sent at the master's last acknowledgement,
+    which the master's call does not wait for }
+  T0 := ChMsTick;
+  while (F.Sent < 2) and (ChMsTick - T0 < 3000) do
+    IecPollFor(M, 20);
+  AssertEquals(2, F.Sent);
+  { put: 2500 octets in sections of 700 (4 sections) }
+  AssertEquals(C.Err, res_Ok, IecFilePut(C, Addr, 1, 30002, Nof_Transparent, Pattern(2500)));
+  AssertEquals('told the program', '30002 1 2500', Received.Text.Trim);
+  AssertTrue('kept in the directory', ReadFileText(FDir + '/30002') = Pattern(2500));
+  AssertEquals(0, C.BadChecksums);
+  AssertEquals(0, F.BadChecksums);
+  AssertEquals('no ASDU was bad', 0, M.BadAsdus);
+end;
+
+procedure TTestIecFile.TestDirGetPutPty;
+begin
+  DirGetPut(pPty);
+end;
+
+procedure TTestIecFile.TestDirGetPut104;
+begin
+  DirGetPut(p104);
+end;
+
+procedure TTestIecFile.TestUnknownFileAndEmptyDirectory;
+var
+  Got: AnsiString;
+begin
+  OpenPair(p104);
+  AssertEquals(C.Err, res_Ok, IecFileDir(C, Addr, 1));
+  AssertEquals('an empty directory', 0, C.DirCount);
+  AssertEquals(res_IecFileRefused, IecFileGet(C, Addr, 1, 12345, Nof_Transparent, Got));
+  AssertEquals('file IOA 12345 from slave 0: the slave has no such file (F_FR_NA_1 negative)', C.Err);
+  AssertEquals('', Got);
+  { another common address: mirrored with COT 46, negative }
+  AssertEquals(res_IecFileRefused, IecFileGet(C, Addr, 7, 12345, Nof_Transparent, Got));
+  AssertTrue(C.Err, Pos('COT 46 UNKNOWN_COMMON_ADDRESS, negative', C.Err) > 0);
+  { a slave without a file server: COT 44 }
+  IecSlaveServeFiles(S, nil);
+  AssertEquals(res_IecFileRefused, IecFileGet(C, Addr, 1, 1, Nof_Transparent, Got));
+  AssertTrue(C.Err, Pos('COT 44', C.Err) > 0);
+end;
+
+procedure TTestIecFile.TestFlippedOctetSectionAskedAgain;
+var
+  Got: AnsiString;
+begin
+  PutFile('30001', Pattern(3000));
+  OpenPair(pPty);
+  FlipSegments := 1;
+  AssertEquals(C.Err, res_Ok, IecFileGet(C, Addr, 1, 30001, Nof_Transparent, Got));
+  AssertTrue('the file as it is', Got = Pattern(3000));
+  AssertEquals('one section failed its checksum', 1, C.BadChecksums);
+  AssertEquals('sent once more', 1, F.Sent);
+end;
+
+procedure TTestIecFile.TestFlippedOctetEveryTimeFails;
+var
+  Got: AnsiString;
+begin
+  PutFile('30001', Pattern(3000));
+  OpenPair(p104);
+  FlipSegments := 1000;
+  AssertEquals(res_IecFileChecksum, IecFileGet(C, Addr, 1, 30001, Nof_Transparent, Got));
+  AssertTrue(C.Err, Pos('file IOA 30001 from slave 0: section 1: checksum ', C.Err) = 1);
+  AssertTrue(C.Err, Pos('(asked 2 times)', C.Err) > 0);
+  AssertEquals('', Got);
+  AssertEquals(2, C.BadChecksums);
+  { the slave was told (AFQ 2, checksum): it counts the file failed }
+  IecPollFor(M, 200);
+  AssertEquals(1, F.Failed);
+  AssertEquals(0, F.Sent);
+end;
+
+procedure TTestIecFile.TestFlippedOctetOnPutFails;
+begin
+  OpenPair(p104);
+  FlipPutSegments := 1000;
+  AssertEquals(res_IecFileChecksum, IecFilePut(C, Addr, 1, 30002, Nof_Transparent, Pattern(2500)));
+  AssertEquals('file IOA 30002 to slave 0: section 1 refused by the slave (checksum failed)', C.Err);
+  AssertEquals('the slave saw it twice', 2, F.BadChecksums);
+  AssertEquals('nothing kept', 0, Received.Count);
+  AssertFalse(FileExists(FDir + '/30002'));
+  { once: the section again, then the file }
+  FlipPutSegments := 1;
+  AssertEquals(C.Err, res_Ok, IecFilePut(C, Addr, 1, 30002, Nof_Transparent, Pattern(2500)));
+  AssertTrue(ReadFileText(FDir + '/30002') = Pattern(2500));
+end;
+
+procedure TTestIecFile.TestInterruptedGet;
+var
+  Got: AnsiString;
+  T0: QWord;
+begin
+  PutFile('30001', Pattern(3000));
+  OpenPair(pPty);
+  C.TimeoutMs := 1000;
+  MuteAfterSegment := True;
+  T0 := ChMsTick;
+  AssertEquals(res_Timeout, IecFileGet(C, Addr, 1, 30001, Nof_Transparent, Got));
+  { one segment came: an F_SG_NA_1 of 249 octets (the server's longest;
+    the FT 1.2 frame takes up to 253) less head 6, IOA 3, NOF 2, NOS 1,
+    LOS 1 = 236 octets of file }
+  AssertTrue(C.Err, Pos('file IOA 30001 from slave 1: interrupted: no segments (F_SG_NA_1) in 1000 ms (236 of 3000 octets received)', C.Err) = 1);
+  AssertTrue('not before its timeout', ChMsTick - T0 >= 1000);
+  AssertTrue('and not much after it', ChMsTick - T0 < 5000);
+  AssertEquals('', Got);
+end;
+
+procedure TTestIecFile.TestServerAbandonsALeftTransfer;
+var
+  T0: QWord;
+begin
+  PutFile('30001', Pattern(3000));
+  OpenPair(p104);
+  F.TimeoutMs := 300;
+  { the master selects and calls the file, then goes away }
+  AssertTrue(IecFileStartGet(C, Addr, 1, 30001, Nof_Transparent));
+  T0 := ChMsTick;
+  while (C.Wait <> fwSegments) and (ChMsTick - T0 < 3000) do
+    if not IecFileStep(C) then
+      IecMasterWait(M, ChMsTick + 10);
+  AssertTrue('the section called', C.Wait = fwSegments);
+  Dispose(MChn, Done);
+  MChn := nil;
+  T0 := ChMsTick;
+  while (F.Aborted = 0) and (ChMsTick - T0 < 3000) do
+    StepSlave;
+  AssertEquals(1, F.Aborted);
+  AssertTrue(F.LastError, Pos('file IOA 30001: abandoned, no message from the peer in 300 ms', F.LastError) = 1);
+  AssertTrue(F.State = fsIdle);
+end;
+
+{- ------------------------------------------------------------ live }
+
+{ lib60870's cs104_server_files and cs101_slave_files, built by hand
+  (CHN_LIB60870 = its CMake build directory): our client fetches its file
+  (IOA 30000) and sends it one (IOA 30001, it writes upload.dat in its
+  working directory), over IEC 104 on port 2404 (its fixed port) and over
+  FT 1.2 balanced on a pty (its link address 3, 9600 Bd 8E1). }
+procedure TTestIecFile.TestLiveLib60870;
+var
+  Build, Err: string;
+  P: TProcess;
+  Got: AnsiString;
+  Chn: pChnVirt;
+  MM: tIecMaster;
+  CC: tIecFileClient;
+  Step: Integer;
+begin
+  Build := GetEnvironmentVariable('CHN_LIB60870');
+  if (Build = '') or not FileExists(Build + '/examples/cs104_server_files/cs104_server_files') then
+  begin
+    Ignore('lib60870-C is not built here (CHN_LIB60870 = its build directory with ' +
+      'examples/cs104_server_files and cs101_slave_files): the captures stand in for it');
+    Exit;
+  end;
+  for Step := 0 to 1 do
+  begin
+    P := TProcess.Create(nil);
+    Chn := nil;
+    try
+      { its chatter to /dev/null: a pipe nobody reads could stop it }
+      P.CurrentDirectory := FDir;
+      P.Executable := '/bin/sh';
+      P.Parameters.Add('-c');
+      if Step = 0 then
+      begin
+        P.Parameters.Add('exec ' + Build + '/examples/cs104_server_files/cs104_server_files >/dev/null 2>&1');
+        P.Execute;
+        Sleep(300);
+        Chn := OpenStack('IEC104', 'NAM=IEC104 NAM=TCP HOST=127.0.0.1 PORT=2404', Err);
+      end
+      else
+      begin
+        Chn := OpenStack(ChnFT1_2.cName, 'NAM=FT1_2 MS=OFF DIR=1 NOD=3 DNO=3 LEN=0 NAM=COM DRV=PTY BD=9600 PAR=E', Err);
+        AssertNotNull(Err, Chn);
+        P.Parameters.Add('exec ' + Build + '/examples/cs101_slave_files/cs101_slave_files ' + PtyLastSlave +
+          ' >/dev/null 2>&1');
+        P.Execute;
+      end;
+      AssertNotNull(Err, Chn);
+      AssertEquals(res_Ok, IecMasterInit(MM, Chn, IecDefaultParams));
+      MM.NoGiAfterInit := True;
+      IecFileClientInit(CC, MM);
+      try
+        AssertEquals(CC.Err, res_Ok, IecFileGet(CC, MM.Slaves[0].Addr, 1, 30000, Nof_Transparent, Got));
+        AssertTrue('lib60870''s file', Got = Lib60870File);
+        AssertEquals(CC.Err, res_Ok, IecFilePut(CC, MM.Slaves[0].Addr, 1, 30001, Nof_Transparent, PutContent));
+        AssertTrue('lib60870 wrote what we sent', ReadFileText(FDir + '/upload.dat') = PutContent);
+        AssertEquals(res_IecFileRefused, IecFileGet(CC, MM.Slaves[0].Addr, 1, 30005, Nof_Transparent, Got));
+      finally
+        Finalize(CC);
+      end;
+    finally
+      if P.Running then
+        P.Terminate(0);
+      P.WaitOnExit;
+      P.Free;
+      if Chn <> nil then
+        Dispose(Chn, Done);
+      DeleteFile(FDir + '/upload.dat');
+    end;
+  end;
+end;
+
+initialization
+  RegisterTest(TTestIecFile);
+end.
