@@ -100,6 +100,10 @@ function CliRest(const Cli: tCli; First: LongInt): AnsiString;
 { "PROG: What (Token)" on standard error, exit Code (without a Halt here:
   what the routines under way hold is freed on the way out). Token '' = none. }
 procedure CliFail(const Cli: tCli; const What, Token: AnsiString; Code: LongInt);
+{ End the program with Code the way CliFail does (what the routines under
+  way hold freed, the program's finally parts run), without a message:
+  for a program that said what happened itself. }
+procedure CliEnd(Code: LongInt);
 { A usage error: CliFail with CliExitUsage. }
 procedure CliUsageError(const Cli: tCli; const What, Token: AnsiString);
 { The whole usage text. }
@@ -299,17 +303,22 @@ begin
   Halt(Code);
 end;
 
-procedure CliFail(const Cli: tCli; const What, Token: AnsiString; Code: LongInt);
+procedure CliEnd(Code: LongInt);
 var
   E: TCliExit;
+begin
+  E := TCliExit.Create;
+  E.Code := Code;
+  raise E;
+end;
+
+procedure CliFail(const Cli: tCli; const What, Token: AnsiString; Code: LongInt);
 begin
   if Token <> '' then
     WriteLn(StdErr, Cli.Prog, ': ', What, ' (', Token, ')')
   else
     WriteLn(StdErr, Cli.Prog, ': ', What);
-  E := TCliExit.Create;
-  E.Code := Code;
-  raise E;
+  CliEnd(Code);
 end;
 
 procedure CliUsageError(const Cli: tCli; const What, Token: AnsiString);
