@@ -61,8 +61,10 @@ COMMON   := -Fisrc -v0ew -l-
 UNITFLAGS := $(COMMON) $(SYNAPSE_FLAGS) $(SRCPATH) -O2 -Sew -FU$(UNITDIR) -FE$(BINDIR)
 # examples, tools, benchmarks: the compiled library (as an installed one
 # would be used; Synapse's units too, so they are not rebuilt with -Sew),
-# plus tools/lib
-PROGFLAGS := $(COMMON) $(if $(SYNAPSE_DIR),-dCHN_SYNAPSE) -Fu$(UNITDIR) -Futools/lib -O2 -Sew \
+# plus tools/lib; smart linked (-XX): only the routines a program reaches
+# are in it, so it is smaller on disk and in memory (chngate 1.3 MB ->
+# 0.6 MB, its resident size 0.8 MB less)
+PROGFLAGS := $(COMMON) $(if $(SYNAPSE_DIR),-dCHN_SYNAPSE) -Fu$(UNITDIR) -Futools/lib -O2 -XX -Sew \
              -FU$(TOOLUNITDIR) -FE$(BINDIR)
 # tests: range, overflow and stack checks, heaptrc, line info (and -Xs-:
 # Debian's fpc.cfg strips it otherwise, and failures could not say where);
@@ -173,9 +175,9 @@ test: all $(BUILD)/testunits.inc $(BUILD)/fpcunit/stamp
 	@for p in $(HEAPPROGS); do $(FPC) $(SOAKFLAGS) $$p >>$(BUILD)/test-build.log 2>&1 || { cat $(BUILD)/test-build.log; echo "0 passed, 1 failed"; exit 1; }; done
 	@BUILD=$(BUILD) FPC=$(FPC) T="$(T)" bash tests/run.sh
 
-# only the four programs it runs: a first make demo builds the library
+# only the programs it runs: a first make demo builds the library
 # and those, not every example
-demo: $(addprefix $(BINDIR)/,df1sim df1echo df1read chndecode)
+demo: $(addprefix $(BINDIR)/,df1sim df1echo df1read chndecode chngate iec101slave)
 	@bash tools/demo.sh $(BUILD)
 
 bench: $(BENCHBINS) $(BINDIR)/chntap $(BINDIR)/plcconc $(BINDIR)/df1sim
@@ -193,7 +195,8 @@ SOAKFLAGS = $(filter-out -B,$(TESTFLAGS))
 # programs make test also builds with the test flags into $(TBINDIR): the
 # suite checks with heaptrc that they free everything at exit (usage
 # errors too)
-HEAPPROGS := examples/iec101master.pas examples/iec101slave.pas examples/df1write.pas tools/chntap.pas tools/df1sim.pas
+HEAPPROGS := examples/iec101master.pas examples/iec101slave.pas examples/df1write.pas tools/chntap.pas tools/df1sim.pas \
+             tools/chndecode.pas tools/chngate.pas
 fuzz: units
 	@mkdir -p $(TUNITDIR) $(TBINDIR)
 	@rm -f $(BUILD)/fuzz-build.log

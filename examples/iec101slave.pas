@@ -23,7 +23,7 @@ program iec101slave;
 {$MODE OBJFPC}{$H+}
 
 uses
-  {$IFDEF UNIX}BaseUnix,{$ENDIF}
+  {$IFDEF UNIX}BaseUnix, ChnPty,{$ENDIF}
   Classes, SysUtils, ChnTypes, ChnVirt, ChnWait, ChnLayers, ChnFT1_2, ChnIec101Asdu,
   ChnIec101Slave, ChnIec101Print, Iec101Points, ChnCli, ChnIecFileServer;
 
@@ -279,7 +279,13 @@ begin
     Dispose(Chn, Done);
     CliFail(Cli, Err, LineParams, 1);
   end;
+  {$IFDEF UNIX}
+  { a pty it made (NAM=COM DRV=PTY): the device the master opens }
+  if Pos('DRV=PTY', UpperCase(LineParams)) > 0 then
+    WriteLn(StdErr, 'iec101slave: PTY ', PtyLastSlave);
+  {$ENDIF}
   WriteLn(StdErr, 'iec101slave: ', Chn^.ChGetParam(''), ', ', Slave.PointCount, ' points, CA ', Ca);
+  Flush(StdErr);
   {$IFDEF UNIX}
   FpSignal(SIGINT, @OnSignal);
   FpSignal(SIGTERM, @OnSignal);

@@ -5,7 +5,8 @@
 # and examples/df1read (typed read of N7:0..9) talk to it through the
 # trace layer (NAM=TRC) and the serial layer (NAM=COM DEV=<pty>); then
 # tools/chndecode decodes the trace. Then the gateway: tools/chngate reads
-# a second df1sim and publishes to a local mosquitto (installed first when
+# a second df1sim and an IEC 101 RTU (examples/iec101slave on a pty it
+# makes) and publishes to a local mosquitto (installed first when
 # run as root, else the part is skipped with the install command); what a
 # subscriber sees is printed. Everything it starts or writes is
 # removed on exit (trap), also on Ctrl-C or an error.
@@ -78,6 +79,14 @@ SIM2=$!
 EXTRA="$SIM2"
 for _ in $(seq 50); do [ -s "$TMP/sim2.log" ] && break; sleep 0.1; done
 read -r _ PTY2 <"$TMP/sim2.log" || true
+# an IEC 101 RTU: a measured value, a breaker (single point 104) that its
+# command point 5000 switches (return information), a double point
+printf '100 M_ME_NB_1 2300\n104 M_SP_NA_1 1\n105 M_DP_NA_1 2\n5000 C_SC_NA_1 0\n' >"$TMP/rtu.txt"
+"$BIN/iec101slave" --seconds=20 --points "$TMP/rtu.txt" --return 5000=104 \
+  'NAM=FT1_2 MS=ON MAS=SLAVE NOD=1 LEN=0 NAM=COM DRV=PTY' >/dev/null 2>"$TMP/rtu.log" &
+EXTRA="$EXTRA $!"
+for _ in $(seq 50); do [ -s "$TMP/rtu.log" ] && break; sleep 0.1; done
+read -r _ _ PTY3 <"$TMP/rtu.log" || true
 # a free loopback port for the broker: the first that mosquitto keeps
 for _ in $(seq 20); do
   PORT=$((20000 + RANDOM % 40000))
@@ -98,8 +107,13 @@ line = NAM=DF1 NOD=0 DNO=1 FHD=FULL CRC=ON NAM=COM DEV=$PTY2
 tags = N7:0[10] speed=F8:0 run=B3:0/5 clock=S2:4@500
 scan = 1000
 write = run
+
+[device rtu1]
+line = NAM=FT1_2 MS=ON MAS=MASTER LEN=0 NOD=0 DNO=1 NAM=COM DEV=$PTY3
+points = breaker=104
+write = breaker>5000
 CONF
-echo "== tools/chngate $TMP/gate.conf: df1sim on $PTY2 south, mosquitto on 127.0.0.1:$PORT north"
+echo "== tools/chngate $TMP/gate.conf: df1sim on $PTY2 and iec101slave on $PTY3 south, mosquitto on 127.0.0.1:$PORT north"
 cat "$TMP/gate.conf"
 mosquitto_sub -p "$PORT" -v -t 'demo/#' -W 5 >"$TMP/sub.log" 2>&1 &
 SUB=$!
@@ -110,8 +124,10 @@ GATE=$!
 EXTRA="$EXTRA $GATE"
 sleep 1.5
 echo "== mosquitto_pub -t demo/plc1/run/set -m true; mosquitto_pub -t demo/plc1/N7:0[10]/set -m 1"
+echo "== mosquitto_pub -t demo/rtu1/breaker/set -m false"
 mosquitto_pub -p "$PORT" -t demo/plc1/run/set -m true
 mosquitto_pub -p "$PORT" -t 'demo/plc1/N7:0[10]/set' -m 1
+mosquitto_pub -p "$PORT" -t demo/rtu1/breaker/set -m false
 sleep 1.5
 kill "$GATE"; wait "$GATE" 2>/dev/null || true
 sleep 0.3

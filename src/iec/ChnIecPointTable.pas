@@ -136,6 +136,10 @@ function IecTableSlave(const T: tIecPointTable; Addr: Word): LongInt;
 { Step the master, start the next command or interrogation, follow the
   health. True when something happened. }
 function IecTableStep(var T: tIecPointTable): Boolean;
+{ The master's line itself failed (IecMasterLineResult): every slave is
+  down, its points bad. (The program opens the line again, and starts
+  the master and IecTableInit anew.) }
+procedure IecTableLineDown(var T: tIecPointTable);
 { ms until the table needs a step with no input (ChnWaitAny). }
 function IecTableWaitMs(const T: tIecPointTable): LongInt;
 
@@ -182,6 +186,9 @@ begin
     Moved := Abs(Pt^.Value - Pt^.SentValue) > Pt^.Deadband
   else
     Moved := Pt^.Value <> Pt^.SentValue;
+  { a point with no value that is not bad has nothing to say (yet) }
+  if not Pt^.Known and not Pt^.Bad then
+    Exit;
   if Moved or (Pt^.Quality <> Pt^.SentQuality) or (Pt^.Bad <> Pt^.SentBad) or
      (Pt^.Known <> Pt^.SentKnown) or (Pt^.Ti <> Pt^.SentTi) then
   begin
@@ -275,7 +282,6 @@ begin
     T.Points[Result].Deadband := T.Deadband;
     S := IecTableSlave(T, Addr);
     T.Points[Result].Bad := (S >= 0) and (T.Slaves[S].Health <> ihOk);
-    T.Points[Result].SentBad := T.Points[Result].Bad;
   end;
   if Name <> '' then
     T.Points[Result].Name := Name;
@@ -365,7 +371,7 @@ begin
     FillChar(T.Slaves[I], SizeOf(tIecTableSlave), 0);
     T.Slaves[I].Addr := Info.Addr;
     T.Slaves[I].Ca := Ca;
-    T.Slaves[I].Health := ihDown;
+    T.Slaves[I].Health := ihOk;      { as a PLC of the tag engine: until it fails }
     Inc(I);
   end;
   M.OnObject := @OnObject;
@@ -441,11 +447,14 @@ begin
         SeenFailures := Info.Failures;
         LastError := 'no answer from link address ' + IntToStr(Addr) + IecLineShowed(T.M^, I);
       end;
+      { nothing to say before its link is first up or a service failed }
+      if not Started and (Info.State in [isOffline, isLinkStatus]) and (Info.Failures = 0) then
+        Continue;
       H := HealthOf(T, Info, Health);
       if (H <> Health) or not Started then
       begin
-        if (H = ihOk) and (Health <> ihOk) then
-          GiDue := True;             { values known again }
+        if (H = ihOk) and ((Health <> ihOk) or not Started) then
+          GiDue := True;             { values known (again) }
         Health := H;
         Changed := True;
         Started := True;
@@ -457,6 +466,19 @@ begin
         GiDue := True;
         GiAt := ChMsTick + QWord(T.GiMs);
       end;
+    end;
+end;
+
+procedure IecTableLineDown(var T: tIecPointTable);
+var
+  I: LongInt;
+begin
+  for I := 0 to High(T.Slaves) do
+    if T.Slaves[I].Health <> ihDown then
+    begin
+      T.Slaves[I].Health := ihDown;
+      T.Slaves[I].Changed := True;
+      MarkSlave(T, I);
     end;
 end;
 

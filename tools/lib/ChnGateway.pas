@@ -2,8 +2,9 @@
   read with FCL's IniFiles, checked completely before anything is opened:
   every fault is "FILE:LINE: [section] key: what is wrong") and the loop
   that joins the south devices (DF1 PLCs through the tag engine,
-  ChnPcccTags) to the north (MQTT through ChnMqtt), all in one
-  ChnWaitAny. docs/chngate.md is the reference. }
+  ChnPcccTags) to the north (MQTT through ChnMqtt, an IEC 104 server
+  through ChnGate104), all in one ChnWaitAny. docs/chngate.md is the
+  reference. }
 unit ChnGateway;
 
 {$I chn.inc}
@@ -11,7 +12,7 @@ unit ChnGateway;
 interface
 
 uses
-  Classes, SysUtils, ChnTypes, ChnPccc, ChnPcccTags, ChnMqtt;
+  Classes, SysUtils, ChnTypes, ChnPccc, ChnPcccTags, ChnMqtt, ChnGate104, ChnGateIec101;
 
 const
   GateHealthMs = 10000;     { $health is published on every change and this often }
@@ -33,7 +34,11 @@ type
     TimeoutMs: LongInt;
     Ioa      : LongInt;
     Plc5     : Boolean;      { family = plc5: PLC-5 addresses and commands }
+    Points   : LongInt;      { IOAs its tags take on the IEC 104 server }
+    TablePoints: LongInt;    { points of the server's table, commands included }
     Tags     : array of tGateTagCfg;
+    Iec      : Boolean;      { NAM=FT1_2: an IEC 101 device (ChnGateIec101) }
+    Iec101   : tGateIecCfg;
   end;
 
   tGateConfig = record
@@ -49,6 +54,7 @@ type
     Queue    : LongInt;
     ClientId : AnsiString;
     KeepAlive: LongInt;
+    Iec104   : tGate104Cfg;  { the [iec104] section }
     Devices  : array of tGateDeviceCfg;
   end;
 
@@ -57,8 +63,10 @@ type
   tGate = record
     Cfg    : tGateConfig;
     Devs   : array of tPcccDevice;
+    Iecs   : array of pGateIecDevice;  { the IEC 101 devices (nil for a DF1 one) }
     OpenAt : array of QWord;      { when a device whose line failed is opened again }
     Mqtt   : tMqttClient;
+    N104   : tGate104;
     HealthAt: QWord;
     Log    : tGateLog;
     WriteId: LongInt;
@@ -73,12 +81,13 @@ function GateParseConfig(const FileName, Text: AnsiString; out Cfg: tGateConfig;
 { 'N devices, M tags, R reads per scan' of a checked configuration. }
 function GateSummary(const Cfg: tGateConfig): AnsiString;
 
-{ Open the north (MQTT) and the devices of Cfg. False with Err when the
-  MQTT library is missing; a device whose line cannot be opened is down
-  and opened again every DEMOTE ms. }
+{ Open the north (MQTT, the IEC 104 server) and the devices of Cfg. False
+  with Err when the MQTT library is missing or the IEC 104 port cannot be
+  taken; a device whose line cannot be opened is down and opened again
+  every DEMOTE ms. }
 function GateStart(var G: tGate; const Cfg: tGateConfig; out Err: AnsiString): Boolean;
 { A new configuration (SIGHUP): the devices are closed and opened anew,
-  the north connection stays. }
+  the north connections stay (the IEC 104 point table is built anew). }
 procedure GateReload(var G: tGate; const Cfg: tGateConfig);
 { One round: step everything, publish what changed, apply commands.
   Returns the ms the program may wait (ChnWaitAny) before the next. }
@@ -94,7 +103,7 @@ function GateHealthPayload(const D: tPcccDevice): AnsiString;
 implementation
 
 uses
-  IniFiles, StrUtils, ChnWait, ChnPcccClient, ChnJson, ChnCli;
+  IniFiles, StrUtils, Math, ChnWait, ChnPcccClient, ChnJson, ChnCli, ChnIec101Slave, ChnIecPointTable;
 
 { ------------------------------------------------------------ configuration }
 
@@ -134,8 +143,12 @@ end;
 procedure Bad(var C: tChecker; const Section, Key, Why: AnsiString);
 var
   Where: AnsiString;
+  Line: LongInt;
 begin
-  Where := C.FileName + ':' + IntToStr(LineOf(C, Section, Key)) + ': [' + Section + ']';
+  Line := LineOf(C, Section, Key);
+  if Line = 0 then
+    Line := LineOf(C, Section, '');      { a key missing: its section }
+  Where := C.FileName + ':' + IntToStr(Line) + ': [' + Section + ']';
   if Key <> '' then
     Where := Where + ' ' + Key;
   C.Errors := C.Errors + Where + ': ' + Why + LineEnding;
@@ -146,7 +159,9 @@ end;
 procedure CheckLines(var C: tChecker);
 const
   MqttKeys = ' host port prefix qos user password tls ca queue client_id keepalive ';
-  DeviceKeys = ' line family tags scan write deadband demote fails timeout ioa ';
+  DeviceKeys = ' line family tags scan write deadband demote fails timeout ioa ' +
+    'slaves ca cot_size ca_size ioa_size points gi cycle ';
+  Iec104Keys = ' listen ca con k w t0 t1 t2 t3 command_timeout ';
 var
   I, Eq: LongInt;
   S, Sec, Key, Keys: AnsiString;
@@ -179,14 +194,10 @@ begin
         else if (LowerCase(Copy(Sec, 1, 7)) = 'device ') and (Trim(Copy(Sec, 8, MaxInt)) <> '') then
           Keys := DeviceKeys
         else if LowerCase(Sec) = 'iec104' then
-        begin
-          C.Errors := C.Errors + Format('%s:%d: [%s]: IEC 104 north is not in this version of chngate',
-            [C.FileName, I + 1, Sec]) + LineEnding;
-          Keys := '*';
-        end
+          Keys := Iec104Keys
         else
         begin
-          C.Errors := C.Errors + Format('%s:%d: [%s]: unknown section (mqtt, device NAME)',
+          C.Errors := C.Errors + Format('%s:%d: [%s]: unknown section (mqtt, iec104, device NAME)',
             [C.FileName, I + 1, Sec]) + LineEnding;
           Keys := '*';
         end;
@@ -273,6 +284,142 @@ begin
     Bad(C, S, 'password', 'given without user');
 end;
 
+procedure ReadIec104(var C: tChecker; Ini: TMemIniFile; var Cfg: tGateConfig);
+const
+  S = 'iec104';
+  { the keys NAM=IEC104 takes as they are, and their largest values }
+  Keys: array[0..6] of string[3] = ('con', 'k', 'w', 't0', 't1', 't2', 't3');
+  Most: array[0..6] of LongInt = (16, 32767, 32767, 255, 255, 255, 172800);
+var
+  N: tGate104Cfg;
+  Why: AnsiString;
+  I, V: LongInt;
+begin
+  N.Present := Ini.SectionExists(S);
+  N.Listen := Trim(Ini.ReadString(S, 'listen', ''));
+  N.Ca := Num(C, Ini, S, 'ca', 1, 65534, 1);
+  N.CommandMs := Num(C, Ini, S, 'command_timeout', 100, 600000, Gate104CommandMsDefault);
+  N.Params := '';
+  for I := 0 to High(Keys) do
+  begin
+    V := Num(C, Ini, S, Keys[I], 1, Most[I], 0);
+    if V > 0 then
+      N.Params := N.Params + UpperCase(Keys[I]) + '=' + IntToStr(V) + ' ';
+  end;
+  Cfg.Iec104 := N;
+  if not N.Present then
+    Exit;
+  if Pos(':', N.Listen) = 0 then
+    Bad(C, S, 'listen', 'missing or not HOST:PORT (0.0.0.0:2404)')
+  else
+  begin
+    Why := CliParamsProblem(Gate104Line(N), 'IEC104');
+    if Why <> '' then
+      Bad(C, S, '', Why);
+  end;
+end;
+
+{ The IEC 104 IOAs of the devices: within 1..16777215, none twice, the
+  table within the slave's points. }
+procedure CheckIoas(var C: tChecker; const Cfg: tGateConfig);
+var
+  I, J, Total: LongInt;
+begin
+  Total := 0;
+  for I := 0 to High(Cfg.Devices) do
+    with Cfg.Devices[I] do
+    begin
+      Inc(Total, TablePoints);
+      if Ioa + Points - 1 > 16777215 then
+        Bad(C, 'device ' + Name, 'ioa', Format('%d + %d points runs past IOA 16777215', [Ioa, Points]));
+      for J := 0 to I - 1 do
+        if (Points > 0) and (Cfg.Devices[J].Points > 0) and (Ioa <= Cfg.Devices[J].Ioa + Cfg.Devices[J].Points - 1) and
+           (Cfg.Devices[J].Ioa <= Ioa + Points - 1) then
+          Bad(C, 'device ' + Name, 'ioa', Format('IOAs %d..%d overlap those of device %s (%d..%d)',
+            [Ioa, Ioa + Points - 1, Cfg.Devices[J].Name, Cfg.Devices[J].Ioa,
+             Cfg.Devices[J].Ioa + Cfg.Devices[J].Points - 1]));
+    end;
+  if Total > IecSlaveMaxPoints then
+    C.Errors := C.Errors + Format('%s:%d: [iec104]: %d points (a writable tag''s commands count 2), more than %d',
+      [C.FileName, LineOf(C, 'iec104', ''), Total, IecSlaveMaxPoints]) + LineEnding;
+end;
+
+function Deadband(var C: tChecker; Ini: TMemIniFile; const Sec: AnsiString): Double;
+var
+  W: AnsiString;
+  Code: LongInt;
+begin
+  Result := 0;
+  W := Trim(Ini.ReadString(Sec, 'deadband', ''));
+  if W = '' then
+    Exit;
+  Val(W, Result, Code);
+  if (Code <> 0) or (Result < 0) then
+  begin
+    Bad(C, Sec, 'deadband', '"' + W + '" is not a number 0 or above');
+    Result := 0;
+  end;
+end;
+
+const
+  IecOnlyKeys: array[0..7] of AnsiString = ('slaves', 'ca', 'cot_size', 'ca_size', 'ioa_size', 'points',
+    'gi', 'cycle');
+
+{ An IEC 101 device: the master's options; the point entries and the
+  line are checked by ChnGateIec101. }
+procedure ReadIecDevice(var C: tChecker; Ini: TMemIniFile; const Sec: AnsiString; var D: tGateDeviceCfg);
+var
+  K, W, Err: AnsiString;
+  A: LongInt;
+  LineOk: Boolean;
+begin
+  D.Iec := True;
+  for K in ['tags', 'scan', 'fails', 'family'] do
+    if Ini.ValueExists(Sec, K) then
+      Bad(C, Sec, K, 'not for an IEC 101 device (the master demotes a slave by its own back-off)');
+  with D.Iec101 do
+  begin
+    Params.CotSize := Num(C, Ini, Sec, 'cot_size', 1, 2, 2);
+    Params.CaSize := Num(C, Ini, Sec, 'ca_size', 1, 2, 2);
+    Params.IoaSize := Num(C, Ini, Sec, 'ioa_size', 1, 3, 3);
+    Ca := Num(C, Ini, Sec, 'ca', 0, 65535, 1);
+    IoaOffset := Num(C, Ini, Sec, 'ioa', 0, 16777215, 0);
+    TimeoutMs := Num(C, Ini, Sec, 'timeout', 10, 60000, 1000);
+    DemoteMs := Num(C, Ini, Sec, 'demote', 100, 3600000, TagDemoteMsDefault);
+    CycleMs := Num(C, Ini, Sec, 'cycle', 10, 3600000, 100);
+    GiMs := Num(C, Ini, Sec, 'gi', 0, 86400000, 0);
+    Deadband := ChnGateway.Deadband(C, Ini, Sec);
+    Slaves := nil;
+    for W in Trim(Ini.ReadString(Sec, 'slaves', '')).Split([' ', #9, ','], TStringSplitOptions.ExcludeEmpty) do
+    begin
+      A := StrToIntDef(W, -1);
+      if (A < 0) or (A > 65535) then
+        Bad(C, Sec, 'slaves', '"' + W + '" is not a link address 0..65535')
+      else
+      begin
+        SetLength(Slaves, Length(Slaves) + 1);
+        Slaves[High(Slaves)] := A;
+      end;
+    end;
+    Points := nil;
+    LineOk := GateIecCheckLine(D.Line, D.Iec101, Err);
+    if not LineOk then
+    begin
+      if Pos('slave ', Err) = 1 then
+        Bad(C, Sec, 'slaves', Err)
+      else if Pos('ca ', Err) = 1 then
+        Bad(C, Sec, 'ca', Err)
+      else
+        Bad(C, Sec, 'line', Err);
+      Exit;
+    end;
+    if not GateIecParsePoints(Ini.ReadString(Sec, 'points', ''), D.Iec101, Err) then
+      Bad(C, Sec, 'points', Err);
+    if not GateIecParseWrite(Ini.ReadString(Sec, 'write', ''), D.Iec101, Err) then
+      Bad(C, Sec, 'write', Err);
+  end;
+end;
+
 procedure ReadDevice(var C: tChecker; Ini: TMemIniFile; const Sec: AnsiString; var D: tGateDeviceCfg;
   var Probe: tPcccDevice);
 var
@@ -286,6 +433,14 @@ begin
   if (Pos('/', D.Name) > 0) or (Pos('+', D.Name) > 0) or (Pos('#', D.Name) > 0) or (Pos(' ', D.Name) > 0) then
     Bad(C, Sec, '', '"' + D.Name + '": a device name is one topic level (no / + # or blanks)');
   D.Line := Trim(Ini.ReadString(Sec, 'line', ''));
+  if UpperCase(ExtractWord(1, D.Line, [' '])) = 'NAM=FT1_2' then
+  begin
+    ReadIecDevice(C, Ini, Sec, D);
+    Exit;
+  end;
+  for W in IecOnlyKeys do
+    if Ini.ValueExists(Sec, W) then
+      Bad(C, Sec, W, 'only for an IEC 101 device (line = NAM=FT1_2 ...)');
   D.ScanMs := Num(C, Ini, Sec, 'scan', 10, 3600000, TagScanMsDefault);
   D.DemoteMs := Num(C, Ini, Sec, 'demote', 100, 3600000, TagDemoteMsDefault);
   D.DemoteAfter := Num(C, Ini, Sec, 'fails', 1, 1000, TagDemoteAfterDefault);
@@ -295,25 +450,14 @@ begin
   D.Plc5 := W = 'plc5';
   if (W <> 'slc') and not D.Plc5 then
     Bad(C, Sec, 'family', '"' + W + '" is neither slc (SLC 500, MicroLogix) nor plc5');
-  D.Deadband := 0;
-  W := Trim(Ini.ReadString(Sec, 'deadband', ''));
-  if W <> '' then
-  begin
-    Val(W, DB, Code);
-    if (Code <> 0) or (DB < 0) then
-      Bad(C, Sec, 'deadband', '"' + W + '" is not a number 0 or above')
-    else
-      D.Deadband := DB;
-  end;
+  D.Deadband := Deadband(C, Ini, Sec);
   if D.Line = '' then
     Bad(C, Sec, 'line', 'missing: the parameter string of the device''s line (NAM=DF1 ... NAM=COM ...)')
   else
   begin
     Layer := UpperCase(ExtractWord(1, D.Line, [' ']));
-    if Layer = 'NAM=FT1_2' then
-      Bad(C, Sec, 'line', 'IEC 101 devices (NAM=FT1_2) are not in this version of chngate')
-    else if Layer <> 'NAM=DF1' then
-      Bad(C, Sec, 'line', '"' + ExtractWord(1, D.Line, [' ']) + '": the line starts with NAM=DF1')
+    if Layer <> 'NAM=DF1' then
+      Bad(C, Sec, 'line', '"' + ExtractWord(1, D.Line, [' ']) + '": the line starts with NAM=DF1 or NAM=FT1_2')
     else
     begin
       Why := CliParamsProblem(D.Line, 'DF1');
@@ -379,8 +523,13 @@ begin
     else if (Probe.Tags[K].Kind = pvString) or (PcccPlanValues(Probe.Tags[K].Plan) <> 1) then
       Bad(C, Sec, 'write', '"' + W + '": only a tag of one integer, bit or float can be written')
     else
+    begin
       D.Tags[K].Writable := True;
+      Probe.Tags[K].Writable := True;
+    end;
   end;
+  D.Points := Gate104DevicePoints(Probe);
+  D.TablePoints := Gate104TablePoints(Probe);
 end;
 
 function GateParseConfig(const FileName, Text: AnsiString; out Cfg: tGateConfig;
@@ -408,6 +557,7 @@ begin
     Ini := TMemIniFile.Create('');
     Ini.SetStrings(C.Lines);
     ReadMqtt(C, Ini, Cfg);
+    ReadIec104(C, Ini, Cfg);
     Ini.ReadSections(Secs);
     for Sec in Secs do
       if (LowerCase(Copy(Sec, 1, 7)) = 'device ') and (Trim(Copy(Sec, 8, MaxInt)) <> '') then
@@ -421,8 +571,10 @@ begin
       end;
     if (C.Errors = '') and (Length(Cfg.Devices) = 0) then
       C.Errors := FileName + ':0: no [device NAME] section: nothing to read' + LineEnding;
-    if (C.Errors = '') and not Cfg.Mqtt then
-      C.Errors := FileName + ':0: no [mqtt] section: nowhere to publish' + LineEnding;
+    if Cfg.Iec104.Present then
+      CheckIoas(C, Cfg);
+    if (C.Errors = '') and not Cfg.Mqtt and not Cfg.Iec104.Present then
+      C.Errors := FileName + ':0: no [mqtt] or [iec104] section: nowhere to publish' + LineEnding;
   finally
     Ini.Free;
     Secs.Free;
@@ -481,10 +633,11 @@ function GateSummary(const Cfg: tGateConfig): AnsiString;
 var
   D: tGateDeviceCfg;
   Dev: tPcccDevice;
-  Tags, Reads: LongInt;
+  Tags, Reads, Slaves: LongInt;
 begin
   Tags := 0;
   Reads := 0;
+  Slaves := 0;
   FillChar(Dev, SizeOf(Dev), 0);
   for D in Cfg.Devices do
   begin
@@ -492,8 +645,19 @@ begin
     Inc(Tags, Length(Dev.Tags));
     Inc(Reads, TagDeviceReads(Dev));
     TagDeviceDone(Dev);
+    if D.Iec then
+      Inc(Slaves, Length(D.Iec101.Slaves));
   end;
   Result := Format('%d devices, %d tags, %d reads per scan', [Length(Cfg.Devices), Tags, Reads]);
+  if Slaves > 0 then
+    Result := Result + Format(', %d IEC 101 slaves', [Slaves]);
+  if Cfg.Iec104.Present then
+  begin
+    Tags := 0;
+    for D in Cfg.Devices do
+      Inc(Tags, D.Points);
+    Result := Result + Format(', %d IEC 104 points', [Tags]);
+  end;
 end;
 
 { ------------------------------------------------------------ payloads }
@@ -585,12 +749,36 @@ var
 begin
   SetLength(G.Devs, Length(G.Cfg.Devices));
   SetLength(G.OpenAt, Length(G.Cfg.Devices));
+  SetLength(G.Iecs, Length(G.Cfg.Devices));
   for I := 0 to High(G.Devs) do
   begin
     BuildDevice(G.Devs[I], G.Cfg.Devices[I]);
     G.Devs[I].StateChanged := True;      { a first $health }
-    OpenDevice(G, I);
+    G.Iecs[I] := nil;
+    if G.Cfg.Devices[I].Iec then
+      G.Iecs[I] := GateIecNew(G.Cfg.Devices[I].Name, G.Cfg.Devices[I].Line, G.Cfg.Devices[I].Iec101)
+    else
+      OpenDevice(G, I);
   end;
+end;
+
+{ The IEC 104 point table of the devices (when the server runs). }
+procedure Build104(var G: tGate; Reload: Boolean);
+var
+  Bases: array of LongInt;
+  I: LongInt;
+begin
+  SetLength(Bases, Length(G.Devs));
+  for I := 0 to High(Bases) do
+    Bases[I] := G.Cfg.Devices[I].Ioa;
+  Gate104Build(G.N104, G.Devs, Bases, Reload);
+end;
+
+{ Publish on MQTT, when the gateway has it. }
+procedure Publish(var G: tGate; const Topic_, Payload: AnsiString; Retain: Boolean);
+begin
+  if G.Cfg.Mqtt then
+    MqttPublish(G.Mqtt, Topic_, Payload, Retain);
 end;
 
 procedure CloseDevices(var G: tGate);
@@ -598,9 +786,13 @@ var
   I: LongInt;
 begin
   for I := 0 to High(G.Devs) do
+  begin
     TagDeviceDone(G.Devs[I]);
+    GateIecFree(G.Iecs[I]);
+  end;
   G.Devs := nil;
   G.OpenAt := nil;
+  G.Iecs := nil;
 end;
 
 function GateStart(var G: tGate; const Cfg: tGateConfig; out Err: AnsiString): Boolean;
@@ -621,13 +813,22 @@ begin
   G.Mqtt.WillTopic := Cfg.Prefix + '/$gateway/status';
   G.Mqtt.WillPayload := 'offline';
   G.Mqtt.OnlinePayload := 'online';
-  Result := MqttOpen(G.Mqtt, Err);
+  Result := not Cfg.Mqtt or MqttOpen(G.Mqtt, Err);
   if not Result then
     Exit;
-  { PREFIX/DEVICE/TAG/set, also for tags with a '/' (B3:0/5) }
-  MqttSubscribe(G.Mqtt, Cfg.Prefix + '/+/+/set');
-  MqttSubscribe(G.Mqtt, Cfg.Prefix + '/+/+/+/set');
+  if Cfg.Mqtt then
+  begin
+    { PREFIX/DEVICE/TAG/set, also for tags with a '/' (B3:0/5) }
+    MqttSubscribe(G.Mqtt, Cfg.Prefix + '/+/+/set');
+    MqttSubscribe(G.Mqtt, Cfg.Prefix + '/+/+/+/set');
+  end;
+  if Cfg.Iec104.Present and not Gate104Open(G.N104, Cfg.Iec104, G.Log, Err) then
+  begin
+    MqttClose(G.Mqtt);
+    Exit(False);
+  end;
   OpenDevices(G);
+  Build104(G, False);
   G.HealthAt := GetTickCount64 + GateHealthMs;
 end;
 
@@ -636,12 +837,13 @@ begin
   CloseDevices(G);
   G.Cfg.Devices := Cfg.Devices;
   OpenDevices(G);
+  Build104(G, True);
 end;
 
 procedure Refuse(var G: tGate; const Topic_, Why: AnsiString);
 begin
   Say(G, 'refused ' + Topic_ + ': ' + Why);
-  MqttPublish(G.Mqtt, G.Cfg.Prefix + '/$gateway/error',
+  Publish(G, G.Cfg.Prefix + '/$gateway/error',
     '{"topic":' + JsonString(Topic_) + ',"error":' + JsonString(Why) + '}', False);
 end;
 
@@ -664,10 +866,14 @@ begin
     if G.Cfg.Devices[I].Name = DevName then
       Dev := I;
   Tag := -1;
-  if Dev >= 0 then
+  if (Dev >= 0) and (G.Iecs[Dev] <> nil) then
+    Tag := GateIecFind(G.Iecs[Dev], TagName)
+  else if Dev >= 0 then
     Tag := TagFind(G.Devs[Dev], TagName);
   if Dev < 0 then
     Refuse(G, M.Topic, 'no device "' + DevName + '"')
+  else if (Tag < 0) and (G.Iecs[Dev] <> nil) then
+    Refuse(G, M.Topic, 'no point "' + TagName + '" on ' + DevName)
   else if Tag < 0 then
     Refuse(G, M.Topic, 'no tag "' + TagName + '" on ' + DevName)
   else if not JsonParseValue(M.Payload, V, Err) then
@@ -679,10 +885,61 @@ end;
 procedure WriteTag(var G: tGate; const Topic_: AnsiString; Dev, Tag: LongInt; V: Double);
 var
   E: ShortString;
+  Err: AnsiString;
 begin
   Inc(G.WriteId);
-  if not TagDeviceWrite(G.Devs[Dev], Tag, V, G.WriteId, E) then
+  if G.Iecs[Dev] <> nil then
+  begin
+    if not GateIecWrite(G.Iecs[Dev], Tag, V, G.WriteId, Err) then
+      Refuse(G, Topic_, Err);
+  end
+  else if not TagDeviceWrite(G.Devs[Dev], Tag, V, G.WriteId, E) then
     Refuse(G, Topic_, E);
+end;
+
+{ MqttStep, and a log line when the connection came or went (why, and
+  when it is tried again). }
+procedure StepMqtt(var G: tGate);
+begin
+  MqttStep(G.Mqtt);
+  if not G.Mqtt.Changed then
+    Exit;
+  if G.Mqtt.State = msConnected then
+    Say(G, Format('MQTT %s:%d: connected', [G.Mqtt.Host, G.Mqtt.Port]))
+  else if G.Mqtt.State = msWaiting then
+    Say(G, Format('MQTT: %s (again in %d ms)', [G.Mqtt.LastError, ChnWaitLeft(G.Mqtt.RetryAt)]));
+end;
+
+{ One round of IEC 101 device I; the ms it may wait. }
+function StepIec(var G: tGate; I: LongInt; Health: Boolean): LongInt;
+var
+  D: pGateIecDevice;
+  P: LongInt;
+  Wr: tIecTableWrite;
+  Name: AnsiString;
+begin
+  D := G.Iecs[I];
+  if GateIecStep(D) then
+    Result := 0
+  else
+    Result := GateIecWaitMs(D);
+  while IecTableTakeChange(D^.T, P) do
+    Publish(G, Topic(G, D^.Name, GateIecPointName(D, P)), GateIecPointPayload(D^.T.Points[P]), True);
+  while IecTableTakeWrite(D^.T, Wr) do
+  begin
+    Name := Topic(G, D^.Name, GateIecPointName(D, Wr.Point)) + '/set';
+    if Wr.Res = res_Ok then
+      Say(G, Name + ' ' + JsonNumber(Wr.Value) + ': positive ACT_CON')
+    else
+      Refuse(G, Name, Wr.Err);
+  end;
+  if GateIecTakeHealth(D) then
+  begin
+    Say(G, D^.Name + ': ' + GateIecHealthPayload(D));
+    Health := True;
+  end;
+  if Health then
+    Publish(G, Topic(G, D^.Name, '$health'), GateIecHealthPayload(D), True);
 end;
 
 function GateStep(var G: tGate): LongInt;
@@ -697,28 +954,41 @@ begin
   Health := Now_ >= G.HealthAt;
   if Health then
     G.HealthAt := Now_ + GateHealthMs;
-  MqttStep(G.Mqtt);
+  StepMqtt(G);
   while MqttTakeMessage(G.Mqtt, M) do
     Command(G, M);
   Result := MqttWaitMs(G.Mqtt);
+  { the control centre's requests and commands, before the devices' step }
+  if G.Cfg.Iec104.Present then
+    Result := Min(Result, Gate104Step(G.N104, G.Devs));
   for I := 0 to High(G.Devs) do
   begin
+    if G.Iecs[I] <> nil then
+    begin
+      W := StepIec(G, I, Health);
+      if W < Result then
+        Result := W;
+      Continue;
+    end;
     if (G.OpenAt[I] <> 0) and (Now_ >= G.OpenAt[I]) then
       OpenDevice(G, I);
     TagDeviceStep(G.Devs[I]);
     while TagTakeChange(G.Devs[I], Tag) do
-      MqttPublish(G.Mqtt, Topic(G, G.Devs[I].Name, G.Devs[I].Tags[Tag].Name),
-        GateTagPayload(G.Devs[I].Tags[Tag]), True);
+    begin
+      Publish(G, Topic(G, G.Devs[I].Name, G.Devs[I].Tags[Tag].Name), GateTagPayload(G.Devs[I].Tags[Tag]), True);
+      Gate104Change(G.N104, G.Devs, I, Tag);
+    end;
     while TagTakeWrite(G.Devs[I], Wr) do
-      if Wr.Res <> res_Ok then
+      if not Gate104WriteDone(G.N104, Wr) and (Wr.Res <> res_Ok) then
         Refuse(G, Topic(G, G.Devs[I].Name, G.Devs[I].Tags[Wr.Tag].Name) + '/set', Wr.Err);
     if TagTakeHealth(G.Devs[I]) then
     begin
       Say(G, G.Devs[I].Name + ': ' + TagStateNames[G.Devs[I].State] + ' ' + G.Devs[I].LastError);
-      MqttPublish(G.Mqtt, Topic(G, G.Devs[I].Name, '$health'), GateHealthPayload(G.Devs[I]), True);
+      Publish(G, Topic(G, G.Devs[I].Name, '$health'), GateHealthPayload(G.Devs[I]), True);
+      Gate104Health(G.N104, G.Devs, I);
     end
     else if Health then
-      MqttPublish(G.Mqtt, Topic(G, G.Devs[I].Name, '$health'), GateHealthPayload(G.Devs[I]), True);
+      Publish(G, Topic(G, G.Devs[I].Name, '$health'), GateHealthPayload(G.Devs[I]), True);
     W := TagDeviceWaitMs(G.Devs[I]);
     if G.OpenAt[I] <> 0 then
       W := ChnWaitLeft(G.OpenAt[I]);
@@ -726,7 +996,9 @@ begin
       Result := W;
   end;
   { what was queued in this round goes out now }
-  MqttStep(G.Mqtt);
+  StepMqtt(G);
+  if G.Cfg.Iec104.Present then
+    Result := Min(Result, Gate104Step(G.N104, G.Devs));
   W := ChnWaitLeft(G.HealthAt);
   if W < Result then
     Result := W;
@@ -748,6 +1020,7 @@ begin
     end;
   end;
   MqttClose(G.Mqtt);
+  Gate104Close(G.N104);
 end;
 
 end.
