@@ -83,20 +83,6 @@ end;
 
 {$IFDEF UNIX}
 
-{ How often Needle occurs in S. }
-function Occurs(const Needle, S: string): LongInt;
-var
-  P: LongInt;
-begin
-  Result := 0;
-  P := Pos(Needle, S);
-  while P > 0 do
-  begin
-    Inc(Result);
-    P := Pos(Needle, S, P + 1);
-  end;
-end;
-
 { chngate CONF, its output in a pipe }
 function StartGate(const Conf: string): TProcess;
 begin
@@ -105,17 +91,6 @@ begin
   Result.Parameters.Add(Conf);
   Result.Options := [poUsePipes, poStderrToOutPut];
   Result.Execute;
-end;
-
-{ Stop P (with Sig) if it still runs, and free it. }
-procedure Ended(var P: TProcess; Sig: cint);
-begin
-  if (P <> nil) and P.Running then
-  begin
-    FpKill(P.ProcessID, Sig);
-    P.WaitOnExit;
-  end;
-  FreeAndNil(P);
 end;
 
 procedure TTestChngateTool.TestGatewayEndToEnd;
