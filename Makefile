@@ -193,7 +193,8 @@ SOAKFLAGS = $(filter-out -B,$(TESTFLAGS))
 # programs make test also builds with the test flags into $(TBINDIR): the
 # suite checks with heaptrc that they free everything at exit (usage
 # errors too)
-HEAPPROGS := examples/iec101master.pas examples/iec101slave.pas examples/df1write.pas tools/chntap.pas tools/df1sim.pas
+HEAPPROGS := examples/iec101master.pas examples/iec101slave.pas examples/df1write.pas tools/chntap.pas tools/df1sim.pas \
+             tools/chndecode.pas tools/chngate.pas
 fuzz: units
 	@mkdir -p $(TUNITDIR) $(TBINDIR)
 	@rm -f $(BUILD)/fuzz-build.log

@@ -17,7 +17,6 @@ type
   TTestChnLadder = class(TTestCase)
   private
     Dir: string;
-    function Count(const Sub, S: AnsiString): Integer;
     function DemoSvg: AnsiString;
   protected
     procedure SetUp; override;
@@ -34,7 +33,7 @@ type
 implementation
 
 uses
-  BinSupport;
+  BinSupport, TestSupport;
 
 const
   Df1Trace =
@@ -68,19 +67,6 @@ end;
 procedure TTestChnLadder.TearDown;
 begin
   RemoveTempDir(Dir);
-end;
-
-function TTestChnLadder.Count(const Sub, S: AnsiString): Integer;
-var
-  P: Integer;
-begin
-  Result := 0;
-  P := Pos(Sub, S);
-  while P > 0 do
-  begin
-    Inc(Result);
-    P := Pos(Sub, S, P + 1);
-  end;
 end;
 
 { The diagram of Df1Trace through the decoder, as chndecode draws it. }
@@ -133,21 +119,21 @@ begin
   LadderDefaults(L);
   L.GapMs := 1000;
   S := LadderSvg(E, 4, L);
-  AssertEquals('good frames', 3, Count('<g class="frame">', S));
-  AssertEquals('broken frames', 1, Count('<g class="frame error">', S));
-  AssertEquals('pauses', 1, Count('<g class="gap">', S));
+  AssertEquals('good frames', 3, CountOf('<g class="frame">', S));
+  AssertEquals('broken frames', 1, CountOf('<g class="frame error">', S));
+  AssertEquals('pauses', 1, CountOf('<g class="gap">', S));
   AssertTrue(Pos('4.000 s without a frame', S) > 0);
   AssertTrue('escaped', Pos('DF1 first &lt;one&gt;', S) > 0);
   AssertTrue('escaped', Pos('answer &amp; more', S) > 0);
   AssertEquals('no raw markup from the text', 0, Pos('<one>', S));
   { tx from the left lane (x 170) to the right (x 960), rx back }
-  AssertEquals(2, Count('<line x1="170" y1=', S) - 1 { the left lane itself });
-  AssertEquals(2, Count('<line x1="960" y1=', S) - 1);
-  AssertEquals('red arrow', 1, Count('stroke="#c00000"', S));
+  AssertEquals(2, CountOf('<line x1="170" y1=', S) - 1 { the left lane itself });
+  AssertEquals(2, CountOf('<line x1="960" y1=', S) - 1);
+  AssertEquals('red arrow', 1, CountOf('stroke="#c00000"', S));
   AssertTrue(Pos('</svg>', S) > 0);
   { with GapMs = 0 no pause is marked }
   L.GapMs := 0;
-  AssertEquals(0, Count('<g class="gap">', LadderSvg(E, 4, L)));
+  AssertEquals(0, CountOf('<g class="gap">', LadderSvg(E, 4, L)));
   { no frames: still a diagram }
   AssertTrue(Pos('0 frames', LadderSvg(E, 0, L)) > 0);
 end;
@@ -208,11 +194,11 @@ begin
     '--gap=500', '--title=demo', Dir + 'df1.log'], 30000, Output));
   AssertTrue(Output, Pos('5 chunks, 57 bytes: 5 frames, 1 errors', Output) > 0);
   S := ReadFileText(Dir + 'df1.svg');
-  AssertEquals(4, Count('<g class="frame">', S));
-  AssertEquals(1, Count('<g class="frame error">', S));
-  AssertEquals('the 2 s pause', 1, Count('<g class="gap">', S));
+  AssertEquals(4, CountOf('<g class="frame">', S));
+  AssertEquals(1, CountOf('<g class="frame error">', S));
+  AssertEquals('the 2 s pause', 1, CountOf('<g class="gap">', S));
   AssertTrue(Pos('<title>demo</title>', S) > 0);
-  AssertEquals('the NAK', 1, Count('<g class="frame refused">', S));
+  AssertEquals('the NAK', 1, CountOf('<g class="frame refused">', S));
   AssertEquals(2, RunBin('chndecode', ['--svg=', Dir + 'df1.log'], 30000, Output));
   AssertEquals(2, RunBin('chndecode', ['--gap=x', Dir + 'df1.log'], 30000, Output));
   AssertTrue(Output, Pos('--gap wants a whole number 0..86400000 (--gap=x)', Output) > 0);

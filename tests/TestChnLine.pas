@@ -73,9 +73,7 @@ begin
   inherited TearDown;
   if Proc <> nil then
   begin
-    if Proc.Running then
-      Proc.Terminate(1);
-    FreeAndNil(Proc);
+    StopProcess(Proc);
   end;
   FreeAndNil(Paths);
 end;

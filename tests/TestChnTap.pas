@@ -103,12 +103,7 @@ begin
   {$IFDEF UNIX}
   if Tap <> nil then
   begin
-    if Tap.Running then
-    begin
-      Tap.Terminate(255);
-      Tap.WaitOnExit;
-    end;
-    FreeAndNil(Tap);
+    StopProcess(Tap);
   end;
   FreeAndNil(P1);
   FreeAndNil(P2);

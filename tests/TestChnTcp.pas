@@ -975,9 +975,7 @@ begin
     end;
   finally
     SockClose(Squat);
-    if Sim.Running then
-      Sim.Terminate(0);
-    Sim.Free;
+    StopProcess(Sim);
   end;
 end;
 

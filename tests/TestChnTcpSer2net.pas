@@ -269,9 +269,7 @@ begin
       Str.Free;
     end;
   finally
-    if Sim.Running then
-      Sim.Terminate(0);
-    Sim.Free;
+    StopProcess(Sim);
   end;
 end;
 

@@ -11,7 +11,7 @@ unit TestDf1Examples;
 interface
 
 uses
-  SysUtils, Classes, Process, fpcunit, testregistry, BinSupport;
+  SysUtils, Classes, Process, fpcunit, testregistry, BinSupport, TestSupport;
 
 type
   TTestDf1Examples = class(TTestCase)
@@ -28,19 +28,6 @@ type
 
 implementation
 
-function Count(const Sub, S: string): Integer;
-var
-  P: Integer;
-begin
-  Result := 0;
-  P := Pos(Sub, S);
-  while P > 0 do
-  begin
-    Inc(Result);
-    P := Pos(Sub, S, P + Length(Sub));
-  end;
-end;
-
 procedure TTestDf1Examples.TestDf1DemoAllOk;
 var
   Output: string;
@@ -49,7 +36,7 @@ begin
   AssertEquals('exit code (-1: still running after 10 s)', 0,
     RunBin('df1demo', [], 10000, Output));
   AssertTrue('all exchanges ok:'#10 + Output, Pos('df1demo: all exchanges ok', Output) > 0);
-  AssertEquals('two echoes ok', 2, Count(#10'echo ok', Output));
+  AssertEquals('two echoes ok', 2, CountOf(#10'echo ok', Output));
   { full duplex, CRC: Echo 'Ahoj' TNS 10 from 1 to 2, and the slave's reply }
   AssertTrue('master frame', Pos('master -> Echo STS=$00 TNS=10 data: 41 68 6F 6A   ' +
     '[10 02 02 01 06 00 0A 00 00 41 68 6F 6A 10 03 E3 88]', Output) > 0);
@@ -61,7 +48,7 @@ begin
   AssertTrue('poll', Pos('master -> poll   [10 05 10 10 F0]', Output) > 0);
   AssertTrue('half-duplex reply', Pos('[10 02 01 10 10 46 00 0B 00 41 10 10 42 10 03 0B]',
     Output) > 0);
-  AssertEquals('the slave took both final ACKs', 2, Count('slave  <- ACK', Output));
+  AssertEquals('the slave took both final ACKs', 2, CountOf('slave  <- ACK', Output));
 end;
 
 procedure TTestDf1Examples.TestDf1EchoAgainstSim;
@@ -87,9 +74,7 @@ begin
     AssertTrue('the reply logged', Pos('master <- reply CMD=$46 STS=$00 TNS=0 data: 41 68 6F 6A',
       Output) > 0);
   finally
-    if Sim.Running then
-      Sim.Terminate(0);
-    Sim.Free;
+    StopProcess(Sim);
   end;
   {$ENDIF}
   Code := RunBin('df1echo', ['NAM=DF1', 'XYZ=1', 'NAM=LOOP'], 10000, Output);
@@ -122,9 +107,7 @@ begin
       Pos('data: 02 FF FF 00 89 00 00', Output) > 0);
     AssertTrue('no such file:'#10 + Output, Pos('EXT STS', Output) + Pos('usable', Output) > 0);
   finally
-    if Sim.Running then
-      Sim.Terminate(0);
-    Sim.Free;
+    StopProcess(Sim);
   end;
 end;
 
@@ -200,9 +183,7 @@ begin
     Run('df1write', ['N99:0', '1'], 3);
     AssertTrue(Output, Pos('EXT STS $06', Output) > 0);
   finally
-    if Sim.Running then
-      Sim.Terminate(0);
-    Sim.Free;
+    StopProcess(Sim);
   end;
 end;
 {$ENDIF}

@@ -51,12 +51,7 @@ procedure TTestFT12Examples.TearDown;
 begin
   if FProc <> nil then
   begin
-    if FProc.Running then
-    begin
-      FProc.Terminate(255);
-      FProc.WaitOnExit;
-    end;
-    FreeAndNil(FProc);
+    StopProcess(FProc);
   end;
   FreeAndNil(FPty);
 end;

@@ -127,12 +127,7 @@ begin
     AssertEquals(Err, Out);
     AssertEquals(0, P.ExitCode);
   finally
-    if P.Running then
-    begin
-      P.Terminate(255);
-      P.WaitOnExit;
-    end;
-    P.Free;
+    StopProcess(P);
     Dispose(Chn, Done);
   end;
 end;
@@ -208,12 +203,7 @@ begin
     AssertEquals('C_SC_NA_1 IOA 5000 = 1 select TRUE' + LineEnding +
       'C_SC_NA_1 IOA 5000 = 1 select FALSE' + LineEnding + 'Ok' + LineEnding, Out);
   finally
-    if P.Running then
-    begin
-      P.Terminate(255);
-      P.WaitOnExit;
-    end;
-    P.Free;
+    StopProcess(P);
     Dispose(Chn, Done);
   end;
 end;

@@ -80,11 +80,7 @@ begin
     BinExecutable(P, FExe);
     if FHeapLog <> '' then
     begin
-      { the environment as it is, heaptrc's report to a file of its own }
-      for I := 1 to GetEnvironmentVariableCount do
-        if Pos('HEAPTRC=', GetEnvironmentString(I)) <> 1 then
-          P.Environment.Add(GetEnvironmentString(I));
-      P.Environment.Add('HEAPTRC=log=' + FHeapLog);
+      HeapLogTo(P, FHeapLog);
       DeleteFile(FHeapLog);
     end;
     for I := 0 to High(Args) do

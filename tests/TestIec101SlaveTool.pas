@@ -319,12 +319,7 @@ begin
     AssertTrue(Errs, Pos('1 commands (0 refused), 1 clock syncs', Errs) > 0);
     AssertTrue(Errs, Pos('0 malformed', Errs) > 0);
   finally
-    if P.Running then
-    begin
-      P.Terminate(255);
-      P.WaitOnExit;
-    end;
-    P.Free;
+    StopProcess(P);
     Lst.Free;
     Dispose(Chn, Done);
   end;

@@ -112,12 +112,7 @@ begin
     AssertEquals(Err, Want, Out);
     AssertEquals(0, P.ExitCode);
   finally
-    if P.Running then
-    begin
-      P.Terminate(255);
-      P.WaitOnExit;
-    end;
-    P.Free;
+    StopProcess(P);
     Dispose(Chn, Done);
   end;
 end;

@@ -92,9 +92,7 @@ begin
     AssertTrue(Errs, Pos('1 interrogations, 1 counter interrogations, 0 reads, 1 commands (0 refused), 1 clock syncs', Errs) > 0);
     AssertEquals(Errs, 0, S.ExitCode);
   finally
-    if S.Running then
-      S.Terminate(1);
-    S.Free;
+    StopProcess(S);
   end;
 end;
 

@@ -149,9 +149,7 @@ begin
     AssertEquals('an error reply before no answer'#10 + Output, 3, Code);
     AssertTrue(Output, Pos('2 failed reads', Output) > 0);
   finally
-    if Sim.Running then
-      Sim.Terminate(0);
-    Sim.Free;
+    StopProcess(Sim);
   end;
 end;
 {$ENDIF}

@@ -55,11 +55,7 @@ function TTestToolCli.RunProg(const Prog: string; const Args: array of string; c
 var
   P: TProcess;
   A: string;
-  I: Integer;
-  Deadline: QWord;
 begin
-  FOut := '';
-  FErr := '';
   P := TProcess.Create(nil);
   try
     if Exe <> '' then
@@ -67,33 +63,10 @@ begin
     else
       BinExecutable(P, BinPath(Prog));
     if HeapLog <> '' then
-    begin
-      for I := 1 to GetEnvironmentVariableCount do
-        if Pos('HEAPTRC=', GetEnvironmentString(I)) <> 1 then
-          P.Environment.Add(GetEnvironmentString(I));
-      P.Environment.Add('HEAPTRC=log=' + HeapLog);
-    end;
+      HeapLogTo(P, HeapLog);
     for A in Args do
       P.Parameters.Add(A);
-    P.Options := [poUsePipes];
-    P.Execute;
-    Deadline := ChMsTick + 10000;
-    while P.Running and (ChMsTick < Deadline) do
-    begin
-      FOut := FOut + PipeText(P.Output);
-      FErr := FErr + PipeText(P.Stderr);
-      Sleep(2);
-    end;
-    if P.Running then
-    begin
-      P.Terminate(255);
-      P.WaitOnExit;
-      Result := -1;
-    end
-    else
-      Result := P.ExitCode;
-    FOut := FOut + PipeText(P.Output);
-    FErr := FErr + PipeText(P.Stderr);
+    Result := RunProcess(P, 10000, FOut, FErr);
   finally
     P.Free;
   end;
@@ -459,8 +432,9 @@ end;
 
 { A command-line error found deep inside a program (getopts' table under
   way, a parameter string being checked, inside an exception handler,
-  after a file was read) or a line that cannot be opened ends it with its
-  code, and everything it allocated is freed on the way (heaptrc: 0
+  after a file was read), a line that cannot be opened, a file that
+  cannot be read, or a check that is done (chngate --check) ends it with
+  its code, and everything it allocated is freed on the way (heaptrc: 0
   unfreed blocks). The programs' test builds (build/test-bin, with
   heaptrc) are run; they ended with Halt before, leaving the strings of
   every routine under way. }
@@ -475,7 +449,7 @@ var
     DeleteFile(HeapLog);
     Code := RunProg(Prog, Args, TestBinDir + Prog {$IFDEF WINDOWS} + '.exe'{$ENDIF}, HeapLog);
     AssertEquals(Prog + ' ' + Args[0] + ': exit code; ' + FErr, Want, Code);
-    AssertTrue(Prog + ': ' + FErr, Pos(Says, FErr) > 0);
+    AssertTrue(Prog + ': ' + FOut + FErr, Pos(Says, FOut + FErr) > 0);
     AssertTrue(Prog + ' ' + Args[0] + ': no heaptrc report in ' + HeapLog, FileExists(HeapLog));
     Report := ReadFileText(HeapLog);
     AssertTrue(Prog + ' ' + Args[0] + ': ' + Report,
@@ -497,6 +471,10 @@ begin
     Check('iec101slave', ['--points=' + Dir + '/bad.points', 'NAM=FT1_2 NAM=COM DEV=' + Dir + '/none'], 2,
       'bad.points');
     Check('iec101slave', ['NAM=FT1_2 MS=ON MAS=SLAVE NAM=COM DEV=' + Dir + '/none'], 1, 'iec101slave: ');
+    { ended from the main program's block (CliEnd): its variables too }
+    Check('chndecode', [Dir + '/none.trc'], 2, 'none.trc');
+    Check('chngate', [Dir + '/none.conf'], 2, 'none.conf: cannot be read');
+    Check('chngate', ['--check', 'tools/chngate.conf'], 0, 'tools/chngate.conf: good: ');
   finally
     RemoveTempDir(Dir);
   end;

@@ -148,7 +148,7 @@ if [ -z "$FILTER" ] || [[ "soak" == *"${FILTER,,}"* ]]; then
     # runs one scenario with a seed that once found a fault: on a BCC line
     # a command damaged undetected, refused by the peer, its refusal lost
     # too - counted as a duplicate before the peer's refusals were counted
-    groups="df1-full-crc df1-full-bcc df1-half ft12- ft12bal ics df1-full-bcc-drop1%@132272"
+    groups="df1-full-crc df1-full-bcc df1-half ft12- ft12bal ics iec101 df1-full-bcc-drop1%@132272"
     for g in $groups; do
       rm -f "$BUILD/soak-heap-$g.log"
       seed=; [[ $g == *@* ]] && seed=--seed=${g#*@}

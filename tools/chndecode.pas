@@ -246,7 +246,7 @@ begin
   end;
   Damaged := False;
   if not ReadAll(FileName, Text) then
-    Halt(2);
+    CliEnd(2);
   if (Input = 'c') and IsPcap(Text) then
     Input := 'p';
   case Input of
@@ -261,7 +261,7 @@ begin
           WriteLn(StdErr, 'chndecode: ', FileName, ': ', ChResultText(R, TrcLayer),
             ' at byte ', Info.ErrPos, ': ', Info.ErrText);
           if (R <> res_PcapCut) or (Count = 0) then
-            Halt(2);
+            CliEnd(2);
           Damaged := True;
         end;
         if Info.Skipped > 0 then
@@ -273,7 +273,7 @@ begin
         if not DecodeHexText(Text, Data, Err) then
         begin
           WriteLn(StdErr, 'chndecode: ', FileName, ': ', Err);
-          Halt(2);
+          CliEnd(2);
         end;
         DecodeBytesAsChunk(Data, Frames);
         Count := 1;
@@ -292,20 +292,20 @@ begin
     if Count = 0 then
     begin
       WriteLn(StdErr, 'chndecode: ', FileName, ': no chunks found');
-      Halt(2);
+      CliEnd(2);
     end;
     if not WriteAll(ToPcap, PcapFromTrc(Frames, Count,
       DateTimeToUnix(LocalTimeToUniversal(Midnight)))) then
-      Halt(2);
+      CliEnd(2);
     WriteLn(Count, ' chunks written to ', ToPcap);
-    Halt(0);
+    CliEnd(0);
   end;
   if ToText <> '' then
   begin
     if Count = 0 then
     begin
       WriteLn(StdErr, 'chndecode: ', FileName, ': no chunks found');
-      Halt(2);
+      CliEnd(2);
     end;
     { the tag the trace layer writes, so a NAM=TRC log comes back as it was }
     for I := 0 to Count - 1 do
@@ -314,7 +314,7 @@ begin
           Length(Frames[I].Data), trcHex, 'TRC'))
       else
         Write(TrcFormat(Frames[I].TimeMs, Frames[I].Dir, I, 0, trcHex, 'TRC'));
-    Halt(0);
+    CliEnd(0);
   end;
   if (Opt.Proto = dpDF1) and not CliHas(Cli, 'crc') and not CliHas(Cli, 'bcc') then
   begin
@@ -341,19 +341,19 @@ begin
     if Ladder.Title = 'trace' then
       Ladder.Title := ExtractFileName(FileName);
     if not WriteAll(SvgOut, LadderSvg(Dec.Events, Dec.EventCount, Ladder)) then
-      Halt(2);
+      CliEnd(2);
   end;
   if Stats.Chunks = 0 then
   begin
     WriteLn(StdErr, 'chndecode: ', FileName, ': no chunks found');
-    Halt(2);
+    CliEnd(2);
   end;
   if Damaged or (Stats.BadChunks > 0) then
   begin
     WriteLn(StdErr, 'chndecode: ', FileName, ': the input is damaged (',
       Stats.BadChunks, ' chunks shorter than announced); what could be read is above');
-    Halt(2);
+    CliEnd(2);
   end;
   if (Stats.Errors > 0) or (Stats.Incomplete > 0) then
-    Halt(1);
+    CliEnd(1);
 end.

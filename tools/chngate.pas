@@ -82,12 +82,12 @@ begin
   if not GateLoadConfig(Name, Cfg, Errors) then
   begin
     Write(StdErr, Errors);
-    Halt(CliExitUsage);
+    CliEnd(CliExitUsage);
   end;
   if CliHas(Cli, 'check') then
   begin
     WriteLn(Name, ': good: ', GateSummary(Cfg));
-    Halt(0);
+    CliEnd(0);
   end;
   {$IFDEF UNIX}
   CatchSignals;
@@ -96,7 +96,7 @@ begin
   if not GateStart(G, Cfg, Err) then
   begin
     LogLine(Err);
-    Halt(1);
+    CliEnd(1);
   end;
   LogLine(Format('%s: %s; MQTT %s:%d, prefix %s', [Name, GateSummary(Cfg), Cfg.Host, Cfg.Port, Cfg.Prefix]));
   while not Stop do

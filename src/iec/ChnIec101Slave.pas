@@ -306,6 +306,17 @@ begin
     Inc(S.Overflows);
 end;
 
+{ The longest ASDU the link takes: IEC 104's APDU of 253 octets less
+  its control field (249); FT 1.2's frame of L = 255 less the control
+  octet and the link address (253 with ADR=1; no ASDU exceeds IecMaxAsdu). }
+function MaxAsdu(const S: tIecSlaveStation): Word;
+begin
+  if S.Over104 then
+    Result := Apci104MaxAsdu
+  else
+    Result := Min(IecMaxAsdu, FT12MaxData(S.Chn));
+end;
+
 procedure IecSlaveServeFiles(var S: tIecSlaveStation; F: pIecFileServer);
 begin
   S.Files := F;
@@ -313,9 +324,9 @@ begin
   begin
     F^.Params := S.Params;
     F^.Ca := S.Ca;
-    { the longest ASDU the slave's queues hold (FT 1.2's record, 247) }
-    if F^.MaxAsdu > MaxDataLen then
-      F^.MaxAsdu := MaxDataLen;
+    { no longer than the link takes }
+    if F^.MaxAsdu > MaxAsdu(S) then
+      F^.MaxAsdu := MaxAsdu(S);
   end;
 end;
 
@@ -640,17 +651,6 @@ begin
     Result := IecEncodeOne(S.Params, ParamType(P^.Ti), Cot_Interrogated + (S.GiQoi - Qoi_Station),
       S.Ca, O, Out.Data, Out.Len, Err) = res_Ok;
   end;
-end;
-
-{ The longest ASDU the link takes: IEC 104's APDU of 253 octets less
-  its control field (249); FT 1.2's frame of L = 255 less the control
-  octet and the link address (253 with ADR=1; no ASDU exceeds IecMaxAsdu). }
-function MaxAsdu(const S: tIecSlaveStation): Word;
-begin
-  if S.Over104 then
-    Result := Apci104MaxAsdu
-  else
-    Result := Min(IecMaxAsdu, FT12MaxData(S.Chn));
 end;
 
 { The next answer ASDU of the interrogation: consecutive points of one

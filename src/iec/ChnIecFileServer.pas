@@ -75,7 +75,7 @@ type
   tIecFileServer = record
     Params   : tIecParams;
     Ca       : Word;
-    MaxAsdu  : Word;        {< ASDUs at most this long (249: IEC 104's; IecSlaveServeFiles: 247, its queues') }
+    MaxAsdu  : Word;        {< ASDUs at most this long (249: IEC 104's; IecSlaveServeFiles: at most what its link takes) }
     SectionSize: LongInt;   {< octets per section sent (1024) }
     TimeoutMs: LongInt;     {< a transfer the peer leaves this long ends (30000) }
     MaxReceive: LongInt;    {< longest file taken (1 MiB) }

@@ -39,14 +39,6 @@ const
 var
   Keys: array of string;
   Tried, Accepted, Refused: Int64;
-  Failures: Integer = 0;
-
-procedure Fail(const What: string);
-begin
-  Inc(Failures);
-  if Failures <= 20 then
-    WriteLn('FAIL ', What);
-end;
 
 procedure AddKey(const K: string);
 var

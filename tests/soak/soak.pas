@@ -4,13 +4,17 @@
   program is the master, with NAM=NOISE between its protocol layer and
   NAM=COM; the peer is tools/df1sim (DF1 full duplex) or this program
   started again with --serve=... (DF1 half duplex with three stations on one
-  line, FT 1.2 secondary, FT 1.2 balanced station B, ICS slave), which
-  creates the pty itself. The FT 1.2 link procedures (unbalanced and
+  line, FT 1.2 secondary, FT 1.2 balanced station B, ICS slave, two IEC
+  101 slaves on one line), which creates the pty itself. The FT 1.2 link procedures (unbalanced and
   balanced) also run over faults of whole frames (FrameFaults: a stall
   longer than the timeout, drops with stalls, reordering; NAM=NOISE LOS=
   STL= STM= ROR=); the balanced scenario sends numbered user data both
   ways and fails when a message was confirmed to its sender but not
   delivered, or delivered twice beyond what link resets explain.
+  The IEC 101 scenarios poll two slaves on one line with ChnIec101Master;
+  half way one of them turns hostile (answers status and reset but no
+  poll, keeps ACD set, or streams events) and the other must keep at
+  least half the class 2 polls it got before.
 
     soak [--seconds=N | --count=N] [--seed=N] [--only=TEXT] [--df1sim=PATH]
 
@@ -39,7 +43,7 @@ uses
   BaseUnix, SysUtils, Classes, Process,
   ChnTypes, ChnVirt, ChnCom, ChnLoop, ChnNoise, ChnPty, uString,
   ChnDF1, ChnDF1Link, ChnPccc, ChnSlc, ChnFT1_2, ChnFT12Link, ChnFT12Primary, ChnFT12Station, ChnFT12Balanced, ChnICS, ChnWait, Math,
-  TestSupport;
+  ChnIec101Asdu, ChnIec101Master, TestSupport, LoopHub, Iec101Sim;
 
 const
   DF1Timeout = 300;     { ms; the line is a pty, the machine is shared }
@@ -96,12 +100,16 @@ var
   Seconds, Count, Seed: LongInt;
   Only, Df1SimPath: string;
   Stop: Boolean = False;
+  TurnHostile: Boolean = False;   { a peer's SIGUSR1 }
 
 { ------------------------------------------------------------ helpers }
 
 procedure OnSignal(Sig: cint); cdecl;
 begin
-  Stop := True;
+  if Sig = SIGUSR1 then
+    TurnHostile := True
+  else
+    Stop := True;
 end;
 
 procedure CatchSignals;
@@ -112,6 +120,7 @@ begin
   Act.sa_handler := SigActionHandler(@OnSignal);
   FpSigAction(SIGINT, @Act, nil);
   FpSigAction(SIGTERM, @Act, nil);
+  FpSigAction(SIGUSR1, @Act, nil);
 end;
 
 function RssKb(Pid: TPid): LongInt;
@@ -1289,6 +1298,145 @@ begin
   Report(Name, St, ASeed, ChMsTick - T0, False);
 end;
 
+{ ------------------------------------------------- IEC 101 hostile slaves }
+
+const
+  IecHealthy = 5;       { link addresses of the two slaves }
+  IecHostile = 7;
+  IecSettleMs = 2500;   { after 7 turns hostile: its first failures }
+  { what slave 7 streams as class 1 data (M_SP_NA_1 IOA 104 on, COT 3) }
+  IecStreamed = '01 01 03 00 01 00 68 00 00 01';
+  IecKinds: array[0..2] of string = ('halfdead', 'acdstuck', 'stream');
+
+{ The peer: slaves 5 and 7 (Iec101Sim, idle: "no data" to every class
+  poll) on one line - each on a LOOP pair, the pairs and the pty joined
+  by a LoopHub as a bus. On SIGUSR1 slave 7 turns hostile: Kind
+  halfdead answers status and reset but no class poll, acdstuck sets ACD
+  in every answer with no class 1 data behind it, stream has an event in
+  class 1 for every poll. }
+procedure ServeIec101(const Kind: string);
+var
+  Com: pChnVirt;
+  Hub: TLoopHub;
+  Sims: array[0..1] of TSim;
+  K: Integer;
+  Busy: Boolean;
+begin
+  Com := ChnCollection^.ChNewInit('COM');
+  Com^.ChSetParam('NAM=COM DRV=PTY LRB=65000');
+  Com^.ChOpen;
+  Com^.ChConnect;
+  if Com^.ChResult <> res_Ok then
+  begin
+    WriteLn('soak: pty: ', Com^.ChResultStr(Com^.ChResult));
+    Halt(1);
+  end;
+  Hub := TLoopHub.Create;
+  Hub.AddChannel(Com);
+  for K := 0 to 1 do
+  begin
+    Sims[K] := TSim.Create(Format('NAM=FT1_2 MS=ON MAS=SLAVE LEN=0 NOD=%d NAM=LOOP PAIR=iec%d END=1',
+      [IecHealthy + 2 * K, K]), False);
+    Hub.AddPort('iec' + IntToStr(K));
+  end;
+  WriteLn('PTY ', PtyLastSlave);
+  Flush(Output);
+  while not Stop and not Orphaned and (Com^.ChResult = res_Ok) do
+  begin
+    if TurnHostile then
+    begin
+      TurnHostile := False;
+      Sims[1].HalfDead := Kind = 'halfdead';
+      Sims[1].AcdStuck := Kind = 'acdstuck';
+      if Kind = 'stream' then
+        Sims[1].Stream := IecStreamed;
+    end;
+    Busy := Hub.Pump;
+    for K := 0 to 1 do
+      if Sims[K].Step then
+        Busy := True;
+    if not Busy then
+      ChnWaitAny(5);
+  end;
+  WriteLn(Format('STATS unanswered=%d', [Sims[1].HalfDeadPolls]));
+  Flush(Output);
+  for K := 0 to 1 do
+    Sims[K].Free;
+  Hub.Free;                 { and Com with it }
+end;
+
+{ Class 2 polls slave 5 gets in Ms. A window in which slave 5 itself
+  answered late (a link repetition to it: only a stalled machine delays a
+  healthy peer on a pty) says nothing about the polling: it is measured
+  again, up to 5 times; Late counts those. }
+function PollsOfHealthy(var M: tIecMaster; Ms: LongInt; var Late: LongInt): LongInt;
+var
+  Try_, Repeats: LongInt;
+begin
+  for Try_ := 1 to 5 do
+  begin
+    Result := M.Slaves[0].Class2;
+    Repeats := M.Slaves[0].Link.Repeats;
+    IecPollFor(M, Ms);
+    Result := M.Slaves[0].Class2 - Result;
+    if M.Slaves[0].Link.Repeats = Repeats then
+      Exit;
+    Inc(Late);
+  end;
+end;
+
+{ The master with its defaults (but the soak's link timeout) polls slaves
+  5 and 7 half the time with both healthy, then the peer turns 7 hostile
+  (SIGUSR1), and after IecSettleMs the other half: slave 5 must keep at
+  least half its polls. The rates go into the report line. }
+procedure RunIec101(const Name, Kind: string);
+var
+  Peer: TPeer;
+  Chn: pChnVirt;
+  St: TStats;
+  T0, Until_: QWord;
+  M: tIecMaster;
+  PhaseMs, Normal, Hostile, Late: LongInt;
+begin
+  if not ScenarioStart(Name, 'iec101-' + Kind, 'FT1_2', 'NAM=FT1_2 MS=ON MAS=MASTER LEN=0 NOD=0 DNO=5',
+    Noises[0], 0, St, Peer, Chn, T0) then
+    Exit;
+  if Chn <> nil then
+  begin
+    FillChar(M, SizeOf(M), 0);
+    IecMasterInit(M, Chn, IecDefaultParams);
+    M.TimeoutMs := FT12Timeout;
+    IecMasterAddSlave(M, IecHealthy);
+    IecMasterAddSlave(M, IecHostile);
+    PhaseMs := Max(1000, Seconds * 500);
+    Until_ := ChMsTick + 5000;
+    repeat
+      IecPollFor(M, 100);
+    until ((M.Slaves[0].State = isOnline) and (M.Slaves[1].State = isOnline)) or (ChMsTick > Until_) or Stop;
+    TakeStart(St, Peer.Proc.ProcessID);
+    Late := 0;
+    Normal := PollsOfHealthy(M, PhaseMs, Late);
+    FpKill(Peer.Proc.ProcessID, SIGUSR1);
+    IecPollFor(M, IecSettleMs);
+    Hostile := PollsOfHealthy(M, PhaseMs, Late);
+    St.Messages := M.Slaves[0].Class2;
+    St.Retries := M.Retries;
+    St.Timeouts := M.Slaves[1].Failures;
+    St.Faults := Format(' slave 5: %.1f class 2 polls/s with slave 7 healthy, %.1f with it %s (%d %%);' +
+      ' slave 7: %d class 1, %d class 2 polls, %d failures, back-off %d ms; %d windows measured again;',
+      [Normal * 1000 / PhaseMs, Hostile * 1000 / PhaseMs, Kind, Hostile * 100 div Max(1, Normal),
+       M.Slaves[1].Class1, M.Slaves[1].Class2, M.Slaves[1].Failures, M.Slaves[1].BackoffMs, Late]);
+    if Normal < MinMessages then
+      St.Note := St.Note + ' slave 5 hardly polled with both healthy;';
+    if 2 * Hostile < Normal then
+      St.Note := St.Note + ' slave 5 lost more than half its polls;';
+    TakeEnd(St, Peer.Proc.ProcessID);
+    Dispose(Chn, Done);
+  end;
+  PeerStop(Peer);
+  Report(Name, St, 0, ChMsTick - T0, False);
+end;
+
 { --------------------------------------------------------------- main }
 
 function Selected(const Name: string): Boolean;
@@ -1342,6 +1490,8 @@ begin
     ServeFT12Bal
   else if Serve = 'ics' then
     ServeICS
+  else if Copy(Serve, 1, 7) = 'iec101-' then
+    ServeIec101(Copy(Serve, 8, MaxInt))
   else if Serve <> '' then
   begin
     WriteLn('soak: unknown --serve=', Serve);
@@ -1389,6 +1539,9 @@ begin
       if Selected('ft12bal-' + FrameFaults[I].Name) then
         RunFT12Bal('ft12bal-' + FrameFaults[I].Name, FrameFaults[I], Seed);
     end;
+    for I := Low(IecKinds) to High(IecKinds) do
+      if not Stop and Selected('iec101-' + IecKinds[I]) then
+        RunIec101('iec101-' + IecKinds[I], IecKinds[I]);
     WriteLn(Format('soak: %d failed, %d scenarios run', [Failed, Ran]));
     if Failed > 0 then
       ExitCode := 1;   { not Halt: the main program's strings are freed at its end }

@@ -32,10 +32,22 @@ function RunBin(const Name: string; const Args: array of string; TimeoutMs: Inte
   which TProcess drops). }
 function RunExe(const Exe: string; const Args: array of string; TimeoutMs: Integer;
   out Output: string): Integer;
+{ Run P, set up (executable, parameters, environment, poStderrToOutPut
+  or not), to its end: what it writes to standard output in Output, to
+  standard error in Errors (apart) or Output too (poStderrToOutPut); its
+  exit code, or -1 when it still ran after TimeoutMs (it is killed then).
+  The caller frees P. }
+function RunProcess(P: TProcess; TimeoutMs: Integer; out Output, Errors: string): Integer;
+{ P's environment this program's, with heaptrc's report going to the file
+  HeapLog instead. }
+procedure HeapLogTo(P: TProcess; const HeapLog: string);
 { Move what P's output pipe holds to Output (never waits). }
 procedure Drain(P: TProcess; var Output: string);
 { What a pipe of a process (P.Output, P.Stderr) holds now (never waits). }
 function PipeText(S: TInputPipeStream): string;
+{ The end of a program a test started: ended if it still runs (asked to,
+  then killed after 3 s), waited for, freed; P is nil afterwards. }
+procedure StopProcess(var P: TProcess);
 { Start tools/df1sim --pty with Args; Pty gets the device it printed on its
   first line ('' if none came within 3 s). The caller frees the process. }
 function StartSimPty(const Args: array of string; out Pty: string): TProcess;
@@ -43,7 +55,7 @@ function StartSimPty(const Args: array of string; out Pty: string): TProcess;
 implementation
 
 uses
-  ChnVirt, ChildLine;
+  {$IFDEF UNIX}BaseUnix,{$ENDIF} ChnVirt, ChildLine;
 
 function BinPath(const Name: string): string;
 begin
@@ -101,6 +113,29 @@ begin
   end;
 end;
 
+procedure StopProcess(var P: TProcess);
+{$IFDEF UNIX}
+var
+  Deadline: QWord;
+{$ENDIF}
+begin
+  if P = nil then
+    Exit;
+  if P.Running then
+  begin
+    P.Terminate(255);
+    {$IFDEF UNIX}
+    Deadline := ChMsTick + 3000;
+    while P.Running and (ChMsTick < Deadline) do
+      Sleep(5);
+    if P.Running then
+      FpKill(P.ProcessID, SIGKILL);
+    {$ENDIF}
+    P.WaitOnExit;
+  end;
+  FreeAndNil(P);
+end;
+
 procedure Drain(P: TProcess; var Output: string);
 begin
   Output := Output + PipeText(P.Output);
@@ -112,36 +147,60 @@ begin
   Result := RunExe(BinPath(Name), Args, TimeoutMs, Output);
 end;
 
+function RunProcess(P: TProcess; TimeoutMs: Integer; out Output, Errors: string): Integer;
+var
+  Deadline: QWord;
+  Apart: Boolean;
+begin
+  Output := '';
+  Errors := '';
+  Apart := not (poStderrToOutPut in P.Options);
+  P.Options := P.Options + [poUsePipes];
+  P.Execute;
+  Deadline := ChMsTick + QWord(TimeoutMs);
+  while P.Running and (ChMsTick < Deadline) do
+  begin
+    Output := Output + PipeText(P.Output);
+    if Apart then
+      Errors := Errors + PipeText(P.Stderr);
+    Sleep(2);
+  end;
+  if P.Running then
+  begin
+    P.Terminate(255);
+    P.WaitOnExit;
+    Result := -1;
+  end
+  else
+    Result := P.ExitCode;
+  Output := Output + PipeText(P.Output);
+  if Apart then
+    Errors := Errors + PipeText(P.Stderr);
+end;
+
+procedure HeapLogTo(P: TProcess; const HeapLog: string);
+var
+  I: Integer;
+begin
+  for I := 1 to GetEnvironmentVariableCount do
+    if Pos('HEAPTRC=', GetEnvironmentString(I)) <> 1 then
+      P.Environment.Add(GetEnvironmentString(I));
+  P.Environment.Add('HEAPTRC=log=' + HeapLog);
+end;
+
 function RunExe(const Exe: string; const Args: array of string; TimeoutMs: Integer;
   out Output: string): Integer;
 var
   P: TProcess;
-  A: string;
-  Deadline: QWord;
+  A, Errors: string;
 begin
-  Output := '';
   P := TProcess.Create(nil);
   try
     BinExecutable(P, Exe);
     for A in Args do
       P.Parameters.Add(A);
-    P.Options := [poUsePipes, poStderrToOutPut];
-    P.Execute;
-    Deadline := ChMsTick + QWord(TimeoutMs);
-    while P.Running and (ChMsTick < Deadline) do
-    begin
-      Drain(P, Output);
-      Sleep(2);
-    end;
-    if P.Running then
-    begin
-      P.Terminate(255);
-      P.WaitOnExit;
-      Result := -1;
-    end
-    else
-      Result := P.ExitCode;
-    Drain(P, Output);
+    P.Options := [poStderrToOutPut];
+    Result := RunProcess(P, TimeoutMs, Output, Errors);
   finally
     P.Free;
   end;

@@ -1,6 +1,6 @@
 { FuzzRun - the command line of the fuzzers: "NAME [seconds [seed]]"
   (default 10 s, seed from the clock); seeds Random and prints the seed so
-  a failing run can be repeated. }
+  a failing run can be repeated; counts and prints the checks that failed. }
 unit FuzzRun;
 
 {$MODE OBJFPC}{$H+}
@@ -10,6 +10,12 @@ interface
 { Parse the arguments, seed Random, print "NAME: S s, seed N"; the
   GetTickCount64 value at which the run ends. }
 function FuzzDeadline(const Name: string): QWord;
+
+var
+  Failures: Int64 = 0;   {< checks that failed }
+
+{ A check failed: counted, and the first 20 printed ('FAIL What'). }
+procedure Fail(const What: string);
 
 implementation
 
@@ -30,6 +36,13 @@ begin
   RandSeed := Seed;
   WriteLn(Name, ': ', Seconds, ' s, seed ', Seed);
   Result := GetTickCount64 + QWord(Seconds) * 1000;
+end;
+
+procedure Fail(const What: string);
+begin
+  Inc(Failures);
+  if Failures <= 20 then
+    WriteLn('FAIL ', What);
 end;
 
 end.

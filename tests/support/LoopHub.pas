@@ -5,7 +5,9 @@
   END=2 of every pair as a port. Pump copies every chunk a port receives
   to all other ports, as a bus does: every station hears every other
   station (not itself). Nothing is merged or reordered; stations talking at
-  the same time would interleave, as they would garble a real bus. }
+  the same time would interleave, as they would garble a real bus.
+  AddChannel puts an open channel of another kind on the bus too (the
+  soak's pty to a master in another process). }
 unit LoopHub;
 
 {$MODE OBJFPC}{$H+}
@@ -29,6 +31,9 @@ type
     destructor Destroy; override;
     { open END=2 of PAIR=Pair; False if it cannot be opened }
     function AddPort(const Pair: string): Boolean;
+    { put P (open, connected) on the bus; the hub disposes of it. False
+      (and P left to the caller) when the hub is full }
+    function AddChannel(P: pChnVirt): Boolean;
     { move everything waiting; True if any byte moved }
     function Pump: Boolean;
   end;
@@ -62,10 +67,17 @@ begin
     Dispose(P, Done);
     Exit;
   end;
+  Result := AddChannel(P);
+end;
+
+function TLoopHub.AddChannel(P: pChnVirt): Boolean;
+begin
+  Result := FCount < MaxHubPorts;
+  if not Result then
+    Exit;
   P^.ChReceiveBuffer(@FBuf, SizeOf(FBuf));
   Inc(FCount);
   FPorts[FCount] := P;
-  Result := True;
 end;
 
 function TLoopHub.Pump: Boolean;
@@ -85,7 +97,7 @@ begin
       Result := True;
       for J := 1 to FCount do
         if J <> I then
-          FPorts[J]^.ChSend(@FBuf, N);   { LOOP copies the bytes at once }
+          ChSendWhenFree(FPorts[J], @FBuf, N, 1000);   { LOOP copies the bytes at once }
     end;
 end;
 

@@ -13,10 +13,23 @@ uses
 type
   TBytes = array of Byte;
 
+const
+  { the six full-duplex frames of the RACOM capture (RACOM note), all CRC: the
+    DF1 tests' reference octets }
+  RacomFrames: array[1..6] of string = (
+    '1002 0300 0B00 7E00 0000 5402 2006 2401 07E9 0000 0380 827F 0080 E943 0100 8D91 1300 0000 0000 E070 7200 F643 E070 7200 F643 A302 2002 2401 1003 15C6',
+    '1002 0003 4B00 7E00 0000 D400 0000 3D7F 0080 827F 0080 E943 0100 8D91 1300 E070 7200 E070 7200 0000 1003 0FC9',
+    '1002 0300 0A00 7F00 0000 3D7F 7F00 4C08 910B 546F 5472 616E 7370 6F72 7400 2800 1010 0010 03B6 99',
+    '1002 0003 4A00 7F00 0000 827F 7F00 CC00 0000 C300 0A1A 0200 0300 0400 0500 0600 0700 0800 0000 0000 0000 0000 0000 0000 0000 0000 1003 854D',
+    '1002 0300 0B00 8F00 0000 4E02 2006 2401 07E9 E943 0100 8D91 1300 0200 2002 2401 1010 0010 03A3 C4',
+    '1002 0003 4B00 8F00 0000 CE00 0000 E943 0100 8D91 1300 0000 1003 B56A');
+
 { '10 02 0A' or '10020A' (blanks ignored) -> bytes; any other character
   or an odd number of digits raises, so a typo fails the test }
 function HexToBytes(const S: string): TBytes;
 function BytesToHex(const B: array of Byte; Len: Integer): string;
+{ How often Sub stands in S (not overlapping). }
+function CountOf(const Sub, S: AnsiString): Integer;
 { Poll Chn^.ChReceiveReady (and, if given, Other^.ChReceiveReady /
   ChSendReady to keep a peer moving) until a message waits or TimeoutMs. }
 function WaitReceive(Chn: pChnVirt; TimeoutMs: Integer; Other: pChnVirt = nil): Boolean;
@@ -122,6 +135,19 @@ begin
   if Len <= 0 then
     Exit('');
   Result := HexBytes(@B[0], Len);
+end;
+
+function CountOf(const Sub, S: AnsiString): Integer;
+var
+  P: Integer;
+begin
+  Result := 0;
+  P := Pos(Sub, S);
+  while P > 0 do
+  begin
+    Inc(Result);
+    P := Pos(Sub, S, P + Length(Sub));
+  end;
 end;
 
 function WaitReceive(Chn: pChnVirt; TimeoutMs: Integer; Other: pChnVirt): Boolean;

@@ -100,6 +100,10 @@ function CliRest(const Cli: tCli; First: LongInt): AnsiString;
 { "PROG: What (Token)" on standard error, exit Code (without a Halt here:
   what the routines under way hold is freed on the way out). Token '' = none. }
 procedure CliFail(const Cli: tCli; const What, Token: AnsiString; Code: LongInt);
+{ End the program with Code the way CliFail does (what the routines under
+  way hold freed, the program's finally parts run), without a message:
+  for a program that said what happened itself. }
+procedure CliEnd(Code: LongInt);
 { A usage error: CliFail with CliExitUsage. }
 procedure CliUsageError(const Cli: tCli; const What, Token: AnsiString);
 { The whole usage text. }
@@ -113,13 +117,13 @@ function CliUsageText(const Cli: tCli): AnsiString;
 procedure CliCheckParams(const Cli: tCli; const Params, TopLayer: AnsiString);
 { The same, but the channel (not opened) is the caller's. }
 function CliChannel(const Cli: tCli; const Params, TopLayer: AnsiString): pChnVirt;
-{ The check of CliCheckParams for a program that reports on its own (a
-  configuration file): '' when Params is good, else 'bad parameter
-  string: ...' with the token and what the key allows. }
 { The channel of Params (not opened), or nil with Why: what is wrong and
   the token ('bad parameter string: ... (BD=abc)'). For a program that
   must not exit on a bad string (a gateway reading its configuration). }
 function CliNewChannel(const Params, TopLayer: AnsiString; out Why: AnsiString): pChnVirt;
+{ The check of CliCheckParams for a program that reports on its own (a
+  configuration file): '' when Params is good, else 'bad parameter
+  string: ...' with the token and what the key allows. }
 function CliParamsProblem(const Params, TopLayer: AnsiString): AnsiString;
 
 { The exit code for a result of the scheme above: res_Ok 0, res_Timeout 4,
@@ -299,17 +303,22 @@ begin
   Halt(Code);
 end;
 
-procedure CliFail(const Cli: tCli; const What, Token: AnsiString; Code: LongInt);
+procedure CliEnd(Code: LongInt);
 var
   E: TCliExit;
+begin
+  E := TCliExit.Create;
+  E.Code := Code;
+  raise E;
+end;
+
+procedure CliFail(const Cli: tCli; const What, Token: AnsiString; Code: LongInt);
 begin
   if Token <> '' then
     WriteLn(StdErr, Cli.Prog, ': ', What, ' (', Token, ')')
   else
     WriteLn(StdErr, Cli.Prog, ': ', What);
-  E := TCliExit.Create;
-  E.Code := Code;
-  raise E;
+  CliEnd(Code);
 end;
 
 procedure CliUsageError(const Cli: tCli; const What, Token: AnsiString);
