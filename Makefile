@@ -61,8 +61,10 @@ COMMON   := -Fisrc -v0ew -l-
 UNITFLAGS := $(COMMON) $(SYNAPSE_FLAGS) $(SRCPATH) -O2 -Sew -FU$(UNITDIR) -FE$(BINDIR)
 # examples, tools, benchmarks: the compiled library (as an installed one
 # would be used; Synapse's units too, so they are not rebuilt with -Sew),
-# plus tools/lib
-PROGFLAGS := $(COMMON) $(if $(SYNAPSE_DIR),-dCHN_SYNAPSE) -Fu$(UNITDIR) -Futools/lib -O2 -Sew \
+# plus tools/lib; smart linked (-XX): only the routines a program reaches
+# are in it, so it is smaller on disk and in memory (chngate 1.3 MB ->
+# 0.6 MB, its resident size 0.8 MB less)
+PROGFLAGS := $(COMMON) $(if $(SYNAPSE_DIR),-dCHN_SYNAPSE) -Fu$(UNITDIR) -Futools/lib -O2 -XX -Sew \
              -FU$(TOOLUNITDIR) -FE$(BINDIR)
 # tests: range, overflow and stack checks, heaptrc, line info (and -Xs-:
 # Debian's fpc.cfg strips it otherwise, and failures could not say where);

@@ -116,7 +116,7 @@ begin
       T.Dependencies.AddUnit('ChnPortWin', AllWindowsOSes);
     { the physical base: ring, transmit pump, drain, reconnect, wait }
     AddUnit(P, 'ChnPhys.pas', AllOSes, ['ChnTypes', 'ChnVirt', 'ChnRing', 'ChnWait', 'ChnPort',
-      'uString']);
+      'ChnParam', 'uString']);
     AddUnit(P, 'ChnCom.pas', AllOSes, ['ChnTypes', 'ChnVirt', 'ChnPort', 'ChnPhys', 'uString',
       'ChnPorts']);
     AddUnit(P, 'ChnLoop.pas', AllOSes, ['ChnTypes', 'ChnVirt', 'ChnRing', 'ChnWait', 'ChnPort',

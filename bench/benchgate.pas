@@ -1,39 +1,104 @@
 { benchgate - tools/chngate under load (Linux; "make bench",
-  docs/chngate.md): 8 tools/df1sim on ptys, 100 tags each (N7:0, N7:2 ..
-  N7:198) and the clock S2:4, scan 500 ms, a mosquitto broker on a free
-  loopback port, and this program as the MQTT subscriber of every clock.
-  It prints the reads per scan (from chngate --check), the time from the
-  read that saw a clock change (the payload's ts) to its arrival here
-  (median and p99; the change itself happened up to one scan before that
-  read), chngate's CPU in % of one core under that load and idle (scan
-  60 s: nothing to do but wait), and its resident memory. Skipped with the
-  reason when mosquitto or libmosquitto is missing.
+  docs/chngate.md "Speed and size").
 
-    benchgate          10 s under load, 5 s idle
-    benchgate quick    3 s and 2 s }
+  Eight DF1 lines at 19200 Bd (or BD), 100 tags each (N7:0, N7:2 .. N7:198), scan
+  500 ms, a mosquitto broker on a free loopback port. The lines are real
+  in time: chngate opens a pty per line; this program passes its bytes to
+  an SLC station (tools/lib ChnSlc, df1sim's table) over an in-memory
+  line at 19200 8N1 (NAM=LOOP BD=, docs/ChnLoop.md), so every character
+  takes the time it takes on the plant's cable, and the line's busy time
+  is known. This program is also the subscriber, and it changes one tag
+  of the stations every 25 ms (each line in turn, a new value each time).
+
+  It prints:
+  - the reads per scan chngate plans (chngate --check) and the requests
+    that went over the lines, per scan;
+  - the share of each line's time used (characters times the character
+    time, both directions summed, over the time measured);
+  - change -> MQTT: from the moment a value changed in a station to its
+    message at the subscriber (median, p99, max; a change waits up to one
+    scan for its read, and the read takes its time on the line), and
+    read -> MQTT: from the read that saw it (the payload's ts) on;
+  - chngate's CPU under load (% of one core), and idle (scan 60 s, nothing
+    to read) against the idle floor: the program-wide wait alone
+    (ChnWaitAny over as many descriptors - 9 serial lines on ptys for the
+    gateway's 8 lines and its socket - woken as
+    often as the gateway was), run as a child in the same run: CPU per
+    second and the ratio;
+  - chngate's resident memory, and by what is mapped (its own code, the
+    anonymous memory of heap and stacks, each library).
+  Skipped with the reason when mosquitto or libmosquitto is missing.
+
+    benchgate [quick] [BD]   10 s under load, 20 s idle (the gateway and
+                             the floor each); quick: 4 s and 5 s; BD the
+                             lines' rate (default 19200)
+  Internal role: --floor N MS (the idle floor: N pty lines, ChnWaitAny(MS)
+  until killed). }
 program benchgate;
 
 {$MODE OBJFPC}{$H+}
 
 uses
   {$IFDEF UNIX}cthreads,{$ENDIF}
-  Classes, SysUtils, DateUtils, BaseUnix, Process, ChildLine, ProcStat, ChnWait, ChnMqtt, ChnSock;
+  Classes, SysUtils, DateUtils, BaseUnix, Process, ChnTypes, ChnVirt, ChnWait, ChnLoop, ChnCom,
+  ChnPty, ChnDF1, ChnDF1Link, ChnSlc, ChnMqtt, ChnSock, ProcStat;
 
 const
   Lines = 8;
   TagsPerLine = 100;
   ScanMs = 500;
+  ChangeEveryMs = 25;
+  FirstValue = 1000;        { change n writes FirstValue + n }
+  MaxChanges = 30000;
+
+type
+  tLine = record
+    Table  : tSlcTable;
+    Station: tDF1Station;
+    StChn  : pChnVirt;      { the station's DF1 stack, LOOP END=2 }
+    Wire   : pChnVirt;      { LOOP END=1: the station's line, raw }
+    Pty    : pChnVirt;      { the pty master; chngate opens its slave }
+    Slave  : AnsiString;
+    Pair   : string;
+    Busy0  : QWord;         { the line's busy time (us) when measuring began }
+    Requests: LongInt;      { frames from chngate longer than an ACK }
+  end;
 
 var
+  Bd: LongInt = 19200;
+  L: array[0..Lines - 1] of tLine;
+  Buf: array[0..4095] of Byte;
   Quick: Boolean;
   Dir: string;
-  Sims: array of TProcess;
   Broker, Gate: TProcess;
   Port: Word;
+  ChangeAt: array[0..MaxChanges - 1] of QWord;   { ChnClockUs of change n }
+  Arrived: array[0..MaxChanges - 1] of Boolean;
+  Changes: LongInt;
+  ChangeLat, ReadLat: array of Double;           { ms }
 
 function Bin(const Name: string): string;
 begin
   Result := ExtractFilePath(ParamStr(0)) + Name;
+end;
+
+procedure Fail(const Why: string);
+begin
+  WriteLn('benchgate: ', Why);
+  Halt(1);
+end;
+
+function OpenRaw(const Layer, Params: string): pChnVirt;
+begin
+  Result := ChnCollection^.ChNewInit(Layer);
+  Result^.ChSetParam(Params);
+  if Result^.ChResult = res_Ok then
+    Result^.ChOpen;
+  if Result^.ChResult = res_Ok then
+    Result^.ChConnect;
+  if Result^.ChResult <> res_Ok then
+    Fail(Layer + ' ' + Params + ': ' + Result^.ChErrorText);
+  Result^.ChReceiveBuffer(@Buf, SizeOf(Buf));
 end;
 
 function FreePort: Word;
@@ -62,32 +127,99 @@ begin
   FreeAndNil(P);
 end;
 
-procedure Cleanup;
+procedure WriteText(const Name, Text: string);
+var
+  S: TStringList;
+begin
+  S := TStringList.Create;
+  try
+    S.Text := Text;
+    S.SaveToFile(Name);
+  finally
+    S.Free;
+  end;
+end;
+
+{ ------------------------------------------------------------ the lines }
+
+procedure OpenLines;
+var
+  I: LongInt;
+  ErrLine: LongInt;
+  Err: AnsiString;
+begin
+  for I := 0 to Lines - 1 do
+  begin
+    L[I].Pair := 'GATE' + IntToStr(I);
+    if not SlcLoadConfig(L[I].Table, 'N7 200', ErrLine, Err) then
+      Fail('table: ' + Err);
+    L[I].StChn := ChnCollection^.ChNewInit('DF1');
+    L[I].StChn^.ChSetParam(Format('NOD=1 DNO=0 MAS=SLAVE FHD=FULL CRC=ON NAM=LOOP PAIR=%s END=2 BD=%d',
+      [L[I].Pair, Bd]));
+    L[I].StChn^.ChOpen;
+    L[I].StChn^.ChConnect;
+    if L[I].StChn^.ChResult <> res_Ok then
+      Fail('station: ' + L[I].StChn^.ChErrorText);
+    SlcStationInit(L[I].Station, L[I].StChn, @L[I].Table);
+    L[I].Wire := OpenRaw(ChnLoop.cName, Format('PAIR=%s END=1 BD=%d', [L[I].Pair, Bd]));
+    L[I].Pty := OpenRaw('COM', 'DRV=PTY IDL=0');
+    L[I].Slave := PtyLastSlave;
+  end;
+end;
+
+procedure CloseLines;
 var
   I: LongInt;
 begin
-  Stop(Gate);
-  for I := 0 to High(Sims) do
-    Stop(Sims[I]);
-  Stop(Broker);
-  DeleteFile(Dir + '/sim.conf');
-  DeleteFile(Dir + '/gate.conf');
-  DeleteFile(Dir + '/m.conf');
-  RemoveDir(Dir);
-end;
-
-procedure WriteText(const Name, Text: string);
-var
-  L: TStringList;
-begin
-  L := TStringList.Create;
-  try
-    L.Text := Text;
-    L.SaveToFile(Name);
-  finally
-    L.Free;
+  for I := 0 to Lines - 1 do
+  begin
+    if L[I].Pty <> nil then
+      Dispose(L[I].Pty, Done);
+    if L[I].Wire <> nil then
+      Dispose(L[I].Wire, Done);
+    if L[I].StChn <> nil then
+      Dispose(L[I].StChn, Done);
   end;
 end;
+
+{ Move what came from Src to Dst; the number of chunks longer than 2. }
+function Pass(Src, Dst: pChnVirt): LongInt;
+var
+  N: Word;
+begin
+  Result := 0;
+  while Src^.ChReceiveReady = CHS_ReceiveReady do
+  begin
+    N := 0;
+    Src^.ChReceive(N);
+    if N = 0 then
+      Break;
+    if N > 2 then
+      Inc(Result);
+    Dst^.ChSend(@Buf, N);
+  end;
+end;
+
+procedure StepLines;
+var
+  I: LongInt;
+begin
+  for I := 0 to Lines - 1 do
+  begin
+    Inc(L[I].Requests, Pass(L[I].Pty, L[I].Wire));
+    DF1StationStep(L[I].Station);
+    Pass(L[I].Wire, L[I].Pty);
+  end;
+end;
+
+function LineBusyUs(I: LongInt): QWord;
+var
+  Chars: QWord;
+begin
+  LoopLineLoad(L[I].Pair, Chars, Result);
+end;
+
+{ ------------------------------------------------------------ measuring }
 
 function GateConfig(Scan: LongInt): string;
 var
@@ -98,20 +230,19 @@ begin
   for K := 0 to TagsPerLine - 1 do
     Tags := Tags + ' N7:' + IntToStr(2 * K);
   Result := '[mqtt]'#10'port = ' + IntToStr(Port) + #10'prefix = bench'#10;
-  for I := 0 to High(Sims) do
-  begin
-    Result := Result + #10'[device plc' + IntToStr(I + 1) + ']'#10 +
-      'line = NAM=DF1 NOD=0 DNO=1 CRC=ON NAM=COM DEV=' + Sims[I].Parameters.Values['pty'] + #10 +
-      'tags =' + Tags + ' clock=S2:4'#10'scan = ' + IntToStr(Scan) + #10;
-  end;
+  for I := 0 to Lines - 1 do
+    Result := Result + #10'[device plc' + IntToStr(I) + ']'#10 +
+      'line = NAM=DF1 NOD=0 DNO=1 FHD=FULL CRC=ON NAM=COM DEV=' + L[I].Slave + #10 +
+      'tags =' + Tags + #10'scan = ' + IntToStr(Scan) + #10;
 end;
 
-function StartGate: TProcess;
+function StartGate(Scan: LongInt): TProcess;
 begin
+  WriteText(Dir + '/gate.conf', GateConfig(Scan));
   Result := TProcess.Create(nil);
   Result.Executable := Bin('chngate');
   Result.Parameters.Add(Dir + '/gate.conf');
-  Result.Options := [poUsePipes, poStderrToOutPut];
+  Result.Options := [poUsePipes, poStderrToOutPut];    { a few log lines: the pipe never fills }
   Result.Execute;
 end;
 
@@ -141,35 +272,220 @@ begin
   Result := Round((LocalTimeToUniversal(Now) - UnixDateDelta) * MSecsPerDay);
 end;
 
+procedure Add(var A: array of Double; var N: LongInt; V: Double);
+begin
+  if N <= High(A) then
+  begin
+    A[N] := V;
+    Inc(N);
+  end;
+end;
+
+{ Change n: line n mod Lines, tag n div Lines (each tag changes once in
+  Lines * TagsPerLine changes: 20 s at 25 ms). }
+procedure MakeChange;
 var
-  I, N, Reads: LongInt;
-  Sub: tMqttClient;
+  Line, Elem: LongInt;
+begin
+  if Changes >= MaxChanges then
+    Exit;
+  Line := Changes mod Lines;
+  Elem := 2 * ((Changes div Lines) mod TagsPerLine);
+  SlcSetWord(L[Line].Table, 7, Elem, FirstValue + Changes);
+  ChangeAt[Changes] := ChnClockUs;
+  Arrived[Changes] := False;
+  Inc(Changes);
+end;
+
+var
+  NChange, NRead: LongInt;
+
+{ A message: a change's arrival when its value is one this program made. }
+procedure Received(const M: tMqttMessage; AtUs: QWord);
+var
+  P, Q, Code, Id, Line, Elem: LongInt;
+  V: LongInt;
+  Ts: Int64;
+begin
+  P := Pos('"value":', M.Payload);
+  if P = 0 then
+    Exit;
+  Q := P + 8;
+  while (Q <= Length(M.Payload)) and (M.Payload[Q] in ['0'..'9', '-']) do
+    Inc(Q);
+  Val(Copy(M.Payload, P + 8, Q - P - 8), V, Code);
+  Id := V - FirstValue;
+  if (Code <> 0) or (Id < 0) or (Id >= Changes) or Arrived[Id] then
+    Exit;
+  Line := Id mod Lines;
+  Elem := 2 * ((Id div Lines) mod TagsPerLine);
+  if M.Topic <> Format('bench/plc%d/N7:%d', [Line, Elem]) then
+    Exit;
+  Arrived[Id] := True;
+  Add(ChangeLat, NChange, (AtUs - ChangeAt[Id]) / 1000);
+  Ts := PayloadMs(M.Payload);
+  if Ts > 0 then
+    Add(ReadLat, NRead, NowUtcMs - Ts);
+end;
+
+{ Run the lines and the subscriber until Deadline; a change every
+  ChangeEveryMs when Changing. }
+procedure Serve(var Sub: tMqttClient; Deadline: QWord; Changing: Boolean);
+var
   M: tMqttMessage;
-  Lat: array of LongInt;
-  Err, Pty, Check: string;
-  Deadline, T0, T1: QWord;
-  C0, C1, LoadCpu, IdleCpu: Double;
-  Rss, Clocks, J, V: LongInt;
-  LoadS: Double;
+  NextChange, AtUs: QWord;
+  W: LongInt;
+begin
+  NextChange := GetTickCount64;
+  while GetTickCount64 < Deadline do
+  begin
+    StepLines;
+    MqttStep(Sub);
+    AtUs := ChnClockUs;
+    while MqttTakeMessage(Sub, M) do
+      Received(M, AtUs);
+    if Changing and (GetTickCount64 >= NextChange) then
+    begin
+      MakeChange;
+      NextChange := NextChange + ChangeEveryMs;
+    end;
+    W := ChnWaitLeft(Deadline);
+    if Changing and (ChnWaitLeft(NextChange) < W) then
+      W := ChnWaitLeft(NextChange);
+    if W > 20 then
+      W := 20;             { the stations' own timers }
+    ChnWaitAny(W);
+  end;
+end;
+
+procedure Sort(var A: array of Double; N: LongInt);
+var
+  I, J: LongInt;
+  V: Double;
+begin
+  for I := 1 to N - 1 do
+  begin
+    V := A[I];
+    J := I;
+    while (J > 0) and (A[J - 1] > V) do
+    begin
+      A[J] := A[J - 1];
+      Dec(J);
+    end;
+    A[J] := V;
+  end;
+end;
+
+function Quantiles(var A: array of Double; N: LongInt): string;
+begin
+  if N = 0 then
+    Exit('none arrived');
+  Sort(A, N);
+  Result := Format('median %.1f ms, p99 %.1f ms, max %.1f ms (%d)', [A[N div 2], A[(N * 99) div 100], A[N - 1], N]);
+end;
+
+{ ------------------------------------------------------------ the floor }
+
+{ --floor N MS: N lines (pty slaves, their masters held here) in the
+  program-wide wait and nothing else, ChnWaitAny(MS) until killed. }
+procedure Floor(N, Ms: LongInt);
+var
+  I: LongInt;
+  Fd: cint;
+  Slave: AnsiString;
+  Chn: array of pChnVirt;
+begin
+  SetLength(Chn, N);
+  for I := 0 to N - 1 do
+  begin
+    if PtyCreate(Fd, Slave) <> 0 then
+      Fail('floor: no pty');
+    Chn[I] := OpenRaw('COM', 'DEV=' + Slave + ' IDL=0');
+  end;
+  WriteLn('ready');
+  Flush(Output);
+  repeat
+    ChnWaitAny(Ms);
+  until False;
+end;
+
+function StartFloor(N, Ms: LongInt): TProcess;
+var
+  S: string;
+  C: Char;
+begin
+  Result := TProcess.Create(nil);
+  Result.Executable := ParamStr(0);
+  Result.Parameters.Add('--floor');
+  Result.Parameters.Add(IntToStr(N));
+  Result.Parameters.Add(IntToStr(Ms));
+  Result.Options := [poUsePipes];
+  Result.Execute;
+  S := '';
+  while (Pos('ready', S) = 0) and Result.Running do
+    if Result.Output.Read(C, 1) = 1 then
+      S := S + C;
+end;
+
+{ CPU ns and sleeps a second of Pid over Ms, this program serving the
+  lines meanwhile. }
+procedure IdleCost(Pid: TPid; var Sub: tMqttClient; Ms: LongInt; out NsPerS, SleepsPerS: Double);
+var
+  C0, S0: Int64;
+  T0: QWord;
+begin
+  C0 := ProcRunNs(Pid);
+  S0 := ProcSleeps(Pid);
+  T0 := ChnClockUs;
+  Serve(Sub, GetTickCount64 + QWord(Ms), False);
+  NsPerS := (ProcRunNs(Pid) - C0) / ((ChnClockUs - T0) / 1e6);
+  SleepsPerS := (ProcSleeps(Pid) - S0) / ((ChnClockUs - T0) / 1e6);
+end;
+
+var
+  I, Reads, LoadMs, IdleMs, Requests, Rss, FloorMs, Lost: LongInt;
+  Sub: tMqttClient;
+  Err, Check, Shares, Map: AnsiString;
+  T0, T1: QWord;
+  C0, C1: Int64;
+  LoadCpu, GateNs, GateSleeps, FloorNs, FloorSleeps: Double;
+  FloorProc: TProcess;
 
 begin
-  Quick := ParamStr(1) = 'quick';
+  if ParamStr(1) = '--floor' then
+  begin
+    Floor(StrToInt(ParamStr(2)), StrToInt(ParamStr(3)));
+    Halt(0);
+  end;
+  Quick := False;
+  for I := 1 to ParamCount do
+    if ParamStr(I) = 'quick' then
+      Quick := True
+    else
+      Bd := StrToIntDef(ParamStr(I), Bd);
+  if Quick then LoadMs := 4000 else LoadMs := 10000;
+  if Quick then IdleMs := 5000 else IdleMs := 20000;
   if not MqttLoad(Err) then
   begin
     WriteLn('benchgate: skipped: ', Err);
     Halt(0);
   end;
-  if (ExeSearch('mosquitto', '/usr/sbin:/usr/bin:' + GetEnvironmentVariable('PATH')) = '') then
+  if ExeSearch('mosquitto', '/usr/sbin:/usr/bin:' + GetEnvironmentVariable('PATH')) = '' then
   begin
     WriteLn('benchgate: skipped: no mosquitto broker (apt-get install mosquitto)');
     Halt(0);
   end;
+  SetLength(ChangeLat, MaxChanges);
+  SetLength(ReadLat, MaxChanges);
   Dir := GetTempDir + 'chn-benchgate-' + IntToStr(GetProcessID);
   ForceDirectories(Dir);
   Port := FreePort;
-  WriteText(Dir + '/sim.conf', 'S2 32'#10'N7 200'#10);
   WriteText(Dir + '/m.conf', 'listener ' + IntToStr(Port) + ' 127.0.0.1'#10'allow_anonymous true'#10 +
     'persistence false'#10);
+  Broker := nil;
+  Gate := nil;
+  FloorProc := nil;
+  MqttInit(Sub);
   try
     Broker := TProcess.Create(nil);
     Broker.Executable := ExeSearch('mosquitto', '/usr/sbin:/usr/bin:' + GetEnvironmentVariable('PATH'));
@@ -177,98 +493,85 @@ begin
     Broker.Parameters.Add(Dir + '/m.conf');
     Broker.Options := [poUsePipes, poStderrToOutPut];    { a few lines: the pipe never fills }
     Broker.Execute;
-    SetLength(Sims, Lines);
-    for I := 0 to Lines - 1 do
-    begin
-      Sims[I] := TProcess.Create(nil);
-      Sims[I].Executable := Bin('df1sim');
-      Sims[I].Parameters.Add('--pty');
-      Sims[I].Parameters.Add('--quiet');
-      Sims[I].Parameters.Add('--config=' + Dir + '/sim.conf');
-      Sims[I].Options := [poUsePipes];
-      Sims[I].Execute;
-      Pty := ReadFirstLine(Sims[I], 3000);
-      Sims[I].Parameters.Add('pty=' + Copy(Pty, 5, 255));
-    end;
+    OpenLines;
+    { the reads per scan chngate plans }
     WriteText(Dir + '/gate.conf', GateConfig(ScanMs));
-    { the reads per scan, as chngate --check counts them }
     RunCommand(Bin('chngate'), ['--check', Dir + '/gate.conf'], Check, [], swoNone);
     Reads := StrToIntDef(Trim(Copy(Check, Pos('tags, ', Check) + 6, Pos(' reads', Check) - Pos('tags, ', Check) - 6)), -1);
-    MqttInit(Sub);
     Sub.Port := Port;
-    MqttSubscribe(Sub, 'bench/+/clock');
+    MqttSubscribe(Sub, 'bench/+/+');
     if not MqttOpen(Sub, Err) then
-      raise Exception.Create(Err);
-    Gate := StartGate;
-    { settle: every line read once }
-    Deadline := GetTickCount64 + 2000;
-    while GetTickCount64 < Deadline do
+      Fail(Err);
+    Gate := StartGate(ScanMs);
+    { settle: every tag read and published once }
+    Serve(Sub, GetTickCount64 + 3000, False);
+    { under load }
+    for I := 0 to Lines - 1 do
     begin
-      MqttStep(Sub);
-      while MqttTakeMessage(Sub, M) do ;
-      ChnWaitAny(ChnWaitLeft(Deadline));
+      L[I].Busy0 := LineBusyUs(I);
+      L[I].Requests := 0;
     end;
-    Lat := nil;
-    C0 := ProcCpu(Gate.ProcessID);
-    T0 := GetTickCount64;
-    if Quick then
-      Deadline := T0 + 3000
-    else
-      Deadline := T0 + 10000;
-    while GetTickCount64 < Deadline do
+    C0 := ProcRunNs(Gate.ProcessID);
+    T0 := ChnClockUs;
+    Serve(Sub, GetTickCount64 + QWord(LoadMs), True);
+    T1 := ChnClockUs;
+    C1 := ProcRunNs(Gate.ProcessID);
+    LoadCpu := (C1 - C0) / ((T1 - T0) * 1000) * 100;
+    Shares := '';
+    Requests := 0;
+    for I := 0 to Lines - 1 do
     begin
-      MqttStep(Sub);
-      while MqttTakeMessage(Sub, M) do
-        if PayloadMs(M.Payload) > 0 then
-        begin
-          SetLength(Lat, Length(Lat) + 1);
-          Lat[High(Lat)] := NowUtcMs - PayloadMs(M.Payload);
-        end;
-      ChnWaitAny(ChnWaitLeft(Deadline));
+      Shares := Shares + Format(' %.0f', [100 * (LineBusyUs(I) - L[I].Busy0) / (T1 - T0)]);
+      Inc(Requests, L[I].Requests);
     end;
-    C1 := ProcCpu(Gate.ProcessID);
-    T1 := GetTickCount64;
-    LoadS := (T1 - T0) / 1000;
-    LoadCpu := (C1 - C0) / LoadS * 100;
+    { the last changes' messages }
+    Serve(Sub, GetTickCount64 + 2 * ScanMs + 500, False);
+    Lost := 0;
+    for I := 0 to Changes - 1 do
+      if not Arrived[I] then
+        Inc(Lost);
     Rss := ProcRssKb(Gate.ProcessID);
-    Clocks := Length(Lat);
+    Map := ProcRssByMapping(Gate.ProcessID);
     Stop(Gate);
     { idle: one read of everything, then nothing for 60 s }
-    WriteText(Dir + '/gate.conf', GateConfig(60000));
-    Gate := StartGate;
-    Sleep(2000);
-    C0 := ProcCpu(Gate.ProcessID);
-    T0 := GetTickCount64;
-    if Quick then Sleep(2000) else Sleep(5000);
-    C1 := ProcCpu(Gate.ProcessID);
-    T1 := GetTickCount64;
-    IdleCpu := (C1 - C0) / ((T1 - T0) / 1000) * 100;
+    Gate := StartGate(60000);
+    Serve(Sub, GetTickCount64 + 3000, False);
+    IdleCost(Gate.ProcessID, Sub, IdleMs, GateNs, GateSleeps);
+    Stop(Gate);
+    { the floor: the wait alone, woken as often as the gateway was }
+    if GateSleeps > 0.01 then
+      FloorMs := Round(1000 / GateSleeps)
+    else
+      FloorMs := 60000;
+    FloorProc := StartFloor(Lines + 1, FloorMs);
+    Sleep(500);
+    IdleCost(FloorProc.ProcessID, Sub, IdleMs, FloorNs, FloorSleeps);
+    Stop(FloorProc);
+
+    WriteLn(Format('benchgate: %d DF1 lines at %d Bd x %d tags, scan %d ms: %d reads per scan planned ' +
+      '(%d per line), %.1f requests per scan measured', [Lines, Bd, TagsPerLine, ScanMs, Reads,
+      Reads div Lines, Requests / ((T1 - T0) / 1000 / ScanMs)]));
+    WriteLn('benchgate: share of each line''s time used (%, both directions):' + Shares);
+    WriteLn(Format('benchgate: change -> MQTT: %s; %d of %d changes not arrived',
+      [Quantiles(ChangeLat, NChange), Lost, Changes]));
+    WriteLn(Format('benchgate: read -> MQTT:   %s', [Quantiles(ReadLat, NRead)]));
+    WriteLn(Format('benchgate: chngate CPU under load %.2f %% of a core', [LoadCpu]));
+    if FloorNs > 0 then
+      WriteLn(Format('benchgate: idle: chngate %.1f us CPU/s, %.2f wake-ups/s; the wait alone (%d ' +
+        'descriptors, ChnWaitAny(%d)) %.1f us/s, %.2f wake-ups/s; ratio %.2f',
+        [GateNs / 1000, GateSleeps, Lines + 1, FloorMs, FloorNs / 1000, FloorSleeps, GateNs / FloorNs]))
+    else
+      WriteLn(Format('benchgate: idle: chngate %.1f us CPU/s, %.2f wake-ups/s; the wait alone %.1f us/s',
+        [GateNs / 1000, GateSleeps, FloorNs / 1000]));
+    WriteLn(Format('benchgate: chngate RSS %d KiB: %s', [Rss, Map]));
+  finally
+    Stop(FloorProc);
     Stop(Gate);
     MqttClose(Sub);
-    { median and p99 }
-    N := Length(Lat);
-    for I := 1 to N - 1 do     { insertion sort: a few hundred values }
-    begin
-      V := Lat[I];
-      J := I;
-      while (J > 0) and (Lat[J - 1] > V) do
-      begin
-        Lat[J] := Lat[J - 1];
-        Dec(J);
-      end;
-      Lat[J] := V;
-    end;
-    WriteLn(Format('benchgate: %d lines x %d tags + clock, scan %d ms: %d reads per scan (%d per line)',
-      [Lines, TagsPerLine, ScanMs, Reads, Reads div Lines]));
-    if N > 0 then
-      WriteLn(Format('benchgate: read -> MQTT subscriber: median %d ms, p99 %d ms, max %d ms (%d clock changes ' +
-        'in %.1f s; a change is read up to one scan after it happened)',
-        [Lat[N div 2], Lat[(N * 99) div 100], Lat[N - 1], Clocks, LoadS]))
-    else
-      WriteLn('benchgate: no clock change arrived');
-    WriteLn(Format('benchgate: chngate CPU %.2f %% of a core under load, %.2f %% idle; RSS %d KiB',
-      [LoadCpu, IdleCpu, Rss]));
-  finally
-    Cleanup;
+    CloseLines;
+    Stop(Broker);
+    DeleteFile(Dir + '/gate.conf');
+    DeleteFile(Dir + '/m.conf');
+    RemoveDir(Dir);
   end;
 end.

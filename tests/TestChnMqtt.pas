@@ -3,8 +3,12 @@
   mosquitto_sub and mosquitto_pub as the other side: publish and
   subscribe through the program-wide wait, the online message on the
   will's topic, a broker killed and started again losing none of the
-  messages queued meanwhile, a full queue dropping (and counting) its
-  oldest. Skipped, with the reason, where mosquitto is not installed. }
+  messages queued meanwhile, nor those handed over and not acknowledged,
+  and sending none twice; a full queue dropping (and counting) its
+  oldest; user name and password (a wrong password refused with the
+  broker and the reason named) and TLS against a broker with a
+  certificate made for the test. Skipped, with the reason, where
+  mosquitto (or openssl) is not installed. }
 unit TestChnMqtt;
 
 {$MODE OBJFPC}{$H+}
@@ -22,13 +26,17 @@ type
     procedure TestPublishAndSubscribe;
     procedure TestBrokerRestartLosesNothingQueued;
     procedure TestFullQueueDropsTheOldest;
+    procedure TestHandedOverSentOnceAfterLoss;
+    procedure TestAcknowledgedNotSentAgain;
+    procedure TestUserAndPassword;
+    procedure TestTls;
     {$ENDIF}
   end;
 
 implementation
 
 uses
-  {$IFDEF UNIX}BaseUnix, MosquittoRun,{$ENDIF}
+  {$IFDEF UNIX}BaseUnix, MosquittoRun, TestTempDir, TestSupport,{$ENDIF}
   ChnWait, ChnMqtt;
 
 procedure TTestChnMqtt.TestStateTextAndDefaults;
@@ -212,6 +220,202 @@ begin
     MqttClose(C);
     Sub.Free;
     Broker.Free;
+  end;
+end;
+
+{ Open C, publish Payload on Topic: the broker acknowledges it and the
+  subscriber Sub gets it. }
+procedure AssertPublished(var C: tMqttClient; Sub: TMqttSub; const Topic, Payload: string);
+var
+  Err: AnsiString;
+begin
+  TAssert.AssertTrue(Err, MqttOpen(C, Err));
+  TAssert.AssertTrue('connected: ' + C.LastError, StepUntil(C, @Connected, 5000));
+  MqttPublish(C, Topic, Payload, False);
+  TAssert.AssertTrue('acknowledged', StepUntil(C, @Emptied, 5000));
+  TAssert.AssertTrue('the subscriber got it: ' + Sub.Text, Sub.WaitFor(Topic + ' ' + Payload + #10, 5000));
+end;
+
+{ Messages Topic/1 .. Topic/N each exactly once in Text: '' or which not. }
+function EachOnce(const Text, Topic: string; N: LongInt): string;
+var
+  I, K: LongInt;
+begin
+  Result := '';
+  for I := 1 to N do
+  begin
+    K := CountOf(Topic + '/' + IntToStr(I) + ' ' + IntToStr(I) + #10, Text);
+    if K <> 1 then
+      Result := Result + Format(' %s/%d %d times', [Topic, I, K]);
+  end;
+end;
+
+{ Messages handed to the library, the broker stopped before it could
+  acknowledge them, then killed: after the restart each arrives, and
+  once (the library sends them again itself, under their message ids). }
+procedure TTestChnMqtt.TestHandedOverSentOnceAfterLoss;
+var
+  Broker: TMosquitto;
+  Sub: TMqttSub;
+  C: tMqttClient;
+  I: LongInt;
+begin
+  if MosquittoMissing <> '' then
+    Ignore(MosquittoMissing);
+  Broker := TMosquitto.Create;
+  Sub := nil;
+  try
+    Client(C, Broker.Port);
+    AssertTrue('connected: ' + C.LastError, StepUntil(C, @Connected, 5000));
+    FpKill(Broker.Pid, SIGSTOP);
+    for I := 1 to 5 do
+      MqttPublish(C, 'h/' + IntToStr(I), IntToStr(I), False);
+    StepUntil(C, @Waiting, 500);          { handed over; no PUBACK can come }
+    AssertEquals('still queued', 5, MqttQueued(C));
+    for I := 0 to 4 do
+      AssertTrue('handed over', C.Queue[I].Sent);
+    Broker.Stop(SIGKILL);
+    AssertTrue('the client saw the broker go', StepUntil(C, @Waiting, 10000));
+    Broker.Start;
+    Sub := TMqttSub.Create(Broker.Port, 'h/#', []);
+    Sleep(300);
+    AssertTrue('all acknowledged after the restart: ' + C.LastError, StepUntil(C, @Emptied, 40000));
+    Sub.WaitFor('h/5 5'#10, 3000);
+    Sleep(300);                           { a second copy would come now }
+    AssertEquals('each once: ' + Sub.Text, '', EachOnce(Sub.Text, 'h', 5));
+  finally
+    MqttClose(C);
+    Sub.Free;
+    Broker.Free;
+  end;
+end;
+
+{ Messages the broker acknowledged are not sent again after a reconnect. }
+procedure TTestChnMqtt.TestAcknowledgedNotSentAgain;
+var
+  Broker: TMosquitto;
+  Sub: TMqttSub;
+  C: tMqttClient;
+  I: LongInt;
+begin
+  if MosquittoMissing <> '' then
+    Ignore(MosquittoMissing);
+  Broker := TMosquitto.Create;
+  Sub := TMqttSub.Create(Broker.Port, 'a/#', []);
+  try
+    Sleep(300);
+    Client(C, Broker.Port);
+    AssertTrue('connected: ' + C.LastError, StepUntil(C, @Connected, 5000));
+    for I := 1 to 5 do
+      MqttPublish(C, 'a/' + IntToStr(I), IntToStr(I), False);
+    AssertTrue('acknowledged', StepUntil(C, @Emptied, 5000));
+    AssertTrue('arrived: ' + Sub.Text, Sub.WaitFor('a/5 5'#10, 3000));
+    Broker.Stop(SIGKILL);
+    AssertTrue('the client saw the broker go', StepUntil(C, @Waiting, 10000));
+    FreeAndNil(Sub);
+    Broker.Start;
+    Sub := TMqttSub.Create(Broker.Port, 'a/#', []);
+    Sleep(300);
+    for I := 6 to 8 do
+      MqttPublish(C, 'a/' + IntToStr(I), IntToStr(I), False);
+    AssertTrue('sent after the restart: ' + C.LastError, StepUntil(C, @Emptied, 40000));
+    AssertTrue('the new ones: ' + Sub.Text, Sub.WaitFor('a/8 8'#10, 3000));
+    Sleep(300);
+    AssertEquals('none of the acknowledged ones again: ' + Sub.Text, 0, Pos('a/1 1'#10, Sub.Text));
+    AssertEquals('each new one once: ' + Sub.Text, 1, CountOf('a/6 6'#10, Sub.Text));
+  finally
+    MqttClose(C);
+    Sub.Free;
+    Broker.Free;
+  end;
+end;
+
+procedure TTestChnMqtt.TestUserAndPassword;
+var
+  Broker: TMosquitto;
+  Sub: TMqttSub;
+  C, Bad: tMqttClient;
+  Dir, Err, Why: string;
+begin
+  if MosquittoMissing <> '' then
+    Ignore(MosquittoMissing);
+  Dir := MakeTempDir('chn-mqtt');
+  Broker := nil;
+  Sub := nil;
+  MqttInit(C);
+  MqttInit(Bad);
+  try
+    Why := MakePasswordFile(Dir, 'gate', 's3cret');
+    if Why <> '' then
+      Ignore(Why);
+    Broker := TMosquitto.Create('allow_anonymous false' + LineEnding + 'password_file ' + Dir + 'passwd');
+    Sub := TMqttSub.Create(Broker.Port, 'pw/#', ['-u', 'gate', '-P', 's3cret']);
+    Sleep(300);
+    C.Port := Broker.Port;
+    C.User := 'gate';
+    C.Password := 's3cret';
+    AssertPublished(C, Sub, 'pw/x', '1');
+    { a wrong password: refused, the broker and the reason named }
+    Bad.Port := Broker.Port;
+    Bad.User := 'gate';
+    Bad.Password := 'wrong';
+    AssertTrue(Err, MqttOpen(Bad, Err));
+    AssertTrue('refused: ' + MqttStateText(Bad), StepUntil(Bad, @Waiting, 5000));
+    AssertEquals('never connected', 0, Bad.Connects);
+    AssertEquals(Format('the broker 127.0.0.1:%d refused the connection: Connection Refused: not authorised.',
+      [Broker.Port]), Bad.LastError);
+  finally
+    MqttClose(Bad);
+    MqttClose(C);
+    Sub.Free;
+    Broker.Free;
+    RemoveTempDir(Dir);
+  end;
+end;
+
+procedure TTestChnMqtt.TestTls;
+var
+  Broker: TMosquitto;
+  Sub: TMqttSub;
+  C, Plain: tMqttClient;
+  Dir, Err, Why: string;
+begin
+  if MosquittoMissing <> '' then
+    Ignore(MosquittoMissing);
+  Dir := MakeTempDir('chn-mqtt');
+  Broker := nil;
+  Sub := nil;
+  MqttInit(C);
+  MqttInit(Plain);
+  try
+    Why := MakeTlsFiles(Dir);
+    if Why <> '' then
+      Ignore(Why);
+    Broker := TMosquitto.Create('allow_anonymous true' + LineEnding + 'cafile ' + Dir + 'ca.crt' + LineEnding +
+      'certfile ' + Dir + 'server.crt' + LineEnding + 'keyfile ' + Dir + 'server.key');
+    Sub := TMqttSub.Create(Broker.Port, 'tls/#', ['--cafile', Dir + 'ca.crt']);
+    Sleep(300);
+    C.Port := Broker.Port;
+    C.Tls := True;
+    C.CaFile := Dir + 'ca.crt';
+    AssertPublished(C, Sub, 'tls/x', 'secret');
+    { without TLS the broker's TLS listener never lets a client in }
+    Plain.Port := Broker.Port;
+    AssertTrue(Err, MqttOpen(Plain, Err));
+    AssertFalse('plain client connected to a TLS listener', StepUntil(Plain, @Connected, 1500));
+    { a CA file that is not there: refused at open, named }
+    MqttClose(C);
+    MqttInit(C);
+    C.Tls := True;
+    C.CaFile := Dir + 'none.crt';
+    AssertFalse('opened with no CA file', MqttOpen(C, Err));
+    AssertTrue(Err, Pos('MQTT: ', Err) = 1);
+  finally
+    MqttClose(Plain);
+    MqttClose(C);
+    Sub.Free;
+    Broker.Free;
+    RemoveTempDir(Dir);
   end;
 end;
 {$ENDIF}

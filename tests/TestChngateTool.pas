@@ -22,13 +22,15 @@ type
     {$IFDEF UNIX}
     procedure TestGatewayEndToEnd;
     procedure TestPlc5Device;
+    procedure TestMissingLibrary;
+    procedure TestWrongPasswordLogged;
     {$ENDIF}
   end;
 
 implementation
 
 uses
-  {$IFDEF UNIX}BaseUnix, PtyPair, MosquittoRun,{$ENDIF}
+  {$IFDEF UNIX}BaseUnix, PtyPair, MosquittoRun, TestSupport,{$ENDIF}
   Process, BinSupport, TestTempDir;
 
 procedure TTestChngateTool.TestCheck;
@@ -134,7 +136,7 @@ begin
     { meanwhile the live one keeps its 200 ms clock: about 10 changes in 2 s }
     Before := Sub.Text;
     Sleep(2000);
-    Clocks := Occurs('plant/plc1/clock {', Sub.Text) - Occurs('plant/plc1/clock {', Before);
+    Clocks := CountOf('plant/plc1/clock {', Sub.Text) - CountOf('plant/plc1/clock {', Before);
     AssertTrue(Format('plc1 clock changes in 2 s while plc2 is demoted: %d', [Clocks]), Clocks >= 7);
     { a set reaches the PLC; its new value comes back from it }
     AssertEquals('mosquitto_pub', 0, MqttPub(Broker.Port, 'plant/plc1/run/set', 'true'));
@@ -149,7 +151,7 @@ begin
       'tags = N7:0[3] ', 'tags = N7:0[3] N7:5 ', []));
     FpKill(Gate.ProcessID, SIGHUP);
     AssertTrue('N7:5 after SIGHUP: ' + Sub.Text, Sub.WaitFor('plant/plc1/N7:5 {"value":50,"quality":"good"', 10000));
-    AssertEquals('one connection: ' + Sub.Text, 1, Occurs('plant/$gateway/status online', Sub.Text));
+    AssertEquals('one connection: ' + Sub.Text, 1, CountOf('plant/$gateway/status online', Sub.Text));
     { the gateway vanishes: the broker publishes its will }
     FpKill(Gate.ProcessID, SIGKILL);
     Gate.WaitOnExit;
@@ -201,6 +203,77 @@ begin
     Ended(Gate, SIGTERM);
     Sub.Free;
     Ended(Sim, SIGTERM);
+    Broker.Free;
+    RemoveTempDir(Dir);
+  end;
+end;
+
+{ Without libmosquitto chngate says which file it did not find and how to
+  install it, exits 1 and opens nothing (CHN_LIBMOSQUITTO makes the
+  loader look for a file that is not there; a library that is not
+  libmosquitto is named too). }
+procedure TTestChngateTool.TestMissingLibrary;
+const
+  WithLib = 'CHN_LIBMOSQUITTO="$1" exec %s "$0"';
+var
+  Dir, Output: string;
+  Code: LongInt;
+begin
+  Dir := MakeTempDir('chn-gate');
+  try
+    WriteFileText(Dir + 'g.conf', '[mqtt]'#10'prefix = plant'#10#10'[device plc1]'#10 +
+      'line = NAM=DF1 NOD=0 DNO=1 NAM=COM DEV=' + Dir + 'nodevice'#10'tags = N7:0'#10);
+    Code := RunExe('/bin/sh', ['-c', Format(WithLib, [BinShellWord('chngate')]), Dir + 'g.conf',
+      Dir + 'libmosquitto.so.1'], 10000, Output);
+    AssertEquals('exit 1'#10 + Output, 1, Code);
+    AssertEquals('chngate: ' + Dir + 'libmosquitto.so.1 not found (apt-get install libmosquitto1)' +
+      LineEnding, Output);
+    Code := RunExe('/bin/sh', ['-c', Format(WithLib, [BinShellWord('chngate')]), Dir + 'g.conf', 'libc.so.6'],
+      10000, Output);
+    AssertEquals('exit 1'#10 + Output, 1, Code);
+    AssertEquals('chngate: libc.so.6 has no mosquitto_lib_init (libmosquitto 1.6 or later is needed)' +
+      LineEnding, Output);
+  finally
+    RemoveTempDir(Dir);
+  end;
+end;
+
+{ A broker that refuses the gateway's password: the log names the broker,
+  the reason and when it tries again. }
+procedure TTestChngateTool.TestWrongPasswordLogged;
+var
+  Broker: TMosquitto;
+  Gate: TProcess;
+  Dir, Why, Output: string;
+  Deadline: QWord;
+  Expect: string;
+begin
+  if MosquittoMissing <> '' then
+    Ignore(MosquittoMissing);
+  Dir := MakeTempDir('chn-gate');
+  Broker := nil;
+  Gate := nil;
+  try
+    Why := MakePasswordFile(Dir, 'gate', 's3cret');
+    if Why <> '' then
+      Ignore(Why);
+    Broker := TMosquitto.Create('allow_anonymous false' + LineEnding + 'password_file ' + Dir + 'passwd');
+    WriteFileText(Dir + 'g.conf', '[mqtt]'#10'port = ' + IntToStr(Broker.Port) + #10'prefix = plant'#10 +
+      'user = gate'#10'password = wrong'#10#10'[device plc1]'#10 +
+      'line = NAM=DF1 NOD=0 DNO=1 NAM=COM DEV=' + Dir + 'nodevice'#10'tags = N7:0'#10'demote = 60000'#10);
+    Gate := StartGate(Dir + 'g.conf');
+    Expect := Format('chngate: MQTT: the broker 127.0.0.1:%d refused the connection: ' +
+      'Connection Refused: not authorised. (again in ', [Broker.Port]);
+    Output := '';
+    Deadline := GetTickCount64 + 10000;
+    while (Pos(Expect, Output) = 0) and (GetTickCount64 < Deadline) do
+    begin
+      Drain(Gate, Output);
+      Sleep(20);
+    end;
+    AssertTrue('logged'#10 + Output, Pos(Expect, Output) > 0);
+  finally
+    Ended(Gate, SIGTERM);
     Broker.Free;
     RemoveTempDir(Dir);
   end;

@@ -81,6 +81,9 @@ const
 { ' KEY1 KEY2 ...': the keys of ' KEY1=VALUE KEY2=VALUE ...' (a layer's
   ChOwnParams), for the text of an unknown key. }
 function ParamKeyList(const Tokens: AnsiString): ShortString;
+{ Is Key one of the blank-separated words of List ('LRB IDL')? (No
+  string is built: a layer asks it for every token it is given.) }
+function ParamKeyIn(const Key, List: ShortString): Boolean;
 { What the key of the last failing ParamNum, ParamChoice or ParamBad
   allows ('' after ParamAllowedClear); ChSetParam reads it right after the
   check (one thread sets parameters). }
@@ -181,6 +184,23 @@ begin
     Result := V
   else
     Result := '';
+end;
+
+function ParamKeyIn(const Key, List: ShortString): Boolean;
+var
+  P, E: Integer;
+begin
+  Result := False;
+  if Key = '' then
+    Exit;
+  P := Pos(Key, List);
+  while P > 0 do
+  begin
+    E := P + Length(Key);
+    if ((P = 1) or (List[P - 1] = ' ')) and ((E > Length(List)) or (List[E] = ' ')) then
+      Exit(True);
+    P := Pos(Key, List, P + 1);
+  end;
 end;
 
 function ParamKeyList(const Tokens: AnsiString): ShortString;

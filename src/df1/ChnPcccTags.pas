@@ -53,8 +53,10 @@ type
   tTagDeviceState = (tdOk, tdDown, tdDemoted);
 
   tPcccTag = record
-    Name    : ShortString;   {< the name it is published under (default: Address) }
-    Address : ShortString;   {< as parsed, canonical: 'N7:0[10]', 'T4:1.ACC' }
+    {- AnsiStrings, not ShortStrings: four of 256 bytes were most of a
+      gateway's memory (800 tags: 0.8 MB) }
+    Name    : AnsiString;    {< the name it is published under (default: Address) }
+    Address : AnsiString;    {< as parsed, canonical: 'N7:0[10]', 'T4:1.ACC' }
     Addr    : tPcccAddr;
     Count   : LongInt;       {< items: 1, or the [n] of an array }
     Plan    : tPcccPlan;     {< a read of the tag alone: how its bytes decode }
@@ -65,12 +67,12 @@ type
     Block   : LongInt;       {< the block that reads it }
     First   : LongInt;       {< its first element in the data file }
     Values  : array of Double;   {< PcccPlanValues of Plan (ints and floats) }
-    Text    : ShortString;       {< an ST tag's value }
+    Text    : AnsiString;        {< an ST tag's value }
     Quality : tTagQuality;
     Known   : Boolean;       {< Values hold what a good read gave (else nothing yet) }
     TimeMs  : Int64;         {< UTC ms since 1970 of the read that gave them }
     Sent    : array of Double;   {< the values last taken by TagTakeChange }
-    SentText: ShortString;
+    SentText: AnsiString;
     SentQuality: tTagQuality;
     Queued  : Boolean;       {< in the change queue }
   end;
@@ -484,6 +486,7 @@ end;
 { Decode tag T from the data of its block (Data[0] is element B.First). }
 function Decode(var T: tPcccTag; const B: tPcccBlock; const Data: array of Byte): tChResult;
 var
+  S: ShortString;
   Ints: array of LongInt;
   Floats: array of Single;
   Off, Len, J, Size: LongInt;
@@ -491,7 +494,11 @@ begin
   Size := PcccElemSize(T.Addr.FileType);
   Off := (T.First - B.First) * Size;
   if T.Kind = pvString then
-    Exit(PcccDecodeString(Data, Off, T.Text));
+  begin
+    Result := PcccDecodeString(Data, Off, S);
+    T.Text := S;
+    Exit;
+  end;
   Ints := nil;
   Floats := nil;
   Result := res_Ok;

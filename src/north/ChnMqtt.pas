@@ -2,7 +2,10 @@
   (libmosquitto, Debian package libmosquitto1), loaded when the first
   client opens: a program that never opens one runs without it, and one
   that does on a system without it gets
-  'libmosquitto.so.1 not found (apt-get install libmosquitto1)'.
+  'libmosquitto.so.1 not found (apt-get install libmosquitto1)'. The
+  environment variable CHN_LIBMOSQUITTO names another file to load instead
+  (a libmosquitto built elsewhere: a path, or a name the loader searches);
+  the messages then name that file.
 
   One thread: the broker's socket joins the program-wide wait (ChnWait),
   so ChnWaitAny ends when the broker sent something or, while the client
@@ -17,9 +20,12 @@
   restarting) messages wait there and the oldest is dropped and counted
   (Dropped) when it is full. Once connected they are handed to the
   library in order; a QoS 1 message stays in the queue until the broker
-  acknowledged it (PUBACK), and is sent again after a reconnect when the
-  connection was lost before - so a broker restart loses nothing that fit
-  in the queue (at least once: a message may arrive twice). QoS 0
+  acknowledged it (PUBACK). One handed over when the connection was lost
+  is sent again after the reconnect by the library itself (same message
+  id, DUP set), one not yet handed over then goes out in its turn - so a
+  broker restart loses nothing that fit in the queue and sends nothing
+  twice that the broker had acknowledged (at least once: a message the
+  broker passed on just before it died may still arrive twice). QoS 0
   messages leave the queue when handed over.
 
   Connection: host and port, user name and password, TLS with a CA file
@@ -92,8 +98,10 @@ type
     Changed    : Boolean;       {< the connection state changed (MqttStep's result) }
   end;
 
-{ Load libmosquitto; True when it is there (loaded once per process). Err:
-  'libmosquitto.so.1 not found (apt-get install libmosquitto1)'. }
+{ Load libmosquitto (MqttLibName, or the file CHN_LIBMOSQUITTO names);
+  True when it is there (loaded once per process). Err:
+  'libmosquitto.so.1 not found (apt-get install libmosquitto1)', or
+  'FILE has no mosquitto_... (libmosquitto 1.6 or later is needed)'. }
 function MqttLoad(out Err: AnsiString): Boolean;
 { Settings to their defaults (Host 127.0.0.1, Port 1883, QoS 1 ...). }
 procedure MqttInit(var C: tMqttClient);
@@ -177,24 +185,29 @@ var
   mosquitto_connack_string: function(Rc: cint): PChar; cdecl;
 
 function MqttLoad(out Err: AnsiString): Boolean;
+var
+  FileName: AnsiString;
 
   function Get(const Name: AnsiString; var P): Boolean;
   begin
     Pointer(P) := GetProcedureAddress(Lib, Name);
     Result := Pointer(P) <> nil;
     if not Result then
-      Err := MqttLibName + ' has no ' + Name + ' (libmosquitto 1.6 or later is needed)';
+      Err := FileName + ' has no ' + Name + ' (libmosquitto 1.6 or later is needed)';
   end;
 
 begin
   Err := '';
   if LibInited then
     Exit(True);
+  FileName := GetEnvironmentVariable('CHN_LIBMOSQUITTO');
+  if FileName = '' then
+    FileName := MqttLibName;
   if Lib = NilHandle then
-    Lib := LoadLibrary(MqttLibName);
+    Lib := LoadLibrary(FileName);
   if Lib = NilHandle then
   begin
-    Err := MqttLibName + ' not found (apt-get install libmosquitto1)';
+    Err := FileName + ' not found (apt-get install libmosquitto1)';
     Exit(False);
   end;
   Result := Get('mosquitto_lib_init', mosquitto_lib_init) and
@@ -274,8 +287,6 @@ end;
 
 { The connection is gone (Why): try again after the back-off. }
 procedure Lost(var C: tMqttClient; const Why: AnsiString);
-var
-  I: LongInt;
 begin
   if C.State = msWaiting then
     Exit;
@@ -286,9 +297,9 @@ begin
   C.BackoffMs := C.BackoffMs * 2;
   if C.BackoffMs > MqttBackoffMaxMs then
     C.BackoffMs := MqttBackoffMaxMs;
-  { nothing handed over is acknowledged any more: send it again }
-  for I := 0 to High(C.Queue) do
-    C.Queue[I].Sent := False;
+  { what was handed over and not acknowledged stays Sent: the library
+  keeps it and sends it again itself after the reconnect, under the same
+  message id (with DUP) - publishing it again here sent it twice }
   { the library closed (or will close) the socket: out of the wait now,
     before its number can be another channel's }
   ChnWaitLeave(C.Src);
@@ -305,7 +316,8 @@ begin
   C := pMqttClient(Obj);
   if Rc <> 0 then
   begin
-    Lost(C^, 'the broker refused the connection: ' + StrPas(mosquitto_connack_string(Rc)));
+    Lost(C^, Format('the broker %s:%d refused the connection: %s',
+      [C^.Host, C^.Port, StrPas(mosquitto_connack_string(Rc))]));
     Exit;
   end;
   C^.State := msConnected;
@@ -322,7 +334,8 @@ end;
 procedure OnDisconnect(Mosq, Obj: Pointer; Rc: cint); cdecl;
 begin
   if pMqttClient(Obj)^.State <> msClosed then
-    Lost(pMqttClient(Obj)^, 'disconnected: ' + ErrText(Rc));
+    Lost(pMqttClient(Obj)^, Format('disconnected from %s:%d: %s',
+      [pMqttClient(Obj)^.Host, pMqttClient(Obj)^.Port, ErrText(Rc)]));
 end;
 
 procedure OnPublish(Mosq, Obj: Pointer; Mid: cint); cdecl;
@@ -547,9 +560,14 @@ function MqttWaitMs(const C: tMqttClient): LongInt;
 begin
   case C.State of
     msWaiting: Result := ChnWaitLeft(C.RetryAt);
-    msConnecting, msConnected:
-      { the keep-alive: loop_misc sends the ping when it is due }
+    msConnecting:
       Result := 1000;
+    msConnected:
+      { the keep-alive: loop_misc sends the ping once KeepAlive s passed
+        without traffic; looking every quarter of it sends it by 1.25
+        KeepAlive, before the broker gives up (1.5 KeepAlive), and an
+        idle program wakes no more often than that }
+      Result := C.KeepAlive * 250;
   else
     Result := High(LongInt);
   end;

@@ -107,6 +107,7 @@ type
     Name: string[31];
     Ends: array[1..LoopMaxEnds] of tLoopEnd;
     OpenCount: LongInt;
+    Top: LongInt;               {< the highest end opened so far: the loops stop there }
     Collisions: LongWord;       {< two ends began sending over each other }
     Garbled: LongWord;          {< characters that reached the ends garbled }
     Chars: QWord;               {< characters the line carried }
@@ -243,7 +244,7 @@ begin
     for I := 0 to Garbled - 1 do
       Wire[WirePos + I] := not Wire[WirePos + I];
     Inc(P^.Garbled, Garbled);
-    for L := 1 to LoopMaxEnds do
+    for L := 1 to P^.Top do
       if (L <> E) and P^.Ends[L].Open then
       begin
         Put := RingPut(P^.Ends[L].Ring, @Wire[WirePos], N);
@@ -265,7 +266,7 @@ begin
   end;
   { input for the others; for E, room (no speed) or its send done - not
     for the end whose own call moved them }
-  for L := 1 to LoopMaxEnds do
+  for L := 1 to P^.Top do
     if (L <> Caller) and P^.Ends[L].Open and
       ((L <> E) or (P^.Ends[E].CharUs = 0) or (P^.Ends[E].WireLen = 0)) then
       ChnWaitSignal(P^.Ends[L].Wait);
@@ -282,7 +283,7 @@ var
   N, Room: LongInt;
   Due: QWord;
 begin
-  for E := 1 to LoopMaxEnds do
+  for E := 1 to P^.Top do
     with P^.Ends[E] do
     begin
       if WirePos >= WireLen then
@@ -290,7 +291,7 @@ begin
       if CharUs = 0 then
       begin
         N := WireLen - WirePos;
-        for L := 1 to LoopMaxEnds do
+        for L := 1 to P^.Top do
           if (L <> E) and P^.Ends[L].Open then
           begin
             Room := RingRoom(P^.Ends[L].Ring);
@@ -315,7 +316,7 @@ begin
         if N > LoopWakeChars then
           N := LoopWakeChars;
         Due := WireAt + QWord(N) * QWord(CharUs);
-        for L := 1 to LoopMaxEnds do
+        for L := 1 to P^.Top do
           if (L <> E) and P^.Ends[L].Open then
             ChnWaitDue(P^.Ends[L].Wait, Due);
       end;
@@ -328,7 +329,7 @@ function PairNow(P: pLoopPair): QWord;
 var
   L: LongInt;
 begin
-  for L := 1 to LoopMaxEnds do
+  for L := 1 to P^.Top do
     if P^.Ends[L].Open and (P^.Ends[L].CharUs > 0) then
       Exit(ChnClockUs);
   Result := 0;
@@ -370,6 +371,8 @@ begin
     P^.Ends[EndNo].CharUs := CharUs;
     P^.Ends[EndNo].Bus := Bus;
     Inc(P^.OpenCount);
+    if EndNo > P^.Top then
+      P^.Top := EndNo;
     FPair := P;
     FEnd := EndNo;
     FOpen := True;
@@ -437,7 +440,7 @@ var
   L: LongInt;
 begin
   Result := P^.OpenCount > 2;
-  for L := 1 to LoopMaxEnds do
+  for L := 1 to P^.Top do
     if P^.Ends[L].Open and P^.Ends[L].Bus then
       Result := True;
 end;
@@ -454,7 +457,7 @@ begin
     Exit;
   with P^.Ends[E] do
     Ends := WireAt + QWord(WireLen - WirePos) * QWord(CharUs);
-  for L := 1 to LoopMaxEnds do
+  for L := 1 to P^.Top do
     if (L <> E) and P^.Ends[L].Open and (P^.Ends[L].CharUs > 0) and
       (P^.Ends[L].WirePos < P^.Ends[L].WireLen) then
       with P^.Ends[L] do

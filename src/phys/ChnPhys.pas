@@ -182,7 +182,7 @@ function LineTime(const S: tPortSettings; N, PerSecond: LongInt): LongInt;
 implementation
 
 uses
-  SysUtils, uString;
+  SysUtils, uString, ChnParam;
 
 const
   ParityLetters: array[tPortParity] of Char = ('N', 'E', 'O', 'M', 'S');
@@ -254,7 +254,7 @@ var
   Key: string;
 begin
   Key := ParamKey(S);
-  if Pos(' ' + Key + ' ', ' ' + PhysKeys + ' ') = 0 then
+  if not ParamKeyIn(Key, PhysKeys) then
     Result := inherited ChSetOneParam(S, CmdL)
   else if Key = 'LRB' then
     Result := ParamSetNum(S, 1, 1 shl 24, CmdL, CH_LRB)

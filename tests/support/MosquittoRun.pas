@@ -2,10 +2,12 @@
   mosquitto_sub / mosquitto_pub clients as the IT side.
 
   TMosquitto writes a configuration into a new temporary folder (one
-  listener on a free loopback port, anonymous clients, no persistence),
+  listener on a free loopback port, anonymous clients or the listener
+  settings given - a password file, TLS certificates -, no persistence),
   starts "mosquitto -c" and waits until the port is taken; Stop ends it by
   its PID (SIGTERM, or SIGKILL: a crash), Start brings it back on the same
-  port. TMqttSub runs mosquitto_sub -v on a topic and collects what it
+  port. MakePasswordFile and MakeTlsFiles make what such settings name
+  (with Debian's mosquitto_passwd and openssl). TMqttSub runs mosquitto_sub -v on a topic and collects what it
   printed ("topic payload" lines). A test that needs them calls
   MosquittoMissing first and skips with the reason when it says one. }
 unit MosquittoRun;
@@ -23,7 +25,9 @@ type
     FDir: string;
     FPort: Word;
   public
-    constructor Create;
+    { Listener: the lines after "listener PORT 127.0.0.1" (default:
+      anonymous clients) }
+    constructor Create(const Listener: string = 'allow_anonymous true');
     destructor Destroy; override;
     procedure Start;
     property Port: Word read FPort;
@@ -53,6 +57,13 @@ function Occurs(const Needle, S: string): LongInt;
 { Stop P (with Sig) if it still runs, and free it: the gateway tests'
   programs. }
 procedure Ended(var P: TProcess; Sig: cint);
+{ Dir/passwd with User and Password (mosquitto_passwd -b); '' or why not. }
+function MakePasswordFile(const Dir, User, Password: string): string;
+{ A CA (Dir/ca.crt) and a server certificate it signed for 127.0.0.1
+  (Dir/server.crt, Dir/server.key), made by openssl; '' or why not. The
+  key is readable by all: mosquitto started as root reads it after
+  dropping to its own user. }
+function MakeTlsFiles(const Dir: string): string;
 
 implementation
 
@@ -100,7 +111,7 @@ begin
     Result := Result + ' (Debian: apt-get install mosquitto mosquitto-clients libmosquitto1; .ci/run does)';
 end;
 
-constructor TMosquitto.Create;
+constructor TMosquitto.Create(const Listener: string);
 begin
   inherited Create;
   FDir := MakeTempDir('chn-mosquitto');
@@ -108,7 +119,7 @@ begin
   FPort := FreeLoopbackPort;
   WriteFileText(FDir + '/mosquitto.conf',
     'listener ' + IntToStr(FPort) + ' 127.0.0.1' + LineEnding +
-    'allow_anonymous true' + LineEnding +
+    Listener + LineEnding +
     'persistence false' + LineEnding +
     'log_dest stderr' + LineEnding);
   Start;
@@ -195,6 +206,44 @@ var
 begin
   Result := RunExe(Tool('mosquitto_pub'), ['-h', '127.0.0.1', '-p', IntToStr(Port), '-q', '1',
     '-t', Topic, '-m', Payload], 5000, Output);
+end;
+
+{ Run a shell script; '' or its output when it failed. }
+function Shell(const Script: string; const Args: array of string): string;
+var
+  A: array of string;
+  I: LongInt;
+  Output: string;
+begin
+  SetLength(A, Length(Args) + 2);
+  A[0] := '-c';
+  A[1] := Script;
+  for I := 0 to High(Args) do
+    A[I + 2] := Args[I];
+  if RunExe('/bin/sh', A, 30000, Output) = 0 then
+    Result := ''
+  else
+    Result := Script + ': ' + Output;
+end;
+
+function MakePasswordFile(const Dir, User, Password: string): string;
+begin
+  if Tool('mosquitto_passwd') = '' then
+    Exit('mosquitto_passwd is not installed (Debian: apt-get install mosquitto)');
+  Result := Shell('"$0" -c -b "$1/passwd" "$2" "$3" && chmod 644 "$1/passwd"',
+    [Tool('mosquitto_passwd'), Dir, User, Password]);
+end;
+
+function MakeTlsFiles(const Dir: string): string;
+begin
+  if Tool('openssl') = '' then
+    Exit('openssl is not installed (Debian: apt-get install openssl)');
+  Result := Shell('cd "$0" && ' +
+    'openssl req -x509 -newkey rsa:2048 -nodes -keyout ca.key -out ca.crt -days 2 -subj /CN=chn-test-ca && ' +
+    'openssl req -newkey rsa:2048 -nodes -keyout server.key -out server.csr -subj /CN=127.0.0.1 && ' +
+    'printf "subjectAltName=IP:127.0.0.1,DNS:localhost\n" > san.cnf && ' +
+    'openssl x509 -req -in server.csr -CA ca.crt -CAkey ca.key -CAcreateserial -out server.crt ' +
+    '-days 2 -extfile san.cnf && chmod 644 server.key', [Dir]);
 end;
 
 end.

@@ -786,6 +786,19 @@ begin
     Refuse(G, Topic_, E);
 end;
 
+{ MqttStep, and a log line when the connection came or went (why, and
+  when it is tried again). }
+procedure StepMqtt(var G: tGate);
+begin
+  MqttStep(G.Mqtt);
+  if not G.Mqtt.Changed then
+    Exit;
+  if G.Mqtt.State = msConnected then
+    Say(G, Format('MQTT %s:%d: connected', [G.Mqtt.Host, G.Mqtt.Port]))
+  else if G.Mqtt.State = msWaiting then
+    Say(G, Format('MQTT: %s (again in %d ms)', [G.Mqtt.LastError, ChnWaitLeft(G.Mqtt.RetryAt)]));
+end;
+
 { One round of IEC 101 device I; the ms it may wait. }
 function StepIec(var G: tGate; I: LongInt; Health: Boolean): LongInt;
 var
@@ -830,7 +843,7 @@ begin
   Health := Now_ >= G.HealthAt;
   if Health then
     G.HealthAt := Now_ + GateHealthMs;
-  MqttStep(G.Mqtt);
+  StepMqtt(G);
   while MqttTakeMessage(G.Mqtt, M) do
     Command(G, M);
   Result := MqttWaitMs(G.Mqtt);
@@ -866,7 +879,7 @@ begin
       Result := W;
   end;
   { what was queued in this round goes out now }
-  MqttStep(G.Mqtt);
+  StepMqtt(G);
   W := ChnWaitLeft(G.HealthAt);
   if W < Result then
     Result := W;
