@@ -18,12 +18,14 @@ type
     procedure TestGoodConfig;
     procedure TestConfigFaults;
     procedure TestTagPayloads;
+    procedure TestIec104Config;
+    procedure TestIec104Types;
   end;
 
 implementation
 
 uses
-  Math, ChnTypes, ChnLayers, ChnPcccTags, ChnJson, ChnGateway;
+  Math, ChnTypes, ChnLayers, ChnPcccTags, ChnJson, ChnGateway, ChnGate104, ChnIec101Asdu;
 
 procedure TTestChnGateway.TestJson;
 var
@@ -125,7 +127,7 @@ begin
     '"run=B3:0/5@5": the scan after @ is not a whole number 10..3600000 (ms)');
   Fault(StringReplace(Good, 'speed=F8:2', 'run=F8:2', []), 'g.conf:10: [device plc1] tags: "run" is there twice');
   Fault(Good + '[device plc1]'#10'line = NAM=DF1'#10, 'g.conf:14: [device plc1]: the section is there twice');
-  Fault(Good + '[modbus]'#10, 'g.conf:14: [modbus]: unknown section (mqtt, device NAME)');
+  Fault(Good + '[modbus]'#10, 'g.conf:14: [modbus]: unknown section (mqtt, iec104, device NAME)');
   Fault(Good + 'just words'#10, 'g.conf:14: "just words": not KEY = VALUE');
   Fault(StringReplace(Good, 'deadband = 0.5', 'deadband = -1', []),
     'g.conf:13: [device plc1] deadband: "-1" is not a number 0 or above');
@@ -177,6 +179,77 @@ begin
     D.State := tdDown;
     AssertEquals('health', '{"state":"down","requests":12,"errors":1,"retries":0,"reads_per_scan":0,' +
       '"last_error":"N7:0: no reply"}', GateHealthPayload(D));
+  finally
+    TagDeviceDone(D);
+  end;
+end;
+
+const
+  With104 = '[iec104]'#10'listen = 127.0.0.1:2404'#10'ca = 5'#10'k = 20'#10'w = 10'#10't1 = 20'#10;
+
+procedure TTestChnGateway.TestIec104Config;
+var
+  Cfg: tGateConfig;
+  E: AnsiString;
+  Many: string;
+  I: LongInt;
+begin
+  AssertTrue('good: ' + E, GateParseConfig('g.conf', Good + With104, Cfg, E));
+  AssertTrue('present', Cfg.Iec104.Present);
+  AssertEquals('ca', 5, Cfg.Iec104.Ca);
+  AssertEquals('command timeout default', 10000, Cfg.Iec104.CommandMs);
+  AssertEquals('the server''s line', 'NAM=IEC104 K=20 W=10 T1=20 NAM=TCP LISTEN=127.0.0.1:2404',
+    Gate104Line(Cfg.Iec104));
+  { N7:0[10] 10, speed 1, run 1, T4:1.ACC 1; run and speed writable: 2 command points each }
+  AssertEquals('IOAs', 13, Cfg.Devices[0].Points);
+  AssertEquals('table', 17, Cfg.Devices[0].TablePoints);
+  AssertEquals('summary', '1 devices, 4 tags, 4 reads per scan, 13 IEC 104 points', GateSummary(Cfg));
+  { IEC 104 alone: no [mqtt] needed }
+  AssertTrue('without mqtt: ' + E, GateParseConfig('g.conf', Copy(Good, Pos('[device', Good), MaxInt) + With104, Cfg, E));
+  Fault(Copy(Good, Pos('[device', Good), MaxInt), 'g.conf:0: no [mqtt] or [iec104] section: nowhere to publish');
+  Fault(Good + '[iec104]'#10'ca = 1'#10, 'g.conf:14: [iec104] listen: missing or not HOST:PORT (0.0.0.0:2404)');
+  Fault(Good + StringReplace(With104, 'ca = 5', 'ca = 0', []), 'g.conf:16: [iec104] ca: "0" is not a whole number 1..65534');
+  Fault(Good + StringReplace(With104, 'k = 20', 'k = 5', []), 'g.conf:14: [iec104]: bad parameter string: ');
+  Fault(Good + StringReplace(With104, 'k = 20', 'k = 5', []), 'W=10');
+  Fault(Good + With104 + 'x = 1'#10, 'g.conf:20: [iec104] x: unknown key (listen ca con k w t0 t1 t2 t3 command_timeout)');
+  { IOAs: plc2 from 5 overlaps plc1's 1..13 }
+  Fault(Good + With104 + '[device plc2]'#10'line = NAM=DF1 NAM=COM DEV=/dev/ttyUSB1'#10'tags = N7:0'#10'ioa = 5'#10,
+    'g.conf:23: [device plc2] ioa: IOAs 5..5 overlap those of device plc1 (1..13)');
+  AssertTrue('after them: ' + E, GateParseConfig('g.conf', Good + With104 +
+    '[device plc2]'#10'line = NAM=DF1 NAM=COM DEV=/dev/ttyUSB1'#10'tags = N7:0'#10'ioa = 14'#10, Cfg, E));
+  { more points than the server's table holds }
+  Many := '';
+  for I := 0 to 10 do
+    Many := Many + ' N7:' + IntToStr(I * 100) + '[100]';
+  Fault('[device big]'#10'line = NAM=DF1 NAM=COM DEV=/dev/ttyUSB1'#10'tags =' + Many + #10 + With104,
+    'g.conf:4: [iec104]: 1100 points (a writable tag''s commands count 2), more than 1024');
+end;
+
+{ The types of docs/chngate.md's IEC 104 table. }
+procedure TTestChnGateway.TestIec104Types;
+const
+  Tags: array[0..10] of string = ('N7:0', 'F8:0', 'B3:0/5', 'L11:0', 'S2:4', 'B3:1', 'T4:0.ACC', 'T4:0.DN',
+    'ST10:0', 'T4:1', 'N7:10[4]');
+  Types: array[0..10] of Byte = (M_ME_NB_1, M_ME_NC_1, M_SP_NA_1, M_BO_NA_1, M_BO_NA_1, M_BO_NA_1, M_ME_NB_1,
+    M_SP_NA_1, 0, M_ME_NB_1, M_ME_NB_1);
+  Commands: array[0..10] of Byte = (C_SE_NB_1, C_SE_NC_1, C_SC_NA_1, C_BO_NA_1, C_BO_NA_1, C_BO_NA_1, C_SE_NB_1,
+    C_SC_NA_1, 0, 0, 0);
+var
+  D: tPcccDevice;
+  E: ShortString;
+  I: LongInt;
+begin
+  TagDeviceInit(D, 'plc1');
+  try
+    for I := 0 to High(Tags) do
+    begin
+      AssertEquals(Tags[I] + ': ' + E, res_Ok, TagAdd(D, '', Tags[I], 500, 0, I < 8, E));
+      AssertEquals(Tags[I], Types[I], Gate104TagType(D.Tags[I]));
+      AssertEquals(Tags[I] + ' command', Commands[I], Gate104CommandType(D.Tags[I]));
+    end;
+    { one each, the string none, the whole timer 3, the array 4 }
+    AssertEquals('IOAs', 8 + 3 + 4, Gate104DevicePoints(D));
+    AssertEquals('table', 8 + 3 + 4 + 8 * 2, Gate104TablePoints(D));
   finally
     TagDeviceDone(D);
   end;

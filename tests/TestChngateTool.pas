@@ -58,7 +58,7 @@ begin
     { the example the repository ships (and make install installs) }
     Code := RunBin('chngate', ['--check', 'tools/chngate.conf'], 5000, Output);
     AssertEquals('tools/chngate.conf: exit 0'#10 + Output, 0, Code);
-    AssertEquals('tools/chngate.conf: good: 1 devices, 5 tags, 5 reads per scan' + LineEnding, Output);
+    AssertEquals('tools/chngate.conf: good: 1 devices, 5 tags, 5 reads per scan, 14 IEC 104 points' + LineEnding, Output);
     { family = plc5: PLC-5 addresses; an SLC device refuses them }
     WriteFileText(Dir + '/p.conf', '[mqtt]'#10'prefix = plant'#10#10'[device p5]'#10 +
       'line = NAM=DF1 NOD=0 DNO=1 NAM=COM DEV=/dev/ttyUSB0'#10'family = plc5'#10'tags = I:012/05 D10:0[2]'#10);

@@ -1,8 +1,9 @@
 { chngate - a gateway: DF1 PLCs (SLC 500, MicroLogix, df1sim) and IEC
-  60870-5-101 RTUs (iec101slave) south, an MQTT broker north, from one configuration file (docs/chngate.md).
+  60870-5-101 RTUs (iec101slave) south, an MQTT broker and an IEC 104
+  server north, from one configuration file (docs/chngate.md).
 
     chngate CONFIG            run until SIGINT or SIGTERM; SIGHUP reads
-                              CONFIG again (the MQTT connection stays)
+                              CONFIG again (the north connections stay)
     chngate --check CONFIG    check CONFIG and exit
 
   Every tag is polled by the tag engine (ChnPcccTags: few merged reads,
@@ -11,7 +12,10 @@
   retained; PREFIX/DEVICE/$health holds the device's state and counters;
   PREFIX/DEVICE/TAG/set writes a writable tag; PREFIX/$gateway/status is
   online, or offline (the broker's last will when the gateway vanished).
-  One thread: every line and the broker's socket in one ChnWaitAny. }
+  With [iec104], every tag is a point of an IEC 60870-5-104 server
+  (interrogation, spontaneous events with CP56 time, commands confirmed
+  when the PLC confirmed the write). One thread: every line, the
+  broker's socket and the IEC 104 connections in one ChnWaitAny. }
 program chngate;
 
 {$MODE OBJFPC}{$H+}
@@ -61,7 +65,8 @@ begin
   CliInit(Cli, 'chngate', '[--check] CONFIG',
     'A gateway: reads the tags of DF1 PLCs (SLC 500, MicroLogix, PLC-5, df1sim) with few merged ' +
     'requests and the points of IEC 60870-5-101 RTUs (line = NAM=FT1_2 ..., polled by an IEC 101 ' +
-    'master) and publishes their changes to an MQTT broker, from one INI configuration ' +
+    'master) and publishes their changes to an MQTT broker and serves them to IEC 104 control ' +
+    'centres, from one INI configuration ' +
     'file (docs/chngate.md); runs until SIGINT or SIGTERM, SIGHUP reads the configuration again.');
   CliOption(Cli, 'check', #0, '', 'check the configuration, print a summary and exit');
   CliEpilog(Cli, 'Topics:' + LineEnding +
@@ -70,9 +75,13 @@ begin
     '  PREFIX/DEVICE/TAG/set     a number, true or false: written to a writable tag' + LineEnding +
     '  PREFIX/$gateway/status    online, or offline (the last will)' + LineEnding +
     '  PREFIX/$gateway/error     a refused command and why' + LineEnding + LineEnding +
+    'IEC 104 ([iec104] listen = HOST:PORT): one point per tag item from the device''s ioa =; ' +
+    'bits M_SP_NA_1, words M_ME_NB_1, floats M_ME_NC_1, L and bit words M_BO_NA_1 (events with ' +
+    'CP56 time); a set point to a writable tag is confirmed when the PLC confirmed the write.' +
+    LineEnding + LineEnding +
     'Example:' + LineEnding + '  chngate --check /etc/chngate.conf' + LineEnding);
   CliExit(Cli, 0, 'ended by SIGINT or SIGTERM, or --check found the configuration good');
-  CliExit(Cli, 1, 'libmosquitto is missing');
+  CliExit(Cli, 1, 'libmosquitto is missing, or the IEC 104 port cannot be taken');
   CliExit(Cli, 2, 'a command-line error, or the configuration is bad (FILE:LINE: [section] key: why); ' +
     'nothing was opened');
   CliParse(Cli);
@@ -98,7 +107,12 @@ begin
     LogLine(Err);
     CliEnd(1);
   end;
-  LogLine(Format('%s: %s; MQTT %s:%d, prefix %s', [Name, GateSummary(Cfg), Cfg.Host, Cfg.Port, Cfg.Prefix]));
+  if Cfg.Mqtt then
+    LogLine(Format('%s: %s; MQTT %s:%d, prefix %s', [Name, GateSummary(Cfg), Cfg.Host, Cfg.Port, Cfg.Prefix]))
+  else
+    LogLine(Format('%s: %s', [Name, GateSummary(Cfg)]));
+  if Cfg.Iec104.Present then
+    LogLine(Format('IEC 104 server on %s, CA %d', [Cfg.Iec104.Listen, Cfg.Iec104.Ca]));
   while not Stop do
   begin
     ChnWaitAny(GateStep(G));

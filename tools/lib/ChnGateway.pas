@@ -2,8 +2,9 @@
   read with FCL's IniFiles, checked completely before anything is opened:
   every fault is "FILE:LINE: [section] key: what is wrong") and the loop
   that joins the south devices (DF1 PLCs through the tag engine,
-  ChnPcccTags) to the north (MQTT through ChnMqtt), all in one
-  ChnWaitAny. docs/chngate.md is the reference. }
+  ChnPcccTags) to the north (MQTT through ChnMqtt, an IEC 104 server
+  through ChnGate104), all in one ChnWaitAny. docs/chngate.md is the
+  reference. }
 unit ChnGateway;
 
 {$I chn.inc}
@@ -11,7 +12,7 @@ unit ChnGateway;
 interface
 
 uses
-  Classes, SysUtils, ChnTypes, ChnPccc, ChnPcccTags, ChnMqtt, ChnGateIec101;
+  Classes, SysUtils, ChnTypes, ChnPccc, ChnPcccTags, ChnMqtt, ChnGate104, ChnGateIec101;
 
 const
   GateHealthMs = 10000;     { $health is published on every change and this often }
@@ -33,6 +34,8 @@ type
     TimeoutMs: LongInt;
     Ioa      : LongInt;
     Plc5     : Boolean;      { family = plc5: PLC-5 addresses and commands }
+    Points   : LongInt;      { IOAs its tags take on the IEC 104 server }
+    TablePoints: LongInt;    { points of the server's table, commands included }
     Tags     : array of tGateTagCfg;
     Iec      : Boolean;      { NAM=FT1_2: an IEC 101 device (ChnGateIec101) }
     Iec101   : tGateIecCfg;
@@ -51,6 +54,7 @@ type
     Queue    : LongInt;
     ClientId : AnsiString;
     KeepAlive: LongInt;
+    Iec104   : tGate104Cfg;  { the [iec104] section }
     Devices  : array of tGateDeviceCfg;
   end;
 
@@ -62,6 +66,7 @@ type
     Iecs   : array of pGateIecDevice;  { the IEC 101 devices (nil for a DF1 one) }
     OpenAt : array of QWord;      { when a device whose line failed is opened again }
     Mqtt   : tMqttClient;
+    N104   : tGate104;
     HealthAt: QWord;
     Log    : tGateLog;
     WriteId: LongInt;
@@ -76,12 +81,13 @@ function GateParseConfig(const FileName, Text: AnsiString; out Cfg: tGateConfig;
 { 'N devices, M tags, R reads per scan' of a checked configuration. }
 function GateSummary(const Cfg: tGateConfig): AnsiString;
 
-{ Open the north (MQTT) and the devices of Cfg. False with Err when the
-  MQTT library is missing; a device whose line cannot be opened is down
-  and opened again every DEMOTE ms. }
+{ Open the north (MQTT, the IEC 104 server) and the devices of Cfg. False
+  with Err when the MQTT library is missing or the IEC 104 port cannot be
+  taken; a device whose line cannot be opened is down and opened again
+  every DEMOTE ms. }
 function GateStart(var G: tGate; const Cfg: tGateConfig; out Err: AnsiString): Boolean;
 { A new configuration (SIGHUP): the devices are closed and opened anew,
-  the north connection stays. }
+  the north connections stay (the IEC 104 point table is built anew). }
 procedure GateReload(var G: tGate; const Cfg: tGateConfig);
 { One round: step everything, publish what changed, apply commands.
   Returns the ms the program may wait (ChnWaitAny) before the next. }
@@ -97,7 +103,7 @@ function GateHealthPayload(const D: tPcccDevice): AnsiString;
 implementation
 
 uses
-  IniFiles, StrUtils, ChnWait, ChnPcccClient, ChnJson, ChnCli, ChnIecPointTable;
+  IniFiles, StrUtils, Math, ChnWait, ChnPcccClient, ChnJson, ChnCli, ChnIec101Slave, ChnIecPointTable;
 
 { ------------------------------------------------------------ configuration }
 
@@ -137,8 +143,12 @@ end;
 procedure Bad(var C: tChecker; const Section, Key, Why: AnsiString);
 var
   Where: AnsiString;
+  Line: LongInt;
 begin
-  Where := C.FileName + ':' + IntToStr(LineOf(C, Section, Key)) + ': [' + Section + ']';
+  Line := LineOf(C, Section, Key);
+  if Line = 0 then
+    Line := LineOf(C, Section, '');      { a key missing: its section }
+  Where := C.FileName + ':' + IntToStr(Line) + ': [' + Section + ']';
   if Key <> '' then
     Where := Where + ' ' + Key;
   C.Errors := C.Errors + Where + ': ' + Why + LineEnding;
@@ -151,6 +161,7 @@ const
   MqttKeys = ' host port prefix qos user password tls ca queue client_id keepalive ';
   DeviceKeys = ' line family tags scan write deadband demote fails timeout ioa ' +
     'slaves ca cot_size ca_size ioa_size points gi cycle ';
+  Iec104Keys = ' listen ca con k w t0 t1 t2 t3 command_timeout ';
 var
   I, Eq: LongInt;
   S, Sec, Key, Keys: AnsiString;
@@ -183,14 +194,10 @@ begin
         else if (LowerCase(Copy(Sec, 1, 7)) = 'device ') and (Trim(Copy(Sec, 8, MaxInt)) <> '') then
           Keys := DeviceKeys
         else if LowerCase(Sec) = 'iec104' then
-        begin
-          C.Errors := C.Errors + Format('%s:%d: [%s]: IEC 104 north is not in this version of chngate',
-            [C.FileName, I + 1, Sec]) + LineEnding;
-          Keys := '*';
-        end
+          Keys := Iec104Keys
         else
         begin
-          C.Errors := C.Errors + Format('%s:%d: [%s]: unknown section (mqtt, device NAME)',
+          C.Errors := C.Errors + Format('%s:%d: [%s]: unknown section (mqtt, iec104, device NAME)',
             [C.FileName, I + 1, Sec]) + LineEnding;
           Keys := '*';
         end;
@@ -275,6 +282,66 @@ begin
     Bad(C, S, 'ca', '"' + Cfg.CaFile + '": no such file or directory');
   if (Cfg.Password <> '') and (Cfg.User = '') then
     Bad(C, S, 'password', 'given without user');
+end;
+
+procedure ReadIec104(var C: tChecker; Ini: TMemIniFile; var Cfg: tGateConfig);
+const
+  S = 'iec104';
+  { the keys NAM=IEC104 takes as they are, and their largest values }
+  Keys: array[0..6] of string[3] = ('con', 'k', 'w', 't0', 't1', 't2', 't3');
+  Most: array[0..6] of LongInt = (16, 32767, 32767, 255, 255, 255, 172800);
+var
+  N: tGate104Cfg;
+  Why: AnsiString;
+  I, V: LongInt;
+begin
+  N.Present := Ini.SectionExists(S);
+  N.Listen := Trim(Ini.ReadString(S, 'listen', ''));
+  N.Ca := Num(C, Ini, S, 'ca', 1, 65534, 1);
+  N.CommandMs := Num(C, Ini, S, 'command_timeout', 100, 600000, Gate104CommandMsDefault);
+  N.Params := '';
+  for I := 0 to High(Keys) do
+  begin
+    V := Num(C, Ini, S, Keys[I], 1, Most[I], 0);
+    if V > 0 then
+      N.Params := N.Params + UpperCase(Keys[I]) + '=' + IntToStr(V) + ' ';
+  end;
+  Cfg.Iec104 := N;
+  if not N.Present then
+    Exit;
+  if Pos(':', N.Listen) = 0 then
+    Bad(C, S, 'listen', 'missing or not HOST:PORT (0.0.0.0:2404)')
+  else
+  begin
+    Why := CliParamsProblem(Gate104Line(N), 'IEC104');
+    if Why <> '' then
+      Bad(C, S, '', Why);
+  end;
+end;
+
+{ The IEC 104 IOAs of the devices: within 1..16777215, none twice, the
+  table within the slave's points. }
+procedure CheckIoas(var C: tChecker; const Cfg: tGateConfig);
+var
+  I, J, Total: LongInt;
+begin
+  Total := 0;
+  for I := 0 to High(Cfg.Devices) do
+    with Cfg.Devices[I] do
+    begin
+      Inc(Total, TablePoints);
+      if Ioa + Points - 1 > 16777215 then
+        Bad(C, 'device ' + Name, 'ioa', Format('%d + %d points runs past IOA 16777215', [Ioa, Points]));
+      for J := 0 to I - 1 do
+        if (Points > 0) and (Cfg.Devices[J].Points > 0) and (Ioa <= Cfg.Devices[J].Ioa + Cfg.Devices[J].Points - 1) and
+           (Cfg.Devices[J].Ioa <= Ioa + Points - 1) then
+          Bad(C, 'device ' + Name, 'ioa', Format('IOAs %d..%d overlap those of device %s (%d..%d)',
+            [Ioa, Ioa + Points - 1, Cfg.Devices[J].Name, Cfg.Devices[J].Ioa,
+             Cfg.Devices[J].Ioa + Cfg.Devices[J].Points - 1]));
+    end;
+  if Total > IecSlaveMaxPoints then
+    C.Errors := C.Errors + Format('%s:%d: [iec104]: %d points (a writable tag''s commands count 2), more than %d',
+      [C.FileName, LineOf(C, 'iec104', ''), Total, IecSlaveMaxPoints]) + LineEnding;
 end;
 
 function Deadband(var C: tChecker; Ini: TMemIniFile; const Sec: AnsiString): Double;
@@ -456,8 +523,13 @@ begin
     else if (Probe.Tags[K].Kind = pvString) or (PcccPlanValues(Probe.Tags[K].Plan) <> 1) then
       Bad(C, Sec, 'write', '"' + W + '": only a tag of one integer, bit or float can be written')
     else
+    begin
       D.Tags[K].Writable := True;
+      Probe.Tags[K].Writable := True;
+    end;
   end;
+  D.Points := Gate104DevicePoints(Probe);
+  D.TablePoints := Gate104TablePoints(Probe);
 end;
 
 function GateParseConfig(const FileName, Text: AnsiString; out Cfg: tGateConfig;
@@ -485,6 +557,7 @@ begin
     Ini := TMemIniFile.Create('');
     Ini.SetStrings(C.Lines);
     ReadMqtt(C, Ini, Cfg);
+    ReadIec104(C, Ini, Cfg);
     Ini.ReadSections(Secs);
     for Sec in Secs do
       if (LowerCase(Copy(Sec, 1, 7)) = 'device ') and (Trim(Copy(Sec, 8, MaxInt)) <> '') then
@@ -498,8 +571,10 @@ begin
       end;
     if (C.Errors = '') and (Length(Cfg.Devices) = 0) then
       C.Errors := FileName + ':0: no [device NAME] section: nothing to read' + LineEnding;
-    if (C.Errors = '') and not Cfg.Mqtt then
-      C.Errors := FileName + ':0: no [mqtt] section: nowhere to publish' + LineEnding;
+    if Cfg.Iec104.Present then
+      CheckIoas(C, Cfg);
+    if (C.Errors = '') and not Cfg.Mqtt and not Cfg.Iec104.Present then
+      C.Errors := FileName + ':0: no [mqtt] or [iec104] section: nowhere to publish' + LineEnding;
   finally
     Ini.Free;
     Secs.Free;
@@ -576,6 +651,13 @@ begin
   Result := Format('%d devices, %d tags, %d reads per scan', [Length(Cfg.Devices), Tags, Reads]);
   if Slaves > 0 then
     Result := Result + Format(', %d IEC 101 slaves', [Slaves]);
+  if Cfg.Iec104.Present then
+  begin
+    Tags := 0;
+    for D in Cfg.Devices do
+      Inc(Tags, D.Points);
+    Result := Result + Format(', %d IEC 104 points', [Tags]);
+  end;
 end;
 
 { ------------------------------------------------------------ payloads }
@@ -680,6 +762,25 @@ begin
   end;
 end;
 
+{ The IEC 104 point table of the devices (when the server runs). }
+procedure Build104(var G: tGate; Reload: Boolean);
+var
+  Bases: array of LongInt;
+  I: LongInt;
+begin
+  SetLength(Bases, Length(G.Devs));
+  for I := 0 to High(Bases) do
+    Bases[I] := G.Cfg.Devices[I].Ioa;
+  Gate104Build(G.N104, G.Devs, Bases, Reload);
+end;
+
+{ Publish on MQTT, when the gateway has it. }
+procedure Publish(var G: tGate; const Topic_, Payload: AnsiString; Retain: Boolean);
+begin
+  if G.Cfg.Mqtt then
+    MqttPublish(G.Mqtt, Topic_, Payload, Retain);
+end;
+
 procedure CloseDevices(var G: tGate);
 var
   I: LongInt;
@@ -712,13 +813,22 @@ begin
   G.Mqtt.WillTopic := Cfg.Prefix + '/$gateway/status';
   G.Mqtt.WillPayload := 'offline';
   G.Mqtt.OnlinePayload := 'online';
-  Result := MqttOpen(G.Mqtt, Err);
+  Result := not Cfg.Mqtt or MqttOpen(G.Mqtt, Err);
   if not Result then
     Exit;
-  { PREFIX/DEVICE/TAG/set, also for tags with a '/' (B3:0/5) }
-  MqttSubscribe(G.Mqtt, Cfg.Prefix + '/+/+/set');
-  MqttSubscribe(G.Mqtt, Cfg.Prefix + '/+/+/+/set');
+  if Cfg.Mqtt then
+  begin
+    { PREFIX/DEVICE/TAG/set, also for tags with a '/' (B3:0/5) }
+    MqttSubscribe(G.Mqtt, Cfg.Prefix + '/+/+/set');
+    MqttSubscribe(G.Mqtt, Cfg.Prefix + '/+/+/+/set');
+  end;
+  if Cfg.Iec104.Present and not Gate104Open(G.N104, Cfg.Iec104, G.Log, Err) then
+  begin
+    MqttClose(G.Mqtt);
+    Exit(False);
+  end;
   OpenDevices(G);
+  Build104(G, False);
   G.HealthAt := GetTickCount64 + GateHealthMs;
 end;
 
@@ -727,12 +837,13 @@ begin
   CloseDevices(G);
   G.Cfg.Devices := Cfg.Devices;
   OpenDevices(G);
+  Build104(G, True);
 end;
 
 procedure Refuse(var G: tGate; const Topic_, Why: AnsiString);
 begin
   Say(G, 'refused ' + Topic_ + ': ' + Why);
-  MqttPublish(G.Mqtt, G.Cfg.Prefix + '/$gateway/error',
+  Publish(G, G.Cfg.Prefix + '/$gateway/error',
     '{"topic":' + JsonString(Topic_) + ',"error":' + JsonString(Why) + '}', False);
 end;
 
@@ -813,7 +924,7 @@ begin
   else
     Result := GateIecWaitMs(D);
   while IecTableTakeChange(D^.T, P) do
-    MqttPublish(G.Mqtt, Topic(G, D^.Name, GateIecPointName(D, P)), GateIecPointPayload(D^.T.Points[P]), True);
+    Publish(G, Topic(G, D^.Name, GateIecPointName(D, P)), GateIecPointPayload(D^.T.Points[P]), True);
   while IecTableTakeWrite(D^.T, Wr) do
   begin
     Name := Topic(G, D^.Name, GateIecPointName(D, Wr.Point)) + '/set';
@@ -828,7 +939,7 @@ begin
     Health := True;
   end;
   if Health then
-    MqttPublish(G.Mqtt, Topic(G, D^.Name, '$health'), GateIecHealthPayload(D), True);
+    Publish(G, Topic(G, D^.Name, '$health'), GateIecHealthPayload(D), True);
 end;
 
 function GateStep(var G: tGate): LongInt;
@@ -847,6 +958,9 @@ begin
   while MqttTakeMessage(G.Mqtt, M) do
     Command(G, M);
   Result := MqttWaitMs(G.Mqtt);
+  { the control centre's requests and commands, before the devices' step }
+  if G.Cfg.Iec104.Present then
+    Result := Min(Result, Gate104Step(G.N104, G.Devs));
   for I := 0 to High(G.Devs) do
   begin
     if G.Iecs[I] <> nil then
@@ -860,18 +974,21 @@ begin
       OpenDevice(G, I);
     TagDeviceStep(G.Devs[I]);
     while TagTakeChange(G.Devs[I], Tag) do
-      MqttPublish(G.Mqtt, Topic(G, G.Devs[I].Name, G.Devs[I].Tags[Tag].Name),
-        GateTagPayload(G.Devs[I].Tags[Tag]), True);
+    begin
+      Publish(G, Topic(G, G.Devs[I].Name, G.Devs[I].Tags[Tag].Name), GateTagPayload(G.Devs[I].Tags[Tag]), True);
+      Gate104Change(G.N104, G.Devs, I, Tag);
+    end;
     while TagTakeWrite(G.Devs[I], Wr) do
-      if Wr.Res <> res_Ok then
+      if not Gate104WriteDone(G.N104, Wr) and (Wr.Res <> res_Ok) then
         Refuse(G, Topic(G, G.Devs[I].Name, G.Devs[I].Tags[Wr.Tag].Name) + '/set', Wr.Err);
     if TagTakeHealth(G.Devs[I]) then
     begin
       Say(G, G.Devs[I].Name + ': ' + TagStateNames[G.Devs[I].State] + ' ' + G.Devs[I].LastError);
-      MqttPublish(G.Mqtt, Topic(G, G.Devs[I].Name, '$health'), GateHealthPayload(G.Devs[I]), True);
+      Publish(G, Topic(G, G.Devs[I].Name, '$health'), GateHealthPayload(G.Devs[I]), True);
+      Gate104Health(G.N104, G.Devs, I);
     end
     else if Health then
-      MqttPublish(G.Mqtt, Topic(G, G.Devs[I].Name, '$health'), GateHealthPayload(G.Devs[I]), True);
+      Publish(G, Topic(G, G.Devs[I].Name, '$health'), GateHealthPayload(G.Devs[I]), True);
     W := TagDeviceWaitMs(G.Devs[I]);
     if G.OpenAt[I] <> 0 then
       W := ChnWaitLeft(G.OpenAt[I]);
@@ -880,6 +997,8 @@ begin
   end;
   { what was queued in this round goes out now }
   StepMqtt(G);
+  if G.Cfg.Iec104.Present then
+    Result := Min(Result, Gate104Step(G.N104, G.Devs));
   W := ChnWaitLeft(G.HealthAt);
   if W < Result then
     Result := W;
@@ -901,6 +1020,7 @@ begin
     end;
   end;
   MqttClose(G.Mqtt);
+  Gate104Close(G.N104);
 end;
 
 end.

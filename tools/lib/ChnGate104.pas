@@ -1,0 +1,543 @@
+{ ChnGate104 - the IEC 60870-5-104 north of tools/chngate: one point
+  table for every south device, served by the library's IEC 101 slave
+  (ChnIec101Slave) over NAM=IEC104 - one application layer, the same
+  procedures as on a serial line (interrogation, read, clock
+  synchronisation, commands with select and execute).
+
+  Points (docs/chngate.md, "IEC 104"): each item of a DF1 tag is one
+  point, IOAs consecutive from the device's ioa= in tag order (an array
+  N7:0[10] takes ten, a whole timer three: control word, PRE, ACC; a
+  string tag none):
+    a bit (B3:0/5, T4:0.DN ...)          M_SP_NA_1, events M_SP_TB_1
+    a signed word (N, T/C/R words)       M_ME_NB_1 scaled, events M_ME_TE_1
+    a float (F)                          M_ME_NC_1, events M_ME_TF_1
+    a 32-bit integer (L), a word of
+    bits (B, S, I, O, A)                 M_BO_NA_1 bitstring, events M_BO_TB_1
+  The quality comes from the tag and its device's health: good 0; the
+  device did not answer (down) IV; demoted IV + NT (not tried at its
+  rate); refused by the PLC IV; not read yet IV + NT.
+
+  Commands: a writable tag has command points at its IOA (C_SC_NA_1 /
+  C_SC_TA_1 for a bit, C_SE_NB_1 / C_SE_TB_1 for a word, C_SE_NC_1 /
+  C_SE_TC_1 for a float, C_BO_NA_1 / C_BO_TA_1 for a bitstring); an
+  execute becomes a PCCC write (ChnPcccTags) and its ACT_CON is deferred
+  (IecSlaveDefer) until the PLC confirmed the write - negative when it
+  refused, did not answer, or the command waited longer than
+  CommandMs. A select is confirmed at once (nothing reaches the PLC). A
+  command to any other IOA or of another type is refused by the slave
+  with COT 47 (unknown IOA). }
+unit ChnGate104;
+
+{$I chn.inc}
+
+interface
+
+uses
+  ChnTypes, ChnVirt, ChnPcccTags, ChnIec101Asdu, ChnIec101Slave;
+
+const
+  Gate104CommandMsDefault = 10000;
+  Gate104PortDefault      = 2404;
+
+type
+  tGate104Log = procedure(const Line: AnsiString);
+
+  { The [iec104] section. }
+  tGate104Cfg = record
+    Present  : Boolean;
+    Listen   : AnsiString;   {< HOST:PORT }
+    Ca       : LongInt;      {< common address of ASDU }
+    Params   : AnsiString;   {< K= W= T0= .. CON= given, for NAM=IEC104 }
+    CommandMs: LongInt;      {< longest wait for the device's confirmation }
+  end;
+
+  { One point and where its value comes from. }
+  tGate104Point = record
+    Ioa   : LongWord;
+    Ti    : Byte;            {< monitoring type }
+    Cmd   : Byte;            {< command type without time tag, 0: not writable }
+    Dev, Tag, Item: LongInt; {< the device, its tag, the item of the tag }
+    Sent  : Double;          {< value and quality the slave's table has }
+    SentQ : Byte;
+  end;
+
+  { A command passed south, waiting for its device. }
+  tGate104Pending = record
+    Ticket : LongWord;       {< the slave's deferred confirmation }
+    WriteId: LongInt;        {< the tag engine's write (negative: ours) }
+    Until_ : QWord;          {< refused when the device has not answered by then }
+    What   : AnsiString;
+  end;
+
+  tGate104 = record
+    Cfg     : tGate104Cfg;
+    Chn     : pChnVirt;
+    S       : pIecSlaveStation;
+    Points  : array of tGate104Point;
+    Pending : array of tGate104Pending;
+    NextId  : LongInt;
+    Devs    : pPcccDevice;   {< the devices while Gate104Step runs the slave }
+    DevCount: LongInt;
+    Log     : tGate104Log;
+    Commands, Confirmed, Refused, TimedOut: LongInt;
+  end;
+
+{ The monitoring type of a DF1 tag's items; 0: none (a string). }
+function Gate104TagType(const T: tPcccTag): Byte;
+{ The command type (without time tag) of a writable tag; 0 when it is not. }
+function Gate104CommandType(const T: tPcccTag): Byte;
+{ IOAs a device's tags take. }
+function Gate104DevicePoints(const D: tPcccDevice): LongInt;
+{ Points of the slave's table a device needs (monitoring and command). }
+function Gate104TablePoints(const D: tPcccDevice): LongInt;
+{ The parameter string of the server: 'NAM=IEC104 ... NAM=TCP LISTEN=...'. }
+function Gate104Line(const Cfg: tGate104Cfg): AnsiString;
+
+{ Open the server (listening; a control centre may connect from now on).
+  False with Err when the port cannot be taken. }
+function Gate104Open(var N: tGate104; const Cfg: tGate104Cfg; Log: tGate104Log; out Err: AnsiString): Boolean;
+{ The point table of Devs, IOAs from Bases[i]; again after a reload: the
+  commands waiting are refused, the slave starts anew on the same
+  connection and says so (end of initialisation, COI 1 + local change). }
+procedure Gate104Build(var N: tGate104; const Devs: array of tPcccDevice; const Bases: array of LongInt;
+  Reload: Boolean);
+{ Tag Tag of device Dev changed: its points get the new values and
+  quality, as spontaneous events. }
+procedure Gate104Change(var N: tGate104; const Devs: array of tPcccDevice; Dev, Tag: LongInt);
+{ Device Dev's state changed: the quality of its points. }
+procedure Gate104Health(var N: tGate104; const Devs: array of tPcccDevice; Dev: LongInt);
+{ A write finished (ChnPcccTags.TagTakeWrite): True when it was one of
+  the server's commands (its ACT_CON has been queued, or it had timed out). }
+function Gate104WriteDone(var N: tGate104; const W: tTagWrite): Boolean;
+{ Serve the control centre: requests, commands to the devices, commands
+  that waited too long. The ms the program may wait (ChnWaitAny). }
+function Gate104Step(var N: tGate104; var Devs: array of tPcccDevice): LongInt;
+{ Refuse what waits and close the server. }
+procedure Gate104Close(var N: tGate104);
+
+implementation
+
+uses
+  SysUtils, ChnPccc, ChnWait, ChnIec104;
+
+function Gate104TagType(const T: tPcccTag): Byte;
+begin
+  if T.Kind = pvString then
+    Result := 0
+  else if TagIsBit(T) then
+    Result := M_SP_NA_1
+  else if T.Kind = pvFloat then
+    Result := M_ME_NC_1
+  else if (T.Addr.FileType = pft_Long) or
+     (not T.Addr.HasSub and (T.Addr.FileType in [pft_Bit, pft_Status, pft_Input, pft_Output, pft_Ascii])) then
+    Result := M_BO_NA_1
+  else
+    Result := M_ME_NB_1;
+end;
+
+function Gate104CommandType(const T: tPcccTag): Byte;
+begin
+  Result := 0;
+  if not T.Writable then
+    Exit;
+  case Gate104TagType(T) of
+    M_SP_NA_1: Result := C_SC_NA_1;
+    M_ME_NB_1: Result := C_SE_NB_1;
+    M_ME_NC_1: Result := C_SE_NC_1;
+    M_BO_NA_1: Result := C_BO_NA_1;
+  end;
+end;
+
+{ The time-tagged (CP56) form of a monitoring or command type. }
+function TimeTagged(Ti: Byte): Byte;
+begin
+  case Ti of
+    M_SP_NA_1: Result := M_SP_TB_1;
+    M_ME_NB_1: Result := M_ME_TE_1;
+    M_ME_NC_1: Result := M_ME_TF_1;
+    M_BO_NA_1: Result := M_BO_TB_1;
+    C_SC_NA_1: Result := C_SC_TA_1;
+    C_SE_NB_1: Result := C_SE_TB_1;
+    C_SE_NC_1: Result := C_SE_TC_1;
+    C_BO_NA_1: Result := C_BO_TA_1;
+  else
+    Result := Ti;
+  end;
+end;
+
+function Gate104DevicePoints(const D: tPcccDevice): LongInt;
+var
+  I: LongInt;
+begin
+  Result := 0;
+  for I := 0 to High(D.Tags) do
+    if Gate104TagType(D.Tags[I]) <> 0 then
+      Inc(Result, Length(D.Tags[I].Values));
+end;
+
+function Gate104TablePoints(const D: tPcccDevice): LongInt;
+var
+  I: LongInt;
+begin
+  Result := Gate104DevicePoints(D);
+  for I := 0 to High(D.Tags) do
+    if Gate104CommandType(D.Tags[I]) <> 0 then
+      Inc(Result, 2);
+end;
+
+function Gate104Line(const Cfg: tGate104Cfg): AnsiString;
+begin
+  Result := Trim('NAM=IEC104 ' + Cfg.Params) + ' NAM=TCP LISTEN=' + Cfg.Listen;
+end;
+
+procedure Say(const N: tGate104; const S: AnsiString);
+begin
+  if Assigned(N.Log) then
+    N.Log('iec104: ' + S);
+end;
+
+{ The quality bits of a tag's points. }
+function PointQuality(const D: tPcccDevice; const T: tPcccTag): Byte;
+begin
+  case T.Quality of
+    tqGood: Result := 0;
+    tqBad:
+      if D.State = tdDemoted then
+        Result := Q_Invalid or Q_NotTopical
+      else
+        Result := Q_Invalid;
+    tqRefused: Result := Q_Invalid;
+  else
+    Result := Q_Invalid or Q_NotTopical;      { not read yet }
+  end;
+end;
+
+{ Item K of T as an object of type Ti (the IOA is the caller's). }
+function PointObject(Ti: Byte; const T: tPcccTag; K: LongInt; Quality: Byte): tIecObject;
+var
+  V: Double;
+begin
+  Result := IecObject(0);
+  Result.Quality := Quality;
+  V := 0;
+  if K <= High(T.Values) then
+    V := T.Values[K];
+  case Ti of
+    M_SP_NA_1: Result.Int := Ord(V <> 0);
+    M_ME_NC_1: Result.Number := V;
+    M_BO_NA_1: Result.Bits := LongWord(LongInt(Round(V)));
+  else
+    Result.Int := Round(V);
+  end;
+end;
+
+function OnCommand(Data: Pointer; const H: tIecAsdu; const O: tIecObject): Boolean; forward;
+
+{ The IEC104 stack of Line, opened and listening; nil with Err. }
+function OpenServer(const Line: AnsiString; out Err: AnsiString): pChnVirt;
+begin
+  Err := '';
+  Result := ChnCollection^.ChNewInit(ChnIec104.cName);
+  Result^.ChSetParam(Line);
+  if Result^.ChResult = res_Ok then
+    Result^.ChOpen;
+  if Result^.ChResult = res_Ok then
+    Result^.ChConnect;
+  if Result^.ChResult <> res_Ok then
+  begin
+    Err := Line + ': ' + Result^.ChErrorText;
+    Dispose(Result, Done);
+    Result := nil;
+  end;
+end;
+
+function Gate104Open(var N: tGate104; const Cfg: tGate104Cfg; Log: tGate104Log; out Err: AnsiString): Boolean;
+var
+  E: ShortString;
+begin
+  Finalize(N);
+  FillChar(N, SizeOf(N), 0);
+  N.Cfg := Cfg;
+  N.Log := Log;
+  N.Chn := OpenServer(Gate104Line(Cfg), Err);
+  if N.Chn = nil then
+    Exit(False);
+  New(N.S);
+  if IecSlaveInit(N.S^, N.Chn, IecDefaultParams, Cfg.Ca, E) <> res_Ok then
+  begin
+    Err := E;
+    Gate104Close(N);
+    Exit(False);
+  end;
+  Result := True;
+end;
+
+procedure Gate104Build(var N: tGate104; const Devs: array of tPcccDevice; const Bases: array of LongInt;
+  Reload: Boolean);
+var
+  D, T, K, P: LongInt;
+  Ti, Cmd: Byte;
+  O: tIecObject;
+  E: ShortString;
+begin
+  if N.S = nil then
+    Exit;
+  for P := 0 to High(N.Pending) do
+    IecSlaveConfirm(N.S^, N.Pending[P].Ticket, False);
+  N.Pending := nil;
+  N.Points := nil;
+  if Reload then
+    IecSlaveInit(N.S^, N.Chn, IecDefaultParams, N.Cfg.Ca, E);
+  N.S^.OnCommand := @OnCommand;
+  N.S^.Data := @N;
+  for D := 0 to High(Devs) do
+  begin
+    P := Bases[D];
+    for T := 0 to High(Devs[D].Tags) do
+    begin
+      Ti := Gate104TagType(Devs[D].Tags[T]);
+      if Ti = 0 then
+        Continue;
+      Cmd := Gate104CommandType(Devs[D].Tags[T]);
+      for K := 0 to High(Devs[D].Tags[T].Values) do
+      begin
+        SetLength(N.Points, Length(N.Points) + 1);
+        with N.Points[High(N.Points)] do
+        begin
+          Ioa := P;
+          Dev := D;
+          Tag := T;
+          Item := K;
+          SentQ := PointQuality(Devs[D], Devs[D].Tags[T]);
+          Sent := 0;
+          if K <= High(Devs[D].Tags[T].Values) then
+            Sent := Devs[D].Tags[T].Values[K];
+        end;
+        N.Points[High(N.Points)].Ti := Ti;
+        N.Points[High(N.Points)].Cmd := Cmd;
+        O := PointObject(Ti, Devs[D].Tags[T], K, N.Points[High(N.Points)].SentQ);
+        O.Ioa := P;
+        if (IecSlaveAddPoint(N.S^, Ti, O, 0, E) <> res_Ok) or
+           (IecSlaveEventType(N.S^, P, TimeTagged(Ti), E) <> res_Ok) then
+          Say(N, Devs[D].Name + ' ' + Devs[D].Tags[T].Name + ': ' + E);
+        if Cmd <> 0 then
+        begin
+          IecSlaveAddPoint(N.S^, Cmd, IecObject(P), 0, E);
+          IecSlaveAddPoint(N.S^, TimeTagged(Cmd), IecObject(P), 0, E);
+        end;
+        Inc(P);
+      end;
+    end;
+  end;
+  if Reload then
+    IecSlaveEndOfInit(N.S^, Coi_ManualReset or Coi_LocalChange)
+  else
+    IecSlaveEndOfInit(N.S^, Coi_PowerOn);
+end;
+
+{ Bring point P up to date with its tag (a spontaneous event when its
+  value or quality changed). }
+procedure Refresh(var N: tGate104; const Devs: array of tPcccDevice; P: LongInt);
+var
+  Pt: ^tGate104Point;
+  T: ^tPcccTag;
+  Q: Byte;
+  V: Double;
+  O: tIecObject;
+  E: ShortString;
+begin
+  Pt := @N.Points[P];
+  T := @Devs[Pt^.Dev].Tags[Pt^.Tag];
+  Q := PointQuality(Devs[Pt^.Dev], T^);
+  V := 0;
+  if Pt^.Item <= High(T^.Values) then
+    V := T^.Values[Pt^.Item];
+  if (V = Pt^.Sent) and (Q = Pt^.SentQ) then
+    Exit;
+  Pt^.Sent := V;
+  Pt^.SentQ := Q;
+  O := PointObject(Pt^.Ti, T^, Pt^.Item, Q);
+  if IecSlaveUpdate(N.S^, Pt^.Ioa, O, True, E) <> res_Ok then
+    Say(N, 'IOA ' + IntToStr(Pt^.Ioa) + ': ' + E);
+end;
+
+{ Refresh the points of device Dev's tag Tag (every tag: -1). }
+procedure RefreshTags(var N: tGate104; const Devs: array of tPcccDevice; Dev, Tag: LongInt);
+var
+  P: LongInt;
+begin
+  if N.S = nil then
+    Exit;
+  for P := 0 to High(N.Points) do
+    if (N.Points[P].Dev = Dev) and ((Tag < 0) or (N.Points[P].Tag = Tag)) then
+      Refresh(N, Devs, P);
+end;
+
+procedure Gate104Change(var N: tGate104; const Devs: array of tPcccDevice; Dev, Tag: LongInt);
+begin
+  RefreshTags(N, Devs, Dev, Tag);
+end;
+
+procedure Gate104Health(var N: tGate104; const Devs: array of tPcccDevice; Dev: LongInt);
+begin
+  RefreshTags(N, Devs, Dev, -1);
+end;
+
+{ The value a command carries, as the tag engine writes it. }
+function CommandValue(const H: tIecAsdu; const O: tIecObject): Double;
+begin
+  case IecTypeKind(H.Ti) of
+    ikSetFloat: Result := O.Number;
+    ikBitsCmd: Result := LongInt(O.Bits);
+  else
+    Result := O.Int;
+  end;
+end;
+
+{ The slave hands over a command to a command point (an IOA of a
+  writable tag, of its type): a select is confirmed at once, an execute
+  goes to the PLC and its ACT_CON waits for the PLC. }
+function OnCommand(Data: Pointer; const H: tIecAsdu; const O: tIecObject): Boolean;
+var
+  N: ^tGate104;
+  P, K: LongInt;
+  Dev: pPcccDevice;
+  Ticket: LongWord;
+  E: ShortString;
+  What: AnsiString;
+begin
+  N := Data;
+  Result := False;
+  P := -1;
+  for K := 0 to High(N^.Points) do
+    if (N^.Points[K].Ioa = O.Ioa) and (N^.Points[K].Cmd <> 0) then
+      P := K;
+  if (P < 0) or (N^.Points[P].Dev >= N^.DevCount) then
+  begin
+    Say(N^, IecTypeName(H.Ti) + ' IOA ' + IntToStr(O.Ioa) + ': refused, no device for it now');
+    Exit;
+  end;
+  Dev := N^.Devs;
+  Inc(Dev, N^.Points[P].Dev);
+  What := IecTypeName(H.Ti) + ' IOA ' + IntToStr(O.Ioa) + ' (' + Dev^.Name + ' ' +
+    Dev^.Tags[N^.Points[P].Tag].Name + ' := ' + FloatToStr(CommandValue(H, O)) + ')';
+  Inc(N^.Commands);
+  if O.Select then
+  begin
+    Say(N^, What + ': selected');
+    Exit(True);
+  end;
+  Ticket := IecSlaveDefer(N^.S^);
+  if Ticket = 0 then
+  begin
+    Inc(N^.Refused);
+    Say(N^, What + ': refused, ' + IntToStr(IecSlaveMaxDeferred) + ' commands wait already');
+    Exit;
+  end;
+  Dec(N^.NextId);
+  if not TagDeviceWrite(Dev^, N^.Points[P].Tag, CommandValue(H, O), N^.NextId, E) then
+  begin
+    Inc(N^.Refused);
+    Say(N^, What + ': refused, ' + E);
+    Exit;                                     { negative ACT_CON at once }
+  end;
+  K := Length(N^.Pending);
+  SetLength(N^.Pending, K + 1);
+  N^.Pending[K].Ticket := Ticket;
+  N^.Pending[K].WriteId := N^.NextId;
+  N^.Pending[K].Until_ := ChMsTick + QWord(N^.Cfg.CommandMs);
+  N^.Pending[K].What := What;
+  Result := True;
+end;
+
+procedure DropPending(var N: tGate104; K: LongInt);
+begin
+  Delete(N.Pending, K, 1);
+end;
+
+function Gate104WriteDone(var N: tGate104; const W: tTagWrite): Boolean;
+var
+  K: LongInt;
+begin
+  Result := W.Id < 0;
+  if not Result or (N.S = nil) then
+    Exit;
+  for K := 0 to High(N.Pending) do
+    if N.Pending[K].WriteId = W.Id then
+    begin
+      IecSlaveConfirm(N.S^, N.Pending[K].Ticket, W.Res = res_Ok);
+      if W.Res = res_Ok then
+      begin
+        Inc(N.Confirmed);
+        Say(N, N.Pending[K].What + ': confirmed by the PLC');
+      end
+      else
+      begin
+        Inc(N.Refused);
+        Say(N, N.Pending[K].What + ': ' + W.Err);
+      end;
+      DropPending(N, K);
+      Exit;
+    end;
+end;
+
+function Gate104Step(var N: tGate104; var Devs: array of tPcccDevice): LongInt;
+var
+  K, Frames: LongInt;
+  Now_: QWord;
+begin
+  Result := 1000;
+  if N.S = nil then
+    Exit;
+  if Length(Devs) > 0 then
+    N.Devs := @Devs[0]
+  else
+    N.Devs := nil;
+  N.DevCount := Length(Devs);
+  Frames := 0;
+  while (Frames < 32) and IecSlaveStep(N.S^) do
+    Inc(Frames);
+  Now_ := ChMsTick;
+  K := 0;
+  while K <= High(N.Pending) do
+    if Now_ >= N.Pending[K].Until_ then
+    begin
+      Inc(N.TimedOut);
+      Say(N, N.Pending[K].What + ': no confirmation from the PLC in ' + IntToStr(N.Cfg.CommandMs) + ' ms');
+      IecSlaveConfirm(N.S^, N.Pending[K].Ticket, False);
+      DropPending(N, K);
+    end
+    else
+      Inc(K);
+  { what the requests and commands queued goes out now }
+  if IecSlaveStep(N.S^) then
+    Frames := 32;
+  N.DevCount := 0;
+  if Frames >= 32 then
+    Result := 0
+  else
+    Result := IecSlaveWaitMs(N.S^);
+  for K := 0 to High(N.Pending) do
+    if ChnWaitLeft(N.Pending[K].Until_) < Result then
+      Result := ChnWaitLeft(N.Pending[K].Until_);
+end;
+
+procedure Gate104Close(var N: tGate104);
+var
+  K: LongInt;
+begin
+  if N.S <> nil then
+  begin
+    for K := 0 to High(N.Pending) do
+      IecSlaveConfirm(N.S^, N.Pending[K].Ticket, False);
+    Dispose(N.S);
+    N.S := nil;
+  end;
+  N.Pending := nil;
+  N.Points := nil;
+  if N.Chn <> nil then
+    Dispose(N.Chn, Done);
+  N.Chn := nil;
+end;
+
+end.
