@@ -82,10 +82,10 @@ begin
   Result := ExtractFilePath(ParamStr(0)) + Name;
 end;
 
+{ Raised, so that the finally below stops the broker and chngate. }
 procedure Fail(const Why: string);
 begin
-  WriteLn('benchgate: ', Why);
-  Halt(1);
+  raise Exception.Create('benchgate: ' + Why);
 end;
 
 function OpenRaw(const Layer, Params: string): pChnVirt;

@@ -147,6 +147,9 @@ type
     procedure ChLowSend(Buff: Pointer; Len: Word);
     { Discard bytes pulled from the lower layer but not consumed yet. }
     procedure ChLowDiscard;
+    { The check every ChOpen starts with: the channel closed. When not:
+      CH_Result = res_WrongState, False. }
+    function  ChOpenAllowed: Boolean;
     { The checks every ChReceive starts with: connected and a receive
       buffer given. When one fails: Len = 0, CH_RResult says why, False. }
     function  ChReceiveAllowed(var Len: Word): Boolean;
@@ -632,11 +635,8 @@ end;
 
 procedure tChnVirt.ChOpen;
 begin
-  if CH_State <> CHS_Close then
-  begin
-    CH_Result := res_WrongState;
+  if not ChOpenAllowed then
     Exit;
-  end;
   if ChHasLow then
   begin
     if CH_Low = nil then
@@ -842,6 +842,13 @@ begin
   { the base has no receiver of its own; descendants implement it }
   if ChReceiveAllowed(Len) then
     CH_RResult := res_NoMessage;
+end;
+
+function tChnVirt.ChOpenAllowed: Boolean;
+begin
+  Result := CH_State = CHS_Close;
+  if not Result then
+    CH_Result := res_WrongState;
 end;
 
 function tChnVirt.ChReceiveAllowed(var Len: Word): Boolean;

@@ -379,11 +379,8 @@ var
   Port: TChnPort;
   R: tChResult;
 begin
-  if CH_State <> CHS_Close then
-  begin
-    CH_Result := res_WrongState;
+  if not ChOpenAllowed then
     Exit;
-  end;
   CH_Set.InQueue := CH_LRB;
   CH_RtsToggle := False;
   CH_ParamErr := '';

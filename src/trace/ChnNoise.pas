@@ -345,11 +345,8 @@ end;
 
 procedure tChnNoise.ChOpen;
 begin
-  if CH_State <> CHS_Close then
-  begin
-    CH_Result := res_WrongState;
+  if not ChOpenAllowed then
     Exit;
-  end;
   if CH_SeedSet = 0 then
     CH_Seed := LongInt((GetTickCount64 * 2654435761 + QWord(GetProcessID)) mod MaxLongInt) + 1;
   if CH_Low = nil then

@@ -182,11 +182,8 @@ end;
 
 procedure tChnTrc.ChOpen;
 begin
-  if CH_State <> CHS_Close then
-  begin
-    CH_Result := res_WrongState;
+  if not ChOpenAllowed then
     Exit;
-  end;
   { the log first: if it cannot be opened nothing below is opened either }
   CH_OwnHandle := False;
   if CH_File = TrcStdErr then
