@@ -108,6 +108,81 @@ begin
   Result := False;
 end;
 
+{ The answers to a station interrogation, one line each. }
+function Interrogated(var M: tIecMaster; C: TCentre; Ca: Word): string;
+var
+  K: LongInt;
+begin
+  C.Objects.Clear;
+  TAssert.AssertEquals(M.Cmd.Err, res_Ok, IecInterrogation(M, 0, Ca, Qoi_Station));
+  Result := '';
+  for K := 0 to C.Objects.Count - 1 do
+    if Pos(' COT 20 ', C.Objects[K]) > 0 then
+      Result := Result + C.Objects[K] + LineEnding;
+end;
+
+{ chngate on Conf, listening on Port, and the control centre connected to
+  it (the master helper over NAM=IEC104, objects into C). }
+function StartGateway(const Conf: string; Port: Word; var M: tIecMaster; C: TCentre;
+  out Chn: pChnVirt): TProcess;
+var
+  Deadline: QWord;
+  Err: string;
+begin
+  Chn := nil;
+  Result := TProcess.Create(nil);
+  BinExecutable(Result, BinPath('chngate'));
+  Result.Parameters.Add(Conf);
+  Result.Options := [poUsePipes, poStderrToOutPut];
+  Result.Execute;
+  Deadline := GetTickCount64 + 5000;
+  while not PortTaken(Port) and (GetTickCount64 < Deadline) do
+    Sleep(20);
+  TAssert.AssertTrue('the gateway listens on ' + IntToStr(Port), PortTaken(Port));
+  Chn := OpenStack('IEC104', 'NAM=IEC104 NAM=TCP HOST=127.0.0.1 PORT=' + IntToStr(Port) + ' RECON=200', Err);
+  TAssert.AssertNotNull(Err, Chn);
+  TAssert.AssertEquals('master', res_Ok, IecMasterInit(M, Chn, IecDefaultParams));
+  M.CommandMs := 8000;
+  M.OnObject := @OnObj;
+  M.Data := C;
+end;
+
+{ Command Ti with O while the device below (process Pid) is stopped: no
+  ACT_CON in 1 s; then it runs again and the ACT_CON (positive) follows.
+  The ms from SIGCONT to it. }
+function ConfirmedAfterResume(var M: tIecMaster; Pid: LongInt; Ca: Word; Ti: Byte; const O: tIecObject): QWord;
+var
+  Stopped, Resumed: QWord;
+  R: tChResult;
+begin
+  FpKill(Pid, SIGSTOP);
+  Stopped := GetTickCount64;
+  TAssert.AssertTrue(M.Cmd.Err, IecStartCommand(M, 0, Ca, Ti, O, False));
+  while GetTickCount64 < Stopped + 1000 do
+  begin
+    IecMasterStep(M);
+    ChnWaitAny(10);
+  end;
+  TAssert.AssertFalse('no ACT_CON while the device below is stopped', IecCommandDone(M));
+  FpKill(Pid, SIGCONT);
+  Resumed := GetTickCount64;
+  R := IecFinish(M);
+  Result := GetTickCount64 - Resumed;
+  TAssert.AssertEquals(IecTypeName(Ti) + ' after SIGCONT ' + M.Cmd.Err, res_Ok, R);
+end;
+
+{ Stop P (SIGCONT first: it may be stopped) and free it. }
+procedure Ended(var P: TProcess);
+begin
+  if (P <> nil) and P.Running then
+  begin
+    FpKill(P.ProcessID, SIGCONT);
+    FpKill(P.ProcessID, SIGTERM);
+    P.WaitOnExit;
+  end;
+  FreeAndNil(P);
+end;
+
 procedure TTestChngate104.TestIec104North;
 const
   Ca = 7;
@@ -149,16 +224,6 @@ var
     Result := Log;
   end;
 
-  function Table: string;
-  var
-    K: LongInt;
-  begin
-    Result := '';
-    for K := 0 to C.Objects.Count - 1 do
-      if Pos(' COT 20 ', C.Objects[K]) > 0 then
-        Result := Result + C.Objects[K] + LineEnding;
-  end;
-
 begin
   Dir := MakeTempDir('chn-gate104');
   Log := '';
@@ -194,29 +259,12 @@ begin
     AssertEquals('--check', 0, RunBin('chngate', ['--check', Conf], 5000, Err));
     AssertTrue(Err, Pos('3 devices, 12 tags, ', Err) > 0);
     AssertTrue(Err, Pos(', 15 IEC 104 points', Err) > 0);
-    Gate := TProcess.Create(nil);
-    BinExecutable(Gate, BinPath('chngate'));
-    Gate.Parameters.Add(Conf);
-    Gate.Options := [poUsePipes, poStderrToOutPut];
-    Gate.Execute;
-    Deadline := GetTickCount64 + 5000;
-    while not PortTaken(Port) and (GetTickCount64 < Deadline) do
-      Sleep(20);
-    AssertTrue('the gateway listens on ' + IntToStr(Port), PortTaken(Port));
-    { the control centre }
-    Chn := OpenStack('IEC104', 'NAM=IEC104 NAM=TCP HOST=127.0.0.1 PORT=' + IntToStr(Port) + ' RECON=200', Err);
-    AssertNotNull(Err, Chn);
-    AssertEquals('master', res_Ok, IecMasterInit(M, Chn, IecDefaultParams));
-    M.CommandMs := 8000;
-    M.OnObject := @OnObj;
-    M.Data := C;
+    Gate := StartGateway(Conf, Port, M, C, Chn);
     AssertTrue('end of initialisation: ' + C.Objects.Text, Await(M, C, 'M_EI_NA_1 COT 4 IOA 0 = 0', 5000));
     { interrogation, until every device has its state (plc1 read, plc3 demoted) }
     Deadline := GetTickCount64 + 10000;
     repeat
-      C.Objects.Clear;
-      AssertEquals(M.Cmd.Err, res_Ok, IecInterrogation(M, 0, Ca, Qoi_Station));
-      Gi := Table;
+      Gi := Interrogated(M, C, Ca);
     until ((Pos('IOA 100 = 0 Q 00', Gi) > 0) and (Pos('IOA 300 = 0 Q C0', Gi) > 0) and
       (Pos('IOA 200 = 0 Q 80', Gi) > 0)) or (GetTickCount64 > Deadline);
     for Err in Expected do
@@ -242,24 +290,9 @@ begin
     AssertEquals('C_SC_NA_1 ' + M.Cmd.Err, res_Ok, IecCommand(M, 0, Ca, C_SC_NA_1, O, False));
     AssertTrue('run from the PLC: ' + C.Objects.Text, Await(M, C, 'M_SP_TB_1 COT 3 IOA 103 = 1 Q 00', 3000));
     { the PLC stopped: no ACT_CON until it runs again and answered }
-    FpKill(Sim.ProcessID, SIGSTOP);
-    Stopped := GetTickCount64;
     O := IecObject(107);
     O.Number := 2.5;
-    AssertTrue(M.Cmd.Err, IecStartCommand(M, 0, Ca, C_SE_NC_1, O, False));
-    while GetTickCount64 < Stopped + 1000 do
-    begin
-      IecMasterStep(M);
-      ChnWaitAny(10);
-    end;
-    AssertFalse('no ACT_CON while the PLC is stopped', IecCommandDone(M));
-    FpKill(Sim.ProcessID, SIGCONT);
-    Resumed := GetTickCount64;
-    R := IecFinish(M);
-    Done_ := GetTickCount64;
-    AfterCont := Done_ - Resumed;
-    AssertEquals('C_SE_NC_1 after SIGCONT ' + M.Cmd.Err, res_Ok, R);
-    AssertTrue(Format('ACT_CON %d ms after SIGCONT', [Done_ - Resumed]), Done_ >= Resumed);
+    AfterCont := ConfirmedAfterResume(M, Sim.ProcessID, Ca, C_SE_NC_1, O);
     AssertTrue('fl from the PLC: ' + C.Objects.Text, Await(M, C, 'M_ME_TF_1 COT 3 IOA 107 = 2.5 Q 00', 3000));
     { stopped longer than command_timeout (2.5 s): negative }
     FpKill(Sim.ProcessID, SIGSTOP);
@@ -302,9 +335,7 @@ begin
       Await(M, C, 'M_EI_NA_1 COT 4 IOA 0 = 129', 5000));
     Deadline := GetTickCount64 + 5000;
     repeat
-      C.Objects.Clear;
-      AssertEquals(M.Cmd.Err, res_Ok, IecInterrogation(M, 0, Ca, Qoi_Station));
-      Gi := Table;
+      Gi := Interrogated(M, C, Ca);
     until (Pos('M_ME_NB_1 COT 20 IOA 106 = 99 Q 00', Gi) > 0) or (GetTickCount64 > Deadline);
     AssertTrue('after SIGHUP:'#10 + Gi, Pos('M_ME_NB_1 COT 20 IOA 106 = 99 Q 00', Gi) > 0);
     { the reasons, in the gateway's log }
@@ -318,20 +349,9 @@ begin
   finally
     if Chn <> nil then
       Dispose(Chn, Done);
-    if (Gate <> nil) and Gate.Running then
-    begin
-      FpKill(Gate.ProcessID, SIGTERM);
-      Gate.WaitOnExit;
-    end;
-    Gate.Free;
+    Ended(Gate);
     Sub.Free;
-    if Sim.Running then
-    begin
-      FpKill(Sim.ProcessID, SIGCONT);
-      FpKill(Sim.ProcessID, SIGTERM);
-      Sim.WaitOnExit;
-    end;
-    Sim.Free;
+    Ended(Sim);
     Dead.Free;
     Demoted.Free;
     Broker.Free;
@@ -339,6 +359,7 @@ begin
     RemoveTempDir(Dir);
   end;
 end;
+
 procedure TTestChngate104.TestIec101PassThrough;
 const
   Ca = 7;
@@ -352,9 +373,7 @@ var
   M: tIecMaster;
   C: TCentre;
   O: tIecObject;
-  Stopped, Resumed, Done_, Deadline: QWord;
-  R: tChResult;
-  K: LongInt;
+  Deadline, AfterCont: QWord;
 begin
   AssertTrue(BinPath('iec101slave') + ' missing (make examples)', FileExists(BinPath('iec101slave')));
   Dir := MakeTempDir('chn-gate104r');
@@ -380,30 +399,11 @@ begin
     WriteFileText(Conf, '[iec104]'#10'listen = 127.0.0.1:' + IntToStr(Port) + #10'ca = ' + IntToStr(Ca) + #10#10 +
       '[device rtu1]'#10'line = NAM=FT1_2 MS=ON MAS=MASTER LEN=0 NOD=0 DNO=1 NAM=COM DEV=' + RtuPty + #10 +
       'points = pump=104 level=101'#10'write = pump>5000 level>5101'#10'timeout = 3000'#10'ioa = 1000'#10);
-    Gate := TProcess.Create(nil);
-    BinExecutable(Gate, BinPath('chngate'));
-    Gate.Parameters.Add(Conf);
-    Gate.Options := [poUsePipes, poStderrToOutPut];
-    Gate.Execute;
-    Deadline := GetTickCount64 + 5000;
-    while not PortTaken(Port) and (GetTickCount64 < Deadline) do
-      Sleep(20);
-    AssertTrue('the gateway listens on ' + IntToStr(Port), PortTaken(Port));
-    Chn := OpenStack('IEC104', 'NAM=IEC104 NAM=TCP HOST=127.0.0.1 PORT=' + IntToStr(Port) + ' RECON=200', Err);
-    AssertNotNull(Err, Chn);
-    AssertEquals('master', res_Ok, IecMasterInit(M, Chn, IecDefaultParams));
-    M.CommandMs := 8000;
-    M.OnObject := @OnObj;
-    M.Data := C;
+    Gate := StartGateway(Conf, Port, M, C, Chn);
     { the RTU's points, once the gateway's master has interrogated it }
     Deadline := GetTickCount64 + 10000;
     repeat
-      C.Objects.Clear;
-      AssertEquals(M.Cmd.Err, res_Ok, IecInterrogation(M, 0, Ca, Qoi_Station));
-      Gi := '';
-      for K := 0 to C.Objects.Count - 1 do
-        if Pos(' COT 20 ', C.Objects[K]) > 0 then
-          Gi := Gi + C.Objects[K] + LineEnding;
+      Gi := Interrogated(M, C, Ca);
     until (Pos('IOA 1105 = 2', Gi) > 0) and (Pos('IOA 1100 = -1', Gi) > 0) or (GetTickCount64 > Deadline);
     for Err in Expected do
       AssertTrue('interrogation has "' + Err + '":'#10 + Gi, Pos(Err, Gi) > 0);
@@ -417,42 +417,17 @@ begin
     AssertEquals('C_SC_NA_1 ' + M.Cmd.Err, res_Ok, IecCommand(M, 0, Ca, C_SC_NA_1, O, False));
     AssertTrue('pump from the RTU: ' + C.Objects.Text, Await(M, C, 'M_SP_NA_1 COT 3 IOA 1104 = 0 Q 00', 3000));
     { the RTU stopped: no ACT_CON until it runs again and confirmed }
-    FpKill(Rtu.ProcessID, SIGSTOP);
-    Stopped := GetTickCount64;
     O := IecObject(6101);
     O.Number := 3.25;
-    AssertTrue(M.Cmd.Err, IecStartCommand(M, 0, Ca, C_SE_NC_1, O, False));
-    while GetTickCount64 < Stopped + 1000 do
-    begin
-      IecMasterStep(M);
-      ChnWaitAny(10);
-    end;
-    AssertFalse('no ACT_CON while the RTU is stopped', IecCommandDone(M));
-    FpKill(Rtu.ProcessID, SIGCONT);
-    Resumed := GetTickCount64;
-    R := IecFinish(M);
-    Done_ := GetTickCount64;
-    AssertEquals('C_SE_NC_1 after SIGCONT ' + M.Cmd.Err, res_Ok, R);
-    AssertTrue(Format('ACT_CON %d ms after SIGCONT', [Done_ - Resumed]), Done_ >= Resumed);
+    AfterCont := ConfirmedAfterResume(M, Rtu.ProcessID, Ca, C_SE_NC_1, O);
     AssertTrue('level from the RTU: ' + C.Objects.Text, Await(M, C, 'M_ME_NC_1 COT 3 IOA 1101 = 3.25 Q 00', 3000));
     if GetEnvironmentVariable('CHN_GATE104_LOG') <> '' then
-      WriteLn(StdErr, Format('RTU: ACT_CON %d ms after SIGCONT', [Done_ - Resumed]));
+      WriteLn(StdErr, Format('RTU: ACT_CON %d ms after SIGCONT', [AfterCont]));
   finally
     if Chn <> nil then
       Dispose(Chn, Done);
-    if (Gate <> nil) and Gate.Running then
-    begin
-      FpKill(Gate.ProcessID, SIGTERM);
-      Gate.WaitOnExit;
-    end;
-    Gate.Free;
-    if Rtu.Running then
-    begin
-      FpKill(Rtu.ProcessID, SIGCONT);
-      FpKill(Rtu.ProcessID, SIGTERM);
-      Rtu.WaitOnExit;
-    end;
-    Rtu.Free;
+    Ended(Gate);
+    Ended(Rtu);
     C.Free;
     RemoveTempDir(Dir);
   end;
