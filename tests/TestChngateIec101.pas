@@ -138,29 +138,6 @@ end;
 
 {$IFDEF UNIX}
 
-function Occurs(const Needle, S: string): LongInt;
-var
-  P: LongInt;
-begin
-  Result := 0;
-  P := Pos(Needle, S);
-  while P > 0 do
-  begin
-    Inc(Result);
-    P := Pos(Needle, S, P + 1);
-  end;
-end;
-
-procedure Ended(var P: TProcess; Sig: cint);
-begin
-  if (P <> nil) and P.Running then
-  begin
-    FpKill(P.ProcessID, Sig);
-    P.WaitOnExit;
-  end;
-  FreeAndNil(P);
-end;
-
 procedure TTestChngateIec101.TestIec101DeviceEndToEnd;
 var
   Broker: TMosquitto;

@@ -95,17 +95,6 @@ begin
   Result.Execute;
 end;
 
-{ Stop P (with Sig) if it still runs, and free it. }
-procedure Ended(var P: TProcess; Sig: cint);
-begin
-  if (P <> nil) and P.Running then
-  begin
-    FpKill(P.ProcessID, Sig);
-    P.WaitOnExit;
-  end;
-  FreeAndNil(P);
-end;
-
 procedure TTestChngateTool.TestGatewayEndToEnd;
 var
   Broker: TMosquitto;

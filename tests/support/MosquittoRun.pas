@@ -52,6 +52,11 @@ type
 function MosquittoMissing: string;
 { mosquitto_pub -t Topic -m Payload on the broker at Port; its exit code. }
 function MqttPub(Port: Word; const Topic, Payload: string): LongInt;
+{ How often Needle occurs in S (messages a subscriber saw). }
+function Occurs(const Needle, S: string): LongInt;
+{ Stop P (with Sig) if it still runs, and free it: the gateway tests'
+  programs. }
+procedure Ended(var P: TProcess; Sig: cint);
 { Dir/passwd with User and Password (mosquitto_passwd -b); '' or why not. }
 function MakePasswordFile(const Dir, User, Password: string): string;
 { A CA (Dir/ca.crt) and a server certificate it signed for 127.0.0.1
@@ -64,6 +69,29 @@ implementation
 
 uses
   Ser2netRun, TestTempDir, BinSupport, ChnMqtt;
+
+function Occurs(const Needle, S: string): LongInt;
+var
+  P: LongInt;
+begin
+  Result := 0;
+  P := Pos(Needle, S);
+  while P > 0 do
+  begin
+    Inc(Result);
+    P := Pos(Needle, S, P + 1);
+  end;
+end;
+
+procedure Ended(var P: TProcess; Sig: cint);
+begin
+  if (P <> nil) and P.Running then
+  begin
+    FpKill(P.ProcessID, Sig);
+    P.WaitOnExit;
+  end;
+  FreeAndNil(P);
+end;
 
 function Tool(const Name: string): string;
 begin
