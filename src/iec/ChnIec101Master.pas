@@ -714,7 +714,7 @@ begin
       if (H.Cot = Cot_DeactCon) <> M.Cmd.Deact then
         Exit                             { the confirmation of the other cause }
       else if H.Negative then
-        Finish(M, res_IecNegative, 'negative ' + IecCotName(H.Cot))
+        Finish(M, res_IecNegative, BoolToStr(M.Cmd.Deact, 'negative DEACT_CON', 'negative ACT_CON'))
       else if M.Cmd.Phase = cpConfirm then
         StageConfirmed(M);
     Cot_ActTerm:
