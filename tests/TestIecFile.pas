@@ -51,6 +51,7 @@ type
     MuteAfterSegment: Boolean;
     FlipSegments: Integer;  { octets of received segments to corrupt (master side) }
     FlipPutSegments: Integer;  { the same on the slave side }
+    FlipFileChs, FlipPutFileChs: Boolean;   { the CHS of the last section (LSQ 1), master / slave side }
     Received: TStringList;
     OrigFile: tIecFileAsduFunc;
   published
@@ -65,6 +66,9 @@ type
     procedure TestFlippedOctetSectionAskedAgain;
     procedure TestFlippedOctetEveryTimeFails;
     procedure TestFlippedOctetOnPutFails;
+    procedure TestWrongFileChecksum;
+    procedure TestServerSequence;
+    procedure TestClientSequence;
     procedure TestInterruptedGet;
     procedure TestServerAbandonsALeftTransfer;
     procedure TestLiveLib60870;
@@ -123,6 +127,8 @@ var
   T: TTestIecFile;
 begin
   T := TTestIecFile(Data);
+  if not Sent and T.FlipPutFileChs and (Len = 14) and (Buf[0] = F_LS_NA_1) and (Buf[12] = Lsq_File) then
+    Buf[13] := Buf[13] xor $01;
   if (Len > 20) and (Buf[0] = F_SG_NA_1) then
     if not Sent and (T.FlipPutSegments > 0) then
     begin
@@ -145,6 +151,8 @@ begin
     Dec(T.FlipSegments);
     B[20] := B[20] xor $80;
   end;
+  if T.FlipFileChs and (Len = 14) and (B[0] = F_LS_NA_1) and (B[12] = Lsq_File) then
+    B[13] := B[13] xor $01;
   if (B[0] = F_SG_NA_1) and T.MuteAfterSegment then
     T.Mute := True;
   T.OrigFile(@T.C, Addr, B, Len);
@@ -681,6 +689,146 @@ begin
   FlipPutSegments := 1;
   AssertEquals(C.Err, res_Ok, IecFilePut(C, Addr, 1, 30002, Nof_Transparent, Pattern(2500)));
   AssertTrue(ReadFileText(FDir + '/30002') = Pattern(2500));
+end;
+
+{ Every section right, the file's checksum not: refused both ways. }
+procedure TTestIecFile.TestWrongFileChecksum;
+var
+  Got: AnsiString;
+  T0: QWord;
+begin
+  PutFile('30001', Pattern(3000));
+  OpenPair(p104);
+  FlipFileChs := True;
+  AssertEquals(res_IecFileChecksum, IecFileGet(C, Addr, 1, 30001, Nof_Transparent, Got));
+  AssertTrue(C.Err, Pos('file IOA 30001 from slave 0: file checksum ', C.Err) = 1);
+  AssertTrue(C.Err, Pos('; 3000 octets of 3000 announced', C.Err) > 0);
+  AssertEquals(1, C.BadChecksums);
+  T0 := ChMsTick;
+  while (F.Failed = 0) and (ChMsTick - T0 < 3000) do
+    IecPollFor(M, 20);
+  AssertEquals('the slave heard AFQ 2', 1, F.Failed);
+  FlipFileChs := False;
+  FlipPutFileChs := True;
+  AssertEquals(res_IecFileChecksum, IecFilePut(C, Addr, 1, 30002, Nof_Transparent, Pattern(1500)));
+  AssertEquals('file IOA 30002 to slave 0: the slave refused the file: checksum failed', C.Err);
+  AssertTrue(F.LastError, Pos('file IOA 30002: file checksum ', F.LastError) = 1);
+  AssertFalse('not kept', FileExists(FDir + '/30002'));
+  AssertEquals(0, Received.Count);
+end;
+
+{ The controlled station's sequence: what does not follow is refused
+  (mirrored, P/N = 1) and changes nothing. }
+procedure TTestIecFile.TestServerSequence;
+var
+  Srv: tIecFileServer;
+  O: tIecFileObj;
+  B, Out: array[0..IecMaxAsdu - 1] of Byte;
+  Len, OutLen: Word;
+  E: ShortString;
+
+  function Ask(Ti, Q, Nos: Byte): string;
+  begin
+    O.Q := Q;
+    O.Nos := Nos;
+    AssertEquals(E, res_Ok, IecFileEncode(IecDefaultParams, Ti, Cot_File, False, 1, [O], 1, B, Len, E));
+    IecFileServerTake(Srv, B, Len);
+    Result := '';
+    if IecFileServerNext(Srv, Out, OutLen) then
+      if Out[0] = F_SG_NA_1 then
+        Result := Hex(Out, 14)           { a segment: its head and first octet }
+      else
+        Result := Hex(Out, OutLen);
+  end;
+
+begin
+  IecFileServerInit(Srv, IecDefaultParams, 1);
+  try
+    Srv.SectionSize := 100;
+    AssertEquals(res_Ok, IecFileServerAdd(Srv, 7, Nof_Transparent, Pattern(250), IecTimeFromDateTime(Now)));
+    FillChar(O, SizeOf(O), 0);
+    O.Ioa := 7;
+    O.Nof := Nof_Transparent;
+    { call file when no file is selected (the selection deactivated):
+      mirrored negative (COT 13 + P/N = 4D) }
+    AssertEquals('78 01 0D 00 01 00 07 00 00 01 00 FA 00 00 00', Ask(F_SC_NA_1, Scq_SelectFile, 0));
+    AssertEquals('', Ask(F_SC_NA_1, Scq_DeactFile, 0));
+    AssertEquals('7A 01 4D 00 01 00 07 00 00 01 00 00 02', Ask(F_SC_NA_1, Scq_CallFile, 0));
+    { select: file ready, 250 = FA 00 00 }
+    AssertEquals('78 01 0D 00 01 00 07 00 00 01 00 FA 00 00 00', Ask(F_SC_NA_1, Scq_SelectFile, 0));
+    { call section before the call file: refused }
+    AssertEquals('7A 01 4D 00 01 00 07 00 00 01 00 01 06', Ask(F_SC_NA_1, Scq_CallSection, 1));
+    { call file: section 1 of 100 = 64 00 00 ready }
+    AssertEquals('79 01 0D 00 01 00 07 00 00 01 00 01 64 00 00 00', Ask(F_SC_NA_1, Scq_CallFile, 0));
+    { a call of section 2 when 1 is ready: refused, nothing sent }
+    AssertEquals('7A 01 4D 00 01 00 07 00 00 01 00 02 06', Ask(F_SC_NA_1, Scq_CallSection, 2));
+    AssertTrue(Srv.State = fsSectionReady);
+    { an acknowledgement of a section not sent: nothing }
+    AssertEquals('', Ask(F_AF_NA_1, Afq_SectionOk, 1));
+    AssertTrue(Srv.State = fsSectionReady);
+    { the right call: segments }
+    AssertEquals('7D 01 0D 00 01 00 07 00 00 01 00 01 64 00', Ask(F_SC_NA_1, Scq_CallSection, 1));
+    AssertTrue(Srv.State = fsSending);
+    { deactivation: over }
+    AssertEquals('', Ask(F_SC_NA_1, Scq_DeactFile, 0));
+    AssertTrue(Srv.State = fsIdle);
+    AssertEquals(2, Srv.Aborted);
+    AssertEquals(3, Srv.Refused);
+  finally
+    Finalize(Srv);
+  end;
+end;
+
+{ The controlling station's sequence, its answers fed one by one: each
+  request worked out by hand; an answer out of turn ends the transfer. }
+procedure TTestIecFile.TestClientSequence;
+var
+  O: tIecFileObj;
+  B: array[0..IecMaxAsdu - 1] of Byte;
+  Len: Word;
+  E: ShortString;
+
+  procedure Answer(Ti, Q, Nos: Byte; Lof: LongWord);
+  begin
+    O.Q := Q;
+    O.Nos := Nos;
+    O.Lof := Lof;
+    AssertEquals(E, res_Ok, IecFileEncode(IecDefaultParams, Ti, Cot_File, False, 1, [O], 1, B, Len, E));
+    M.OnFileAsdu(M.FileData, Addr, B, Len);
+  end;
+
+  function Pending: string;
+  begin
+    Result := Hex(C.Pend, C.PendLen);
+    C.PendLen := 0;                      { as if sent }
+  end;
+
+begin
+  OpenPair(p104);
+  FillChar(O, SizeOf(O), 0);
+  O.Ioa := 9;
+  O.Nof := Nof_Transparent;
+  AssertTrue(IecFileStartGet(C, Addr, 1, 9, Nof_Transparent));
+  AssertEquals('select', '7A 01 0D 00 01 00 09 00 00 01 00 00 01', Pending);
+  Answer(F_FR_NA_1, 0, 0, 5);
+  AssertEquals('call file', '7A 01 0D 00 01 00 09 00 00 01 00 00 02', Pending);
+  Answer(F_SR_NA_1, 0, 1, 5);
+  AssertEquals('call section', '7A 01 0D 00 01 00 09 00 00 01 00 01 06', Pending);
+  { the last segment before any segment: 0 of 5 octets, checksum 0 -
+    not whole: asked again }
+  Answer(F_LS_NA_1, Lsq_Section, 1, 0);
+  AssertEquals('section refused (AFQ 4, cause 2)', '7C 01 0D 00 01 00 09 00 00 01 00 01 24', Pending);
+  { a file ready now is out of turn }
+  Answer(F_FR_NA_1, 0, 0, 5);
+  AssertEquals(res_IecFileSequence, C.Result);
+  AssertEquals('file IOA 9 from slave 0: F_FR_NA_1 (qualifier 0) while waiting for section ready (F_SR_NA_1)', C.Err);
+  { a segment while a file ready is awaited is no file ready }
+  AssertTrue(IecFileStartGet(C, Addr, 1, 9, Nof_Transparent));
+  Pending;
+  O.SegLen := 1;
+  Answer(F_SG_NA_1, 0, 1, 0);
+  AssertEquals(res_IecFileSequence, C.Result);
+  AssertEquals('', Pending);
 end;
 
 procedure TTestIecFile.TestInterruptedGet;
