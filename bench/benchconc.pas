@@ -25,6 +25,7 @@ type
 
 var
   Quick: Boolean = False;
+  Failed: Boolean = False;   { a row failed: exit code 1, after its simulators are stopped }
 
 function Bin(const Name: string): string;
 begin
@@ -168,7 +169,10 @@ begin
   Lines := TStringList.Create;
   try
     if not StartSims(N, Sims, Lines) then
-      Halt(1);
+    begin
+      Failed := True;             { not Halt: the finally below stops the simulators }
+      Exit;
+    end;
     if Silent then
     begin
       for I := 0 to High(Sims) do
@@ -182,7 +186,10 @@ begin
     Stepped := MeanCycle(Lines, Cycles, False);
     Robin := MeanCycle(Lines, Cycles, True);
     if (Stepped < 0) or (Robin < 0) then
-      Halt(1);
+    begin
+      Failed := True;
+      Exit;
+    end;
     WriteLn(Format('  %3d lines  %5d cycles  stepped+ChnWaitAny %8.3f ms  round robin %8.3f ms  ratio %5.2f',
       [N, Cycles, Stepped, Robin, Stepped / Robin]));
   finally
@@ -205,4 +212,6 @@ begin
     Row(32, 200, 0, False);
     Row(8, 0, 5000, True);
   end;
+  if Failed then
+    Halt(1);
 end.

@@ -190,9 +190,10 @@ var
   S: tIecSlave;
   L: LongInt;
 begin
-  AssertEquals('SizeOf(tIecCommand)', 329, SizeOf(tIecCommand));
+  AssertEquals('SizeOf(tIecCommand)', 330, SizeOf(tIecCommand));
   AssertEquals('Auto@327', 327, PtrUInt(@C.Auto) - PtrUInt(@C));
-  AssertEquals('Raw@328, last', 328, PtrUInt(@C.Raw) - PtrUInt(@C));
+  AssertEquals('Raw@328', 328, PtrUInt(@C.Raw) - PtrUInt(@C));
+  AssertEquals('Deact@329, last', 329, PtrUInt(@C.Deact) - PtrUInt(@C));
   AssertEquals('Slave@2', 2, PtrUInt(@C.Slave) - PtrUInt(@C));
   AssertEquals('Obj@9', 9, PtrUInt(@C.Obj) - PtrUInt(@C));
   AssertEquals('SentAt@49', 49, PtrUInt(@C.SentAt) - PtrUInt(@C));

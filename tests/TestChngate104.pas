@@ -17,7 +17,12 @@
   df1sim stopped (SIGSTOP) none comes until it runs again (SIGCONT), or a
   negative one when command_timeout passed; a PLC that refuses the write,
   a dead one and a demoted one give a negative ACT_CON; a tag that is not
-  writable, an unknown IOA and a type the point does not take: COT 47. }
+  writable, an unknown IOA and a type the point does not take: COT 47.
+  IEC 101 pass-through: examples/iec101slave on a pty it makes as the
+  RTU, its points at the device's offset (ioa = 1000) with their own
+  types (CP24 M_ME_TB_1 served as M_ME_TE_1), its quality (IV) kept; a
+  command to offset + the RTU's command IOA goes to the RTU and its
+  ACT_CON comes only after the RTU's (none while the RTU is stopped). }
 unit TestChngate104;
 
 {$MODE OBJFPC}{$H+}
@@ -32,6 +37,7 @@ type
   published
     {$IFDEF UNIX}
     procedure TestIec104North;
+    procedure TestIec101PassThrough;
     {$ENDIF}
   end;
 
@@ -39,7 +45,7 @@ implementation
 
 {$IFDEF UNIX}
 uses
-  BaseUnix, Process, DateUtils, PtyPair, MosquittoRun, Ser2netRun, BinSupport, TestTempDir, TestSupport,
+  BaseUnix, Process, DateUtils, PtyPair, ChildLine, MosquittoRun, Ser2netRun, BinSupport, TestTempDir, TestSupport,
   ChnTypes, ChnVirt, ChnWait, ChnLayers, ChnIec101Asdu, ChnIec101Master;
 
 type
@@ -53,7 +59,7 @@ type
 constructor TCentre.Create;
 begin
   Objects := TStringList.Create;
-  SetLength(Last, 300);
+  SetLength(Last, 1200);
 end;
 
 destructor TCentre.Destroy;
@@ -79,7 +85,7 @@ end;
 procedure OnObj(Data: Pointer; Addr: Word; const H: tIecAsdu; const O: tIecObject);
 begin
   TCentre(Data).Objects.Add(Show(H, O));
-  if (O.Ioa >= 100) and (O.Ioa < 400) and (H.Cot = Cot_Spontaneous) then
+  if (O.Ioa >= 100) and (O.Ioa < 1300) and (H.Cot = Cot_Spontaneous) then
     TCentre(Data).Last[O.Ioa - 100] := O;
 end;
 
@@ -100,6 +106,81 @@ begin
     ChnWaitAny(10);
   until GetTickCount64 > Deadline;
   Result := False;
+end;
+
+{ The answers to a station interrogation, one line each. }
+function Interrogated(var M: tIecMaster; C: TCentre; Ca: Word): string;
+var
+  K: LongInt;
+begin
+  C.Objects.Clear;
+  TAssert.AssertEquals(M.Cmd.Err, res_Ok, IecInterrogation(M, 0, Ca, Qoi_Station));
+  Result := '';
+  for K := 0 to C.Objects.Count - 1 do
+    if Pos(' COT 20 ', C.Objects[K]) > 0 then
+      Result := Result + C.Objects[K] + LineEnding;
+end;
+
+{ chngate on Conf, listening on Port, and the control centre connected to
+  it (the master helper over NAM=IEC104, objects into C). }
+function StartGateway(const Conf: string; Port: Word; var M: tIecMaster; C: TCentre;
+  out Chn: pChnVirt): TProcess;
+var
+  Deadline: QWord;
+  Err: string;
+begin
+  Chn := nil;
+  Result := TProcess.Create(nil);
+  BinExecutable(Result, BinPath('chngate'));
+  Result.Parameters.Add(Conf);
+  Result.Options := [poUsePipes, poStderrToOutPut];
+  Result.Execute;
+  Deadline := GetTickCount64 + 5000;
+  while not PortTaken(Port) and (GetTickCount64 < Deadline) do
+    Sleep(20);
+  TAssert.AssertTrue('the gateway listens on ' + IntToStr(Port), PortTaken(Port));
+  Chn := OpenStack('IEC104', 'NAM=IEC104 NAM=TCP HOST=127.0.0.1 PORT=' + IntToStr(Port) + ' RECON=200', Err);
+  TAssert.AssertNotNull(Err, Chn);
+  TAssert.AssertEquals('master', res_Ok, IecMasterInit(M, Chn, IecDefaultParams));
+  M.CommandMs := 8000;
+  M.OnObject := @OnObj;
+  M.Data := C;
+end;
+
+{ Command Ti with O while the device below (process Pid) is stopped: no
+  ACT_CON in 1 s; then it runs again and the ACT_CON (positive) follows.
+  The ms from SIGCONT to it. }
+function ConfirmedAfterResume(var M: tIecMaster; Pid: LongInt; Ca: Word; Ti: Byte; const O: tIecObject): QWord;
+var
+  Stopped, Resumed: QWord;
+  R: tChResult;
+begin
+  FpKill(Pid, SIGSTOP);
+  Stopped := GetTickCount64;
+  TAssert.AssertTrue(M.Cmd.Err, IecStartCommand(M, 0, Ca, Ti, O, False));
+  while GetTickCount64 < Stopped + 1000 do
+  begin
+    IecMasterStep(M);
+    ChnWaitAny(10);
+  end;
+  TAssert.AssertFalse('no ACT_CON while the device below is stopped', IecCommandDone(M));
+  FpKill(Pid, SIGCONT);
+  Resumed := GetTickCount64;
+  R := IecFinish(M);
+  Result := GetTickCount64 - Resumed;
+  TAssert.AssertEquals(IecTypeName(Ti) + ' after SIGCONT ' + M.Cmd.Err, res_Ok, R);
+end;
+
+{ Stop P (SIGCONT first: it may be stopped) and free it. }
+procedure Ended(var P: TProcess);
+begin
+  if (P <> nil) and P.Running then
+  begin
+    FpKill(P.ProcessID, SIGCONT);
+    FpKill(P.ProcessID, SIGTERM);
+    P.WaitOnExit;
+  end;
+  FreeAndNil(P);
 end;
 
 procedure TTestChngate104.TestIec104North;
@@ -143,16 +224,6 @@ var
     Result := Log;
   end;
 
-  function Table: string;
-  var
-    K: LongInt;
-  begin
-    Result := '';
-    for K := 0 to C.Objects.Count - 1 do
-      if Pos(' COT 20 ', C.Objects[K]) > 0 then
-        Result := Result + C.Objects[K] + LineEnding;
-  end;
-
 begin
   Dir := MakeTempDir('chn-gate104');
   Log := '';
@@ -188,29 +259,12 @@ begin
     AssertEquals('--check', 0, RunBin('chngate', ['--check', Conf], 5000, Err));
     AssertTrue(Err, Pos('3 devices, 12 tags, ', Err) > 0);
     AssertTrue(Err, Pos(', 15 IEC 104 points', Err) > 0);
-    Gate := TProcess.Create(nil);
-    BinExecutable(Gate, BinPath('chngate'));
-    Gate.Parameters.Add(Conf);
-    Gate.Options := [poUsePipes, poStderrToOutPut];
-    Gate.Execute;
-    Deadline := GetTickCount64 + 5000;
-    while not PortTaken(Port) and (GetTickCount64 < Deadline) do
-      Sleep(20);
-    AssertTrue('the gateway listens on ' + IntToStr(Port), PortTaken(Port));
-    { the control centre }
-    Chn := OpenStack('IEC104', 'NAM=IEC104 NAM=TCP HOST=127.0.0.1 PORT=' + IntToStr(Port) + ' RECON=200', Err);
-    AssertNotNull(Err, Chn);
-    AssertEquals('master', res_Ok, IecMasterInit(M, Chn, IecDefaultParams));
-    M.CommandMs := 8000;
-    M.OnObject := @OnObj;
-    M.Data := C;
+    Gate := StartGateway(Conf, Port, M, C, Chn);
     AssertTrue('end of initialisation: ' + C.Objects.Text, Await(M, C, 'M_EI_NA_1 COT 4 IOA 0 = 0', 5000));
     { interrogation, until every device has its state (plc1 read, plc3 demoted) }
     Deadline := GetTickCount64 + 10000;
     repeat
-      C.Objects.Clear;
-      AssertEquals(M.Cmd.Err, res_Ok, IecInterrogation(M, 0, Ca, Qoi_Station));
-      Gi := Table;
+      Gi := Interrogated(M, C, Ca);
     until ((Pos('IOA 100 = 0 Q 00', Gi) > 0) and (Pos('IOA 300 = 0 Q C0', Gi) > 0) and
       (Pos('IOA 200 = 0 Q 80', Gi) > 0)) or (GetTickCount64 > Deadline);
     for Err in Expected do
@@ -236,24 +290,9 @@ begin
     AssertEquals('C_SC_NA_1 ' + M.Cmd.Err, res_Ok, IecCommand(M, 0, Ca, C_SC_NA_1, O, False));
     AssertTrue('run from the PLC: ' + C.Objects.Text, Await(M, C, 'M_SP_TB_1 COT 3 IOA 103 = 1 Q 00', 3000));
     { the PLC stopped: no ACT_CON until it runs again and answered }
-    FpKill(Sim.ProcessID, SIGSTOP);
-    Stopped := GetTickCount64;
     O := IecObject(107);
     O.Number := 2.5;
-    AssertTrue(M.Cmd.Err, IecStartCommand(M, 0, Ca, C_SE_NC_1, O, False));
-    while GetTickCount64 < Stopped + 1000 do
-    begin
-      IecMasterStep(M);
-      ChnWaitAny(10);
-    end;
-    AssertFalse('no ACT_CON while the PLC is stopped', IecCommandDone(M));
-    FpKill(Sim.ProcessID, SIGCONT);
-    Resumed := GetTickCount64;
-    R := IecFinish(M);
-    Done_ := GetTickCount64;
-    AfterCont := Done_ - Resumed;
-    AssertEquals('C_SE_NC_1 after SIGCONT ' + M.Cmd.Err, res_Ok, R);
-    AssertTrue(Format('ACT_CON %d ms after SIGCONT', [Done_ - Resumed]), Done_ >= Resumed);
+    AfterCont := ConfirmedAfterResume(M, Sim.ProcessID, Ca, C_SE_NC_1, O);
     AssertTrue('fl from the PLC: ' + C.Objects.Text, Await(M, C, 'M_ME_TF_1 COT 3 IOA 107 = 2.5 Q 00', 3000));
     { stopped longer than command_timeout (2.5 s): negative }
     FpKill(Sim.ProcessID, SIGSTOP);
@@ -296,9 +335,7 @@ begin
       Await(M, C, 'M_EI_NA_1 COT 4 IOA 0 = 129', 5000));
     Deadline := GetTickCount64 + 5000;
     repeat
-      C.Objects.Clear;
-      AssertEquals(M.Cmd.Err, res_Ok, IecInterrogation(M, 0, Ca, Qoi_Station));
-      Gi := Table;
+      Gi := Interrogated(M, C, Ca);
     until (Pos('M_ME_NB_1 COT 20 IOA 106 = 99 Q 00', Gi) > 0) or (GetTickCount64 > Deadline);
     AssertTrue('after SIGHUP:'#10 + Gi, Pos('M_ME_NB_1 COT 20 IOA 106 = 99 Q 00', Gi) > 0);
     { the reasons, in the gateway's log }
@@ -312,23 +349,85 @@ begin
   finally
     if Chn <> nil then
       Dispose(Chn, Done);
-    if (Gate <> nil) and Gate.Running then
-    begin
-      FpKill(Gate.ProcessID, SIGTERM);
-      Gate.WaitOnExit;
-    end;
-    Gate.Free;
+    Ended(Gate);
     Sub.Free;
-    if Sim.Running then
-    begin
-      FpKill(Sim.ProcessID, SIGCONT);
-      FpKill(Sim.ProcessID, SIGTERM);
-      Sim.WaitOnExit;
-    end;
-    Sim.Free;
+    Ended(Sim);
     Dead.Free;
     Demoted.Free;
     Broker.Free;
+    C.Free;
+    RemoveTempDir(Dir);
+  end;
+end;
+
+procedure TTestChngate104.TestIec101PassThrough;
+const
+  Ca = 7;
+  Expected: array[0..4] of string = ('M_ME_NB_1 COT 20 IOA 1100 = -1 Q 00', 'M_ME_NC_1 COT 20 IOA 1101 = 1.5 Q 00',
+    'M_ME_TE_1 COT 20 IOA 1102 = 7 Q 00', 'M_SP_NA_1 COT 20 IOA 1104 = 1 Q 80', 'M_DP_NA_1 COT 20 IOA 1105 = 2 Q 00');
+var
+  Rtu, Gate: TProcess;
+  Dir, RtuPty, Conf, Gi, Err: string;
+  Port: Word;
+  Chn: pChnVirt;
+  M: tIecMaster;
+  C: TCentre;
+  O: tIecObject;
+  Deadline, AfterCont: QWord;
+begin
+  AssertTrue(BinPath('iec101slave') + ' missing (make examples)', FileExists(BinPath('iec101slave')));
+  Dir := MakeTempDir('chn-gate104r');
+  Gate := nil;
+  Chn := nil;
+  C := TCentre.Create;
+  WriteFileText(Dir + '/rtu.txt', '100 M_ME_NB_1 -1'#10'101 M_ME_NC_1 1.5'#10'102 M_ME_TB_1 7'#10 +
+    '104 M_SP_NA_1 1 IV'#10'105 M_DP_NA_1 2'#10'5000 C_SC_NA_1 0'#10'5101 C_SE_NC_1 0'#10);
+  Rtu := TProcess.Create(nil);
+  BinExecutable(Rtu, BinPath('iec101slave'));
+  Rtu.Parameters.Add('--points=' + Dir + '/rtu.txt');
+  Rtu.Parameters.Add('--return=5000=104,5101=101');
+  Rtu.Parameters.Add('--seconds=60');
+  Rtu.Parameters.Add('NAM=FT1_2 MS=ON MAS=SLAVE NOD=1 LEN=0 NAM=COM DRV=PTY');
+  Rtu.Options := [poUsePipes, poStderrToOutPut];
+  Rtu.Execute;
+  try
+    RtuPty := ReadFirstLine(Rtu, 5000);
+    AssertEquals('iec101slave: PTY /dev/', Copy(RtuPty, 1, 22));
+    RtuPty := Copy(RtuPty, 18, MaxInt);
+    Port := FreeLoopbackPort;
+    Conf := Dir + '/g.conf';
+    WriteFileText(Conf, '[iec104]'#10'listen = 127.0.0.1:' + IntToStr(Port) + #10'ca = ' + IntToStr(Ca) + #10#10 +
+      '[device rtu1]'#10'line = NAM=FT1_2 MS=ON MAS=MASTER LEN=0 NOD=0 DNO=1 NAM=COM DEV=' + RtuPty + #10 +
+      'points = pump=104 level=101'#10'write = pump>5000 level>5101'#10'timeout = 3000'#10'ioa = 1000'#10);
+    Gate := StartGateway(Conf, Port, M, C, Chn);
+    { the RTU's points, once the gateway's master has interrogated it }
+    Deadline := GetTickCount64 + 10000;
+    repeat
+      Gi := Interrogated(M, C, Ca);
+    until (Pos('IOA 1105 = 2', Gi) > 0) and (Pos('IOA 1100 = -1', Gi) > 0) or (GetTickCount64 > Deadline);
+    for Err in Expected do
+      AssertTrue('interrogation has "' + Err + '":'#10 + Gi, Pos(Err, Gi) > 0);
+    { not writable: COT 47 }
+    O := IecObject(1100);
+    AssertEquals('1100 is not writable', res_IecUnknownIoa, IecCommand(M, 0, Ca, C_SE_NB_1, O, False));
+    { a single command to the RTU's 5000 (north 6000); its return information follows }
+    O := IecObject(6000);
+    O.Int := 0;
+    C.Objects.Clear;
+    AssertEquals('C_SC_NA_1 ' + M.Cmd.Err, res_Ok, IecCommand(M, 0, Ca, C_SC_NA_1, O, False));
+    AssertTrue('pump from the RTU: ' + C.Objects.Text, Await(M, C, 'M_SP_NA_1 COT 3 IOA 1104 = 0 Q 00', 3000));
+    { the RTU stopped: no ACT_CON until it runs again and confirmed }
+    O := IecObject(6101);
+    O.Number := 3.25;
+    AfterCont := ConfirmedAfterResume(M, Rtu.ProcessID, Ca, C_SE_NC_1, O);
+    AssertTrue('level from the RTU: ' + C.Objects.Text, Await(M, C, 'M_ME_NC_1 COT 3 IOA 1101 = 3.25 Q 00', 3000));
+    if GetEnvironmentVariable('CHN_GATE104_LOG') <> '' then
+      WriteLn(StdErr, Format('RTU: ACT_CON %d ms after SIGCONT', [AfterCont]));
+  finally
+    if Chn <> nil then
+      Dispose(Chn, Done);
+    Ended(Gate);
+    Ended(Rtu);
     C.Free;
     RemoveTempDir(Dir);
   end;

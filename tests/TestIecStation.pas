@@ -55,6 +55,7 @@ type
     procedure TestProgramInterrogationTakesItOver;
     procedure TestParametersUnbalanced;
     procedure TestParameters104Stepped;
+    procedure TestParameterDeactivation;
     procedure TestEveryCommandType104;
     procedure TestInterrogationFillsEachFT12Frame;
     procedure TestInterrogationFillsEachBalancedFrame;
@@ -429,6 +430,33 @@ begin
   AssertTrue(Objects.Text, Objects.IndexOf('P_ME_NB_1 COT 7 IOA 120') >= 0);
   AssertEquals(-3, S.Points[IecSlaveFind(S, 120)].Par[Kpa_Low], 0);
   AssertEquals(M.Cmd.Err, res_Ok, IecParamActivation(M, 0, 1, 0, Qpa_Loaded));
+end;
+
+{ Deactivation of parameters (P_AC_NA_1, COT 8): the master's call ends
+  on the DEACT_CON (COT 9, an ACT_CON would not do), the slave takes the
+  threshold out of operation - a change inside it is reported again. }
+procedure TTestIecStation.TestParameterDeactivation;
+var
+  E: ShortString;
+  O: tIecObject;
+  I: Integer;
+begin
+  OpenPair(pk104);
+  AssertEquals(res_Ok, IecSlaveAddPoint(S, M_ME_NB_1, IecObject(120), 0, E));
+  I := IecSlaveFind(S, 120);
+  AssertEquals(M.Cmd.Err, res_Ok, IecParamScaled(M, 0, 1, 120, 10, Kpa_Threshold));
+  AssertTrue('in operation', S.Points[I].ParOn);
+  AssertEquals(M.Cmd.Err, res_Ok, IecParamDeactivation(M, 0, 1, 120, Qpa_Object));
+  AssertTrue(Objects.Text, Objects.IndexOf('P_AC_NA_1 COT 9 IOA 120') >= 0);
+  AssertEquals('no ACT_CON', -1, Objects.IndexOf('P_AC_NA_1 COT 7 IOA 120'));
+  AssertFalse('out of operation', S.Points[I].ParOn);
+  { the deadband no longer holds back a change of 1 }
+  O := IecObject(120);
+  O.Int := 1;
+  AssertEquals(res_Ok, IecSlaveUpdate(S, 120, O, True, E));
+  AssertEquals(0, S.Suppressed);
+  AssertEquals(M.Cmd.Err, res_Ok, IecParamActivation(M, 0, 1, 120, Qpa_Object));
+  AssertTrue(S.Points[I].ParOn);
 end;
 
 { Every command type, with and without time tag, from our master to our

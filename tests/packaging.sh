@@ -77,7 +77,9 @@ awk -v dir="$TMP/readme" '
 progs=$(cd "$TMP/readme" && ls *.pas 2>/dev/null | sed 's/\.pas$//')
 if [ -z "$progs" ]; then bad "package: README.md has no complete program"; fi
 
-"$BUILD/bin/df1sim" --pty --timeout=60 >"$TMP/sim.log" 2>&1 &
+# the simulator outlives every build below (an install on a loaded machine
+# takes minutes; it is stopped at the end): 600 s without a message
+"$BUILD/bin/df1sim" --pty --timeout=600 >"$TMP/sim.log" 2>&1 &
 SIMPID=$!
 for _ in $(seq 50); do [ -s "$TMP/sim.log" ] && break; sleep 0.1; done
 read -r tag PTY <"$TMP/sim.log" || true

@@ -122,6 +122,7 @@ type
     Err     : ShortString;
     Auto    : Boolean;     {< the master's own, after an end of initialisation }
     Raw     : Boolean;     {< an ASDU of another procedure (IecStartAsdu): done once sent }
+    Deact   : Boolean;     {< a deactivation (COT 8): ends on its DEACT_CON }
   end;
 
   tIecMaster = record
@@ -227,6 +228,9 @@ function IecStartParamNormal(var M: tIecMaster; Addr, Ca: Word; Ioa: LongWord; V
 function IecStartParamScaled(var M: tIecMaster; Addr, Ca: Word; Ioa: LongWord; Value: LongInt; Qpm: Byte): Boolean;
 function IecStartParamFloat(var M: tIecMaster; Addr, Ca: Word; Ioa: LongWord; Value: Double; Qpm: Byte): Boolean;
 function IecStartParamActivation(var M: tIecMaster; Addr, Ca: Word; Ioa: LongWord; Qpa: Byte): Boolean;
+{ The same with COT 8: the parameters out of operation; ends on the
+  DEACT_CON (COT 9). }
+function IecStartParamDeactivation(var M: tIecMaster; Addr, Ca: Word; Ioa: LongWord; Qpa: Byte): Boolean;
 { One ASDU built by another procedure (file transfer, ChnIecFileClient)
   to slave Addr: ends res_Ok once the link took it (unbalanced: its
   SEND/CONFIRM confirmed; balanced, IEC 104: handed to the transport);
@@ -249,6 +253,7 @@ function IecParamNormal(var M: tIecMaster; Addr, Ca: Word; Ioa: LongWord; Value:
 function IecParamScaled(var M: tIecMaster; Addr, Ca: Word; Ioa: LongWord; Value: LongInt; Qpm: Byte): tChResult;
 function IecParamFloat(var M: tIecMaster; Addr, Ca: Word; Ioa: LongWord; Value: Double; Qpm: Byte): tChResult;
 function IecParamActivation(var M: tIecMaster; Addr, Ca: Word; Ioa: LongWord; Qpa: Byte): tChResult;
+function IecParamDeactivation(var M: tIecMaster; Addr, Ca: Word; Ioa: LongWord; Qpa: Byte): tChResult;
 { Step for Ms milliseconds (polling, objects to OnObject). }
 procedure IecPollFor(var M: tIecMaster; Ms: LongInt);
 { The pause of a loop whose step did nothing: Idle when set, else
@@ -425,6 +430,8 @@ begin
         O.Select := False;
         if M.Cmd.Ti = C_RD_NA_1 then
           M.StageCot := Cot_Request
+        else if M.Cmd.Deact then
+          M.StageCot := Cot_Deactivation
         else if (M.Cmd.Ti = C_CS_NA_1) and M.Cmd.Delay then
         begin
           O.Time := IecTimeFromDateTime(Now);
@@ -596,6 +603,19 @@ begin
   Result := StartParam(M, Addr, Ca, P_AC_NA_1, Ioa, Qpa, 0, 0);
 end;
 
+function IecStartParamDeactivation(var M: tIecMaster; Addr, Ca: Word; Ioa: LongWord; Qpa: Byte): Boolean;
+var
+  E: ShortString;
+begin
+  Result := StartParam(M, Addr, Ca, P_AC_NA_1, Ioa, Qpa, 0, 0);
+  if Result then
+  begin
+    { the same ASDU with COT 8 (it encoded with COT 6: it encodes) }
+    M.Cmd.Deact := True;
+    BeginStage(M, stMain, E);
+  end;
+end;
+
 function IecStartAsdu(var M: tIecMaster; Addr: Word; const Asdu: array of Byte; Len: Word): Boolean;
 begin
   Result := False;
@@ -690,9 +710,11 @@ begin
     Exit;
   What := 'COT ' + IntToStr(H.Cot) + ' ' + IecCotName(H.Cot);
   case H.Cot of
-    Cot_ActCon:
-      if H.Negative then
-        Finish(M, res_IecNegative, 'negative ACT_CON')
+    Cot_ActCon, Cot_DeactCon:
+      if (H.Cot = Cot_DeactCon) <> M.Cmd.Deact then
+        Exit                             { the confirmation of the other cause }
+      else if H.Negative then
+        Finish(M, res_IecNegative, BoolToStr(M.Cmd.Deact, 'negative DEACT_CON', 'negative ACT_CON'))
       else if M.Cmd.Phase = cpConfirm then
         StageConfirmed(M);
     Cot_ActTerm:
@@ -1301,6 +1323,11 @@ function IecParamActivation(var M: tIecMaster; Addr, Ca: Word; Ioa: LongWord; Qp
 begin
   AwaitAuto(M);
   Result := Blocking(M, IecStartParamActivation(M, Addr, Ca, Ioa, Qpa));
+end;
+
+function IecParamDeactivation(var M: tIecMaster; Addr, Ca: Word; Ioa: LongWord; Qpa: Byte): tChResult;
+begin
+  Result := Blocking(M, IecStartParamDeactivation(M, Addr, Ca, Ioa, Qpa));
 end;
 
 function IecMasterSlaveInfo(const M: tIecMaster; S: LongInt; out Info: tIecSlave): Boolean;

@@ -72,8 +72,7 @@ const
   Nof_Transparent   = 1;
   Nof_Disturbance   = 2;
 
-  { Octets of segment data an F_SG_NA_1 of at most MaxAsdu octets holds. }
-  IecFileSegHead    = 4;   {< NOF NOS LOS after the IOA }
+  IecFileSegHead    = 4;   {< octets of an F_SG_NA_1 element before its data: NOF NOS LOS }
 
 type
   { One file transfer object; the fields its type uses are filled, the

@@ -692,7 +692,11 @@ begin
   if FollowHealth(T) then
     Result := True;
   if not T.Running and IecCommandDone(T.M^) then
+  begin
     StartNext(T);
+    if T.Running then
+      Result := True;              { its first frame is due now: step again }
+  end;
 end;
 
 function IecTableWaitMs(const T: tIecPointTable): LongInt;

@@ -25,7 +25,17 @@
   refused, did not answer, or the command waited longer than
   CommandMs. A select is confirmed at once (nothing reaches the PLC). A
   command to any other IOA or of another type is refused by the slave
-  with COT 47 (unknown IOA). }
+  with COT 47 (unknown IOA).
+
+  IEC 101 devices (ChnGateIec101): their points are passed through, each
+  as it is first reported, at the device's ioa= offset + its IOA, with
+  its own type (a CP24 type served as its CP56 counterpart; when the RTU
+  reports one point both with and without time tag, the interrogation
+  keeps the first and the events take the other); the quality bits the
+  RTU sent, IV added while the RTU is not ok. A writable point takes
+  commands of its command type (and that type with CP56 time) at offset +
+  its command IOA; they go to the RTU as that command with that value,
+  and the ACT_CON waits for the RTU's. }
 unit ChnGate104;
 
 {$I chn.inc}
@@ -33,7 +43,7 @@ unit ChnGate104;
 interface
 
 uses
-  ChnTypes, ChnVirt, ChnPcccTags, ChnIec101Asdu, ChnIec101Slave;
+  ChnTypes, ChnVirt, ChnPcccTags, ChnIec101Asdu, ChnIec101Slave, ChnIecPointTable, ChnGateIec101;
 
 const
   Gate104CommandMsDefault = 10000;
@@ -57,6 +67,10 @@ type
     Ti    : Byte;            {< monitoring type }
     Cmd   : Byte;            {< command type without time tag, 0: not writable }
     Dev, Tag, Item: LongInt; {< the device, its tag, the item of the tag }
+    Iec   : pGateIecDevice;  {< or an IEC 101 device (nil: a DF1 tag) }
+    IecPoint: LongInt;       {< its point (ChnIecPointTable) }
+    CmdIoa: LongWord;        {< where its commands come (a DF1 tag: Ioa) }
+    EvTi  : Byte;            {< an IEC 101 point: the type its events take (0: Ti) }
     Sent  : Double;          {< value and quality the slave's table has }
     SentQ : Byte;
   end;
@@ -109,6 +123,11 @@ procedure Gate104Health(var N: tGate104; const Devs: array of tPcccDevice; Dev: 
 { A write finished (ChnPcccTags.TagTakeWrite): True when it was one of
   the server's commands (its ACT_CON has been queued, or it had timed out). }
 function Gate104WriteDone(var N: tGate104; const W: tTagWrite): Boolean;
+{ The same for a command to an IEC 101 device (IecTableTakeWrite). }
+function Gate104IecWriteDone(var N: tGate104; const W: tIecTableWrite): Boolean;
+{ Point P of IEC 101 device D changed (IecTableTakeChange): its point in
+  the table (added when it is new) gets value and quality, as an event. }
+procedure Gate104IecChange(var N: tGate104; D: pGateIecDevice; P: LongInt);
 { Serve the control centre: requests, commands to the devices, commands
   that waited too long. The ms the program may wait (ChnWaitAny). }
 function Gate104Step(var N: tGate104; var Devs: array of tPcccDevice): LongInt;
@@ -315,6 +334,7 @@ begin
         end;
         N.Points[High(N.Points)].Ti := Ti;
         N.Points[High(N.Points)].Cmd := Cmd;
+        N.Points[High(N.Points)].CmdIoa := P;
         O := PointObject(Ti, Devs[D].Tags[T], K, N.Points[High(N.Points)].SentQ);
         O.Ioa := P;
         if (IecSlaveAddPoint(N.S^, Ti, O, 0, E) <> res_Ok) or
@@ -387,11 +407,57 @@ end;
 function CommandValue(const H: tIecAsdu; const O: tIecObject): Double;
 begin
   case IecTypeKind(H.Ti) of
-    ikSetFloat: Result := O.Number;
+    ikSetFloat, ikSetNormal: Result := O.Number;
     ikBitsCmd: Result := LongInt(O.Bits);
   else
     Result := O.Int;
   end;
+end;
+
+{ Remember a command passed south; its ACT_CON waits for the device. }
+procedure AddPending(var N: tGate104; Ticket: LongWord; const What: AnsiString);
+var
+  K: LongInt;
+begin
+  K := Length(N.Pending);
+  SetLength(N.Pending, K + 1);
+  N.Pending[K].Ticket := Ticket;
+  N.Pending[K].WriteId := N.NextId;
+  N.Pending[K].Until_ := ChMsTick + QWord(N.Cfg.CommandMs);
+  N.Pending[K].What := What;
+end;
+
+{ A command to IEC 101 point P: the same command to its RTU. }
+function PassCommand(var N: tGate104; P: LongInt; const H: tIecAsdu; const O: tIecObject): Boolean;
+var
+  Ticket: LongWord;
+  What, Err: AnsiString;
+begin
+  What := IecTypeName(H.Ti) + ' IOA ' + IntToStr(O.Ioa) + ' (' + N.Points[P].Iec^.Name + ' ' +
+    GateIecPointName(N.Points[P].Iec, N.Points[P].IecPoint) + ' := ' + FloatToStr(CommandValue(H, O)) + ')';
+  Inc(N.Commands);
+  Result := O.Select;
+  if Result then
+  begin
+    Say(N, What + ': selected');
+    Exit;
+  end;
+  Ticket := IecSlaveDefer(N.S^);
+  if Ticket = 0 then
+  begin
+    Inc(N.Refused);
+    Say(N, What + ': refused, ' + IntToStr(IecSlaveMaxDeferred) + ' commands wait already');
+    Exit;
+  end;
+  Dec(N.NextId);
+  if not GateIecWrite(N.Points[P].Iec, N.Points[P].IecPoint, CommandValue(H, O), N.NextId, Err) then
+  begin
+    Inc(N.Refused);
+    Say(N, What + ': refused, ' + Err);
+    Exit;
+  end;
+  AddPending(N, Ticket, What);
+  Result := True;
 end;
 
 { The slave hands over a command to a command point (an IOA of a
@@ -410,8 +476,10 @@ begin
   Result := False;
   P := -1;
   for K := 0 to High(N^.Points) do
-    if (N^.Points[K].Ioa = O.Ioa) and (N^.Points[K].Cmd <> 0) then
+    if (N^.Points[K].CmdIoa = O.Ioa) and (N^.Points[K].Cmd <> 0) then
       P := K;
+  if (P >= 0) and (N^.Points[P].Iec <> nil) then
+    Exit(PassCommand(N^, P, H, O));
   if (P < 0) or (N^.Points[P].Dev >= N^.DevCount) then
   begin
     Say(N^, IecTypeName(H.Ti) + ' IOA ' + IntToStr(O.Ioa) + ': refused, no device for it now');
@@ -441,12 +509,7 @@ begin
     Say(N^, What + ': refused, ' + E);
     Exit;                                     { negative ACT_CON at once }
   end;
-  K := Length(N^.Pending);
-  SetLength(N^.Pending, K + 1);
-  N^.Pending[K].Ticket := Ticket;
-  N^.Pending[K].WriteId := N^.NextId;
-  N^.Pending[K].Until_ := ChMsTick + QWord(N^.Cfg.CommandMs);
-  N^.Pending[K].What := What;
+  AddPending(N^, Ticket, What);
   Result := True;
 end;
 
@@ -455,30 +518,121 @@ begin
   Delete(N.Pending, K, 1);
 end;
 
-function Gate104WriteDone(var N: tGate104; const W: tTagWrite): Boolean;
+{ The outcome of write Id from the device below: True when it was ours. }
+function WriteDone(var N: tGate104; Id: LongInt; Res: tChResult; const Err, Who: AnsiString): Boolean;
 var
   K: LongInt;
 begin
-  Result := W.Id < 0;
+  Result := Id < 0;
   if not Result or (N.S = nil) then
     Exit;
   for K := 0 to High(N.Pending) do
-    if N.Pending[K].WriteId = W.Id then
+    if N.Pending[K].WriteId = Id then
     begin
-      IecSlaveConfirm(N.S^, N.Pending[K].Ticket, W.Res = res_Ok);
-      if W.Res = res_Ok then
+      IecSlaveConfirm(N.S^, N.Pending[K].Ticket, Res = res_Ok);
+      if Res = res_Ok then
       begin
         Inc(N.Confirmed);
-        Say(N, N.Pending[K].What + ': confirmed by the PLC');
+        Say(N, N.Pending[K].What + ': confirmed by the ' + Who);
       end
       else
       begin
         Inc(N.Refused);
-        Say(N, N.Pending[K].What + ': ' + W.Err);
+        Say(N, N.Pending[K].What + ': ' + Err);
       end;
       DropPending(N, K);
       Exit;
     end;
+end;
+
+function Gate104WriteDone(var N: tGate104; const W: tTagWrite): Boolean;
+begin
+  Result := WriteDone(N, W.Id, W.Res, W.Err, 'PLC');
+end;
+
+function Gate104IecWriteDone(var N: tGate104; const W: tIecTableWrite): Boolean;
+begin
+  Result := WriteDone(N, W.Id, W.Res, W.Err, 'RTU');
+end;
+
+{ The table's point K of IEC 101 point P of D; added when new (-1: it
+  cannot be, said once). }
+function IecPointOf(var N: tGate104; D: pGateIecDevice; P: LongInt): LongInt;
+var
+  TP: ^tIecTablePoint;
+  Ioa: LongWord;
+  Cmd: Byte;
+  E: ShortString;
+begin
+  for Result := 0 to High(N.Points) do
+    if (N.Points[Result].Iec = D) and (N.Points[Result].IecPoint = P) then
+      Exit;
+  TP := @D^.T.Points[P];
+  Ioa := GateIecNorthIoa(D, P);
+  Result := Length(N.Points);
+  SetLength(N.Points, Result + 1);
+  FillChar(N.Points[Result], SizeOf(N.Points[Result]), 0);
+  N.Points[Result].Iec := D;
+  N.Points[Result].IecPoint := P;
+  N.Points[Result].Ioa := Ioa;
+  N.Points[Result].Ti := TP^.Ti;
+  if IecSlaveAddPoint(N.S^, TP^.Ti, IecObject(Ioa), 0, E) <> res_Ok then
+  begin
+    Say(N, D^.Name + ' ' + GateIecPointName(D, P) + ': not served: ' + E);
+    N.Points[Result].Ti := 0;              { not again }
+    Exit;
+  end;
+  if not TP^.Writable then
+    Exit;
+  Cmd := TP^.CmdTi;
+  if Cmd = 0 then
+    Cmd := IecCommandType(TP^.Ti);
+  N.Points[Result].CmdIoa := D^.Cfg.IoaOffset + TP^.CmdIoa;
+  if (Cmd = 0) or (IecSlaveAddPoint(N.S^, Cmd, IecObject(N.Points[Result].CmdIoa), 0, E) <> res_Ok) then
+  begin
+    Say(N, D^.Name + ' ' + GateIecPointName(D, P) + ': no commands: ' + E);
+    Exit;
+  end;
+  N.Points[Result].Cmd := Cmd;
+  if Cmd in [C_SC_NA_1..C_BO_NA_1] then
+    IecSlaveAddPoint(N.S^, Cmd + (C_SC_TA_1 - C_SC_NA_1), IecObject(N.Points[Result].CmdIoa), 0, E);
+end;
+
+procedure Gate104IecChange(var N: tGate104; D: pGateIecDevice; P: LongInt);
+var
+  K: LongInt;
+  TP: ^tIecTablePoint;
+  O: tIecObject;
+  E: ShortString;
+begin
+  if (N.S = nil) or not IecIsMonitor(D^.T.Points[P].Ti) or (D^.T.Points[P].Ti = M_EI_NA_1) then
+    Exit;
+  K := IecPointOf(N, D, P);
+  if N.Points[K].Ti = 0 then
+    Exit;
+  TP := @D^.T.Points[P];
+  if (TP^.Ti <> N.Points[K].Ti) and (TP^.Ti <> N.Points[K].EvTi) then
+  begin
+    { the same information with a time tag: the events take it }
+    if IecSlaveEventType(N.S^, N.Points[K].Ioa, TP^.Ti, E) <> res_Ok then
+    begin
+      Say(N, D^.Name + ' ' + GateIecPointName(D, P) + ': ' + E);
+      Exit;
+    end;
+    N.Points[K].EvTi := TP^.Ti;
+  end;
+  O := IecObject(N.Points[K].Ioa);
+  case IecTypeKind(TP^.Ti) of
+    ikNormal, ikFloat: O.Number := TP^.Value;
+    ikBits, ikPacked, ikStartEvents, ikOutputCircuit: O.Bits := LongWord(Round(TP^.Value));
+  else
+    O.Int := Round(TP^.Value);
+  end;
+  O.Quality := TP^.Quality;
+  if TP^.Bad or not TP^.Known then
+    O.Quality := O.Quality or Q_Invalid;
+  if IecSlaveUpdate(N.S^, N.Points[K].Ioa, O, True, E) <> res_Ok then
+    Say(N, 'IOA ' + IntToStr(N.Points[K].Ioa) + ': ' + E);
 end;
 
 function Gate104Step(var N: tGate104; var Devs: array of tPcccDevice): LongInt;

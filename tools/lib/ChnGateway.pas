@@ -924,9 +924,14 @@ begin
   else
     Result := GateIecWaitMs(D);
   while IecTableTakeChange(D^.T, P) do
+  begin
     Publish(G, Topic(G, D^.Name, GateIecPointName(D, P)), GateIecPointPayload(D^.T.Points[P]), True);
+    Gate104IecChange(G.N104, D, P);
+  end;
   while IecTableTakeWrite(D^.T, Wr) do
   begin
+    if Gate104IecWriteDone(G.N104, Wr) then
+      Continue;                        { the IEC 104 north's command }
     Name := Topic(G, D^.Name, GateIecPointName(D, Wr.Point)) + '/set';
     if Wr.Res = res_Ok then
       Say(G, Name + ' ' + JsonNumber(Wr.Value) + ': positive ACT_CON')
