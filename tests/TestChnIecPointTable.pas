@@ -164,11 +164,17 @@ end;
 function TTestChnIecPointTable.Changed: string;
 var
   P: LongInt;
+  V: Double;
 begin
   Result := '';
   while IecTableTakeChange(T, P) do
-    Result := Result + Format('%d=%g %s ', [T.Points[P].Ioa, T.Points[P].Value,
+  begin
+    { a copy: Format takes the address of a Double, and the table's packed
+      record may hold it at an address ARM's VFP cannot load from }
+    V := T.Points[P].Value;
+    Result := Result + Format('%d=%g %s ', [T.Points[P].Ioa, V,
       IecPointQualityText(T.Points[P])]);
+  end;
   Result := Trim(Result);
 end;
 

@@ -139,7 +139,7 @@ begin
   if Running then
     Exit;
   Launch('exec "$0" -c "$1" >>"$2" 2>&1', [Tool('mosquitto'), FDir + '/mosquitto.conf', FLog]);
-  Deadline := GetTickCount64 + 5000;
+  Deadline := GetTickCount64 + 15000;   { generous: a loaded machine starts it slowly }
   repeat
     if PortTaken(FPort) then
       Exit;
