@@ -179,7 +179,7 @@ begin
       'ChnFT12Primary', 'ChnFT12Codec', 'ChnIec101Asdu', 'ChnWait', 'ChnIecTransport']);
     { file transfer (types 120..127): codec, controlled and controlling station }
     AddUnit(P, 'ChnIecFile.pas', AllOSes, ['ChnTypes', 'ChnIec101Asdu']);
-    AddUnit(P, 'ChnIecFileServer.pas', AllOSes, ['ChnTypes', 'ChnVirt', 'ChnIec101Asdu', 'ChnIecFile']);
+    AddUnit(P, 'ChnIecFileServer.pas', AllOSes, ['ChnTypes', 'ChnVirt', 'ChnIec101Asdu', 'ChnIecFile', 'ChnOs']);
     AddUnit(P, 'ChnIecFileClient.pas', AllOSes, ['ChnTypes', 'ChnVirt', 'ChnFT12Codec', 'ChnIec101Asdu', 'ChnIec101Master', 'ChnIecFile']);
     AddUnit(P, 'ChnIec101Slave.pas', AllOSes, ['ChnTypes', 'ChnVirt', 'ChnFT1_2', 'ChnFT12Link',
       'ChnFT12Station', 'ChnIec101Asdu', 'ChnIecTransport', 'ChnIec104Codec', 'ChnIecFile', 'ChnIecFileServer']);

@@ -101,20 +101,6 @@ begin
   Result^.ChReceiveBuffer(@Buf, SizeOf(Buf));
 end;
 
-function FreePort: Word;
-var
-  A: tSockAddrs;
-  N: LongInt;
-  S: tSock;
-begin
-  Result := 0;
-  if (SockResolve('127.0.0.1', 0, True, A, N) = seOk) and (SockListen(A[0], S) = seOk) then
-  begin
-    Result := SockLocalPort(S);
-    SockClose(S);
-  end;
-end;
-
 procedure Stop(var P: TProcess);
 begin
   if P = nil then
@@ -479,7 +465,7 @@ begin
   SetLength(ReadLat, MaxChanges);
   Dir := GetTempDir + 'chn-benchgate-' + IntToStr(GetProcessID);
   ForceDirectories(Dir);
-  Port := FreePort;
+  Port := SockFreeLoopbackPort;
   WriteText(Dir + '/m.conf', 'listener ' + IntToStr(Port) + ' 127.0.0.1'#10'allow_anonymous true'#10 +
     'persistence false'#10);
   Broker := nil;

@@ -228,7 +228,7 @@ end;
 
 { Put N characters from Src, sent by end E, into every other open end's
   ring; at a full ring they are lost there (Overruns). }
-procedure HandOver(P: pLoopPair; E: LongInt; Src: PByte; N: LongInt);
+procedure HandOver(P: pLoopPair; E: LongInt; Src: PByte; N: LongInt); inline;
 var
   L, Put: LongInt;
 begin
@@ -245,7 +245,7 @@ end;
 { Wake the ends after end E's characters moved: input for the others;
   for E, room (no speed) or its send done - not for the end whose own
   call moved them (Caller). }
-procedure SignalEnds(P: pLoopPair; E, Caller: LongInt);
+procedure SignalEnds(P: pLoopPair; E, Caller: LongInt); inline;
 var
   L: LongInt;
 begin
@@ -291,17 +291,20 @@ begin
   SignalEnds(P, E, Caller);
 end;
 
-{ An unpaced pair with every wire empty and room for Len characters at
-  every other end: Pump would move a message written now whole, at once. }
-function GoesStraight(P: pLoopPair; E, Len: LongInt): Boolean;
+{ How much of Len characters end E writes now Pump would move at once:
+  on an unpaced pair with every wire empty, what fits into every other
+  end's ring; 0 otherwise. }
+function GoesStraight(P: pLoopPair; E, Len: LongInt): LongInt; inline;
 var
   L: LongInt;
 begin
-  Result := (Len > 0) and (P^.Paced = 0) and (P^.OnWire = 0);
-  if Result then
-    for L := 1 to P^.Top do
-      if (L <> E) and P^.Ends[L].Open and (RingRoom(P^.Ends[L].Ring) < Len) then
-        Exit(False);
+  Result := 0;
+  if (P^.Paced > 0) or (P^.OnWire > 0) then
+    Exit;
+  Result := Len;
+  for L := 1 to P^.Top do
+    if (L <> E) and P^.Ends[L].Open and (RingRoom(P^.Ends[L].Ring) < Result) then
+      Result := RingRoom(P^.Ends[L].Ring);
 end;
 
 { Move what has reached the other ends by Now (with a speed), or what
@@ -365,7 +368,7 @@ end;
 
 { The time for Pump: the clock only when an open end has a speed - an
   unpaced pair needs none, and a clock read is a system call here. }
-function PairNow(P: pLoopPair): QWord;
+function PairNow(P: pLoopPair): QWord; inline;
 begin
   if P^.Paced > 0 then
     Result := ChnClockUs
@@ -532,21 +535,26 @@ function TChnPortLoop.DoWrite(const Buf; Len: LongInt; out Done: LongInt): tChRe
 var
   Now: QWord;
   Idle: Boolean;
+  Straight, Rest: LongInt;
 begin
   Result := res_Ok;
   EnterCriticalSection(Lock);
   try
     Now := PairNow(FPair);
     Pump(FPair, Now, FEnd);
-    if GoesStraight(FPair, FEnd, Len) then
+    { what the wire and Pump would move at once goes into the other
+      ends' rings without the copy onto the wire (the null modem: one
+      message at a time); the rest waits on the wire }
+    Straight := GoesStraight(FPair, FEnd, Len);
+    if Straight > 0 then
     begin
-      { what the wire and Pump would do, without the copy onto the wire
-        (the common null modem: one message at a time) }
-      HandOver(FPair, FEnd, @Buf, Len);
+      HandOver(FPair, FEnd, @Buf, Straight);
       SignalEnds(FPair, FEnd, FEnd);
       Done := Len;
-      Exit;
+      if Straight = Len then
+        Exit;
     end;
+    Rest := Len - Straight;
     with FPair^.Ends[FEnd] do
     begin
       Idle := WirePos >= WireLen;
@@ -558,13 +566,13 @@ begin
         Dec(WireLen, WirePos);
         WirePos := 0;
       end;
-      if WireLen + Len > WireCap then
+      if WireLen + Rest > WireCap then
       begin
-        WireCap := WireLen + Len;
+        WireCap := WireLen + Rest;
         ReAllocMem(Wire, WireCap);
       end;
-      Move(Buf, Wire[WireLen], Len);
-      Inc(WireLen, Len);
+      Move(PByte(@Buf)[Straight], Wire[WireLen], Rest);
+      Inc(WireLen, Rest);
       if Idle and (WirePos < WireLen) then
         Inc(FPair^.OnWire);
       if Idle then
@@ -603,9 +611,12 @@ end;
 
 function TChnPortLoop.WaitInput(Ms: LongInt): Boolean;
 begin
-  { input already here stays until this end reads it: no Pump needed }
+  { input already here stays until this end reads it; without a speed
+    nothing falls due (PumpDue): no lock, no Pump }
   if FPair^.Ends[FEnd].Ring.Count > 0 then
     Exit(True);
+  if FPair^.Paced = 0 then
+    Exit(False);
   EnterCriticalSection(Lock);
   PumpDue(FPair, FEnd);
   Result := FPair^.Ends[FEnd].Ring.Count > 0;
