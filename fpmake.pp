@@ -151,7 +151,7 @@ begin
     AddUnit(P, 'ChnPcccClient.pas', AllOSes, ['ChnTypes', 'ChnVirt', 'ChnDF1Codec', 'ChnDF1Link', 'ChnDF1Poll',
       'ChnPccc', 'ChnPlc5', 'uString', 'ChnWait']);
     AddUnit(P, 'ChnPcccTags.pas', AllOSes, ['ChnTypes', 'ChnVirt', 'ChnDF1Codec', 'ChnDF1Link',
-      'ChnPccc', 'ChnPlc5', 'ChnPcccClient', 'ChnWait']);
+      'ChnPccc', 'ChnPlc5', 'ChnPcccClient', 'ChnWait', 'ChnRing']);
     { src/iec: FT 1.2 and IEC 60870-5-101 }
     Part(P, 'iec');
     AddUnit(P, 'ChnFT12Codec.pas', AllOSes, ['ChnTypes']);
@@ -185,7 +185,7 @@ begin
       'ChnFT12Station', 'ChnIec101Asdu', 'ChnIecTransport', 'ChnIec104Codec', 'ChnIecFile', 'ChnIecFileServer']);
     { the points a master receives: value, quality, time; slave health; commands }
     AddUnit(P, 'ChnIecPointTable.pas', AllOSes, ['ChnTypes', 'ChnVirt', 'ChnWait', 'ChnIec101Asdu',
-      'ChnIec101Master']);
+      'ChnIec101Master', 'ChnRing']);
     { src/ics: ICSlink }
     Part(P, 'ics');
     AddUnit(P, 'ChnICSCodec.pas', AllOSes, ['ChnTypes', 'uString']);
