@@ -172,9 +172,19 @@ begin
   T.OrigFile(@T.C, Addr, B, Len);
 end;
 
+{ Refuse: the reason to keep the file; 'steal': yes, but the file goes
+  elsewhere first (the OS then fails to delete it, whoever runs the test). }
 function OnDelete(Data: Pointer; Ioa: LongWord; Nof: Word; out Why: ShortString): Boolean;
+var
+  T: TTestIecFile;
 begin
-  Why := TTestIecFile(Data).Refuse;
+  T := TTestIecFile(Data);
+  Why := T.Refuse;
+  if Why = 'steal' then
+  begin
+    RenameFile(T.FDir + '/' + IntToStr(Ioa), T.FDir + '/stolen');
+    Why := '';
+  end;
   Result := Why = '';
 end;
 
@@ -1032,6 +1042,12 @@ begin
       Feed(Srv, '7A 01 0D 00 01 00 31 75 00 01 00 00 04'));
     AssertEquals('delete of file IOA 30001: kept for the audit', Srv.LastError);
     AssertTrue(FileExists(FDir + '/30001'));
+    { the file gone when the server deletes it: the OS's reason }
+    Refuse := 'steal';
+    PutFile('30002', Pattern(5));
+    AssertEquals('7C 01 0D 00 01 00 32 75 00 01 00 00 32',
+      Feed(Srv, '7A 01 0D 00 01 00 32 75 00 01 00 00 04'));
+    AssertEquals('delete of file IOA 30002: ' + FDir + '30002: No such file or directory', Srv.LastError);
     Refuse := '';
     Srv.NoDelete := True;
     AssertEquals('7C 01 0D 00 01 00 31 75 00 01 00 00 32',
@@ -1046,7 +1062,7 @@ begin
       begin
         AssertEquals('7C 01 0D 00 01 00 31 75 00 01 00 00 32',
           Feed(Srv, '7A 01 0D 00 01 00 31 75 00 01 00 00 04'));
-        AssertEquals('delete of file IOA 30001: ' + FDir + '/30001: Permission denied', Srv.LastError);
+        AssertEquals('delete of file IOA 30001: ' + FDir + '30001: Permission denied', Srv.LastError);
         AssertTrue(FileExists(FDir + '/30001'));
       end;
     finally
