@@ -991,6 +991,10 @@ begin
     { NOF 0 (any), from 12:30:00.001 (ms 01 00) to Saturday 08:00: only 40003 }
     AssertEquals('7E 01 05 00 01 00 43 9C 00 01 00 1E 00 00 20 00 00 00 08 C5 0C 1A',
       Feed(Srv, '7F 01 05 00 01 00 00 00 00 00 00 01 00 1E 0C A4 0C 1A 00 00 00 08 C5 0C 1A'));
+    { NOF 1 from the 4th 00:00 to the 5th 23:00 (17): 40003 alone, the
+      two of NOF 2 in the range left out }
+    AssertEquals('7E 01 05 00 01 00 43 9C 00 01 00 1E 00 00 20 00 00 00 08 C5 0C 1A',
+      Feed(Srv, '7F 01 05 00 01 00 00 00 00 01 00 00 00 00 00 A4 0C 1A 00 00 00 17 C5 0C 1A'));
     { nothing on the 6th (Sunday 7 << 5 + 6 = E6): the query mirrored, P/N = 1 (45) }
     AssertEquals('7F 01 45 00 01 00 00 00 00 00 00 00 00 00 00 E6 0C 1A 00 00 00 17 E6 0C 1A',
       Feed(Srv, '7F 01 05 00 01 00 00 00 00 00 00 00 00 00 00 E6 0C 1A 00 00 00 17 E6 0C 1A'));
