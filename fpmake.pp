@@ -181,8 +181,10 @@ begin
     AddUnit(P, 'ChnIecFile.pas', AllOSes, ['ChnTypes', 'ChnIec101Asdu']);
     AddUnit(P, 'ChnIecFileServer.pas', AllOSes, ['ChnTypes', 'ChnVirt', 'ChnIec101Asdu', 'ChnIecFile']);
     AddUnit(P, 'ChnIecFileClient.pas', AllOSes, ['ChnTypes', 'ChnVirt', 'ChnFT12Codec', 'ChnIec101Asdu', 'ChnIec101Master', 'ChnIecFile']);
+    AddUnit(P, 'ChnIecMeasParams.pas', AllOSes, ['ChnIec101Asdu']);
     AddUnit(P, 'ChnIec101Slave.pas', AllOSes, ['ChnTypes', 'ChnVirt', 'ChnFT1_2', 'ChnFT12Link',
-      'ChnFT12Station', 'ChnIec101Asdu', 'ChnIecTransport', 'ChnIec104Codec', 'ChnIecFile', 'ChnIecFileServer']);
+      'ChnFT12Station', 'ChnIec101Asdu', 'ChnIecTransport', 'ChnIec104Codec', 'ChnIecFile', 'ChnIecFileServer',
+      'ChnIecMeasParams']);
     { the points a master receives: value, quality, time; slave health; commands }
     AddUnit(P, 'ChnIecPointTable.pas', AllOSes, ['ChnTypes', 'ChnVirt', 'ChnWait', 'ChnIec101Asdu',
       'ChnIec101Master']);

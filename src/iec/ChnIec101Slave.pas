@@ -95,6 +95,8 @@ type
     ParOn : Boolean;      {< the parameters are in operation (POP 0, or P_AC_NA_1) }
     Reported: Double;     {< the value of the last spontaneous report (the deadband's base) }
     HasReported: Boolean;
+    Filtered: Double;     {< the smoothing filter's value (ChnIecMeasParams) }
+    HasFiltered: Boolean; {< False: it starts from the table's value }
     EventTi: Byte;        {< type of its spontaneous events (IecSlaveEventType), 0: Ti }
   end;
   pIecPoint = ^tIecPoint;
@@ -260,7 +262,7 @@ function IecSlaveDeferred(const S: tIecSlaveStation): LongInt;
 implementation
 
 uses
-  SysUtils, DateUtils, Math, ChnIec104Codec;
+  SysUtils, DateUtils, Math, ChnIec104Codec, ChnIecMeasParams;
 
 {- ---------------------------------------------------------------- queues }
 
@@ -532,6 +534,28 @@ begin
     Result := O.Number;
 end;
 
+procedure SetMeasuredValue(Ti: Byte; var O: tIecObject; V: Double);
+begin
+  if IecTypeKind(Ti) = ikScaled then
+    O.Int := Round(V)
+  else
+    O.Number := V;
+end;
+
+{ The new value O of point P through its smoothing filter, when a
+  smoothing factor is in operation. }
+procedure Smooth(var P: tIecPoint; var O: tIecObject);
+begin
+  if not P.ParOn or (P.ParSet and (1 shl Kpa_Smoothing) = 0) then
+    Exit;
+  if not P.HasFiltered then
+    P.Filtered := MeasuredValue(P.Ti, P.Obj);
+  P.HasFiltered := True;
+  P.Filtered := IecParSmooth(P.Filtered, MeasuredValue(P.Ti, O),
+    IecParWeight(P.Par[Kpa_Smoothing], IecTypeKind(P.Ti) = ikScaled));
+  SetMeasuredValue(P.Ti, O, P.Filtered);
+end;
+
 { The parameter type (P_ME_NA/NB/NC_1) of a measured value type; 0 when
   it has none. }
 function ParamType(Ti: Byte): Byte;
@@ -546,12 +570,16 @@ begin
 end;
 
 { A change within the threshold of a point whose parameters are in
-  operation, and with the same quality, is not reported (a deadband around
-  the value reported last). }
+  operation, with the same quality and in the zone of the limits of the
+  value reported last, is not reported (a deadband around that value). }
 function InDeadband(const P: tIecPoint; const O: tIecObject; OldQuality: Byte): Boolean;
+var
+  V: Double;
 begin
+  V := MeasuredValue(P.Ti, O);
   Result := P.ParOn and (P.ParSet and (1 shl Kpa_Threshold) <> 0) and P.HasReported and
-    (O.Quality = OldQuality) and (Abs(MeasuredValue(P.Ti, O) - P.Reported) < P.Par[Kpa_Threshold]);
+    (O.Quality = OldQuality) and (Abs(V - P.Reported) < P.Par[Kpa_Threshold]) and
+    (IecParZone(P.Par, P.ParSet, V) = IecParZone(P.Par, P.ParSet, P.Reported));
 end;
 
 function IecSlaveUpdate(var S: tIecSlaveStation; Ioa: LongWord; const Obj: tIecObject;
@@ -581,6 +609,8 @@ begin
     Exit;
   end;
   Quality := S.Points[I].Obj.Quality;
+  if ParamType(S.Points[I].Ti) <> 0 then
+    Smooth(S.Points[I], O);
   S.Points[I].Obj := O;
   if Spontaneous and InDeadband(S.Points[I], O, Quality) then
   begin
@@ -641,10 +671,7 @@ begin
     if (P^.ParSet and (1 shl Kpa) = 0) or not GiWants(S, P^) then
       Continue;
     O := IecObject(P^.Obj.Ioa);
-    if ParamType(P^.Ti) = P_ME_NB_1 then
-      O.Int := Round(P^.Par[Kpa])
-    else
-      O.Number := P^.Par[Kpa];
+    SetMeasuredValue(P^.Ti, O, P^.Par[Kpa]);
     O.Qu := Kpa;
     if not P^.ParOn then
       O.Qu := O.Qu or Qpm_NotInOperation;
@@ -1039,7 +1066,10 @@ begin
   begin
     { every point's loaded parameters }
     for I := 0 to S.PointCount - 1 do
+    begin
       S.Points[I].ParOn := H.Cot = Cot_Activation;
+      S.Points[I].HasFiltered := False;  { a smoothing filter starts again }
+    end;
     Inc(S.Parameters);
     Answer(S, Buf, Len, ActOrDeact(H.Cot), False);
     Exit;
@@ -1060,8 +1090,7 @@ begin
   else
   begin
     Kpa := O.Qu and $3F;
-    Ok := (Kpa >= Kpa_Threshold) and (Kpa <= Kpa_High) and
-      ((Kpa <> Kpa_Threshold) or (MeasuredValue(S.Points[I].Ti, O) >= 0));
+    Ok := IecParValid(Kpa, MeasuredValue(S.Points[I].Ti, O), IecTypeKind(S.Points[I].Ti) = ikScaled);
     if Ok then
     begin
       S.Points[I].Par[Kpa] := MeasuredValue(S.Points[I].Ti, O);
@@ -1070,7 +1099,10 @@ begin
     end;
   end;
   if Ok then
+  begin
     Inc(S.Parameters);
+    S.Points[I].HasFiltered := False;    { a smoothing filter starts again }
+  end;
   Answer(S, Buf, Len, ActOrDeact(H.Cot), not Ok);
 end;
 
