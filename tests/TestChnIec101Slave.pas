@@ -26,6 +26,8 @@ type
     procedure Add(Ti: Byte; Ioa: LongWord; Int: LongInt; Group: Byte = 0);
     { user data to the slave (FC 3), ACK expected }
     procedure Send(const Hex: string);
+    procedure UpdateInt(Ioa: LongWord; V: LongInt; Quality: Byte = 0);
+    procedure Confirmed(const Req: string);
     { class 1 or 2 data: the ASDU in hex, '-' when none; FAcd set }
     function Poll(ClassNo: Byte): string;
   protected
@@ -172,6 +174,25 @@ begin
   Add(M_SP_NA_1, 104, 1);
   Add(M_SP_NA_1, 105, 0);
   Add(C_SC_NA_1, 5000, 0);
+end;
+
+{ A spontaneous update of point Ioa to V (the integer of a scaled value). }
+procedure TTestChnIec101Slave.UpdateInt(Ioa: LongWord; V: LongInt; Quality: Byte);
+var
+  O: tIecObject;
+  E: ShortString;
+begin
+  O := IecObject(0);
+  O.Int := V;
+  O.Quality := Quality;
+  AssertEquals(E, res_Ok, IecSlaveUpdate(S, Ioa, O, True, E));
+end;
+
+{ Req (hex) sent, its confirmation polled: the same with COT 7. }
+procedure TTestChnIec101Slave.Confirmed(const Req: string);
+begin
+  Send(Req);
+  AssertEquals(Req, Copy(Req, 1, 6) + '07' + Copy(Req, 9, MaxInt), Poll(1));
 end;
 
 procedure TTestChnIec101Slave.Send(const Hex: string);
@@ -758,17 +779,10 @@ end;
 { A threshold in operation is a deadband around the value reported last:
   M_ME_NB_1 (11 = $0B) SVA QDS. }
 procedure TTestChnIec101Slave.TestThresholdIsADeadband;
-var
-  E: ShortString;
 
   procedure Update(V: LongInt; Quality: Byte = 0);
-  var
-    O: tIecObject;
   begin
-    O := IecObject(0);
-    O.Int := V;
-    O.Quality := Quality;
-    AssertEquals(E, res_Ok, IecSlaveUpdate(S, 101, O, True, E));
+    UpdateInt(101, V, Quality);
   end;
 
 begin
@@ -810,19 +824,14 @@ var
   O: tIecObject;
 
   procedure Update(V: LongInt);
-  var
-    O: tIecObject;
   begin
-    O := IecObject(0);
-    O.Int := V;
-    AssertEquals(E, res_Ok, IecSlaveUpdate(S, 101, O, True, E));
+    UpdateInt(101, V);
   end;
 
 begin
   Open;
   AddStd;
-  Send('6F 01 06 00 01 00 65 00 00 32 00 02');
-  AssertEquals('6F 01 07 00 01 00 65 00 00 32 00 02', Poll(1));
+  Confirmed('6F 01 06 00 01 00 65 00 00 32 00 02');
   Update(103);
   AssertEquals('half way from 23', '0B 01 03 00 01 00 65 00 00 3F 00 00', Poll(1));
   Update(103);
@@ -842,8 +851,7 @@ begin
   Update(-7);
   AssertEquals('0B 01 03 00 01 00 65 00 00 F9 FF 00', Poll(1));
   { 100 %, in operation: every value as it is }
-  Send('6F 01 06 00 01 00 65 00 00 64 00 02');
-  AssertEquals('6F 01 07 00 01 00 65 00 00 64 00 02', Poll(1));
+  Confirmed('6F 01 06 00 01 00 65 00 00 64 00 02');
   Update(1000);
   AssertEquals('0B 01 03 00 01 00 65 00 00 E8 03 00', Poll(1));
   { a float (M_ME_NC_1, IOA 110 = 6E 00 00, 0): P_ME_NC_1 (70) takes k
@@ -852,8 +860,7 @@ begin
   Add(M_ME_NC_1, 110, 0);
   Send('70 01 06 00 01 00 6E 00 00 00 00 C0 3F 02');
   AssertEquals('70 01 47 00 01 00 6E 00 00 00 00 C0 3F 02', Poll(1));
-  Send('70 01 06 00 01 00 6E 00 00 00 00 80 3E 02');
-  AssertEquals('70 01 07 00 01 00 6E 00 00 00 00 80 3E 02', Poll(1));
+  Confirmed('70 01 06 00 01 00 6E 00 00 00 00 80 3E 02');
   O := IecObject(0);
   O.Number := 8.0;
   AssertEquals(E, res_Ok, IecSlaveUpdate(S, 110, O, True, E));
@@ -867,27 +874,18 @@ end;
   threshold a change is reported only when the value goes into another
   zone (below 2300, 2300..2500, above 2500) than the one reported last. }
 procedure TTestChnIec101Slave.TestLimitsReportAZoneChange;
-var
-  E: ShortString;
 
   procedure Update(V: LongInt);
-  var
-    O: tIecObject;
   begin
-    O := IecObject(0);
-    O.Int := V;
-    AssertEquals(E, res_Ok, IecSlaveUpdate(S, 102, O, True, E));
+    UpdateInt(102, V);
   end;
 
 begin
   Open;
   AddStd;
-  Send('6F 01 06 00 01 00 66 00 00 2C 01 01');
-  AssertEquals('6F 01 07 00 01 00 66 00 00 2C 01 01', Poll(1));
-  Send('6F 01 06 00 01 00 66 00 00 FC 08 03');
-  AssertEquals('6F 01 07 00 01 00 66 00 00 FC 08 03', Poll(1));
-  Send('6F 01 06 00 01 00 66 00 00 C4 09 04');
-  AssertEquals('6F 01 07 00 01 00 66 00 00 C4 09 04', Poll(1));
+  Confirmed('6F 01 06 00 01 00 66 00 00 2C 01 01');
+  Confirmed('6F 01 06 00 01 00 66 00 00 FC 08 03');
+  Confirmed('6F 01 06 00 01 00 66 00 00 C4 09 04');
   Update(2400);
   AssertEquals('the first change: 2400 = 60 09', '0B 01 03 00 01 00 66 00 00 60 09 00', Poll(1));
   Update(2450);
