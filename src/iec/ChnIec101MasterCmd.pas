@@ -32,9 +32,9 @@ function JoinAuto(var M: tIecMaster; Addr, Ca: Word; Ti: Byte; Q: Byte): Boolean
 { The stage answered positively (or needs no answer): on to the next, or done. }
 procedure StageConfirmed(var M: tIecMaster);
 { An object received from slave index S: does it answer the command? }
-procedure MatchCommand(var M: tIecMaster; S: Integer; const H: tIecAsdu; const O: tIecObject);
+procedure MatchCommand(var M: tIecMaster; S: LongInt; const H: tIecAsdu; const O: tIecObject);
 { The current stage went out to slave index S: tell OnSent. }
-procedure StageSent(var M: tIecMaster; S: Integer);
+procedure StageSent(var M: tIecMaster; S: LongInt);
 
 implementation
 
@@ -208,7 +208,7 @@ begin
 end;
 
 { An ASDU from slave index S: does it answer the command? }
-procedure MatchCommand(var M: tIecMaster; S: Integer; const H: tIecAsdu; const O: tIecObject);
+procedure MatchCommand(var M: tIecMaster; S: LongInt; const H: tIecAsdu; const O: tIecObject);
 var
   Ti: Byte;
   Want: tIecObject;
@@ -261,7 +261,7 @@ begin
 end;
 
 { The current stage went out to slave index S: tell OnSent. }
-procedure StageSent(var M: tIecMaster; S: Integer);
+procedure StageSent(var M: tIecMaster; S: LongInt);
 var
   H: tIecAsdu;
 begin

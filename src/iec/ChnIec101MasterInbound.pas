@@ -14,7 +14,7 @@ uses
   ChnIec101MasterTypes;
 
 { An ASDU received from slave index S. }
-procedure TakeAsdu(var M: tIecMaster; S: Integer; const Buf: array of Byte; Len: Word);
+procedure TakeAsdu(var M: tIecMaster; S: LongInt; const Buf: array of Byte; Len: Word);
 { The interrogations due after an end of initialisation: the next one,
   when the program has no command under way. }
 procedure StartAfterInit(var M: tIecMaster);
@@ -27,7 +27,7 @@ uses
 { Slave index S has initialised (M_EI_NA_1, COT 4): tell the program;
   its data may all have changed - interrogate it (and its counters) when
   no command is under way, unless told not to. }
-procedure EndOfInit(var M: tIecMaster; S: Integer; Ca: Word; Coi: Byte);
+procedure EndOfInit(var M: tIecMaster; S: LongInt; Ca: Word; Coi: Byte);
 begin
   Inc(M.EndOfInits);
   with M.Slaves[S] do
@@ -78,7 +78,7 @@ begin
 end;
 
 { An ASDU received from slave index S. }
-procedure TakeAsdu(var M: tIecMaster; S: Integer; const Buf: array of Byte; Len: Word);
+procedure TakeAsdu(var M: tIecMaster; S: LongInt; const Buf: array of Byte; Len: Word);
 var
   H: tIecAsdu;
   O: tIecObject;
