@@ -55,6 +55,7 @@ type
     DropAfterSegment: Boolean;   { the master hears no file ASDU after the first segment }
     Dropping: Boolean;
     SlaveHeard: string;     { the last file ASDU the slave received, in hex }
+    SlaveLog: string;       { all of them but segments, ' | ' between }
     Refuse: string;         { OnDelete: the reason to keep a file ('' deletes) }
     Received: TStringList;
     OrigFile: tIecFileAsduFunc;
@@ -80,6 +81,7 @@ type
     procedure TestServerSectionsOctets;
     procedure TestDeleteAndQueryLogPty;
     procedure TestGiveUpFreesTheSlave;
+    procedure TestGetOneSection;
     procedure TestLiveLib60870;
   end;
 
@@ -137,7 +139,12 @@ var
 begin
   T := TTestIecFile(Data);
   if not Sent and (Len > 0) and IecIsFileType(Buf[0]) and (Buf[0] <> F_SG_NA_1) then
+  begin
     T.SlaveHeard := Hex(Buf[0..Len - 1], Len);
+    if T.SlaveLog <> '' then
+      T.SlaveLog := T.SlaveLog + ' | ';
+    T.SlaveLog := T.SlaveLog + T.SlaveHeard;
+  end;
   if not Sent and T.FlipPutFileChs and (Len = 14) and (Buf[0] = F_LS_NA_1) and (Buf[12] = Lsq_File) then
     Buf[13] := Buf[13] xor $01;
   if (Len > 20) and (Buf[0] = F_SG_NA_1) then
@@ -991,6 +998,10 @@ begin
     { NOF 0 (any), from 12:30:00.001 (ms 01 00) to Saturday 08:00: only 40003 }
     AssertEquals('7E 01 05 00 01 00 43 9C 00 01 00 1E 00 00 20 00 00 00 08 C5 0C 1A',
       Feed(Srv, '7F 01 05 00 01 00 00 00 00 00 00 01 00 1E 0C A4 0C 1A 00 00 00 08 C5 0C 1A'));
+    { NOF 1 from the 4th 00:00 to the 5th 23:00 (17): 40003 alone, the
+      two of NOF 2 in the range left out }
+    AssertEquals('7E 01 05 00 01 00 43 9C 00 01 00 1E 00 00 20 00 00 00 08 C5 0C 1A',
+      Feed(Srv, '7F 01 05 00 01 00 00 00 00 01 00 00 00 00 00 A4 0C 1A 00 00 00 17 C5 0C 1A'));
     { nothing on the 6th (Sunday 7 << 5 + 6 = E6): the query mirrored, P/N = 1 (45) }
     AssertEquals('7F 01 45 00 01 00 00 00 00 00 00 00 00 00 00 E6 0C 1A 00 00 00 17 E6 0C 1A',
       Feed(Srv, '7F 01 05 00 01 00 00 00 00 00 00 00 00 00 00 E6 0C 1A 00 00 00 17 E6 0C 1A'));
@@ -1219,6 +1230,45 @@ begin
   { nothing under way: an abort changes nothing }
   IecFileAbort(C);
   AssertEquals(res_Ok, C.Result);
+end;
+
+{ One section of a file of three (1000 octets each): select, call file,
+  section 1 ready, select section 2 (SCQ 5), its section ready, call
+  section 2, the segments and the section's acknowledgement, then the
+  slave's section 3 ready answered by deactivate file. A section the file
+  has not: the slave's SRQ bit 7, the transfer deactivated. }
+procedure TTestIecFile.TestGetOneSection;
+var
+  Got: AnsiString;
+  T0: QWord;
+begin
+  PutFile('30001', Pattern(3000));
+  OpenPair(pPty);
+  AssertEquals(C.Err, res_Ok, IecFileGetSection(C, Addr, 1, 30001, Nof_Transparent, 2, Got));
+  AssertTrue('section 2 as it is', Got = Copy(Pattern(3000), 1001, 1000));
+  T0 := ChMsTick;
+  while (F.State <> fsIdle) and (ChMsTick - T0 < 3000) do
+    IecPollFor(M, 20);
+  AssertEquals('7A 01 0D 00 01 00 31 75 00 01 00 00 01 | 7A 01 0D 00 01 00 31 75 00 01 00 00 02 | ' +
+    '7A 01 0D 00 01 00 31 75 00 01 00 02 05 | 7A 01 0D 00 01 00 31 75 00 01 00 02 06 | ' +
+    '7C 01 0D 00 01 00 31 75 00 01 00 02 03 | 7A 01 0D 00 01 00 31 75 00 01 00 00 03', SlaveLog);
+  AssertTrue(F.State = fsIdle);
+  AssertEquals(1, F.Aborted);
+  { section 1 needs no select }
+  SlaveLog := '';
+  AssertEquals(C.Err, res_Ok, IecFileGetSection(C, Addr, 1, 30001, Nof_Transparent, 1, Got));
+  AssertTrue(Got = Copy(Pattern(3000), 1, 1000));
+  AssertEquals(0, Pos(' 01 05 |', SlaveLog));
+  AssertEquals(res_IecFileRefused, IecFileGetSection(C, Addr, 1, 30001, Nof_Transparent, 9, Got));
+  AssertEquals('file IOA 30001 from slave 1: section 9 not ready', C.Err);
+  T0 := ChMsTick;
+  while (F.State <> fsIdle) and (ChMsTick - T0 < 3000) do
+    IecPollFor(M, 20);
+  AssertTrue('deactivated at once', F.State = fsIdle);
+  AssertEquals(res_BadParam, IecFileGetSection(C, Addr, 1, 30001, Nof_Transparent, 0, Got));
+  { the whole file still comes }
+  AssertEquals(C.Err, res_Ok, IecFileGet(C, Addr, 1, 30001, Nof_Transparent, Got));
+  AssertTrue(Got = Pattern(3000));
 end;
 
 {- ------------------------------------------------------------ live }

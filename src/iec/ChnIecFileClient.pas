@@ -22,6 +22,10 @@
   until the one with SOF bit LFD; a negative answer is an empty one.
   Query log (IecFileStartQueryLog): F_SC_NB_1 with COT 5 (NOF, range
   start, range stop), answered as the directory: the files created then.
+  One section (IecFileStartGetSection): select, call file; the first
+  section ready answered by F_SC_NA_1 SCQ 5 select section (unless it is
+  the one), call section, the segments, F_AF_NA_1 AFQ 3; what the slave
+  offers next is answered by F_SC_NA_1 SCQ 3, deactivate file.
   Deleting (IecFileStartDelete): -> F_SC_NA_1 SCQ 1 select <- F_FR_NA_1,
   -> F_SC_NA_1 SCQ 4 delete file <- F_AF_NA_1 AFQ 1 (deleted) or AFQ 2 +
   the cause (refused).
@@ -94,6 +98,8 @@ type
     X        : tIecFileXfer;   {< get: what arrived; put: what goes }
     Lof      : LongWord;
     Repeats  : LongInt;     {< of the section under way }
+    OnlyNos  : Byte;        {< get: this section alone (0: the file) }
+    Selected : Boolean;     {< get: the select section went }
     Dir      : array[0..IecFileMaxDir - 1] of tIecFileDirEntry;
     DirCount : LongInt;
     { the ASDU waiting for the master's command slot, and one under way }
@@ -120,6 +126,9 @@ function IecFileStartPut(var C: tIecFileClient; Addr, Ca: Word; Ioa: LongWord; N
 function IecFileStartQueryLog(var C: tIecFileClient; Addr, Ca: Word; Ioa: LongWord; Nof: Word;
   const RangeStart, RangeStop: tIecTime): Boolean;
 function IecFileStartDelete(var C: tIecFileClient; Addr, Ca: Word; Ioa: LongWord; Nof: Word): Boolean;
+{ Section Nos (1..255) of the file alone, into C.X.Content. }
+function IecFileStartGetSection(var C: tIecFileClient; Addr, Ca: Word; Ioa: LongWord; Nof: Word;
+  Nos: Byte): Boolean;
 { The program gives up the transfer under way: res_IecFileAborted, and the
   slave is told (deactivate file / last section with deactivation). }
 procedure IecFileAbort(var C: tIecFileClient);
@@ -137,6 +146,8 @@ function IecFilePut(var C: tIecFileClient; Addr, Ca: Word; Ioa: LongWord; Nof: W
 function IecFileQueryLog(var C: tIecFileClient; Addr, Ca: Word; Ioa: LongWord; Nof: Word;
   const RangeStart, RangeStop: tIecTime): tChResult;
 function IecFileDelete(var C: tIecFileClient; Addr, Ca: Word; Ioa: LongWord; Nof: Word): tChResult;
+function IecFileGetSection(var C: tIecFileClient; Addr, Ca: Word; Ioa: LongWord; Nof: Word;
+  Nos: Byte; out Content: AnsiString): tChResult;
 
 implementation
 
@@ -268,6 +279,8 @@ begin
   C.X.SecDone := 0;
   C.DirCount := 0;
   C.Repeats := 0;
+  C.OnlyNos := 0;
+  C.Selected := False;
   C.Sending := False;
   C.Result := res_Ok;
   C.Err := '';
@@ -335,6 +348,19 @@ begin
   Send(C, F_SC_NB_1, Cot_Request, O);
   Expect(C, fwDirectory);
   Result := not IecFileDone(C);
+end;
+
+function IecFileStartGetSection(var C: tIecFileClient; Addr, Ca: Word; Ioa: LongWord; Nof: Word;
+  Nos: Byte): Boolean;
+begin
+  if Nos = 0 then
+  begin
+    C.Result := res_BadParam;
+    C.Err := 'file IOA ' + IntToStr(Ioa) + ': no section 0 (sections are 1..255)';
+    Exit(False);
+  end;
+  Result := IecFileStartGet(C, Addr, Ca, Ioa, Nof);
+  C.OnlyNos := Nos;
 end;
 
 function IecFileStartDelete(var C: tIecFileClient; Addr, Ca: Word; Ioa: LongWord; Nof: Word): Boolean;
@@ -499,11 +525,29 @@ begin
         Expect(C, fwSectionReady);
       end;
     fwSectionReady:
-      if H.Ti = F_SR_NA_1 then
+      if (C.OnlyNos <> 0) and (C.X.Nos = C.OnlyNos) and IecXferSectionWhole(C.X) then
+      begin
+        { the section came: whatever the slave offers next is not wanted }
+        Finish(C, res_Ok, '');
+        Send(C, F_SC_NA_1, Cot_File, Obj(C, 0, Scq_DeactFile));
+      end
+      else if H.Ti = F_SR_NA_1 then
       begin
         if O.Q and Srq_NotReady <> 0 then
         begin
-          Finish(C, res_IecFileRefused, 'section ' + IntToStr(O.Nos) + ' not ready');
+          GiveUp(C, res_IecFileRefused, 'section ' + IntToStr(O.Nos) + ' not ready');
+          Exit;
+        end;
+        if (C.OnlyNos <> 0) and (O.Nos <> C.OnlyNos) then
+        begin
+          if C.Selected then
+            Unexpected(C, H, O)
+          else
+          begin
+            C.Selected := True;
+            Send(C, F_SC_NA_1, Cot_File, Obj(C, C.OnlyNos, Scq_SelectSection));
+            Expect(C, fwSectionReady);
+          end;
           Exit;
         end;
         IecXferExpect(C.X, O.Nos, O.Lof);
@@ -739,6 +783,19 @@ begin
     Result := IecFileFinish(C)
   else
     Result := C.Result;
+end;
+
+function IecFileGetSection(var C: tIecFileClient; Addr, Ca: Word; Ioa: LongWord; Nof: Word;
+  Nos: Byte; out Content: AnsiString): tChResult;
+begin
+  if IecFileStartGetSection(C, Addr, Ca, Ioa, Nof, Nos) then
+    Result := IecFileFinish(C)
+  else
+    Result := C.Result;
+  if Result = res_Ok then
+    Content := C.X.Content
+  else
+    Content := '';
 end;
 
 function IecFileGet(var C: tIecFileClient; Addr, Ca: Word; Ioa: LongWord; Nof: Word;
