@@ -2,8 +2,8 @@
   measured values: loading (P_ME_NA_1..P_ME_NC_1: threshold, smoothing,
   low and high limit, per IOA, in operation or not) and activation
   (P_AC_NA_1, COT 6 / 8: one object's or every loaded parameter). The
-  threshold in operation is the deadband of the point's spontaneous
-  reports (ChnIec101SlavePoints); an interrogation reports the
+  parameters in operation act on the point's value and spontaneous
+  reports (ChnIec101SlavePoints, ChnIecMeasParams); an interrogation reports the
   parameters loaded after the points (ChnIec101SlaveGi). }
 unit ChnIec101SlaveParams;
 
