@@ -319,6 +319,76 @@ begin
   end;
 end;
 
+{ The north IOAs an IEC 101 device's configuration gives (its points=
+  and write= points at ioa= + IOA, commands at ioa= + CMDIOA) against the
+  DF1 devices' ranges and the other RTUs' points: a clash is refused with
+  the key that gave the point. (An RTU's other points are learned at run
+  time: ChnGate104 refuses a clash then.) }
+procedure CheckIecIoas(var C: tChecker; const Cfg: tGateConfig);
+type
+  tTaken = record
+    Ioa: Int64;
+    Cmd: Boolean;
+    What: AnsiString;
+  end;
+var
+  Taken: array of tTaken;
+  I, J, K: LongInt;
+  N: Int64;
+  Cmd: Boolean;
+  What: AnsiString;
+
+  function Clash: AnsiString;
+  var
+    D: LongInt;
+    T: tTaken;
+  begin
+    for D := 0 to High(Cfg.Devices) do
+      with Cfg.Devices[D] do
+        if not Iec and (Points > 0) and (N >= Ioa) and (N <= Ioa + Points - 1) then
+          Exit(Format('falls in device %s''s IOAs %d..%d', [Name, Ioa, Ioa + Points - 1]));
+    for T in Taken do
+      if (T.Ioa = N) and (T.Cmd = Cmd) then
+        Exit('is ' + T.What + ' already');
+    Result := '';
+  end;
+
+begin
+  Taken := nil;
+  for I := 0 to High(Cfg.Devices) do
+    if Cfg.Devices[I].Iec then
+      with Cfg.Devices[I], Iec101 do
+        for J := 0 to High(Points) do
+          for Cmd in [False, True] do
+          begin
+            if Cmd and not Points[J].Writable then
+              Continue;
+            if Cmd then
+              N := Int64(IoaOffset) + Points[J].CmdIoa
+            else
+              N := Int64(IoaOffset) + Points[J].Ioa;
+            What := Points[J].Name;
+            if What = '' then
+              What := IntToStr(Points[J].Addr) + ':' + IntToStr(Points[J].Ioa);
+            What := Format('device %s''s %s %s (%d + %d)', [Name, IfThen(Cmd, 'command IOA of', 'point'), What,
+              IoaOffset, N - IoaOffset]);
+            if N > 16777215 then
+            begin
+              Bad(C, 'device ' + Name, IfThen(Cmd or (Points[J].Name = ''), 'write', 'points'),
+                Format('%s: IOA %d runs past 16777215', [What, N]));
+              Continue;
+            end;
+            if Clash <> '' then
+              Bad(C, 'device ' + Name, IfThen(Cmd or (Points[J].Name = ''), 'write', 'points'),
+                Format('%s: IEC 104 IOA %d %s', [What, N, Clash]));
+            K := Length(Taken);
+            SetLength(Taken, K + 1);
+            Taken[K].Ioa := N;
+            Taken[K].Cmd := Cmd;
+            Taken[K].What := What;
+          end;
+end;
+
 { The IEC 104 IOAs of the devices: within 1..16777215, none twice, the
   table within the slave's points. }
 procedure CheckIoas(var C: tChecker; const Cfg: tGateConfig);
@@ -339,6 +409,7 @@ begin
             [Ioa, Ioa + Points - 1, Cfg.Devices[J].Name, Cfg.Devices[J].Ioa,
              Cfg.Devices[J].Ioa + Cfg.Devices[J].Points - 1]));
     end;
+  CheckIecIoas(C, Cfg);
   if Total > IecSlaveMaxPoints then
     C.Errors := C.Errors + Format('%s:%d: [iec104]: %d points (a writable tag''s commands count 2), more than %d',
       [C.FileName, LineOf(C, 'iec104', ''), Total, IecSlaveMaxPoints]) + LineEnding;
@@ -916,7 +987,7 @@ var
   D: pGateIecDevice;
   P: LongInt;
   Wr: tIecTableWrite;
-  Name: AnsiString;
+  Name, Err: AnsiString;
 begin
   D := G.Iecs[I];
   if GateIecStep(D) then
@@ -926,7 +997,9 @@ begin
   while IecTableTakeChange(D^.T, P) do
   begin
     Publish(G, Topic(G, D^.Name, GateIecPointName(D, P)), GateIecPointPayload(D^.T.Points[P]), True);
-    Gate104IecChange(G.N104, D, P);
+    Err := Gate104IecChange(G.N104, D, P);
+    if Err <> '' then
+      Refuse(G, Topic(G, D^.Name, GateIecPointName(D, P)), Err);
   end;
   while IecTableTakeWrite(D^.T, Wr) do
   begin
