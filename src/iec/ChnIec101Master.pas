@@ -213,8 +213,9 @@ function IecStartRead(var M: tIecMaster; Addr, Ca: Word; Ioa: LongWord): Boolean
 function IecStartClockSync(var M: tIecMaster; Addr, Ca: Word; const T: tIecTime; Delay: Boolean): Boolean;
 function IecStartTest(var M: tIecMaster; Addr, Ca: Word): Boolean;
 function IecStartResetProcess(var M: tIecMaster; Addr, Ca: Word; Qrp: Byte): Boolean;
-{ A command of types 45..51 or 58..64 with its object (Obj.Select is
-  set here); Sbo: select, then execute after the positive ACT_CON. }
+{ A command of types 45..51 or 58..64 with its object; Sbo: select,
+  then execute after the positive ACT_CON. Without Sbo, Obj.Select
+  sends the select alone (it ends on its ACT_CON), else the execute. }
 function IecStartCommand(var M: tIecMaster; Addr, Ca: Word; Ti: Byte; const Obj: tIecObject;
   Sbo: Boolean): Boolean;
 { Parameter loading: one per parameter type - the parameter of kind Qpm
@@ -427,7 +428,9 @@ begin
     stSelect: O.Select := True;
     stMain:
       begin
-        O.Select := False;
+        { the execute after a select; alone, what the caller gave (a
+          gateway passes a control centre's select on as a select) }
+        O.Select := O.Select and not M.Cmd.Sbo;
         if M.Cmd.Ti = C_RD_NA_1 then
           M.StageCot := Cot_Request
         else if M.Cmd.Deact then

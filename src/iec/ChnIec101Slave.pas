@@ -216,6 +216,10 @@ function IecSlaveEventType(var S: tIecSlaveStation; Ioa: LongWord; Ti: Byte;
   queue full: the table has the new value, the event is lost). }
 function IecSlaveUpdate(var S: tIecSlaveStation; Ioa: LongWord; const Obj: tIecObject;
   Spontaneous: Boolean; out Err: ShortString): tChResult;
+{ The same with the time tag Obj.Time instead of the station clock's (a
+  gateway passing on the time its source stamped the change with). }
+function IecSlaveUpdateAt(var S: tIecSlaveStation; Ioa: LongWord; const Obj: tIecObject;
+  Spontaneous: Boolean; out Err: ShortString): tChResult;
 { The station clock (PC clock + ClockOffsetMs). }
 function IecSlaveNow(const S: tIecSlaveStation): TDateTime;
 { Take at most one frame and act on it; move waiting ASDUs to a balanced
@@ -554,8 +558,9 @@ begin
     (O.Quality = OldQuality) and (Abs(MeasuredValue(P.Ti, O) - P.Reported) < P.Par[Kpa_Threshold]);
 end;
 
-function IecSlaveUpdate(var S: tIecSlaveStation; Ioa: LongWord; const Obj: tIecObject;
-  Spontaneous: Boolean; out Err: ShortString): tChResult;
+{ IecSlaveUpdate, and IecSlaveUpdateAt with Obj.Time kept (KeepTime). }
+function UpdatePoint(var S: tIecSlaveStation; Ioa: LongWord; const Obj: tIecObject;
+  Spontaneous, KeepTime: Boolean; out Err: ShortString): tChResult;
 var
   I: Integer;
   O: tIecObject;
@@ -572,7 +577,7 @@ begin
   O.Ioa := Ioa;
   if IsCounter(S.Points[I].Ti) then
     O.Seq := S.Points[I].Obj.Seq;           { the freezes count it, not the program }
-  if IecTypeTime(S.Points[I].Ti) <> tkNone then
+  if (IecTypeTime(S.Points[I].Ti) <> tkNone) and not KeepTime then
     O.Time := IecTimeFromDateTime(IecSlaveNow(S));
   Result := CheckObject(S, S.Points[I].Ti, O, Err);
   if Result <> res_Ok then
@@ -594,7 +599,7 @@ begin
     EvTi := S.Points[I].EventTi;
     if EvTi = 0 then
       EvTi := S.Points[I].Ti
-    else
+    else if not KeepTime then
       O.Time := IecTimeFromDateTime(IecSlaveNow(S));
     Result := QueueObject(S, EvTi, Cot_Spontaneous, O);
     if Result = res_Ok then
@@ -602,6 +607,18 @@ begin
     if Result = res_Busy then
       Err := 'point ' + IntToStr(Ioa) + ': class 1 queue full, event lost';
   end;
+end;
+
+function IecSlaveUpdate(var S: tIecSlaveStation; Ioa: LongWord; const Obj: tIecObject;
+  Spontaneous: Boolean; out Err: ShortString): tChResult;
+begin
+  Result := UpdatePoint(S, Ioa, Obj, Spontaneous, False, Err);
+end;
+
+function IecSlaveUpdateAt(var S: tIecSlaveStation; Ioa: LongWord; const Obj: tIecObject;
+  Spontaneous: Boolean; out Err: ShortString): tChResult;
+begin
+  Result := UpdatePoint(S, Ioa, Obj, Spontaneous, True, Err);
 end;
 
 {- ---------------------------------------------------------- interrogation }

@@ -431,21 +431,25 @@ begin
   N.Pending[K].What := What;
 end;
 
-{ A command to IEC 101 point P: the same command to its RTU. }
+{ A command to IEC 101 point P: the same command to its RTU - a select
+  as a select, the qualifier (QU, QL) as it came - its ACT_CON when the
+  RTU's came. }
 function PassCommand(var N: tGate104; P: LongInt; const H: tIecAsdu; const O: tIecObject): Boolean;
 var
   Ticket: LongWord;
   What, Err: AnsiString;
+  Select: Boolean;
 begin
+  Select := O.Select and (IecTypeKind(H.Ti) <> ikBitsCmd);
   What := IecTypeName(H.Ti) + ' IOA ' + IntToStr(O.Ioa) + ' (' + N.Points[P].Iec^.Name + ' ' +
-    GateIecPointName(N.Points[P].Iec, N.Points[P].IecPoint) + ' := ' + FloatToStr(CommandValue(H, O)) + ')';
+    GateIecPointName(N.Points[P].Iec, N.Points[P].IecPoint) + ' := ' + FloatToStr(CommandValue(H, O));
+  if Select then
+    What := What + ' select';
+  if O.Qu <> 0 then
+    What := What + ' qualifier ' + IntToStr(O.Qu);
+  What := What + ')';
   Inc(N.Commands);
-  Result := O.Select;
-  if Result then
-  begin
-    Say(N, What + ': selected');
-    Exit;
-  end;
+  Result := False;
   Ticket := IecSlaveDefer(N.S^);
   if Ticket = 0 then
   begin
@@ -454,7 +458,8 @@ begin
     Exit;
   end;
   Dec(N.NextId);
-  if not GateIecWrite(N.Points[P].Iec, N.Points[P].IecPoint, CommandValue(H, O), N.NextId, Err) then
+  if not GateIecCommand(N.Points[P].Iec, N.Points[P].IecPoint, CommandValue(H, O), Select, O.Qu, N.NextId,
+    Err) then
   begin
     Inc(N.Refused);
     Say(N, What + ': refused, ' + Err);
@@ -652,7 +657,11 @@ begin
   O.Quality := TP^.Quality;
   if TP^.Bad or not TP^.Known then
     O.Quality := O.Quality or Q_Invalid;
-  if IecSlaveUpdate(N.S^, N.Points[K].Ioa, O, True, E) <> res_Ok then
+  { the RTU's time tag as it came (a CP24 one completed with the hour and
+    date, ChnIecPointTable); a change without one takes the gateway's clock }
+  O.Time := TP^.Tag;
+  if (TP^.Tagged and (IecSlaveUpdateAt(N.S^, N.Points[K].Ioa, O, True, E) <> res_Ok)) or
+     (not TP^.Tagged and (IecSlaveUpdate(N.S^, N.Points[K].Ioa, O, True, E) <> res_Ok)) then
     Say(N, 'IOA ' + IntToStr(N.Points[K].Ioa) + ': ' + E);
 end;
 
