@@ -19,10 +19,16 @@
   a dead one and a demoted one give a negative ACT_CON; a tag that is not
   writable, an unknown IOA and a type the point does not take: COT 47.
   IEC 101 pass-through: examples/iec101slave on a pty it makes as the
-  RTU, its points at the device's offset (ioa = 1000) with their own
-  types (CP24 M_ME_TB_1 served as M_ME_TE_1), its quality (IV) kept; a
-  command to offset + the RTU's command IOA goes to the RTU and its
-  ACT_CON comes only after the RTU's (none while the RTU is stopped). }
+  RTU (its clock 5000 s behind), its points at the device's offset (ioa =
+  1000) with their own types (CP24 M_ME_TB_1 served as M_ME_TE_1), its
+  quality (IV) kept, its time tags kept (CP56 as sent; CP24: the RTU's
+  minute and ms, the hour nearest to now); its IOA 100 lands on a DF1
+  device's 1100 and is refused (log, $gateway/error), the DF1 point stays;
+  a command to offset + the RTU's command IOA goes to the RTU and its
+  ACT_CON comes only after the RTU's (none while the RTU is stopped); a
+  select goes as a select, the qualifier as sent; the RTU stopped long
+  enough is dead: its points IV (event and interrogation), good again
+  when it runs. }
 unit TestChngate104;
 
 {$MODE OBJFPC}{$H+}
