@@ -25,7 +25,7 @@ const
 
 type
   tCmdKind = (ckGi, ckCi, ckRead, ckClock, ckTest, ckSc, ckDc, ckScaled, ckFloat, ckPoll,
-    ckDir, ckGet, ckPut);
+    ckDir, ckGet, ckPut, ckLog, ckDelete);
   tCmd = record
     Kind : tCmdKind;
     Ioa  : LongWord;
@@ -33,6 +33,7 @@ type
     Num  : Double;
     Token: string;
     Path : string;    {< get, put: the local file }
+    From, Till: TDateTime;   {< log: the range }
   end;
 
 var
@@ -107,6 +108,9 @@ begin
     '  dir                     the slave''s directory of files (F_DR_TA_1)' + LineEnding +
     '  get IOA=PATH            fetch the file of IOA into PATH (file transfer)' + LineEnding +
     '  put IOA=PATH            send the file PATH as the file of IOA' + LineEnding +
+    '  log FROM TO             the files created from FROM to TO (query log, F_SC_NB_1);' + LineEnding +
+    '                          times as 2026-12-04T09:30:00 (seconds, .mmm optional)' + LineEnding +
+    '  delete IOA              delete the slave''s file of IOA' + LineEnding +
     LineEnding + 'Example:' + LineEnding +
     '  iec101master --json ''NAM=FT1_2 MS=ON MAS=MASTER LEN=0 DNO=1 NAM=COM DEV=/dev/ttyUSB0 ' +
     'BD=9600 PAR=E'' gi sc 5000=1 poll 10' + LineEnding);
@@ -131,6 +135,31 @@ begin
       ' octet(s)', Tok);
   Ioa := N;
   Value := Copy(Tok, P + 1, MaxInt);
+end;
+
+{ 'YYYY-MM-DD', 'YYYY-MM-DDTHH:MM', ':SS', '.mmm' (local time as the
+  slave keeps it); False when it is none. }
+function ParseStamp(const S: string; out DT: TDateTime): Boolean;
+var
+  Y, Mo, D, H, Mi, Sec, Ms: LongInt;
+  T: TDateTime;
+  Rest: string;
+begin
+  DT := 0;
+  H := 0; Mi := 0; Sec := 0; Ms := 0;
+  Result := (Length(S) >= 10) and (S[5] = '-') and (S[8] = '-') and
+    StrToNum(Copy(S, 1, 4), 2000, 2099, Y) and StrToNum(Copy(S, 6, 2), 1, 12, Mo) and
+    StrToNum(Copy(S, 9, 2), 1, 31, D);
+  Rest := Copy(S, 11, MaxInt);
+  if Result and (Rest <> '') then
+    Result := (Length(Rest) >= 6) and (Rest[1] = 'T') and (Rest[4] = ':') and
+      StrToNum(Copy(Rest, 2, 2), 0, 23, H) and StrToNum(Copy(Rest, 5, 2), 0, 59, Mi) and
+      ((Length(Rest) = 6) or ((Rest[7] = ':') and StrToNum(Copy(Rest, 8, 2), 0, 59, Sec) and
+      ((Length(Rest) = 9) or ((Rest[10] = '.') and (Length(Rest) = 13) and
+      StrToNum(Copy(Rest, 11, 3), 0, 999, Ms)))));
+  Result := Result and TryEncodeDate(Y, Mo, D, DT) and TryEncodeTime(H, Mi, Sec, Ms, T);
+  if Result then
+    DT := DT + T;
 end;
 
 { The commands: the positional arguments after PARAMS. }
@@ -223,6 +252,24 @@ begin
         CliUsageError(Cli, 'setpoint-float wants IOA=X, a short float', C.Token);
     end
     else if W = 'dir' then C.Kind := ckDir
+    else if W = 'delete' then
+    begin
+      C.Kind := ckDelete;
+      C.Ioa := NumberArg('an IOA', 0, LongInt(IecMaxIoa(Params)), 'delete wants an IOA 0..' + IntToStr(IecMaxIoa(Params)));
+    end
+    else if W = 'log' then
+    begin
+      C.Kind := ckLog;
+      V := Next('FROM TO');
+      Tok := Next('FROM TO');
+      C.Token := W + ' ' + V + ' ' + Tok;
+      if not ParseStamp(V, C.From) then
+        CliUsageError(Cli, 'log wants FROM as 2026-12-04T09:30:00', V);
+      if not ParseStamp(Tok, C.Till) then
+        CliUsageError(Cli, 'log wants TO as 2026-12-04T09:30:00', Tok);
+      if C.Till < C.From then
+        CliUsageError(Cli, 'log wants FROM before TO', C.Token);
+    end
     else if (W = 'get') or (W = 'put') then
     begin
       Tok := Next('IOA=PATH');
@@ -338,9 +385,13 @@ var
 begin
   Content := '';
   case C.Kind of
-    ckDir:
+    ckDir, ckLog:
       begin
-        Result := IecFileDir(Files, Addr, Ca);
+        if C.Kind = ckDir then
+          Result := IecFileDir(Files, Addr, Ca)
+        else
+          Result := IecFileQueryLog(Files, Addr, Ca, 0, 0, IecTimeFromDateTime(C.From),
+            IecTimeFromDateTime(C.Till));
         for I := 0 to Files.DirCount - 1 do
           with Files.Dir[I] do
             if Json then
@@ -359,6 +410,7 @@ begin
           Result := res_BadParam;
         end;
       end;
+    ckDelete: Result := IecFileDelete(Files, Addr, Ca, C.Ioa, Nof_Transparent);
   else
     if IecFileLoad(C.Path, Content, E) then
       Result := IecFilePut(Files, Addr, Ca, C.Ioa, Nof_Transparent, Content)
@@ -368,9 +420,15 @@ begin
       Result := res_BadParam;
     end;
   end;
-  if (Result = res_Ok) and (C.Kind <> ckDir) and not Json then
+  { what get, put and delete did (dir and log printed their entries) }
+  if (Result <> res_Ok) or (C.Kind in [ckDir, ckLog]) then
+  else if (C.Kind = ckDelete) and Json then
+    WriteLn(Format('{"slave":%d,"deleted":%d}', [Addr, C.Ioa]))
+  else if C.Kind = ckDelete then
+    WriteLn(Format('file IOA %d deleted', [C.Ioa]))
+  else if not Json then
     WriteLn(Format('%s file IOA %d: %d octets', [C.Token, C.Ioa, Length(Content)]))
-  else if (Result = res_Ok) and (C.Kind <> ckDir) then
+  else
     WriteLn(Format('{"slave":%d,"%s":%d,"length":%d}', [Addr, Copy(C.Token, 1, 3), C.Ioa, Length(Content)]));
   Flush(Output);
 end;
@@ -398,7 +456,7 @@ begin
     ckDc: R := IecCommand(M, Addr, Ca, C_DC_NA_1, O, Sbo);
     ckScaled: R := IecCommand(M, Addr, Ca, C_SE_NB_1, O, Sbo);
     ckFloat: R := IecCommand(M, Addr, Ca, C_SE_NC_1, O, Sbo);
-    ckDir, ckGet, ckPut: R := RunFile(C, Addr);
+    ckDir, ckGet, ckPut, ckLog, ckDelete: R := RunFile(C, Addr);
   else
     begin
       IecPollFor(M, C.Int * 1000);
@@ -412,7 +470,7 @@ begin
   end;
   if R = res_Ok then
     Exit(ExitOk);
-  if C.Kind in [ckDir, ckGet, ckPut] then
+  if C.Kind in [ckDir, ckGet, ckPut, ckLog, ckDelete] then
     WriteLn(StdErr, Prog, ': ', Files.Err, ' (', C.Token, ')')
   else
     WriteLn(StdErr, Prog, ': ', M.Cmd.Err, ' (', C.Token, ')');

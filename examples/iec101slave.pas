@@ -103,7 +103,8 @@ begin
     'after the ACT_CON (5000=104,5101=101)');
   CliOption(Cli, 'json', #0, '', 'one JSON object per line on stdout, nothing else');
   CliOption(Cli, 'files', #0, 'DIR', 'file transfer: serve the files of DIR named by their IOA ' +
-    '(30000, 30000.dat ...) and keep the files received there as DIR/IOA');
+    '(30000, 30000.dat ...), keep the files received there as DIR/IOA and delete them when the ' +
+    'master asks');
   CliOption(Cli, 'no-init', #0, '', 'send no end of initialisation (M_EI_NA_1, COT 4, COI 0) ' +
     'after the start');
   CliEpilog(Cli, 'Example:' + LineEnding +
@@ -316,7 +317,7 @@ begin
   if FilesDir <> '' then
     with Files do
       WriteLn(StdErr, Format('iec101slave: files: %d sent, %d received, %d failed, %d aborted, '
-        + '%d bad checksums, %d refused%s', [Sent, Received, Failed, Aborted, BadChecksums, Refused,
+        + '%d bad checksums, %d refused, %d deleted%s', [Sent, Received, Failed, Aborted, BadChecksums, Refused, Deleted,
         BoolToStr(LastError <> '', ' (last: ' + LastError + ')', '')]));
   if R <> res_Ok then
   begin

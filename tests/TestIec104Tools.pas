@@ -1,7 +1,8 @@
 { The tools over IEC 104: iec101slave serving on loopback with a
   'NAM=IEC104 NAM=TCP LISTEN=...' string, iec101master asking it with a
   'NAM=IEC104 NAM=TCP HOST=... PORT=...' string: the same commands and the
-  same JSON as over FT 1.2. }
+  same JSON as over FT 1.2; the file commands (log, delete, dir) against
+  iec101slave --files. }
 unit TestIec104Tools;
 
 {$MODE OBJFPC}{$H+}
@@ -10,12 +11,13 @@ interface
 
 uses
   SysUtils, Classes, Process, fpcunit, testregistry, ChnTypes, ChnVirt, ChnTcp,
-  BinSupport, TestSupport;
+  BinSupport, TestSupport, TestTempDir;
 
 type
   TTestIec104Tools = class(TTestCase)
   published
     procedure TestMasterToolAgainstSlaveTool;
+    procedure TestFileCommandsAgainstSlaveTool;
   end;
 
 implementation
@@ -93,6 +95,64 @@ begin
     AssertEquals(Errs, 0, S.ExitCode);
   finally
     StopProcess(S);
+  end;
+end;
+
+{ iec101slave --files DIR with 30000 made 2026-12-04 10:00 and 30001 the
+  5th 08:00 (their modification times, local): iec101master's query log
+  of the 4th 09:00..12:30 lists 30000 only, delete 30001 removes it from
+  DIR, dir then lists 30000; a second delete is refused (exit 3). }
+procedure TTestIec104Tools.TestFileCommandsAgainstSlaveTool;
+var
+  Port: Word;
+  S: TProcess;
+  Dir, Out, Errs, Host: string;
+  Rc: Integer;
+  Deadline: QWord;
+begin
+  Dir := MakeTempDir('iec104files');
+  S := TProcess.Create(nil);
+  try
+    WriteFileText(Dir + '/30000', 'ten octets');
+    WriteFileText(Dir + '/30001', 'eleven octs');
+    AssertEquals(0, FileSetDate(Dir + '/30000', DateTimeToFileDate(EncodeDate(2026, 12, 4) + EncodeTime(10, 0, 0, 0))));
+    AssertEquals(0, FileSetDate(Dir + '/30001', DateTimeToFileDate(EncodeDate(2026, 12, 5) + EncodeTime(8, 0, 0, 0))));
+    Port := FreePort;
+    Host := 'NAM=IEC104 NAM=TCP HOST=127.0.0.1 PORT=' + IntToStr(Port);
+    BinExecutable(S, BinPath('iec101slave'));
+    S.Parameters.Add('--seconds=8');
+    S.Parameters.Add('--files=' + Dir);
+    S.Parameters.Add('NAM=IEC104 NAM=TCP LISTEN=127.0.0.1:' + IntToStr(Port));
+    S.Options := [poUsePipes];
+    S.Execute;
+    AssertTrue('the slave listens', Listening(Port));
+    Rc := RunBin('iec101master', [Host, 'log', '2026-12-04T09:00', '2026-12-04T12:30:00.000',
+      'delete', '30001', 'dir'], 15000, Out);
+    AssertEquals(Out, 0, Rc);
+    AssertTrue(Out, Pos('file IOA 30000 NOF 1 10 octets SOF 0x20 2026-12-04T10:00:00.000', Out) > 0);
+    AssertTrue(Out, Pos('file IOA 30001 deleted', Out) > 0);
+    AssertEquals('the log and the directory list 30000 alone', 2, CountOf('file IOA 30000 NOF 1', Out));
+    AssertEquals(0, CountOf('file IOA 30001 NOF', Out));
+    AssertFalse(FileExists(Dir + '/30001'));
+    Rc := RunBin('iec101master', [Host, 'delete', '30001'], 15000, Out);
+    AssertEquals(Out, 3, Rc);
+    AssertTrue(Out, Pos('iec101master: delete of file IOA 30001 on slave 0: the slave has no such file ' +
+      '(F_FR_NA_1 negative) (delete 30001)', Out) > 0);
+    Rc := RunBin('iec101master', [Host, 'log', '2026-12-04', 'tomorrow'], 15000, Out);
+    AssertEquals(Out, 2, Rc);
+    AssertTrue(Out, Pos('iec101master: log wants TO as 2026-12-04T09:30:00 (tomorrow)', Out) > 0);
+    Deadline := GetTickCount64 + 12000;
+    while S.Running and (GetTickCount64 < Deadline) do
+      Sleep(20);
+    AssertFalse('the slave ended', S.Running);
+    Errs := '';
+    SetLength(Errs, S.Stderr.NumBytesAvailable);
+    if Length(Errs) > 0 then
+      S.Stderr.Read(Errs[1], Length(Errs));
+    AssertTrue(Errs, Pos('1 refused, 1 deleted', Errs) > 0);
+  finally
+    StopProcess(S);
+    RemoveTempDir(Dir);
   end;
 end;
 

@@ -52,6 +52,11 @@ type
     FlipSegments: Integer;  { octets of received segments to corrupt (master side) }
     FlipPutSegments: Integer;  { the same on the slave side }
     FlipFileChs, FlipPutFileChs: Boolean;   { the CHS of the last section (LSQ 1), master / slave side }
+    DropAfterSegment: Boolean;   { the master hears no file ASDU after the first segment }
+    Dropping: Boolean;
+    SlaveHeard: string;     { the last file ASDU the slave received, in hex }
+    SlaveLog: string;       { all of them but segments, ' | ' between }
+    Refuse: string;         { OnDelete: the reason to keep a file ('' deletes) }
     Received: TStringList;
     OrigFile: tIecFileAsduFunc;
   published
@@ -71,6 +76,12 @@ type
     procedure TestClientSequence;
     procedure TestInterruptedGet;
     procedure TestServerAbandonsALeftTransfer;
+    procedure TestServerQueryLogOctets;
+    procedure TestServerDeleteOctets;
+    procedure TestServerSectionsOctets;
+    procedure TestDeleteAndQueryLogPty;
+    procedure TestGiveUpFreesTheSlave;
+    procedure TestGetOneSection;
     procedure TestLiveLib60870;
   end;
 
@@ -127,6 +138,13 @@ var
   T: TTestIecFile;
 begin
   T := TTestIecFile(Data);
+  if not Sent and (Len > 0) and IecIsFileType(Buf[0]) and (Buf[0] <> F_SG_NA_1) then
+  begin
+    T.SlaveHeard := Hex(Buf[0..Len - 1], Len);
+    if T.SlaveLog <> '' then
+      T.SlaveLog := T.SlaveLog + ' | ';
+    T.SlaveLog := T.SlaveLog + T.SlaveHeard;
+  end;
   if not Sent and T.FlipPutFileChs and (Len = 14) and (Buf[0] = F_LS_NA_1) and (Buf[12] = Lsq_File) then
     Buf[13] := Buf[13] xor $01;
   if (Len > 20) and (Buf[0] = F_SG_NA_1) then
@@ -155,7 +173,26 @@ begin
     B[13] := B[13] xor $01;
   if (B[0] = F_SG_NA_1) and T.MuteAfterSegment then
     T.Mute := True;
+  if T.Dropping then
+    Exit;                                { lost on the way }
+  T.Dropping := T.DropAfterSegment and (B[0] = F_SG_NA_1);
   T.OrigFile(@T.C, Addr, B, Len);
+end;
+
+{ Refuse: the reason to keep the file; 'steal': yes, but the file goes
+  elsewhere first (the OS then fails to delete it, whoever runs the test). }
+function OnDelete(Data: Pointer; Ioa: LongWord; Nof: Word; out Why: ShortString): Boolean;
+var
+  T: TTestIecFile;
+begin
+  T := TTestIecFile(Data);
+  Why := T.Refuse;
+  if Why = 'steal' then
+  begin
+    RenameFile(T.FDir + '/' + IntToStr(Ioa), T.FDir + '/stolen');
+    Why := '';
+  end;
+  Result := Why = '';
 end;
 
 procedure OnReceived(Data: Pointer; Ioa: LongWord; Nof: Word; const Content: AnsiString);
@@ -178,6 +215,10 @@ begin
   MuteAfterSegment := False;
   FlipSegments := 0;
   FlipPutSegments := 0;
+  DropAfterSegment := False;
+  Dropping := False;
+  SlaveHeard := '';
+  Refuse := '';
   FDir := MakeTempDir('iecfile');
   Received := TStringList.Create;
 end;
@@ -674,6 +715,9 @@ begin
   IecPollFor(M, 200);
   AssertEquals(1, F.Failed);
   AssertEquals(0, F.Sent);
+  AssertTrue('free at once', F.State = fsIdle);
+  FlipSegments := 0;
+  AssertEquals(C.Err, res_Ok, IecFileGet(C, Addr, 1, 30001, Nof_Transparent, Got));
 end;
 
 procedure TTestIecFile.TestFlippedOctetOnPutFails;
@@ -822,13 +866,31 @@ begin
   Answer(F_FR_NA_1, 0, 0, 5);
   AssertEquals(res_IecFileSequence, C.Result);
   AssertEquals('file IOA 9 from slave 0: F_FR_NA_1 (qualifier 0) while waiting for section ready (F_SR_NA_1)', C.Err);
+  { given up: the slave told, deactivate file (SCQ 3) }
+  AssertEquals('deactivate file', '7A 01 0D 00 01 00 09 00 00 01 00 00 03', Pending);
   { a segment while a file ready is awaited is no file ready }
   AssertTrue(IecFileStartGet(C, Addr, 1, 9, Nof_Transparent));
   Pending;
   O.SegLen := 1;
   Answer(F_SG_NA_1, 0, 1, 0);
   AssertEquals(res_IecFileSequence, C.Result);
-  AssertEquals('', Pending);
+  AssertEquals('deactivate file', '7A 01 0D 00 01 00 09 00 00 01 00 00 03', Pending);
+  { a delete: select, then delete file (SCQ 4) once the file is ready;
+    the slave's positive file acknowledgement ends it }
+  AssertTrue(IecFileStartDelete(C, Addr, 1, 9, Nof_Transparent));
+  AssertEquals('select', '7A 01 0D 00 01 00 09 00 00 01 00 00 01', Pending);
+  Answer(F_FR_NA_1, 0, 0, 5);
+  AssertEquals('delete file', '7A 01 0D 00 01 00 09 00 00 01 00 00 04', Pending);
+  Answer(F_AF_NA_1, Afq_FileBad or (Fe_Unexpected shl 4), 0, 0);
+  AssertEquals(res_IecFileRefused, C.Result);
+  AssertEquals('delete of file IOA 9 on slave 0: the slave did not delete it (F_AF_NA_1 negative: ' +
+    'unexpected communication service)', C.Err);
+  { a query log: NOF 2, 2026-12-04 09:00 to 12:30 (CP56Time2a: ms 00 00,
+    minute, hour, day 4 + Friday 5 << 5 = A4, month 0C, year 1A) }
+  AssertTrue(IecFileStartQueryLog(C, Addr, 1, 0, Nof_Disturbance,
+    IecTimeFromDateTime(EncodeDate(2026, 12, 4) + EncodeTime(9, 0, 0, 0)),
+    IecTimeFromDateTime(EncodeDate(2026, 12, 4) + EncodeTime(12, 30, 0, 0))));
+  AssertEquals('query log', '7F 01 05 00 01 00 00 00 00 02 00 00 00 00 09 A4 0C 1A 00 00 1E 0C A4 0C 1A', Pending);
 end;
 
 procedure TTestIecFile.TestInterruptedGet;
@@ -873,6 +935,340 @@ begin
   AssertEquals(1, F.Aborted);
   AssertTrue(F.LastError, Pos('file IOA 30001: abandoned, no message from the peer in 300 ms', F.LastError) = 1);
   AssertTrue(F.State = fsIdle);
+end;
+
+{- ------------------------------------------------------------ query log, delete, sections }
+
+{ Each ASDU (hex, worked out by hand) to Srv; what it answers, ' | '
+  between ASDUs, a segment as its head and first octet. }
+function Feed(var Srv: tIecFileServer; const AsduHex: string): string;
+var
+  B: TBytes;
+  Out: array[0..IecMaxAsdu - 1] of Byte;
+  OutLen: Word;
+begin
+  B := HexToBytes(AsduHex);
+  if Length(B) > 0 then
+    IecFileServerTake(Srv, B, Length(B));
+  Result := '';
+  while IecFileServerNext(Srv, Out, OutLen) do
+  begin
+    if Result <> '' then
+      Result := Result + ' | ';
+    if Out[0] = F_SG_NA_1 then
+    begin
+      Result := Result + Hex(Out, 14);
+      Exit;                              { one segment: the rest waits }
+    end;
+    Result := Result + Hex(Out, OutLen);
+  end;
+end;
+
+function Dec4(H, Mi, S, Ms: Word): tIecTime;
+begin
+  Result := IecTimeFromDateTime(EncodeDate(2026, 12, 4) + EncodeTime(H, Mi, S, Ms));
+end;
+
+{ Three records: IOA 40001 NOF 2 of 10 octets made 2026-12-04 10:00:00
+  (CP56Time2a 00 00 00 0A A4 0C 1A: ms, minute, hour, day 4 + Friday 5 <<
+  5, month, year 26), 40002 NOF 2 of 20 at 12:30:00 (00 00 1E 0C A4 0C
+  1A), 40003 NOF 1 of 30 on Saturday 5th at 08:00 (00 00 00 08 C5 0C 1A). }
+procedure AddRecords(var Srv: tIecFileServer);
+begin
+  IecFileServerAdd(Srv, 40001, Nof_Disturbance, Pattern(10), Dec4(10, 0, 0, 0));
+  IecFileServerAdd(Srv, 40002, Nof_Disturbance, Pattern(20), Dec4(12, 30, 0, 0));
+  IecFileServerAdd(Srv, 40003, Nof_Transparent, Pattern(30),
+    IecTimeFromDateTime(EncodeDate(2026, 12, 5) + EncodeTime(8, 0, 0, 0)));
+end;
+
+procedure TTestIecFile.TestServerQueryLogOctets;
+var
+  Srv: tIecFileServer;
+begin
+  IecFileServerInit(Srv, IecDefaultParams, 1);
+  try
+    AddRecords(Srv);
+    { F_SC_NB_1 (7F) COT 5, IOA 0, NOF 2, 09:00:00.000 to 12:30:00.000 on
+      the 4th: the two records of NOF 2, 12:30 itself included; F_DR_TA_1
+      (7E) with two entries, COT 5: IOA 40001 = 41 9C 00, NOF 02 00, LOF 10
+      = 0A 00 00, SOF 00, its time; 40002, LOF 14 00 00, SOF 20 (LFD) }
+    AssertEquals('7E 02 05 00 01 00 41 9C 00 02 00 0A 00 00 00 00 00 00 0A A4 0C 1A ' +
+      '42 9C 00 02 00 14 00 00 20 00 00 1E 0C A4 0C 1A',
+      Feed(Srv, '7F 01 05 00 01 00 00 00 00 02 00 00 00 00 09 A4 0C 1A 00 00 1E 0C A4 0C 1A'));
+    { NOF 0 (any), from 12:30:00.001 (ms 01 00) to Saturday 08:00: only 40003 }
+    AssertEquals('7E 01 05 00 01 00 43 9C 00 01 00 1E 00 00 20 00 00 00 08 C5 0C 1A',
+      Feed(Srv, '7F 01 05 00 01 00 00 00 00 00 00 01 00 1E 0C A4 0C 1A 00 00 00 08 C5 0C 1A'));
+    { NOF 1 from the 4th 00:00 to the 5th 23:00 (17): 40003 alone, the
+      two of NOF 2 in the range left out }
+    AssertEquals('7E 01 05 00 01 00 43 9C 00 01 00 1E 00 00 20 00 00 00 08 C5 0C 1A',
+      Feed(Srv, '7F 01 05 00 01 00 00 00 00 01 00 00 00 00 00 A4 0C 1A 00 00 00 17 C5 0C 1A'));
+    { nothing on the 6th (Sunday 7 << 5 + 6 = E6): the query mirrored, P/N = 1 (45) }
+    AssertEquals('7F 01 45 00 01 00 00 00 00 00 00 00 00 00 00 E6 0C 1A 00 00 00 17 E6 0C 1A',
+      Feed(Srv, '7F 01 05 00 01 00 00 00 00 00 00 00 00 00 00 E6 0C 1A 00 00 00 17 E6 0C 1A'));
+    { a range that is no date (month 13 = 0D): empty, mirrored }
+    AssertEquals('7F 01 45 00 01 00 00 00 00 00 00 00 00 00 00 E6 0D 1A 00 00 00 17 E6 0C 1A',
+      Feed(Srv, '7F 01 05 00 01 00 00 00 00 00 00 00 00 00 00 E6 0D 1A 00 00 00 17 E6 0C 1A'));
+    AssertEquals('query log: the range is no date', Srv.LastError);
+    { COT 13 is no cause of a query: COT 45 + P/N = 6D }
+    AssertEquals('7F 01 6D 00 01 00 00 00 00 00 00 00 00 00 00 E6 0C 1A 00 00 00 17 E6 0C 1A',
+      Feed(Srv, '7F 01 0D 00 01 00 00 00 00 00 00 00 00 00 00 E6 0C 1A 00 00 00 17 E6 0C 1A'));
+    { the plain directory after a query: every file again }
+    AssertTrue(Pos('7E 03 05 00', Feed(Srv, '7A 01 05 00 01 00 00 00 00 00 00 00 00')) = 1);
+  finally
+    Finalize(Srv);
+  end;
+end;
+
+procedure TTestIecFile.TestServerDeleteOctets;
+var
+  Srv: tIecFileServer;
+begin
+  PutFile('30000', Pattern(5));
+  PutFile('30001', Pattern(5));
+  IecFileServerInit(Srv, IecDefaultParams, 1);
+  try
+    Srv.Dir := FDir;
+    AddRecords(Srv);
+    { select IOA 40001 NOF 2 (file ready, LOF 10), delete file (SCQ 4):
+      F_AF_NA_1 (7C) AFQ 1, positive acknowledgement of the file }
+    AssertEquals('78 01 0D 00 01 00 41 9C 00 02 00 0A 00 00 00',
+      Feed(Srv, '7A 01 0D 00 01 00 41 9C 00 02 00 00 01'));
+    AssertEquals('7C 01 0D 00 01 00 41 9C 00 02 00 00 01',
+      Feed(Srv, '7A 01 0D 00 01 00 41 9C 00 02 00 00 04'));
+    AssertTrue(Srv.State = fsIdle);
+    { once more: AFQ 2 + cause 4 (unexpected name of file) << 4 = 42 }
+    AssertEquals('7C 01 0D 00 01 00 41 9C 00 02 00 00 42',
+      Feed(Srv, '7A 01 0D 00 01 00 41 9C 00 02 00 00 04'));
+    AssertEquals('delete of file IOA 40001: no such file', Srv.LastError);
+    { a file of the directory, without a select: gone from the disk }
+    AssertEquals('7C 01 0D 00 01 00 30 75 00 01 00 00 01',
+      Feed(Srv, '7A 01 0D 00 01 00 30 75 00 01 00 00 04'));
+    AssertFalse(FileExists(FDir + '/30000'));
+    { the program says no: AFQ 2 + cause 3 (unexpected communication
+      service) = 32, its reason in LastError; the file stays }
+    Srv.OnDelete := @OnDelete;
+    Srv.Data := Self;
+    Refuse := 'kept for the audit';
+    AssertEquals('7C 01 0D 00 01 00 31 75 00 01 00 00 32',
+      Feed(Srv, '7A 01 0D 00 01 00 31 75 00 01 00 00 04'));
+    AssertEquals('delete of file IOA 30001: kept for the audit', Srv.LastError);
+    AssertTrue(FileExists(FDir + '/30001'));
+    { the file gone when the server deletes it: the OS's reason }
+    Refuse := 'steal';
+    PutFile('30002', Pattern(5));
+    AssertEquals('7C 01 0D 00 01 00 32 75 00 01 00 00 32',
+      Feed(Srv, '7A 01 0D 00 01 00 32 75 00 01 00 00 04'));
+    AssertEquals('delete of file IOA 30002: ' + FDir + '30002: No such file or directory', Srv.LastError);
+    Refuse := '';
+    Srv.NoDelete := True;
+    AssertEquals('7C 01 0D 00 01 00 31 75 00 01 00 00 32',
+      Feed(Srv, '7A 01 0D 00 01 00 31 75 00 01 00 00 04'));
+    AssertEquals('delete of file IOA 30001: this station deletes no file', Srv.LastError);
+    Srv.NoDelete := False;
+    { the OS says no (a directory it may not write; root may, whatever
+      the mode: there only the rest is checked) }
+    FpChmod(FDir, &555);
+    try
+      if FpGetEUid <> 0 then
+      begin
+        AssertEquals('7C 01 0D 00 01 00 31 75 00 01 00 00 32',
+          Feed(Srv, '7A 01 0D 00 01 00 31 75 00 01 00 00 04'));
+        AssertEquals('delete of file IOA 30001: ' + FDir + '30001: Permission denied', Srv.LastError);
+        AssertTrue(FileExists(FDir + '/30001'));
+      end;
+    finally
+      FpChmod(FDir, &755);
+    end;
+    AssertEquals('7C 01 0D 00 01 00 31 75 00 01 00 00 01',
+      Feed(Srv, '7A 01 0D 00 01 00 31 75 00 01 00 00 04'));
+    AssertEquals(3, Srv.Deleted);
+    AssertEquals('the records left', 2, Srv.FileCount);
+  finally
+    Finalize(Srv);
+  end;
+end;
+
+{ Select section (SCQ 5), deactivate section (SCQ 7) while sending; a
+  section deactivated by the sender (LSQ 4) while receiving. }
+procedure TTestIecFile.TestServerSectionsOctets;
+var
+  Srv: tIecFileServer;
+begin
+  IecFileServerInit(Srv, IecDefaultParams, 1);
+  try
+    Srv.SectionSize := 100;
+    Srv.Dir := FDir;
+    AssertEquals(res_Ok, IecFileServerAdd(Srv, 7, Nof_Transparent, Pattern(250), Dec4(0, 0, 0, 0)));
+    { select (LOF 250 = FA 00 00), call file: section 1 of 100 = 64 00 00 }
+    AssertEquals('78 01 0D 00 01 00 07 00 00 01 00 FA 00 00 00', Feed(Srv, '7A 01 0D 00 01 00 07 00 00 01 00 00 01'));
+    AssertEquals('79 01 0D 00 01 00 07 00 00 01 00 01 64 00 00 00', Feed(Srv, '7A 01 0D 00 01 00 07 00 00 01 00 00 02'));
+    { select section 3: ready, its 50 octets (32 00 00); called: its
+      segment, the first octet that of 200: 200 * 31 mod 256 = 38 }
+    AssertEquals('79 01 0D 00 01 00 07 00 00 01 00 03 32 00 00 00', Feed(Srv, '7A 01 0D 00 01 00 07 00 00 01 00 03 05'));
+    AssertEquals('7D 01 0D 00 01 00 07 00 00 01 00 03 32 38', Feed(Srv, '7A 01 0D 00 01 00 07 00 00 01 00 03 06'));
+    { deactivate section: the rest of it (its last segment) does not go }
+    AssertEquals('', Feed(Srv, '7A 01 0D 00 01 00 07 00 00 01 00 03 07'));
+    AssertTrue(Srv.State = fsFileCalled);
+    AssertFalse(IecFileServerBusy(Srv));
+    { a section the file has not: section ready with SRQ bit 7 (80) }
+    AssertEquals('79 01 0D 00 01 00 07 00 00 01 00 09 00 00 00 80', Feed(Srv, '7A 01 0D 00 01 00 07 00 00 01 00 09 05'));
+    { section 2: its segment (100 * 31 mod 256 = 1C first), its last
+      segment with CHS = 31 (100 + .. + 199) = 463450 mod 256 = 5A }
+    AssertEquals('79 01 0D 00 01 00 07 00 00 01 00 02 64 00 00 00', Feed(Srv, '7A 01 0D 00 01 00 07 00 00 01 00 02 05'));
+    AssertEquals('7D 01 0D 00 01 00 07 00 00 01 00 02 64 1C', Feed(Srv, '7A 01 0D 00 01 00 07 00 00 01 00 02 06'));
+    AssertEquals('7B 01 0D 00 01 00 07 00 00 01 00 02 03 5A', Feed(Srv, ''));
+    { acknowledged: section 3 is next; deactivate file: over }
+    AssertEquals('79 01 0D 00 01 00 07 00 00 01 00 03 32 00 00 00', Feed(Srv, '7C 01 0D 00 01 00 07 00 00 01 00 02 03'));
+    AssertEquals('', Feed(Srv, '7A 01 0D 00 01 00 07 00 00 01 00 00 03'));
+    AssertTrue(Srv.State = fsIdle);
+    AssertEquals(1, Srv.Aborted);
+    { receiving IOA 8 (3 octets): file ready -> call file; section ready ->
+      call section; two octets, then the sender's LSQ 4 (section with
+      deactivation): dropped, the section offered again and sent whole:
+      AA + BB + CC = 561 mod 256 = 31 }
+    AssertEquals('7A 01 0D 00 01 00 08 00 00 01 00 00 02', Feed(Srv, '78 01 0D 00 01 00 08 00 00 01 00 03 00 00 00'));
+    AssertEquals('7A 01 0D 00 01 00 08 00 00 01 00 01 06', Feed(Srv, '79 01 0D 00 01 00 08 00 00 01 00 01 03 00 00 00'));
+    AssertEquals('', Feed(Srv, '7D 01 0D 00 01 00 08 00 00 01 00 01 02 AA BB'));
+    AssertEquals('', Feed(Srv, '7B 01 0D 00 01 00 08 00 00 01 00 01 04 00'));
+    AssertTrue(Srv.State = fsReceiveReady);
+    AssertEquals('7A 01 0D 00 01 00 08 00 00 01 00 01 06', Feed(Srv, '79 01 0D 00 01 00 08 00 00 01 00 01 03 00 00 00'));
+    AssertEquals('', Feed(Srv, '7D 01 0D 00 01 00 08 00 00 01 00 01 03 AA BB CC'));
+    AssertEquals('7C 01 0D 00 01 00 08 00 00 01 00 01 03', Feed(Srv, '7B 01 0D 00 01 00 08 00 00 01 00 01 03 31'));
+    AssertEquals('7C 01 0D 00 01 00 08 00 00 01 00 01 01', Feed(Srv, '7B 01 0D 00 01 00 08 00 00 01 00 01 01 31'));
+    AssertTrue(ReadFileText(FDir + '/8') = #$AA#$BB#$CC);
+    AssertEquals(1, Srv.Aborted);
+  finally
+    Finalize(Srv);
+  end;
+end;
+
+{ Master and slave on a pty: a query log, a delete, the directory after. }
+procedure TTestIecFile.TestDeleteAndQueryLogPty;
+var
+  Got: AnsiString;
+begin
+  PutFile('30000', Pattern(800));
+  OpenPair(pPty);
+  AddRecords(F);
+  AssertEquals(C.Err, res_Ok, IecFileQueryLog(C, Addr, 1, 0, Nof_Disturbance, Dec4(9, 0, 0, 0), Dec4(12, 30, 0, 0)));
+  AssertEquals('two records then', 2, C.DirCount);
+  AssertEquals(40001, C.Dir[0].Ioa);
+  AssertEquals(10, C.Dir[0].Lof);
+  AssertEquals(10, C.Dir[0].Time.Hour);
+  AssertEquals(40002, C.Dir[1].Ioa);
+  AssertEquals(Sof_LastFile, C.Dir[1].Sof);
+  AssertEquals(C.Err, res_Ok, IecFileQueryLog(C, Addr, 1, 0, 0, Dec4(13, 0, 0, 0), Dec4(13, 1, 0, 0)));
+  AssertEquals('none then', 0, C.DirCount);
+  { delete a record and a file of the directory }
+  AssertEquals(C.Err, res_Ok, IecFileDelete(C, Addr, 1, 40002, Nof_Disturbance));
+  AssertEquals(C.Err, res_Ok, IecFileDelete(C, Addr, 1, 30000, Nof_Transparent));
+  AssertFalse(FileExists(FDir + '/30000'));
+  AssertEquals(2, F.Deleted);
+  AssertEquals(res_IecFileRefused, IecFileDelete(C, Addr, 1, 30000, Nof_Transparent));
+  AssertEquals('delete of file IOA 30000 on slave 1: the slave has no such file (F_FR_NA_1 negative)', C.Err);
+  F.OnDelete := @OnDelete;
+  F.Data := Self;
+  Refuse := 'kept for the audit';
+  AssertEquals(res_IecFileRefused, IecFileDelete(C, Addr, 1, 40001, Nof_Disturbance));
+  AssertEquals('delete of file IOA 40001 on slave 1: the slave did not delete it (F_AF_NA_1 negative: ' +
+    'unexpected communication service)', C.Err);
+  AssertEquals('delete of file IOA 40001: kept for the audit', F.LastError);
+  AssertEquals(C.Err, res_Ok, IecFileDir(C, Addr, 1));
+  AssertEquals('40001 and 40003 left', 2, C.DirCount);
+  AssertEquals(40001, C.Dir[0].Ioa);
+  AssertEquals(40003, C.Dir[1].Ioa);
+  AssertEquals(C.Err, res_Ok, IecFileGet(C, Addr, 1, 40001, Nof_Disturbance, Got));
+  AssertTrue(Got = Pattern(10));
+end;
+
+{ A master that gives up tells the slave: the slave is free for the next
+  transfer at once, not after its own timeout (30 s here). }
+procedure TTestIecFile.TestGiveUpFreesTheSlave;
+var
+  Got: AnsiString;
+  T0: QWord;
+begin
+  PutFile('30001', Pattern(3000));
+  OpenPair(p104);
+  AssertEquals(30000, F.TimeoutMs);
+  { fetching: the master hears nothing after the first segment, gives up
+    after its 1 s and deactivates the file (F_SC_NA_1 SCQ 3) }
+  C.TimeoutMs := 1000;
+  DropAfterSegment := True;
+  AssertEquals(res_Timeout, IecFileGet(C, Addr, 1, 30001, Nof_Transparent, Got));
+  AssertTrue(C.Err, Pos('file IOA 30001 from slave 0: interrupted: no ', C.Err) = 1);
+  T0 := ChMsTick;
+  while (F.State <> fsIdle) and (ChMsTick - T0 < 3000) do
+    IecPollFor(M, 20);
+  AssertTrue('the slave is free at once: ' + IecFileServerStateName(F.State), F.State = fsIdle);
+  AssertEquals('deactivate file', '7A 01 0D 00 01 00 31 75 00 01 00 00 03', SlaveHeard);
+  AssertEquals(1, F.Aborted);
+  AssertEquals('file IOA 30001: transfer deactivated by the peer', F.LastError);
+  DropAfterSegment := False;
+  Dropping := False;
+  AssertEquals(C.Err, res_Ok, IecFileGet(C, Addr, 1, 30001, Nof_Transparent, Got));
+  AssertTrue(Got = Pattern(3000));
+  { sending: the program aborts after the first segment; the last section
+    with deactivation (F_LS_NA_1 LSQ 2, NOS 1, CHS 0) ends it }
+  AssertTrue(IecFileStartPut(C, Addr, 1, 30002, Nof_Transparent, Pattern(2500)));
+  T0 := ChMsTick;
+  while (C.X.SecDone = 0) and (ChMsTick - T0 < 5000) do
+    if not IecFileStep(C) then
+      IecMasterWait(M, ChMsTick + 10);
+  IecFileAbort(C);
+  AssertEquals(res_IecFileAborted, IecFileFinish(C));
+  AssertTrue(C.Err, Pos('file IOA 30002 to slave 0: aborted by the program (', C.Err) = 1);
+  T0 := ChMsTick;
+  while (F.State <> fsIdle) and (ChMsTick - T0 < 3000) do
+    IecPollFor(M, 20);
+  AssertTrue(F.State = fsIdle);
+  AssertEquals('7B 01 0D 00 01 00 32 75 00 01 00 01 02 00', SlaveHeard);
+  AssertEquals(2, F.Aborted);
+  AssertFalse('nothing kept', FileExists(FDir + '/30002'));
+  AssertEquals(C.Err, res_Ok, IecFilePut(C, Addr, 1, 30002, Nof_Transparent, Pattern(2500)));
+  AssertTrue(ReadFileText(FDir + '/30002') = Pattern(2500));
+  { nothing under way: an abort changes nothing }
+  IecFileAbort(C);
+  AssertEquals(res_Ok, C.Result);
+end;
+
+{ One section of a file of three (1000 octets each): select, call file,
+  section 1 ready, select section 2 (SCQ 5), its section ready, call
+  section 2, the segments and the section's acknowledgement, then the
+  slave's section 3 ready answered by deactivate file. A section the file
+  has not: the slave's SRQ bit 7, the transfer deactivated. }
+procedure TTestIecFile.TestGetOneSection;
+var
+  Got: AnsiString;
+  T0: QWord;
+begin
+  PutFile('30001', Pattern(3000));
+  OpenPair(pPty);
+  AssertEquals(C.Err, res_Ok, IecFileGetSection(C, Addr, 1, 30001, Nof_Transparent, 2, Got));
+  AssertTrue('section 2 as it is', Got = Copy(Pattern(3000), 1001, 1000));
+  T0 := ChMsTick;
+  while (F.State <> fsIdle) and (ChMsTick - T0 < 3000) do
+    IecPollFor(M, 20);
+  AssertEquals('7A 01 0D 00 01 00 31 75 00 01 00 00 01 | 7A 01 0D 00 01 00 31 75 00 01 00 00 02 | ' +
+    '7A 01 0D 00 01 00 31 75 00 01 00 02 05 | 7A 01 0D 00 01 00 31 75 00 01 00 02 06 | ' +
+    '7C 01 0D 00 01 00 31 75 00 01 00 02 03 | 7A 01 0D 00 01 00 31 75 00 01 00 00 03', SlaveLog);
+  AssertTrue(F.State = fsIdle);
+  AssertEquals(1, F.Aborted);
+  { section 1 needs no select }
+  SlaveLog := '';
+  AssertEquals(C.Err, res_Ok, IecFileGetSection(C, Addr, 1, 30001, Nof_Transparent, 1, Got));
+  AssertTrue(Got = Copy(Pattern(3000), 1, 1000));
+  AssertEquals(0, Pos(' 01 05 |', SlaveLog));
+  AssertEquals(res_IecFileRefused, IecFileGetSection(C, Addr, 1, 30001, Nof_Transparent, 9, Got));
+  AssertEquals('file IOA 30001 from slave 1: section 9 not ready', C.Err);
+  T0 := ChMsTick;
+  while (F.State <> fsIdle) and (ChMsTick - T0 < 3000) do
+    IecPollFor(M, 20);
+  AssertTrue('deactivated at once', F.State = fsIdle);
+  AssertEquals(res_BadParam, IecFileGetSection(C, Addr, 1, 30001, Nof_Transparent, 0, Got));
+  { the whole file still comes }
+  AssertEquals(C.Err, res_Ok, IecFileGet(C, Addr, 1, 30001, Nof_Transparent, Got));
+  AssertTrue(Got = Pattern(3000));
 end;
 
 {- ------------------------------------------------------------ live }

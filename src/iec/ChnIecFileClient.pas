@@ -20,6 +20,20 @@
   go, F_AF_NA_1 AFQ 3 / 4 (4: the section again), F_LS_NA_1 LSQ 1, AFQ 1.
   Directory (IecFileStartDir): F_SC_NA_1 with COT 5, F_DR_TA_1 entries
   until the one with SOF bit LFD; a negative answer is an empty one.
+  Query log (IecFileStartQueryLog): F_SC_NB_1 with COT 5 (NOF, range
+  start, range stop), answered as the directory: the files created then.
+  One section (IecFileStartGetSection): select, call file; the first
+  section ready answered by F_SC_NA_1 SCQ 5 select section (unless it is
+  the one), call section, the segments, F_AF_NA_1 AFQ 3; what the slave
+  offers next is answered by F_SC_NA_1 SCQ 3, deactivate file.
+  Deleting (IecFileStartDelete): -> F_SC_NA_1 SCQ 1 select <- F_FR_NA_1,
+  -> F_SC_NA_1 SCQ 4 delete file <- F_AF_NA_1 AFQ 1 (deleted) or AFQ 2 +
+  the cause (refused).
+  Giving up (no answer in time, a checksum still wrong, an answer out of
+  sequence, IecFileAbort) the client tells the slave, so that it is free
+  for the next transfer at once: fetching, F_SC_NA_1 SCQ 3 deactivate file
+  (a bad checksum: F_AF_NA_1 AFQ 2 + cause 2); sending, F_LS_NA_1 LSQ 2
+  (file transfer with deactivation).
 
   Results: res_Ok; res_IecFileRefused (the slave has no such file, refuses
   the one offered, or answers negatively / with COT 44..47);
@@ -27,6 +41,7 @@
   file's); res_IecFileAborted (the slave ended the transfer: LSQ 2/4,
   AFQ 2); res_IecFileSequence (an answer that does not fit the step);
   res_Timeout (interrupted: no answer in TimeoutMs, or the link failed);
+  res_IecFileAborted also when the program aborted (IecFileAbort);
   res_IecBusy (a transfer under way). Err names the file, the step and,
   for an interruption, how far it got. }
 unit ChnIecFileClient;
@@ -55,7 +70,7 @@ type
     Time: tIecTime;
   end;
 
-  tIecFileJob = (fjNone, fjDir, fjGet, fjPut);
+  tIecFileJob = (fjNone, fjDir, fjGet, fjPut, fjDelete);
   tIecFileWait = (fwNone,
     fwFileReady,       {< get: select sent }
     fwSectionReady,    {< get: call file or section ack sent }
@@ -65,7 +80,8 @@ type
     fwSending,         {< put: segments and the last segment going out }
     fwSectionAck,      {< put: last segment sent }
     fwFileAck,         {< put: last section sent }
-    fwDirectory,       {< directory called }
+    fwDirectory,       {< directory called (or query log sent) }
+    fwDeleted,         {< delete: delete file sent }
     fwDone);
 
   tIecFileClient = record
@@ -82,6 +98,8 @@ type
     X        : tIecFileXfer;   {< get: what arrived; put: what goes }
     Lof      : LongWord;
     Repeats  : LongInt;     {< of the section under way }
+    OnlyNos  : Byte;        {< get: this section alone (0: the file) }
+    Selected : Boolean;     {< get: the select section went }
     Dir      : array[0..IecFileMaxDir - 1] of tIecFileDirEntry;
     DirCount : LongInt;
     { the ASDU waiting for the master's command slot, and one under way }
@@ -102,6 +120,18 @@ function IecFileStartDir(var C: tIecFileClient; Addr, Ca: Word): Boolean;
 function IecFileStartGet(var C: tIecFileClient; Addr, Ca: Word; Ioa: LongWord; Nof: Word): Boolean;
 function IecFileStartPut(var C: tIecFileClient; Addr, Ca: Word; Ioa: LongWord; Nof: Word;
   const Content: AnsiString): Boolean;
+{ Query log: the files of kind Nof (0: any) created from RangeStart to
+  RangeStop (both included), in C.Dir as for the directory; Ioa goes in
+  the query. }
+function IecFileStartQueryLog(var C: tIecFileClient; Addr, Ca: Word; Ioa: LongWord; Nof: Word;
+  const RangeStart, RangeStop: tIecTime): Boolean;
+function IecFileStartDelete(var C: tIecFileClient; Addr, Ca: Word; Ioa: LongWord; Nof: Word): Boolean;
+{ Section Nos (1..255) of the file alone, into C.X.Content. }
+function IecFileStartGetSection(var C: tIecFileClient; Addr, Ca: Word; Ioa: LongWord; Nof: Word;
+  Nos: Byte): Boolean;
+{ The program gives up the transfer under way: res_IecFileAborted, and the
+  slave is told (deactivate file / last section with deactivation). }
+procedure IecFileAbort(var C: tIecFileClient);
 { One step of the master and the transfer; True when something was done. }
 function IecFileStep(var C: tIecFileClient): Boolean;
 function IecFileDone(const C: tIecFileClient): Boolean;
@@ -113,6 +143,11 @@ function IecFileGet(var C: tIecFileClient; Addr, Ca: Word; Ioa: LongWord; Nof: W
   out Content: AnsiString): tChResult;
 function IecFilePut(var C: tIecFileClient; Addr, Ca: Word; Ioa: LongWord; Nof: Word;
   const Content: AnsiString): tChResult;
+function IecFileQueryLog(var C: tIecFileClient; Addr, Ca: Word; Ioa: LongWord; Nof: Word;
+  const RangeStart, RangeStop: tIecTime): tChResult;
+function IecFileDelete(var C: tIecFileClient; Addr, Ca: Word; Ioa: LongWord; Nof: Word): tChResult;
+function IecFileGetSection(var C: tIecFileClient; Addr, Ca: Word; Ioa: LongWord; Nof: Word;
+  Nos: Byte; out Content: AnsiString): tChResult;
 
 implementation
 
@@ -149,6 +184,7 @@ begin
   case C.Job of
     fjDir: Result := 'directory of slave ' + IntToStr(C.Addr);
     fjGet: Result := 'file IOA ' + IntToStr(C.Ioa) + ' from slave ' + IntToStr(C.Addr);
+    fjDelete: Result := 'delete of file IOA ' + IntToStr(C.Ioa) + ' on slave ' + IntToStr(C.Addr);
   else
     Result := 'file IOA ' + IntToStr(C.Ioa) + ' to slave ' + IntToStr(C.Addr);
   end;
@@ -165,6 +201,7 @@ begin
     fwSending: Result := 'the link';
     fwSectionAck, fwFileAck: Result := 'acknowledgement (F_AF_NA_1)';
     fwDirectory: Result := 'directory (F_DR_TA_1)';
+    fwDeleted: Result := 'acknowledgement of the delete (F_AF_NA_1)';
   else
     Result := 'nothing';
   end;
@@ -178,6 +215,22 @@ begin
     C.Err := ''
   else
     C.Err := What(C) + ': ' + Text;
+end;
+
+procedure Send(var C: tIecFileClient; Ti, Cot: Byte; const O: tIecFileObj); forward;
+function Obj(const C: tIecFileClient; Nos, Q: Byte): tIecFileObj; forward;
+function Progress(const C: tIecFileClient): ShortString; forward;
+
+{ Given up (Finish with R): the slave told, so that it frees the transfer
+  now rather than after its own timeout - a fetch deactivated (SCQ 3), a
+  file being sent ended with deactivation (LSQ 2). }
+procedure GiveUp(var C: tIecFileClient; R: tChResult; const Text: ShortString);
+begin
+  Finish(C, R, Text);
+  case C.Job of
+    fjGet: Send(C, F_SC_NA_1, Cot_File, Obj(C, 0, Scq_DeactFile));
+    fjPut: Send(C, F_LS_NA_1, Cot_File, Obj(C, C.X.Nos, Lsq_FileDeact));
+  end;
 end;
 
 procedure Expect(var C: tIecFileClient; W: tIecFileWait);
@@ -220,8 +273,14 @@ begin
   C.Ioa := Ioa;
   C.Nof := Nof;
   C.X.Content := '';
+  C.X.Nos := 0;
+  C.X.SecStart := 0;
+  C.X.SecLen := 0;
+  C.X.SecDone := 0;
   C.DirCount := 0;
   C.Repeats := 0;
+  C.OnlyNos := 0;
+  C.Selected := False;
   C.Sending := False;
   C.Result := res_Ok;
   C.Err := '';
@@ -275,6 +334,51 @@ begin
   Result := not IecFileDone(C);
 end;
 
+function IecFileStartQueryLog(var C: tIecFileClient; Addr, Ca: Word; Ioa: LongWord; Nof: Word;
+  const RangeStart, RangeStop: tIecTime): Boolean;
+var
+  O: tIecFileObj;
+begin
+  Result := Start(C, fjDir, Addr, Ca, Ioa, Nof);
+  if not Result then
+    Exit;
+  O := Obj(C, 0, 0);
+  O.Time := RangeStart;
+  O.Stop := RangeStop;
+  Send(C, F_SC_NB_1, Cot_Request, O);
+  Expect(C, fwDirectory);
+  Result := not IecFileDone(C);
+end;
+
+function IecFileStartGetSection(var C: tIecFileClient; Addr, Ca: Word; Ioa: LongWord; Nof: Word;
+  Nos: Byte): Boolean;
+begin
+  if Nos = 0 then
+  begin
+    C.Result := res_BadParam;
+    C.Err := 'file IOA ' + IntToStr(Ioa) + ': no section 0 (sections are 1..255)';
+    Exit(False);
+  end;
+  Result := IecFileStartGet(C, Addr, Ca, Ioa, Nof);
+  C.OnlyNos := Nos;
+end;
+
+function IecFileStartDelete(var C: tIecFileClient; Addr, Ca: Word; Ioa: LongWord; Nof: Word): Boolean;
+begin
+  Result := Start(C, fjDelete, Addr, Ca, Ioa, Nof);
+  if not Result then
+    Exit;
+  Send(C, F_SC_NA_1, Cot_File, Obj(C, 0, Scq_SelectFile));
+  Expect(C, fwFileReady);
+  Result := not IecFileDone(C);
+end;
+
+procedure IecFileAbort(var C: tIecFileClient);
+begin
+  if not (C.Wait in [fwNone, fwDone]) then
+    GiveUp(C, res_IecFileAborted, 'aborted by the program' + Progress(C));
+end;
+
 {- ------------------------------------------------------------ put }
 
 { Offer section Nos of the file (F_SR_NA_1), or after the last the last
@@ -322,7 +426,7 @@ end;
 
 procedure Unexpected(var C: tIecFileClient; const H: tIecAsdu; const O: tIecFileObj);
 begin
-  Finish(C, res_IecFileSequence, IecFileTypeName(H.Ti) + ' (qualifier ' + IntToStr(O.Q)
+  GiveUp(C, res_IecFileSequence, IecFileTypeName(H.Ti) + ' (qualifier ' + IntToStr(O.Q)
     + ') while waiting for ' + WaitName(C.Wait));
 end;
 
@@ -336,7 +440,7 @@ begin
     if IecXferTake(C.X, O) then
       Expect(C, fwSegments)
     else
-      Finish(C, res_IecFileSequence, 'section ' + IntToStr(C.X.Nos) + ' longer than its '
+      GiveUp(C, res_IecFileSequence, 'section ' + IntToStr(C.X.Nos) + ' longer than its '
         + IntToStr(C.X.SecLen) + ' octets');
     Exit;
   end;
@@ -421,11 +525,29 @@ begin
         Expect(C, fwSectionReady);
       end;
     fwSectionReady:
-      if H.Ti = F_SR_NA_1 then
+      if (C.OnlyNos <> 0) and (C.X.Nos = C.OnlyNos) and IecXferSectionWhole(C.X) then
+      begin
+        { the section came: whatever the slave offers next is not wanted }
+        Finish(C, res_Ok, '');
+        Send(C, F_SC_NA_1, Cot_File, Obj(C, 0, Scq_DeactFile));
+      end
+      else if H.Ti = F_SR_NA_1 then
       begin
         if O.Q and Srq_NotReady <> 0 then
         begin
-          Finish(C, res_IecFileRefused, 'section ' + IntToStr(O.Nos) + ' not ready');
+          GiveUp(C, res_IecFileRefused, 'section ' + IntToStr(O.Nos) + ' not ready');
+          Exit;
+        end;
+        if (C.OnlyNos <> 0) and (O.Nos <> C.OnlyNos) then
+        begin
+          if C.Selected then
+            Unexpected(C, H, O)
+          else
+          begin
+            C.Selected := True;
+            Send(C, F_SC_NA_1, Cot_File, Obj(C, C.OnlyNos, Scq_SelectSection));
+            Expect(C, fwSectionReady);
+          end;
           Exit;
         end;
         IecXferExpect(C.X, O.Nos, O.Lof);
@@ -476,7 +598,7 @@ begin
               PutSection(C, C.X.Nos);
             end
             else
-              Finish(C, res_IecFileChecksum, 'section ' + IntToStr(C.X.Nos) + ' refused by the slave ('
+              GiveUp(C, res_IecFileChecksum, 'section ' + IntToStr(C.X.Nos) + ' refused by the slave ('
                 + IecFileErrorName(O.Q shr 4) + ')');
           Afq_FileOk:
             if C.Wait = fwFileAck then
@@ -494,6 +616,27 @@ begin
   else
     Unexpected(C, H, O);
   end;
+end;
+
+procedure TakeDelete(var C: tIecFileClient; const H: tIecAsdu; const O: tIecFileObj);
+begin
+  if (C.Wait = fwFileReady) and (H.Ti = F_FR_NA_1) then
+  begin
+    if O.Q and Frq_Negative <> 0 then
+      Finish(C, res_IecFileRefused, 'the slave has no such file (F_FR_NA_1 negative)')
+    else
+    begin
+      Send(C, F_SC_NA_1, Cot_File, Obj(C, 0, Scq_DeleteFile));
+      Expect(C, fwDeleted);
+    end;
+  end
+  else if (C.Wait = fwDeleted) and (H.Ti = F_AF_NA_1) and (O.Q and $0F = Afq_FileOk) then
+    Finish(C, res_Ok, '')
+  else if (C.Wait = fwDeleted) and (H.Ti = F_AF_NA_1) and (O.Q and $0F = Afq_FileBad) then
+    Finish(C, res_IecFileRefused, 'the slave did not delete it (F_AF_NA_1 negative: '
+      + IecFileErrorName(O.Q shr 4) + ')')
+  else
+    Unexpected(C, H, O);
 end;
 
 procedure TakeDir(var C: tIecFileClient; const Buf: array of Byte; Len: Word; const H: tIecAsdu;
@@ -541,13 +684,13 @@ begin
     Exit;                                { no transfer with this slave }
   if IecFileDecode(C^.M^.Params, Buf, Len, 0, H, O, E) <> res_Ok then
   begin
-    Finish(C^, res_IecFileSequence, 'malformed answer: ' + E);
+    GiveUp(C^, res_IecFileSequence, 'malformed answer: ' + E);
     Exit;
   end;
   if (H.Ca <> C^.Ca) or ((C^.Job <> fjDir) and (O.Ioa <> C^.Ioa)) then
     Exit;                                { another transfer's }
-  if (C^.Job = fjDir) and (H.Ti = F_SC_NA_1) and H.Negative and (H.Cot = Cot_Request) then
-    Finish(C^, res_Ok, '')               { no file there }
+  if (C^.Job = fjDir) and (H.Ti in [F_SC_NA_1, F_SC_NB_1]) and H.Negative and (H.Cot = Cot_Request) then
+    Finish(C^, res_Ok, '')               { no file there (in the range) }
   else if H.Negative or (H.Cot >= Cot_UnknownType) then
     Finish(C^, res_IecFileRefused, 'the slave answered ' + IecFileTypeName(H.Ti) + ' with COT '
       + IntToStr(H.Cot) + ' ' + IecCotName(H.Cot) + BoolToStr(H.Negative, ', negative', ''))
@@ -556,6 +699,7 @@ begin
       fjDir: TakeDir(C^, Buf, Len, H, O);
       fjGet: TakeGet(C^, H, O);
       fjPut: TakePut(C^, H, O);
+      fjDelete: TakeDelete(C^, H, O);
     end;
 end;
 
@@ -602,7 +746,7 @@ begin
   end;
   if not (C.Wait in [fwNone, fwDone, fwSending]) and not C.Sending and (ChMsTick > C.Deadline) then
   begin
-    Finish(C, res_Timeout, 'interrupted: no ' + WaitName(C.Wait) + ' in ' + IntToStr(C.TimeoutMs)
+    GiveUp(C, res_Timeout, 'interrupted: no ' + WaitName(C.Wait) + ' in ' + IntToStr(C.TimeoutMs)
       + ' ms' + Progress(C) + IecLineShowed(M^, IecMasterSlave(M^, C.Addr)));
     Result := True;
   end;
@@ -622,6 +766,36 @@ begin
     Result := IecFileFinish(C)
   else
     Result := C.Result;
+end;
+
+function IecFileQueryLog(var C: tIecFileClient; Addr, Ca: Word; Ioa: LongWord; Nof: Word;
+  const RangeStart, RangeStop: tIecTime): tChResult;
+begin
+  if IecFileStartQueryLog(C, Addr, Ca, Ioa, Nof, RangeStart, RangeStop) then
+    Result := IecFileFinish(C)
+  else
+    Result := C.Result;
+end;
+
+function IecFileDelete(var C: tIecFileClient; Addr, Ca: Word; Ioa: LongWord; Nof: Word): tChResult;
+begin
+  if IecFileStartDelete(C, Addr, Ca, Ioa, Nof) then
+    Result := IecFileFinish(C)
+  else
+    Result := C.Result;
+end;
+
+function IecFileGetSection(var C: tIecFileClient; Addr, Ca: Word; Ioa: LongWord; Nof: Word;
+  Nos: Byte; out Content: AnsiString): tChResult;
+begin
+  if IecFileStartGetSection(C, Addr, Ca, Ioa, Nof, Nos) then
+    Result := IecFileFinish(C)
+  else
+    Result := C.Result;
+  if Result = res_Ok then
+    Content := C.X.Content
+  else
+    Content := '';
 end;
 
 function IecFileGet(var C: tIecFileClient; Addr, Ca: Word; Ioa: LongWord; Nof: Word;

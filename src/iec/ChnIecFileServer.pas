@@ -21,7 +21,15 @@
                                          F_LS_NA_1 LSQ 1 with the file's checksum
        F_AF_NA_1 AFQ 4 section bad    -> the same section again (F_SR_NA_1)
     <- F_AF_NA_1 AFQ 1 file ok        -> done (Sent); AFQ 2: failed (Failed, LastError)
-    <- F_SC_NA_1 SCQ 3 / 7 deactivate -> aborted (Aborted)
+    <- F_SC_NA_1 SCQ 5 select section -> F_SR_NA_1 of that section (SRQ bit 7: there is
+                                         none); the transfer goes on from there
+    <- F_SC_NA_1 SCQ 7 deactivate section -> the section stops; the file stays called (a
+                                         call file or a select section goes on)
+    <- F_SC_NA_1 SCQ 3 deactivate file -> aborted (Aborted): ready for the next at once
+  Deleting a file (with or without a select before):
+    <- F_SC_NA_1 SCQ 4 delete file    -> F_AF_NA_1 AFQ 1 (deleted, Deleted counts), or AFQ 2
+                                         + cause 4 (no such file) or 3 (OnDelete refused,
+                                         the OS could not, NoDelete; LastError says why)
   Receiving a file:
     <- F_FR_NA_1 file ready (LOF)     -> F_SC_NA_1 SCQ 2 call file (F_FR_NA_1 with FRQ bit 7:
                                          refused - no Dir, no OnReceived, too long)
@@ -31,10 +39,15 @@
                                          (the section is dropped: the peer sends it again)
     <- F_LS_NA_1 LSQ 1                -> F_AF_NA_1 AFQ 1, the file kept; AFQ 2 + cause 2
                                          (checksum) or 3 (length not LOF): dropped
-    <- F_LS_NA_1 LSQ 2 / 4            -> aborted by the peer
+    <- F_LS_NA_1 LSQ 2                -> aborted by the peer: ready for the next at once
+    <- F_LS_NA_1 LSQ 4                -> the section dropped: the peer offers it again
   Directory: F_SC_NA_1 with COT 5 -> F_DR_TA_1 entries with COT 5 (as many
   per ASDU as fit; the last entry has SOF bit LFD); no file: the call
   mirrored with P/N = 1.
+  Query log: F_SC_NB_1 with COT 5 (NOF, range start and stop, CP56Time2a)
+  -> F_DR_TA_1 with COT 5 of the files of that NOF (NOF 0: any) created
+  in the range, both ends included; none (or a range that is no date):
+  the query mirrored with P/N = 1.
   A transfer the peer leaves for TimeoutMs ends (Aborted, LastError); a
   select or file ready starts a new one whatever runs. Every ASDU of the
   wrong common address is mirrored with COT 46 and P/N = 1. }
@@ -62,12 +75,16 @@ type
 
   { A file received completely, checksums right. }
   tIecFileReceivedFunc = procedure(Data: Pointer; Ioa: LongWord; Nof: Word; const Content: AnsiString);
+  { The master asks to delete file Ioa: True lets the server delete it,
+    False refuses (Why: the reason, kept in LastError). }
+  tIecFileDeleteFunc = function(Data: Pointer; Ioa: LongWord; Nof: Word; out Why: ShortString): Boolean;
 
   tIecFileServerState = (fsIdle,
     fsSelected,        {< F_FR_NA_1 sent: waiting for the call file }
     fsSectionReady,    {< F_SR_NA_1 sent: waiting for the call section }
     fsSending,         {< segments going out }
     fsSectionAck,      {< F_LS_NA_1 LSQ 3 sent }
+    fsFileCalled,      {< a section deactivated: waiting for a select section or call file }
     fsFileAck,         {< F_LS_NA_1 LSQ 1 sent }
     fsReceiveReady,    {< call file sent: waiting for a section ready or the last section }
     fsReceiving);      {< call section sent: segments coming }
@@ -83,6 +100,8 @@ type
     Files    : array[0..IecFileMaxFiles - 1] of tIecFileEntry;
     FileCount: LongInt;
     OnReceived: tIecFileReceivedFunc;
+    OnDelete : tIecFileDeleteFunc;   {< asked before a file is deleted (nil: it is) }
+    NoDelete : Boolean;     {< refuse every delete }
     Data     : Pointer;
     { the transfer under way }
     State    : tIecFileServerState;
@@ -97,8 +116,12 @@ type
     OutLen   : Word;
     DirAt    : LongInt;     {< directory entries left to send from (-1: none) }
     DirCot   : Byte;
+    DirLog   : Boolean;     {< the directory answers a query log: only these files }
+    LogNof   : Word;
+    LogFrom, LogTo: TDateTime;
+    LogQuery : tIecFileObj; {< mirrored when no file is in the range }
     { counters and the last trouble }
-    Sent, Received, Failed, Aborted, BadChecksums, Refused: LongInt;
+    Sent, Received, Failed, Aborted, BadChecksums, Refused, Deleted: LongInt;
     LastError: ShortString;
   end;
   pIecFileServer = ^tIecFileServer;
@@ -300,6 +323,14 @@ begin
     F.LastError := 'file: ' + Err;
     Result := False;
   end;
+end;
+
+function VisitLocate(var F: tIecFileServer; const E: tIecFileEntry; const Path: AnsiString;
+  Size: Int64): Boolean;
+begin
+  Result := E.Ioa = Want;
+  if Result then
+    Found := Path;
 end;
 
 { The content of the file of IOA Ioa. }
@@ -520,10 +551,18 @@ begin
         end;
         Stop(F, '');
       end;
-    Lsq_FileDeact, Lsq_SectionDeact:
+    Lsq_FileDeact:
       begin
         Inc(F.Aborted);
         Stop(F, What(F) + ': transfer aborted by the peer');
+      end;
+    Lsq_SectionDeact:
+      if F.State = fsReceiving then
+      begin
+        { the section goes; the peer offers it (or another) again }
+        IecXferDrop(F.X);
+        F.State := fsReceiveReady;
+        Touch(F);
       end;
   end;
 end;
@@ -558,12 +597,132 @@ begin
   end;
 end;
 
+{ Select section Nos of the file called: its section ready, or one with
+  SRQ bit 7 when the file has no such section. }
+procedure SelectSection(var F: tIecFileServer; Nos: Byte);
+var
+  O: tIecFileObj;
+begin
+  O := Obj(F.Ioa, F.Nof, Nos, 0);
+  if (Nos >= 1) and IecXferSection(F.X, Nos, F.SectionSize) then
+  begin
+    O.Lof := F.X.SecLen;
+    F.State := fsSectionReady;
+  end
+  else
+  begin
+    O.Q := Srq_NotReady;
+    F.State := fsFileCalled;
+    F.LastError := What(F) + ': no section ' + IntToStr(Nos);
+  end;
+  Answer(F, F_SR_NA_1, Cot_File, False, O);
+  Touch(F);
+end;
+
+{ The index of the program's file of IOA Ioa in F.Files, -1: none. }
+function ProgramFile(const F: tIecFileServer; Ioa: LongWord): LongInt;
+begin
+  Result := F.FileCount - 1;
+  while (Result >= 0) and (F.Files[Result].Ioa <> Ioa) do
+    Dec(Result);
+end;
+
+{ Delete file: the program's or the directory's, unless NoDelete or
+  OnDelete says no; F_AF_NA_1 positive, or negative with the cause. }
+procedure DeleteAsked(var F: tIecFileServer; const O: tIecFileObj);
+var
+  I: LongInt;
+  Path: AnsiString;
+  Why: ShortString;
+  Cause: Byte;
+begin
+  Cause := Fe_Unexpected;
+  Why := '';
+  Path := '';
+  I := ProgramFile(F, O.Ioa);
+  if I < 0 then
+  begin
+    Want := O.Ioa;
+    Found := '';
+    if WalkFiles(F, @VisitLocate) then
+      Path := Found;
+    Found := '';
+  end;
+  if (I < 0) and (Path = '') then
+  begin
+    Cause := Fe_UnknownFile;
+    Why := 'no such file';
+  end
+  else if F.NoDelete then
+    Why := 'this station deletes no file'
+  else if Assigned(F.OnDelete) and not F.OnDelete(F.Data, O.Ioa, O.Nof, Why) then
+  begin
+    if Why = '' then
+      Why := 'refused by the program';
+  end
+  else if I >= 0 then
+  begin
+    F.Files[I] := F.Files[F.FileCount - 1];
+    Finalize(F.Files[F.FileCount - 1]);
+    Dec(F.FileCount);
+    Cause := Fe_None;
+  end
+  else if not SysUtils.DeleteFile(Path) then
+    Why := Path + ': ' + SysErrorMessage(GetLastOSError)
+  else
+    Cause := Fe_None;
+  if (F.State in [fsSelected, fsSectionReady, fsSending, fsSectionAck, fsFileAck, fsFileCalled]) and
+     (F.Ioa = O.Ioa) then
+    Stop(F, '');                         { the file selected: its transfer is over }
+  if Cause = Fe_None then
+  begin
+    Inc(F.Deleted);
+    Answer(F, F_AF_NA_1, Cot_File, False, Obj(O.Ioa, O.Nof, 0, Afq_FileOk));
+  end
+  else
+  begin
+    Inc(F.Refused);
+    F.LastError := 'delete of file IOA ' + IntToStr(O.Ioa) + ': ' + Why;
+    Answer(F, F_AF_NA_1, Cot_File, False, Obj(O.Ioa, O.Nof, 0, Afq_FileBad or (Cause shl 4)));
+  end;
+end;
+
+{ Query log: the directory of the files of NOF (0: any) created in the
+  range, from DirNext. }
+procedure QueryLog(var F: tIecFileServer; const O: tIecFileObj);
+begin
+  F.DirLog := True;
+  F.LogNof := O.Nof;
+  F.LogQuery := O;
+  if not IecTimeToDateTime(O.Time, F.LogFrom) or not IecTimeToDateTime(O.Stop, F.LogTo) then
+  begin
+    F.LastError := 'query log: the range is no date';
+    F.LogFrom := 1;                      { an empty range }
+    F.LogTo := 0;
+  end;
+  F.DirAt := 0;
+  F.DirCot := Cot_Request;
+  F.OutLen := 0;
+end;
+
 procedure Called(var F: tIecFileServer; const Buf: array of Byte; Len: Word; const O: tIecFileObj);
 begin
   case O.Q and $0F of
     Scq_SelectFile: Select(F, O);
+    Scq_DeleteFile: DeleteAsked(F, O);
+    Scq_SelectSection:
+      if (F.State in [fsSectionReady, fsSending, fsSectionAck, fsFileCalled]) and (O.Ioa = F.Ioa) then
+        SelectSection(F, O.Nos)
+      else
+        Mirror(F, Buf, Len, Cot_File);
+    Scq_DeactSection:
+      if (F.State in [fsSectionReady, fsSending, fsSectionAck]) and (O.Ioa = F.Ioa) then
+      begin
+        F.State := fsFileCalled;         { the section stops, the file stays called }
+        Touch(F);
+      end;
     Scq_CallFile:
-      if (F.State = fsSelected) and (O.Ioa = F.Ioa) then
+      if (F.State in [fsSelected, fsFileCalled]) and (O.Ioa = F.Ioa) then
       begin
         SectionReady(F, 1);
         Touch(F);
@@ -578,14 +737,14 @@ begin
       end
       else
         Mirror(F, Buf, Len, Cot_File);
-    Scq_DeactFile, Scq_DeactSection:
+    Scq_DeactFile:
       if F.State <> fsIdle then
       begin
         Inc(F.Aborted);
         Stop(F, What(F) + ': transfer deactivated by the peer');
       end;
   else
-    Mirror(F, Buf, Len, Cot_File);      { delete, select section: not offered }
+    Mirror(F, Buf, Len, Cot_File);      { SCQ 0, 8..15 with COT 13 }
   end;
 end;
 
@@ -622,7 +781,16 @@ begin
   begin
     F.DirAt := 0;                        { the directory }
     F.DirCot := Cot_Request;
+    F.DirLog := False;
     F.OutLen := 0;
+    Exit;
+  end;
+  if H.Ti = F_SC_NB_1 then
+  begin
+    if H.Cot = Cot_Request then
+      QueryLog(F, O)
+    else
+      Mirror(F, Buf, Len, Cot_UnknownCause);
     Exit;
   end;
   if H.Cot <> Cot_File then
@@ -645,7 +813,7 @@ begin
     F_SG_NA_1: Segment(F, O);
     F_LS_NA_1: if O.Ioa = F.Ioa then LastReceived(F, O);
   else
-    Mirror(F, Buf, Len, Cot_UnknownType);   { F_DR_TA_1, F_SC_NB_1: not in this direction / no log }
+    Mirror(F, Buf, Len, Cot_UnknownType);   { F_DR_TA_1: not in this direction }
   end;
 end;
 
@@ -656,9 +824,20 @@ var
   DirObjs: array[0..IecMaxObjects - 1] of tIecFileObj;
   DirCount, DirRoom: LongInt;
 
+{ A query log's: of its NOF, created in its range. }
+function InLog(const F: tIecFileServer; const E: tIecFileEntry): Boolean;
+var
+  T: TDateTime;
+begin
+  Result := ((F.LogNof = 0) or (E.Nof = F.LogNof)) and IecTimeToDateTime(E.Time, T) and
+    (T >= F.LogFrom) and (T <= F.LogTo);
+end;
+
 function VisitDir(var F: tIecFileServer; const E: tIecFileEntry; const Path: AnsiString;
   Size: Int64): Boolean;
 begin
+  if F.DirLog and not InLog(F, E) then
+    Exit(False);
   if DirSkip > 0 then
   begin
     Dec(DirSkip);
@@ -691,10 +870,15 @@ begin
   Result := True;
   if DirCount = 0 then
   begin
-    { no file: the call mirrored, negative }
+    { no file: the call (the query) mirrored, negative }
     F.DirAt := -1;
-    O := Obj(0, 0, 0, Scq_Default);
-    Result := IecFileEncode(F.Params, F_SC_NA_1, F.DirCot, True, F.Ca, [O], 1, Buf, Len, E) = res_Ok;
+    if F.DirLog then
+      Result := IecFileEncode(F.Params, F_SC_NB_1, F.DirCot, True, F.Ca, [F.LogQuery], 1, Buf, Len, E) = res_Ok
+    else
+    begin
+      O := Obj(0, 0, 0, Scq_Default);
+      Result := IecFileEncode(F.Params, F_SC_NA_1, F.DirCot, True, F.Ca, [O], 1, Buf, Len, E) = res_Ok;
+    end;
     Exit;
   end;
   if More then
