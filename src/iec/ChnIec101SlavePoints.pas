@@ -29,6 +29,8 @@ function IecSlaveEventType(var S: tIecSlaveStation; Ioa: LongWord; Ti: Byte;
   out Err: ShortString): tChResult;
 function IecSlaveUpdate(var S: tIecSlaveStation; Ioa: LongWord; const Obj: tIecObject;
   Spontaneous: Boolean; out Err: ShortString): tChResult;
+function IecSlaveUpdateAt(var S: tIecSlaveStation; Ioa: LongWord; const Obj: tIecObject;
+  Spontaneous: Boolean; out Err: ShortString): tChResult;
 { The value of a measured value as its parameters count it. }
 function MeasuredValue(Ti: Byte; const O: tIecObject): Double;
 procedure SetMeasuredValue(Ti: Byte; var O: tIecObject; V: Double);
@@ -256,8 +258,9 @@ begin
     (IecParZone(P.Par, P.ParSet, V) = IecParZone(P.Par, P.ParSet, P.Reported));
 end;
 
-function IecSlaveUpdate(var S: tIecSlaveStation; Ioa: LongWord; const Obj: tIecObject;
-  Spontaneous: Boolean; out Err: ShortString): tChResult;
+{ IecSlaveUpdate, and IecSlaveUpdateAt with Obj.Time kept (KeepTime). }
+function UpdatePoint(var S: tIecSlaveStation; Ioa: LongWord; const Obj: tIecObject;
+  Spontaneous, KeepTime: Boolean; out Err: ShortString): tChResult;
 var
   I: Integer;
   O: tIecObject;
@@ -274,7 +277,7 @@ begin
   O.Ioa := Ioa;
   if IsCounter(S.Points[I].Ti) then
     O.Seq := S.Points[I].Obj.Seq;           { the freezes count it, not the program }
-  if IecTypeTime(S.Points[I].Ti) <> tkNone then
+  if (IecTypeTime(S.Points[I].Ti) <> tkNone) and not KeepTime then
     O.Time := IecTimeFromDateTime(IecSlaveNow(S));
   Result := CheckObject(S, S.Points[I].Ti, O, Err);
   if Result <> res_Ok then
@@ -298,7 +301,7 @@ begin
     EvTi := S.Points[I].EventTi;
     if EvTi = 0 then
       EvTi := S.Points[I].Ti
-    else
+    else if not KeepTime then
       O.Time := IecTimeFromDateTime(IecSlaveNow(S));
     Result := QueueObject(S, EvTi, Cot_Spontaneous, O);
     if Result = res_Ok then
@@ -307,4 +310,16 @@ begin
       Err := 'point ' + IntToStr(Ioa) + ': class 1 queue full, event lost';
   end;
 end;
+function IecSlaveUpdate(var S: tIecSlaveStation; Ioa: LongWord; const Obj: tIecObject;
+  Spontaneous: Boolean; out Err: ShortString): tChResult;
+begin
+  Result := UpdatePoint(S, Ioa, Obj, Spontaneous, False, Err);
+end;
+
+function IecSlaveUpdateAt(var S: tIecSlaveStation; Ioa: LongWord; const Obj: tIecObject;
+  Spontaneous: Boolean; out Err: ShortString): tChResult;
+begin
+  Result := UpdatePoint(S, Ioa, Obj, Spontaneous, True, Err);
+end;
+
 end.
