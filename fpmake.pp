@@ -175,14 +175,43 @@ begin
     AddUnit(P, 'ChnIec101Print.pas', AllOSes, ['ChnIec101Asdu']);
     AddUnit(P, 'ChnIecTransport.pas', AllOSes, ['ChnTypes', 'ChnVirt', 'ChnFT1_2', 'ChnFT12Link', 'ChnFT12Balanced',
       'ChnIec104', 'ChnIec104Codec']);
+    { the master: its record, its command, what it receives, its line;
+      ChnIec101Master is the program's interface to them }
+    AddUnit(P, 'ChnIec101MasterTypes.pas', AllOSes, ['ChnTypes', 'ChnVirt', 'ChnFT12Codec', 'ChnFT12Link',
+      'ChnFT12Primary', 'ChnIec101Asdu', 'ChnIecTransport']);
+    AddUnit(P, 'ChnIec101MasterCmd.pas', AllOSes, ['ChnTypes', 'ChnVirt', 'ChnIec101Asdu',
+      'ChnIec101MasterTypes']);
+    AddUnit(P, 'ChnIec101MasterInbound.pas', AllOSes, ['ChnTypes', 'ChnIec101Asdu',
+      'ChnIec101MasterTypes', 'ChnIec101MasterCmd']);
+    AddUnit(P, 'ChnIec101MasterPoll.pas', AllOSes, ['ChnTypes', 'ChnVirt', 'ChnFT1_2', 'ChnFT12Link',
+      'ChnFT12Primary', 'ChnIecTransport', 'ChnIec101MasterTypes', 'ChnIec101MasterCmd',
+      'ChnIec101MasterInbound']);
     AddUnit(P, 'ChnIec101Master.pas', AllOSes, ['ChnTypes', 'ChnVirt', 'ChnFT1_2', 'ChnFT12Link',
-      'ChnFT12Primary', 'ChnFT12Codec', 'ChnIec101Asdu', 'ChnWait', 'ChnIecTransport']);
+      'ChnFT12Primary', 'ChnFT12Codec', 'ChnIec101Asdu', 'ChnWait', 'ChnIecTransport',
+      'ChnIec101MasterTypes', 'ChnIec101MasterCmd', 'ChnIec101MasterInbound', 'ChnIec101MasterPoll']);
     { file transfer (types 120..127): codec, controlled and controlling station }
     AddUnit(P, 'ChnIecFile.pas', AllOSes, ['ChnTypes', 'ChnIec101Asdu']);
     AddUnit(P, 'ChnIecFileServer.pas', AllOSes, ['ChnTypes', 'ChnVirt', 'ChnIec101Asdu', 'ChnIecFile', 'ChnOs']);
     AddUnit(P, 'ChnIecFileClient.pas', AllOSes, ['ChnTypes', 'ChnVirt', 'ChnFT12Codec', 'ChnIec101Asdu', 'ChnIec101Master', 'ChnIecFile']);
+    { the slave: its record, its queues, points, interrogations, commands
+      and parameters; ChnIec101Slave is the program's interface to them }
+    AddUnit(P, 'ChnIec101SlaveTypes.pas', AllOSes, ['ChnTypes', 'ChnVirt', 'ChnFT12Station',
+      'ChnIec101Asdu', 'ChnIecTransport', 'ChnIecFileServer']);
+    AddUnit(P, 'ChnIec101SlaveQueue.pas', AllOSes, ['ChnTypes', 'ChnIec101Asdu', 'ChnIec101SlaveTypes',
+      'ChnFT12Link', 'ChnIec104Codec']);
+    AddUnit(P, 'ChnIecMeasParams.pas', AllOSes, ['ChnIec101Asdu']);
+    AddUnit(P, 'ChnIec101SlavePoints.pas', AllOSes, ['ChnTypes', 'ChnIec101Asdu', 'ChnIec101SlaveTypes',
+      'ChnIec101SlaveQueue', 'ChnIecMeasParams']);
+    AddUnit(P, 'ChnIec101SlaveGi.pas', AllOSes, ['ChnTypes', 'ChnIec101Asdu', 'ChnIec101SlaveTypes',
+      'ChnIec101SlaveQueue', 'ChnIec101SlavePoints']);
+    AddUnit(P, 'ChnIec101SlaveCommands.pas', AllOSes, ['ChnTypes', 'ChnVirt', 'ChnIec101Asdu',
+      'ChnIec101SlaveTypes', 'ChnIec101SlaveQueue', 'ChnIec101SlavePoints']);
+    AddUnit(P, 'ChnIec101SlaveParams.pas', AllOSes, ['ChnIec101Asdu', 'ChnIec101SlaveTypes',
+      'ChnIec101SlaveQueue', 'ChnIec101SlavePoints', 'ChnIecMeasParams']);
     AddUnit(P, 'ChnIec101Slave.pas', AllOSes, ['ChnTypes', 'ChnVirt', 'ChnFT1_2', 'ChnFT12Link',
-      'ChnFT12Station', 'ChnIec101Asdu', 'ChnIecTransport', 'ChnIec104Codec', 'ChnIecFile', 'ChnIecFileServer']);
+      'ChnFT12Station', 'ChnIec101Asdu', 'ChnIecTransport', 'ChnIecFile', 'ChnIecFileServer',
+      'ChnIec101SlaveTypes', 'ChnIec101SlaveQueue', 'ChnIec101SlavePoints', 'ChnIec101SlaveGi',
+      'ChnIec101SlaveCommands', 'ChnIec101SlaveParams']);
     { the points a master receives: value, quality, time; slave health; commands }
     AddUnit(P, 'ChnIecPointTable.pas', AllOSes, ['ChnTypes', 'ChnVirt', 'ChnWait', 'ChnIec101Asdu',
       'ChnIec101Master', 'ChnRing']);

@@ -10,7 +10,7 @@ unit TestIec104Tools;
 interface
 
 uses
-  SysUtils, Classes, Process, fpcunit, testregistry, ChnTypes, ChnVirt, ChnTcp,
+  SysUtils, Classes, Process, fpcunit, testregistry, ChnTypes, ChnVirt, ChnTcp, ChnSock,
   BinSupport, TestSupport, TestTempDir;
 
 type
@@ -21,17 +21,6 @@ type
   end;
 
 implementation
-
-{ A loopback port nothing listens on now. }
-function FreePort: Word;
-var
-  Err: string;
-  C: pChnVirt;
-begin
-  C := OpenStack('TCP', 'LISTEN=127.0.0.1:0', Err);
-  Result := pChnTcp(C)^.ChLocalPort;
-  Dispose(C, Done);
-end;
 
 { Wait until something listens on Port (3 s at most). }
 function Listening(Port: Word): Boolean;
@@ -53,6 +42,21 @@ begin
   until GetTickCount64 > Deadline;
 end;
 
+{ What the slave tool wrote on stderr once it ended by itself (12 s at most). }
+function SlaveEnded(S: TProcess): string;
+var
+  Deadline: QWord;
+begin
+  Deadline := GetTickCount64 + 12000;
+  while S.Running and (GetTickCount64 < Deadline) do
+    Sleep(20);
+  TAssert.AssertFalse('the slave ended', S.Running);
+  Result := '';
+  SetLength(Result, S.Stderr.NumBytesAvailable);
+  if Length(Result) > 0 then
+    S.Stderr.Read(Result[1], Length(Result));
+end;
+
 procedure TTestIec104Tools.TestMasterToolAgainstSlaveTool;
 var
   Port: Word;
@@ -62,7 +66,7 @@ var
   Deadline: QWord;
 begin
   AssertTrue(FileExists(BinPath('iec101slave')));
-  Port := FreePort;
+  Port := SockFreeLoopbackPort;
   S := TProcess.Create(nil);
   try
     BinExecutable(S, BinPath('iec101slave'));
@@ -82,14 +86,7 @@ begin
     AssertTrue(Out, Pos('{"type":"C_CI_NA_1","ti":101,"cot":10,', Out) > 0);
     AssertTrue(Out, Pos('{"type":"C_SC_NA_1","ti":45,"cot":7,"negative":false', Out) > 0);
     AssertTrue(Out, Pos('{"type":"C_CS_NA_1","ti":103,"cot":7,"negative":false', Out) > 0);
-    Deadline := GetTickCount64 + 12000;
-    while S.Running and (GetTickCount64 < Deadline) do
-      Sleep(20);
-    AssertFalse('the slave ended', S.Running);
-    Errs := '';
-    SetLength(Errs, S.Stderr.NumBytesAvailable);
-    if Length(Errs) > 0 then
-      S.Stderr.Read(Errs[1], Length(Errs));
+    Errs := SlaveEnded(S);
     { the interrogation after its end of initialisation is the one asked for }
     AssertTrue(Errs, Pos('1 interrogations, 1 counter interrogations, 0 reads, 1 commands (0 refused), 1 clock syncs', Errs) > 0);
     AssertEquals(Errs, 0, S.ExitCode);
@@ -117,7 +114,7 @@ begin
     WriteFileText(Dir + '/30001', 'eleven octs');
     AssertEquals(0, FileSetDate(Dir + '/30000', DateTimeToFileDate(EncodeDate(2026, 12, 4) + EncodeTime(10, 0, 0, 0))));
     AssertEquals(0, FileSetDate(Dir + '/30001', DateTimeToFileDate(EncodeDate(2026, 12, 5) + EncodeTime(8, 0, 0, 0))));
-    Port := FreePort;
+    Port := SockFreeLoopbackPort;
     Host := 'NAM=IEC104 NAM=TCP HOST=127.0.0.1 PORT=' + IntToStr(Port);
     BinExecutable(S, BinPath('iec101slave'));
     S.Parameters.Add('--seconds=8');
@@ -141,14 +138,7 @@ begin
     Rc := RunBin('iec101master', [Host, 'log', '2026-12-04', 'tomorrow'], 15000, Out);
     AssertEquals(Out, 2, Rc);
     AssertTrue(Out, Pos('iec101master: log wants TO as 2026-12-04T09:30:00 (tomorrow)', Out) > 0);
-    Deadline := GetTickCount64 + 12000;
-    while S.Running and (GetTickCount64 < Deadline) do
-      Sleep(20);
-    AssertFalse('the slave ended', S.Running);
-    Errs := '';
-    SetLength(Errs, S.Stderr.NumBytesAvailable);
-    if Length(Errs) > 0 then
-      S.Stderr.Read(Errs[1], Length(Errs));
+    Errs := SlaveEnded(S);
     AssertTrue(Errs, Pos('1 refused, 1 deleted', Errs) > 0);
   finally
     StopProcess(S);

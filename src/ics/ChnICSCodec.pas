@@ -288,38 +288,41 @@ begin
     Result := ICS_ErrETX;             { a control character before ETX }
 end;
 
-function ICSFeed(var State: tICSState; B: Byte): tICSEvent;
-var
-  R: tChResult;
+{ Between frames (ipHunt) and after SOH (ipSOH): SOH starts a frame (the
+  last one seen counts), then the destination address. }
+function FrameStart(var State: tICSState; B: Byte): tChResult;
 begin
-  Result := icsNone;
-  R := res_Ok;
-  if State.Phase in [ipSOH..ipTextEnd] then
-    State.Sum := Xor8Add(State.Sum, B);   { SUM covers SOH .. ETX only }
+  Result := res_Ok;
+  if B = ICS_SOH then
+  begin
+    State.Phase := ipSOH;
+    State.Sum := ICS_SOH;          { the sum starts at the last SOH }
+  end
+  else if State.Phase = ipHunt then
+    { noise between frames is skipped }
+  else if B >= ICSNodeBase then
+  begin
+    FillChar(State.Rec, SizeOf(State.Rec), 0);
+    State.Count := 0;
+    State.NumText := '';
+    State.DNode := B - ICSNodeBase;
+    State.Phase := ipDNO;
+  end
+  else
+    Result := ICS_ErrFrame;        { bad destination address }
+end;
+
+{ The head after the destination address: STX, the source address, the
+  two characters of the op code, the block number, the comma. }
+function HeadByte(var State: tICSState; B: Byte): tChResult; inline;
+begin
+  Result := res_Ok;
   case State.Phase of
-    ipHunt, ipSOH:
-      if B = ICS_SOH then
-      begin
-        State.Phase := ipSOH;
-        State.Sum := ICS_SOH;          { the sum starts at the last SOH }
-      end
-      else if State.Phase = ipHunt then
-        { noise between frames is skipped }
-      else if B >= ICSNodeBase then
-      begin
-        FillChar(State.Rec, SizeOf(State.Rec), 0);
-        State.Count := 0;
-        State.NumText := '';
-        State.DNode := B - ICSNodeBase;
-        State.Phase := ipDNO;
-      end
-      else
-        R := ICS_ErrFrame;             { bad destination address }
     ipDNO:
       if B = ICS_STX then
         State.Phase := ipSNO
       else
-        R := ICS_ErrFrame;             { missing STX }
+        Result := ICS_ErrFrame;        { missing STX }
     ipSNO:
       if B >= ICSNodeBase then
       begin
@@ -327,10 +330,10 @@ begin
         State.Phase := ipOp1;
       end
       else
-        R := ICS_ErrFrame;             { bad source address }
+        Result := ICS_ErrFrame;        { bad source address }
     ipOp1, ipOp2:
       if B < $20 then
-        R := ICS_ErrFrame              { control character in the op code }
+        Result := ICS_ErrFrame         { control character in the op code }
       else if State.Phase = ipOp1 then
       begin
         State.Rec.OpCode := Chr(B);
@@ -348,44 +351,88 @@ begin
         State.Phase := ipComma;
       end
       else
-        R := ICS_ErrFrame;             { block number not a digit }
-    ipComma:
-      if B = Ord(',') then
-        State.Phase := ipData
-      else
-        R := ICS_ErrFrame;             { missing ',' after CBN }
+        Result := ICS_ErrFrame;        { block number not a digit }
+  else                                 { ipComma }
+    if B = Ord(',') then
+      State.Phase := ipData
+    else
+      Result := ICS_ErrFrame;          { missing ',' after CBN }
+  end;
+end;
+
+{ A byte inside a number: one more character of it, or the byte after it. }
+function NumberByte(var State: tICSState; B: Byte): tChResult; inline;
+begin
+  if Chr(B) in ['+', '-', '.', '0'..'9'] then
+  begin
+    Result := res_Ok;
+    if Length(State.NumText) >= ICSMaxNumText then
+      Result := ICS_ErrVal
+    else
+      State.NumText := State.NumText + Chr(B);
+  end
+  else
+  begin
+    { the number ends here; the byte is a separator, text or ETX }
+    Result := StoreNumber(State);
+    if Result = res_Ok then
+    begin
+      State.Phase := ipData;
+      Result := DataByte(State, B);
+    end;
+  end;
+end;
+
+{ A byte inside the text: its closing delimiter, or one more character. }
+function TextByte(var State: tICSState; B: Byte): tChResult; inline;
+begin
+  Result := res_Ok;
+  if Chr(B) = State.Delim then
+  begin
+    State.Rec.Text := State.Rec.Text + Chr(B);
+    State.Phase := ipTextEnd;
+  end
+  else if not ICSIsTextChar(Chr(B)) then
+    Result := ICS_ErrFrame             { control character inside the text }
+  else if Length(State.Rec.Text) + 2 > ICSMaxTextLen then
+    Result := ICS_ErrLen               { no room left for the closing delimiter }
+  else
+    State.Rec.Text := State.Rec.Text + Chr(B);
+end;
+
+{ A frame broken by B (R says how): counted; an SOH starts the next one. }
+function Broken(var State: tICSState; B: Byte; R: tChResult): tICSEvent;
+begin
+  State.Error := R;
+  Result := icsError;
+  if B = ICS_SOH then
+  begin
+    State.Phase := ipSOH;            { this SOH starts the next frame }
+    State.Sum := ICS_SOH;
+  end
+  else
+    State.Phase := ipHunt;
+end;
+
+function ICSFeed(var State: tICSState; B: Byte): tICSEvent;
+var
+  R: tChResult;
+begin
+  Result := icsNone;
+  R := res_Ok;
+  if State.Phase in [ipSOH..ipTextEnd] then
+    State.Sum := Xor8Add(State.Sum, B);   { SUM covers SOH .. ETX only }
+  case State.Phase of
+    ipHunt, ipSOH:
+      R := FrameStart(State, B);
+    ipDNO..ipComma:
+      R := HeadByte(State, B);
     ipData:
       R := DataByte(State, B);
     ipNumber:
-      if Chr(B) in ['+', '-', '.', '0'..'9'] then
-      begin
-        if Length(State.NumText) >= ICSMaxNumText then
-          R := ICS_ErrVal
-        else
-          State.NumText := State.NumText + Chr(B);
-      end
-      else
-      begin
-        { the number ends here; the byte is a separator, text or ETX }
-        R := StoreNumber(State);
-        if R = res_Ok then
-        begin
-          State.Phase := ipData;
-          R := DataByte(State, B);
-        end;
-      end;
+      R := NumberByte(State, B);
     ipText:
-      if Chr(B) = State.Delim then
-      begin
-        State.Rec.Text := State.Rec.Text + Chr(B);
-        State.Phase := ipTextEnd;
-      end
-      else if not ICSIsTextChar(Chr(B)) then
-        R := ICS_ErrFrame              { control character inside the text }
-      else if Length(State.Rec.Text) + 2 > ICSMaxTextLen then
-        R := ICS_ErrLen                { no room left for the closing delimiter }
-      else
-        State.Rec.Text := State.Rec.Text + Chr(B);
+      R := TextByte(State, B);
     ipTextEnd:
       if B = ICS_ETX then
         State.Phase := ipSum
@@ -408,17 +455,7 @@ begin
       end;
   end;
   if R <> res_Ok then
-  begin
-    State.Error := R;
-    Result := icsError;
-    if B = ICS_SOH then
-    begin
-      State.Phase := ipSOH;            { this SOH starts the next frame }
-      State.Sum := ICS_SOH;
-    end
-    else
-      State.Phase := ipHunt;
-  end;
+    Result := Broken(State, B, R);
 end;
 
 end.

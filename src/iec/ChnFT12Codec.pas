@@ -384,11 +384,12 @@ begin
     S.Phase := rxSum;
 end;
 
-function FT12Feed(var S: tFT12Rx; B: Byte; Now: QWord): tFT12Event;
+{ The time since the previous byte: a gap inside a frame drops it; a
+  line idle long enough is in step again. }
+procedure WatchIdle(var S: tFT12Rx; Now: QWord); inline;
 var
   Idle: QWord;                  { ms since the previous byte }
 begin
-  Result := fe_None;
   Idle := 0;
   if Now > S.LastTime then
     Idle := Now - S.LastTime;
@@ -401,38 +402,51 @@ begin
   if S.Suspect and (Idle >= FT12SuspectIdleMs) and (Idle >= S.Cfg.GapMs) then
     S.Suspect := False;         { idle long enough: no broken frame goes on }
   S.LastTime := Now;
-  case S.Phase of
-    rxHunt:
-      case B of
-        SD1:
-          if S.Cfg.FixedLen > MaxDataLen then
-            Result := Fail(S, res_ErrLen)   { a configuration no frame fits }
-          else
-          begin
-            S.Kind := tpShortM;
-            S.DataLen := S.Cfg.FixedLen;
-            S.Sum := 0;
-            S.Phase := rxCode;
-          end;
-        SD2:
-          S.Phase := rxL1;
-        SACK, SNAK:
-          if S.Suspect then
-            Inc(S.Suspects)     { maybe a byte of the frame just broken }
-          else
-          begin
-            if B = SACK then
-              S.Kind := tpSACK
-            else
-              S.Kind := tpSNAK;
-            S.Code := 0;
-            S.Addr := 0;
-            S.DataLen := 0;
-            Result := Complete(S);
-          end;
+end;
+
+{ Between frames: B starts a fixed or a variable frame, is a single
+  character (a whole frame), or is garbage. }
+function Hunt(var S: tFT12Rx; B: Byte): tFT12Event;
+begin
+  Result := fe_None;
+  case B of
+    SD1:
+      if S.Cfg.FixedLen > MaxDataLen then
+        Result := Fail(S, res_ErrLen)   { a configuration no frame fits }
       else
-        S.Suspect := True;      { not a start character: garbage, skipped }
+      begin
+        S.Kind := tpShortM;
+        S.DataLen := S.Cfg.FixedLen;
+        S.Sum := 0;
+        S.Phase := rxCode;
       end;
+    SD2:
+      S.Phase := rxL1;
+    SACK, SNAK:
+      if S.Suspect then
+        Inc(S.Suspects)     { maybe a byte of the frame just broken }
+      else
+      begin
+        if B = SACK then
+          S.Kind := tpSACK
+        else
+          S.Kind := tpSNAK;
+        S.Code := 0;
+        S.Addr := 0;
+        S.DataLen := 0;
+        Result := Complete(S);
+      end;
+  else
+    S.Suspect := True;      { not a start character: garbage, skipped }
+  end;
+end;
+
+{ The head of a variable frame after its first start character: L, L
+  again, the second start character. }
+function LengthHead(var S: tFT12Rx; B: Byte): tFT12Event;
+begin
+  Result := fe_None;
+  case S.Phase of
     rxL1:
       begin
         S.L := B;
@@ -445,16 +459,28 @@ begin
         Result := Fail(S, res_ErrLen)
       else
         S.Phase := rxStart2;
-    rxStart2:
-      if B <> SD2 then
-        Result := Fail(S, res_ErrFrame)
-      else
-      begin
-        S.Kind := tpLongM;
-        S.DataLen := S.L - 1 - S.Cfg.AddrLen;
-        S.Sum := 0;
-        S.Phase := rxCode;
-      end;
+  else                                         { rxStart2 }
+    if B <> SD2 then
+      Result := Fail(S, res_ErrFrame)
+    else
+    begin
+      S.Kind := tpLongM;
+      S.DataLen := S.L - 1 - S.Cfg.AddrLen;
+      S.Sum := 0;
+      S.Phase := rxCode;
+    end;
+  end;
+end;
+
+function FT12Feed(var S: tFT12Rx; B: Byte; Now: QWord): tFT12Event;
+begin
+  Result := fe_None;
+  WatchIdle(S, Now);
+  case S.Phase of
+    rxHunt:
+      Result := Hunt(S, B);
+    rxL1, rxL2, rxStart2:
+      Result := LengthHead(S, B);
     rxCode:
       begin
         S.Code := B;

@@ -716,8 +716,61 @@ begin
     Err := What + ' ' + IntToStr(V) + ' out of range (' + IntToStr(Lo) + '..' + IntToStr(Hi) + ')';
 end;
 
+{ The elements of control direction and system information (commands,
+  qualifiers, the test word, the delay) into B[At..]. }
+procedure PutControl(K: tIecKind; const O: tIecObject; var B: array of Byte; At: Integer;
+  var Err: ShortString);
+begin
+  case K of
+    ikEndInit, ikQualifier:
+      if Range('qualifier', O.Int, 0, 255, Err) then
+        B[At] := O.Int;
+    ikSingleCmd, ikDoubleCmd, ikStepCmd:
+      if ((K = ikSingleCmd) and Range('value', O.Int, 0, 1, Err))
+        or ((K <> ikSingleCmd) and Range('state', O.Int, 0, 3, Err)) then
+        if Range('QU', O.Qu, 0, 31, Err) then
+          B[At] := O.Int or (O.Qu shl 2) or (Ord(O.Select) shl 7);
+    ikBitsCmd:
+      PutLong(O.Bits, B, At);
+    ikRead, ikClock:
+      ;
+    ikTest, ikTestTime:
+      if Range('test word', O.Int, 0, $FFFF, Err) then
+        PutWord(O.Int, B, At);
+    ikDelay:
+      PutWord(O.Elapsed, B, At);
+  end;
+end;
+
+{ PutControl's elements from B[At..]. }
+procedure GetControl(K: tIecKind; const B: array of Byte; At: Integer; var O: tIecObject);
+begin
+  case K of
+    ikEndInit, ikQualifier:
+      O.Int := B[At];
+    ikSingleCmd, ikDoubleCmd, ikStepCmd:
+      begin
+        if K = ikSingleCmd then
+          O.Int := B[At] and 1
+        else
+          O.Int := B[At] and 3;
+        O.Qu := (B[At] shr 2) and $1F;
+        O.Select := B[At] and $80 <> 0;
+      end;
+    ikBitsCmd:
+      O.Bits := GetLong(B, At);
+    ikRead, ikClock:
+      ;
+    ikTest, ikTestTime:
+      O.Int := GetWord(B, At);
+    ikDelay:
+      O.Elapsed := GetWord(B, At);
+  end;
+end;
+
 { The element of O (type Ti) into B[At..]; False with Err (the field) when
-  a value does not fit. }
+  a value does not fit. Monitor direction here, in one case (a station's
+  reports: the hot path), control direction in PutControl. }
 function PutElement(Ti: Byte; const O: tIecObject; var B: array of Byte; At: Integer;
   out Err: ShortString): Boolean;
 var
@@ -804,23 +857,8 @@ begin
         B[At + 1] := O.Quality and $F8;
         PutWord(O.Elapsed, B, At + 2);
       end;
-    ikEndInit, ikQualifier:
-      if Range('qualifier', O.Int, 0, 255, Err) then
-        B[At] := O.Int;
-    ikSingleCmd, ikDoubleCmd, ikStepCmd:
-      if ((K = ikSingleCmd) and Range('value', O.Int, 0, 1, Err))
-        or ((K <> ikSingleCmd) and Range('state', O.Int, 0, 3, Err)) then
-        if Range('QU', O.Qu, 0, 31, Err) then
-          B[At] := O.Int or (O.Qu shl 2) or (Ord(O.Select) shl 7);
-    ikBitsCmd:
-      PutLong(O.Bits, B, At);
-    ikRead, ikClock:
-      ;
-    ikTest, ikTestTime:
-      if Range('test word', O.Int, 0, $FFFF, Err) then
-        PutWord(O.Int, B, At);
-    ikDelay:
-      PutWord(O.Elapsed, B, At);
+  else
+    PutControl(K, O, B, At, Err);
   end;
   if (Err = '') and (Types[I].Time <> tkNone) then
     if TimeFits(O.Time, Types[I].Time, Err) then
@@ -830,6 +868,7 @@ begin
   Result := Err = '';
 end;
 
+{ PutElement's reverse: the element of type Ti from B[At..] into O. }
 procedure GetElement(Ti: Byte; const B: array of Byte; At: Integer; var O: tIecObject);
 var
   I, V: Integer;
@@ -918,25 +957,8 @@ begin
         O.Quality := B[At + 1] and $F8;
         O.Elapsed := GetWord(B, At + 2);
       end;
-    ikEndInit, ikQualifier:
-      O.Int := B[At];
-    ikSingleCmd, ikDoubleCmd, ikStepCmd:
-      begin
-        if K = ikSingleCmd then
-          O.Int := B[At] and 1
-        else
-          O.Int := B[At] and 3;
-        O.Qu := (B[At] shr 2) and $1F;
-        O.Select := B[At] and $80 <> 0;
-      end;
-    ikBitsCmd:
-      O.Bits := GetLong(B, At);
-    ikRead, ikClock:
-      ;
-    ikTest, ikTestTime:
-      O.Int := GetWord(B, At);
-    ikDelay:
-      O.Elapsed := GetWord(B, At);
+  else
+    GetControl(K, B, At, O);
   end;
   if Types[I].Time <> tkNone then
     GetTime(B, At + V, Types[I].Time, O.Time);

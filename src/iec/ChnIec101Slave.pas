@@ -46,9 +46,10 @@
     the queued time-tagged events, never a confirmation), delay acquisition (C_CD_NA_1: COT 6 confirmed,
     COT 3 kept as the delay): ACT_CON;
   * parameters of measured values (P_ME_NA_1..P_ME_NC_1: threshold,
-    smoothing, limits kept per IOA, a threshold in operation a deadband on
-    the spontaneous reports, reported after the points of a station
-    interrogation) and their activation (P_AC_NA_1): ACT_CON / DEACT_CON;
+    smoothing, limits kept per IOA; in operation, the threshold a deadband
+    on the spontaneous reports, the smoothing factor a filter on the
+    value, a change of zone between the limits reported (ChnIecMeasParams);
+    reported after the points of a station interrogation) and their activation (P_AC_NA_1): ACT_CON / DEACT_CON;
   * file transfer (types 120..127) when the program gave a file server
     (IecSlaveServeFiles, ChnIecFileServer): its answers and segments go
     in class 1, one segment whenever class 1 is empty, so a long file
@@ -65,7 +66,18 @@
   ASDU as SEND/CONFIRM user data as soon as the link queue has room.
 
   Nothing here waits: IecSlaveStep takes at most one frame (the link
-  helpers send the answer at once) and returns. }
+  helpers send the answer at once) and returns.
+
+  The slave's parts, a unit each: ChnIec101SlaveTypes (the record),
+  ChnIec101SlaveQueue (the class 1 / class 2 queues and the answers put
+  in them), ChnIec101SlavePoints (the point table, updates, events),
+  ChnIec101SlaveGi (interrogations), ChnIec101SlaveCommands (commands,
+  select before operate, deferred confirmation), ChnIec101SlaveParams
+  (parameters of measured values). This unit is the program's interface:
+  set-up, the ASDUs received handed to those parts (and clock
+  synchronisation, read, test, reset of process, delay acquisition, end
+  of initialisation), the link side (unbalanced station or balanced
+  transport) and the file transfer hooks. }
 unit ChnIec101Slave;
 
 {$I chn.inc}
@@ -74,110 +86,30 @@ interface
 
 uses
   ChnTypes, ChnVirt, ChnFT1_2, ChnFT12Link, ChnFT12Station, ChnIec101Asdu, ChnIecTransport,
-  ChnIecFile, ChnIecFileServer;
+  ChnIecFile, ChnIecFileServer, ChnIec101SlaveTypes;
 
+{ The slave's names, declared in ChnIec101SlaveTypes (why: see there),
+  given again here for programs that use this unit. }
 const
-  IecSlaveMaxPoints = 1024;
-  IecSlaveQueueLen  = 64;        {< ASDUs waiting per class }
-  IecSlaveSelectMs  = 10000;     {< default select-before-operate timeout }
-  IecSlaveMaxDeferred = 16;      {< commands waiting for IecSlaveConfirm at once }
+  IecSlaveMaxPoints   = ChnIec101SlaveTypes.IecSlaveMaxPoints;
+  IecSlaveQueueLen    = ChnIec101SlaveTypes.IecSlaveQueueLen;
+  IecSlaveSelectMs    = ChnIec101SlaveTypes.IecSlaveSelectMs;
+  IecSlaveMaxDeferred = ChnIec101SlaveTypes.IecSlaveMaxDeferred;
 
 type
-  { One entry of the point table. }
-  tIecPoint = record
-    Ti    : Byte;         {< monitoring type (1..21, 30..40) or command type (45..51, 58..64) }
-    Group : Byte;         {< interrogation group 1..16 (counters 1..4), 0 = station only }
-    Obj   : tIecObject;   {< IOA, value, quality, time (see ChnIec101Asdu.tIecKind) }
-    Frozen: tIecObject;   {< counters: the value of the last freeze }
-    HasFrozen: Boolean;
-    Par   : array[Kpa_Threshold..Kpa_High] of Double;   {< parameters loaded (P_ME_NA/NB/NC_1) }
-    ParSet: Byte;         {< bit KPA set: Par[KPA] loaded }
-    ParOn : Boolean;      {< the parameters are in operation (POP 0, or P_AC_NA_1) }
-    Reported: Double;     {< the value of the last spontaneous report (the deadband's base) }
-    HasReported: Boolean;
-    EventTi: Byte;        {< type of its spontaneous events (IecSlaveEventType), 0: Ti }
-  end;
-  pIecPoint = ^tIecPoint;
+  tIecPoint            = ChnIec101SlaveTypes.tIecPoint;
+  pIecPoint            = ChnIec101SlaveTypes.pIecPoint;
+  tIecQueued           = ChnIec101SlaveTypes.tIecQueued;
+  tIecQueue            = ChnIec101SlaveTypes.tIecQueue;
+  tIecDeferred         = ChnIec101SlaveTypes.tIecDeferred;
+  tIecSlaveCommandFunc = ChnIec101SlaveTypes.tIecSlaveCommandFunc;
+  tIecSlaveClockFunc   = ChnIec101SlaveTypes.tIecSlaveClockFunc;
+  tIecSlaveAsduFunc    = ChnIec101SlaveTypes.tIecSlaveAsduFunc;
+  tIecSlaveBadFunc     = ChnIec101SlaveTypes.tIecSlaveBadFunc;
+  tIecSlaveResetFunc   = ChnIec101SlaveTypes.tIecSlaveResetFunc;
+  tIecSlaveStation     = ChnIec101SlaveTypes.tIecSlaveStation;
+  pIecSlaveStation     = ChnIec101SlaveTypes.pIecSlaveStation;
 
-  tIecQueued = record
-    Len : Word;
-    Data: array[0..IecMaxAsdu - 1] of Byte;
-  end;
-
-  tIecQueue = record
-    Items: array[0..IecSlaveQueueLen - 1] of tIecQueued;
-    Head, Count: LongInt;
-  end;
-
-  { A command whose confirmation waits for IecSlaveConfirm. }
-  tIecDeferred = record
-    Ticket: LongWord;     {< 0: the slot is free }
-    Point : LongInt;      {< its command point }
-    Obj   : tIecObject;
-    Select: Boolean;
-    Asdu  : tIecQueued;   {< the command, mirrored as its ACT_CON }
-  end;
-
-  { A command for the program: H the ASDU's identifier (Ti, Cot, Ca ...),
-    O its object (O.Select for a select). True accepts it. }
-  tIecSlaveCommandFunc = function(Data: Pointer; const H: tIecAsdu; const O: tIecObject): Boolean;
-  { Clock synchronisation: T the time received, OffsetMs what the station
-    clock now adds to the PC clock. }
-  tIecSlaveClockFunc = procedure(Data: Pointer; const T: tIecTime; OffsetMs: Int64);
-  { Every ASDU received (Sent = False, before it is answered) and every
-    ASDU handed to the link (Sent = True). }
-  tIecSlaveAsduFunc = procedure(Data: Pointer; Sent: Boolean; Buf: PByte; Len: Word);
-  tIecSlaveBadFunc = procedure(Data: Pointer; const Err: ShortString);
-  { A reset of process (C_RP_NA_1) with its QRP, after its ACT_CON. }
-  tIecSlaveResetFunc = procedure(Data: Pointer; Qrp: Byte);
-
-  tIecSlaveStation = record
-    Chn      : pChnVirt;
-    Params   : tIecParams;
-    Ca       : Word;          {< own common address (IecSlaveInit: 1) }
-    Balanced : Boolean;       {< no link polling: balanced FT 1.2 or IEC 104 }
-    Over104  : Boolean;       {< on an IEC104 channel }
-    Station  : tFT12Station;  {< unbalanced link }
-    Link     : tIecTransport; {< balanced link or IEC 104 }
-    Points   : array[0..IecSlaveMaxPoints - 1] of tIecPoint;
-    PointCount: LongInt;
-    Class1, Class2: tIecQueue;
-    { interrogation under way (station/group or counters) }
-    GiActive : Boolean;
-    GiQoi    : Byte;
-    GiNext   : LongInt;       {< next point index to look at }
-    GiPar    : LongInt;       {< then the parameters: point * 4 + KPA - 1 }
-    GiAsdu   : tIecQueued;    {< its ACT_CON, the mirror for ACT_TERM }
-    { select before operate }
-    SelActive: Boolean;
-    SelTi    : Byte;
-    SelIoa   : LongWord;
-    SelUntil : QWord;
-    SelectMs : LongInt;
-    SelObj   : tIecObject;    {< the object selected: its execute must carry the same }
-    { station clock: PC clock + ClockOffsetMs; delay from C_CD_NA_1 }
-    ClockOffsetMs: Int64;
-    DelayMs  : LongInt;
-    OnCommand: tIecSlaveCommandFunc;
-    OnClock  : tIecSlaveClockFunc;
-    OnAsdu   : tIecSlaveAsduFunc;
-    OnBad    : tIecSlaveBadFunc;
-    OnReset  : tIecSlaveResetFunc;
-    Files    : pIecFileServer;  {< file transfer (nil: none) }
-    Data     : Pointer;
-    { counters }
-    Asdus, BadAsdus, Commands, Refused, ClockSyncs, Interrogations,
-      CounterInterrogations, Reads, Events, Negatives, Overflows, EndOfInits,
-      Parameters, Suppressed: LongInt;
-    LastBad  : ShortString;
-    { commands waiting for IecSlaveConfirm; DeferSlot: the one OnCommand
-      deferred (-1: none), InCommand: OnCommand is running }
-    Deferred : array[0..IecSlaveMaxDeferred - 1] of tIecDeferred;
-    NextTicket: LongWord;
-    DeferSlot: LongInt;
-    InCommand: Boolean;
-  end;
-  pIecSlaveStation = ^tIecSlaveStation;
 
 { A slave on an open tChnFT1_2 stack (it stays the caller's) with the
   application parameters P and common address Ca. res_WrongLayer (no
@@ -215,6 +147,10 @@ function IecSlaveEventType(var S: tIecSlaveStation; Ioa: LongWord; Ti: Byte;
   res_AsduIoa (no such point), res_AsduValue (Err), res_Busy (event
   queue full: the table has the new value, the event is lost). }
 function IecSlaveUpdate(var S: tIecSlaveStation; Ioa: LongWord; const Obj: tIecObject;
+  Spontaneous: Boolean; out Err: ShortString): tChResult;
+{ The same with the time tag Obj.Time instead of the station clock's (a
+  gateway passing on the time its source stamped the change with). }
+function IecSlaveUpdateAt(var S: tIecSlaveStation; Ioa: LongWord; const Obj: tIecObject;
   Spontaneous: Boolean; out Err: ShortString): tChResult;
 { The station clock (PC clock + ClockOffsetMs). }
 function IecSlaveNow(const S: tIecSlaveStation): TDateTime;
@@ -260,62 +196,61 @@ function IecSlaveDeferred(const S: tIecSlaveStation): LongInt;
 implementation
 
 uses
-  SysUtils, DateUtils, Math, ChnIec104Codec;
+  SysUtils, DateUtils, ChnIec101SlaveQueue, ChnIec101SlavePoints, ChnIec101SlaveGi,
+  ChnIec101SlaveCommands, ChnIec101SlaveParams;
 
-{- ---------------------------------------------------------------- queues }
+{- ------------------------------------------- the parts' public calls }
 
-function QueuePut(var Q: tIecQueue; const Buf: array of Byte; Len: Word): Boolean;
-var
-  Slot: Integer;
+function IecSlaveAddPoint(var S: tIecSlaveStation; Ti: Byte; const Obj: tIecObject; Group: Byte;
+  out Err: ShortString): tChResult;
 begin
-  Result := (Q.Count < IecSlaveQueueLen) and (Len <= IecMaxAsdu);
-  if not Result then
-    Exit;
-  Slot := (Q.Head + Q.Count) mod IecSlaveQueueLen;
-  Q.Items[Slot].Len := Len;
-  Move(Buf[0], Q.Items[Slot].Data[0], Len);
-  Inc(Q.Count);
+  Result := ChnIec101SlavePoints.IecSlaveAddPoint(S, Ti, Obj, Group, Err);
 end;
 
-procedure QueueDrop(var Q: tIecQueue);
+function IecSlaveFind(const S: tIecSlaveStation; Ioa: LongWord): LongInt;
 begin
-  Q.Head := (Q.Head + 1) mod IecSlaveQueueLen;
-  Dec(Q.Count);
+  Result := ChnIec101SlavePoints.IecSlaveFind(S, Ioa);
 end;
 
-{ Reset of pending information with time tag (QRP 2): the queued
-  spontaneous ASDUs of time-tagged types go; confirmations, terminations,
-  answers to reads and untagged events stay, in their order. }
-procedure QueueDropTaggedEvents(var Q: tIecQueue);
-var
-  Old: tIecQueue;
-  I: Integer;
+function IecSlaveEventType(var S: tIecSlaveStation; Ioa: LongWord; Ti: Byte;
+  out Err: ShortString): tChResult;
 begin
-  Old := Q;
-  Q.Head := 0;
-  Q.Count := 0;
-  for I := 0 to Old.Count - 1 do
-    with Old.Items[(Old.Head + I) mod IecSlaveQueueLen] do
-      if (Len < 3) or (Data[2] and $3F <> Cot_Spontaneous) or (IecTypeTime(Data[0]) = tkNone) then
-        QueuePut(Q, Data, Len);
+  Result := ChnIec101SlavePoints.IecSlaveEventType(S, Ioa, Ti, Err);
 end;
 
-procedure Queue1(var S: tIecSlaveStation; const Buf: array of Byte; Len: Word);
+function IecSlaveUpdate(var S: tIecSlaveStation; Ioa: LongWord; const Obj: tIecObject;
+  Spontaneous: Boolean; out Err: ShortString): tChResult;
 begin
-  if not QueuePut(S.Class1, Buf, Len) then
-    Inc(S.Overflows);
+  Result := ChnIec101SlavePoints.IecSlaveUpdate(S, Ioa, Obj, Spontaneous, Err);
 end;
 
-{ The longest ASDU the link takes: IEC 104's APDU of 253 octets less
-  its control field (249); FT 1.2's frame of L = 255 less the control
-  octet and the link address (253 with ADR=1; no ASDU exceeds IecMaxAsdu). }
-function MaxAsdu(const S: tIecSlaveStation): Word;
+function IecSlaveUpdateAt(var S: tIecSlaveStation; Ioa: LongWord; const Obj: tIecObject;
+  Spontaneous: Boolean; out Err: ShortString): tChResult;
 begin
-  if S.Over104 then
-    Result := Apci104MaxAsdu
-  else
-    Result := Min(IecMaxAsdu, FT12MaxData(S.Chn));
+  Result := ChnIec101SlavePoints.IecSlaveUpdateAt(S, Ioa, Obj, Spontaneous, Err);
 end;
+
+function IecSlaveNow(const S: tIecSlaveStation): TDateTime;
+begin
+  Result := ChnIec101SlavePoints.IecSlaveNow(S);
+end;
+
+function IecSlaveDefer(var S: tIecSlaveStation): LongWord;
+begin
+  Result := ChnIec101SlaveCommands.IecSlaveDefer(S);
+end;
+
+function IecSlaveConfirm(var S: tIecSlaveStation; Ticket: LongWord; Ok: Boolean): tChResult;
+begin
+  Result := ChnIec101SlaveCommands.IecSlaveConfirm(S, Ticket, Ok);
+end;
+
+function IecSlaveDeferred(const S: tIecSlaveStation): LongInt;
+begin
+  Result := ChnIec101SlaveCommands.IecSlaveDeferred(S);
+end;
+
+{- ------------------------------------------------------------ file hooks }
 
 procedure IecSlaveServeFiles(var S: tIecSlaveStation; F: pIecFileServer);
 begin
@@ -345,579 +280,7 @@ begin
   Result := (S.Files <> nil) and IecFileServerReady(S.Files^);
 end;
 
-{- ---------------------------------------------------------------- points }
-
-function IsCounter(Ti: Byte): Boolean;
-begin
-  Result := IecTypeKind(Ti) = ikCounter;
-end;
-
-function IsCommand(Ti: Byte): Boolean;
-begin
-  Result := Ti in [C_SC_NA_1..C_BO_NA_1, C_SC_TA_1..C_BO_TA_1];
-end;
-
-function IecSlaveNow(const S: tIecSlaveStation): TDateTime;
-begin
-  Result := IncMilliSecond(Now, S.ClockOffsetMs);
-end;
-
-{ The monitoring point at Ioa; -1 when none. }
-function FindMonitor(const S: tIecSlaveStation; Ioa: LongWord): LongInt;
-var
-  I: Integer;
-begin
-  for I := 0 to S.PointCount - 1 do
-    if (S.Points[I].Obj.Ioa = Ioa) and not IsCommand(S.Points[I].Ti) then
-      Exit(I);
-  Result := -1;
-end;
-
-{ The command point of type Ti at Ioa; -1 when none. }
-function FindCommand(const S: tIecSlaveStation; Ioa: LongWord; Ti: Byte): LongInt;
-var
-  I: Integer;
-begin
-  for I := 0 to S.PointCount - 1 do
-    if (S.Points[I].Obj.Ioa = Ioa) and (S.Points[I].Ti = Ti) then
-      Exit(I);
-  Result := -1;
-end;
-
-function IecSlaveFind(const S: tIecSlaveStation; Ioa: LongWord): LongInt;
-var
-  I: Integer;
-begin
-  Result := FindMonitor(S, Ioa);
-  if Result >= 0 then
-    Exit;
-  for I := 0 to S.PointCount - 1 do
-    if S.Points[I].Obj.Ioa = Ioa then
-      Exit(I);
-end;
-
-{ Can Obj be sent as type Ti? (the encoder's own checks) }
-function CheckObject(const S: tIecSlaveStation; Ti: Byte; const Obj: tIecObject; out Err: ShortString): tChResult;
-var
-  Buf: array[0..IecMaxAsdu - 1] of Byte;
-  Len: Word;
-begin
-  Result := IecEncodeOne(S.Params, Ti, Cot_Spontaneous, S.Ca, Obj, Buf, Len, Err);
-end;
-
-{ IEC 104 has no CP24 types (IEC 60870-5-104 clause 8): the CP56 type
-  of the same information. }
-function Cp56Counterpart(Ti: Byte): Byte;
-begin
-  case Ti of
-    M_SP_TA_1: Result := M_SP_TB_1;
-    M_DP_TA_1: Result := M_DP_TB_1;
-    M_ST_TA_1: Result := M_ST_TB_1;
-    M_BO_TA_1: Result := M_BO_TB_1;
-    M_ME_TA_1: Result := M_ME_TD_1;
-    M_ME_TB_1: Result := M_ME_TE_1;
-    M_ME_TC_1: Result := M_ME_TF_1;
-    M_IT_TA_1: Result := M_IT_TB_1;
-    M_EP_TA_1: Result := M_EP_TD_1;
-    M_EP_TB_1: Result := M_EP_TE_1;
-    M_EP_TC_1: Result := M_EP_TF_1;
-  else
-    Result := Ti;
-  end;
-end;
-
-function IecSlaveAddPoint(var S: tIecSlaveStation; Ti: Byte; const Obj: tIecObject; Group: Byte;
-  out Err: ShortString): tChResult;
-var
-  P: pIecPoint;
-  O: tIecObject;
-begin
-  Err := '';
-  if S.Over104 then
-    Ti := Cp56Counterpart(Ti);
-  if not ((IecIsMonitor(Ti) and (Ti <> M_EI_NA_1)) or IsCommand(Ti)) then
-  begin
-    Err := 'point ' + IntToStr(Obj.Ioa) + ': type ' + IntToStr(Ti) +
-      ' is no monitoring (1..21, 30..40) or command type (45..51, 58..64)';
-    Exit(res_AsduType);
-  end;
-  if Obj.Ioa > IecMaxIoa(S.Params) then
-  begin
-    Err := 'point ' + IntToStr(Obj.Ioa) + ': IOA above ' + IntToStr(IecMaxIoa(S.Params)) +
-      ' (IOA size ' + IntToStr(S.Params.IoaSize) + ')';
-    Exit(res_AsduIoa);
-  end;
-  if (IsCommand(Ti) and (FindCommand(S, Obj.Ioa, Ti) >= 0)) or
-     (not IsCommand(Ti) and (FindMonitor(S, Obj.Ioa) >= 0)) then
-  begin
-    Err := 'point ' + IntToStr(Obj.Ioa) + ': IOA twice';
-    Exit(res_BadParam);
-  end;
-  if (Group > 16) or (IsCounter(Ti) and (Group > 4)) then
-  begin
-    Err := 'point ' + IntToStr(Obj.Ioa) + ': group ' + IntToStr(Group);
-    Exit(res_BadParam);
-  end;
-  if S.PointCount >= IecSlaveMaxPoints then
-  begin
-    Err := 'point ' + IntToStr(Obj.Ioa) + ': table full (' + IntToStr(IecSlaveMaxPoints) + ' points)';
-    Exit(res_Busy);
-  end;
-  O := Obj;
-  if IecTypeTime(Ti) <> tkNone then
-    O.Time := IecTimeFromDateTime(IecSlaveNow(S));
-  Result := CheckObject(S, Ti, O, Err);
-  if Result <> res_Ok then
-  begin
-    Err := 'point ' + IntToStr(Obj.Ioa) + ': ' + Err;
-    Exit;
-  end;
-  P := @S.Points[S.PointCount];
-  FillChar(P^, SizeOf(P^), 0);
-  P^.Ti := Ti;
-  P^.Group := Group;
-  P^.Obj := O;
-  Inc(S.PointCount);
-end;
-
-function IecSlaveEventType(var S: tIecSlaveStation; Ioa: LongWord; Ti: Byte;
-  out Err: ShortString): tChResult;
-var
-  I: LongInt;
-begin
-  Err := '';
-  I := FindMonitor(S, Ioa);
-  if I < 0 then
-  begin
-    Err := 'no monitoring point with IOA ' + IntToStr(Ioa);
-    Exit(res_AsduIoa);
-  end;
-  if S.Over104 then
-    Ti := Cp56Counterpart(Ti);          { no CP24 over IEC 104 }
-  if (IecTypeTime(S.Points[I].Ti) <> tkNone) or (IecTypeTime(Ti) = tkNone) or not IecIsMonitor(Ti) or
-     (IecTypeKind(Ti) <> IecTypeKind(S.Points[I].Ti)) then
-  begin
-    Err := 'point ' + IntToStr(Ioa) + ': ' + IecTypeName(Ti) + ' is not ' +
-      IecTypeName(S.Points[I].Ti) + ' with a time tag';
-    Exit(res_AsduType);
-  end;
-  S.Points[I].EventTi := Ti;
-  Result := res_Ok;
-end;
-
-{ Encode one object of type Ti with cause Cot into the class 1 queue. }
-function QueueObject(var S: tIecSlaveStation; Ti, Cot: Byte; const O: tIecObject): tChResult;
-var
-  Buf: array[0..IecMaxAsdu - 1] of Byte;
-  Len: Word;
-  Err: ShortString;
-begin
-  Result := IecEncodeOne(S.Params, Ti, Cot, S.Ca, O, Buf, Len, Err);
-  if Result <> res_Ok then
-    Exit;
-  if not QueuePut(S.Class1, Buf, Len) then
-  begin
-    Inc(S.Overflows);
-    Result := res_Busy;
-  end;
-end;
-
-{ The value of a measured value as its parameters count it: the fraction
-  of a normalized value, the integer of a scaled one, the float. }
-function MeasuredValue(Ti: Byte; const O: tIecObject): Double;
-begin
-  if IecTypeKind(Ti) = ikScaled then
-    Result := O.Int
-  else
-    Result := O.Number;
-end;
-
-{ The parameter type (P_ME_NA/NB/NC_1) of a measured value type; 0 when
-  it has none. }
-function ParamType(Ti: Byte): Byte;
-begin
-  case IecTypeKind(Ti) of
-    ikNormal: Result := P_ME_NA_1;
-    ikScaled: Result := P_ME_NB_1;
-    ikFloat: Result := P_ME_NC_1;
-  else
-    Result := 0;
-  end;
-end;
-
-{ A change within the threshold of a point whose parameters are in
-  operation, and with the same quality, is not reported (a deadband around
-  the value reported last). }
-function InDeadband(const P: tIecPoint; const O: tIecObject; OldQuality: Byte): Boolean;
-begin
-  Result := P.ParOn and (P.ParSet and (1 shl Kpa_Threshold) <> 0) and P.HasReported and
-    (O.Quality = OldQuality) and (Abs(MeasuredValue(P.Ti, O) - P.Reported) < P.Par[Kpa_Threshold]);
-end;
-
-function IecSlaveUpdate(var S: tIecSlaveStation; Ioa: LongWord; const Obj: tIecObject;
-  Spontaneous: Boolean; out Err: ShortString): tChResult;
-var
-  I: Integer;
-  O: tIecObject;
-  Quality, EvTi: Byte;
-begin
-  Err := '';
-  I := IecSlaveFind(S, Ioa);
-  if I < 0 then
-  begin
-    Err := 'no point with IOA ' + IntToStr(Ioa);
-    Exit(res_AsduIoa);
-  end;
-  O := Obj;
-  O.Ioa := Ioa;
-  if IsCounter(S.Points[I].Ti) then
-    O.Seq := S.Points[I].Obj.Seq;           { the freezes count it, not the program }
-  if IecTypeTime(S.Points[I].Ti) <> tkNone then
-    O.Time := IecTimeFromDateTime(IecSlaveNow(S));
-  Result := CheckObject(S, S.Points[I].Ti, O, Err);
-  if Result <> res_Ok then
-  begin
-    Err := 'point ' + IntToStr(Ioa) + ': ' + Err;
-    Exit;
-  end;
-  Quality := S.Points[I].Obj.Quality;
-  S.Points[I].Obj := O;
-  if Spontaneous and InDeadband(S.Points[I], O, Quality) then
-  begin
-    Inc(S.Suppressed);
-    Exit(res_Ok);
-  end;
-  if Spontaneous then
-  begin
-    S.Points[I].Reported := MeasuredValue(S.Points[I].Ti, O);
-    S.Points[I].HasReported := True;
-    EvTi := S.Points[I].EventTi;
-    if EvTi = 0 then
-      EvTi := S.Points[I].Ti
-    else
-      O.Time := IecTimeFromDateTime(IecSlaveNow(S));
-    Result := QueueObject(S, EvTi, Cot_Spontaneous, O);
-    if Result = res_Ok then
-      Inc(S.Events);
-    if Result = res_Busy then
-      Err := 'point ' + IntToStr(Ioa) + ': class 1 queue full, event lost';
-  end;
-end;
-
-{- ---------------------------------------------------------- interrogation }
-
-{ Does point P answer the interrogation under way? }
-function GiWants(const S: tIecSlaveStation; const P: tIecPoint): Boolean;
-var
-  Grp: Byte;
-begin
-  if IsCommand(P.Ti) then
-    Exit(False);
-  if S.GiAsdu.Data[0] = C_CI_NA_1 then
-  begin
-    Grp := S.GiQoi and $3F;           { RQT: 1..4 a group, 5 all }
-    Result := IsCounter(P.Ti) and ((Grp = Qcc_General) or (P.Group = Grp));
-  end
-  else
-    Result := not IsCounter(P.Ti) and ((S.GiQoi = Qoi_Station) or (P.Group = S.GiQoi - Qoi_Station));
-end;
-
-{ After the points, the parameters loaded for the points the interrogation
-  covers, one ASDU each (P_ME_NA/NB/NC_1, COT 20 + group; QPM the KPA, POP
-  set while they are not in operation); False when none is left. }
-function GiParamAsdu(var S: tIecSlaveStation; var Out: tIecQueued): Boolean;
-var
-  P: pIecPoint;
-  Kpa: Integer;
-  O: tIecObject;
-  Err: ShortString;
-begin
-  Result := False;
-  while not Result and (S.GiPar < S.PointCount * 4) do
-  begin
-    P := @S.Points[S.GiPar div 4];
-    Kpa := S.GiPar mod 4 + 1;
-    Inc(S.GiPar);
-    if (P^.ParSet and (1 shl Kpa) = 0) or not GiWants(S, P^) then
-      Continue;
-    O := IecObject(P^.Obj.Ioa);
-    if ParamType(P^.Ti) = P_ME_NB_1 then
-      O.Int := Round(P^.Par[Kpa])
-    else
-      O.Number := P^.Par[Kpa];
-    O.Qu := Kpa;
-    if not P^.ParOn then
-      O.Qu := O.Qu or Qpm_NotInOperation;
-    Result := IecEncodeOne(S.Params, ParamType(P^.Ti), Cot_Interrogated + (S.GiQoi - Qoi_Station),
-      S.Ca, O, Out.Data, Out.Len, Err) = res_Ok;
-  end;
-end;
-
-{ The next answer ASDU of the interrogation: consecutive points of one
-  type, as many as fit; False when none is left (then ACT_TERM is queued). }
-function GiNextAsdu(var S: tIecSlaveStation; var Out: tIecQueued): Boolean;
-var
-  Objs: array[0..IecMaxObjects - 1] of tIecObject;
-  H: tIecAsdu;
-  N, Room, Size: Integer;
-  Ti, Cot: Byte;
-  Err: ShortString;
-  Counter: Boolean;
-begin
-  Result := False;
-  if not S.GiActive then
-    Exit;
-  Counter := S.GiAsdu.Data[0] = C_CI_NA_1;
-  while (S.GiNext < S.PointCount) and not GiWants(S, S.Points[S.GiNext]) do
-    Inc(S.GiNext);
-  if (S.GiNext >= S.PointCount) and not Counter and GiParamAsdu(S, Out) then
-    Exit(True);
-  if S.GiNext >= S.PointCount then
-  begin
-    { all sent: ACT_TERM, in class 1 }
-    S.GiActive := False;
-    IecSetCot(S.GiAsdu.Data, S.GiAsdu.Len, Cot_ActTerm, False);
-    Queue1(S, S.GiAsdu.Data, S.GiAsdu.Len);
-    Exit;
-  end;
-  Ti := S.Points[S.GiNext].Ti;
-  Size := S.Params.IoaSize + IecElementSize(Ti);
-  Room := (MaxAsdu(S) - IecHeadLen(S.Params)) div Size;
-  if Room > IecMaxObjects then
-    Room := IecMaxObjects;
-  N := 0;
-  while (S.GiNext < S.PointCount) and (N < Room) and (S.Points[S.GiNext].Ti = Ti) do
-  begin
-    if GiWants(S, S.Points[S.GiNext]) then
-    begin
-      if Counter and S.Points[S.GiNext].HasFrozen then
-        Objs[N] := S.Points[S.GiNext].Frozen
-      else
-        Objs[N] := S.Points[S.GiNext].Obj;
-      Inc(N);
-    end;
-    Inc(S.GiNext);
-  end;
-  if Counter then
-    Cot := Cot_CounterReq + (S.GiQoi and $3F) mod Qcc_General
-  else
-    Cot := Cot_Interrogated + (S.GiQoi - Qoi_Station);
-  FillChar(H, SizeOf(H), 0);
-  H.Ti := Ti;
-  H.Count := N;
-  H.Cot := Cot;
-  H.Oa := S.GiAsdu.Data[3] * Ord(S.Params.CotSize = 2);
-  H.Ca := S.Ca;
-  Result := IecEncodeAsdu(S.Params, H, Objs[0..N - 1], Out.Data, Out.Len, Err) = res_Ok;
-end;
-
-{ Freeze / reset the counters of the group of a C_CI_NA_1. }
-procedure CounterAction(var S: tIecSlaveStation; Qcc: Byte);
-var
-  I: Integer;
-  Grp: Byte;
-  P: pIecPoint;
-begin
-  Grp := Qcc and $3F;
-  for I := 0 to S.PointCount - 1 do
-  begin
-    P := @S.Points[I];
-    if not IsCounter(P^.Ti) or not ((Grp = Qcc_General) or (P^.Group = Grp)) then
-      Continue;
-    if Qcc and $C0 in [Qcc_Freeze, Qcc_FreezeReset] then
-    begin
-      { each freeze is a new reading: the next sequence number }
-      P^.Obj.Seq := (P^.Obj.Seq + 1) and 31;
-      P^.Frozen := P^.Obj;
-      P^.HasFrozen := True;
-    end;
-    if Qcc and $C0 in [Qcc_FreezeReset, Qcc_Reset] then
-      P^.Obj.Int := 0;
-  end;
-end;
-
 {- ---------------------------------------------------------------- answers }
-
-procedure Bad(var S: tIecSlaveStation; const Err: ShortString);
-begin
-  Inc(S.BadAsdus);
-  S.LastBad := Err;
-  if Assigned(S.OnBad) then
-    S.OnBad(S.Data, Err);
-end;
-
-{ The received ASDU mirrored with Cot (negative or not) into class 1. }
-procedure Answer(var S: tIecSlaveStation; const Buf: array of Byte; Len: Word; Cot: Byte; Negative: Boolean);
-var
-  Out: array[0..IecMaxAsdu - 1] of Byte;
-begin
-  if (Len = 0) or (Len > IecMaxAsdu) then
-    Exit;
-  Move(Buf[0], Out[0], Len);
-  IecSetCot(Out, Len, Cot, Negative);
-  if Negative then
-    Inc(S.Negatives);
-  Queue1(S, Out, Len);
-end;
-
-{ Does an execute carry what was selected (value, qualifier)? }
-function SameCommand(const Sel, O: tIecObject): Boolean;
-begin
-  Result := (Sel.Int = O.Int) and (Sel.Bits = O.Bits) and (Sel.Number = O.Number) and (Sel.Qu = O.Qu);
-end;
-
-{ The confirmation cause of an activation (7) or deactivation (9). }
-function ActOrDeact(Cot: Byte): Byte;
-begin
-  if Cot = Cot_Deactivation then
-    Result := Cot_DeactCon
-  else
-    Result := Cot_ActCon;
-end;
-
-{ A command of types 45..51 / 58..64 with cause 6 or 8. }
-{ The end of an accepted (Ok) or refused command to point I: the
-  selection, the command point's value, the ACT_CON. }
-procedure EndCommand(var S: tIecSlaveStation; const Buf: array of Byte; Len: Word;
-  I: LongInt; const O: tIecObject; Select, Ok: Boolean);
-var
-  Ti: Byte;
-begin
-  Ti := S.Points[I].Ti;
-  if Ok then
-  begin
-    Inc(S.Commands);
-    if Select then
-    begin
-      S.SelActive := True;
-      S.SelTi := Ti;
-      S.SelIoa := O.Ioa;
-      S.SelUntil := ChMsTick + QWord(S.SelectMs);
-      S.SelObj := O;
-    end
-    else
-    begin
-      if S.SelActive and (S.SelTi = Ti) and (S.SelIoa = O.Ioa) then
-        S.SelActive := False;
-      { the command point keeps the last value executed }
-      S.Points[I].Obj.Int := O.Int;
-      S.Points[I].Obj.Bits := O.Bits;
-      S.Points[I].Obj.Number := O.Number;
-      S.Points[I].Obj.Qu := O.Qu;
-    end;
-  end
-  else
-    Inc(S.Refused);
-  Answer(S, Buf, Len, Cot_ActCon, not Ok);
-end;
-
-procedure TakeCommand(var S: tIecSlaveStation; const Buf: array of Byte; Len: Word;
-  const H: tIecAsdu; const O: tIecObject);
-var
-  I: Integer;
-  Ok, Select: Boolean;
-  D: ^tIecDeferred;
-begin
-  I := FindCommand(S, O.Ioa, H.Ti);
-  if I < 0 then
-  begin
-    Answer(S, Buf, Len, Cot_UnknownIoa, True);
-    Exit;
-  end;
-  Select := O.Select and (IecTypeKind(H.Ti) <> ikBitsCmd);
-  if H.Test then
-  begin
-    { T = 1: generated under test conditions, not meant to change the
-      process - never executed, refused (negative, T kept) }
-    Inc(S.Refused);
-    Answer(S, Buf, Len, ActOrDeact(H.Cot), True);
-    Exit;
-  end;
-  if H.Cot = Cot_Deactivation then
-  begin
-    { ends a selection of this object }
-    Ok := S.SelActive and (S.SelTi = H.Ti) and (S.SelIoa = O.Ioa);
-    if Ok then
-      S.SelActive := False;
-    Answer(S, Buf, Len, Cot_DeactCon, not Ok);
-    Exit;
-  end;
-  if not Select and S.SelActive and (S.SelTi = H.Ti) and (S.SelIoa = O.Ioa) and
-     ((ChMsTick > S.SelUntil) or not SameCommand(S.SelObj, O)) then
-  begin
-    { the execute of a selection whose time is up, or with another value
-      or qualifier than the one selected }
-    S.SelActive := False;
-    Inc(S.Refused);
-    Answer(S, Buf, Len, Cot_ActCon, True);
-    Exit;
-  end;
-  S.DeferSlot := -1;
-  S.InCommand := True;
-  Ok := not Assigned(S.OnCommand) or S.OnCommand(S.Data, H, O);
-  S.InCommand := False;
-  if S.DeferSlot >= 0 then
-  begin
-    D := @S.Deferred[S.DeferSlot];
-    if Ok then
-    begin
-      { the confirmation waits for IecSlaveConfirm }
-      D^.Point := I;
-      D^.Obj := O;
-      D^.Select := Select;
-      D^.Asdu.Len := Len;
-      Move(Buf[0], D^.Asdu.Data[0], Len);
-      Exit;
-    end;
-    D^.Ticket := 0;                  { refused all the same: at once }
-  end;
-  EndCommand(S, Buf, Len, I, O, Select, Ok);
-end;
-
-function IecSlaveDefer(var S: tIecSlaveStation): LongWord;
-var
-  I: LongInt;
-begin
-  Result := 0;
-  if not S.InCommand or (S.DeferSlot >= 0) then
-    Exit;
-  for I := 0 to IecSlaveMaxDeferred - 1 do
-    if S.Deferred[I].Ticket = 0 then
-    begin
-      Inc(S.NextTicket);
-      if S.NextTicket = 0 then
-        S.NextTicket := 1;
-      S.Deferred[I].Ticket := S.NextTicket;
-      S.DeferSlot := I;
-      Exit(S.NextTicket);
-    end;
-end;
-
-function IecSlaveConfirm(var S: tIecSlaveStation; Ticket: LongWord; Ok: Boolean): tChResult;
-var
-  I: LongInt;
-begin
-  if Ticket <> 0 then
-    for I := 0 to IecSlaveMaxDeferred - 1 do
-      if S.Deferred[I].Ticket = Ticket then
-      begin
-        S.Deferred[I].Ticket := 0;
-        EndCommand(S, S.Deferred[I].Asdu.Data, S.Deferred[I].Asdu.Len, S.Deferred[I].Point,
-          S.Deferred[I].Obj, S.Deferred[I].Select, Ok);
-        Exit(res_Ok);
-      end;
-  Result := res_BadParam;
-end;
-
-function IecSlaveDeferred(const S: tIecSlaveStation): LongInt;
-var
-  I: LongInt;
-begin
-  Result := 0;
-  for I := 0 to IecSlaveMaxDeferred - 1 do
-    if S.Deferred[I].Ticket <> 0 then
-      Inc(Result);
-end;
 
 procedure TakeClock(var S: tIecSlaveStation; const Buf: array of Byte; Len: Word; const O: tIecObject);
 var
@@ -950,50 +313,6 @@ begin
   QueueObject(S, S.Points[I].Ti, Cot_Request, S.Points[I].Obj);
 end;
 
-procedure TakeInterrogation(var S: tIecSlaveStation; const Buf: array of Byte; Len: Word;
-  const H: tIecAsdu; const O: tIecObject);
-var
-  Q: Byte;
-begin
-  Q := O.Int;
-  if (H.Ti = C_IC_NA_1) and not (Q in [Qoi_Station..Qoi_Station + 16]) then
-  begin
-    Answer(S, Buf, Len, Cot_ActCon, True);     { a QOI we do not know }
-    Exit;
-  end;
-  if (H.Ti = C_CI_NA_1) and not ((Q and $3F) in [1..Qcc_General]) then
-  begin
-    Answer(S, Buf, Len, Cot_ActCon, True);
-    Exit;
-  end;
-  if S.GiActive then
-  begin
-    Answer(S, Buf, Len, Cot_ActCon, True);     { one at a time }
-    Exit;
-  end;
-  Answer(S, Buf, Len, Cot_ActCon, False);
-  S.GiAsdu.Len := Len;
-  Move(Buf[0], S.GiAsdu.Data[0], Len);
-  S.GiQoi := Q;
-  S.GiNext := 0;
-  S.GiPar := 0;
-  if H.Ti = C_CI_NA_1 then
-  begin
-    Inc(S.CounterInterrogations);
-    if Q and $C0 <> Qcc_Read then
-    begin
-      { freeze / reset: confirmed and terminated, no values }
-      CounterAction(S, Q);
-      IecSetCot(S.GiAsdu.Data, Len, Cot_ActTerm, False);
-      Queue1(S, S.GiAsdu.Data, Len);
-      Exit;
-    end;
-  end
-  else
-    Inc(S.Interrogations);
-  S.GiActive := True;
-end;
-
 procedure IecSlaveEndOfInit(var S: tIecSlaveStation; Coi: Byte);
 var
   Buf: array[0..IecMaxAsdu - 1] of Byte;
@@ -1024,54 +343,6 @@ begin
   if Assigned(S.OnReset) then
     S.OnReset(S.Data, Qrp_General);
   IecSlaveEndOfInit(S, Coi_RemoteReset);
-end;
-
-{ Parameter loading (P_ME_NA/NB/NC_1, for a measured value of the same
-  kind: normalized, scaled, float) and activation (P_AC_NA_1). }
-procedure TakeParameter(var S: tIecSlaveStation; const Buf: array of Byte; Len: Word;
-  const H: tIecAsdu; const O: tIecObject);
-var
-  I, Kpa: Integer;
-  Ok: Boolean;
-begin
-  I := IecSlaveFind(S, O.Ioa);
-  if (H.Ti = P_AC_NA_1) and (O.Int = Qpa_Loaded) and (O.Ioa = 0) then
-  begin
-    { every point's loaded parameters }
-    for I := 0 to S.PointCount - 1 do
-      S.Points[I].ParOn := H.Cot = Cot_Activation;
-    Inc(S.Parameters);
-    Answer(S, Buf, Len, ActOrDeact(H.Cot), False);
-    Exit;
-  end;
-  if (I < 0) or (ParamType(S.Points[I].Ti) = 0) or
-     (H.Ti <> P_AC_NA_1) and (ParamType(S.Points[I].Ti) <> H.Ti) then
-  begin
-    Answer(S, Buf, Len, Cot_UnknownIoa, True);
-    Exit;
-  end;
-  if H.Ti = P_AC_NA_1 then
-  begin
-    { this object's parameters; cyclic transmission is not offered }
-    Ok := O.Int in [Qpa_Loaded, Qpa_Object];
-    if Ok then
-      S.Points[I].ParOn := H.Cot = Cot_Activation;
-  end
-  else
-  begin
-    Kpa := O.Qu and $3F;
-    Ok := (Kpa >= Kpa_Threshold) and (Kpa <= Kpa_High) and
-      ((Kpa <> Kpa_Threshold) or (MeasuredValue(S.Points[I].Ti, O) >= 0));
-    if Ok then
-    begin
-      S.Points[I].Par[Kpa] := MeasuredValue(S.Points[I].Ti, O);
-      S.Points[I].ParSet := S.Points[I].ParSet or (1 shl Kpa);
-      S.Points[I].ParOn := O.Qu and Qpm_NotInOperation = 0;
-    end;
-  end;
-  if Ok then
-    Inc(S.Parameters);
-  Answer(S, Buf, Len, ActOrDeact(H.Cot), not Ok);
 end;
 
 { Does type Ti take cause Cot in control direction? }
