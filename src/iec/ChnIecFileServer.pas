@@ -149,7 +149,7 @@ function IecFileSave(const Path: AnsiString; const Content: AnsiString; out Err:
 implementation
 
 uses
-  SysUtils, Classes, ChnVirt;
+  SysUtils, Classes, ChnVirt, ChnOs;
 
 function IecFileServerStateName(S: tIecFileServerState): ShortString;
 begin
@@ -213,45 +213,13 @@ begin
 end;
 
 function IecFileLoad(const Path: AnsiString; out Content: AnsiString; out Err: ShortString): Boolean;
-var
-  S: TFileStream;
 begin
-  Content := '';
-  Err := '';
-  try
-    S := TFileStream.Create(Path, fmOpenRead or fmShareDenyNone);
-    try
-      SetLength(Content, S.Size);
-      if S.Size > 0 then
-        S.ReadBuffer(Content[1], S.Size);
-    finally
-      S.Free;
-    end;
-  except
-    on X: Exception do
-      Err := Path + ': ' + X.Message;
-  end;
-  Result := Err = '';
+  Result := OsFileLoad(Path, Content, Err);
 end;
 
 function IecFileSave(const Path: AnsiString; const Content: AnsiString; out Err: ShortString): Boolean;
-var
-  S: TFileStream;
 begin
-  Err := '';
-  try
-    S := TFileStream.Create(Path, fmCreate);
-    try
-      if Content <> '' then
-        S.WriteBuffer(Content[1], Length(Content));
-    finally
-      S.Free;
-    end;
-  except
-    on X: Exception do
-      Err := Path + ': ' + X.Message;
-  end;
-  Result := Err = '';
+  Result := OsFileSave(Path, Content, Err);
 end;
 
 { Every file there is: the program's, then the directory's (sorted by
