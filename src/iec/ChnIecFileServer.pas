@@ -658,16 +658,20 @@ end;
 { Query log: the directory of the files of NOF (0: any) created in the
   range, from DirNext. }
 procedure QueryLog(var F: tIecFileServer; const O: tIecFileObj);
+var
+  RangeFrom, RangeTo: TDateTime;         { locals: F's may lie unaligned (packed, ARM) }
 begin
   F.DirLog := True;
   F.LogNof := O.Nof;
   F.LogQuery := O;
-  if not IecTimeToDateTime(O.Time, F.LogFrom) or not IecTimeToDateTime(O.Stop, F.LogTo) then
+  if not IecTimeToDateTime(O.Time, RangeFrom) or not IecTimeToDateTime(O.Stop, RangeTo) then
   begin
     F.LastError := 'query log: the range is no date';
-    F.LogFrom := 1;                      { an empty range }
-    F.LogTo := 0;
+    RangeFrom := 1;                      { an empty range }
+    RangeTo := 0;
   end;
+  F.LogFrom := RangeFrom;
+  F.LogTo := RangeTo;
   F.DirAt := 0;
   F.DirCot := Cot_Request;
   F.OutLen := 0;
