@@ -485,14 +485,7 @@ var
 
   procedure Stop(var Pr: TProcess);
   begin
-    if Pr = nil then
-      Exit;
-    if Pr.Running then
-    begin
-      FpKill(Pr.ProcessID, SIGTERM);
-      Pr.WaitOnExit;
-    end;
-    FreeAndNil(Pr);
+    StopProcessWith(Pr, SIGTERM);
   end;
 
 begin

@@ -185,15 +185,7 @@ end;
 
 destructor TSim.Destroy;
 begin
-  if Proc <> nil then
-  begin
-    if Proc.Running then
-    begin
-      FpKill(Proc.ProcessID, SIGTERM);
-      Proc.WaitOnExit;
-    end;
-    Proc.Free;
-  end;
+  StopProcessWith(Proc, SIGTERM);
 end;
 
 procedure OpenDevice(var D: tPcccDevice; const Dev: string);

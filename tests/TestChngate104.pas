@@ -180,13 +180,7 @@ end;
 { Stop P (SIGCONT first: it may be stopped) and free it. }
 procedure Ended(var P: TProcess);
 begin
-  if (P <> nil) and P.Running then
-  begin
-    FpKill(P.ProcessID, SIGCONT);
-    FpKill(P.ProcessID, SIGTERM);
-    P.WaitOnExit;
-  end;
-  FreeAndNil(P);
+  StopProcessWith(P, SIGTERM);
 end;
 
 procedure TTestChngate104.TestIec104North;

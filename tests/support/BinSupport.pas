@@ -48,6 +48,12 @@ function PipeText(S: TInputPipeStream): string;
 { The end of a program a test started: ended if it still runs (asked to,
   then killed after 3 s), waited for, freed; P is nil afterwards. }
 procedure StopProcess(var P: TProcess);
+{$IFDEF UNIX}
+{ The same with signal Sig first (SIGCONT before it: the test may have
+  stopped P). Never waits for ever: a test that failed half-way must not
+  hang the suite in its clean-up. }
+procedure StopProcessWith(var P: TProcess; Sig: LongInt);
+{$ENDIF}
 { Start tools/df1sim --pty with Args; Pty gets the device it printed on its
   first line ('' if none came within 3 s). The caller frees the process. }
 function StartSimPty(const Args: array of string; out Pty: string): TProcess;
@@ -114,27 +120,48 @@ begin
 end;
 
 procedure StopProcess(var P: TProcess);
-{$IFDEF UNIX}
-var
-  Deadline: QWord;
-{$ENDIF}
 begin
+  {$IFDEF UNIX}
+  StopProcessWith(P, SIGTERM);
+  {$ELSE}
   if P = nil then
     Exit;
   if P.Running then
   begin
     P.Terminate(255);
-    {$IFDEF UNIX}
+    P.WaitOnExit;
+  end;
+  FreeAndNil(P);
+  {$ENDIF}
+end;
+
+{$IFDEF UNIX}
+procedure StopProcessWith(var P: TProcess; Sig: LongInt);
+var
+  Deadline: QWord;
+begin
+  if P = nil then
+    Exit;
+  if P.Running then
+  begin
+    FpKill(P.ProcessID, SIGCONT);
+    FpKill(P.ProcessID, Sig);
     Deadline := ChMsTick + 3000;
     while P.Running and (ChMsTick < Deadline) do
       Sleep(5);
     if P.Running then
+    begin
       FpKill(P.ProcessID, SIGKILL);
-    {$ENDIF}
-    P.WaitOnExit;
+      Deadline := ChMsTick + 10000;
+      while P.Running and (ChMsTick < Deadline) do   { Running reaps it }
+        Sleep(5);
+      if P.Running then
+        WriteLn(StdErr, 'process ', P.ProcessID, ' (', P.Executable, ') did not end after SIGKILL');
+    end;
   end;
   FreeAndNil(P);
 end;
+{$ENDIF}
 
 procedure Drain(P: TProcess; var Output: string);
 begin

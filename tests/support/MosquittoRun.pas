@@ -85,12 +85,7 @@ end;
 
 procedure Ended(var P: TProcess; Sig: cint);
 begin
-  if (P <> nil) and P.Running then
-  begin
-    FpKill(P.ProcessID, Sig);
-    P.WaitOnExit;
-  end;
-  FreeAndNil(P);
+  StopProcessWith(P, Sig);
 end;
 
 function Tool(const Name: string): string;
@@ -172,12 +167,7 @@ end;
 
 destructor TMqttSub.Destroy;
 begin
-  if FProc.Running then
-  begin
-    FpKill(FProc.ProcessID, SIGTERM);
-    FProc.WaitOnExit;
-  end;
-  FProc.Free;
+  StopProcessWith(FProc, SIGTERM);
   inherited Destroy;
 end;
 
