@@ -46,7 +46,7 @@ type
     function Counters(out N: LongWord): Boolean;
     function Refuse(const Key: ShortString): tChResult;
     function FailSet(Err: cint): tChResult;
-    function SetStandardRate(var T: Termios; Code: Cardinal): tChResult;
+    function SetStandardRate(var T: Termios; Code: LongWord): tChResult;
     function SetOtherRate(const T: Termios; Baud: LongInt): tChResult;
   protected
     { Open takes no flock: for /dev/ptmx (ChnPty), where every open is a
@@ -294,7 +294,7 @@ end;
 
 { T with a standard rate (its B constant Code), read back: a setting the
   device did not take is refused by its key, with no fallback. }
-function TChnPortUnix.SetStandardRate(var T: Termios; Code: Cardinal): tChResult;
+function TChnPortUnix.SetStandardRate(var T: Termios; Code: LongWord): tChResult;
 var
   Back: Termios;
 begin
