@@ -17,8 +17,15 @@
     time, both directions summed, over the time measured);
   - change -> MQTT: from the moment a value changed in a station to its
     message at the subscriber (median, p99, max; a change waits up to one
-    scan for its read, and the read takes its time on the line), and
+    scan for its read, and the read takes its time on the line);
+    wire -> MQTT: from the end of the reply that carried the change (its
+    last octet handed to chngate's pty; the reply is found by the value's
+    octets in it) to the message - the gateway's own share; and
     read -> MQTT: from the read that saw it (the payload's ts) on;
+  - the same for IEC 104: chngate also serves an IEC 104 server, this
+    program is its control centre (the library's IEC 101 master over
+    NAM=IEC104, a real TCP connection) and times each change's
+    spontaneous M_ME_TE_1 (change -> IEC 104 and wire -> IEC 104);
   - chngate's CPU under load (% of one core), and idle (scan 60 s, nothing
     to read) against the idle floor: the program-wide wait alone
     (ChnWaitAny over as many descriptors - 9 serial lines on ptys for the
@@ -41,7 +48,7 @@ program benchgate;
 uses
   {$IFDEF UNIX}cthreads,{$ENDIF}
   Classes, SysUtils, DateUtils, BaseUnix, Process, ChnTypes, ChnVirt, ChnWait, ChnLoop, ChnCom,
-  ChnPty, ChnDF1, ChnDF1Link, ChnSlc, ChnMqtt, ChnSock, ProcStat;
+  ChnPty, ChnDF1, ChnDF1Link, ChnSlc, ChnMqtt, ChnSock, ChnIec101Asdu, ChnIec101Master, ChnIec104, ProcStat;
 
 const
   Lines = 8;
@@ -62,6 +69,10 @@ type
     Pair   : string;
     Busy0  : QWord;         { the line's busy time (us) when measuring began }
     Requests: LongInt;      { frames from chngate longer than an ACK }
+    { the station's frame coming in (DF1 full duplex: DLE STX data DLE
+      ETX CRC CRC), unstuffed, to find the changes it carries }
+    Rx     : AnsiString;
+    RxState: Byte;
   end;
 
 var
@@ -73,9 +84,11 @@ var
   Broker, Gate: TProcess;
   Port: Word;
   ChangeAt: array[0..MaxChanges - 1] of QWord;   { ChnClockUs of change n }
-  Arrived: array[0..MaxChanges - 1] of Boolean;
+  Arrived, Arrived104: array[0..MaxChanges - 1] of Boolean;
+  WireAt: array[0..MaxChanges - 1] of QWord;     { ChnClockUs: the end of the reply carrying it, 0 none yet }
   Changes: LongInt;
-  ChangeLat, ReadLat: array of Double;           { ms }
+  ChangeLat, ReadLat, WireLat, Lat104, Wire104: array of Double;   { ms }
+  Port104: Word;
 
 function Bin(const Name: string): string;
 begin
@@ -200,15 +213,70 @@ begin
   end;
 end;
 
+{ A frame of line I ended at AtUs: the changes of that line whose value
+  it carries (as a little-endian word) ended on the wire then. }
+procedure FrameEnded(I: LongInt; AtUs: QWord);
+var
+  N, V: LongInt;
+  W: string[2];
+begin
+  N := Changes - 1;
+  while (N >= 0) and (N >= Changes - 2 * Lines * TagsPerLine) do
+  begin
+    if (N mod Lines = I) and (WireAt[N] = 0) then
+    begin
+      V := FirstValue + N;
+      W := Chr(V and $FF) + Chr(V shr 8);
+      if Pos(W, L[I].Rx) > 0 then
+        WireAt[N] := AtUs;
+    end;
+    Dec(N);
+  end;
+end;
+
+{ The station's octets of line I, as they are handed to chngate. }
+procedure Watch(I: LongInt; N: Word; AtUs: QWord);
+const
+  DLE = $10; STX = $02; ETX = $03;
+var
+  K: LongInt;
+  B: Byte;
+begin
+  with L[I] do
+    for K := 0 to N - 1 do
+    begin
+      B := Buf[K];
+      case RxState of
+        0: if B = DLE then RxState := 1;
+        1: if B = STX then begin Rx := ''; RxState := 2; end else RxState := 0;
+        2: if B = DLE then RxState := 3 else Rx := Rx + Chr(B);
+        3: if B = DLE then begin Rx := Rx + Chr(B); RxState := 2; end
+           else if B = ETX then RxState := 4
+           else RxState := 2;
+        4: RxState := 5;                    { CRC, low }
+        5: begin FrameEnded(I, AtUs); RxState := 0; end;
+      end;
+    end;
+end;
+
 procedure StepLines;
 var
   I: LongInt;
+  N: Word;
 begin
   for I := 0 to Lines - 1 do
   begin
     Inc(L[I].Requests, Pass(L[I].Pty, L[I].Wire));
     DF1StationStep(L[I].Station);
-    Pass(L[I].Wire, L[I].Pty);
+    while L[I].Wire^.ChReceiveReady = CHS_ReceiveReady do
+    begin
+      N := 0;
+      L[I].Wire^.ChReceive(N);
+      if N = 0 then
+        Break;
+      L[I].Pty^.ChSend(@Buf, N);
+      Watch(I, N, ChnClockUs);
+    end;
   end;
 end;
 
@@ -221,7 +289,15 @@ end;
 
 { ------------------------------------------------------------ measuring }
 
-function GateConfig(Scan: LongInt): string;
+{ The IOA of line I's tag K on the IEC 104 server. }
+function Ioa104(I, K: LongInt): LongInt;
+begin
+  Result := I * 1000 + 1 + K;
+end;
+
+{ The configuration; With104: an [iec104] server too, line I's tags from
+  IOA Ioa104(I, 0). }
+function GateConfig(Scan: LongInt; With104: Boolean): string;
 var
   I, K: LongInt;
   Tags: string;
@@ -230,15 +306,17 @@ begin
   for K := 0 to TagsPerLine - 1 do
     Tags := Tags + ' N7:' + IntToStr(2 * K);
   Result := '[mqtt]'#10'port = ' + IntToStr(Port) + #10'prefix = bench'#10;
+  if With104 then
+    Result := Result + #10'[iec104]'#10'listen = 127.0.0.1:' + IntToStr(Port104) + #10;
   for I := 0 to Lines - 1 do
     Result := Result + #10'[device plc' + IntToStr(I) + ']'#10 +
       'line = NAM=DF1 NOD=0 DNO=1 FHD=FULL CRC=ON NAM=COM DEV=' + L[I].Slave + #10 +
-      'tags =' + Tags + #10'scan = ' + IntToStr(Scan) + #10;
+      'tags =' + Tags + #10'scan = ' + IntToStr(Scan) + #10'ioa = ' + IntToStr(Ioa104(I, 0)) + #10;
 end;
 
-function StartGate(Scan: LongInt): TProcess;
+function StartGate(Scan: LongInt; With104: Boolean): TProcess;
 begin
-  WriteText(Dir + '/gate.conf', GateConfig(Scan));
+  WriteText(Dir + '/gate.conf', GateConfig(Scan, With104));
   Result := TProcess.Create(nil);
   Result.Executable := Bin('chngate');
   Result.Parameters.Add(Dir + '/gate.conf');
@@ -294,11 +372,13 @@ begin
   SlcSetWord(L[Line].Table, 7, Elem, FirstValue + Changes);
   ChangeAt[Changes] := ChnClockUs;
   Arrived[Changes] := False;
+  Arrived104[Changes] := False;
+  WireAt[Changes] := 0;
   Inc(Changes);
 end;
 
 var
-  NChange, NRead: LongInt;
+  NChange, NRead, NWire, N104, NWire104: LongInt;
 
 { A message: a change's arrival when its value is one this program made. }
 procedure Received(const M: tMqttMessage; AtUs: QWord);
@@ -323,13 +403,38 @@ begin
     Exit;
   Arrived[Id] := True;
   Add(ChangeLat, NChange, (AtUs - ChangeAt[Id]) / 1000);
+  if WireAt[Id] <> 0 then
+    Add(WireLat, NWire, (AtUs - WireAt[Id]) / 1000);
   Ts := PayloadMs(M.Payload);
   if Ts > 0 then
     Add(ReadLat, NRead, NowUtcMs - Ts);
 end;
 
-{ Run the lines and the subscriber until Deadline; a change every
-  ChangeEveryMs when Changing. }
+var
+  Centre: tIecMaster;
+  CentreChn: pChnVirt;
+
+{ An object at the control centre: a change's spontaneous event. }
+procedure OnObject(Data: Pointer; Addr: Word; const H: tIecAsdu; const O: tIecObject);
+var
+  Id: LongInt;
+  AtUs: QWord;
+begin
+  AtUs := ChnClockUs;
+  if H.Cot <> Cot_Spontaneous then
+    Exit;
+  Id := O.Int - FirstValue;
+  if (Id < 0) or (Id >= Changes) or Arrived104[Id] or
+     (LongInt(O.Ioa) <> Ioa104(Id mod Lines, (Id div Lines) mod TagsPerLine)) then
+    Exit;
+  Arrived104[Id] := True;
+  Add(Lat104, N104, (AtUs - ChangeAt[Id]) / 1000);
+  if WireAt[Id] <> 0 then
+    Add(Wire104, NWire104, (AtUs - WireAt[Id]) / 1000);
+end;
+
+{ Run the lines, the subscriber and the control centre (when connected)
+  until Deadline; a change every ChangeEveryMs when Changing. }
 procedure Serve(var Sub: tMqttClient; Deadline: QWord; Changing: Boolean);
 var
   M: tMqttMessage;
@@ -344,6 +449,8 @@ begin
     AtUs := ChnClockUs;
     while MqttTakeMessage(Sub, M) do
       Received(M, AtUs);
+    if CentreChn <> nil then
+      while IecMasterStep(Centre) do;
     if Changing and (GetTickCount64 >= NextChange) then
     begin
       MakeChange;
@@ -443,7 +550,7 @@ begin
 end;
 
 var
-  I, Reads, LoadMs, IdleMs, Requests, Rss, FloorMs, Lost: LongInt;
+  I, Reads, LoadMs, IdleMs, Requests, Rss, FloorMs, Lost, Lost104: LongInt;
   Sub: tMqttClient;
   Err, Check, Shares, Map: AnsiString;
   T0, T1: QWord;
@@ -477,9 +584,14 @@ begin
   end;
   SetLength(ChangeLat, MaxChanges);
   SetLength(ReadLat, MaxChanges);
+  SetLength(WireLat, MaxChanges);
+  SetLength(Lat104, MaxChanges);
+  SetLength(Wire104, MaxChanges);
+  CentreChn := nil;
   Dir := GetTempDir + 'chn-benchgate-' + IntToStr(GetProcessID);
   ForceDirectories(Dir);
   Port := FreePort;
+  Port104 := FreePort;
   WriteText(Dir + '/m.conf', 'listener ' + IntToStr(Port) + ' 127.0.0.1'#10'allow_anonymous true'#10 +
     'persistence false'#10);
   Broker := nil;
@@ -495,14 +607,33 @@ begin
     Broker.Execute;
     OpenLines;
     { the reads per scan chngate plans }
-    WriteText(Dir + '/gate.conf', GateConfig(ScanMs));
+    WriteText(Dir + '/gate.conf', GateConfig(ScanMs, True));
     RunCommand(Bin('chngate'), ['--check', Dir + '/gate.conf'], Check, [], swoNone);
     Reads := StrToIntDef(Trim(Copy(Check, Pos('tags, ', Check) + 6, Pos(' reads', Check) - Pos('tags, ', Check) - 6)), -1);
     Sub.Port := Port;
     MqttSubscribe(Sub, 'bench/+/+');
     if not MqttOpen(Sub, Err) then
       Fail(Err);
-    Gate := StartGate(ScanMs);
+    Gate := StartGate(ScanMs, True);
+    { the control centre, once the server listens }
+    T0 := GetTickCount64 + 10000;
+    repeat
+      Serve(Sub, GetTickCount64 + 100, False);
+      CentreChn := ChnCollection^.ChNewInit(ChnIec104.cName);
+      CentreChn^.ChSetParam('NAM=IEC104 NAM=TCP HOST=127.0.0.1 PORT=' + IntToStr(Port104) + ' RECON=200');
+      if CentreChn^.ChResult = res_Ok then
+        CentreChn^.ChOpen;
+      if CentreChn^.ChResult = res_Ok then
+        CentreChn^.ChConnect;
+      if CentreChn^.ChResult = res_Ok then
+        Break;
+      Err := CentreChn^.ChErrorText;
+      Dispose(CentreChn, Done);
+      CentreChn := nil;
+    until GetTickCount64 > T0;
+    if (CentreChn = nil) or (IecMasterInit(Centre, CentreChn, IecDefaultParams) <> res_Ok) then
+      Fail('IEC 104 control centre: ' + Err);
+    Centre.OnObject := @OnObject;
     { settle: every tag read and published once }
     Serve(Sub, GetTickCount64 + 3000, False);
     { under load }
@@ -530,11 +661,18 @@ begin
     for I := 0 to Changes - 1 do
       if not Arrived[I] then
         Inc(Lost);
+    Lost104 := 0;
+    for I := 0 to Changes - 1 do
+      if not Arrived104[I] then
+        Inc(Lost104);
     Rss := ProcRssKb(Gate.ProcessID);
     Map := ProcRssByMapping(Gate.ProcessID);
+    Dispose(CentreChn, Done);
+    CentreChn := nil;
     Stop(Gate);
-    { idle: one read of everything, then nothing for 60 s }
-    Gate := StartGate(60000);
+    { idle: one read of everything, then nothing for 60 s (MQTT only, as
+      the floor has one socket) }
+    Gate := StartGate(60000, False);
     Serve(Sub, GetTickCount64 + 3000, False);
     IdleCost(Gate.ProcessID, Sub, IdleMs, GateNs, GateSleeps);
     Stop(Gate);
@@ -554,7 +692,11 @@ begin
     WriteLn('benchgate: share of each line''s time used (%, both directions):' + Shares);
     WriteLn(Format('benchgate: change -> MQTT: %s; %d of %d changes not arrived',
       [Quantiles(ChangeLat, NChange), Lost, Changes]));
+    WriteLn(Format('benchgate: wire -> MQTT:   %s', [Quantiles(WireLat, NWire)]));
     WriteLn(Format('benchgate: read -> MQTT:   %s', [Quantiles(ReadLat, NRead)]));
+    WriteLn(Format('benchgate: change -> IEC 104: %s; %d of %d changes not arrived',
+      [Quantiles(Lat104, N104), Lost104, Changes]));
+    WriteLn(Format('benchgate: wire -> IEC 104:   %s', [Quantiles(Wire104, NWire104)]));
     WriteLn(Format('benchgate: chngate CPU under load %.2f %% of a core', [LoadCpu]));
     if FloorNs > 0 then
       WriteLn(Format('benchgate: idle: chngate %.1f us CPU/s, %.2f wake-ups/s; the wait alone (%d ' +
@@ -565,6 +707,8 @@ begin
         [GateNs / 1000, GateSleeps, FloorNs / 1000]));
     WriteLn(Format('benchgate: chngate RSS %d KiB: %s', [Rss, Map]));
   finally
+    if CentreChn <> nil then
+      Dispose(CentreChn, Done);
     Stop(FloorProc);
     Stop(Gate);
     MqttClose(Sub);

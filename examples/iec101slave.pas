@@ -38,7 +38,7 @@ const
 var
   Cli: tCli;
   Json, Refuse: Boolean;
-  Seconds, Ca, SelectMs: LongInt;
+  Seconds, Ca, SelectMs, ClockOffset: LongInt;
   Params: tIecParams;
   LineParams, PointsFile, FilesDir: AnsiString;
   Stop: Boolean = False;
@@ -95,6 +95,8 @@ begin
   CliOption(Cli, 'ioa-size', #0, 'N', 'octets of the information object address, 1..3 (default 3)');
   CliOption(Cli, 'select-ms', #0, 'MS', 'select-before-operate timeout (default ' +
     IntToStr(IecSlaveSelectMs) + ')');
+  CliOption(Cli, 'clock-offset', #0, 'MS', 'the station clock runs MS ms after (negative: before) ' +
+    'the PC clock, as after a clock synchronisation (default 0)');
   CliOption(Cli, 'refuse', #0, '', 'refuse every command (negative ACT_CON)');
   CliOption(Cli, 'return', #0, 'CMD=MON,...', 'return information: an executed command to ' +
     'command point CMD sets monitoring point MON to its value, sent as a spontaneous event ' +
@@ -125,6 +127,7 @@ begin
   Params.CaSize := CliNum(Cli, 'ca-size', 1, 2, Params.CaSize);
   Params.IoaSize := CliNum(Cli, 'ioa-size', 1, 3, Params.IoaSize);
   SelectMs := CliNum(Cli, 'select-ms', 1, 3600000, IecSlaveSelectMs);
+  ClockOffset := CliNum(Cli, 'clock-offset', -864000000, 864000000, 0);
   ParseReturns;
   if CliArgCount(Cli) = 0 then
     CliUsageError(Cli, 'no parameter string (''NAM=FT1_2 ... NAM=COM DEV=...'')', '');
@@ -258,6 +261,7 @@ begin
   for I := 0 to Table.PointCount - 1 do
     IecSlaveAddPoint(Slave, Table.Points[I].Ti, Table.Points[I].Obj, Table.Points[I].Group, E);
   Slave.SelectMs := SelectMs;
+  Slave.ClockOffsetMs := ClockOffset;
   Slave.OnAsdu := @Show;
   Slave.OnCommand := @OnCommand;
   Slave.OnClock := @OnClock;

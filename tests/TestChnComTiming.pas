@@ -27,6 +27,7 @@ type
     procedure TestNoDelayAnswersAtOnce;
     procedure TestTurnaroundHoldsTheAnswer;
     procedure TestIdleGapInBitTimes;
+    procedure TestHeldAnswerGoesAfterAnIdlePoll;
     procedure TestParameters;
   end;
 {$ENDIF}
@@ -109,6 +110,48 @@ begin
   Took := AnswerTakes('BD=1200 IFG=330');
   AssertTrue('took ' + IntToStr(Took) + ' ms of 275', Took >= 265);
   AssertTrue('took ' + IntToStr(Took) + ' ms', Took < 2000);
+end;
+
+{ A poll that finds no input waits up to IDL= ms for it; when the time
+  of a held answer (TURN=) comes within that wait, the wait ends for it
+  and the answer goes then, by that poll - nothing else would wake the
+  program for it (the due time is spent: before, it went only at the
+  program's next look at the line, a whole wait later: an IEC 101 slave
+  answered a poll one link timeout late on a loaded machine). }
+procedure TTestChnComTiming.TestHeldAnswerGoesAfterAnIdlePoll;
+var
+  Dev: pChnVirt;
+  Buf: array[0..15] of Byte;
+  B: Byte;
+  Len: Word;
+  Deadline: QWord;
+  Got: LongInt;
+begin
+  Pty := TPtyPair.Create;
+  Dev := Stack('COM', 'DEV=' + Pty.SlavePath + ' IDL=400 TURN=100');
+  Dev^.ChReceiveBuffer(@Buf, SizeOf(Buf));
+  B := $41;
+  AssertEquals(1, Pty.MasterWrite(B, 1));
+  Deadline := ChMsTick + 3000;
+  while (Dev^.ChReceiveReady <> CHS_ReceiveReady) and (ChMsTick < Deadline) do
+    ChnWaitAny(50);
+  Dev^.ChReceive(Len);
+  AssertEquals('the question came', 1, Len);
+  B := $42;
+  Dev^.ChSend(@B, 1);                { held for TURN= 100 ms }
+  { one poll: nothing comes, its IDL= wait (400 ms) ends at the answer's time }
+  AssertEquals('no input', Ord(CHS_Receiving), Ord(Dev^.ChReceiveReady));
+  { the answer is on the line without another call into the channel }
+  Got := 0;
+  Deadline := ChMsTick + 300;
+  while (Got <> 1) and (ChMsTick < Deadline) do
+  begin
+    Got := Pty.MasterRead(B, 1);
+    if Got <> 1 then
+      Sleep(5);
+  end;
+  AssertEquals('the answer went with the poll whose wait its time ended', 1, Got);
+  AssertEquals('the answer', $42, B);
 end;
 
 procedure TTestChnComTiming.TestParameters;

@@ -187,6 +187,11 @@ end;
 const
   With104 = '[iec104]'#10'listen = 127.0.0.1:2404'#10'ca = 5'#10'k = 20'#10'w = 10'#10't1 = 20'#10;
 
+  Rtus = '[device rtu1]'#10'line = NAM=FT1_2 MS=ON MAS=MASTER LEN=0 NOD=0 DNO=1 NAM=COM DEV=/dev/ttyUSB2'#10 +
+    'points = a=3 b=100'#10'write = b>97'#10'ioa = 10'#10 +
+    '[device rtu2]'#10'line = NAM=FT1_2 MS=ON MAS=MASTER LEN=0 NOD=0 DNO=1 NAM=COM DEV=/dev/ttyUSB3'#10 +
+    'points = c=10'#10'write = c>7'#10'ioa = 100'#10;
+
 procedure TTestChnGateway.TestIec104Config;
 var
   Cfg: tGateConfig;
@@ -217,6 +222,16 @@ begin
     'g.conf:23: [device plc2] ioa: IOAs 5..5 overlap those of device plc1 (1..13)');
   AssertTrue('after them: ' + E, GateParseConfig('g.conf', Good + With104 +
     '[device plc2]'#10'line = NAM=DF1 NAM=COM DEV=/dev/ttyUSB1'#10'tags = N7:0'#10'ioa = 14'#10, Cfg, E));
+  { an RTU's configured points at ioa= + IOA: not on a DF1 device's IOAs
+    (plc1 1..13), nor on another RTU's point or command IOA }
+  Fault(Good + With104 + Rtus, 'g.conf:22: [device rtu1] points: device rtu1''s point a (10 + 3): ' +
+    'IEC 104 IOA 13 falls in device plc1''s IOAs 1..13');
+  Fault(Good + With104 + Rtus, 'g.conf:27: [device rtu2] points: device rtu2''s point c (100 + 10): ' +
+    'IEC 104 IOA 110 is device rtu1''s point b (10 + 100) already');
+  Fault(Good + With104 + Rtus, 'g.conf:28: [device rtu2] write: device rtu2''s command IOA of c (100 + 7): ' +
+    'IEC 104 IOA 107 is device rtu1''s command IOA of b (10 + 97) already');
+  AssertTrue('apart: ' + E, GateParseConfig('g.conf', Good + With104 + StringReplace(StringReplace(Rtus,
+    'a=3', 'a=4', []), 'ioa = 100', 'ioa = 1000', []), Cfg, E));
   { more points than the server's table holds }
   Many := '';
   for I := 0 to 10 do

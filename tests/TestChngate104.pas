@@ -19,10 +19,16 @@
   a dead one and a demoted one give a negative ACT_CON; a tag that is not
   writable, an unknown IOA and a type the point does not take: COT 47.
   IEC 101 pass-through: examples/iec101slave on a pty it makes as the
-  RTU, its points at the device's offset (ioa = 1000) with their own
-  types (CP24 M_ME_TB_1 served as M_ME_TE_1), its quality (IV) kept; a
-  command to offset + the RTU's command IOA goes to the RTU and its
-  ACT_CON comes only after the RTU's (none while the RTU is stopped). }
+  RTU (its clock 5000 s behind), its points at the device's offset (ioa =
+  1000) with their own types (CP24 M_ME_TB_1 served as M_ME_TE_1), its
+  quality (IV) kept, its time tags kept (CP56 as sent; CP24: the RTU's
+  minute and ms, the hour nearest to now); its IOA 100 lands on a DF1
+  device's 1100 and is refused (log, $gateway/error), the DF1 point stays;
+  a command to offset + the RTU's command IOA goes to the RTU and its
+  ACT_CON comes only after the RTU's (none while the RTU is stopped); a
+  select goes as a select, the qualifier as sent; the RTU stopped long
+  enough is dead: its points IV (event and interrogation), good again
+  when it runs. }
 unit TestChngate104;
 
 {$MODE OBJFPC}{$H+}
@@ -360,33 +366,69 @@ begin
   end;
 end;
 
+{ Read what P wrote so far onto Log. }
+function Drained(P: TProcess; var Log: string): string;
+var
+  N: LongInt;
+  Buf: string;
+begin
+  while (P <> nil) and (P.Output.NumBytesAvailable > 0) do
+  begin
+    SetLength(Buf, P.Output.NumBytesAvailable);
+    N := P.Output.Read(Buf[1], Length(Buf));
+    Log := Log + Copy(Buf, 1, N);
+  end;
+  Result := Log;
+end;
+
+{ ms of the hour of a time (minute, second, ms): a CP24 tag's part. }
+function MsOfHour(T: TDateTime): LongInt;
+begin
+  Result := MinuteOf(T) * 60000 + SecondOf(T) * 1000 + MilliSecondOf(T);
+end;
+
 procedure TTestChngate104.TestIec101PassThrough;
 const
   Ca = 7;
-  Expected: array[0..4] of string = ('M_ME_NB_1 COT 20 IOA 1100 = -1 Q 00', 'M_ME_NC_1 COT 20 IOA 1101 = 1.5 Q 00',
-    'M_ME_TE_1 COT 20 IOA 1102 = 7 Q 00', 'M_SP_NA_1 COT 20 IOA 1104 = 1 Q 80', 'M_DP_NA_1 COT 20 IOA 1105 = 2 Q 00');
+  { the RTU's clock runs 5000 s (1 h 23 min 20 s) behind }
+  OffsetMs = -5000000;
+  Expected: array[0..5] of string = ('M_ME_NC_1 COT 20 IOA 1101 = 1.5 Q 00',
+    'M_ME_TE_1 COT 20 IOA 1102 = 7 Q 00', 'M_ME_TE_1 COT 20 IOA 1103 = 5 Q 00', 'M_SP_NA_1 COT 20 IOA 1104 = 1 Q 80',
+    'M_DP_NA_1 COT 20 IOA 1105 = 2 Q 00', 'M_ME_NB_1 COT 20 IOA 1100 = 0 Q ');
 var
   Rtu, Gate: TProcess;
-  Dir, RtuPty, Conf, Gi, Err: string;
+  Broker: TMosquitto;
+  Sub: TMqttSub;
+  Dead: TPtyPair;
+  Dir, RtuPty, Conf, Gi, Err, Mqtt, RtuLog, GateLog: string;
   Port: Word;
   Chn: pChnVirt;
   M: tIecMaster;
   C: TCentre;
   O: tIecObject;
-  Deadline, AfterCont: QWord;
+  T, Rtc: TDateTime;
+  Deadline, AfterCont, SelectCont: QWord;
+  Off: LongInt;
 begin
   AssertTrue(BinPath('iec101slave') + ' missing (make examples)', FileExists(BinPath('iec101slave')));
   Dir := MakeTempDir('chn-gate104r');
   Gate := nil;
   Chn := nil;
+  Broker := nil;
+  Sub := nil;
+  RtuLog := '';
+  GateLog := '';
   C := TCentre.Create;
+  Dead := TPtyPair.Create;
   WriteFileText(Dir + '/rtu.txt', '100 M_ME_NB_1 -1'#10'101 M_ME_NC_1 1.5'#10'102 M_ME_TB_1 7'#10 +
-    '104 M_SP_NA_1 1 IV'#10'105 M_DP_NA_1 2'#10'5000 C_SC_NA_1 0'#10'5101 C_SE_NC_1 0'#10);
+    '103 M_ME_TE_1 5'#10'104 M_SP_NA_1 1 IV'#10'105 M_DP_NA_1 2'#10'5000 C_SC_NA_1 0'#10'5101 C_SE_NC_1 0'#10 +
+    '5102 C_SE_NB_1 0'#10'5103 C_SE_NB_1 0'#10);
   Rtu := TProcess.Create(nil);
   BinExecutable(Rtu, BinPath('iec101slave'));
   Rtu.Parameters.Add('--points=' + Dir + '/rtu.txt');
-  Rtu.Parameters.Add('--return=5000=104,5101=101');
-  Rtu.Parameters.Add('--seconds=60');
+  Rtu.Parameters.Add('--return=5000=104,5101=101,5102=102,5103=103');
+  Rtu.Parameters.Add('--clock-offset=' + IntToStr(OffsetMs));
+  Rtu.Parameters.Add('--seconds=90');
   Rtu.Parameters.Add('NAM=FT1_2 MS=ON MAS=SLAVE NOD=1 LEN=0 NAM=COM DRV=PTY');
   Rtu.Options := [poUsePipes, poStderrToOutPut];
   Rtu.Execute;
@@ -394,40 +436,129 @@ begin
     RtuPty := ReadFirstLine(Rtu, 5000);
     AssertEquals('iec101slave: PTY /dev/', Copy(RtuPty, 1, 22));
     RtuPty := Copy(RtuPty, 18, MaxInt);
+    Mqtt := '';
+    if MosquittoMissing = '' then
+    begin
+      Broker := TMosquitto.Create;
+      Sub := TMqttSub.Create(Broker.Port, 'plant/$gateway/error', []);
+      Mqtt := '[mqtt]'#10'port = ' + IntToStr(Broker.Port) + #10'prefix = plant'#10#10;
+    end;
     Port := FreeLoopbackPort;
     Conf := Dir + '/g.conf';
-    WriteFileText(Conf, '[iec104]'#10'listen = 127.0.0.1:' + IntToStr(Port) + #10'ca = ' + IntToStr(Ca) + #10#10 +
+    { plc9 (a PLC nobody answers) takes IOA 1100: the RTU's point 100 lands
+      there (1000 + 100) and is refused, plc9's point stays }
+    WriteFileText(Conf, Mqtt + '[iec104]'#10'listen = 127.0.0.1:' + IntToStr(Port) + #10'ca = ' + IntToStr(Ca) + #10#10 +
+      '[device plc9]'#10'line = NAM=DF1 NOD=0 DNO=1 CRC=ON NAM=COM DEV=' + Dead.SlavePath + #10 +
+      'tags = N7:0'#10'timeout = 100'#10'fails = 1000'#10'ioa = 1100'#10#10 +
       '[device rtu1]'#10'line = NAM=FT1_2 MS=ON MAS=MASTER LEN=0 NOD=0 DNO=1 NAM=COM DEV=' + RtuPty + #10 +
-      'points = pump=104 level=101'#10'write = pump>5000 level>5101'#10'timeout = 3000'#10'ioa = 1000'#10);
+      'points = pump=104 level=101'#10'write = pump>5000 level>5101 102>5102 103>5103'#10 +
+      'timeout = 1500'#10'demote = 1000'#10'ioa = 1000'#10);
+    AssertEquals('--check', 0, RunBin('chngate', ['--check', Conf], 5000, Err));
     Gate := StartGateway(Conf, Port, M, C, Chn);
     { the RTU's points, once the gateway's master has interrogated it }
     Deadline := GetTickCount64 + 10000;
     repeat
       Gi := Interrogated(M, C, Ca);
-    until (Pos('IOA 1105 = 2', Gi) > 0) and (Pos('IOA 1100 = -1', Gi) > 0) or (GetTickCount64 > Deadline);
+    until (Pos('IOA 1105 = 2', Gi) > 0) and (Pos('IOA 1103 = 5', Gi) > 0) or (GetTickCount64 > Deadline);
     for Err in Expected do
       AssertTrue('interrogation has "' + Err + '":'#10 + Gi, Pos(Err, Gi) > 0);
+    { the RTU's IOA 100 on plc9's 1100: refused, said, never overwritten }
+    AssertEquals('1100 stays plc9''s:'#10 + Gi, 0, Pos('IOA 1100 = -1', Gi));
+    Err := 'rtu1 100: not served: IEC 104 IOA 1100 (ioa 1000 + 100) is plc9 N7:0''s';
+    Deadline := GetTickCount64 + 3000;
+    while (Pos(Err, Drained(Gate, GateLog)) = 0) and (GetTickCount64 < Deadline) do
+      Sleep(20);
+    AssertTrue('the refusal in the log: ' + GateLog, Pos(Err, GateLog) > 0);
+    if Sub <> nil then
+      AssertTrue('and on $gateway/error: ' + Sub.Text, Sub.WaitFor('{"topic":"plant/rtu1/100","error":"' +
+        Err + '"}', 5000));
     { not writable: COT 47 }
     O := IecObject(1100);
     AssertEquals('1100 is not writable', res_IecUnknownIoa, IecCommand(M, 0, Ca, C_SE_NB_1, O, False));
-    { a single command to the RTU's 5000 (north 6000); its return information follows }
+    { the RTU's time tags kept: a CP24 one (its minute and ms, the hour
+      nearest to now) and a CP56 one as they are - not the gateway's clock }
+    O := IecObject(6102);
+    O.Int := 42;
+    C.Objects.Clear;
+    AssertEquals('C_SE_NB_1 ' + M.Cmd.Err, res_Ok, IecCommand(M, 0, Ca, C_SE_NB_1, O, False));
+    AssertTrue('102 from the RTU: ' + C.Objects.Text, Await(M, C, 'M_ME_TE_1 COT 3 IOA 1102 = 42 Q 00', 3000));
+    Rtc := IncMilliSecond(Now, OffsetMs);
+    AssertTrue('a CP56 time', IecTimeToDateTime(C.Last[1002].Time, T));
+    Off := Abs(MsOfHour(T) - MsOfHour(Rtc));
+    AssertTrue(Format('the RTU''s minute and ms: %s, the RTU''s clock %s', [FormatDateTime('hh:nn:ss.zzz', T),
+      FormatDateTime('hh:nn:ss.zzz', Rtc)]), (Off < 5000) or (Off > 3600000 - 5000));
+    AssertTrue('completed to the hour nearest to the arrival: ' + DateTimeToStr(T) + ' UTC now ' +
+      DateTimeToStr(LocalTimeToUniversal(Now)), Abs(SecondsBetween(T, LocalTimeToUniversal(Now))) <= 1805);
+    O := IecObject(6103);
+    O.Int := 43;
+    AssertEquals('C_SE_NB_1 ' + M.Cmd.Err, res_Ok, IecCommand(M, 0, Ca, C_SE_NB_1, O, False));
+    AssertTrue('103 from the RTU: ' + C.Objects.Text, Await(M, C, 'M_ME_TE_1 COT 3 IOA 1103 = 43 Q 00', 3000));
+    AssertTrue('a CP56 time', IecTimeToDateTime(C.Last[1003].Time, T));
+    Rtc := IncMilliSecond(Now, OffsetMs);
+    AssertTrue(Format('the RTU''s time %s, its clock %s', [DateTimeToStr(T), DateTimeToStr(Rtc)]),
+      Abs(MilliSecondsBetween(T, Rtc)) < 5000);
+    { select before operate, with a qualifier (QU 1, short pulse): the
+      select reaches the RTU as a select, the execute as an execute, both
+      with QU 1 }
     O := IecObject(6000);
     O.Int := 0;
+    O.Qu := 1;
     C.Objects.Clear;
-    AssertEquals('C_SC_NA_1 ' + M.Cmd.Err, res_Ok, IecCommand(M, 0, Ca, C_SC_NA_1, O, False));
+    AssertEquals('C_SC_NA_1 select + execute ' + M.Cmd.Err, res_Ok, IecCommand(M, 0, Ca, C_SC_NA_1, O, True));
     AssertTrue('pump from the RTU: ' + C.Objects.Text, Await(M, C, 'M_SP_NA_1 COT 3 IOA 1104 = 0 Q 00', 3000));
-    { the RTU stopped: no ACT_CON until it runs again and confirmed }
+    Deadline := GetTickCount64 + 3000;
+    while (Pos('<- C_SC_NA_1 ACTIVATION CA 1 IOA 5000 = off execute QU 1', Drained(Rtu, RtuLog)) = 0) and
+      (GetTickCount64 < Deadline) do
+      Sleep(20);
+    AssertTrue('the RTU got the select: ' + RtuLog, Pos('<- C_SC_NA_1 ACTIVATION CA 1 IOA 5000 = off select QU 1',
+      RtuLog) > 0);
+    AssertTrue('and the execute: ' + RtuLog, Pos('<- C_SC_NA_1 ACTIVATION CA 1 IOA 5000 = off execute QU 1',
+      RtuLog) > 0);
+    { the RTU stopped: no ACT_CON for the select until it runs again and
+      confirmed the select; then the execute }
     O := IecObject(6101);
     O.Number := 3.25;
-    AfterCont := ConfirmedAfterResume(M, Rtu.ProcessID, Ca, C_SE_NC_1, O);
+    O.Select := True;
+    O.Qu := 5;
+    SelectCont := ConfirmedAfterResume(M, Rtu.ProcessID, Ca, C_SE_NC_1, O);
+    O.Select := False;
+    AssertEquals('execute ' + M.Cmd.Err, res_Ok, IecCommand(M, 0, Ca, C_SE_NC_1, O, False));
     AssertTrue('level from the RTU: ' + C.Objects.Text, Await(M, C, 'M_ME_NC_1 COT 3 IOA 1101 = 3.25 Q 00', 3000));
+    Drained(Rtu, RtuLog);
+    AssertTrue('QL 5 reached the RTU: ' + RtuLog, Pos('IOA 5101 = 3.25 select QL 5', RtuLog) > 0);
+    { and an execute alone, while the RTU is stopped }
+    O.Number := 4.5;
+    O.Qu := 0;
+    AfterCont := ConfirmedAfterResume(M, Rtu.ProcessID, Ca, C_SE_NC_1, O);
+    AssertTrue('level from the RTU: ' + C.Objects.Text, Await(M, C, 'M_ME_NC_1 COT 3 IOA 1101 = 4.5 Q 00', 3000));
+    { the RTU dead: its points go IV, spontaneously and in an interrogation;
+      good again when it is back }
+    C.Objects.Clear;
+    FpKill(Rtu.ProcessID, SIGSTOP);
+    AssertTrue('IV event: ' + C.Objects.Text, Await(M, C, 'M_ME_NC_1 COT 3 IOA 1101 = 4.5 Q 80', 15000));
+    Gi := Interrogated(M, C, Ca);
+    AssertTrue('IV in the interrogation:'#10 + Gi, (Pos('M_ME_NC_1 COT 20 IOA 1101 = 4.5 Q 80', Gi) > 0) and
+      (Pos('M_DP_NA_1 COT 20 IOA 1105 = 2 Q 80', Gi) > 0) and (Pos('M_ME_TE_1 COT 20 IOA 1103 = 43 Q 80', Gi) > 0));
+    C.Objects.Clear;
+    FpKill(Rtu.ProcessID, SIGCONT);
+    AssertTrue('good again: ' + C.Objects.Text, Await(M, C, 'M_ME_NC_1 COT 3 IOA 1101 = 4.5 Q 00', 15000));
+    Deadline := GetTickCount64 + 10000;
+    repeat
+      Gi := Interrogated(M, C, Ca);
+    until (Pos('IOA 1105 = 2 Q 00', Gi) > 0) or (GetTickCount64 > Deadline);
+    AssertTrue('good in the interrogation:'#10 + Gi, (Pos('M_ME_NC_1 COT 20 IOA 1101 = 4.5 Q 00', Gi) > 0) and
+      (Pos('M_DP_NA_1 COT 20 IOA 1105 = 2 Q 00', Gi) > 0));
     if GetEnvironmentVariable('CHN_GATE104_LOG') <> '' then
-      WriteLn(StdErr, Format('RTU: ACT_CON %d ms after SIGCONT', [AfterCont]));
+      WriteLn(StdErr, Format('RTU: select ACT_CON %d ms, execute ACT_CON %d ms after SIGCONT',
+        [SelectCont, AfterCont]), LineEnding, Drained(Gate, GateLog));
   finally
     if Chn <> nil then
       Dispose(Chn, Done);
     Ended(Gate);
     Ended(Rtu);
+    Sub.Free;
+    Broker.Free;
+    Dead.Free;
     C.Free;
     RemoveTempDir(Dir);
   end;

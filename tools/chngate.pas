@@ -77,7 +77,12 @@ begin
     '  PREFIX/$gateway/error     a refused command and why' + LineEnding + LineEnding +
     'IEC 104 ([iec104] listen = HOST:PORT): one point per tag item from the device''s ioa =; ' +
     'bits M_SP_NA_1, words M_ME_NB_1, floats M_ME_NC_1, L and bit words M_BO_NA_1 (events with ' +
-    'CP56 time); a set point to a writable tag is confirmed when the PLC confirmed the write.' +
+    'CP56 time); a set point to a writable tag is confirmed when the PLC confirmed the write. ' +
+    'An RTU''s points at its ioa = + their IOA, with the RTU''s types, quality (IV while the RTU is ' +
+    'dead) and time tags (a CP24 one completed to the hour nearest its arrival); a command, a select ' +
+    'and its qualifier go to the RTU as sent, confirmed when the RTU confirmed. --check refuses an ' +
+    'RTU''s configured point on another device''s IOA; a point learned at run time on a taken IOA ' +
+    'is refused then (log and PREFIX/$gateway/error).' +
     LineEnding + LineEnding +
     'Example:' + LineEnding + '  chngate --check /etc/chngate.conf' + LineEnding);
   CliExit(Cli, 0, 'ended by SIGINT or SIGTERM, or --check found the configuration good');

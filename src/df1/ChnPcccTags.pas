@@ -163,10 +163,17 @@ procedure TagDeviceDone(var D: tPcccDevice);
   one that is due; never waits. True when something happened that the
   caller may want to take (a change, health, a finished write). }
 function TagDeviceStep(var D: tPcccDevice): Boolean;
+{ The same with the ChMsTick the caller read (one clock read for many
+  devices stepped in a row). }
+function TagDeviceStepAt(var D: tPcccDevice; Now_: QWord): Boolean;
 { Milliseconds until the device needs TagDeviceStep again with no input
   (a reply timer, the next read due); the program's ChnWaitAny waits at
   most the smallest of these. }
 function TagDeviceWaitMs(const D: tPcccDevice): LongInt;
+{ The same as the ChMsTick at which it is due (0: now; High(QWord):
+  never): a program stepping many devices takes the earliest and reads
+  the clock once. }
+function TagDeviceDueAt(const D: tPcccDevice): QWord;
 
 { The next changed tag (its index); False when none. The tag's Sent
   values become its current ones. }
@@ -711,8 +718,12 @@ begin
 end;
 
 function TagDeviceStep(var D: tPcccDevice): Boolean;
+begin
+  Result := TagDeviceStepAt(D, ChMsTick);
+end;
+
+function TagDeviceStepAt(var D: tPcccDevice; Now_: QWord): Boolean;
 var
-  Now_: QWord;
   Blk: LongInt;
 begin
   if D.Client.Chn = nil then
@@ -727,7 +738,6 @@ begin
   end;
   if D.Busy = tbIdle then
   begin
-    Now_ := ChMsTick;
     if Length(D.Writes) > 0 then
       StartWrite(D)
     else if D.State = tdDemoted then
@@ -751,26 +761,29 @@ begin
   Result := (D.ChangeHead < Length(D.Changes)) or D.StateChanged or (Length(D.Done) > 0);
 end;
 
-function TagDeviceWaitMs(const D: tPcccDevice): LongInt;
+function TagDeviceDueAt(const D: tPcccDevice): QWord;
 var
   I: LongInt;
-  Due: QWord;
 begin
   if D.Client.Chn = nil then
-    Exit(High(LongInt));
+    Exit(High(QWord));
   case D.Busy of
-    tbRead: Exit(ChnWaitLeft(DF1MasterWaitEnd(D.Master)));
-    tbWrite: Exit(ChnWaitLeft(DF1MasterWaitEnd(D.WriteReq.Master)));
+    tbRead: Exit(DF1MasterWaitEnd(D.Master));
+    tbWrite: Exit(DF1MasterWaitEnd(D.WriteReq.Master));
   end;
   if Length(D.Writes) > 0 then
     Exit(0);
   if D.State = tdDemoted then
-    Exit(ChnWaitLeft(D.RetryAt));
-  Due := High(QWord);
+    Exit(D.RetryAt);
+  Result := High(QWord);
   for I := 0 to High(D.Blocks) do
-    if D.Blocks[I].Due < Due then
-      Due := D.Blocks[I].Due;
-  Result := ChnWaitLeft(Due);
+    if D.Blocks[I].Due < Result then
+      Result := D.Blocks[I].Due;
+end;
+
+function TagDeviceWaitMs(const D: tPcccDevice): LongInt;
+begin
+  Result := ChnWaitLeft(TagDeviceDueAt(D));
 end;
 
 function TagTakeChange(var D: tPcccDevice; out Tag: LongInt): Boolean;

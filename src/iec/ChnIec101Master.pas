@@ -141,8 +141,9 @@ function IecStartRead(var M: tIecMaster; Addr, Ca: Word; Ioa: LongWord): Boolean
 function IecStartClockSync(var M: tIecMaster; Addr, Ca: Word; const T: tIecTime; Delay: Boolean): Boolean;
 function IecStartTest(var M: tIecMaster; Addr, Ca: Word): Boolean;
 function IecStartResetProcess(var M: tIecMaster; Addr, Ca: Word; Qrp: Byte): Boolean;
-{ A command of types 45..51 or 58..64 with its object (Obj.Select is
-  set here); Sbo: select, then execute after the positive ACT_CON. }
+{ A command of types 45..51 or 58..64 with its object; Sbo: select,
+  then execute after the positive ACT_CON. Without Sbo, Obj.Select
+  sends the select alone (it ends on its ACT_CON), else the execute. }
 function IecStartCommand(var M: tIecMaster; Addr, Ca: Word; Ti: Byte; const Obj: tIecObject;
   Sbo: Boolean): Boolean;
 { Parameter loading: one per parameter type - the parameter of kind Qpm

@@ -94,7 +94,9 @@ begin
     stSelect: O.Select := True;
     stMain:
       begin
-        O.Select := False;
+        { the execute after a select; alone, what the caller gave (a
+          gateway passes a control centre's select on as a select) }
+        O.Select := O.Select and not M.Cmd.Sbo;
         if M.Cmd.Ti = C_RD_NA_1 then
           M.StageCot := Cot_Request
         else if M.Cmd.Deact then

@@ -103,6 +103,8 @@ begin
   end;
   if K in [ikSingleCmd, ikDoubleCmd, ikStepCmd, ikSetNormal, ikSetScaled, ikSetFloat] then
     Result := Result + ',"select":' + Bool(O.Select);
+  if (K in [ikSingleCmd, ikDoubleCmd, ikStepCmd, ikSetNormal, ikSetScaled, ikSetFloat]) and (O.Qu <> 0) then
+    Result := Result + ',"qu":' + IntToStr(O.Qu);
   if K in [ikProtection, ikStartEvents, ikOutputCircuit] then
     Result := Result + ',"elapsed":' + IntToStr(O.Elapsed);
   if K in [ikParNormal, ikParScaled, ikParFloat] then
@@ -143,6 +145,11 @@ begin
   end;
   if K in [ikSingleCmd, ikDoubleCmd, ikStepCmd, ikSetNormal, ikSetScaled, ikSetFloat] then
     if O.Select then Result := Result + ' select' else Result := Result + ' execute';
+  { the qualifier (QU of a command, QL of a set point) when not 0 }
+  if (K in [ikSingleCmd, ikDoubleCmd, ikStepCmd]) and (O.Qu <> 0) then
+    Result := Result + ' QU ' + IntToStr(O.Qu)
+  else if (K in [ikSetNormal, ikSetScaled, ikSetFloat]) and (O.Qu <> 0) then
+    Result := Result + ' QL ' + IntToStr(O.Qu);
   if K in [ikProtection, ikStartEvents, ikOutputCircuit] then
     Result := Result + ' elapsed ' + IntToStr(O.Elapsed) + ' ms';
   if K in [ikParNormal, ikParScaled, ikParFloat] then

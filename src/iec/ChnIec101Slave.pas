@@ -147,6 +147,10 @@ function IecSlaveEventType(var S: tIecSlaveStation; Ioa: LongWord; Ti: Byte;
   queue full: the table has the new value, the event is lost). }
 function IecSlaveUpdate(var S: tIecSlaveStation; Ioa: LongWord; const Obj: tIecObject;
   Spontaneous: Boolean; out Err: ShortString): tChResult;
+{ The same with the time tag Obj.Time instead of the station clock's (a
+  gateway passing on the time its source stamped the change with). }
+function IecSlaveUpdateAt(var S: tIecSlaveStation; Ioa: LongWord; const Obj: tIecObject;
+  Spontaneous: Boolean; out Err: ShortString): tChResult;
 { The station clock (PC clock + ClockOffsetMs). }
 function IecSlaveNow(const S: tIecSlaveStation): TDateTime;
 { Take at most one frame and act on it; move waiting ASDUs to a balanced
@@ -217,6 +221,12 @@ function IecSlaveUpdate(var S: tIecSlaveStation; Ioa: LongWord; const Obj: tIecO
   Spontaneous: Boolean; out Err: ShortString): tChResult;
 begin
   Result := ChnIec101SlavePoints.IecSlaveUpdate(S, Ioa, Obj, Spontaneous, Err);
+end;
+
+function IecSlaveUpdateAt(var S: tIecSlaveStation; Ioa: LongWord; const Obj: tIecObject;
+  Spontaneous: Boolean; out Err: ShortString): tChResult;
+begin
+  Result := ChnIec101SlavePoints.IecSlaveUpdateAt(S, Ioa, Obj, Spontaneous, Err);
 end;
 
 function IecSlaveNow(const S: tIecSlaveStation): TDateTime;

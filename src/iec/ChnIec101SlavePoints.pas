@@ -29,6 +29,8 @@ function IecSlaveEventType(var S: tIecSlaveStation; Ioa: LongWord; Ti: Byte;
   out Err: ShortString): tChResult;
 function IecSlaveUpdate(var S: tIecSlaveStation; Ioa: LongWord; const Obj: tIecObject;
   Spontaneous: Boolean; out Err: ShortString): tChResult;
+function IecSlaveUpdateAt(var S: tIecSlaveStation; Ioa: LongWord; const Obj: tIecObject;
+  Spontaneous: Boolean; out Err: ShortString): tChResult;
 { The value of a measured value as its parameters count it. }
 function MeasuredValue(Ti: Byte; const O: tIecObject): Double;
 { The parameter type (P_ME_NA/NB/NC_1) of a measured value type; 0 when none. }
@@ -229,8 +231,9 @@ begin
     (O.Quality = OldQuality) and (Abs(MeasuredValue(P.Ti, O) - P.Reported) < P.Par[Kpa_Threshold]);
 end;
 
-function IecSlaveUpdate(var S: tIecSlaveStation; Ioa: LongWord; const Obj: tIecObject;
-  Spontaneous: Boolean; out Err: ShortString): tChResult;
+{ IecSlaveUpdate, and IecSlaveUpdateAt with Obj.Time kept (KeepTime). }
+function UpdatePoint(var S: tIecSlaveStation; Ioa: LongWord; const Obj: tIecObject;
+  Spontaneous, KeepTime: Boolean; out Err: ShortString): tChResult;
 var
   I: Integer;
   O: tIecObject;
@@ -247,7 +250,7 @@ begin
   O.Ioa := Ioa;
   if IsCounter(S.Points[I].Ti) then
     O.Seq := S.Points[I].Obj.Seq;           { the freezes count it, not the program }
-  if IecTypeTime(S.Points[I].Ti) <> tkNone then
+  if (IecTypeTime(S.Points[I].Ti) <> tkNone) and not KeepTime then
     O.Time := IecTimeFromDateTime(IecSlaveNow(S));
   Result := CheckObject(S, S.Points[I].Ti, O, Err);
   if Result <> res_Ok then
@@ -269,7 +272,7 @@ begin
     EvTi := S.Points[I].EventTi;
     if EvTi = 0 then
       EvTi := S.Points[I].Ti
-    else
+    else if not KeepTime then
       O.Time := IecTimeFromDateTime(IecSlaveNow(S));
     Result := QueueObject(S, EvTi, Cot_Spontaneous, O);
     if Result = res_Ok then
@@ -278,4 +281,16 @@ begin
       Err := 'point ' + IntToStr(Ioa) + ': class 1 queue full, event lost';
   end;
 end;
+function IecSlaveUpdate(var S: tIecSlaveStation; Ioa: LongWord; const Obj: tIecObject;
+  Spontaneous: Boolean; out Err: ShortString): tChResult;
+begin
+  Result := UpdatePoint(S, Ioa, Obj, Spontaneous, False, Err);
+end;
+
+function IecSlaveUpdateAt(var S: tIecSlaveStation; Ioa: LongWord; const Obj: tIecObject;
+  Spontaneous: Boolean; out Err: ShortString): tChResult;
+begin
+  Result := UpdatePoint(S, Ioa, Obj, Spontaneous, True, Err);
+end;
+
 end.

@@ -14,8 +14,12 @@
   float, the counter, the event state, or the bits of a bitstring. Its
   quality: the quality bits the object carried (IV NT SB BL OV, EI; for
   integrated totals IV only), and Bad while its slave is not ok. Its time:
-  the object's CP56 time tag (taken as UTC) or, without one, the time it
-  arrived. Changes only: a point is queued for IecTableTakeChange when
+  the object's CP56 time tag (taken as UTC); a CP24 tag (minute and ms
+  only) completed with the hour and date that put it nearest to the UTC
+  time it arrived (within half an hour: an event of 10:59:58 arriving at
+  11:00:01 is of 10:59, not 11:59); without a tag, the time it arrived.
+  Tagged and Tag keep the tag itself (a CP24 one completed) for a
+  gateway that passes it on. Changes only: a point is queued for IecTableTakeChange when
   its quality, bad flag or type changed, or its value moved by more than
   its Deadband (analog kinds: normalized, scaled, float, counters; other
   kinds change on any difference).
@@ -64,6 +68,8 @@ type
     Known   : Boolean;       {< a value arrived }
     Bad     : Boolean;       {< its slave is not ok }
     TimeMs  : Int64;         {< UTC ms since 1970 }
+    Tagged  : Boolean;       {< the last object had a time tag: }
+    Tag     : tIecTime;      {< it, as received (CP24: completed as CP56) }
     Cot     : Byte;          {< cause of the last object }
     Deadband: Double;
     Writable: Boolean;
@@ -92,6 +98,8 @@ type
   tIecTableWrite = record
     Point: LongInt;
     Value: Double;
+    Select: Boolean;         {< a select (S/E = 1) alone }
+    Qu   : Byte;             {< the qualifier: QU of a command, QL of a set point }
     Id   : LongInt;
     Res  : tChResult;
     Err  : ShortString;
@@ -153,6 +161,12 @@ function IecTableTakeHealth(var T: tIecPointTable; out S: LongInt): Boolean;
   take, its slave not ok) when refused at once. }
 function IecTableWrite(var T: tIecPointTable; P: LongInt; Value: Double; Id: LongInt;
   out Err: ShortString): Boolean;
+{ The same with the S/E bit and the qualifier (QU 0..31 of a single,
+  double or step command, QL 0..127 of a set point) the RTU gets: a
+  select goes alone, ending on the RTU's ACT_CON (a gateway passes a
+  control centre's select-before-operate on, step by step). }
+function IecTableCommand(var T: tIecPointTable; P: LongInt; Value: Double; Select: Boolean; Qu: Byte;
+  Id: LongInt; out Err: ShortString): Boolean;
 { A finished command: res_Ok on a positive ACT_CON, else the failure and
   its text. False when none finished. }
 function IecTableTakeWrite(var T: tIecPointTable; out W: tIecTableWrite): Boolean;
@@ -294,15 +308,49 @@ begin
   T.Points[P].CmdTi := CmdTi;
 end;
 
-{ The object's time: its CP56 tag (UTC), else now. }
-function ObjectTimeMs(Ti: Byte; const O: tIecObject): Int64;
+const
+  HourMs = 3600000;
+
+{ A CP24 time (minute, ms) completed to the UTC ms nearest to Arrived. }
+function CompleteCp24(const Tm: tIecTime; Arrived: Int64): Int64;
+begin
+  Result := Arrived - Arrived mod HourMs + Int64(Tm.Minute) * 60000 + Tm.Msec;
+  if Result - Arrived > HourMs div 2 then
+    Dec(Result, HourMs)
+  else if Arrived - Result > HourMs div 2 then
+    Inc(Result, HourMs);
+end;
+
+{ The object's time: its CP56 tag (UTC), its CP24 tag completed, else
+  now; Tagged and Tag when it had one. }
+procedure TakeTime(var Pt: tIecTablePoint; Ti: Byte; const O: tIecObject);
 var
   DT: TDateTime;
+  Invalid: Boolean;
 begin
-  if (IecTypeTime(Ti) = tkCP56) and IecTimeToDateTime(O.Time, DT) then
-    Result := Round((DT - UnixDateDelta) * MSecsPerDay)
-  else
-    Result := ChUtcMs;
+  Pt.TimeMs := ChUtcMs;
+  Pt.Tagged := False;
+  case IecTypeTime(Ti) of
+    tkCP56:
+      if IecTimeToDateTime(O.Time, DT) then
+      begin
+        Pt.TimeMs := Round((DT - UnixDateDelta) * MSecsPerDay);
+        Pt.Tagged := True;
+        Pt.Tag := O.Time;
+      end;
+    tkCP24:
+      if (O.Time.Minute < 60) and (O.Time.Msec < 60000) then
+      begin
+        Pt.TimeMs := CompleteCp24(O.Time, Pt.TimeMs);
+        Invalid := O.Time.Invalid;
+        Pt.Tag := IecTimeFromDateTime(UnixDateDelta + Pt.TimeMs / MSecsPerDay);
+        { the RTU's own minute and ms, not a rounding of them }
+        Pt.Tag.Minute := O.Time.Minute;
+        Pt.Tag.Msec := O.Time.Msec;
+        Pt.Tag.Invalid := Invalid;
+        Pt.Tagged := True;
+      end;
+  end;
 end;
 
 function ObjectValue(Ti: Byte; const O: tIecObject): Double;
@@ -332,8 +380,8 @@ begin
     Value := ObjectValue(H.Ti, O);
     Quality := O.Quality;
     Known := True;
-    TimeMs := ObjectTimeMs(H.Ti, O);
   end;
+  TakeTime(T^.Points[P], H.Ti, O);
   Noticed(T^, P);
 end;
 
@@ -423,6 +471,7 @@ begin
     begin
       T.Points[I].Bad := B;
       T.Points[I].TimeMs := ChUtcMs;
+      T.Points[I].Tagged := False;     { the master's news, of now }
       Noticed(T, I);
     end;
 end;
@@ -552,6 +601,12 @@ end;
 
 function IecTableWrite(var T: tIecPointTable; P: LongInt; Value: Double; Id: LongInt;
   out Err: ShortString): Boolean;
+begin
+  Result := IecTableCommand(T, P, Value, False, 0, Id, Err);
+end;
+
+function IecTableCommand(var T: tIecPointTable; P: LongInt; Value: Double; Select: Boolean; Qu: Byte;
+  Id: LongInt; out Err: ShortString): Boolean;
 var
   O: tIecObject;
   CmdType: Byte;
@@ -596,6 +651,8 @@ begin
   SetLength(T.Writes, K + 1);
   T.Writes[K].Point := P;
   T.Writes[K].Value := Value;
+  T.Writes[K].Select := Select;
+  T.Writes[K].Qu := Qu;
   T.Writes[K].Id := Id;
   T.Writes[K].Res := res_Ok;
   T.Writes[K].Err := '';
@@ -655,6 +712,8 @@ begin
     Pt := @T.Points[T.Writes[0].Point];
     CmdType := CommandTi(Pt^);
     CommandObject(CmdType, Pt^.CmdIoa, T.Writes[0].Value, O, E);
+    O.Select := T.Writes[0].Select;
+    O.Qu := T.Writes[0].Qu;
     if IecStartCommand(T.M^, Pt^.Addr, Pt^.Ca, CmdType, O, False) then
       T.Running := True
     else

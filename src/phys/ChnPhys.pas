@@ -935,7 +935,14 @@ begin
     if not Watched then
       ComPull;
     if (CH_Ring.Count = 0) and (CH_Idle > 0) and ComIdleWait then
+    begin
+      { the wait may have ended for a held send's own time (TURN=, IFG=,
+        RTSB=: its due time fired and is spent): it goes now, or its time
+        is set again - else nothing would wake the program for it }
+      if CH_TxAt <> 0 then
+        ComPumpTx;
       ComPull;
+    end;
     if CH_Ring.Count > 0 then
       CH_RCtrl := CHS_ReceiveReady
     else

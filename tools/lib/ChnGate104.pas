@@ -71,6 +71,7 @@ type
     IecPoint: LongInt;       {< its point (ChnIecPointTable) }
     CmdIoa: LongWord;        {< where its commands come (a DF1 tag: Ioa) }
     EvTi  : Byte;            {< an IEC 101 point: the type its events take (0: Ti) }
+    Owner : AnsiString;      {< 'DEVICE TAG' or 'DEVICE POINT', for a clash's message }
     Sent  : Double;          {< value and quality the slave's table has }
     SentQ : Byte;
   end;
@@ -126,8 +127,10 @@ function Gate104WriteDone(var N: tGate104; const W: tTagWrite): Boolean;
 { The same for a command to an IEC 101 device (IecTableTakeWrite). }
 function Gate104IecWriteDone(var N: tGate104; const W: tIecTableWrite): Boolean;
 { Point P of IEC 101 device D changed (IecTableTakeChange): its point in
-  the table (added when it is new) gets value and quality, as an event. }
-procedure Gate104IecChange(var N: tGate104; D: pGateIecDevice; P: LongInt);
+  the table (added when it is new) gets value and quality, as an event.
+  '', or the reason a new point is refused (its IOA is another device's
+  point's, the table is full ...): said once, the point is not served. }
+function Gate104IecChange(var N: tGate104; D: pGateIecDevice; P: LongInt): AnsiString;
 { Serve the control centre: requests, commands to the devices, commands
   that waited too long. The ms the program may wait (ChnWaitAny). }
 function Gate104Step(var N: tGate104; var Devs: array of tPcccDevice): LongInt;
@@ -335,6 +338,7 @@ begin
         N.Points[High(N.Points)].Ti := Ti;
         N.Points[High(N.Points)].Cmd := Cmd;
         N.Points[High(N.Points)].CmdIoa := P;
+        N.Points[High(N.Points)].Owner := Devs[D].Name + ' ' + Devs[D].Tags[T].Name;
         O := PointObject(Ti, Devs[D].Tags[T], K, N.Points[High(N.Points)].SentQ);
         O.Ioa := P;
         if (IecSlaveAddPoint(N.S^, Ti, O, 0, E) <> res_Ok) or
@@ -427,21 +431,25 @@ begin
   N.Pending[K].What := What;
 end;
 
-{ A command to IEC 101 point P: the same command to its RTU. }
+{ A command to IEC 101 point P: the same command to its RTU - a select
+  as a select, the qualifier (QU, QL) as it came - its ACT_CON when the
+  RTU's came. }
 function PassCommand(var N: tGate104; P: LongInt; const H: tIecAsdu; const O: tIecObject): Boolean;
 var
   Ticket: LongWord;
   What, Err: AnsiString;
+  Select: Boolean;
 begin
+  Select := O.Select and (IecTypeKind(H.Ti) <> ikBitsCmd);
   What := IecTypeName(H.Ti) + ' IOA ' + IntToStr(O.Ioa) + ' (' + N.Points[P].Iec^.Name + ' ' +
-    GateIecPointName(N.Points[P].Iec, N.Points[P].IecPoint) + ' := ' + FloatToStr(CommandValue(H, O)) + ')';
+    GateIecPointName(N.Points[P].Iec, N.Points[P].IecPoint) + ' := ' + FloatToStr(CommandValue(H, O));
+  if Select then
+    What := What + ' select';
+  if O.Qu <> 0 then
+    What := What + ' qualifier ' + IntToStr(O.Qu);
+  What := What + ')';
   Inc(N.Commands);
-  Result := O.Select;
-  if Result then
-  begin
-    Say(N, What + ': selected');
-    Exit;
-  end;
+  Result := False;
   Ticket := IecSlaveDefer(N.S^);
   if Ticket = 0 then
   begin
@@ -450,7 +458,8 @@ begin
     Exit;
   end;
   Dec(N.NextId);
-  if not GateIecWrite(N.Points[P].Iec, N.Points[P].IecPoint, CommandValue(H, O), N.NextId, Err) then
+  if not GateIecCommand(N.Points[P].Iec, N.Points[P].IecPoint, CommandValue(H, O), Select, O.Qu, N.NextId,
+    Err) then
   begin
     Inc(N.Refused);
     Say(N, What + ': refused, ' + Err);
@@ -555,31 +564,47 @@ begin
   Result := WriteDone(N, W.Id, W.Res, W.Err, 'RTU');
 end;
 
-{ The table's point K of IEC 101 point P of D; added when new (-1: it
-  cannot be, said once). }
-function IecPointOf(var N: tGate104; D: pGateIecDevice; P: LongInt): LongInt;
+{ The point served at IOA Ioa (a monitoring point), -1 when none. }
+function ServedAt(const N: tGate104; Ioa: LongWord): LongInt;
+begin
+  for Result := 0 to High(N.Points) do
+    if (N.Points[Result].Ioa = Ioa) and (N.Points[Result].Ti <> 0) then
+      Exit;
+  Result := -1;
+end;
+
+{ The table's point K of IEC 101 point P of D; added when new. Refused
+  (Ti 0, not tried again) with Err when it cannot be: its IOA is another
+  point's - never overwritten - or the table does not take it. }
+function IecPointOf(var N: tGate104; D: pGateIecDevice; P: LongInt; out Err: AnsiString): LongInt;
 var
   TP: ^tIecTablePoint;
   Ioa: LongWord;
   Cmd: Byte;
   E: ShortString;
+  Other: LongInt;
 begin
+  Err := '';
   for Result := 0 to High(N.Points) do
     if (N.Points[Result].Iec = D) and (N.Points[Result].IecPoint = P) then
       Exit;
   TP := @D^.T.Points[P];
   Ioa := GateIecNorthIoa(D, P);
+  Other := ServedAt(N, Ioa);
   Result := Length(N.Points);
   SetLength(N.Points, Result + 1);
-  FillChar(N.Points[Result], SizeOf(N.Points[Result]), 0);
   N.Points[Result].Iec := D;
   N.Points[Result].IecPoint := P;
   N.Points[Result].Ioa := Ioa;
-  N.Points[Result].Ti := TP^.Ti;
-  if IecSlaveAddPoint(N.S^, TP^.Ti, IecObject(Ioa), 0, E) <> res_Ok then
+  N.Points[Result].Owner := D^.Name + ' ' + GateIecPointName(D, P);
+  if Other >= 0 then
+    E := 'IEC 104 IOA ' + IntToStr(Ioa) + ' (ioa ' + IntToStr(D^.Cfg.IoaOffset) + ' + ' +
+      IntToStr(TP^.Ioa) + ') is ' + N.Points[Other].Owner + '''s'
+  else if IecSlaveAddPoint(N.S^, TP^.Ti, IecObject(Ioa), 0, E) = res_Ok then
+    N.Points[Result].Ti := TP^.Ti;
+  if N.Points[Result].Ti = 0 then          { not again }
   begin
-    Say(N, D^.Name + ' ' + GateIecPointName(D, P) + ': not served: ' + E);
-    N.Points[Result].Ti := 0;              { not again }
+    Err := N.Points[Result].Owner + ': not served: ' + E;
     Exit;
   end;
   if not TP^.Writable then
@@ -598,16 +623,17 @@ begin
     IecSlaveAddPoint(N.S^, Cmd + (C_SC_TA_1 - C_SC_NA_1), IecObject(N.Points[Result].CmdIoa), 0, E);
 end;
 
-procedure Gate104IecChange(var N: tGate104; D: pGateIecDevice; P: LongInt);
+function Gate104IecChange(var N: tGate104; D: pGateIecDevice; P: LongInt): AnsiString;
 var
   K: LongInt;
   TP: ^tIecTablePoint;
   O: tIecObject;
   E: ShortString;
 begin
+  Result := '';
   if (N.S = nil) or not IecIsMonitor(D^.T.Points[P].Ti) or (D^.T.Points[P].Ti = M_EI_NA_1) then
     Exit;
-  K := IecPointOf(N, D, P);
+  K := IecPointOf(N, D, P, Result);
   if N.Points[K].Ti = 0 then
     Exit;
   TP := @D^.T.Points[P];
@@ -631,7 +657,11 @@ begin
   O.Quality := TP^.Quality;
   if TP^.Bad or not TP^.Known then
     O.Quality := O.Quality or Q_Invalid;
-  if IecSlaveUpdate(N.S^, N.Points[K].Ioa, O, True, E) <> res_Ok then
+  { the RTU's time tag as it came (a CP24 one completed with the hour and
+    date, ChnIecPointTable); a change without one takes the gateway's clock }
+  O.Time := TP^.Tag;
+  if (TP^.Tagged and (IecSlaveUpdateAt(N.S^, N.Points[K].Ioa, O, True, E) <> res_Ok)) or
+     (not TP^.Tagged and (IecSlaveUpdate(N.S^, N.Points[K].Ioa, O, True, E) <> res_Ok)) then
     Say(N, 'IOA ' + IntToStr(N.Points[K].Ioa) + ': ' + E);
 end;
 

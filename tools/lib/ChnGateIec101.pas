@@ -95,6 +95,10 @@ function GateIecFindNorth(D: pGateIecDevice; NorthIoa: LongWord): LongInt;
   from IecTableTakeWrite(D^.T, W). }
 function GateIecWrite(D: pGateIecDevice; P: LongInt; Value: Double; Id: LongInt;
   out Err: AnsiString): Boolean;
+{ The same with the S/E bit and the qualifier (QU / QL) the RTU gets
+  (IecTableCommand): a control centre's command passed on as it came. }
+function GateIecCommand(D: pGateIecDevice; P: LongInt; Value: Double; Select: Boolean; Qu: Byte;
+  Id: LongInt; out Err: AnsiString): Boolean;
 
 { The payload of a point: value, quality and ts, as a DF1 tag's. }
 function GateIecPointPayload(const P: tIecTablePoint): AnsiString;
@@ -495,6 +499,12 @@ end;
 
 function GateIecWrite(D: pGateIecDevice; P: LongInt; Value: Double; Id: LongInt;
   out Err: AnsiString): Boolean;
+begin
+  Result := GateIecCommand(D, P, Value, False, 0, Id, Err);
+end;
+
+function GateIecCommand(D: pGateIecDevice; P: LongInt; Value: Double; Select: Boolean; Qu: Byte;
+  Id: LongInt; out Err: AnsiString): Boolean;
 var
   E: ShortString;
 begin
@@ -503,7 +513,7 @@ begin
     Err := D^.Name + ': ' + D^.LineError;
     Exit(False);
   end;
-  Result := IecTableWrite(D^.T, P, Value, Id, E);
+  Result := IecTableCommand(D^.T, P, Value, Select, Qu, Id, E);
   Err := E;
 end;
 

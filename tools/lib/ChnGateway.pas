@@ -15,7 +15,7 @@ uses
   Classes, SysUtils, ChnTypes, ChnPccc, ChnPcccTags, ChnMqtt, ChnGate104, ChnGateIec101;
 
 const
-  GateHealthMs = 10000;     { $health is published on every change and this often }
+  GateHealthMs = 10000;     { $health: a new state at once, new counters at most this often }
 
 type
   tGateTagCfg = record
@@ -60,6 +60,13 @@ type
 
   tGateLog = procedure(const Line: AnsiString);
 
+  { What a device's $health shows, as last published: it is published
+    again only when this changed (at most every GateHealthMs), so an idle
+    gateway neither builds nor sends it, nor wakes for it. }
+  tGateHealthMark = record
+    State, Requests, Errors, Retries: LongInt;
+  end;
+
   tGate = record
     Cfg    : tGateConfig;
     Devs   : array of tPcccDevice;
@@ -67,7 +74,8 @@ type
     OpenAt : array of QWord;      { when a device whose line failed is opened again }
     Mqtt   : tMqttClient;
     N104   : tGate104;
-    HealthAt: QWord;
+    HealthAt: QWord;              { when the changed $health go out; 0: none changed }
+    Marks  : array of tGateHealthMark;
     Log    : tGateLog;
     WriteId: LongInt;
   end;
@@ -319,6 +327,76 @@ begin
   end;
 end;
 
+{ The north IOAs an IEC 101 device's configuration gives (its points=
+  and write= points at ioa= + IOA, commands at ioa= + CMDIOA) against the
+  DF1 devices' ranges and the other RTUs' points: a clash is refused with
+  the key that gave the point. (An RTU's other points are learned at run
+  time: ChnGate104 refuses a clash then.) }
+procedure CheckIecIoas(var C: tChecker; const Cfg: tGateConfig);
+type
+  tTaken = record
+    Ioa: Int64;
+    Cmd: Boolean;
+    What: AnsiString;
+  end;
+var
+  Taken: array of tTaken;
+  I, J, K: LongInt;
+  N: Int64;
+  Cmd: Boolean;
+  What: AnsiString;
+
+  function Clash: AnsiString;
+  var
+    D: LongInt;
+    T: tTaken;
+  begin
+    for D := 0 to High(Cfg.Devices) do
+      with Cfg.Devices[D] do
+        if not Iec and (Points > 0) and (N >= Ioa) and (N <= Ioa + Points - 1) then
+          Exit(Format('falls in device %s''s IOAs %d..%d', [Name, Ioa, Ioa + Points - 1]));
+    for T in Taken do
+      if (T.Ioa = N) and (T.Cmd = Cmd) then
+        Exit('is ' + T.What + ' already');
+    Result := '';
+  end;
+
+begin
+  Taken := nil;
+  for I := 0 to High(Cfg.Devices) do
+    if Cfg.Devices[I].Iec then
+      with Cfg.Devices[I], Iec101 do
+        for J := 0 to High(Points) do
+          for Cmd in [False, True] do
+          begin
+            if Cmd and not Points[J].Writable then
+              Continue;
+            if Cmd then
+              N := Int64(IoaOffset) + Points[J].CmdIoa
+            else
+              N := Int64(IoaOffset) + Points[J].Ioa;
+            What := Points[J].Name;
+            if What = '' then
+              What := IntToStr(Points[J].Addr) + ':' + IntToStr(Points[J].Ioa);
+            What := Format('device %s''s %s %s (%d + %d)', [Name, IfThen(Cmd, 'command IOA of', 'point'), What,
+              IoaOffset, N - IoaOffset]);
+            if N > 16777215 then
+            begin
+              Bad(C, 'device ' + Name, IfThen(Cmd or (Points[J].Name = ''), 'write', 'points'),
+                Format('%s: IOA %d runs past 16777215', [What, N]));
+              Continue;
+            end;
+            if Clash <> '' then
+              Bad(C, 'device ' + Name, IfThen(Cmd or (Points[J].Name = ''), 'write', 'points'),
+                Format('%s: IEC 104 IOA %d %s', [What, N, Clash]));
+            K := Length(Taken);
+            SetLength(Taken, K + 1);
+            Taken[K].Ioa := N;
+            Taken[K].Cmd := Cmd;
+            Taken[K].What := What;
+          end;
+end;
+
 { The IEC 104 IOAs of the devices: within 1..16777215, none twice, the
   table within the slave's points. }
 procedure CheckIoas(var C: tChecker; const Cfg: tGateConfig);
@@ -339,6 +417,7 @@ begin
             [Ioa, Ioa + Points - 1, Cfg.Devices[J].Name, Cfg.Devices[J].Ioa,
              Cfg.Devices[J].Ioa + Cfg.Devices[J].Points - 1]));
     end;
+  CheckIecIoas(C, Cfg);
   if Total > IecSlaveMaxPoints then
     C.Errors := C.Errors + Format('%s:%d: [iec104]: %d points (a writable tag''s commands count 2), more than %d',
       [C.FileName, LineOf(C, 'iec104', ''), Total, IecSlaveMaxPoints]) + LineEnding;
@@ -750,6 +829,9 @@ begin
   SetLength(G.Devs, Length(G.Cfg.Devices));
   SetLength(G.OpenAt, Length(G.Cfg.Devices));
   SetLength(G.Iecs, Length(G.Cfg.Devices));
+  G.Marks := nil;
+  SetLength(G.Marks, Length(G.Cfg.Devices));
+  G.HealthAt := 0;
   for I := 0 to High(G.Devs) do
   begin
     BuildDevice(G.Devs[I], G.Cfg.Devices[I]);
@@ -829,7 +911,6 @@ begin
   end;
   OpenDevices(G);
   Build104(G, False);
-  G.HealthAt := GetTickCount64 + GateHealthMs;
 end;
 
 procedure GateReload(var G: tGate; const Cfg: tGateConfig);
@@ -910,13 +991,58 @@ begin
     Say(G, Format('MQTT: %s (again in %d ms)', [G.Mqtt.LastError, ChnWaitLeft(G.Mqtt.RetryAt)]));
 end;
 
+function HealthMark(const G: tGate; I: LongInt): tGateHealthMark;
+var
+  S: tIecTableSlave;
+begin
+  FillChar(Result, SizeOf(Result), 0);
+  if G.Iecs[I] = nil then
+  begin
+    Result.State := Ord(G.Devs[I].State);
+    Result.Requests := G.Devs[I].Requests;
+    Result.Errors := G.Devs[I].Errors;
+    Result.Retries := G.Devs[I].Retries;
+    Exit;
+  end;
+  Result.State := Ord(GateIecState(G.Iecs[I]));
+  for S in G.Iecs[I]^.T.Slaves do
+  begin
+    Inc(Result.Requests, S.Polls);
+    Inc(Result.Errors, S.Errors);
+    Inc(Result.Retries, S.Retries);
+  end;
+end;
+
+{ Device I's $health: published now when its state changed (Changed), or
+  at G.HealthAt (Due) when its counters did; else, when they changed, the
+  time it goes out is set. }
+procedure StepHealth(var G: tGate; I: LongInt; Changed, Due: Boolean; Now_: QWord);
+var
+  M: tGateHealthMark;
+  Same: Boolean;
+begin
+  M := HealthMark(G, I);
+  Same := CompareByte(M, G.Marks[I], SizeOf(M)) = 0;
+  if Changed or (Due and not Same) then
+  begin
+    if G.Iecs[I] <> nil then
+      Publish(G, Topic(G, G.Iecs[I]^.Name, '$health'), GateIecHealthPayload(G.Iecs[I]), True)
+    else
+      Publish(G, Topic(G, G.Devs[I].Name, '$health'), GateHealthPayload(G.Devs[I]), True);
+    G.Marks[I] := M;
+  end
+  else if not Same and (G.HealthAt = 0) then
+    G.HealthAt := Now_ + GateHealthMs;
+end;
+
 { One round of IEC 101 device I; the ms it may wait. }
 function StepIec(var G: tGate; I: LongInt; Health: Boolean): LongInt;
 var
   D: pGateIecDevice;
   P: LongInt;
   Wr: tIecTableWrite;
-  Name: AnsiString;
+  Name, Err: AnsiString;
+  Changed: Boolean;
 begin
   D := G.Iecs[I];
   if GateIecStep(D) then
@@ -926,7 +1052,9 @@ begin
   while IecTableTakeChange(D^.T, P) do
   begin
     Publish(G, Topic(G, D^.Name, GateIecPointName(D, P)), GateIecPointPayload(D^.T.Points[P]), True);
-    Gate104IecChange(G.N104, D, P);
+    Err := Gate104IecChange(G.N104, D, P);
+    if Err <> '' then
+      Refuse(G, Topic(G, D^.Name, GateIecPointName(D, P)), Err);
   end;
   while IecTableTakeWrite(D^.T, Wr) do
   begin
@@ -938,13 +1066,10 @@ begin
     else
       Refuse(G, Name, Wr.Err);
   end;
-  if GateIecTakeHealth(D) then
-  begin
+  Changed := GateIecTakeHealth(D);
+  if Changed then
     Say(G, D^.Name + ': ' + GateIecHealthPayload(D));
-    Health := True;
-  end;
-  if Health then
-    Publish(G, Topic(G, D^.Name, '$health'), GateIecHealthPayload(D), True);
+  StepHealth(G, I, Changed, Health, GetTickCount64);
 end;
 
 function GateStep(var G: tGate): LongInt;
@@ -952,13 +1077,16 @@ var
   I, Tag, W: LongInt;
   M: tMqttMessage;
   Wr: tTagWrite;
-  Now_: QWord;
-  Health: Boolean;
+  Changed: Boolean;
+  Now_, Due: QWord;
+  Health, Moved: Boolean;
 begin
   Now_ := GetTickCount64;
-  Health := Now_ >= G.HealthAt;
+  Health := (G.HealthAt <> 0) and (Now_ >= G.HealthAt);
   if Health then
-    G.HealthAt := Now_ + GateHealthMs;
+    G.HealthAt := 0;
+  Moved := False;
+  Due := High(QWord);
   StepMqtt(G);
   while MqttTakeMessage(G.Mqtt, M) do
     Command(G, M);
@@ -977,7 +1105,8 @@ begin
     end;
     if (G.OpenAt[I] <> 0) and (Now_ >= G.OpenAt[I]) then
       OpenDevice(G, I);
-    TagDeviceStep(G.Devs[I]);
+    if TagDeviceStepAt(G.Devs[I], Now_) then
+      Moved := True;
     while TagTakeChange(G.Devs[I], Tag) do
     begin
       Publish(G, Topic(G, G.Devs[I].Name, G.Devs[I].Tags[Tag].Name), GateTagPayload(G.Devs[I].Tags[Tag]), True);
@@ -986,27 +1115,32 @@ begin
     while TagTakeWrite(G.Devs[I], Wr) do
       if not Gate104WriteDone(G.N104, Wr) and (Wr.Res <> res_Ok) then
         Refuse(G, Topic(G, G.Devs[I].Name, G.Devs[I].Tags[Wr.Tag].Name) + '/set', Wr.Err);
-    if TagTakeHealth(G.Devs[I]) then
+    Changed := TagTakeHealth(G.Devs[I]);
+    if Changed then
     begin
       Say(G, G.Devs[I].Name + ': ' + TagStateNames[G.Devs[I].State] + ' ' + G.Devs[I].LastError);
-      Publish(G, Topic(G, G.Devs[I].Name, '$health'), GateHealthPayload(G.Devs[I]), True);
       Gate104Health(G.N104, G.Devs, I);
-    end
-    else if Health then
-      Publish(G, Topic(G, G.Devs[I].Name, '$health'), GateHealthPayload(G.Devs[I]), True);
-    W := TagDeviceWaitMs(G.Devs[I]);
+    end;
+    StepHealth(G, I, Changed, Health, Now_);
+    { the clock is read once for all the devices }
     if G.OpenAt[I] <> 0 then
-      W := ChnWaitLeft(G.OpenAt[I]);
-    if W < Result then
-      Result := W;
+      Due := Min(Due, G.OpenAt[I])
+    else
+      Due := Min(Due, TagDeviceDueAt(G.Devs[I]));
   end;
-  { what was queued in this round goes out now }
-  StepMqtt(G);
-  if G.Cfg.Iec104.Present then
-    Result := Min(Result, Gate104Step(G.N104, G.Devs));
-  W := ChnWaitLeft(G.HealthAt);
+  if G.HealthAt <> 0 then
+    Due := Min(Due, G.HealthAt);
+  W := ChnWaitLeft(Due);
   if W < Result then
     Result := W;
+  { what was queued in this round goes out now (an idle round queued
+    nothing: no second look) }
+  if Moved or (Result = 0) or (MqttQueued(G.Mqtt) > 0) then
+  begin
+    StepMqtt(G);
+    if G.Cfg.Iec104.Present then
+      Result := Min(Result, Gate104Step(G.N104, G.Devs));
+  end;
 end;
 
 procedure GateStop(var G: tGate; Ms: LongInt);
