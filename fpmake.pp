@@ -199,14 +199,15 @@ begin
       'ChnIec101Asdu', 'ChnIecTransport', 'ChnIecFileServer']);
     AddUnit(P, 'ChnIec101SlaveQueue.pas', AllOSes, ['ChnTypes', 'ChnIec101Asdu', 'ChnIec101SlaveTypes',
       'ChnFT12Link', 'ChnIec104Codec']);
+    AddUnit(P, 'ChnIecMeasParams.pas', AllOSes, ['ChnIec101Asdu']);
     AddUnit(P, 'ChnIec101SlavePoints.pas', AllOSes, ['ChnTypes', 'ChnIec101Asdu', 'ChnIec101SlaveTypes',
-      'ChnIec101SlaveQueue']);
+      'ChnIec101SlaveQueue', 'ChnIecMeasParams']);
     AddUnit(P, 'ChnIec101SlaveGi.pas', AllOSes, ['ChnTypes', 'ChnIec101Asdu', 'ChnIec101SlaveTypes',
       'ChnIec101SlaveQueue', 'ChnIec101SlavePoints']);
     AddUnit(P, 'ChnIec101SlaveCommands.pas', AllOSes, ['ChnTypes', 'ChnVirt', 'ChnIec101Asdu',
       'ChnIec101SlaveTypes', 'ChnIec101SlaveQueue', 'ChnIec101SlavePoints']);
     AddUnit(P, 'ChnIec101SlaveParams.pas', AllOSes, ['ChnIec101Asdu', 'ChnIec101SlaveTypes',
-      'ChnIec101SlaveQueue', 'ChnIec101SlavePoints']);
+      'ChnIec101SlaveQueue', 'ChnIec101SlavePoints', 'ChnIecMeasParams']);
     AddUnit(P, 'ChnIec101Slave.pas', AllOSes, ['ChnTypes', 'ChnVirt', 'ChnFT1_2', 'ChnFT12Link',
       'ChnFT12Station', 'ChnIec101Asdu', 'ChnIecTransport', 'ChnIecFile', 'ChnIecFileServer',
       'ChnIec101SlaveTypes', 'ChnIec101SlaveQueue', 'ChnIec101SlavePoints', 'ChnIec101SlaveGi',

@@ -26,6 +26,8 @@ type
     procedure Add(Ti: Byte; Ioa: LongWord; Int: LongInt; Group: Byte = 0);
     { user data to the slave (FC 3), ACK expected }
     procedure Send(const Hex: string);
+    procedure UpdateInt(Ioa: LongWord; V: LongInt; Quality: Byte = 0);
+    procedure Confirmed(const Req: string);
     { class 1 or 2 data: the ASDU in hex, '-' when none; FAcd set }
     function Poll(ClassNo: Byte): string;
   protected
@@ -59,6 +61,8 @@ type
     procedure TestEndOfInitOctets;
     procedure TestParameterLoadingOctets;
     procedure TestThresholdIsADeadband;
+    procedure TestSmoothingFactor;
+    procedure TestLimitsReportAZoneChange;
     procedure TestEveryCommandTypeConfirmed;
   end;
 
@@ -170,6 +174,25 @@ begin
   Add(M_SP_NA_1, 104, 1);
   Add(M_SP_NA_1, 105, 0);
   Add(C_SC_NA_1, 5000, 0);
+end;
+
+{ A spontaneous update of point Ioa to V (the integer of a scaled value). }
+procedure TTestChnIec101Slave.UpdateInt(Ioa: LongWord; V: LongInt; Quality: Byte);
+var
+  O: tIecObject;
+  E: ShortString;
+begin
+  O := IecObject(0);
+  O.Int := V;
+  O.Quality := Quality;
+  AssertEquals(E, res_Ok, IecSlaveUpdate(S, Ioa, O, True, E));
+end;
+
+{ Req (hex) sent, its confirmation polled: the same with COT 7. }
+procedure TTestChnIec101Slave.Confirmed(const Req: string);
+begin
+  Send(Req);
+  AssertEquals(Req, Copy(Req, 1, 6) + '07' + Copy(Req, 9, MaxInt), Poll(1));
 end;
 
 procedure TTestChnIec101Slave.Send(const Hex: string);
@@ -756,17 +779,10 @@ end;
 { A threshold in operation is a deadband around the value reported last:
   M_ME_NB_1 (11 = $0B) SVA QDS. }
 procedure TTestChnIec101Slave.TestThresholdIsADeadband;
-var
-  E: ShortString;
 
   procedure Update(V: LongInt; Quality: Byte = 0);
-  var
-    O: tIecObject;
   begin
-    O := IecObject(0);
-    O.Int := V;
-    O.Quality := Quality;
-    AssertEquals(E, res_Ok, IecSlaveUpdate(S, 101, O, True, E));
+    UpdateInt(101, V, Quality);
   end;
 
 begin
@@ -795,6 +811,103 @@ begin
   AssertEquals('71 01 07 00 01 00 00 00 00 01', Poll(1));
   Update(43, Q_Invalid);
   AssertEquals('-', Poll(1));
+end;
+
+{ P_ME_NB_1 (6F) to IOA 101 (65 00 00, scaled, 23): smoothing factor
+  (KPA 2) 50 per cent = 32 00. Each spontaneous update moves the value
+  half way: 23 -> 103 gives 63 (3F 00), 83 (53 00), 93 (5D 00); the table
+  keeps it (a read answers 93). 0 % and 101 % (65 00) are refused
+  (negative ACT_CON, 47); 100 % (64 00) is no smoothing. }
+procedure TTestChnIec101Slave.TestSmoothingFactor;
+var
+  E: ShortString;
+  O: tIecObject;
+
+  procedure Update(V: LongInt);
+  begin
+    UpdateInt(101, V);
+  end;
+
+begin
+  Open;
+  AddStd;
+  Confirmed('6F 01 06 00 01 00 65 00 00 32 00 02');
+  Update(103);
+  AssertEquals('half way from 23', '0B 01 03 00 01 00 65 00 00 3F 00 00', Poll(1));
+  Update(103);
+  AssertEquals('0B 01 03 00 01 00 65 00 00 53 00 00', Poll(1));
+  Update(103);
+  AssertEquals('0B 01 03 00 01 00 65 00 00 5D 00 00', Poll(1));
+  { C_RD_NA_1 (66, COT 5) of IOA 101: the smoothed value }
+  Send('66 01 05 00 01 00 65 00 00');
+  AssertEquals('0B 01 05 00 01 00 65 00 00 5D 00 00', Poll(1));
+  Send('6F 01 06 00 01 00 65 00 00 00 00 02');
+  AssertEquals('0 %', '6F 01 47 00 01 00 65 00 00 00 00 02', Poll(1));
+  Send('6F 01 06 00 01 00 65 00 00 65 00 02');
+  AssertEquals('101 %', '6F 01 47 00 01 00 65 00 00 65 00 02', Poll(1));
+  { not in operation (P_AC_NA_1 QPA 2, COT 8): the value as given }
+  Send('71 01 08 00 01 00 65 00 00 02');
+  AssertEquals('71 01 09 00 01 00 65 00 00 02', Poll(1));
+  Update(-7);
+  AssertEquals('0B 01 03 00 01 00 65 00 00 F9 FF 00', Poll(1));
+  { 100 %, in operation: every value as it is }
+  Confirmed('6F 01 06 00 01 00 65 00 00 64 00 02');
+  Update(1000);
+  AssertEquals('0B 01 03 00 01 00 65 00 00 E8 03 00', Poll(1));
+  { a float (M_ME_NC_1, IOA 110 = 6E 00 00, 0): P_ME_NC_1 (70) takes k
+    itself - 1.5 (00 00 C0 3F) refused, 0.25 (00 00 80 3E) taken; 8.0
+    then gives 2.0 (00 00 00 40), 3.5 (00 00 60 40) }
+  Add(M_ME_NC_1, 110, 0);
+  Send('70 01 06 00 01 00 6E 00 00 00 00 C0 3F 02');
+  AssertEquals('70 01 47 00 01 00 6E 00 00 00 00 C0 3F 02', Poll(1));
+  Confirmed('70 01 06 00 01 00 6E 00 00 00 00 80 3E 02');
+  O := IecObject(0);
+  O.Number := 8.0;
+  AssertEquals(E, res_Ok, IecSlaveUpdate(S, 110, O, True, E));
+  AssertEquals('0D 01 03 00 01 00 6E 00 00 00 00 00 40 00', Poll(1));
+  AssertEquals(E, res_Ok, IecSlaveUpdate(S, 110, O, True, E));
+  AssertEquals('0D 01 03 00 01 00 6E 00 00 00 00 60 40 00', Poll(1));
+end;
+
+{ IOA 102 (66 00 00, scaled 2300): threshold 300 (2C 01, KPA 1), low
+  limit 2300 (FC 08, KPA 3), high limit 2500 (C4 09, KPA 4). Within the
+  threshold a change is reported only when the value goes into another
+  zone (below 2300, 2300..2500, above 2500) than the one reported last. }
+procedure TTestChnIec101Slave.TestLimitsReportAZoneChange;
+
+  procedure Update(V: LongInt);
+  begin
+    UpdateInt(102, V);
+  end;
+
+begin
+  Open;
+  AddStd;
+  Confirmed('6F 01 06 00 01 00 66 00 00 2C 01 01');
+  Confirmed('6F 01 06 00 01 00 66 00 00 FC 08 03');
+  Confirmed('6F 01 06 00 01 00 66 00 00 C4 09 04');
+  Update(2400);
+  AssertEquals('the first change: 2400 = 60 09', '0B 01 03 00 01 00 66 00 00 60 09 00', Poll(1));
+  Update(2450);
+  AssertEquals('within, between the limits', '-', Poll(1));
+  Update(2550);
+  AssertEquals('150 from 2400, above the high limit: F6 09', '0B 01 03 00 01 00 66 00 00 F6 09 00', Poll(1));
+  Update(2600);
+  AssertEquals('still above', '-', Poll(1));
+  Update(2450);
+  AssertEquals('back between: 92 09', '0B 01 03 00 01 00 66 00 00 92 09 00', Poll(1));
+  Update(2290);
+  AssertEquals('160 from 2450, below the low limit: F2 08', '0B 01 03 00 01 00 66 00 00 F2 08 00', Poll(1));
+  Update(2300);
+  AssertEquals('the limit itself is between: FC 08', '0B 01 03 00 01 00 66 00 00 FC 08 00', Poll(1));
+  Update(2320);
+  AssertEquals('-', Poll(1));
+  AssertEquals(3, S.Suppressed);
+  { out of operation: every change, limits or not }
+  Send('71 01 08 00 01 00 66 00 00 02');
+  AssertEquals('71 01 09 00 01 00 66 00 00 02', Poll(1));
+  Update(2330);
+  AssertEquals('0B 01 03 00 01 00 66 00 00 1A 09 00', Poll(1));
 end;
 
 { The command types the other tests leave out, each to a point of its own

@@ -53,6 +53,21 @@ begin
   until GetTickCount64 > Deadline;
 end;
 
+{ What the slave tool wrote on stderr once it ended by itself (12 s at most). }
+function SlaveEnded(S: TProcess): string;
+var
+  Deadline: QWord;
+begin
+  Deadline := GetTickCount64 + 12000;
+  while S.Running and (GetTickCount64 < Deadline) do
+    Sleep(20);
+  TAssert.AssertFalse('the slave ended', S.Running);
+  Result := '';
+  SetLength(Result, S.Stderr.NumBytesAvailable);
+  if Length(Result) > 0 then
+    S.Stderr.Read(Result[1], Length(Result));
+end;
+
 procedure TTestIec104Tools.TestMasterToolAgainstSlaveTool;
 var
   Port: Word;
@@ -82,14 +97,7 @@ begin
     AssertTrue(Out, Pos('{"type":"C_CI_NA_1","ti":101,"cot":10,', Out) > 0);
     AssertTrue(Out, Pos('{"type":"C_SC_NA_1","ti":45,"cot":7,"negative":false', Out) > 0);
     AssertTrue(Out, Pos('{"type":"C_CS_NA_1","ti":103,"cot":7,"negative":false', Out) > 0);
-    Deadline := GetTickCount64 + 12000;
-    while S.Running and (GetTickCount64 < Deadline) do
-      Sleep(20);
-    AssertFalse('the slave ended', S.Running);
-    Errs := '';
-    SetLength(Errs, S.Stderr.NumBytesAvailable);
-    if Length(Errs) > 0 then
-      S.Stderr.Read(Errs[1], Length(Errs));
+    Errs := SlaveEnded(S);
     { the interrogation after its end of initialisation is the one asked for }
     AssertTrue(Errs, Pos('1 interrogations, 1 counter interrogations, 0 reads, 1 commands (0 refused), 1 clock syncs', Errs) > 0);
     AssertEquals(Errs, 0, S.ExitCode);
@@ -141,14 +149,7 @@ begin
     Rc := RunBin('iec101master', [Host, 'log', '2026-12-04', 'tomorrow'], 15000, Out);
     AssertEquals(Out, 2, Rc);
     AssertTrue(Out, Pos('iec101master: log wants TO as 2026-12-04T09:30:00 (tomorrow)', Out) > 0);
-    Deadline := GetTickCount64 + 12000;
-    while S.Running and (GetTickCount64 < Deadline) do
-      Sleep(20);
-    AssertFalse('the slave ended', S.Running);
-    Errs := '';
-    SetLength(Errs, S.Stderr.NumBytesAvailable);
-    if Length(Errs) > 0 then
-      S.Stderr.Read(Errs[1], Length(Errs));
+    Errs := SlaveEnded(S);
     AssertTrue(Errs, Pos('1 refused, 1 deleted', Errs) > 0);
   finally
     StopProcess(S);

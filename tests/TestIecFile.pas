@@ -39,6 +39,7 @@ type
     function CaptureAsdus(const Name: string; Is104: Boolean; out Tx: TBoolArray): TByteArrays;
     procedure CheckCapture(const Name: string; Is104: Boolean);
     procedure DirGetPut(K: tPair);
+    procedure WaitSlaveIdle;
   protected
     procedure SetUp; override;
     procedure TearDown; override;
@@ -1181,6 +1182,16 @@ begin
   AssertTrue(Got = Pattern(10));
 end;
 
+{ Poll until the slave's file server is idle (3 s at most). }
+procedure TTestIecFile.WaitSlaveIdle;
+var
+  T0: QWord;
+begin
+  T0 := ChMsTick;
+  while (F.State <> fsIdle) and (ChMsTick - T0 < 3000) do
+    IecPollFor(M, 20);
+end;
+
 { A master that gives up tells the slave: the slave is free for the next
   transfer at once, not after its own timeout (30 s here). }
 procedure TTestIecFile.TestGiveUpFreesTheSlave;
@@ -1197,9 +1208,7 @@ begin
   DropAfterSegment := True;
   AssertEquals(res_Timeout, IecFileGet(C, Addr, 1, 30001, Nof_Transparent, Got));
   AssertTrue(C.Err, Pos('file IOA 30001 from slave 0: interrupted: no ', C.Err) = 1);
-  T0 := ChMsTick;
-  while (F.State <> fsIdle) and (ChMsTick - T0 < 3000) do
-    IecPollFor(M, 20);
+  WaitSlaveIdle;
   AssertTrue('the slave is free at once: ' + IecFileServerStateName(F.State), F.State = fsIdle);
   AssertEquals('deactivate file', '7A 01 0D 00 01 00 31 75 00 01 00 00 03', SlaveHeard);
   AssertEquals(1, F.Aborted);
@@ -1218,9 +1227,7 @@ begin
   IecFileAbort(C);
   AssertEquals(res_IecFileAborted, IecFileFinish(C));
   AssertTrue(C.Err, Pos('file IOA 30002 to slave 0: aborted by the program (', C.Err) = 1);
-  T0 := ChMsTick;
-  while (F.State <> fsIdle) and (ChMsTick - T0 < 3000) do
-    IecPollFor(M, 20);
+  WaitSlaveIdle;
   AssertTrue(F.State = fsIdle);
   AssertEquals('7B 01 0D 00 01 00 32 75 00 01 00 01 02 00', SlaveHeard);
   AssertEquals(2, F.Aborted);
@@ -1246,9 +1253,7 @@ begin
   OpenPair(pPty);
   AssertEquals(C.Err, res_Ok, IecFileGetSection(C, Addr, 1, 30001, Nof_Transparent, 2, Got));
   AssertTrue('section 2 as it is', Got = Copy(Pattern(3000), 1001, 1000));
-  T0 := ChMsTick;
-  while (F.State <> fsIdle) and (ChMsTick - T0 < 3000) do
-    IecPollFor(M, 20);
+  WaitSlaveIdle;
   AssertEquals('7A 01 0D 00 01 00 31 75 00 01 00 00 01 | 7A 01 0D 00 01 00 31 75 00 01 00 00 02 | ' +
     '7A 01 0D 00 01 00 31 75 00 01 00 02 05 | 7A 01 0D 00 01 00 31 75 00 01 00 02 06 | ' +
     '7C 01 0D 00 01 00 31 75 00 01 00 02 03 | 7A 01 0D 00 01 00 31 75 00 01 00 00 03', SlaveLog);
@@ -1261,9 +1266,7 @@ begin
   AssertEquals(0, Pos(' 01 05 |', SlaveLog));
   AssertEquals(res_IecFileRefused, IecFileGetSection(C, Addr, 1, 30001, Nof_Transparent, 9, Got));
   AssertEquals('file IOA 30001 from slave 1: section 9 not ready', C.Err);
-  T0 := ChMsTick;
-  while (F.State <> fsIdle) and (ChMsTick - T0 < 3000) do
-    IecPollFor(M, 20);
+  WaitSlaveIdle;
   AssertTrue('deactivated at once', F.State = fsIdle);
   AssertEquals(res_BadParam, IecFileGetSection(C, Addr, 1, 30001, Nof_Transparent, 0, Got));
   { the whole file still comes }

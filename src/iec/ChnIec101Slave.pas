@@ -46,9 +46,10 @@
     the queued time-tagged events, never a confirmation), delay acquisition (C_CD_NA_1: COT 6 confirmed,
     COT 3 kept as the delay): ACT_CON;
   * parameters of measured values (P_ME_NA_1..P_ME_NC_1: threshold,
-    smoothing, limits kept per IOA, a threshold in operation a deadband on
-    the spontaneous reports, reported after the points of a station
-    interrogation) and their activation (P_AC_NA_1): ACT_CON / DEACT_CON;
+    smoothing, limits kept per IOA; in operation, the threshold a deadband
+    on the spontaneous reports, the smoothing factor a filter on the
+    value, a change of zone between the limits reported (ChnIecMeasParams);
+    reported after the points of a station interrogation) and their activation (P_AC_NA_1): ACT_CON / DEACT_CON;
   * file transfer (types 120..127) when the program gave a file server
     (IecSlaveServeFiles, ChnIecFileServer): its answers and segments go
     in class 1, one segment whenever class 1 is empty, so a long file

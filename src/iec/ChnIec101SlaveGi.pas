@@ -59,10 +59,7 @@ begin
     if (P^.ParSet and (1 shl Kpa) = 0) or not GiWants(S, P^) then
       Continue;
     O := IecObject(P^.Obj.Ioa);
-    if ParamType(P^.Ti) = P_ME_NB_1 then
-      O.Int := Round(P^.Par[Kpa])
-    else
-      O.Number := P^.Par[Kpa];
+    SetMeasuredValue(P^.Ti, O, P^.Par[Kpa]);
     O.Qu := Kpa;
     if not P^.ParOn then
       O.Qu := O.Qu or Qpm_NotInOperation;

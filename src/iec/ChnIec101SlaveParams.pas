@@ -2,8 +2,8 @@
   measured values: loading (P_ME_NA_1..P_ME_NC_1: threshold, smoothing,
   low and high limit, per IOA, in operation or not) and activation
   (P_AC_NA_1, COT 6 / 8: one object's or every loaded parameter). The
-  threshold in operation is the deadband of the point's spontaneous
-  reports (ChnIec101SlavePoints); an interrogation reports the
+  parameters in operation act on the point's value and spontaneous
+  reports (ChnIec101SlavePoints, ChnIecMeasParams); an interrogation reports the
   parameters loaded after the points (ChnIec101SlaveGi). }
 unit ChnIec101SlaveParams;
 
@@ -21,7 +21,7 @@ procedure TakeParameter(var S: tIecSlaveStation; const Buf: array of Byte; Len: 
 implementation
 
 uses
-  ChnIec101SlaveQueue, ChnIec101SlavePoints;
+  ChnIec101SlaveQueue, ChnIec101SlavePoints, ChnIecMeasParams;
 
 procedure TakeParameter(var S: tIecSlaveStation; const Buf: array of Byte; Len: Word;
   const H: tIecAsdu; const O: tIecObject);
@@ -34,7 +34,10 @@ begin
   begin
     { every point's loaded parameters }
     for I := 0 to S.PointCount - 1 do
+    begin
       S.Points[I].ParOn := H.Cot = Cot_Activation;
+      S.Points[I].HasFiltered := False;  { a smoothing filter starts again }
+    end;
     Inc(S.Parameters);
     Answer(S, Buf, Len, ActOrDeact(H.Cot), False);
     Exit;
@@ -55,8 +58,7 @@ begin
   else
   begin
     Kpa := O.Qu and $3F;
-    Ok := (Kpa >= Kpa_Threshold) and (Kpa <= Kpa_High) and
-      ((Kpa <> Kpa_Threshold) or (MeasuredValue(S.Points[I].Ti, O) >= 0));
+    Ok := IecParValid(Kpa, MeasuredValue(S.Points[I].Ti, O), IecTypeKind(S.Points[I].Ti) = ikScaled);
     if Ok then
     begin
       S.Points[I].Par[Kpa] := MeasuredValue(S.Points[I].Ti, O);
@@ -65,7 +67,10 @@ begin
     end;
   end;
   if Ok then
+  begin
     Inc(S.Parameters);
+    S.Points[I].HasFiltered := False;    { a smoothing filter starts again }
+  end;
   Answer(S, Buf, Len, ActOrDeact(H.Cot), not Ok);
 end;
 end.

@@ -33,13 +33,14 @@ function IecSlaveUpdateAt(var S: tIecSlaveStation; Ioa: LongWord; const Obj: tIe
   Spontaneous: Boolean; out Err: ShortString): tChResult;
 { The value of a measured value as its parameters count it. }
 function MeasuredValue(Ti: Byte; const O: tIecObject): Double;
+procedure SetMeasuredValue(Ti: Byte; var O: tIecObject; V: Double);
 { The parameter type (P_ME_NA/NB/NC_1) of a measured value type; 0 when none. }
 function ParamType(Ti: Byte): Byte;
 
 implementation
 
 uses
-  SysUtils, DateUtils, ChnIec101SlaveQueue;
+  SysUtils, DateUtils, ChnIec101SlaveQueue, ChnIecMeasParams;
 
 function IsCounter(Ti: Byte): Boolean;
 begin
@@ -209,6 +210,28 @@ begin
     Result := O.Number;
 end;
 
+procedure SetMeasuredValue(Ti: Byte; var O: tIecObject; V: Double);
+begin
+  if IecTypeKind(Ti) = ikScaled then
+    O.Int := Round(V)
+  else
+    O.Number := V;
+end;
+
+{ The new value O of point P through its smoothing filter, when a
+  smoothing factor is in operation. }
+procedure Smooth(var P: tIecPoint; var O: tIecObject);
+begin
+  if not P.ParOn or (P.ParSet and (1 shl Kpa_Smoothing) = 0) then
+    Exit;
+  if not P.HasFiltered then
+    P.Filtered := MeasuredValue(P.Ti, P.Obj);
+  P.HasFiltered := True;
+  P.Filtered := IecParSmooth(P.Filtered, MeasuredValue(P.Ti, O),
+    IecParWeight(P.Par[Kpa_Smoothing], IecTypeKind(P.Ti) = ikScaled));
+  SetMeasuredValue(P.Ti, O, P.Filtered);
+end;
+
 { The parameter type (P_ME_NA/NB/NC_1) of a measured value type; 0 when
   it has none. }
 function ParamType(Ti: Byte): Byte;
@@ -223,12 +246,16 @@ begin
 end;
 
 { A change within the threshold of a point whose parameters are in
-  operation, and with the same quality, is not reported (a deadband around
-  the value reported last). }
+  operation, with the same quality and in the zone of the limits of the
+  value reported last, is not reported (a deadband around that value). }
 function InDeadband(const P: tIecPoint; const O: tIecObject; OldQuality: Byte): Boolean;
+var
+  V: Double;
 begin
+  V := MeasuredValue(P.Ti, O);
   Result := P.ParOn and (P.ParSet and (1 shl Kpa_Threshold) <> 0) and P.HasReported and
-    (O.Quality = OldQuality) and (Abs(MeasuredValue(P.Ti, O) - P.Reported) < P.Par[Kpa_Threshold]);
+    (O.Quality = OldQuality) and (Abs(V - P.Reported) < P.Par[Kpa_Threshold]) and
+    (IecParZone(P.Par, P.ParSet, V) = IecParZone(P.Par, P.ParSet, P.Reported));
 end;
 
 { IecSlaveUpdate, and IecSlaveUpdateAt with Obj.Time kept (KeepTime). }
@@ -259,6 +286,8 @@ begin
     Exit;
   end;
   Quality := S.Points[I].Obj.Quality;
+  if ParamType(S.Points[I].Ti) <> 0 then
+    Smooth(S.Points[I], O);
   S.Points[I].Obj := O;
   if Spontaneous and InDeadband(S.Points[I], O, Quality) then
   begin

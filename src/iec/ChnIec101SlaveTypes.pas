@@ -36,6 +36,8 @@ type
     ParOn : Boolean;      {< the parameters are in operation (POP 0, or P_AC_NA_1) }
     Reported: Double;     {< the value of the last spontaneous report (the deadband's base) }
     HasReported: Boolean;
+    Filtered: Double;     {< the smoothing filter's value (ChnIecMeasParams) }
+    HasFiltered: Boolean; {< False: it starts from the table's value }
     EventTi: Byte;        {< type of its spontaneous events (IecSlaveEventType), 0: Ti }
   end;
   pIecPoint = ^tIecPoint;

@@ -300,14 +300,21 @@ begin
   Expect(C, fwDirectory);
 end;
 
-function IecFileStartGet(var C: tIecFileClient; Addr, Ca: Word; Ioa: LongWord; Nof: Word): Boolean;
+{ A job that starts with the select of the file: get, delete. }
+function StartSelect(var C: tIecFileClient; Job: tIecFileJob; Addr, Ca: Word; Ioa: LongWord;
+  Nof: Word): Boolean;
 begin
-  Result := Start(C, fjGet, Addr, Ca, Ioa, Nof);
+  Result := Start(C, Job, Addr, Ca, Ioa, Nof);
   if not Result then
     Exit;
   Send(C, F_SC_NA_1, Cot_File, Obj(C, 0, Scq_SelectFile));
   Expect(C, fwFileReady);
   Result := not IecFileDone(C);
+end;
+
+function IecFileStartGet(var C: tIecFileClient; Addr, Ca: Word; Ioa: LongWord; Nof: Word): Boolean;
+begin
+  Result := StartSelect(C, fjGet, Addr, Ca, Ioa, Nof);
 end;
 
 function IecFileStartPut(var C: tIecFileClient; Addr, Ca: Word; Ioa: LongWord; Nof: Word;
@@ -365,12 +372,7 @@ end;
 
 function IecFileStartDelete(var C: tIecFileClient; Addr, Ca: Word; Ioa: LongWord; Nof: Word): Boolean;
 begin
-  Result := Start(C, fjDelete, Addr, Ca, Ioa, Nof);
-  if not Result then
-    Exit;
-  Send(C, F_SC_NA_1, Cot_File, Obj(C, 0, Scq_SelectFile));
-  Expect(C, fwFileReady);
-  Result := not IecFileDone(C);
+  Result := StartSelect(C, fjDelete, Addr, Ca, Ioa, Nof);
 end;
 
 procedure IecFileAbort(var C: tIecFileClient);
@@ -760,64 +762,57 @@ begin
   Result := C.Result;
 end;
 
-function IecFileDir(var C: tIecFileClient; Addr, Ca: Word): tChResult;
+{ The blocking forms: the transfer stepped to its end once it started. }
+function Ended(var C: tIecFileClient; Started: Boolean): tChResult;
 begin
-  if IecFileStartDir(C, Addr, Ca) then
+  if Started then
     Result := IecFileFinish(C)
   else
     Result := C.Result;
+end;
+
+{ What a fetch got: the file (the section), '' unless it succeeded. }
+function Fetched(const C: tIecFileClient; R: tChResult; out Content: AnsiString): tChResult;
+begin
+  if R = res_Ok then
+    Content := C.X.Content
+  else
+    Content := '';
+  Result := R;
+end;
+
+function IecFileDir(var C: tIecFileClient; Addr, Ca: Word): tChResult;
+begin
+  Result := Ended(C, IecFileStartDir(C, Addr, Ca));
 end;
 
 function IecFileQueryLog(var C: tIecFileClient; Addr, Ca: Word; Ioa: LongWord; Nof: Word;
   const RangeStart, RangeStop: tIecTime): tChResult;
 begin
-  if IecFileStartQueryLog(C, Addr, Ca, Ioa, Nof, RangeStart, RangeStop) then
-    Result := IecFileFinish(C)
-  else
-    Result := C.Result;
+  Result := Ended(C, IecFileStartQueryLog(C, Addr, Ca, Ioa, Nof, RangeStart, RangeStop));
 end;
 
 function IecFileDelete(var C: tIecFileClient; Addr, Ca: Word; Ioa: LongWord; Nof: Word): tChResult;
 begin
-  if IecFileStartDelete(C, Addr, Ca, Ioa, Nof) then
-    Result := IecFileFinish(C)
-  else
-    Result := C.Result;
+  Result := Ended(C, IecFileStartDelete(C, Addr, Ca, Ioa, Nof));
 end;
 
 function IecFileGetSection(var C: tIecFileClient; Addr, Ca: Word; Ioa: LongWord; Nof: Word;
   Nos: Byte; out Content: AnsiString): tChResult;
 begin
-  if IecFileStartGetSection(C, Addr, Ca, Ioa, Nof, Nos) then
-    Result := IecFileFinish(C)
-  else
-    Result := C.Result;
-  if Result = res_Ok then
-    Content := C.X.Content
-  else
-    Content := '';
+  Result := Fetched(C, Ended(C, IecFileStartGetSection(C, Addr, Ca, Ioa, Nof, Nos)), Content);
 end;
 
 function IecFileGet(var C: tIecFileClient; Addr, Ca: Word; Ioa: LongWord; Nof: Word;
   out Content: AnsiString): tChResult;
 begin
-  if IecFileStartGet(C, Addr, Ca, Ioa, Nof) then
-    Result := IecFileFinish(C)
-  else
-    Result := C.Result;
-  if Result = res_Ok then
-    Content := C.X.Content
-  else
-    Content := '';
+  Result := Fetched(C, Ended(C, IecFileStartGet(C, Addr, Ca, Ioa, Nof)), Content);
 end;
 
 function IecFilePut(var C: tIecFileClient; Addr, Ca: Word; Ioa: LongWord; Nof: Word;
   const Content: AnsiString): tChResult;
 begin
-  if IecFileStartPut(C, Addr, Ca, Ioa, Nof, Content) then
-    Result := IecFileFinish(C)
-  else
-    Result := C.Result;
+  Result := Ended(C, IecFileStartPut(C, Addr, Ca, Ioa, Nof, Content));
 end;
 
 initialization
