@@ -151,7 +151,7 @@ begin
     AddUnit(P, 'ChnPcccClient.pas', AllOSes, ['ChnTypes', 'ChnVirt', 'ChnDF1Codec', 'ChnDF1Link', 'ChnDF1Poll',
       'ChnPccc', 'ChnPlc5', 'uString', 'ChnWait']);
     AddUnit(P, 'ChnPcccTags.pas', AllOSes, ['ChnTypes', 'ChnVirt', 'ChnDF1Codec', 'ChnDF1Link',
-      'ChnPccc', 'ChnPlc5', 'ChnPcccClient', 'ChnWait']);
+      'ChnPccc', 'ChnPlc5', 'ChnPcccClient', 'ChnWait', 'ChnRing']);
     { src/iec: FT 1.2 and IEC 60870-5-101 }
     Part(P, 'iec');
     AddUnit(P, 'ChnFT12Codec.pas', AllOSes, ['ChnTypes']);
@@ -191,7 +191,7 @@ begin
       'ChnIec101MasterTypes', 'ChnIec101MasterCmd', 'ChnIec101MasterInbound', 'ChnIec101MasterPoll']);
     { file transfer (types 120..127): codec, controlled and controlling station }
     AddUnit(P, 'ChnIecFile.pas', AllOSes, ['ChnTypes', 'ChnIec101Asdu']);
-    AddUnit(P, 'ChnIecFileServer.pas', AllOSes, ['ChnTypes', 'ChnVirt', 'ChnIec101Asdu', 'ChnIecFile']);
+    AddUnit(P, 'ChnIecFileServer.pas', AllOSes, ['ChnTypes', 'ChnVirt', 'ChnIec101Asdu', 'ChnIecFile', 'ChnOs']);
     AddUnit(P, 'ChnIecFileClient.pas', AllOSes, ['ChnTypes', 'ChnVirt', 'ChnFT12Codec', 'ChnIec101Asdu', 'ChnIec101Master', 'ChnIecFile']);
     { the slave: its record, its queues, points, interrogations, commands
       and parameters; ChnIec101Slave is the program's interface to them }
@@ -214,7 +214,7 @@ begin
       'ChnIec101SlaveCommands', 'ChnIec101SlaveParams']);
     { the points a master receives: value, quality, time; slave health; commands }
     AddUnit(P, 'ChnIecPointTable.pas', AllOSes, ['ChnTypes', 'ChnVirt', 'ChnWait', 'ChnIec101Asdu',
-      'ChnIec101Master']);
+      'ChnIec101Master', 'ChnRing']);
     { src/ics: ICSlink }
     Part(P, 'ics');
     AddUnit(P, 'ChnICSCodec.pas', AllOSes, ['ChnTypes', 'uString']);

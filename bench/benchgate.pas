@@ -114,20 +114,6 @@ begin
   Result^.ChReceiveBuffer(@Buf, SizeOf(Buf));
 end;
 
-function FreePort: Word;
-var
-  A: tSockAddrs;
-  N: LongInt;
-  S: tSock;
-begin
-  Result := 0;
-  if (SockResolve('127.0.0.1', 0, True, A, N) = seOk) and (SockListen(A[0], S) = seOk) then
-  begin
-    Result := SockLocalPort(S);
-    SockClose(S);
-  end;
-end;
-
 procedure Stop(var P: TProcess);
 begin
   if P = nil then
@@ -590,8 +576,8 @@ begin
   CentreChn := nil;
   Dir := GetTempDir + 'chn-benchgate-' + IntToStr(GetProcessID);
   ForceDirectories(Dir);
-  Port := FreePort;
-  Port104 := FreePort;
+  Port := SockFreeLoopbackPort;
+  Port104 := SockFreeLoopbackPort;
   WriteText(Dir + '/m.conf', 'listener ' + IntToStr(Port) + ' 127.0.0.1'#10'allow_anonymous true'#10 +
     'persistence false'#10);
   Broker := nil;

@@ -16,10 +16,27 @@ unit TestChnMqtt;
 interface
 
 uses
-  Classes, SysUtils, fpcunit, testregistry;
+  Classes, SysUtils, fpcunit, testregistry, {$IFDEF UNIX}MosquittoRun,{$ENDIF} ChnMqtt;
 
 type
+  { Each broker test's broker, subscriber, clients and folder, stopped,
+    closed and removed after it whatever happened. }
   TTestChnMqtt = class(TTestCase)
+  {$IFDEF UNIX}
+  private
+    Broker: TMosquitto;
+    Sub: TMqttSub;
+    C, Other: tMqttClient;
+    Dir: string;
+    { mosquitto started with Listener's settings; the test skipped,
+      with the reason, where it is not installed }
+    procedure StartBroker(const Listener: string = 'allow_anonymous true');
+    { (again) mosquitto_sub on Topic, Extra its further arguments }
+    procedure Subscribe(const Topic: string; const Extra: array of string);
+  protected
+    procedure SetUp; override;
+    procedure TearDown; override;
+  {$ENDIF}
   published
     procedure TestStateTextAndDefaults;
     {$IFDEF UNIX}
@@ -36,27 +53,27 @@ type
 implementation
 
 uses
-  {$IFDEF UNIX}BaseUnix, MosquittoRun, TestTempDir, TestSupport,{$ENDIF}
-  ChnWait, ChnMqtt;
+  {$IFDEF UNIX}BaseUnix, TestTempDir, TestSupport,{$ENDIF}
+  ChnWait;
 
 procedure TTestChnMqtt.TestStateTextAndDefaults;
 var
-  C: tMqttClient;
+  Q: tMqttClient;
 begin
-  MqttInit(C);
-  AssertEquals('closed', 'closed', MqttStateText(C));
-  AssertEquals('port', 1883, C.Port);
-  AssertEquals('QoS 1 by default', 1, C.Qos);
-  AssertEquals('queue', MqttQueueDefault, C.QueueMax);
+  MqttInit(Q);
+  AssertEquals('closed', 'closed', MqttStateText(Q));
+  AssertEquals('port', 1883, Q.Port);
+  AssertEquals('QoS 1 by default', 1, Q.Qos);
+  AssertEquals('queue', MqttQueueDefault, Q.QueueMax);
   { a queue without a broker: the oldest goes, counted }
-  C.QueueMax := 2;
-  MqttPublish(C, 'a', '1', False);
-  MqttPublish(C, 'a', '2', False);
-  MqttPublish(C, 'a', '3', False);
-  AssertEquals('queued', 2, MqttQueued(C));
-  AssertEquals('dropped', 1, C.Dropped);
-  AssertEquals('oldest kept', '2', C.Queue[0].Payload);
-  MqttClose(C);
+  Q.QueueMax := 2;
+  MqttPublish(Q, 'a', '1', False);
+  MqttPublish(Q, 'a', '2', False);
+  MqttPublish(Q, 'a', '3', False);
+  AssertEquals('queued', 2, MqttQueued(Q));
+  AssertEquals('dropped', 1, Q.Dropped);
+  AssertEquals('oldest kept', '2', Q.Queue[0].Payload);
+  MqttClose(Q);
 end;
 
 {$IFDEF UNIX}
@@ -103,6 +120,38 @@ begin
   Result := Done(C);
 end;
 
+procedure TTestChnMqtt.SetUp;
+begin
+  Broker := nil;
+  Sub := nil;
+  MqttInit(C);
+  MqttInit(Other);
+  Dir := '';
+end;
+
+procedure TTestChnMqtt.TearDown;
+begin
+  MqttClose(Other);
+  MqttClose(C);
+  FreeAndNil(Sub);
+  FreeAndNil(Broker);
+  if Dir <> '' then
+    RemoveTempDir(Dir);
+end;
+
+procedure TTestChnMqtt.StartBroker(const Listener: string);
+begin
+  if MosquittoMissing <> '' then
+    Ignore(MosquittoMissing);
+  Broker := TMosquitto.Create(Listener);
+end;
+
+procedure TTestChnMqtt.Subscribe(const Topic: string; const Extra: array of string);
+begin
+  FreeAndNil(Sub);
+  Sub := TMqttSub.Create(Broker.Port, Topic, Extra);
+end;
+
 procedure Client(var C: tMqttClient; Port: Word);
 var
   Err: AnsiString;
@@ -118,109 +167,73 @@ end;
 
 procedure TTestChnMqtt.TestPublishAndSubscribe;
 var
-  Broker: TMosquitto;
-  Sub: TMqttSub;
-  C: tMqttClient;
   M: tMqttMessage;
 begin
-  if MosquittoMissing <> '' then
-    Ignore(MosquittoMissing);
-  Broker := TMosquitto.Create;
-  Sub := nil;
-  try
-    Sub := TMqttSub.Create(Broker.Port, 'chn/#', []);
-    Client(C, Broker.Port);
-    MqttSubscribe(C, 'chn/set/#');
-    AssertTrue('connected: ' + C.LastError, StepUntil(C, @Connected, 5000));
-    MqttPublish(C, 'chn/plc1/N7:0', '{"value":12}', True);
-    AssertTrue('emptied', StepUntil(C, @Emptied, 5000));
-    AssertTrue('the subscriber got it: ' + Sub.Text, Sub.WaitFor('chn/plc1/N7:0 {"value":12}', 5000));
-    AssertTrue('online on the will''s topic: ' + Sub.Text, Sub.WaitFor('chn/$gateway/status online', 5000));
-    AssertEquals('delivered', 1, C.Delivered);
-    { the other way: mosquitto_pub to a topic the client subscribed to }
-    AssertEquals('mosquitto_pub', 0, MqttPub(Broker.Port, 'chn/set/x', '42'));
-    AssertTrue('received', StepUntil(C, @HasMessage, 5000));
-    AssertTrue('taken', MqttTakeMessage(C, M));
-    AssertEquals('topic', 'chn/set/x', M.Topic);
-    AssertEquals('payload', '42', M.Payload);
-    AssertFalse('one only', MqttTakeMessage(C, M));
-  finally
-    MqttClose(C);
-    Sub.Free;
-    Broker.Free;
-  end;
+  StartBroker;
+  Subscribe('chn/#', []);
+  Client(C, Broker.Port);
+  MqttSubscribe(C, 'chn/set/#');
+  AssertTrue('connected: ' + C.LastError, StepUntil(C, @Connected, 5000));
+  MqttPublish(C, 'chn/plc1/N7:0', '{"value":12}', True);
+  AssertTrue('emptied', StepUntil(C, @Emptied, 5000));
+  AssertTrue('the subscriber got it: ' + Sub.Text, Sub.WaitFor('chn/plc1/N7:0 {"value":12}', 5000));
+  AssertTrue('online on the will''s topic: ' + Sub.Text, Sub.WaitFor('chn/$gateway/status online', 5000));
+  AssertEquals('delivered', 1, C.Delivered);
+  { the other way: mosquitto_pub to a topic the client subscribed to }
+  AssertEquals('mosquitto_pub', 0, MqttPub(Broker.Port, 'chn/set/x', '42'));
+  AssertTrue('received', StepUntil(C, @HasMessage, 5000));
+  AssertTrue('taken', MqttTakeMessage(C, M));
+  AssertEquals('topic', 'chn/set/x', M.Topic);
+  AssertEquals('payload', '42', M.Payload);
+  AssertFalse('one only', MqttTakeMessage(C, M));
 end;
 
 procedure TTestChnMqtt.TestBrokerRestartLosesNothingQueued;
 var
-  Broker: TMosquitto;
-  Sub: TMqttSub;
-  C: tMqttClient;
   I: LongInt;
   Missing: string;
 begin
-  if MosquittoMissing <> '' then
-    Ignore(MosquittoMissing);
-  Broker := TMosquitto.Create;
-  Sub := nil;
-  try
-    Client(C, Broker.Port);
-    AssertTrue('connected: ' + C.LastError, StepUntil(C, @Connected, 5000));
-    Broker.Stop(SIGKILL);
-    AssertTrue('the client saw the broker go', StepUntil(C, @Waiting, 10000));
-    for I := 1 to 30 do
-      MqttPublish(C, 'q/' + IntToStr(I), IntToStr(I), False);
-    AssertEquals('queued', 30, MqttQueued(C));
-    Broker.Start;
-    Sub := TMqttSub.Create(Broker.Port, 'q/#', []);
-    Sleep(300);     { mosquitto_sub subscribed before the client comes back (1 s back-off at least) }
-    AssertTrue('all sent after the restart: ' + C.LastError, StepUntil(C, @Emptied, 40000));
-    Missing := '';
-    for I := 1 to 30 do
-      if not Sub.WaitFor('q/' + IntToStr(I) + ' ' + IntToStr(I) + #10, 3000) then
-        Missing := Missing + ' ' + IntToStr(I);
-    AssertEquals('missing after the restart: ' + Sub.Text, '', Missing);
-    AssertEquals('nothing dropped', 0, C.Dropped);
-    AssertTrue('connected twice', C.Connects >= 2);
-  finally
-    MqttClose(C);
-    Sub.Free;
-    Broker.Free;
-  end;
+  StartBroker;
+  Client(C, Broker.Port);
+  AssertTrue('connected: ' + C.LastError, StepUntil(C, @Connected, 5000));
+  Broker.Stop(SIGKILL);
+  AssertTrue('the client saw the broker go', StepUntil(C, @Waiting, 10000));
+  for I := 1 to 30 do
+    MqttPublish(C, 'q/' + IntToStr(I), IntToStr(I), False);
+  AssertEquals('queued', 30, MqttQueued(C));
+  Broker.Start;
+  Subscribe('q/#', []);
+  Sleep(300);     { mosquitto_sub subscribed before the client comes back (1 s back-off at least) }
+  AssertTrue('all sent after the restart: ' + C.LastError, StepUntil(C, @Emptied, 40000));
+  Missing := '';
+  for I := 1 to 30 do
+    if not Sub.WaitFor('q/' + IntToStr(I) + ' ' + IntToStr(I) + #10, 3000) then
+      Missing := Missing + ' ' + IntToStr(I);
+  AssertEquals('missing after the restart: ' + Sub.Text, '', Missing);
+  AssertEquals('nothing dropped', 0, C.Dropped);
+  AssertTrue('connected twice', C.Connects >= 2);
 end;
 
 procedure TTestChnMqtt.TestFullQueueDropsTheOldest;
 var
-  Broker: TMosquitto;
-  Sub: TMqttSub;
-  C: tMqttClient;
   I: LongInt;
 begin
-  if MosquittoMissing <> '' then
-    Ignore(MosquittoMissing);
-  Broker := TMosquitto.Create;
-  Sub := nil;
-  try
-    Broker.Stop;
-    Client(C, Broker.Port);          { nobody there yet }
-    C.QueueMax := 10;
-    for I := 1 to 15 do
-      MqttPublish(C, 'd/' + IntToStr(I), IntToStr(I), False);
-    AssertEquals('dropped', 5, C.Dropped);
-    AssertEquals('queued', 10, MqttQueued(C));
-    AssertTrue('waiting to reconnect: ' + MqttStateText(C), StepUntil(C, @Waiting, 3000));
-    Broker.Start;
-    Sub := TMqttSub.Create(Broker.Port, 'd/#', []);
-    Sleep(300);
-    AssertTrue('sent: ' + C.LastError, StepUntil(C, @Emptied, 40000));
-    AssertTrue('the newest: ' + Sub.Text, Sub.WaitFor('d/15 15'#10, 3000));
-    AssertTrue('the oldest kept: ' + Sub.Text, Sub.WaitFor('d/6 6'#10, 3000));
-    AssertEquals('the dropped ones never came: ' + Sub.Text, 0, Pos('d/5 5'#10, Sub.Text));
-  finally
-    MqttClose(C);
-    Sub.Free;
-    Broker.Free;
-  end;
+  StartBroker;
+  Broker.Stop;
+  Client(C, Broker.Port);          { nobody there yet }
+  C.QueueMax := 10;
+  for I := 1 to 15 do
+    MqttPublish(C, 'd/' + IntToStr(I), IntToStr(I), False);
+  AssertEquals('dropped', 5, C.Dropped);
+  AssertEquals('queued', 10, MqttQueued(C));
+  AssertTrue('waiting to reconnect: ' + MqttStateText(C), StepUntil(C, @Waiting, 3000));
+  Broker.Start;
+  Subscribe('d/#', []);
+  Sleep(300);
+  AssertTrue('sent: ' + C.LastError, StepUntil(C, @Emptied, 40000));
+  AssertTrue('the newest: ' + Sub.Text, Sub.WaitFor('d/15 15'#10, 3000));
+  AssertTrue('the oldest kept: ' + Sub.Text, Sub.WaitFor('d/6 6'#10, 3000));
+  AssertEquals('the dropped ones never came: ' + Sub.Text, 0, Pos('d/5 5'#10, Sub.Text));
 end;
 
 { Open C, publish Payload on Topic: the broker acknowledges it and the
@@ -255,168 +268,115 @@ end;
   once (the library sends them again itself, under their message ids). }
 procedure TTestChnMqtt.TestHandedOverSentOnceAfterLoss;
 var
-  Broker: TMosquitto;
-  Sub: TMqttSub;
-  C: tMqttClient;
   I: LongInt;
 begin
-  if MosquittoMissing <> '' then
-    Ignore(MosquittoMissing);
-  Broker := TMosquitto.Create;
-  Sub := nil;
-  try
-    Client(C, Broker.Port);
-    AssertTrue('connected: ' + C.LastError, StepUntil(C, @Connected, 5000));
-    FpKill(Broker.Pid, SIGSTOP);
-    for I := 1 to 5 do
-      MqttPublish(C, 'h/' + IntToStr(I), IntToStr(I), False);
-    StepUntil(C, @Waiting, 500);          { handed over; no PUBACK can come }
-    AssertEquals('still queued', 5, MqttQueued(C));
-    for I := 0 to 4 do
-      AssertTrue('handed over', C.Queue[I].Sent);
-    Broker.Stop(SIGKILL);
-    AssertTrue('the client saw the broker go', StepUntil(C, @Waiting, 10000));
-    Broker.Start;
-    Sub := TMqttSub.Create(Broker.Port, 'h/#', []);
-    Sleep(300);
-    AssertTrue('all acknowledged after the restart: ' + C.LastError, StepUntil(C, @Emptied, 40000));
-    Sub.WaitFor('h/5 5'#10, 3000);
-    Sleep(300);                           { a second copy would come now }
-    AssertEquals('each once: ' + Sub.Text, '', EachOnce(Sub.Text, 'h', 5));
-  finally
-    MqttClose(C);
-    Sub.Free;
-    Broker.Free;
-  end;
+  StartBroker;
+  Client(C, Broker.Port);
+  AssertTrue('connected: ' + C.LastError, StepUntil(C, @Connected, 5000));
+  FpKill(Broker.Pid, SIGSTOP);
+  for I := 1 to 5 do
+    MqttPublish(C, 'h/' + IntToStr(I), IntToStr(I), False);
+  StepUntil(C, @Waiting, 500);          { handed over; no PUBACK can come }
+  AssertEquals('still queued', 5, MqttQueued(C));
+  for I := 0 to 4 do
+    AssertTrue('handed over', C.Queue[I].Sent);
+  Broker.Stop(SIGKILL);
+  AssertTrue('the client saw the broker go', StepUntil(C, @Waiting, 10000));
+  Broker.Start;
+  Subscribe('h/#', []);
+  Sleep(300);
+  AssertTrue('all acknowledged after the restart: ' + C.LastError, StepUntil(C, @Emptied, 40000));
+  Sub.WaitFor('h/5 5'#10, 3000);
+  Sleep(300);                           { a second copy would come now }
+  AssertEquals('each once: ' + Sub.Text, '', EachOnce(Sub.Text, 'h', 5));
 end;
 
 { Messages the broker acknowledged are not sent again after a reconnect. }
 procedure TTestChnMqtt.TestAcknowledgedNotSentAgain;
 var
-  Broker: TMosquitto;
-  Sub: TMqttSub;
-  C: tMqttClient;
   I: LongInt;
 begin
-  if MosquittoMissing <> '' then
-    Ignore(MosquittoMissing);
-  Broker := TMosquitto.Create;
-  Sub := TMqttSub.Create(Broker.Port, 'a/#', []);
-  try
-    Sleep(300);
-    Client(C, Broker.Port);
-    AssertTrue('connected: ' + C.LastError, StepUntil(C, @Connected, 5000));
-    for I := 1 to 5 do
-      MqttPublish(C, 'a/' + IntToStr(I), IntToStr(I), False);
-    AssertTrue('acknowledged', StepUntil(C, @Emptied, 5000));
-    AssertTrue('arrived: ' + Sub.Text, Sub.WaitFor('a/5 5'#10, 3000));
-    Broker.Stop(SIGKILL);
-    AssertTrue('the client saw the broker go', StepUntil(C, @Waiting, 10000));
-    FreeAndNil(Sub);
-    Broker.Start;
-    Sub := TMqttSub.Create(Broker.Port, 'a/#', []);
-    Sleep(300);
-    for I := 6 to 8 do
-      MqttPublish(C, 'a/' + IntToStr(I), IntToStr(I), False);
-    AssertTrue('sent after the restart: ' + C.LastError, StepUntil(C, @Emptied, 40000));
-    AssertTrue('the new ones: ' + Sub.Text, Sub.WaitFor('a/8 8'#10, 3000));
-    Sleep(300);
-    AssertEquals('none of the acknowledged ones again: ' + Sub.Text, 0, Pos('a/1 1'#10, Sub.Text));
-    AssertEquals('each new one once: ' + Sub.Text, 1, CountOf('a/6 6'#10, Sub.Text));
-  finally
-    MqttClose(C);
-    Sub.Free;
-    Broker.Free;
-  end;
+  StartBroker;
+  Subscribe('a/#', []);
+  Sleep(300);
+  Client(C, Broker.Port);
+  AssertTrue('connected: ' + C.LastError, StepUntil(C, @Connected, 5000));
+  for I := 1 to 5 do
+    MqttPublish(C, 'a/' + IntToStr(I), IntToStr(I), False);
+  AssertTrue('acknowledged', StepUntil(C, @Emptied, 5000));
+  AssertTrue('arrived: ' + Sub.Text, Sub.WaitFor('a/5 5'#10, 3000));
+  Broker.Stop(SIGKILL);
+  AssertTrue('the client saw the broker go', StepUntil(C, @Waiting, 10000));
+  FreeAndNil(Sub);
+  Broker.Start;
+  Subscribe('a/#', []);
+  Sleep(300);
+  for I := 6 to 8 do
+    MqttPublish(C, 'a/' + IntToStr(I), IntToStr(I), False);
+  AssertTrue('sent after the restart: ' + C.LastError, StepUntil(C, @Emptied, 40000));
+  AssertTrue('the new ones: ' + Sub.Text, Sub.WaitFor('a/8 8'#10, 3000));
+  Sleep(300);
+  AssertEquals('none of the acknowledged ones again: ' + Sub.Text, 0, Pos('a/1 1'#10, Sub.Text));
+  AssertEquals('each new one once: ' + Sub.Text, 1, CountOf('a/6 6'#10, Sub.Text));
 end;
 
 procedure TTestChnMqtt.TestUserAndPassword;
 var
-  Broker: TMosquitto;
-  Sub: TMqttSub;
-  C, Bad: tMqttClient;
-  Dir, Err, Why: string;
+  Err, Why: string;
 begin
   if MosquittoMissing <> '' then
     Ignore(MosquittoMissing);
   Dir := MakeTempDir('chn-mqtt');
-  Broker := nil;
-  Sub := nil;
-  MqttInit(C);
-  MqttInit(Bad);
-  try
-    Why := MakePasswordFile(Dir, 'gate', 's3cret');
-    if Why <> '' then
-      Ignore(Why);
-    Broker := TMosquitto.Create('allow_anonymous false' + LineEnding + 'password_file ' + Dir + 'passwd');
-    Sub := TMqttSub.Create(Broker.Port, 'pw/#', ['-u', 'gate', '-P', 's3cret']);
-    Sleep(300);
-    C.Port := Broker.Port;
-    C.User := 'gate';
-    C.Password := 's3cret';
-    AssertPublished(C, Sub, 'pw/x', '1');
-    { a wrong password: refused, the broker and the reason named }
-    Bad.Port := Broker.Port;
-    Bad.User := 'gate';
-    Bad.Password := 'wrong';
-    AssertTrue(Err, MqttOpen(Bad, Err));
-    AssertTrue('refused: ' + MqttStateText(Bad), StepUntil(Bad, @Waiting, 5000));
-    AssertEquals('never connected', 0, Bad.Connects);
-    AssertEquals(Format('the broker 127.0.0.1:%d refused the connection: Connection Refused: not authorised.',
-      [Broker.Port]), Bad.LastError);
-  finally
-    MqttClose(Bad);
-    MqttClose(C);
-    Sub.Free;
-    Broker.Free;
-    RemoveTempDir(Dir);
-  end;
+  Why := MakePasswordFile(Dir, 'gate', 's3cret');
+  if Why <> '' then
+    Ignore(Why);
+  StartBroker('allow_anonymous false' + LineEnding + 'password_file ' + Dir + 'passwd');
+  Subscribe('pw/#', ['-u', 'gate', '-P', 's3cret']);
+  Sleep(300);
+  C.Port := Broker.Port;
+  C.User := 'gate';
+  C.Password := 's3cret';
+  AssertPublished(C, Sub, 'pw/x', '1');
+  { a wrong password: refused, the broker and the reason named }
+  Other.Port := Broker.Port;
+  Other.User := 'gate';
+  Other.Password := 'wrong';
+  AssertTrue(Err, MqttOpen(Other, Err));
+  AssertTrue('refused: ' + MqttStateText(Other), StepUntil(Other, @Waiting, 5000));
+  AssertEquals('never connected', 0, Other.Connects);
+  AssertEquals(Format('the broker 127.0.0.1:%d refused the connection: Connection Refused: not authorised.',
+    [Broker.Port]), Other.LastError);
 end;
 
 procedure TTestChnMqtt.TestTls;
 var
-  Broker: TMosquitto;
-  Sub: TMqttSub;
-  C, Plain: tMqttClient;
-  Dir, Err, Why: string;
+  Err, Why: string;
 begin
   if MosquittoMissing <> '' then
     Ignore(MosquittoMissing);
   Dir := MakeTempDir('chn-mqtt');
-  Broker := nil;
-  Sub := nil;
+  Why := MakeTlsFiles(Dir);
+  if Why <> '' then
+    Ignore(Why);
+  StartBroker('allow_anonymous true' + LineEnding + 'cafile ' + Dir + 'ca.crt' + LineEnding +
+    'certfile ' + Dir + 'server.crt' + LineEnding + 'keyfile ' + Dir + 'server.key');
+  Subscribe('tls/#', ['--cafile', Dir + 'ca.crt']);
+  Sleep(300);
+  C.Port := Broker.Port;
+  C.Tls := True;
+  C.CaFile := Dir + 'ca.crt';
+  AssertPublished(C, Sub, 'tls/x', 'secret');
+  { without TLS the broker's TLS listener never lets a client in }
+  Other.Port := Broker.Port;
+  AssertTrue(Err, MqttOpen(Other, Err));
+  AssertFalse('plain client connected to a TLS listener', StepUntil(Other, @Connected, 1500));
+  { a CA file that is not there: refused at open, named }
+  MqttClose(C);
   MqttInit(C);
-  MqttInit(Plain);
-  try
-    Why := MakeTlsFiles(Dir);
-    if Why <> '' then
-      Ignore(Why);
-    Broker := TMosquitto.Create('allow_anonymous true' + LineEnding + 'cafile ' + Dir + 'ca.crt' + LineEnding +
-      'certfile ' + Dir + 'server.crt' + LineEnding + 'keyfile ' + Dir + 'server.key');
-    Sub := TMqttSub.Create(Broker.Port, 'tls/#', ['--cafile', Dir + 'ca.crt']);
-    Sleep(300);
-    C.Port := Broker.Port;
-    C.Tls := True;
-    C.CaFile := Dir + 'ca.crt';
-    AssertPublished(C, Sub, 'tls/x', 'secret');
-    { without TLS the broker's TLS listener never lets a client in }
-    Plain.Port := Broker.Port;
-    AssertTrue(Err, MqttOpen(Plain, Err));
-    AssertFalse('plain client connected to a TLS listener', StepUntil(Plain, @Connected, 1500));
-    { a CA file that is not there: refused at open, named }
-    MqttClose(C);
-    MqttInit(C);
-    C.Tls := True;
-    C.CaFile := Dir + 'none.crt';
-    AssertFalse('opened with no CA file', MqttOpen(C, Err));
-    AssertTrue(Err, Pos('MQTT: ', Err) = 1);
-  finally
-    MqttClose(Plain);
-    MqttClose(C);
-    Sub.Free;
-    Broker.Free;
-    RemoveTempDir(Dir);
-  end;
+  C.Tls := True;
+  C.CaFile := Dir + 'none.crt';
+  AssertFalse('opened with no CA file', MqttOpen(C, Err));
+  AssertTrue(Err, Pos('MQTT: ', Err) = 1);
 end;
 {$ENDIF}
 

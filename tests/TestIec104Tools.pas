@@ -10,7 +10,7 @@ unit TestIec104Tools;
 interface
 
 uses
-  SysUtils, Classes, Process, fpcunit, testregistry, ChnTypes, ChnVirt, ChnTcp,
+  SysUtils, Classes, Process, fpcunit, testregistry, ChnTypes, ChnVirt, ChnTcp, ChnSock,
   BinSupport, TestSupport, TestTempDir;
 
 type
@@ -21,17 +21,6 @@ type
   end;
 
 implementation
-
-{ A loopback port nothing listens on now. }
-function FreePort: Word;
-var
-  Err: string;
-  C: pChnVirt;
-begin
-  C := OpenStack('TCP', 'LISTEN=127.0.0.1:0', Err);
-  Result := pChnTcp(C)^.ChLocalPort;
-  Dispose(C, Done);
-end;
 
 { Wait until something listens on Port (3 s at most). }
 function Listening(Port: Word): Boolean;
@@ -77,7 +66,7 @@ var
   Deadline: QWord;
 begin
   AssertTrue(FileExists(BinPath('iec101slave')));
-  Port := FreePort;
+  Port := SockFreeLoopbackPort;
   S := TProcess.Create(nil);
   try
     BinExecutable(S, BinPath('iec101slave'));
@@ -125,7 +114,7 @@ begin
     WriteFileText(Dir + '/30001', 'eleven octs');
     AssertEquals(0, FileSetDate(Dir + '/30000', DateTimeToFileDate(EncodeDate(2026, 12, 4) + EncodeTime(10, 0, 0, 0))));
     AssertEquals(0, FileSetDate(Dir + '/30001', DateTimeToFileDate(EncodeDate(2026, 12, 5) + EncodeTime(8, 0, 0, 0))));
-    Port := FreePort;
+    Port := SockFreeLoopbackPort;
     Host := 'NAM=IEC104 NAM=TCP HOST=127.0.0.1 PORT=' + IntToStr(Port);
     BinExecutable(S, BinPath('iec101slave'));
     S.Parameters.Add('--seconds=8');

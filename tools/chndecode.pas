@@ -34,7 +34,7 @@ program chndecode;
 {$MODE OBJFPC}{$H+}
 
 uses
-  SysUtils, Classes, DateUtils, uString, ChnTypes, ChnTrcFormat, ChnPcap,
+  SysUtils, Classes, DateUtils, uString, ChnTypes, ChnOs, ChnTrcFormat, ChnPcap,
   ChnFrameDecode, ChnLadder, ChnCli;
 
 var
@@ -47,37 +47,30 @@ end;
 
 function ReadAll(const Name: string; out Text: AnsiString): Boolean;
 var
-  S: TStream;
   M: TMemoryStream;
   Inp: THandleStream;
+  Err: ShortString;
 begin
-  Result := False;
   Text := '';
+  if Name <> '-' then
+  begin
+    Result := OsFileLoad(Name, Text, Err);
+    if not Result then
+      WriteLn(StdErr, 'chndecode: ', Err);
+    Exit;
+  end;
+  Result := False;
   try
-    if Name = '-' then
-    begin
-      M := TMemoryStream.Create;
-      Inp := THandleStream.Create(StdInputHandle);
-      try
-        M.CopyFrom(Inp, 0);
-        SetLength(Text, M.Size);
-        if M.Size > 0 then
-          Move(M.Memory^, Text[1], M.Size);
-      finally
-        Inp.Free;
-        M.Free;
-      end;
-    end
-    else
-    begin
-      S := TFileStream.Create(Name, fmOpenRead or fmShareDenyNone);
-      try
-        SetLength(Text, S.Size);
-        if S.Size > 0 then
-          S.ReadBuffer(Text[1], S.Size);
-      finally
-        S.Free;
-      end;
+    M := TMemoryStream.Create;
+    Inp := THandleStream.Create(StdInputHandle);
+    try
+      M.CopyFrom(Inp, 0);
+      SetLength(Text, M.Size);
+      if M.Size > 0 then
+        Move(M.Memory^, Text[1], M.Size);
+    finally
+      Inp.Free;
+      M.Free;
     end;
     Result := True;
   except
@@ -94,22 +87,11 @@ end;
 
 function WriteAll(const Name: string; const Data: AnsiString): Boolean;
 var
-  S: TFileStream;
+  Err: ShortString;
 begin
-  Result := False;
-  try
-    S := TFileStream.Create(Name, fmCreate);
-    try
-      if Data <> '' then
-        S.WriteBuffer(Data[1], Length(Data));
-    finally
-      S.Free;
-    end;
-    Result := True;
-  except
-    on E: Exception do
-      WriteLn(StdErr, 'chndecode: ', Name, ': ', E.Message);
-  end;
+  Result := OsFileSave(Name, Data, Err);
+  if not Result then
+    WriteLn(StdErr, 'chndecode: ', Err);
 end;
 
 function IsPcap(const Text: AnsiString): Boolean;

@@ -51,7 +51,7 @@ program df1sim;
 
 uses
   {$IFDEF UNIX}BaseUnix, ChnPty,{$ENDIF}
-  SysUtils, Classes, uString, ChnTypes, ChnVirt, ChnLayers, ChnTcp, ChnDF1,
+  SysUtils, uString, ChnTypes, ChnOs, ChnVirt, ChnLayers, ChnTcp, ChnDF1,
   ChnSlc, ChnDF1Link, ChnPccc, ChnCli;
 
 const
@@ -97,22 +97,10 @@ end;
 
 function LoadFile(const Name: string): AnsiString;
 var
-  S: TFileStream;
+  Err: ShortString;
 begin
-  Result := '';
-  try
-    S := TFileStream.Create(Name, fmOpenRead or fmShareDenyNone);
-    try
-      SetLength(Result, S.Size);
-      if S.Size > 0 then
-        S.ReadBuffer(Result[1], S.Size);
-    finally
-      S.Free;
-    end;
-  except
-    on E: Exception do
-      CliUsageError(Cli, 'cannot read the data table: ' + E.Message, '--config ' + Name);
-  end;
+  if not OsFileLoad(Name, Result, Err) then
+    CliUsageError(Cli, 'cannot read the data table: ' + Err, '--config ' + Name);
 end;
 
 var

@@ -108,10 +108,29 @@ begin
   ParamAllowedText := '';
 end;
 
+{ The position of the one '=' of KEY=VALUE, 0 when there is none, a
+  second one or no key (SplitKeyValue's rule). ParamKey and ParamValue
+  are written out on it: each layer's ChSetOneParam calls them for every
+  token, twice a ChSetParam, and SplitKeyValue builds both halves. }
+function OnlyEqualAt(const S: ShortString): LongInt;
+var
+  I: LongInt;
+begin
+  Result := 0;
+  for I := 1 to Length(S) do
+    if S[I] = '=' then
+      if Result = 0 then
+        Result := I
+      else
+        Exit(0);
+  if Result = 1 then
+    Result := 0;
+end;
+
 procedure ParamSplit(const S: ShortString; var L: tParamList);
 var
-  P, Start: LongInt;
-  Tok, K, V: ShortString;
+  P, Start, E: LongInt;
+  Tok: ShortString;
 begin
   L.Count := 0;
   L.OwnFirst := 0;
@@ -125,13 +144,14 @@ begin
     with L.Items[L.Count] do
     begin
       Text := Tok;
-      K := '';
-      V := '';
-      Ok := SplitKeyValue(Tok, K, V) and (V <> '');
-      if Pos('=', Tok) > 1 then
-        Key := K
+      { the key up to the first '=' even when a second one makes the
+        token bad (the duplicate check compares keys) }
+      E := Pos('=', Tok);
+      if E > 1 then
+        Key := UpStr(Copy(Tok, 1, E - 1))
       else
         Key := '';
+      Ok := (E > 1) and (E < Length(Tok)) and (OnlyEqualAt(Tok) = E);
     end;
     L.Items[L.Count].Start := Start;
     Inc(L.Count);
@@ -168,22 +188,27 @@ end;
 
 function ParamKey(const S: tWordString): ShortString;
 var
-  K, V: ShortString;
+  P, I: LongInt;
 begin
-  if SplitKeyValue(S, K, V) then
-    Result := K
-  else
-    Result := '';
+  P := OnlyEqualAt(S);
+  if P = 0 then
+    Exit('');
+  SetLength(Result, P - 1);
+  for I := 1 to P - 1 do
+    if S[I] in ['a'..'z'] then
+      Result[I] := Chr(Ord(S[I]) - 32)
+    else
+      Result[I] := S[I];
 end;
 
 function ParamValue(const S: tWordString): ShortString;
 var
-  K, V: ShortString;
+  P: LongInt;
 begin
-  if SplitKeyValue(S, K, V) then
-    Result := V
-  else
-    Result := '';
+  P := OnlyEqualAt(S);
+  if P = 0 then
+    Exit('');
+  Result := Copy(S, P + 1, Length(S) - P);
 end;
 
 function ParamKeyIn(const Key, List: ShortString): Boolean;

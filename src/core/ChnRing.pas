@@ -3,7 +3,8 @@
   the caller holds whatever lock its threads need. A ring allocated with
   ReportHeld tells the program-wide wait (ChnWaitHeld) while it holds
   bytes: input a layer has pulled in that the program has not taken, for
-  which ChnWaitAny returns at once. }
+  which ChnWaitAny returns at once. And a queue of indices (the points or
+  tags whose change waits to be taken, oldest first). }
 unit ChnRing;
 
 {$I chn.inc}
@@ -20,8 +21,23 @@ type
     Held : Boolean;   {< the flag ChnWaitHeld keeps for this ring }
   end;
 
+  { Indices in the order they were put; Items[Head..] wait. }
+  tIndexQueue = record
+    Items: array of LongInt;
+    Head : LongInt;
+  end;
+
 { (Re)allocate for Cap bytes and empty the ring; ReportHeld as above. }
 procedure RingAlloc(var R: tByteRing; Cap: LongInt; ReportHeld: Boolean = False);
+{ Add I at the end of Q. }
+procedure IndexQueuePut(var Q: tIndexQueue; I: LongInt);
+{ The oldest index of Q, taken; False (I = -1) when Q is empty, and its
+  storage is given back. }
+function  IndexQueueTake(var Q: tIndexQueue; out I: LongInt): Boolean;
+{ Indices that wait in Q. }
+function  IndexQueueCount(const Q: tIndexQueue): LongInt;
+{ Q empty, its storage given back. }
+procedure IndexQueueClear(var Q: tIndexQueue);
 { Free the memory; the ring holds nothing afterwards. }
 procedure RingFree(var R: tByteRing);
 procedure RingClear(var R: tByteRing);
@@ -136,6 +152,36 @@ begin
   if R.Count = 0 then
     R.Head := 0;          { keeps the next read in one piece }
   NoteHeld(R);
+end;
+
+procedure IndexQueuePut(var Q: tIndexQueue; I: LongInt);
+begin
+  SetLength(Q.Items, Length(Q.Items) + 1);
+  Q.Items[High(Q.Items)] := I;
+end;
+
+function IndexQueueTake(var Q: tIndexQueue; out I: LongInt): Boolean;
+begin
+  Result := Q.Head < Length(Q.Items);
+  if not Result then
+  begin
+    I := -1;
+    IndexQueueClear(Q);
+    Exit;
+  end;
+  I := Q.Items[Q.Head];
+  Inc(Q.Head);
+end;
+
+function IndexQueueCount(const Q: tIndexQueue): LongInt;
+begin
+  Result := Length(Q.Items) - Q.Head;
+end;
+
+procedure IndexQueueClear(var Q: tIndexQueue);
+begin
+  Q.Items := nil;
+  Q.Head := 0;
 end;
 
 end.

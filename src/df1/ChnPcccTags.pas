@@ -40,7 +40,7 @@ unit ChnPcccTags;
 interface
 
 uses
-  ChnTypes, ChnVirt, ChnDF1Codec, ChnDF1Link, ChnPccc, ChnPlc5, ChnPcccClient;
+  ChnTypes, ChnRing, ChnVirt, ChnDF1Codec, ChnDF1Link, ChnPccc, ChnPlc5, ChnPcccClient;
 
 const
   TagMaxGapDefault      = 32;      {< bytes read in vain rather than a request more }
@@ -122,8 +122,7 @@ type
     WriteReq   : tPcccRequest;
     Writes     : array of tTagWrite;   {< waiting, Writes[0] under way }
     Done       : array of tTagWrite;   {< finished, for TagTakeWrite }
-    Changes    : array of LongInt;     {< tags queued, oldest first }
-    ChangeHead : LongInt;
+    Changes    : tIndexQueue;          {< tags queued, oldest first }
   end;
 
 const
@@ -450,7 +449,7 @@ begin
   D.Blocks := nil;
   D.Writes := nil;
   D.Done := nil;
-  D.Changes := nil;
+  IndexQueueClear(D.Changes);
   D.WriteReq.Ints := nil;
   D.WriteReq.Floats := nil;
 end;
@@ -462,8 +461,7 @@ begin
   if D.Tags[Tag].Queued then
     Exit;
   D.Tags[Tag].Queued := True;
-  SetLength(D.Changes, Length(D.Changes) + 1);
-  D.Changes[High(D.Changes)] := Tag;
+  IndexQueuePut(D.Changes, Tag);
 end;
 
 { Tag I has new values or quality: queue it when that is a change. }
@@ -758,7 +756,7 @@ begin
         StartRead(D, Blk);
     end;
   end;
-  Result := (D.ChangeHead < Length(D.Changes)) or D.StateChanged or (Length(D.Done) > 0);
+  Result := (IndexQueueCount(D.Changes) > 0) or D.StateChanged or (Length(D.Done) > 0);
 end;
 
 function TagDeviceDueAt(const D: tPcccDevice): QWord;
@@ -790,19 +788,9 @@ function TagTakeChange(var D: tPcccDevice; out Tag: LongInt): Boolean;
 var
   T: ^tPcccTag;
 begin
-  Result := D.ChangeHead < Length(D.Changes);
+  Result := IndexQueueTake(D.Changes, Tag);
   if not Result then
-  begin
-    Tag := -1;
-    if Length(D.Changes) > 0 then
-    begin
-      SetLength(D.Changes, 0);
-      D.ChangeHead := 0;
-    end;
     Exit;
-  end;
-  Tag := D.Changes[D.ChangeHead];
-  Inc(D.ChangeHead);
   T := @D.Tags[Tag];
   T^.Queued := False;
   T^.SentQuality := T^.Quality;

@@ -255,7 +255,8 @@ begin
   V := MeasuredValue(P.Ti, O);
   Result := P.ParOn and (P.ParSet and (1 shl Kpa_Threshold) <> 0) and P.HasReported and
     (O.Quality = OldQuality) and (Abs(V - P.Reported) < P.Par[Kpa_Threshold]) and
-    (IecParZone(P.Par, P.ParSet, V) = IecParZone(P.Par, P.ParSet, P.Reported));
+    (IecParZone(P.ParSet, P.Par[Kpa_Low], P.Par[Kpa_High], V) =
+     IecParZone(P.ParSet, P.Par[Kpa_Low], P.Par[Kpa_High], P.Reported));
 end;
 
 { IecSlaveUpdate, and IecSlaveUpdateAt with Obj.Time kept (KeepTime). }

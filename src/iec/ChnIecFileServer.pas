@@ -149,7 +149,7 @@ function IecFileSave(const Path: AnsiString; const Content: AnsiString; out Err:
 implementation
 
 uses
-  SysUtils, Classes, ChnVirt;
+  SysUtils, Classes, ChnVirt, ChnOs;
 
 function IecFileServerStateName(S: tIecFileServerState): ShortString;
 begin
@@ -213,45 +213,13 @@ begin
 end;
 
 function IecFileLoad(const Path: AnsiString; out Content: AnsiString; out Err: ShortString): Boolean;
-var
-  S: TFileStream;
 begin
-  Content := '';
-  Err := '';
-  try
-    S := TFileStream.Create(Path, fmOpenRead or fmShareDenyNone);
-    try
-      SetLength(Content, S.Size);
-      if S.Size > 0 then
-        S.ReadBuffer(Content[1], S.Size);
-    finally
-      S.Free;
-    end;
-  except
-    on X: Exception do
-      Err := Path + ': ' + X.Message;
-  end;
-  Result := Err = '';
+  Result := OsFileLoad(Path, Content, Err);
 end;
 
 function IecFileSave(const Path: AnsiString; const Content: AnsiString; out Err: ShortString): Boolean;
-var
-  S: TFileStream;
 begin
-  Err := '';
-  try
-    S := TFileStream.Create(Path, fmCreate);
-    try
-      if Content <> '' then
-        S.WriteBuffer(Content[1], Length(Content));
-    finally
-      S.Free;
-    end;
-  except
-    on X: Exception do
-      Err := Path + ': ' + X.Message;
-  end;
-  Result := Err = '';
+  Result := OsFileSave(Path, Content, Err);
 end;
 
 { Every file there is: the program's, then the directory's (sorted by
@@ -690,16 +658,20 @@ end;
 { Query log: the directory of the files of NOF (0: any) created in the
   range, from DirNext. }
 procedure QueryLog(var F: tIecFileServer; const O: tIecFileObj);
+var
+  RangeFrom, RangeTo: TDateTime;         { locals: F's may lie unaligned (packed, ARM) }
 begin
   F.DirLog := True;
   F.LogNof := O.Nof;
   F.LogQuery := O;
-  if not IecTimeToDateTime(O.Time, F.LogFrom) or not IecTimeToDateTime(O.Stop, F.LogTo) then
+  if not IecTimeToDateTime(O.Time, RangeFrom) or not IecTimeToDateTime(O.Stop, RangeTo) then
   begin
     F.LastError := 'query log: the range is no date';
-    F.LogFrom := 1;                      { an empty range }
-    F.LogTo := 0;
+    RangeFrom := 1;                      { an empty range }
+    RangeTo := 0;
   end;
+  F.LogFrom := RangeFrom;
+  F.LogTo := RangeTo;
   F.DirAt := 0;
   F.DirCot := Cot_Request;
   F.OutLen := 0;

@@ -27,9 +27,6 @@ interface
 uses
   ChnIec101Asdu;
 
-type
-  tIecMeasPar = array[Kpa_Threshold..Kpa_High] of Double;
-
 { Does the station take Value for kind Kpa (Scaled: of a scaled value)?
   A threshold >= 0, a smoothing factor as above; limits any value. }
 function IecParValid(Kpa: Byte; Value: Double; Scaled: Boolean): Boolean;
@@ -37,9 +34,10 @@ function IecParValid(Kpa: Byte; Value: Double; Scaled: Boolean): Boolean;
 function IecParWeight(Value: Double; Scaled: Boolean): Double;
 { The filter's next value: V + K (X - V). }
 function IecParSmooth(V, X, K: Double): Double;
-{ The zone of V between the limits of Par that are set (bit KPA of Set):
-  -1 below the low limit, +1 above the high one, 0 else. }
-function IecParZone(const Par: tIecMeasPar; Set_: Byte; V: Double): ShortInt;
+{ The zone of V between the limits that are set (bit KPA of Set_, as a
+  point's ParSet): -1 below Low, +1 above High, 0 else. The values come
+  by value: a point's may lie unaligned in its packed record (ARM). }
+function IecParZone(Set_: Byte; Low, High, V: Double): ShortInt;
 
 implementation
 
@@ -73,12 +71,12 @@ begin
   Result := V + K * (X - V);
 end;
 
-function IecParZone(const Par: tIecMeasPar; Set_: Byte; V: Double): ShortInt;
+function IecParZone(Set_: Byte; Low, High, V: Double): ShortInt;
 begin
   Result := 0;
-  if (Set_ and (1 shl Kpa_Low) <> 0) and (V < Par[Kpa_Low]) then
+  if (Set_ and (1 shl Kpa_Low) <> 0) and (V < Low) then
     Result := -1
-  else if (Set_ and (1 shl Kpa_High) <> 0) and (V > Par[Kpa_High]) then
+  else if (Set_ and (1 shl Kpa_High) <> 0) and (V > High) then
     Result := 1;
 end;
 

@@ -52,7 +52,7 @@ unit ChnIecPointTable;
 interface
 
 uses
-  ChnTypes, ChnIec101Asdu, ChnIec101Master;
+  ChnTypes, ChnRing, ChnIec101Asdu, ChnIec101Master;
 
 type
   tIecHealth = (ihOk, ihDown, ihDemoted);
@@ -115,8 +115,7 @@ type
     Done    : array of tIecTableWrite;   {< finished, for IecTableTakeWrite }
     Running : Boolean;       {< a command of the table is under way }
     RunGi   : LongInt;       {< the slave whose interrogation is under way, -1 none }
-    Changes : array of LongInt;
-    ChangeHead: LongInt;
+    Changes : tIndexQueue;   {< points queued, oldest first }
     Objects : LongInt;       {< monitoring objects taken }
   end;
   pIecPointTable = ^tIecPointTable;
@@ -207,8 +206,7 @@ begin
      (Pt^.Known <> Pt^.SentKnown) or (Pt^.Ti <> Pt^.SentTi) then
   begin
     Pt^.Queued := True;
-    SetLength(T.Changes, Length(T.Changes) + 1);
-    T.Changes[High(T.Changes)] := P;
+    IndexQueuePut(T.Changes, P);
   end;
 end;
 
@@ -433,8 +431,7 @@ begin
   T.Slaves := nil;
   T.Writes := nil;
   T.Done := nil;
-  T.Changes := nil;
-  T.ChangeHead := 0;
+  IndexQueueClear(T.Changes);
 end;
 
 {- ------------------------------------------------------------ health }
@@ -768,19 +765,9 @@ end;
 
 function IecTableTakeChange(var T: tIecPointTable; out P: LongInt): Boolean;
 begin
-  Result := T.ChangeHead < Length(T.Changes);
+  Result := IndexQueueTake(T.Changes, P);
   if not Result then
-  begin
-    P := -1;
-    if Length(T.Changes) > 0 then
-    begin
-      SetLength(T.Changes, 0);
-      T.ChangeHead := 0;
-    end;
     Exit;
-  end;
-  P := T.Changes[T.ChangeHead];
-  Inc(T.ChangeHead);
   with T.Points[P] do
   begin
     Queued := False;

@@ -107,6 +107,8 @@ type
     Name: string[31];
     Ends: array[1..LoopMaxEnds] of tLoopEnd;
     OpenCount: LongInt;
+    Paced: LongInt;             {< open ends with a speed (PairNow reads the clock) }
+    OnWire: LongInt;            {< ends with characters on their wire (Pump's work) }
     Top: LongInt;               {< the highest end opened so far: the loops stop there }
     Collisions: LongWord;       {< two ends began sending over each other }
     Garbled: LongWord;          {< characters that reached the ends garbled }
@@ -224,12 +226,40 @@ begin
   LeaveCriticalSection(Lock);
 end;
 
+{ Put N characters from Src, sent by end E, into every other open end's
+  ring; at a full ring they are lost there (Overruns). }
+procedure HandOver(P: pLoopPair; E: LongInt; Src: PByte; N: LongInt); inline;
+var
+  L, Put: LongInt;
+begin
+  for L := 1 to P^.Top do
+    if (L <> E) and P^.Ends[L].Open then
+    begin
+      Put := RingPut(P^.Ends[L].Ring, Src, N);
+      Inc(P^.Ends[L].Overruns, N - Put);
+    end;
+  Inc(P^.Chars, N);
+  Inc(P^.LineUs, QWord(N) * QWord(P^.Ends[E].CharUs));
+end;
+
+{ Wake the ends after end E's characters moved: input for the others;
+  for E, room (no speed) or its send done - not for the end whose own
+  call moved them (Caller). }
+procedure SignalEnds(P: pLoopPair; E, Caller: LongInt); inline;
+var
+  L: LongInt;
+begin
+  for L := 1 to P^.Top do
+    if (L <> Caller) and P^.Ends[L].Open and
+      ((L <> E) or (P^.Ends[E].CharUs = 0) or (P^.Ends[E].WireLen = 0)) then
+      ChnWaitSignal(P^.Ends[L].Wait);
+end;
+
 { Hand N > 0 characters of end E's wire to every other open end (a
-  garbled one inverted); at a full ring they are lost there (Overruns).
-  Caller: the end whose call this is (it needs no wake-up). }
+  garbled one inverted). Caller: the end whose call this is. }
 procedure Deliver(P: pLoopPair; E, N, Caller: LongInt);
 var
-  L, I, Garbled, Put: LongInt;
+  I, Garbled: LongInt;
 begin
   with P^.Ends[E] do
   begin
@@ -244,15 +274,8 @@ begin
     for I := 0 to Garbled - 1 do
       Wire[WirePos + I] := not Wire[WirePos + I];
     Inc(P^.Garbled, Garbled);
-    for L := 1 to P^.Top do
-      if (L <> E) and P^.Ends[L].Open then
-      begin
-        Put := RingPut(P^.Ends[L].Ring, @Wire[WirePos], N);
-        Inc(P^.Ends[L].Overruns, N - Put);
-      end;
+    HandOver(P, E, @Wire[WirePos], N);
   end;
-  Inc(P^.Chars, N);
-  Inc(P^.LineUs, QWord(N) * QWord(P^.Ends[E].CharUs));
   with P^.Ends[E] do
   begin
     Inc(WirePos, N);
@@ -262,14 +285,26 @@ begin
       WirePos := 0;
       WireLen := 0;
       LastEnd := WireAt;
+      Dec(P^.OnWire);
     end;
   end;
-  { input for the others; for E, room (no speed) or its send done - not
-    for the end whose own call moved them }
+  SignalEnds(P, E, Caller);
+end;
+
+{ How much of Len characters end E writes now Pump would move at once:
+  on an unpaced pair with every wire empty, what fits into every other
+  end's ring; 0 otherwise. }
+function GoesStraight(P: pLoopPair; E, Len: LongInt): LongInt; inline;
+var
+  L: LongInt;
+begin
+  Result := 0;
+  if (P^.Paced > 0) or (P^.OnWire > 0) then
+    Exit;
+  Result := Len;
   for L := 1 to P^.Top do
-    if (L <> Caller) and P^.Ends[L].Open and
-      ((L <> E) or (P^.Ends[E].CharUs = 0) or (P^.Ends[E].WireLen = 0)) then
-      ChnWaitSignal(P^.Ends[L].Wait);
+    if (L <> E) and P^.Ends[L].Open and (RingRoom(P^.Ends[L].Ring) < Result) then
+      Result := RingRoom(P^.Ends[L].Ring);
 end;
 
 { Move what has reached the other ends by Now (with a speed), or what
@@ -277,7 +312,7 @@ end;
   when the next characters fall due: the receivers when the next ones
   (up to LoopWakeChars) arrive, the sender when its last one has left.
   Caller: the end whose call this is. Caller holds Lock. }
-procedure Pump(P: pLoopPair; Now: QWord; Caller: LongInt);
+procedure PumpWires(P: pLoopPair; Now: QWord; Caller: LongInt);
 var
   E, L: LongInt;
   N, Room: LongInt;
@@ -323,16 +358,31 @@ begin
     end;
 end;
 
+{ Pump's calls come with every read, write and poll of an end; most find
+  every wire empty (a message is delivered whole as it is written). }
+procedure Pump(P: pLoopPair; Now: QWord; Caller: LongInt); inline;
+begin
+  if P^.OnWire > 0 then
+    PumpWires(P, Now, Caller);
+end;
+
 { The time for Pump: the clock only when an open end has a speed - an
   unpaced pair needs none, and a clock read is a system call here. }
-function PairNow(P: pLoopPair): QWord;
-var
-  L: LongInt;
+function PairNow(P: pLoopPair): QWord; inline;
 begin
-  for L := 1 to P^.Top do
-    if P^.Ends[L].Open and (P^.Ends[L].CharUs > 0) then
-      Exit(ChnClockUs);
-  Result := 0;
+  if P^.Paced > 0 then
+    Result := ChnClockUs
+  else
+    Result := 0;
+end;
+
+{ Pump for a poll (a read's start, OutQueue, WaitInput, WaitOutput): with
+  a speed characters fall due as time passes; without, every write, read,
+  flush and close has pumped already, so nothing can be due. }
+procedure PumpDue(P: pLoopPair; Caller: LongInt); inline;
+begin
+  if P^.Paced > 0 then
+    Pump(P, ChnClockUs, Caller);
 end;
 
 {- ---------------------------------------------------------------- port }
@@ -369,6 +419,8 @@ begin
       Overruns := 0;
     end;
     P^.Ends[EndNo].CharUs := CharUs;
+    if CharUs > 0 then
+      Inc(P^.Paced);
     P^.Ends[EndNo].Bus := Bus;
     Inc(P^.OpenCount);
     if EndNo > P^.Top then
@@ -392,6 +444,10 @@ begin
     try
       with FPair^.Ends[FEnd] do
       begin
+        if CharUs > 0 then
+          Dec(FPair^.Paced);
+        if WirePos < WireLen then
+          Dec(FPair^.OnWire);
         Open := False;
         Wait := nil;
         RingFree(Ring);
@@ -403,6 +459,8 @@ begin
         WireCap := 0;
       end;
       Dec(FPair^.OpenCount);
+      if FPair^.OpenCount > 0 then
+        Pump(FPair, PairNow(FPair), FEnd);     { this end's full ring held nobody back now }
       if FPair^.OpenCount = 0 then
       begin
         Link := @Pairs;
@@ -423,7 +481,7 @@ function TChnPortLoop.DoRead(var Buf; Size: LongInt; out Got: LongInt): tChResul
 begin
   EnterCriticalSection(Lock);
   try
-    Pump(FPair, PairNow(FPair), FEnd);
+    PumpDue(FPair, FEnd);
     Got := RingGet(FPair^.Ends[FEnd].Ring, @Buf, Size);
     if Got > 0 then
       Pump(FPair, PairNow(FPair), FEnd);       { room again for a held sender }
@@ -477,12 +535,26 @@ function TChnPortLoop.DoWrite(const Buf; Len: LongInt; out Done: LongInt): tChRe
 var
   Now: QWord;
   Idle: Boolean;
+  Straight, Rest: LongInt;
 begin
   Result := res_Ok;
   EnterCriticalSection(Lock);
   try
     Now := PairNow(FPair);
     Pump(FPair, Now, FEnd);
+    { what the wire and Pump would move at once goes into the other
+      ends' rings without the copy onto the wire (the null modem: one
+      message at a time); the rest waits on the wire }
+    Straight := GoesStraight(FPair, FEnd, Len);
+    if Straight > 0 then
+    begin
+      HandOver(FPair, FEnd, @Buf, Straight);
+      SignalEnds(FPair, FEnd, FEnd);
+      Done := Len;
+      if Straight = Len then
+        Exit;
+    end;
+    Rest := Len - Straight;
     with FPair^.Ends[FEnd] do
     begin
       Idle := WirePos >= WireLen;
@@ -494,13 +566,15 @@ begin
         Dec(WireLen, WirePos);
         WirePos := 0;
       end;
-      if WireLen + Len > WireCap then
+      if WireLen + Rest > WireCap then
       begin
-        WireCap := WireLen + Len;
+        WireCap := WireLen + Rest;
         ReAllocMem(Wire, WireCap);
       end;
-      Move(Buf, Wire[WireLen], Len);
-      Inc(WireLen, Len);
+      Move(PByte(@Buf)[Straight], Wire[WireLen], Rest);
+      Inc(WireLen, Rest);
+      if Idle and (WirePos < WireLen) then
+        Inc(FPair^.OnWire);
       if Idle then
       begin
         WireAt := Now;              { the line is free: it starts now }
@@ -519,8 +593,16 @@ end;
 
 function TChnPortLoop.OutQueue(out N: LongInt): tChResult;
 begin
+  { nothing on this end's wire: only its own DoWrite puts characters
+    there, so no lock and no Pump (the sender polls this for every send) }
+  with FPair^.Ends[FEnd] do
+    if WirePos >= WireLen then
+    begin
+      N := 0;
+      Exit(res_Ok);
+    end;
   EnterCriticalSection(Lock);
-  Pump(FPair, PairNow(FPair), FEnd);
+  PumpDue(FPair, FEnd);
   with FPair^.Ends[FEnd] do
     N := WireLen - WirePos;
   LeaveCriticalSection(Lock);
@@ -529,8 +611,14 @@ end;
 
 function TChnPortLoop.WaitInput(Ms: LongInt): Boolean;
 begin
+  { input already here stays until this end reads it; without a speed
+    nothing falls due (PumpDue): no lock, no Pump }
+  if FPair^.Ends[FEnd].Ring.Count > 0 then
+    Exit(True);
+  if FPair^.Paced = 0 then
+    Exit(False);
   EnterCriticalSection(Lock);
-  Pump(FPair, PairNow(FPair), FEnd);
+  PumpDue(FPair, FEnd);
   Result := FPair^.Ends[FEnd].Ring.Count > 0;
   LeaveCriticalSection(Lock);
 end;
@@ -538,7 +626,7 @@ end;
 function TChnPortLoop.WaitOutput(Ms: LongInt): Boolean;
 begin
   EnterCriticalSection(Lock);
-  Pump(FPair, PairNow(FPair), FEnd);
+  PumpDue(FPair, FEnd);
   with FPair^.Ends[FEnd] do
     Result := (CharUs > 0) or (WirePos >= WireLen);
   LeaveCriticalSection(Lock);
@@ -550,6 +638,7 @@ begin
   begin
     EnterCriticalSection(Lock);
     RingClear(FPair^.Ends[FEnd].Ring);
+    Pump(FPair, PairNow(FPair), FEnd);         { room again for a held sender }
     LeaveCriticalSection(Lock);
   end;
   Result := res_Ok;

@@ -93,7 +93,7 @@ type
     { Copy up to Size waiting bytes into Buf, never wait. Got = 0 with
       res_Ok means nothing is waiting; res_WrongState while not open. The
       checks are here, the reading is the driver's DoRead. }
-    function Read(var Buf; Size: LongInt; out Got: LongInt): tChResult;
+    function Read(var Buf; Size: LongInt; out Got: LongInt): tChResult; inline;
     { Wait at most Ms milliseconds for input; True as soon as a byte (or a
       fault, which the next Read reports) is waiting. Ms = 0 only looks. }
     function WaitInput(Ms: LongInt): Boolean; virtual; abstract;
@@ -103,7 +103,7 @@ type
     { Hand up to Len bytes to the OS, never wait: Done tells how many were
       taken (possibly 0 when the OS buffer is full); res_WrongState while
       not open. The checks are here, the writing is the driver's DoWrite. }
-    function Write(const Buf; Len: LongInt; out Done: LongInt): tChResult;
+    function Write(const Buf; Len: LongInt; out Done: LongInt): tChResult; inline;
     { Bytes handed to the OS but not yet on the line; 0 where unknown (the
       default). }
     function OutQueue(out N: LongInt): tChResult; virtual;

@@ -69,6 +69,9 @@ function  SockWait(const Socks: array of tSock; ForWrite: Boolean; Ms: LongInt):
 function  SockOutQueue(S: tSock): LongInt;
 { The local port a socket is bound to (LISTEN=...:0 picks a free one). }
 function  SockLocalPort(S: tSock): Word;
+{ A TCP port on 127.0.0.1 that nothing listens on right now (a test's or
+  a benchmark's server); 0 when none can be bound. }
+function  SockFreeLoopbackPort: Word;
 { 'a.b.c.d:port' or '[v6]:port' of the local end, '' when unknown. }
 function  SockLocalName(S: tSock): ShortString;
 procedure SockClose(var S: tSock);
@@ -338,6 +341,20 @@ begin
   if fpGetSockName(S, PSockAddr(@A.Data), @L) = 0 then
     { sin_port and sin6_port sit at the same offset, network order }
     Result := (Word(A.Data[2]) shl 8) or A.Data[3];
+end;
+
+function SockFreeLoopbackPort: Word;
+var
+  A: tSockAddrs;
+  N: LongInt;
+  S: tSock;
+begin
+  Result := 0;
+  if (SockResolve('127.0.0.1', 0, True, A, N) = seOk) and (SockListen(A[0], S) = seOk) then
+  begin
+    Result := SockLocalPort(S);
+    SockClose(S);
+  end;
 end;
 
 end.

@@ -42,18 +42,10 @@ uses
   ChnSock, TestTempDir;
 
 function FreeLoopbackPort: Word;
-var
-  A: tSockAddrs;
-  N: LongInt;
-  S: tSock;
 begin
-  Result := 0;
-  if SockResolve('127.0.0.1', 0, True, A, N) <> seOk then
-    raise Exception.Create('cannot resolve 127.0.0.1');
-  if SockListen(A[0], S) <> seOk then
+  Result := SockFreeLoopbackPort;
+  if Result = 0 then
     raise Exception.Create('cannot bind a loopback port');
-  Result := SockLocalPort(S);
-  SockClose(S);
 end;
 
 class function TSer2net.Path: string;

@@ -16,7 +16,7 @@ procedure WriteFileText(const Path: string; const Text: AnsiString);
 implementation
 
 uses
-  SysUtils, Classes;
+  SysUtils, ChnOs;
 
 var
   Serial: Integer = 0;
@@ -58,30 +58,18 @@ end;
 
 function ReadFileText(const Path: string): AnsiString;
 var
-  F: TFileStream;
+  Err: ShortString;
 begin
-  Result := '';
-  F := TFileStream.Create(Path, fmOpenRead or fmShareDenyNone);
-  try
-    SetLength(Result, F.Size);
-    if F.Size > 0 then
-      F.ReadBuffer(Result[1], F.Size);
-  finally
-    F.Free;
-  end;
+  if not OsFileLoad(Path, Result, Err) then
+    raise EInOutError.Create(Err);
 end;
 
 procedure WriteFileText(const Path: string; const Text: AnsiString);
 var
-  F: TFileStream;
+  Err: ShortString;
 begin
-  F := TFileStream.Create(Path, fmCreate);
-  try
-    if Text <> '' then
-      F.WriteBuffer(Text[1], Length(Text));
-  finally
-    F.Free;
-  end;
+  if not OsFileSave(Path, Text, Err) then
+    raise EInOutError.Create(Err);
 end;
 
 end.
