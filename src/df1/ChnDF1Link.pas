@@ -445,11 +445,88 @@ begin
   S.Cache[Slot].Rep := S.Reply;
 end;
 
+{ The master's ACK or NAK: of our reply or our own message. }
+procedure TakeAckNak(var S: tDF1Station);
+begin
+  if not S.RMess.FlAck then
+    Count(S, leNakIn);
+  if S.HasReply and (S.FullDup or S.AwaitAck) then
+    if S.RMess.FlAck then
+      S.HasReply := False            { the master has the reply }
+    else if S.FullDup then
+      StationSendTo(S, S.ReplyDst, S.Reply, S.ReplyLen);
+  if S.OwnAwait and S.RMess.FlAck then
+  begin
+    S.HasOwn := False;               { the master has our message }
+    Inc(S.OwnSent);
+  end;
+  { half duplex NAK: the reply (or our message) waits for the next poll }
+  S.AwaitAck := False;
+  S.OwnAwait := False;
+end;
+
+{ Half duplex: the master's poll gets the reply, else our own message,
+  else EOT. }
+procedure AnswerPoll(var S: tDF1Station);
+var
+  Eot: tSendRecord;
+begin
+  if S.HasReply then
+  begin
+    StationSendTo(S, S.ReplyDst, S.Reply, S.ReplyLen);
+    S.AwaitAck := True;
+    S.OwnAwait := False;
+  end
+  else if S.HasOwn then
+  begin
+    StationSendTo(S, S.OwnDst, S.Own, S.OwnLen);
+    S.OwnAwait := True;
+  end
+  else
+  begin
+    FillChar(Eot, SizeOf(Eot), 0);
+    Eot.MessType := tpNoPollRep;
+    StationSend(S, Eot, 1);
+  end;
+end;
+
+{ A message of Len octets: ACKed; the reply to one of our own kept, a
+  command handed to Handler and its reply kept and sent (full duplex). }
+procedure TakeMessage(var S: tDF1Station; Len: Word);
+begin
+  Count(S, leFrameIn);
+  SendLink(S, True);
+  if S.RMess.CF and MskCF_Reply <> 0 then
+  begin
+    { the answer to a message of our own, not a command }
+    Inc(S.OwnReplies);
+    S.LastReply := S.RMess;
+    S.LastReplyLen := Len;
+    S.LastReplySrc := Byte(S.Chn^.CH_RSNode);
+    Exit;
+  end;
+  { half duplex (a multidrop line): the reply goes to the command's
+    SRC, which is another slave when the master routed it; full
+    duplex keeps DNO= (point to point) }
+  if S.FullDup then
+    S.ReplyDst := Byte(S.Chn^.CH_DNode)
+  else
+    S.ReplyDst := Byte(S.Chn^.CH_RSNode);
+  if Assigned(S.Handler) and S.Handler(S.Data, S.RMess, Len, S.Reply, S.ReplyLen) then
+  begin
+    Inc(S.Requests);
+    CacheReply(S, Byte(S.Chn^.CH_RSNode));
+    S.HasReply := True;
+    S.AwaitAck := False;
+    if S.FullDup then
+      StationSendTo(S, S.ReplyDst, S.Reply, S.ReplyLen);
+  end;
+end;
+
 function DF1StationStep(var S: tDF1Station): Boolean;
 var
   Len: Word;
   R: tChResult;
-  Eot: tSendRecord;
   Ready: Boolean;
 begin
   Result := False;
@@ -477,76 +554,16 @@ begin
   Say(S, '<- ' + DF1Describe(S.RMess, Len));
   case S.RMess.MessType of
     tpAckNak:
-      begin
-        if not S.RMess.FlAck then
-          Count(S, leNakIn);
-        if S.HasReply and (S.FullDup or S.AwaitAck) then
-          if S.RMess.FlAck then
-            S.HasReply := False            { the master has the reply }
-          else if S.FullDup then
-            StationSendTo(S, S.ReplyDst, S.Reply, S.ReplyLen);
-        if S.OwnAwait and S.RMess.FlAck then
-        begin
-          S.HasOwn := False;               { the master has our message }
-          Inc(S.OwnSent);
-        end;
-        { half duplex NAK: the reply (or our message) waits for the next poll }
-        S.AwaitAck := False;
-        S.OwnAwait := False;
-      end;
+      TakeAckNak(S);
     tpEnq:
       begin
         Count(S, leEnqIn);
         StationSend(S, S.LastLink, 2);
       end;
     tpPoll:
-      if S.HasReply then
-      begin
-        StationSendTo(S, S.ReplyDst, S.Reply, S.ReplyLen);
-        S.AwaitAck := True;
-        S.OwnAwait := False;
-      end
-      else if S.HasOwn then
-      begin
-        StationSendTo(S, S.OwnDst, S.Own, S.OwnLen);
-        S.OwnAwait := True;
-      end
-      else
-      begin
-        FillChar(Eot, SizeOf(Eot), 0);
-        Eot.MessType := tpNoPollRep;
-        StationSend(S, Eot, 1);
-      end;
+      AnswerPoll(S);
     tpDataMess:
-      begin
-        Count(S, leFrameIn);
-        SendLink(S, True);
-        if S.RMess.CF and MskCF_Reply <> 0 then
-        begin
-          { the answer to a message of our own, not a command }
-          Inc(S.OwnReplies);
-          S.LastReply := S.RMess;
-          S.LastReplyLen := Len;
-          S.LastReplySrc := Byte(S.Chn^.CH_RSNode);
-          Exit;
-        end;
-        { half duplex (a multidrop line): the reply goes to the command's
-          SRC, which is another slave when the master routed it; full
-          duplex keeps DNO= (point to point) }
-        if S.FullDup then
-          S.ReplyDst := Byte(S.Chn^.CH_DNode)
-        else
-          S.ReplyDst := Byte(S.Chn^.CH_RSNode);
-        if Assigned(S.Handler) and S.Handler(S.Data, S.RMess, Len, S.Reply, S.ReplyLen) then
-        begin
-          Inc(S.Requests);
-          CacheReply(S, Byte(S.Chn^.CH_RSNode));
-          S.HasReply := True;
-          S.AwaitAck := False;
-          if S.FullDup then
-            StationSendTo(S, S.ReplyDst, S.Reply, S.ReplyLen);
-        end;
-      end;
+      TakeMessage(S, Len);
   end;
 end;
 

@@ -444,30 +444,20 @@ begin
     Result := PcccAddressText(A);
 end;
 
-function PcccParseAddressAs(Dialect: tPcccDialect; const S: ShortString; out A: tPcccAddr;
-  out Err: ShortString): tChResult;
+{ The steps of PcccParseAddressAs on the upper-case text T, from P: each
+  takes its part (P past it) into A and returns '' or what is wrong. }
+
+{ The file: its letters (one of the dialect's) and number (O, I and S
+  may leave it out). }
+function ParseFile(const T: ShortString; var P: Integer; const R: tDialectRules;
+  var A: tPcccAddr; out Letters: ShortString): ShortString;
 var
-  T, Letters, Num, SubS: ShortString;
-  P, Q, I, FI: Integer;
+  Num: ShortString;
+  Q, I, FI: Integer;
   V: LongInt;
-  HaveFile, Octal: Boolean;
-  R: tDialectRules;
-
-  function Bad(const Why: ShortString): tChResult;
-  begin
-    Err := 'address "' + T + '": ' + Why;
-    Result := res_PcccAddress;
-  end;
-
+  HaveFile: Boolean;
 begin
-  FillChar(A, SizeOf(A), 0);
-  A.Bit := -1;
-  Err := '';
-  R := Rules[Dialect];
-  T := UpperCase(Trim(S));
-  if T = '' then
-    Exit(Bad('empty'));
-  { the file letters }
+  Result := '';
   P := 1;
   while (P <= Length(T)) and (T[P] in ['A'..'Z']) do
     Inc(P);
@@ -477,7 +467,7 @@ begin
     if Files[I].Letter = Letters then
       FI := I;
   if (FI < 0) or (Files[FI].FType = R.Missing) then
-    Exit(Bad('file type "' + Letters + '" is none of ' + R.Letters));
+    Exit('file type "' + Letters + '" is none of ' + R.Letters);
   A.FileType := Files[FI].FType;
   { the file number (may be left out for O, I and S) }
   Q := P;
@@ -487,84 +477,153 @@ begin
   HaveFile := Num <> '';
   V := 0;
   if HaveFile and not StrToNum(Num, 0, R.MaxFile, V) then
-    Exit(Bad('file number "' + Num + '" is not 0..' + IntToStr(R.MaxFile)));
+    Exit('file number "' + Num + '" is not 0..' + IntToStr(R.MaxFile));
   if Files[FI].Fixed >= 0 then
   begin
     if HaveFile and (V <> Files[FI].Fixed) then
-      Exit(Bad(Letters + ' is file ' + IntToStr(Files[FI].Fixed) + ', not ' + Num));
+      Exit(Letters + ' is file ' + IntToStr(Files[FI].Fixed) + ', not ' + Num);
     V := Files[FI].Fixed;
   end
   else if not HaveFile then
-    Exit(Bad('file number missing after ' + Letters))
+    Exit('file number missing after ' + Letters)
   else if V < 3 then
-    Exit(Bad('file number ' + Num + ' is not 3..' + IntToStr(R.MaxFile) + ' (0, 1, 2 are O, I, S)'));
+    Exit('file number ' + Num + ' is not 3..' + IntToStr(R.MaxFile) + ' (0, 1, 2 are O, I, S)');
   A.FileNo := V;
-  if P > Length(T) then
-    Exit(Bad('":element" missing'));
-  { B3/20: bit number counted from the start of the file }
-  if T[P] = '/' then
-  begin
-    if A.FileType <> pft_Bit then
-      Exit(Bad('a bit number without an element ("/n") is only for B files'));
-    Num := Copy(T, P + 1, 255);
-    if not StrToNum(Num, 0, R.MaxBit, V) then
-      Exit(Bad('bit number "' + Num + '" is not 0..' + IntToStr(R.MaxBit)));
-    A.Elem := V div 16;
-    A.Bit := V mod 16;
-    Exit(res_Ok);
-  end;
+end;
+
+{ B3/20: a bit number counted from the start of a B file (T[P] = '/'). }
+function ParseFileBit(const T: ShortString; P: Integer; const R: tDialectRules;
+  var A: tPcccAddr): ShortString;
+var
+  Num: ShortString;
+  V: LongInt;
+begin
+  Result := '';
+  if A.FileType <> pft_Bit then
+    Exit('a bit number without an element ("/n") is only for B files');
+  Num := Copy(T, P + 1, 255);
+  V := 0;
+  if not StrToNum(Num, 0, R.MaxBit, V) then
+    Exit('bit number "' + Num + '" is not 0..' + IntToStr(R.MaxBit));
+  A.Elem := V div 16;
+  A.Bit := V mod 16;
+end;
+
+{ ":element"; Octal: O and I count in octal in this dialect. }
+function ParseElement(const T: ShortString; var P: Integer; const R: tDialectRules;
+  var A: tPcccAddr; out Octal: Boolean): ShortString;
+var
+  Num: ShortString;
+  Q: Integer;
+  V: LongInt;
+begin
+  Result := '';
+  Octal := False;
   if T[P] <> ':' then
-    Exit(Bad('":" expected after ' + Copy(T, 1, P - 1) + ', found "' + T[P] + '"'));
+    Exit('":" expected after ' + Copy(T, 1, P - 1) + ', found "' + T[P] + '"');
   Inc(P);
   Q := P;
   while (P <= Length(T)) and (T[P] in ['0'..'9']) do
     Inc(P);
   Num := Copy(T, Q, P - Q);
+  V := 0;
   Octal := R.OctalIo and IsIo(A.FileType);
   if Octal then
   begin
     if not OctalToNum(Num, OctalIoMax, V) then
-      Exit(Bad('element "' + Num + '" is not octal 0..277 (I/O racks and groups)'));
+      Exit('element "' + Num + '" is not octal 0..277 (I/O racks and groups)');
   end
   else if not StrToNum(Num, 0, R.MaxElem, V) then
-    Exit(Bad('element "' + Num + '" is not 0..' + IntToStr(R.MaxElem)));
+    Exit('element "' + Num + '" is not 0..' + IntToStr(R.MaxElem));
   A.Elem := V;
-  { .sub-element }
-  if (P <= Length(T)) and (T[P] = '.') then
-  begin
+end;
+
+{ ".sub-element" of a timer, counter or control element (T[P] = '.'). }
+function ParseSub(const T: ShortString; var P: Integer; const Letters: ShortString;
+  var A: tPcccAddr): ShortString;
+var
+  SubS: ShortString;
+  Q: Integer;
+begin
+  Result := '';
+  Inc(P);
+  Q := P;
+  while (P <= Length(T)) and (T[P] in ['A'..'Z']) do
     Inc(P);
-    Q := P;
-    while (P <= Length(T)) and (T[P] in ['A'..'Z']) do
-      Inc(P);
-    SubS := Copy(T, Q, P - Q);
-    if not IsTcr(A.FileType) then
-      Exit(Bad('".' + SubS + '": ' + Letters + ' elements have no sub-elements'));
-    A.HasSub := PcccFindSub(A.FileType, SubS, A.Sub, A.Bit);
-    if not A.HasSub then
-      Exit(Bad('sub-element ".' + SubS + '" is not one of a ' + Letters + ' element'));
-  end;
-  { /bit }
-  if (P <= Length(T)) and (T[P] = '/') then
+  SubS := Copy(T, Q, P - Q);
+  if not IsTcr(A.FileType) then
+    Exit('".' + SubS + '": ' + Letters + ' elements have no sub-elements');
+  A.HasSub := PcccFindSub(A.FileType, SubS, A.Sub, A.Bit);
+  if not A.HasSub then
+    Exit('sub-element ".' + SubS + '" is not one of a ' + Letters + ' element');
+end;
+
+{ "/bit" of a word (T[P] = '/'), in octal where the element is; the rest
+  of T. }
+function ParseBit(const T: ShortString; var P: Integer; const Letters: ShortString;
+  Octal: Boolean; var A: tPcccAddr): ShortString;
+var
+  Num: ShortString;
+  V: LongInt;
+begin
+  Result := '';
+  Num := Copy(T, P + 1, 255);
+  if A.Bit >= 0 then
+    Exit('"/' + Num + '" after a bit sub-element');
+  if IsTcr(A.FileType) and not A.HasSub then
+    Exit('"/' + Num + '" on a whole ' + Letters + ' element: name a word (.PRE, .ACC) or a bit (.DN)');
+  if not IsWordFile(A.FileType) and not IsTcr(A.FileType) then
+    Exit('"/' + Num + '": ' + Letters + ' elements have no addressable bits');
+  V := 0;
+  if Octal then
   begin
-    Num := Copy(T, P + 1, 255);
-    if A.Bit >= 0 then
-      Exit(Bad('"/' + Num + '" after a bit sub-element'));
-    if IsTcr(A.FileType) and not A.HasSub then
-      Exit(Bad('"/' + Num + '" on a whole ' + Letters + ' element: name a word (.PRE, .ACC) or a bit (.DN)'));
-    if not IsWordFile(A.FileType) and not IsTcr(A.FileType) then
-      Exit(Bad('"/' + Num + '": ' + Letters + ' elements have no addressable bits'));
-    if Octal then
+    if not OctalToNum(Num, 15, V) then
+      Exit('bit "' + Num + '" is not octal 00..17');
+  end
+  else if not StrToNum(Num, 0, 15, V) then
+    Exit('bit "' + Num + '" is not 0..15');
+  A.Bit := V;
+  P := Length(T) + 1;
+end;
+
+function PcccParseAddressAs(Dialect: tPcccDialect; const S: ShortString; out A: tPcccAddr;
+  out Err: ShortString): tChResult;
+var
+  T, Letters, Why: ShortString;
+  P: Integer;
+  Octal: Boolean;
+begin
+  FillChar(A, SizeOf(A), 0);
+  A.Bit := -1;
+  Err := '';
+  T := UpperCase(Trim(S));
+  P := 1;
+  Letters := '';
+  Octal := False;
+  if T = '' then
+    Why := 'empty'
+  else
+    Why := ParseFile(T, P, Rules[Dialect], A, Letters);
+  if (Why = '') and (P > Length(T)) then
+    Why := '":element" missing';
+  if Why = '' then
+    if T[P] = '/' then
+      Why := ParseFileBit(T, P, Rules[Dialect], A)
+    else
     begin
-      if not OctalToNum(Num, 15, V) then
-        Exit(Bad('bit "' + Num + '" is not octal 00..17'));
-    end
-    else if not StrToNum(Num, 0, 15, V) then
-      Exit(Bad('bit "' + Num + '" is not 0..15'));
-    A.Bit := V;
-    P := Length(T) + 1;
+      Why := ParseElement(T, P, Rules[Dialect], A, Octal);
+      if (Why = '') and (P <= Length(T)) and (T[P] = '.') then
+        Why := ParseSub(T, P, Letters, A);
+      if (Why = '') and (P <= Length(T)) and (T[P] = '/') then
+        Why := ParseBit(T, P, Letters, Octal, A);
+      if (Why = '') and (P <= Length(T)) then
+        Why := '"' + Copy(T, P, 255) + '" after the element';
+    end;
+  if Why <> '' then
+  begin
+    Err := 'address "' + T + '": ' + Why;
+    Exit(res_PcccAddress);
   end;
-  if P <= Length(T) then
-    Exit(Bad('"' + Copy(T, P, 255) + '" after the element'));
   Result := res_Ok;
 end;
 

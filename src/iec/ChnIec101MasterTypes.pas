@@ -144,11 +144,9 @@ type
 function IecMasterSlave(const M: tIecMaster; Addr: Word): LongInt;
 { No command under way (none yet, or the last one ended). }
 function IecCommandDone(const M: tIecMaster): Boolean;
+{ The state's name, and what the line showed of slave index S besides
+  its answers, for an error text (ChnIec101Master says more). }
 function IecSlaveStateName(S: tIecSlaveState): ShortString;
-{ What the line showed of slave index S besides its answers, for an
-  error: ' — 12 frames from link address 1 ignored' (a wrong NOD=/DNO=),
-  balanced also ' — N frames with this station's own DIR bit ignored'
-  (both stations DIR= alike); '' when nothing was ignored. }
 function IecLineShowed(const M: tIecMaster; S: LongInt): ShortString;
 
 implementation

@@ -315,46 +315,34 @@ begin
   Move(P[0], Result[1 + SizeOf(R)], Length(P));
 end;
 
-function PcapReadBytes(const Data: AnsiString; UtcOffsetSec: LongInt;
-  var Frames: tTrcFrames; var Info: tPcapInfo): tChResult;
+{ A value of the file in its own byte order, whatever the machine's. }
+function FileOrder(const Info: tPcapInfo; V: LongWord): LongWord;
+begin
+  if Info.Swapped then
+    Result := Swap32(LEtoN(V))
+  else
+    Result := LEtoN(V);
+end;
+
+{ The file is refused or cut at byte At: Info says where and why. }
+function ReadFail(var Info: tPcapInfo; Code: tChResult; At: LongInt; const Why: string): tChResult;
+begin
+  Info.ErrPos := At;
+  Info.ErrText := Why;
+  Result := Code;
+end;
+
+{ The file header: the byte order and time resolution its magic says,
+  its link type (RTAC serial only). }
+function ReadFileHeader(const Data: AnsiString; var Info: tPcapInfo; out Nano: Boolean): tChResult;
 var
   H: tPcapFileHeader;
-  R: tPcapRecHeader;
-  T: tRtacHeader;
-  Pos, Count, N, Payload: LongInt;
-  Nano: Boolean;
-  Local: Int64;
-
-  function Fix(V: LongWord): LongWord;
-  begin
-    { the file's own byte order, whatever the machine's }
-    if Info.Swapped then
-      Result := Swap32(LEtoN(V))
-    else
-      Result := LEtoN(V);
-  end;
-
-  function Fail(Code: tChResult; At: LongInt; const Why: string): tChResult;
-  begin
-    Info.ErrPos := At;
-    Info.ErrText := Why;
-    Result := Code;
-  end;
-
 begin
-  FillChar(Info, SizeOf(Info), 0);
-  Info.ErrText := '';
-  Count := 0;
-  SetLength(Frames, 0);
-  Result := res_Ok;
-  if Length(Data) < SizeOf(H) then
-  begin
-    Result := Fail(res_PcapNotPcap, 0, NumStr(Length(Data)) +
-      ' bytes, a pcap file header has 24');
-    Exit;
-  end;
-  Move(Data[1], H, SizeOf(H));
   Nano := False;
+  if Length(Data) < SizeOf(H) then
+    Exit(ReadFail(Info, res_PcapNotPcap, 0, NumStr(Length(Data)) +
+      ' bytes, a pcap file header has 24'));
+  Move(Data[1], H, SizeOf(H));
   case LEtoN(H.Magic) of
     PcapMagic: ;
     PcapMagicNano: Nano := True;
@@ -366,98 +354,122 @@ begin
       Info.Swapped := True;
       Nano := True;
     end
+    else if LEtoN(H.Magic) = $0A0D0D0A then
+      Exit(ReadFail(Info, res_PcapNotPcap, 0, 'a pcapng file: save it as "Wireshark/tcpdump - pcap"'))
     else
-    begin
-      if LEtoN(H.Magic) = $0A0D0D0A then
-        Result := Fail(res_PcapNotPcap, 0, 'a pcapng file: save it as "Wireshark/tcpdump - pcap"')
-      else
-        Result := Fail(res_PcapNotPcap, 0, 'magic $' + HexBytes(@Data[1], 4) +
-          ' is no pcap magic');
-      Exit;
-    end;
+      Exit(ReadFail(Info, res_PcapNotPcap, 0, 'magic $' + HexBytes(@Data[1], 4) +
+        ' is no pcap magic'));
   end;
-  Info.LinkType := Fix(H.LinkType);
+  Info.LinkType := FileOrder(Info, H.LinkType);
   if Info.LinkType <> PcapLinkRtac then
-  begin
-    Result := Fail(res_PcapLinkType, 20, 'link type ' + UNumStr(Info.LinkType) +
-      ', RTAC serial is 250');
+    Exit(ReadFail(Info, res_PcapLinkType, 20, 'link type ' + UNumStr(Info.LinkType) +
+      ', RTAC serial is 250'));
+  Result := res_Ok;
+end;
+
+{ The header of the record at byte Pos, in the machine's byte order;
+  res_PcapCut when the file ends inside it or its length is impossible. }
+function ReadRecordHeader(const Data: AnsiString; Pos: LongInt; var Info: tPcapInfo;
+  out R: tPcapRecHeader): tChResult;
+begin
+  FillChar(R, SizeOf(R), 0);
+  if Pos + SizeOf(R) > Length(Data) then
+    Exit(ReadFail(Info, res_PcapCut, Pos, 'record ' + NumStr(Info.Records + 1) +
+      ': the file ends inside its header'));
+  Move(Data[Pos + 1], R, SizeOf(R));
+  R.TsSec := FileOrder(Info, R.TsSec);
+  R.TsFrac := FileOrder(Info, R.TsFrac);
+  R.InclLen := FileOrder(Info, R.InclLen);
+  R.OrigLen := FileOrder(Info, R.OrigLen);
+  if (R.InclLen > PcapSnapLen) or (R.InclLen > R.OrigLen) then
+    Exit(ReadFail(Info, res_PcapCut, Pos, 'record ' + NumStr(Info.Records + 1) +
+      ': impossible length ' + UNumStr(R.InclLen)));
+  Result := res_Ok;
+end;
+
+{ The frame of an RTAC record (event T, N bytes at Pos with its RTAC
+  header, record header R) into F: the time of the record header (the
+  one tshark shows), the direction, the length announced, the bytes. }
+procedure TakeRecord(const Data: AnsiString; Pos, N: LongInt; const R: tPcapRecHeader;
+  const T: tRtacHeader; Nano: Boolean; UtcOffsetSec, Line: LongInt; var F: tTrcFrame);
+var
+  Payload: LongInt;
+  Local: Int64;
+begin
+  Payload := N - RtacHeaderLen;
+  FillChar(F, SizeOf(F) - SizeOf(F.Data), 0);
+  Local := Int64(R.TsSec) + UtcOffsetSec;
+  Local := Local mod 86400;
+  if Local < 0 then
+    Inc(Local, 86400);
+  if Nano then
+    F.TimeMs := Local * 1000 + R.TsFrac div 1000000
+  else
+    F.TimeMs := Local * 1000 + R.TsFrac div 1000;
+  F.Line := Line;
+  if T.Event in [RtacTxStart, RtacTxEnd] then
+    F.Dir := trcTx
+  else
+    F.Dir := trcRx;
+  if F.Dir = trcTx then
+    F.DirText := 'tx'
+  else
+    F.DirText := 'rx';
+  F.Tag := 'pcap';
+  { the announced length, unsigned on the wire: one past what a chunk
+    can hold stands for "more", and the record is flagged short below }
+  if R.OrigLen - RtacHeaderLen > LongWord(High(LongInt)) then
+    F.Len := High(LongInt)
+  else
+    F.Len := LongInt(R.OrigLen - RtacHeaderLen);
+  SetLength(F.Data, Payload);
+  if Payload > 0 then
+    Move(Data[Pos + 1 + RtacHeaderLen], F.Data[0], Payload);
+  if Payload < F.Len then
+    F.Status := res_TrcShort
+  else
+    F.Status := res_Ok;
+end;
+
+function PcapReadBytes(const Data: AnsiString; UtcOffsetSec: LongInt;
+  var Frames: tTrcFrames; var Info: tPcapInfo): tChResult;
+var
+  R: tPcapRecHeader;
+  T: tRtacHeader;
+  Pos, Count, N: LongInt;
+  Nano: Boolean;
+begin
+  FillChar(Info, SizeOf(Info), 0);
+  Info.ErrText := '';
+  Count := 0;
+  SetLength(Frames, 0);
+  Result := ReadFileHeader(Data, Info, Nano);
+  if Result <> res_Ok then
     Exit;
-  end;
-  Pos := SizeOf(H);                          { 0-based offset of the next record }
+  Pos := SizeOf(tPcapFileHeader);            { 0-based offset of the next record }
   while Pos < Length(Data) do
   begin
-    if Pos + SizeOf(R) > Length(Data) then
-    begin
-      Result := Fail(res_PcapCut, Pos, 'record ' + NumStr(Info.Records + 1) +
-        ': the file ends inside its header');
+    Result := ReadRecordHeader(Data, Pos, Info, R);
+    if Result <> res_Ok then
       Break;
-    end;
-    Move(Data[Pos + 1], R, SizeOf(R));
-    R.TsSec := Fix(R.TsSec);
-    R.TsFrac := Fix(R.TsFrac);
-    R.InclLen := Fix(R.InclLen);
-    R.OrigLen := Fix(R.OrigLen);
-    if (R.InclLen > PcapSnapLen) or (R.InclLen > R.OrigLen) then
-    begin
-      Result := Fail(res_PcapCut, Pos, 'record ' + NumStr(Info.Records + 1) +
-        ': impossible length ' + UNumStr(R.InclLen));
-      Break;
-    end;
     Inc(Info.Records);
     Inc(Pos, SizeOf(R));
     N := R.InclLen;
     if Pos + N > Length(Data) then
       N := Length(Data) - Pos;              { the last record, cut off }
-    if N < RtacHeaderLen then
+    { an RTAC record of a start or end of transmission is a frame; any
+      other is skipped }
+    if N >= RtacHeaderLen then
+      Move(Data[Pos + 1], T, SizeOf(T));
+    if (N < RtacHeaderLen) or not (T.Event in [RtacTxStart, RtacRxStart, RtacTxEnd, RtacRxEnd]) then
+      Inc(Info.Skipped)
+    else
     begin
-      Inc(Info.Skipped);
-      Inc(Pos, N);
-      Continue;
+      if Count >= Length(Frames) then
+        SetLength(Frames, 2 * Count + 16);
+      TakeRecord(Data, Pos, N, R, T, Nano, UtcOffsetSec, Info.Records, Frames[Count]);
+      Inc(Count);
     end;
-    Move(Data[Pos + 1], T, SizeOf(T));
-    if not (T.Event in [RtacTxStart, RtacRxStart, RtacTxEnd, RtacRxEnd]) then
-    begin
-      Inc(Info.Skipped);
-      Inc(Pos, N);
-      Continue;
-    end;
-    Payload := N - RtacHeaderLen;
-    if Count >= Length(Frames) then
-      SetLength(Frames, 2 * Count + 16);
-    FillChar(Frames[Count], SizeOf(Frames[Count]) - SizeOf(Frames[Count].Data), 0);
-    { the record header's time: the one tshark shows }
-    Local := Int64(R.TsSec) + UtcOffsetSec;
-    Local := Local mod 86400;
-    if Local < 0 then
-      Inc(Local, 86400);
-    if Nano then
-      Frames[Count].TimeMs := Local * 1000 + R.TsFrac div 1000000
-    else
-      Frames[Count].TimeMs := Local * 1000 + R.TsFrac div 1000;
-    Frames[Count].Line := Info.Records;
-    if T.Event in [RtacTxStart, RtacTxEnd] then
-      Frames[Count].Dir := trcTx
-    else
-      Frames[Count].Dir := trcRx;
-    if Frames[Count].Dir = trcTx then
-      Frames[Count].DirText := 'tx'
-    else
-      Frames[Count].DirText := 'rx';
-    Frames[Count].Tag := 'pcap';
-    { the announced length, unsigned on the wire: one past what a chunk
-      can hold stands for "more", and the record is flagged short below }
-    if R.OrigLen - RtacHeaderLen > LongWord(High(LongInt)) then
-      Frames[Count].Len := High(LongInt)
-    else
-      Frames[Count].Len := LongInt(R.OrigLen - RtacHeaderLen);
-    SetLength(Frames[Count].Data, Payload);
-    if Payload > 0 then
-      Move(Data[Pos + 1 + RtacHeaderLen], Frames[Count].Data[0], Payload);
-    if Payload < Frames[Count].Len then
-      Frames[Count].Status := res_TrcShort
-    else
-      Frames[Count].Status := res_Ok;
-    Inc(Count);
     Inc(Pos, N);
   end;
   SetLength(Frames, Count);

@@ -46,6 +46,8 @@ type
     function Counters(out N: LongWord): Boolean;
     function Refuse(const Key: ShortString): tChResult;
     function FailSet(Err: cint): tChResult;
+    function SetStandardRate(var T: Termios; Code: LongWord): tChResult;
+    function SetOtherRate(const T: Termios; Baud: LongInt): tChResult;
   protected
     { Open takes no flock: for /dev/ptmx (ChnPty), where every open is a
       new pair but a lock would hold the one inode for the whole system }
@@ -238,15 +240,120 @@ begin
   Result := res_Ok;
 end;
 
+{ The c_cflag bits of S's character (data and stop bits) into Flags, and
+  the ranges of the other settings; '' or the key of the one refused
+  (BIT, STOP, BD, PAR, FLW). }
+function CharFlags(const S: tPortSettings; out Flags: Cardinal): ShortString;
+begin
+  Result := '';
+  Flags := CREAD or CLOCAL;
+  case S.DataBits of
+    5: Flags := Flags or CS5;
+    6: Flags := Flags or CS6;
+    7: Flags := Flags or CS7;
+    8: Flags := Flags or CS8;
+  else
+    Exit('BIT');
+  end;
+  case S.StopBits of
+    1: ;
+    2: Flags := Flags or CSTOPB;
+  else
+    Exit('STOP');
+  end;
+  if S.Baud <= 0 then
+    Exit('BD');
+  if Ord(S.Parity) > Ord(High(tPortParity)) then
+    Exit('PAR');
+  if Ord(S.Flow) > Ord(High(tPortFlow)) then
+    Exit('FLW');
+end;
+
+{ Parity into Flags, flow control into Flags or T's input flags; '' or
+  PAR (mark and space parity: Linux only). }
+function ParityFlowFlags(const S: tPortSettings; var Flags: Cardinal; var T: Termios): ShortString;
+begin
+  Result := '';
+  case S.Parity of
+    ppNone: ;
+    ppEven: Flags := Flags or PARENB;
+    ppOdd: Flags := Flags or PARENB or PARODD;
+    {$IFDEF LINUX}
+    ppMark: Flags := Flags or PARENB or PARODD or CMSPAR;
+    ppSpace: Flags := Flags or PARENB or CMSPAR;
+    {$ELSE}
+    ppMark, ppSpace: Exit('PAR');
+    {$ENDIF}
+  end;
+  case S.Flow of
+    flowNone: ;
+    flowRtsCts: Flags := Flags or CRTSCTS;
+    flowXonXoff: T.c_iflag := T.c_iflag or IXON or IXOFF;
+  end;
+end;
+
+{ T with a standard rate (its B constant Code), read back: a setting the
+  device did not take is refused by its key, with no fallback. }
+function TChnPortUnix.SetStandardRate(var T: Termios; Code: LongWord): tChResult;
+var
+  Back: Termios;
+begin
+  CFSetISpeed(T, Code);
+  CFSetOSpeed(T, Code);
+  if TCSetAttr(FFd, TCSANOW, T) <> 0 then
+    Exit(FailSet(FpGetErrno));
+  if TCGetAttr(FFd, Back) <> 0 then
+    Exit(Fail(FpGetErrno));
+  if (Back.c_cflag and CheckedCFlags) <> (T.c_cflag and CheckedCFlags) then
+    Exit(Refuse(PortCFlagKey(Back.c_cflag, T.c_cflag, CheckedCFlags)));   { no fallback }
+  Result := res_Ok;
+end;
+
+{ T with a rate without a B constant: termios2 with BOTHER. A device (or
+  an emulator: qemu-user 7.2 does not know TCGETS2) that refuses termios2
+  can only take the standard rates: this one is refused, BD= named. }
+function TChnPortUnix.SetOtherRate(const T: Termios; Baud: LongInt): tChResult;
+{$IFDEF CHN_TERMBITS}
+var
+  T2: tTermios2;
+begin
+  FillChar(T2, SizeOf(T2), 0);
+  if FpIOCtl(FFd, TCGETS2, @T2) <> 0 then
+  begin
+    FOSError := FpGetErrno;
+    Exit(Refuse('BD'));
+  end;
+  T2.c_iflag := T.c_iflag;
+  T2.c_oflag := T.c_oflag;
+  T2.c_lflag := T.c_lflag;
+  T2.c_cflag := (T.c_cflag and (AllCFlags xor CBAUD)) or BOTHER;
+  Move(T.c_cc, T2.c_cc, SizeOf(T2.c_cc));
+  T2.c_ispeed := Baud;
+  T2.c_ospeed := Baud;
+  if FpIOCtl(FFd, TCSETS2, @T2) <> 0 then
+    Exit(FailSet(FpGetErrno));
+  FillChar(T2, SizeOf(T2), 0);
+  if FpIOCtl(FFd, TCGETS2, @T2) <> 0 then
+    Exit(Fail(FpGetErrno));
+  { the kernel writes back the rate it set; allow 2 % as UARTs do }
+  if Abs(Int64(T2.c_ospeed) - Baud) * 50 > Baud then
+    Exit(Refuse('BD'));
+  if (T2.c_cflag and FramingCFlags) <> (T.c_cflag and FramingCFlags) then
+    Exit(Refuse(PortCFlagKey(T2.c_cflag, T.c_cflag, CheckedCFlags)));
+  Result := res_Ok;
+end;
+{$ELSE}
+begin
+  Result := Refuse('BD');
+end;
+{$ENDIF}
+
 function TChnPortUnix.Configure(const S: tPortSettings): tChResult;
 var
-  T, Back: Termios;
-  Flags: Cardinal;
+  T: Termios;
+  Flags, Code: Cardinal;
+  Key: ShortString;
   I: Integer;
-  Code: Cardinal;
-  {$IFDEF CHN_TERMBITS}
-  T2: tTermios2;
-  {$ENDIF}
 begin
   if not FOpen then
     Exit(res_WrongState);
@@ -257,30 +364,9 @@ begin
   T.c_iflag := T.c_iflag and not (IXON or IXOFF or IXANY or INPCK or IGNPAR);
   T.c_cc[VMIN] := 1;
   T.c_cc[VTIME] := 0;
-  Flags := CREAD or CLOCAL;
-  case S.DataBits of
-    5: Flags := Flags or CS5;
-    6: Flags := Flags or CS6;
-    7: Flags := Flags or CS7;
-    8: Flags := Flags or CS8;
-  else
-    Exit(Refuse('BIT'));
-  end;
-  case S.StopBits of
-    1: ;
-    2: Flags := Flags or CSTOPB;
-  else
-    Exit(Refuse('STOP'));
-  end;
-  if (S.Baud <= 0) or (Ord(S.Parity) > Ord(High(tPortParity))) or
-     (Ord(S.Flow) > Ord(High(tPortFlow))) then
-  begin
-    if S.Baud <= 0 then
-      Exit(Refuse('BD'));
-    if Ord(S.Parity) > Ord(High(tPortParity)) then
-      Exit(Refuse('PAR'));
-    Exit(Refuse('FLW'));
-  end;
+  Key := CharFlags(S, Flags);
+  if Key <> '' then
+    Exit(Refuse(Key));
   if FVirtual then
   begin
     { bytes only: raw, 8 bits, no parity, no flow control; nothing to check }
@@ -290,73 +376,18 @@ begin
       Exit(Fail(FpGetErrno));
     Exit(res_Ok);
   end;
-  case S.Parity of
-    ppNone: ;
-    ppEven: Flags := Flags or PARENB;
-    ppOdd: Flags := Flags or PARENB or PARODD;
-    {$IFDEF LINUX}
-    ppMark: Flags := Flags or PARENB or PARODD or CMSPAR;
-    ppSpace: Flags := Flags or PARENB or CMSPAR;
-    {$ELSE}
-    ppMark, ppSpace: Exit(Refuse('PAR'));
-    {$ENDIF}
-  end;
-  case S.Flow of
-    flowNone: ;
-    flowRtsCts: Flags := Flags or CRTSCTS;
-    flowXonXoff: T.c_iflag := T.c_iflag or IXON or IXOFF;
-  end;
+  Key := ParityFlowFlags(S, Flags, T);
+  if Key <> '' then
+    Exit(Refuse(Key));
   Code := 0;
   for I := Low(BaudCodes) to High(BaudCodes) do
     if BaudCodes[I].Baud = S.Baud then
       Code := BaudCodes[I].Code;
   T.c_cflag := (T.c_cflag and (AllCFlags xor (CheckedCFlags or CREAD or CLOCAL or HUPCL))) or Flags;
   if Code <> 0 then
-  begin
-    CFSetISpeed(T, Code);
-    CFSetOSpeed(T, Code);
-    if TCSetAttr(FFd, TCSANOW, T) <> 0 then
-      Exit(FailSet(FpGetErrno));
-    if TCGetAttr(FFd, Back) <> 0 then
-      Exit(Fail(FpGetErrno));
-    if (Back.c_cflag and CheckedCFlags) <> (T.c_cflag and CheckedCFlags) then
-      Exit(Refuse(PortCFlagKey(Back.c_cflag, T.c_cflag, CheckedCFlags)));   { no fallback }
-  end
+    Result := SetStandardRate(T, Code)
   else
-  begin
-    {$IFDEF CHN_TERMBITS}
-    { a rate without a B constant: termios2 with BOTHER. A device (or an
-      emulator: qemu-user 7.2 does not know TCGETS2) that refuses
-      termios2 can only take the standard rates above: this one is
-      refused, BD= named }
-    FillChar(T2, SizeOf(T2), 0);
-    if FpIOCtl(FFd, TCGETS2, @T2) <> 0 then
-    begin
-      FOSError := FpGetErrno;
-      Exit(Refuse('BD'));
-    end;
-    T2.c_iflag := T.c_iflag;
-    T2.c_oflag := T.c_oflag;
-    T2.c_lflag := T.c_lflag;
-    T2.c_cflag := (T.c_cflag and (AllCFlags xor CBAUD)) or BOTHER;
-    Move(T.c_cc, T2.c_cc, SizeOf(T2.c_cc));
-    T2.c_ispeed := S.Baud;
-    T2.c_ospeed := S.Baud;
-    if FpIOCtl(FFd, TCSETS2, @T2) <> 0 then
-      Exit(FailSet(FpGetErrno));
-    FillChar(T2, SizeOf(T2), 0);
-    if FpIOCtl(FFd, TCGETS2, @T2) <> 0 then
-      Exit(Fail(FpGetErrno));
-    { the kernel writes back the rate it set; allow 2 % as UARTs do }
-    if Abs(Int64(T2.c_ospeed) - S.Baud) * 50 > S.Baud then
-      Exit(Refuse('BD'));
-    if (T2.c_cflag and FramingCFlags) <> (T.c_cflag and FramingCFlags) then
-      Exit(Refuse(PortCFlagKey(T2.c_cflag, T.c_cflag, CheckedCFlags)));
-    {$ELSE}
-    Exit(Refuse('BD'));
-    {$ENDIF}
-  end;
-  Result := res_Ok;
+    Result := SetOtherRate(T, S.Baud);
 end;
 
 function TChnPortUnix.DoRead(var Buf; Size: LongInt; out Got: LongInt): tChResult;
