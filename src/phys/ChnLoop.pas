@@ -130,6 +130,7 @@ type
   private
     FPair: pLoopPair;
     FEnd: Byte;
+    FMe: ^tLoopEnd;             {< FPair^.Ends[FEnd] while open: the polls' path }
   public
     PairName: ShortString;      {< set before Open }
     EndNo: Byte;
@@ -307,6 +308,27 @@ begin
       Result := RingRoom(P^.Ends[L].Ring);
 end;
 
+{ The common line: two ends without a speed (a null modem without BD=),
+  end E writing Len characters at Src while every wire is empty. They go
+  into the other end's ring as far as they fit, as GoesStraight, HandOver
+  and SignalEnds would put them, without those loops over the ends: the
+  number put, or -1 when the line is not that one (or nobody listens). }
+function StraightToPeer(P: pLoopPair; E: LongInt; Src: PByte; Len: LongInt): LongInt; inline;
+var
+  O: LongInt;
+begin
+  Result := -1;
+  if (P^.Paced > 0) or (P^.OnWire > 0) or (P^.Top > 2) then
+    Exit;
+  O := 3 - E;
+  if not P^.Ends[O].Open then
+    Exit;
+  Result := RingPut(P^.Ends[O].Ring, Src, Len);
+  Inc(P^.Chars, Result);
+  if Result > 0 then
+    ChnWaitSignal(P^.Ends[O].Wait);
+end;
+
 { Move what has reached the other ends by Now (with a speed), or what
   fits into every other end's ring (without), and tell the shared wait
   when the next characters fall due: the receivers when the next ones
@@ -427,6 +449,7 @@ begin
       P^.Top := EndNo;
     FPair := P;
     FEnd := EndNo;
+    FMe := @P^.Ends[EndNo];
     FOpen := True;
   finally
     LeaveCriticalSection(Lock);
@@ -470,6 +493,7 @@ begin
         Dispose(FPair);
       end;
       FPair := nil;
+      FMe := nil;
     finally
       LeaveCriticalSection(Lock);
     end;
@@ -482,9 +506,9 @@ begin
   EnterCriticalSection(Lock);
   try
     PumpDue(FPair, FEnd);
-    Got := RingGet(FPair^.Ends[FEnd].Ring, @Buf, Size);
-    if Got > 0 then
-      Pump(FPair, PairNow(FPair), FEnd);       { room again for a held sender }
+    Got := RingGet(FMe^.Ring, @Buf, Size);
+    if (Got > 0) and (FPair^.OnWire > 0) then
+      PumpWires(FPair, PairNow(FPair), FEnd);  { room again for a held sender }
   finally
     LeaveCriticalSection(Lock);
   end;
@@ -540,22 +564,30 @@ begin
   Result := res_Ok;
   EnterCriticalSection(Lock);
   try
-    Now := PairNow(FPair);
-    Pump(FPair, Now, FEnd);
     { what the wire and Pump would move at once goes into the other
       ends' rings without the copy onto the wire (the null modem: one
       message at a time); the rest waits on the wire }
-    Straight := GoesStraight(FPair, FEnd, Len);
+    Now := 0;                       { StraightToPeer: a line without a speed }
+    Straight := StraightToPeer(FPair, FEnd, @Buf, Len);
+    if Straight < 0 then
+    begin
+      Now := PairNow(FPair);
+      Pump(FPair, Now, FEnd);
+      Straight := GoesStraight(FPair, FEnd, Len);
+      if Straight > 0 then
+      begin
+        HandOver(FPair, FEnd, @Buf, Straight);
+        SignalEnds(FPair, FEnd, FEnd);
+      end;
+    end;
     if Straight > 0 then
     begin
-      HandOver(FPair, FEnd, @Buf, Straight);
-      SignalEnds(FPair, FEnd, FEnd);
       Done := Len;
       if Straight = Len then
         Exit;
     end;
     Rest := Len - Straight;
-    with FPair^.Ends[FEnd] do
+    with FMe^ do
     begin
       Idle := WirePos >= WireLen;
       if not Idle and (CharUs = 0) then
@@ -583,7 +615,7 @@ begin
       end;
     end;
     Done := Len;
-    if FPair^.Ends[FEnd].CharUs > 0 then
+    if FMe^.CharUs > 0 then
       Collide(FPair, FEnd);
     Pump(FPair, Now, FEnd);
   finally
@@ -595,7 +627,7 @@ function TChnPortLoop.OutQueue(out N: LongInt): tChResult;
 begin
   { nothing on this end's wire: only its own DoWrite puts characters
     there, so no lock and no Pump (the sender polls this for every send) }
-  with FPair^.Ends[FEnd] do
+  with FMe^ do
     if WirePos >= WireLen then
     begin
       N := 0;
@@ -603,7 +635,7 @@ begin
     end;
   EnterCriticalSection(Lock);
   PumpDue(FPair, FEnd);
-  with FPair^.Ends[FEnd] do
+  with FMe^ do
     N := WireLen - WirePos;
   LeaveCriticalSection(Lock);
   Result := res_Ok;
@@ -613,13 +645,13 @@ function TChnPortLoop.WaitInput(Ms: LongInt): Boolean;
 begin
   { input already here stays until this end reads it; without a speed
     nothing falls due (PumpDue): no lock, no Pump }
-  if FPair^.Ends[FEnd].Ring.Count > 0 then
+  if FMe^.Ring.Count > 0 then
     Exit(True);
   if FPair^.Paced = 0 then
     Exit(False);
   EnterCriticalSection(Lock);
   PumpDue(FPair, FEnd);
-  Result := FPair^.Ends[FEnd].Ring.Count > 0;
+  Result := FMe^.Ring.Count > 0;
   LeaveCriticalSection(Lock);
 end;
 
