@@ -329,6 +329,43 @@ begin
     ChnWaitSignal(P^.Ends[O].Wait);
 end;
 
+{ PumpWires on the common line, two ends without a speed: each end's
+  wire moves into the other end's ring as far as it fits, as Deliver
+  would move it, without its loops over the ends. }
+procedure PumpPair(P: pLoopPair; Caller: LongInt);
+var
+  E, O, N: LongInt;
+begin
+  for E := 1 to 2 do
+    with P^.Ends[E] do
+      if WirePos < WireLen then
+      begin
+        O := 3 - E;
+        N := WireLen - WirePos;
+        if P^.Ends[O].Open then
+        begin
+          if RingRoom(P^.Ends[O].Ring) < N then
+            N := RingRoom(P^.Ends[O].Ring);
+          if N = 0 then
+            Continue;
+          RingPut(P^.Ends[O].Ring, @Wire[WirePos], N);
+        end;
+        Inc(P^.Chars, N);
+        Inc(WirePos, N);
+        if WirePos >= WireLen then
+        begin
+          WirePos := 0;
+          WireLen := 0;
+          LastEnd := WireAt;
+          Dec(P^.OnWire);
+        end;
+        if E <> Caller then
+          ChnWaitSignal(Wait);
+        if (O <> Caller) and P^.Ends[O].Open then
+          ChnWaitSignal(P^.Ends[O].Wait);
+      end;
+end;
+
 { Move what has reached the other ends by Now (with a speed), or what
   fits into every other end's ring (without), and tell the shared wait
   when the next characters fall due: the receivers when the next ones
@@ -381,10 +418,15 @@ begin
 end;
 
 { Pump's calls come with every read, write and poll of an end; most find
-  every wire empty (a message is delivered whole as it is written). }
+  every wire empty (a message is delivered whole as it is written). Two
+  ends without a speed, the common line, take PumpPair's short way. }
 procedure Pump(P: pLoopPair; Now: QWord; Caller: LongInt); inline;
 begin
-  if P^.OnWire > 0 then
+  if P^.OnWire = 0 then
+    Exit;
+  if (P^.Paced = 0) and (P^.Top <= 2) then
+    PumpPair(P, Caller)
+  else
     PumpWires(P, Now, Caller);
 end;
 
@@ -396,6 +438,14 @@ begin
     Result := ChnClockUs
   else
     Result := 0;
+end;
+
+{ Pump at this time (the clock read only when characters are on a wire
+  of a line with a speed). }
+procedure PumpNow(P: pLoopPair; Caller: LongInt); inline;
+begin
+  if P^.OnWire > 0 then
+    Pump(P, PairNow(P), Caller);
 end;
 
 { Pump for a poll (a read's start, OutQueue, WaitInput, WaitOutput): with
@@ -483,7 +533,7 @@ begin
       end;
       Dec(FPair^.OpenCount);
       if FPair^.OpenCount > 0 then
-        Pump(FPair, PairNow(FPair), FEnd);     { this end's full ring held nobody back now }
+        PumpNow(FPair, FEnd);          { this end's full ring held nobody back now }
       if FPair^.OpenCount = 0 then
       begin
         Link := @Pairs;
@@ -503,15 +553,14 @@ end;
 
 function TChnPortLoop.DoRead(var Buf; Size: LongInt; out Got: LongInt): tChResult;
 begin
+  { no try..finally, as in the polls below: nothing here raises, and the
+    frame was a good part of a short read's cost }
   EnterCriticalSection(Lock);
-  try
-    PumpDue(FPair, FEnd);
-    Got := RingGet(FMe^.Ring, @Buf, Size);
-    if (Got > 0) and (FPair^.OnWire > 0) then
-      PumpWires(FPair, PairNow(FPair), FEnd);  { room again for a held sender }
-  finally
-    LeaveCriticalSection(Lock);
-  end;
+  PumpDue(FPair, FEnd);
+  Got := RingGet(FMe^.Ring, @Buf, Size);
+  if Got > 0 then
+    PumpNow(FPair, FEnd);              { room again for a held sender }
+  LeaveCriticalSection(Lock);
   Result := res_Ok;
 end;
 
@@ -670,7 +719,7 @@ begin
   begin
     EnterCriticalSection(Lock);
     RingClear(FPair^.Ends[FEnd].Ring);
-    Pump(FPair, PairNow(FPair), FEnd);         { room again for a held sender }
+    PumpNow(FPair, FEnd);              { room again for a held sender }
     LeaveCriticalSection(Lock);
   end;
   Result := res_Ok;
@@ -696,7 +745,7 @@ procedure TChnPortLoop.WaitJoined(Src: pChnWaitSource);
 begin
   EnterCriticalSection(Lock);
   FPair^.Ends[FEnd].Wait := Src;
-  Pump(FPair, PairNow(FPair), FEnd);          { characters already on their way }
+  PumpNow(FPair, FEnd);               { characters already on their way }
   LeaveCriticalSection(Lock);
 end;
 
