@@ -18,6 +18,10 @@ type
   TTestChnComTiming = class(TStackCase)
   private
     Pty: TPtyPair;
+    Buf: array[0..15] of Byte;      {< the device's receive buffer }
+    { a COM device on a new pty with Params, after the question $41 came
+      to it from the master side }
+    function Asked(const Params: string): pChnVirt;
     { the device answers one byte at once when one came; ms until the
       answer is at the master side }
     function AnswerTakes(const Params: string): QWord;
@@ -41,26 +45,33 @@ begin
   FreeAndNil(Pty);
 end;
 
+function TTestChnComTiming.Asked(const Params: string): pChnVirt;
+var
+  B: Byte;
+  Len: Word;
+  Deadline: QWord;
+begin
+  Pty := TPtyPair.Create;
+  Result := Stack('COM', 'DEV=' + Pty.SlavePath + ' ' + Params);
+  Result^.ChReceiveBuffer(@Buf, SizeOf(Buf));
+  B := $41;
+  AssertEquals(1, Pty.MasterWrite(B, 1));
+  Deadline := ChMsTick + 3000;
+  while (Result^.ChReceiveReady <> CHS_ReceiveReady) and (ChMsTick < Deadline) do
+    ChnWaitAny(50);
+  Result^.ChReceive(Len);
+  AssertEquals('the question came', 1, Len);
+end;
+
 function TTestChnComTiming.AnswerTakes(const Params: string): QWord;
 var
   Dev: pChnVirt;
-  Buf: array[0..15] of Byte;
   B: Byte;
-  Len: Word;
   T0, Deadline: QWord;
   Waits: Integer;
   Sent: Boolean;
 begin
-  Pty := TPtyPair.Create;
-  Dev := Stack('COM', 'DEV=' + Pty.SlavePath + ' IDL=0 ' + Params);
-  Dev^.ChReceiveBuffer(@Buf, SizeOf(Buf));
-  B := $41;
-  AssertEquals(1, Pty.MasterWrite(B, 1));
-  Deadline := ChMsTick + 3000;
-  while (Dev^.ChReceiveReady <> CHS_ReceiveReady) and (ChMsTick < Deadline) do
-    ChnWaitAny(50);
-  Dev^.ChReceive(Len);
-  AssertEquals('the question came', 1, Len);
+  Dev := Asked('IDL=0 ' + Params);
   T0 := ChMsTick;
   B := $42;
   Dev^.ChSend(@B, 1);
@@ -121,22 +132,11 @@ end;
 procedure TTestChnComTiming.TestHeldAnswerGoesAfterAnIdlePoll;
 var
   Dev: pChnVirt;
-  Buf: array[0..15] of Byte;
   B: Byte;
-  Len: Word;
   Deadline: QWord;
   Got: LongInt;
 begin
-  Pty := TPtyPair.Create;
-  Dev := Stack('COM', 'DEV=' + Pty.SlavePath + ' IDL=400 TURN=100');
-  Dev^.ChReceiveBuffer(@Buf, SizeOf(Buf));
-  B := $41;
-  AssertEquals(1, Pty.MasterWrite(B, 1));
-  Deadline := ChMsTick + 3000;
-  while (Dev^.ChReceiveReady <> CHS_ReceiveReady) and (ChMsTick < Deadline) do
-    ChnWaitAny(50);
-  Dev^.ChReceive(Len);
-  AssertEquals('the question came', 1, Len);
+  Dev := Asked('IDL=400 TURN=100');
   B := $42;
   Dev^.ChSend(@B, 1);                { held for TURN= 100 ms }
   { one poll: nothing comes, its IDL= wait (400 ms) ends at the answer's time }

@@ -32,6 +32,8 @@ type
     { poll both until the layer delivers an ASDU; its hex ('' none) }
     function LayerGets(TimeoutMs: Integer = 3000): string;
     procedure Poll(Ms: Integer);
+    { the layer closed the connection once, saying Why in its reason }
+    procedure AssertClosedFor(const Why: string);
     procedure StartServer;
   protected
     procedure TearDown; override;
@@ -178,6 +180,12 @@ begin
   until GetTickCount64 >= Deadline;
 end;
 
+procedure TTestChnIec104.AssertClosedFor(const Why: string);
+begin
+  AssertEquals('closed', 1, L^.ChClosings);
+  AssertTrue(L^.ChCloseReason, Pos(Why, L^.ChCloseReason) > 0);
+end;
+
 procedure TTestChnIec104.StartServer;
 begin
   PeerSend('68 04 07 00 00 00');
@@ -306,8 +314,7 @@ begin
   AssertTrue('TESTFR act after t3', PeerGets('68 04 43 00 00 00', 2500));
   { unanswered: closed after t1 }
   Poll(2500);
-  AssertEquals('closed', 1, L^.ChClosings);
-  AssertTrue(L^.ChCloseReason, Pos('no TESTFR con within t1', L^.ChCloseReason) > 0);
+  AssertClosedFor('no TESTFR con within t1');
 end;
 
 procedure TTestChnIec104.TestIFrameBeforeStartDtCloses;
@@ -315,8 +322,7 @@ begin
   OpenPeerClient(OpenServerLayer('NAM=IEC104'));
   PeerSend('68 05 00 00 00 00 AA');
   Poll(100);
-  AssertEquals('closed', 1, L^.ChClosings);
-  AssertTrue(L^.ChCloseReason, Pos('before STARTDT', L^.ChCloseReason) > 0);
+  AssertClosedFor('before STARTDT');
   AssertEquals('nothing delivered', '', LayerGets(50));
   Poll(50);
   AssertEquals('the peer sees the close', res_DeviceLost, Peer^.ChReceiveResult);
@@ -328,8 +334,7 @@ begin
   StartServer;
   PeerSend('68 05 02 00 00 00 AA');              { N(S)=1, expected 0 }
   Poll(100);
-  AssertEquals('closed', 1, L^.ChClosings);
-  AssertTrue(L^.ChCloseReason, Pos('N(S)=1, expected 0', L^.ChCloseReason) > 0);
+  AssertClosedFor('N(S)=1, expected 0');
 end;
 
 procedure TTestChnIec104.TestNrOutOfWindowCloses;
@@ -338,8 +343,7 @@ begin
   StartServer;
   PeerSend('68 04 01 00 02 00');                { S N(R)=1: nothing was sent }
   Poll(100);
-  AssertEquals('closed', 1, L^.ChClosings);
-  AssertTrue(L^.ChCloseReason, Pos('N(R)=1 outside 0..0', L^.ChCloseReason) > 0);
+  AssertClosedFor('N(R)=1 outside 0..0');
 end;
 
 procedure TTestChnIec104.TestUWithTwoFunctionsCloses;
@@ -347,8 +351,7 @@ begin
   OpenPeerClient(OpenServerLayer('NAM=IEC104'));
   PeerSend('68 04 47 00 00 00');
   Poll(100);
-  AssertEquals('closed', 1, L^.ChClosings);
-  AssertTrue(L^.ChCloseReason, Pos('control field', L^.ChCloseReason) > 0);
+  AssertClosedFor('control field');
 end;
 
 procedure TTestChnIec104.TestBadLengthCloses;
@@ -356,8 +359,7 @@ begin
   OpenPeerClient(OpenServerLayer('NAM=IEC104'));
   PeerSend('68 03 07 00 00');
   Poll(100);
-  AssertEquals('closed', 1, L^.ChClosings);
-  AssertTrue(L^.ChCloseReason, Pos('length octet 3', L^.ChCloseReason) > 0);
+  AssertClosedFor('length octet 3');
   Dispose(Peer, Done);
   Peer := nil;
   OpenPeerClient(pChnTcp(Layer^.CH_Low)^.ChLocalPort);

@@ -13,7 +13,7 @@ interface
 
 uses
   SysUtils, Process, fpcunit, testregistry, ChnTypes, ChnDF1Codec, ChnSlc, ChnPccc, ChnPlc5,
-  ChnPcccClient, TestSupport, BinSupport;
+  ChnPcccClient, TestSupport, SlcAsk, BinSupport;
 
 type
   TTestChnPlc5Sim = class(TTestCase)
@@ -47,27 +47,8 @@ begin
 end;
 
 function TTestChnPlc5Sim.Ask(CF: Word; const DataHex: string): string;
-var
-  Req: tRecRecord;
-  Rep: tSendRecord;
-  D: TBytes;
-  RepLen: Word;
 begin
-  FillChar(Req, SizeOf(Req), 0);
-  FillChar(Rep, SizeOf(Rep), $EE);
-  Req.MessType := tpDataMess;
-  Req.CF := CF;
-  Req.Tns := 7;
-  D := HexToBytes(DataHex);
-  if Length(D) > 0 then
-    Move(D[0], Req.Data[0], Length(D));
-  RepLen := 0;
-  AssertTrue('handled', SlcHandle(T, Req, 8 + Length(D), Rep, RepLen));
-  AssertEquals('reply CF', (CF and $FF00) or $4000, Rep.CF);
-  AssertEquals('reply TNS', 7, Rep.Tns);
-  Result := Format('STS=%.2x', [Rep.Sts]);
-  if RepLen > 8 then
-    Result := Result + ' ' + BytesToHex(Rep.Data, RepLen - 8);
+  Result := SlcAskText(T, CF, DataHex, 7);
 end;
 
 function TTestChnPlc5Sim.ConfigError(const Text: string): string;

@@ -11,7 +11,7 @@ unit TestChnSlc;
 interface
 
 uses
-  SysUtils, StrUtils, fpcunit, testregistry, ChnTypes, ChnDF1Codec, ChnSlc, ChnPccc, TestSupport;
+  SysUtils, StrUtils, fpcunit, testregistry, ChnTypes, ChnDF1Codec, ChnSlc, ChnPccc, TestSupport, SlcAsk;
 
 type
   TTestChnSlc = class(TTestCase)
@@ -83,28 +83,8 @@ begin
 end;
 
 function TTestChnSlc.Ask(CF: Word; const DataHex: string; Tns: Word): string;
-var
-  Req: tRecRecord;
-  Rep: tSendRecord;
-  D: TBytes;
-  RepLen: Word;
 begin
-  FillChar(Req, SizeOf(Req), 0);
-  FillChar(Rep, SizeOf(Rep), $EE);
-  Req.MessType := tpDataMess;
-  Req.CF := CF;
-  Req.Tns := Tns;
-  D := HexToBytes(DataHex);
-  if Length(D) > 0 then
-    Move(D[0], Req.Data[0], Length(D));
-  RepLen := 0;
-  AssertTrue('handled', SlcHandle(T, Req, 8 + Length(D), Rep, RepLen));
-  AssertEquals('reply MessType', Ord(tpDataMess), Ord(Rep.MessType));
-  AssertEquals('reply CF: CMD + $40, no FNC', (CF and $FF00) or $4000, Rep.CF);
-  AssertEquals('reply TNS', Tns, Rep.Tns);
-  Result := Format('STS=%.2x', [Rep.Sts]);
-  if RepLen > 8 then
-    Result := Result + ' ' + BytesToHex(Rep.Data, RepLen - 8);
+  Result := SlcAskText(T, CF, DataHex, Tns);
 end;
 
 function TTestChnSlc.ConfigError(const Text: string): string;

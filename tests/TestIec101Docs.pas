@@ -13,13 +13,12 @@ interface
 uses
   SysUtils, Classes, Process, fpcunit, testregistry, ChnTypes, ChnVirt, ChnCom, ChnPty,
   ChnFT1_2, ChnIec101Asdu, ChnIec101Slave, ChnIec101Master, Iec101Points, BinSupport,
-  TestTempDir;
+  TestTempDir, DocProgram;
 
 type
   TTestIec101Docs = class(TTestCase)
   private
     FDir: string;
-    function Build(const Name: string): string;
   protected
     procedure SetUp; override;
     procedure TearDown; override;
@@ -45,43 +44,6 @@ begin
   RemoveTempDir(FDir);
 end;
 
-{ Cut program Name out of the document, build it; the executable. }
-function TTestIec101Docs.Build(const Name: string): string;
-var
-  Doc, Prog: TStringList;
-  I: Integer;
-  Inside: Boolean;
-  Output, Fpc: string;
-begin
-  Doc := TStringList.Create;
-  Prog := TStringList.Create;
-  try
-    Doc.LoadFromFile('docs/ChnIec101.md');
-    Inside := False;
-    for I := 0 to Doc.Count - 1 do
-      if Inside then
-      begin
-        if Doc[I] = '```' then
-          Break;
-        Prog.Add(Doc[I]);
-      end
-      else if (Doc[I] = '```pascal') and (I < Doc.Count - 1) and
-        (Pos('program ' + Name + ';', Doc[I + 1]) = 1) then
-        Inside := True;
-    AssertTrue('program ' + Name + ' in docs/ChnIec101.md', Prog.Count > 10);
-    Prog.SaveToFile(FDir + '/' + Name + '.pas');
-  finally
-    Doc.Free;
-    Prog.Free;
-  end;
-  Fpc := ExeSearch('fpc', GetEnvironmentVariable('PATH'));
-  AssertTrue('fpc', Fpc <> '');
-  AssertEquals(Name + ' builds: ', 0, RunExe(Fpc, ['-v0', '-Fubuild/units', '-Fisrc',
-    '-FU' + FDir, '-FE' + FDir, FDir + '/' + Name + '.pas'], 120000, Output));
-  Result := FDir + '/' + Name;
-  AssertTrue(Output, FileExists(Result));
-end;
-
 procedure TTestIec101Docs.TestMasterProgram;
 var
   Exe, Out, Err: string;
@@ -91,7 +53,7 @@ var
   E: AnsiString;
   Es: ShortString;
 begin
-  Exe := Build('iecgi');
+  Exe := BuildDocProgram('docs/ChnIec101.md', 'iecgi', FDir);
   Chn := ChnCollection^.ChNewInit(ChnFT1_2.cName);
   Chn^.ChSetParam('NAM=FT1_2 MS=ON MAS=SLAVE LEN=0 NOD=1 NAM=COM DRV=PTY');
   Chn^.ChOpen;
@@ -148,7 +110,7 @@ var
   Gi: TStringList;
   Line: string;
 begin
-  Exe := Build('iecrtu');
+  Exe := BuildDocProgram('docs/ChnIec101.md', 'iecrtu', FDir);
   Chn := ChnCollection^.ChNewInit(ChnFT1_2.cName);
   Chn^.ChSetParam('NAM=FT1_2 MS=ON MAS=MASTER LEN=0 NOD=0 DNO=1 NAM=COM DRV=PTY');
   Chn^.ChOpen;

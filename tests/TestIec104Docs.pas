@@ -11,7 +11,7 @@ interface
 
 uses
   SysUtils, Classes, Process, fpcunit, testregistry, ChnTypes, ChnVirt, ChnTcp, ChnIec104,
-  ChnIec101Asdu, ChnIec101Slave, Iec101Points, ChnWait, BinSupport, TestTempDir;
+  ChnIec101Asdu, ChnIec101Slave, Iec101Points, ChnWait, BinSupport, TestTempDir, DocProgram;
 
 type
   TTestIec104Docs = class(TTestCase)
@@ -40,43 +40,14 @@ end;
 
 procedure TTestIec104Docs.TestClientProgram;
 var
-  Doc, Prog: TStringList;
-  I: Integer;
-  Inside: Boolean;
-  Output, Fpc, Exe, Out, Want, Err: string;
+  Exe, Out, Want, Err: string;
   Chn: pChnVirt;
   P: TProcess;
   Deadline: QWord;
   E: AnsiString;
   Es: ShortString;
 begin
-  Doc := TStringList.Create;
-  Prog := TStringList.Create;
-  try
-    Doc.LoadFromFile('docs/ChnIec104.md');
-    Inside := False;
-    for I := 0 to Doc.Count - 1 do
-      if Inside then
-      begin
-        if Doc[I] = '```' then
-          Break;
-        Prog.Add(Doc[I]);
-      end
-      else if (Doc[I] = '```pascal') and (I < Doc.Count - 1) and
-        (Pos('program iec104gi;', Doc[I + 1]) = 1) then
-        Inside := True;
-    AssertTrue('program iec104gi in docs/ChnIec104.md', Prog.Count > 10);
-    Prog.SaveToFile(FDir + '/iec104gi.pas');
-  finally
-    Doc.Free;
-    Prog.Free;
-  end;
-  Fpc := ExeSearch('fpc', GetEnvironmentVariable('PATH'));
-  AssertTrue('fpc', Fpc <> '');
-  AssertEquals('iec104gi builds: ', 0, RunExe(Fpc, ['-v0', '-Fubuild/units', '-Fisrc',
-    '-FU' + FDir, '-FE' + FDir, FDir + '/iec104gi.pas'], 120000, Output));
-  Exe := FDir + '/iec104gi';
-  AssertTrue(Output, FileExists(Exe));
+  Exe := BuildDocProgram('docs/ChnIec104.md', 'iec104gi', FDir);
   Chn := ChnCollection^.ChNewInit(ChnIec104.cName);
   Chn^.ChSetParam('NAM=IEC104 NAM=TCP LISTEN=127.0.0.1:0');
   Chn^.ChOpen;

@@ -264,10 +264,7 @@ begin
   if StrToNum(ParamValue(S), Min, Max, N) then
     Result := res_Ok
   else
-  begin
-    ParamAllowedText := NumAllowed(Min, Max);
-    Result := res_BadParam;
-  end;
+    Result := ParamBad(NumAllowed(Min, Max));
 end;
 
 function ParamNum(const S: tWordString; Min, Max: LongInt; var N: SmallInt): tChResult;
@@ -275,10 +272,7 @@ begin
   if StrToNum(ParamValue(S), Min, Max, N) then
     Result := res_Ok
   else
-  begin
-    ParamAllowedText := NumAllowed(Min, Max);
-    Result := res_BadParam;
-  end;
+    Result := ParamBad(NumAllowed(Min, Max));
 end;
 
 function ParamChoice(const S: tWordString; const Choices: ShortString; var Index: LongInt): tChResult;

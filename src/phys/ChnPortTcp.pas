@@ -84,6 +84,8 @@ type
     function Take(var Buf; Size: LongInt; out Got: LongInt; Keep: Boolean): tChResult;
     procedure OnSub;
     function Answered: Boolean;
+    function NegotiateStep: tChResult;
+    function SetControl(V: Byte): tChResult;
     function SettingsOverdue: tChResult;
     function AcceptOne: Boolean;
     procedure TurnAway;
@@ -785,11 +787,22 @@ begin
   Result := FlushOut;
 end;
 
+{ One look at the server while Configure waits for its answers: what it
+  says is taken, data that comes with it is kept for DoRead. }
+function TChnPortTcp.NegotiateStep: tChResult;
+var
+  Got: LongInt;
+  Dummy: Byte;
+begin
+  SockWait([FSock], False, 10);
+  Result := Take(Dummy, 1, Got, True);
+  if (Result = res_Ok) and FBroken then
+    Result := res_BadStream;
+end;
+
 function TChnPortTcp.Configure(const S: tPortSettings): tChResult;
 var
   Deadline: QWord;
-  Got: LongInt;
-  Dummy: Byte;
 begin
   FWant := S;
   if not Rfc2217 then
@@ -803,10 +816,7 @@ begin
       FailKey := 'RFC2217';
       Exit(res_BadSetting);
     end;
-    SockWait([FSock], False, 10);
-    Result := Take(Dummy, 1, Got, True);
-    if (Result = res_Ok) and FBroken then
-      Result := res_BadStream;
+    Result := NegotiateStep;
     if Result <> res_Ok then
       Exit;
   end;
@@ -815,10 +825,7 @@ begin
   begin
     if GetTickCount64 >= Deadline then
       Break;
-    SockWait([FSock], False, 10);
-    Result := Take(Dummy, 1, Got, True);
-    if (Result = res_Ok) and FBroken then
-      Result := res_BadStream;
+    Result := NegotiateStep;
     if Result <> res_Ok then
       Exit;
   end;
@@ -982,28 +989,30 @@ begin
   end;
 end;
 
-function TChnPortTcp.SetRts(On: Boolean): tChResult;
-var
-  V: Byte;
+{ SET-CONTROL value V (an RTS or DTR state): sent, no answer awaited }
+function TChnPortTcp.SetControl(V: Byte): tChResult;
 begin
   if not Rfc2217 then
     Exit(res_BadSetting);           { raw TCP carries no modem lines }
-  if On then V := CPC_RTSON else V := CPC_RTSOFF;
   SendSetting(CPO_SETCONTROL, V, 1);
   FAsked[CPO_SETCONTROL] := False;
   Result := FlushOut;
 end;
 
-function TChnPortTcp.SetDtr(On: Boolean): tChResult;
-var
-  V: Byte;
+function TChnPortTcp.SetRts(On: Boolean): tChResult;
 begin
-  if not Rfc2217 then
-    Exit(res_BadSetting);
-  if On then V := CPC_DTRON else V := CPC_DTROFF;
-  SendSetting(CPO_SETCONTROL, V, 1);
-  FAsked[CPO_SETCONTROL] := False;
-  Result := FlushOut;
+  if On then
+    Result := SetControl(CPC_RTSON)
+  else
+    Result := SetControl(CPC_RTSOFF);
+end;
+
+function TChnPortTcp.SetDtr(On: Boolean): tChResult;
+begin
+  if On then
+    Result := SetControl(CPC_DTRON)
+  else
+    Result := SetControl(CPC_DTROFF);
 end;
 
 function TChnPortTcp.GetLines(out Lines: tPortLines): tChResult;

@@ -702,6 +702,19 @@ begin
   Report(Name, St, ASeed, ChMsTick - T0, not Crc);
 end;
 
+{ A peer's stack; a peer that cannot open it says why and ends. }
+function OpenOrHalt(const Layer, Params: string): pChnVirt;
+var
+  Err: string;
+begin
+  Result := OpenStack(Layer, Params, Err);
+  if Result = nil then
+  begin
+    WriteLn('soak: ', Err);
+    Halt(1);
+  end;
+end;
+
 { ------------------------------------------------------- DF1 HD stations }
 
 { The peer of the half-duplex scenario: HDStations DF1 slave stations on
@@ -721,15 +734,7 @@ var
   Err: string;
   Busy: Boolean;
 begin
-  Com := ChnCollection^.ChNewInit('COM');
-  Com^.ChSetParam('NAM=COM DRV=PTY LRB=65000');
-  Com^.ChOpen;
-  Com^.ChConnect;
-  if Com^.ChResult <> res_Ok then
-  begin
-    WriteLn('soak: pty: ', Com^.ChResultStr(Com^.ChResult));
-    Halt(1);
-  end;
+  Com := OpenOrHalt('COM', 'NAM=COM DRV=PTY LRB=65000');
   for K := 1 to HDStations do
   begin
     Ends[K] := OpenStack('LOOP', Format('NAM=LOOP PAIR=hd%d END=2 IDL=0', [K]), Err);
@@ -850,15 +855,8 @@ const
 { A peer's stack on a pty of its own (DRV=PTY); a peer that cannot open
   it says why and ends. }
 function ServeOpen(const Layer, Params: string): pChnVirt;
-var
-  Err: string;
 begin
-  Result := OpenStack(Layer, Params + ' NAM=COM DRV=PTY', Err);
-  if Result = nil then
-  begin
-    WriteLn('soak: ', Err);
-    Halt(1);
-  end;
+  Result := OpenOrHalt(Layer, Params + ' NAM=COM DRV=PTY');
 end;
 
 { A balanced station of the soak: the soak's timeout and retries, no test
@@ -1322,15 +1320,7 @@ var
   K: Integer;
   Busy: Boolean;
 begin
-  Com := ChnCollection^.ChNewInit('COM');
-  Com^.ChSetParam('NAM=COM DRV=PTY LRB=65000');
-  Com^.ChOpen;
-  Com^.ChConnect;
-  if Com^.ChResult <> res_Ok then
-  begin
-    WriteLn('soak: pty: ', Com^.ChResultStr(Com^.ChResult));
-    Halt(1);
-  end;
+  Com := OpenOrHalt('COM', 'NAM=COM DRV=PTY LRB=65000');
   Hub := TLoopHub.Create;
   Hub.AddChannel(Com);
   for K := 0 to 1 do

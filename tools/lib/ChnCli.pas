@@ -368,22 +368,15 @@ begin
   Halt(Code);
 end;
 
-{ CliParse up to --help or --version (then 0, the text written: the caller
-  ends the program once this function's strings are freed), else -1. }
-function ParseArgs(var Cli: tCli): LongInt;
+type
+  tLongOptions = array of TOption;
+
+{ getopts' tables: long options (value = #128 + index), short letters;
+  '-' first: arguments come back in order, as option #0. }
+procedure GetoptTables(const Cli: tCli; out Long: tLongOptions; out Shorts: AnsiString);
 var
-  Long: array of TOption;
-  Shorts, Tok, Name: AnsiString;
-  I, K, Before, LongIndex: LongInt;
-  C: Char;
+  I: LongInt;
 begin
-  if (ParamCount = 0) and not Cli.NoArgsOk then
-  begin
-    WriteUsage(StdErr, Cli);
-    EndNow(Cli, CliExitUsage);
-  end;
-  { getopts' tables: long options (value = #1 + index), short letters;
-    '-' first: arguments come back in order, as option #0 }
   SetLength(Long, Length(Cli.Options) + 1);
   Shorts := '-';
   for I := 0 to High(Cli.Options) do
@@ -400,10 +393,15 @@ begin
           Shorts := Shorts + Short;
     end;
   Long[High(Long)].Name := '';
-  OptErr := False;               { our own messages, on standard error }
-  { getopts fails on an empty argument and takes "-5" for options: it
-    sees a one-character stand-in (a non-option) for those; Orig keeps
-    every argument as given }
+end;
+
+{ getopts fails on an empty argument and takes "-5" for options: it sees a
+  one-character stand-in (a non-option) for those; Orig keeps every
+  argument as given. }
+procedure StandIns;
+var
+  I: LongInt;
+begin
   SetLength(Orig, ParamCount + 1);
   for I := 1 to ParamCount do
   begin
@@ -412,6 +410,96 @@ begin
        (Orig[I][2] in ['0'..'9', '.'])) then
       argv[I] := StandIn;
   end;
+end;
+
+{ '--name=value' -> 'name' }
+function LongName(const Tok: AnsiString): AnsiString;
+begin
+  Result := Copy(Tok, 3, MaxInt);
+  if Pos('=', Result) > 0 then
+    Result := Copy(Result, 1, Pos('=', Result) - 1);
+end;
+
+{ What getopts refused ('?' or ':'), said as the user wrote it. }
+procedure RefuseOption(var Cli: tCli; const Tok: AnsiString);
+var
+  Name: AnsiString;
+  K: LongInt;
+begin
+  if Copy(Tok, 1, 2) = '--' then
+  begin
+    Name := LongName(Tok);
+    K := FindOption(Cli, Name);
+    if (K >= 0) and (Cli.Options[K].Arg = '') then
+      CliUsageError(Cli, '--' + Name + ' takes no value', Tok)
+    else if K >= 0 then
+      CliUsageError(Cli, '--' + Name + ' wants a value, ' + Cli.Options[K].Arg, Tok)
+    else
+      CliUsageError(Cli, 'unknown option', Tok);
+  end
+  else if OptOpt <> '?' then
+    CliUsageError(Cli, 'unknown option -' + OptOpt + ' or it wants a value', Tok)
+  else
+    CliUsageError(Cli, 'unknown option', Tok);
+end;
+
+{ An option getopts returned as C (from the word Tok): marked given with its
+  value. True for --help and --version, their text written. }
+function TakeOption(var Cli: tCli; C: Char; const Tok: AnsiString): Boolean;
+var
+  I, K: LongInt;
+begin
+  Result := False;
+  K := -1;
+  if Ord(C) >= 128 then
+    K := Ord(C) - 128
+  else
+    for I := 0 to High(Cli.Options) do
+      if Cli.Options[I].Short = C then
+        K := I;
+  if K < 0 then
+    CliUsageError(Cli, 'unknown option', Tok);
+  { getopts takes any part of a long name: only the whole one here }
+  if (Copy(Tok, 1, 2) = '--') and (LongName(Tok) <> Cli.Options[K].Name) then
+    CliUsageError(Cli, 'unknown option', Tok);
+  Cli.Options[K].Given := True;
+  Cli.Options[K].Value := OptArg;
+  if (Cli.Options[K].Arg <> '') and (Pos(OptArg, Tok) = 0) then
+    Cli.Options[K].Token := Tok + ' ' + OptArg
+  else
+    Cli.Options[K].Token := Tok;
+  if Cli.Options[K].Name = 'help' then
+    WriteUsage(Output, Cli)
+  else if Cli.Options[K].Name = 'version' then
+    WriteLn(Cli.Prog, ' (Chn) ', ChnVersion)
+  else
+    Exit;
+  Result := True;
+end;
+
+procedure AddArg(var Cli: tCli; const A: AnsiString);
+begin
+  SetLength(Cli.Args, Length(Cli.Args) + 1);
+  Cli.Args[High(Cli.Args)] := A;
+end;
+
+{ CliParse up to --help or --version (then 0, the text written: the caller
+  ends the program once this function's strings are freed), else -1. }
+function ParseArgs(var Cli: tCli): LongInt;
+var
+  Long: tLongOptions;
+  Shorts, Tok: AnsiString;
+  I, Before, LongIndex: LongInt;
+  C: Char;
+begin
+  if (ParamCount = 0) and not Cli.NoArgsOk then
+  begin
+    WriteUsage(StdErr, Cli);
+    EndNow(Cli, CliExitUsage);
+  end;
+  GetoptTables(Cli, Long, Shorts);
+  OptErr := False;               { our own messages, on standard error }
+  StandIns;
   repeat
     Before := OptInd;
     if Before < 1 then
@@ -427,71 +515,17 @@ begin
       EndOfOptions:
         Break;
       #0:
-        begin
-          SetLength(Cli.Args, Length(Cli.Args) + 1);
-          Cli.Args[High(Cli.Args)] := OptArg;
-        end;
+        AddArg(Cli, OptArg);
       '?', ':':
-        if Copy(Tok, 1, 2) = '--' then
-        begin
-          Name := Copy(Tok, 3, MaxInt);
-          if Pos('=', Name) > 0 then
-            Name := Copy(Name, 1, Pos('=', Name) - 1);
-          K := FindOption(Cli, Name);
-          if (K >= 0) and (Cli.Options[K].Arg = '') then
-            CliUsageError(Cli, '--' + Name + ' takes no value', Tok)
-          else if K >= 0 then
-            CliUsageError(Cli, '--' + Name + ' wants a value, ' + Cli.Options[K].Arg, Tok)
-          else
-            CliUsageError(Cli, 'unknown option', Tok);
-        end
-        else if OptOpt <> '?' then
-          CliUsageError(Cli, 'unknown option -' + OptOpt + ' or it wants a value', Tok)
-        else
-          CliUsageError(Cli, 'unknown option', Tok);
+        RefuseOption(Cli, Tok);
     else
-      begin
-        K := -1;
-        if Ord(C) >= 128 then
-          K := Ord(C) - 128
-        else
-          for I := 0 to High(Cli.Options) do
-            if Cli.Options[I].Short = C then
-              K := I;
-        if K < 0 then
-          CliUsageError(Cli, 'unknown option', Tok);
-        { getopts takes any part of a long name: only the whole one here }
-        if Copy(Tok, 1, 2) = '--' then
-        begin
-          Name := Copy(Tok, 3, MaxInt);
-          if Pos('=', Name) > 0 then
-            Name := Copy(Name, 1, Pos('=', Name) - 1);
-          if Name <> Cli.Options[K].Name then
-            CliUsageError(Cli, 'unknown option', Tok);
-        end;
-        Cli.Options[K].Given := True;
-        Cli.Options[K].Value := OptArg;
-        if (Cli.Options[K].Arg <> '') and (Pos(OptArg, Tok) = 0) then
-          Cli.Options[K].Token := Tok + ' ' + OptArg
-        else
-          Cli.Options[K].Token := Tok;
-        if (Cli.Options[K].Name = 'help') or (Cli.Options[K].Name = 'version') then
-        begin
-          if Cli.Options[K].Name = 'help' then
-            WriteUsage(Output, Cli)
-          else
-            WriteLn(Cli.Prog, ' (Chn) ', ChnVersion);
-          Exit(0);
-        end;
-      end;
+      if TakeOption(Cli, C, Tok) then
+        Exit(0);
     end;
   until False;
   { after "--": the rest as it is }
   for I := OptInd to ParamCount do
-  begin
-    SetLength(Cli.Args, Length(Cli.Args) + 1);
-    Cli.Args[High(Cli.Args)] := Orig[I];
-  end;
+    AddArg(Cli, Orig[I]);
   RestoreArgv(Orig);
   Result := -1;
 end;

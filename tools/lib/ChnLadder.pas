@@ -108,84 +108,69 @@ begin
     Result := Format('%d ms', [Ms]);
 end;
 
-function LadderSvg(const Events: tDecEvents; Count: LongInt;
-  const Opt: tLadderOptions): AnsiString;
+{ The dashed line across both ends for a pause longer than the option. }
+function GapRow(Y, Delta, GapMs: LongInt): AnsiString;
+begin
+  Result := '<g class="gap">' +
+    '<line x1="10" y1="' + Num(Y + 4) + '" x2="' + Num(Width - 10) + '" y2="' + Num(Y + 4) +
+    '" stroke="#888" stroke-dasharray="6,4"/>' +
+    '<text x="' + Num((LeftX + RightX) div 2) + '" y="' + Num(Y + 20) +
+    '" text-anchor="middle" fill="#555" font-style="italic">' +
+    Esc(GapText(Delta) + ' without a frame (more than ' + GapText(GapMs) + ')') +
+    '</text></g>' + LineEnding;
+end;
+
+{ One frame's arrow, its time, the time since the one before (First: none)
+  and its label; red for an error, orange for a refusal. }
+function FrameRow(const E: tDecEvent; Y, Delta: LongInt; First: Boolean): AnsiString;
 var
-  Body: AnsiString;
-  I, Y, Height, Delta, Prev, X1, X2, Gaps: LongInt;
+  X1, X2: LongInt;
   Colour, Marker, Cls: AnsiString;
 begin
-  Body := '';
-  Y := TopY;
-  Prev := 0;
-  Gaps := 0;
-  for I := 0 to Count - 1 do
+  if E.IsError then
   begin
-    Delta := 0;
-    if I > 0 then
-    begin
-      Delta := Events[I].TimeMs - Prev;
-      if Delta < 0 then
-        Inc(Delta, TrcMsPerDay);             { past midnight }
-    end;
-    if (I > 0) and (Opt.GapMs > 0) and (Delta > Opt.GapMs) then
-    begin
-      Inc(Gaps);
-      Body := Body + '<g class="gap">' +
-        '<line x1="10" y1="' + Num(Y + 4) + '" x2="' + Num(Width - 10) + '" y2="' + Num(Y + 4) +
-        '" stroke="#888" stroke-dasharray="6,4"/>' +
-        '<text x="' + Num((LeftX + RightX) div 2) + '" y="' + Num(Y + 20) +
-        '" text-anchor="middle" fill="#555" font-style="italic">' +
-        Esc(GapText(Delta) + ' without a frame (more than ' + GapText(Opt.GapMs) + ')') +
-        '</text></g>' + LineEnding;
-      Inc(Y, GapH);
-    end;
-    Prev := Events[I].TimeMs;
-    if Events[I].IsError then
-    begin
-      Colour := '#c00000';
-      Marker := 'url(#headerr)';
-      Cls := 'frame error';
-    end
-    else if Events[I].Refused then
-    begin
-      Colour := '#b05000';
-      Marker := 'url(#headref)';
-      Cls := 'frame refused';
-    end
-    else
-    begin
-      Colour := '#000000';
-      Marker := 'url(#head)';
-      Cls := 'frame';
-    end;
-    if Events[I].Dir = trcTx then
-    begin
-      X1 := LeftX;
-      X2 := RightX;
-    end
-    else
-    begin
-      X1 := RightX;
-      X2 := LeftX;
-    end;
-    Body := Body + '<g class="' + Cls + '"><title>' +
-      Esc(TrcTimeText(Events[I].TimeMs) + ' ' + Events[I].Proto + ' ' + Events[I].Text) +
-      '</title>' +
-      '<text x="10" y="' + Num(Y + 24) + '" font-size="11" fill="#333">' +
-      TrcTimeText(Events[I].TimeMs) + '</text>';
-    if I > 0 then
-      Body := Body + '<text x="10" y="' + Num(Y + 12) + '" font-size="9" fill="#777">+' +
-        Esc(GapText(Delta)) + '</text>';
-    Body := Body +
-      '<text x="' + Num((LeftX + RightX) div 2) + '" y="' + Num(Y + 14) +
-      '" text-anchor="middle" fill="' + Colour + '">' + Esc(LadderLabel(Events[I])) + '</text>' +
-      '<line x1="' + Num(X1) + '" y1="' + Num(Y + 20) + '" x2="' + Num(X2) + '" y2="' +
-      Num(Y + 24) + '" stroke="' + Colour + '" stroke-width="1.5" marker-end="' + Marker + '"/>' +
-      '</g>' + LineEnding;
-    Inc(Y, RowH);
+    Colour := '#c00000';
+    Marker := 'url(#headerr)';
+    Cls := 'frame error';
+  end
+  else if E.Refused then
+  begin
+    Colour := '#b05000';
+    Marker := 'url(#headref)';
+    Cls := 'frame refused';
+  end
+  else
+  begin
+    Colour := '#000000';
+    Marker := 'url(#head)';
+    Cls := 'frame';
   end;
-  Height := Y + 30;
+  X1 := RightX;
+  X2 := LeftX;
+  if E.Dir = trcTx then
+  begin
+    X1 := LeftX;
+    X2 := RightX;
+  end;
+  Result := '<g class="' + Cls + '"><title>' +
+    Esc(TrcTimeText(E.TimeMs) + ' ' + E.Proto + ' ' + E.Text) + '</title>' +
+    '<text x="10" y="' + Num(Y + 24) + '" font-size="11" fill="#333">' +
+    TrcTimeText(E.TimeMs) + '</text>';
+  if not First then
+    Result := Result + '<text x="10" y="' + Num(Y + 12) + '" font-size="9" fill="#777">+' +
+      Esc(GapText(Delta)) + '</text>';
+  Result := Result +
+    '<text x="' + Num((LeftX + RightX) div 2) + '" y="' + Num(Y + 14) +
+    '" text-anchor="middle" fill="' + Colour + '">' + Esc(LadderLabel(E)) + '</text>' +
+    '<line x1="' + Num(X1) + '" y1="' + Num(Y + 20) + '" x2="' + Num(X2) + '" y2="' +
+    Num(Y + 24) + '" stroke="' + Colour + '" stroke-width="1.5" marker-end="' + Marker + '"/>' +
+    '</g>' + LineEnding;
+end;
+
+{ The picture around the rows: the title, the arrow heads, both ends. }
+function Frame(const Opt: tLadderOptions; Height, Count, Gaps: LongInt;
+  const Body: AnsiString): AnsiString;
+begin
   Result :=
     '<?xml version="1.0" encoding="UTF-8"?>' + LineEnding +
     '<svg xmlns="http://www.w3.org/2000/svg" version="1.1" width="' + Num(Width) +
@@ -215,6 +200,38 @@ begin
     Num(Height - 20) + '" stroke="#444" stroke-width="2"/>' + LineEnding +
     Body +
     '</svg>' + LineEnding;
+end;
+
+function LadderSvg(const Events: tDecEvents; Count: LongInt;
+  const Opt: tLadderOptions): AnsiString;
+var
+  Body: AnsiString;
+  I, Y, Delta, Prev, Gaps: LongInt;
+begin
+  Body := '';
+  Y := TopY;
+  Prev := 0;
+  Gaps := 0;
+  for I := 0 to Count - 1 do
+  begin
+    Delta := 0;
+    if I > 0 then
+    begin
+      Delta := Events[I].TimeMs - Prev;
+      if Delta < 0 then
+        Inc(Delta, TrcMsPerDay);             { past midnight }
+    end;
+    if (I > 0) and (Opt.GapMs > 0) and (Delta > Opt.GapMs) then
+    begin
+      Inc(Gaps);
+      Body := Body + GapRow(Y, Delta, Opt.GapMs);
+      Inc(Y, GapH);
+    end;
+    Prev := Events[I].TimeMs;
+    Body := Body + FrameRow(Events[I], Y, Delta, I = 0);
+    Inc(Y, RowH);
+  end;
+  Result := Frame(Opt, Y + 30, Count, Gaps, Body);
 end;
 
 end.

@@ -345,174 +345,255 @@ begin
     F.Data[At + K] := (V shr (8 * K)) and $FF;
 end;
 
+type
+  { One line of the configuration and how far it has been read. }
+  tCfgLine = record
+    Text: AnsiString;
+    P: Integer;
+  end;
+
+{ The next blank-separated word of the line. }
+function NextWord(var L: tCfgLine; out W: AnsiString): Boolean;
+var
+  Q: Integer;
+begin
+  while (L.P <= Length(L.Text)) and (L.Text[L.P] in [' ', #9, #13]) do
+    Inc(L.P);
+  Q := L.P;
+  while (L.P <= Length(L.Text)) and not (L.Text[L.P] in [' ', #9, #13]) do
+    Inc(L.P);
+  W := Copy(L.Text, Q, L.P - Q);
+  Result := W <> '';
+end;
+
+{ CIF 9: the file the common interface commands use. }
+function TakeCif(var T: tSlcTable; var L: tCfgLine; out Err: AnsiString): Boolean;
+var
+  Tok: AnsiString;
+  V: LongInt;
+begin
+  V := 0;
+  Result := NextWord(L, Tok) and StrToNum(Tok, 0, 255, V) and not NextWord(L, Tok);
+  if Result then
+    T.Cif := V
+  else
+    Err := 'CIF wants one file number 0..255';
+end;
+
+{ N7 100: a file and its element count. }
+function TakeDeclaration(var T: tSlcTable; const Head: AnsiString; var L: tCfgLine;
+  out Err: AnsiString): Boolean;
+var
+  Tok: AnsiString;
+  FType, Num: Byte;
+  V: LongInt;
+begin
+  Result := False;
+  V := 0;
+  if not ParseFileName(T, Head, FType, Num) then
+  begin
+    if T.Plc5 then
+      Err := '"' + Head + '" is no file name (O0 I1 S2, B T C R N F ST A D 3..255)'
+    else
+      Err := '"' + Head + '" is no file name (O0 I1 S2, B T C R N F ST A L 3..255)';
+    Exit;
+  end;
+  if not NextWord(L, Tok) or not StrToNum(Tok, 1, SlcMaxElements, V) or NextWord(L, Tok) then
+  begin
+    Err := 'a file wants its element count 1..' + IntToStr(SlcMaxElements);
+    Exit;
+  end;
+  SlcAddFile(T, FType, Num, V);
+  Result := True;
+end;
+
+{ ST10:0 = "text": the rest of the line, in double quotes. }
+function TakeString(var T: tSlcTable; const A: tPcccAddr; const Head: AnsiString;
+  const L: tCfgLine; out Err: AnsiString): Boolean;
+var
+  Str: AnsiString;
+  Q: Integer;
+  PErr: ShortString;
+  Buf: array[0..2 + PcccStringChars - 1] of Byte;
+begin
+  Result := False;
+  Str := Trim(Copy(L.Text, L.P, MaxInt));
+  Q := Length(Str);
+  if (Q < 2) or (Str[1] <> '"') or (Str[Q] <> '"') then
+  begin
+    Err := Head + ' wants one string in double quotes';
+    Exit;
+  end;
+  if PcccEncodeString(Copy(Str, 2, Q - 2), Buf, PErr) <> res_Ok then
+  begin
+    Err := PErr;
+    Exit;
+  end;
+  Move(Buf, T.Files[A.FileNo].Data[A.Elem * PcccElemSize(pft_String)], SizeOf(Buf));
+  Result := True;
+end;
+
+{ One start value of a file of type FType, as the bytes it is stored as. }
+function ParseValue(FType: Byte; const Tok: AnsiString; out L: LongWord; out Err: AnsiString): Boolean;
+var
+  F: Single;
+  V: LongInt;
+  W: Word;
+begin
+  L := 0;
+  V := 0;
+  if FType = pft_Float then
+  begin
+    Result := ParseFloat(Tok, F);
+    if Result then
+      Move(F, L, 4)
+    else
+      Err := '"' + Tok + '" is no float';
+  end
+  else if FType = pft_Long then
+  begin
+    Result := StrToNum(Tok, Low(LongInt), High(LongInt), V);
+    if Result then
+      L := LongWord(V)
+    else
+      Err := '"' + Tok + '" is no 32-bit value';
+  end
+  else if FType = pft_Bcd then
+  begin
+    Result := StrToNum(Tok, 0, 9999, V) and Plc5ToBcd(V, W);
+    if Result then
+      L := W
+    else
+      Err := '"' + Tok + '" is not 0..9999 (a D element holds four BCD digits)';
+  end
+  else
+  begin
+    Result := StrToNum(Tok, -32768, 65535, V);
+    if Result then
+      L := LongWord(V) and $FFFF
+    else
+      Err := '"' + Tok + '" is no 16-bit value';
+  end;
+end;
+
+{ N7:0 = 1 2 3, T4:0.PRE = 5: consecutive words (or 4-byte values), or the
+  same word of consecutive elements for .PRE/.ACC/.LEN/.POS. }
+function TakeNumbers(var T: tSlcTable; const A: tPcccAddr; var L: tCfgLine;
+  out Err: AnsiString): Boolean;
+var
+  Tok: AnsiString;
+  At, Stride, Size, Count: LongInt;
+  V: LongWord;
+begin
+  Result := False;
+  Size := 2;
+  if A.FileType in [pft_Float, pft_Long] then
+    Size := 4;
+  Stride := Size;
+  At := A.Elem * PcccElemSize(A.FileType);
+  if A.HasSub then
+  begin
+    At := At + 2 * A.Sub;
+    Stride := PcccElemSize(A.FileType);
+  end;
+  Count := 0;
+  while NextWord(L, Tok) do
+  begin
+    if At + Count * Stride + Size > Length(T.Files[A.FileNo].Data) then
+    begin
+      Err := 'more values than ' + PcccFileLetter(A.FileType) + IntToStr(A.FileNo) +
+        ' has elements';
+      Exit;
+    end;
+    if not ParseValue(A.FileType, Tok, V, Err) then
+      Exit;
+    PutBytes(T.Files[A.FileNo], At + Count * Stride, V, Size);
+    Inc(Count);
+  end;
+  if Count = 0 then
+  begin
+    Err := 'no values after "="';
+    Exit;
+  end;
+  Result := True;
+end;
+
+{ ADDRESS = values: start values of a declared file. }
+function TakeValues(var T: tSlcTable; Head: AnsiString; var L: tCfgLine;
+  out Err: AnsiString): Boolean;
+var
+  Tok: AnsiString;
+  A: tPcccAddr;
+  PErr: ShortString;
+begin
+  Result := False;
+  if Length(Head) > 200 then
+    Err := 'address too long'
+  else if ParseAddr(T, Head, A, PErr) <> res_Ok then
+    Err := PErr
+  else
+  begin
+    Head := AddrText(T, A);
+    if (T.Files[A.FileNo].FType <> A.FileType) or (A.FileType = 0) then
+      Err := PcccFileLetter(A.FileType) + IntToStr(A.FileNo) +
+        ' is not declared (or declared with another type)'
+    else if A.Bit >= 0 then
+      Err := Head + ': a bit address takes no start values'
+    else if not NextWord(L, Tok) or (Tok <> '=') then
+      Err := '"=" expected after ' + Head
+    else if A.Elem >= T.Files[A.FileNo].Elems then
+      Err := Head + ' lies past the end of its file'
+    else if A.FileType = pft_String then
+      Result := TakeString(T, A, Head, L, Err)
+    else
+      Result := TakeNumbers(T, A, L, Err);
+  end;
+end;
+
+{ One line, its comment cut off: a CIF, a declaration or start values. }
+function TakeLine(var T: tSlcTable; const Line: AnsiString; out Err: AnsiString): Boolean;
+var
+  L: tCfgLine;
+  Head: AnsiString;
+  P: Integer;
+begin
+  L.Text := Line;
+  P := Pos('#', L.Text);
+  if P > 0 then
+    SetLength(L.Text, P - 1);
+  L.P := 1;
+  if not NextWord(L, Head) then
+    Result := True
+  else if UpperCase(Head) = 'CIF' then
+    Result := TakeCif(T, L, Err)
+  else if Pos(':', Head) = 0 then
+    Result := TakeDeclaration(T, Head, L, Err)
+  else
+    Result := TakeValues(T, Head, L, Err);
+end;
+
 function LoadConfig(var T: tSlcTable; Plc5: Boolean; const Text: AnsiString;
   out ErrLine: LongInt; out Err: AnsiString): Boolean;
 var
-  Lines: array of AnsiString;
-  Line, Tok, Head, Str: AnsiString;
-  I, P, Q, Count: Integer;
-  FType, Num: Byte;
-  V, At, Stride, Size: LongInt;
-  F: Single;
-  L: LongWord;
-  A: tPcccAddr;
-  PErr: ShortString;
-  Buf: array[0..2 + PcccStringChars - 1] of Byte;
-  W: Word;
-
-  procedure Split;
-  var
-    S: AnsiString;
-    K, Start: Integer;
-  begin
-    SetLength(Lines, 0);
-    S := Text;
-    Start := 1;
-    for K := 1 to Length(S) + 1 do
-      if (K > Length(S)) or (S[K] = #10) then
-      begin
-        SetLength(Lines, Length(Lines) + 1);
-        Lines[High(Lines)] := Copy(S, Start, K - Start);
-        Start := K + 1;
-      end;
-  end;
-
-  { next blank-separated word of Line from P }
-  function Next(out W: AnsiString): Boolean;
-  var
-    Q: Integer;
-  begin
-    while (P <= Length(Line)) and (Line[P] in [' ', #9, #13]) do
-      Inc(P);
-    Q := P;
-    while (P <= Length(Line)) and not (Line[P] in [' ', #9, #13]) do
-      Inc(P);
-    W := Copy(Line, Q, P - Q);
-    Result := W <> '';
-  end;
-
-  function Bad(const Why: AnsiString): Boolean;
-  begin
-    ErrLine := I + 1;
-    Err := Why;
-    Result := False;
-  end;
-
+  Start, K, LineNo: LongInt;
 begin
   ErrLine := 0;
   Err := '';
   SlcClear(T);
   T.Plc5 := Plc5;
-  Split;
-  for I := 0 to High(Lines) do
-  begin
-    Line := Lines[I];
-    P := Pos('#', Line);
-    if P > 0 then
-      SetLength(Line, P - 1);
-    P := 1;
-    if not Next(Head) then
-      Continue;
-    if UpperCase(Head) = 'CIF' then
+  Start := 1;
+  LineNo := 0;
+  for K := 1 to Length(Text) + 1 do
+    if (K > Length(Text)) or (Text[K] = #10) then
     begin
-      V := 0;
-      if not Next(Tok) or not StrToNum(Tok, 0, 255, V) or Next(Tok) then
-        Exit(Bad('CIF wants one file number 0..255'));
-      T.Cif := V;
-      Continue;
-    end;
-    if Pos(':', Head) = 0 then
-    begin
-      { declaration: N7 100 }
-      V := 0;
-      if not ParseFileName(T, Head, FType, Num) then
-        if T.Plc5 then
-          Exit(Bad('"' + Head + '" is no file name (O0 I1 S2, B T C R N F ST A D 3..255)'))
-        else
-          Exit(Bad('"' + Head + '" is no file name (O0 I1 S2, B T C R N F ST A L 3..255)'));
-      if not Next(Tok) or not StrToNum(Tok, 1, SlcMaxElements, V) or Next(Tok) then
-        Exit(Bad('a file wants its element count 1..' + IntToStr(SlcMaxElements)));
-      SlcAddFile(T, FType, Num, V);
-      Continue;
-    end;
-    { values: N7:0 = 1 2 3, T4:0.PRE = 5, ST10:0 = "text" }
-    if Length(Head) > 200 then
-      Exit(Bad('address too long'));
-    if ParseAddr(T, Head, A, PErr) <> res_Ok then
-      Exit(Bad(PErr));
-    Head := AddrText(T, A);
-    if (T.Files[A.FileNo].FType <> A.FileType) or (A.FileType = 0) then
-      Exit(Bad(PcccFileLetter(A.FileType) + IntToStr(A.FileNo) +
-        ' is not declared (or declared with another type)'));
-    if (A.Bit >= 0) then
-      Exit(Bad(Head + ': a bit address takes no start values'));
-    if not Next(Tok) or (Tok <> '=') then
-      Exit(Bad('"=" expected after ' + Head));
-    if A.Elem >= T.Files[A.FileNo].Elems then
-      Exit(Bad(Head + ' lies past the end of its file'));
-    if A.FileType = pft_String then
-    begin
-      { the rest of the line, in double quotes }
-      Str := Trim(Copy(Line, P, MaxInt));
-      Q := Length(Str);
-      if (Q < 2) or (Str[1] <> '"') or (Str[Q] <> '"') then
-        Exit(Bad(Head + ' wants one string in double quotes'));
-      if PcccEncodeString(Copy(Str, 2, Q - 2), Buf, PErr) <> res_Ok then
-        Exit(Bad(PErr));
-      Move(Buf, T.Files[A.FileNo].Data[A.Elem * PcccElemSize(pft_String)], SizeOf(Buf));
-      Continue;
-    end;
-    { where the values go: consecutive words (or 4-byte values), or the
-      same word of consecutive elements for .PRE/.ACC/.LEN/.POS }
-    Size := 2;
-    if A.FileType in [pft_Float, pft_Long] then
-      Size := 4;
-    Stride := Size;
-    At := A.Elem * PcccElemSize(A.FileType);
-    if A.HasSub then
-    begin
-      At := At + 2 * A.Sub;
-      Stride := PcccElemSize(A.FileType);
-    end;
-    Count := 0;
-    while Next(Tok) do
-    begin
-      if At + Count * Stride + Size > Length(T.Files[A.FileNo].Data) then
-        Exit(Bad('more values than ' + PcccFileLetter(A.FileType) + IntToStr(A.FileNo) +
-          ' has elements'));
-      if A.FileType = pft_Float then
+      Inc(LineNo);
+      if not TakeLine(T, Copy(Text, Start, K - Start), Err) then
       begin
-        if not ParseFloat(Tok, F) then
-          Exit(Bad('"' + Tok + '" is no float'));
-        Move(F, L, 4);
-      end
-      else if A.FileType = pft_Long then
-      begin
-        V := 0;
-        if not StrToNum(Tok, Low(LongInt), High(LongInt), V) then
-          Exit(Bad('"' + Tok + '" is no 32-bit value'));
-        L := LongWord(V);
-      end
-      else if A.FileType = pft_Bcd then
-      begin
-        V := 0;
-        if not StrToNum(Tok, 0, 9999, V) or not Plc5ToBcd(V, W) then
-          Exit(Bad('"' + Tok + '" is not 0..9999 (a D element holds four BCD digits)'));
-        L := W;
-      end
-      else
-      begin
-        V := 0;
-        if not StrToNum(Tok, -32768, 65535, V) then
-          Exit(Bad('"' + Tok + '" is no 16-bit value'));
-        L := LongWord(V) and $FFFF;
+        ErrLine := LineNo;
+        Exit(False);
       end;
-      PutBytes(T.Files[A.FileNo], At + Count * Stride, L, Size);
-      Inc(Count);
+      Start := K + 1;
     end;
-    if Count = 0 then
-      Exit(Bad('no values after "="'));
-  end;
   Result := True;
 end;
 
