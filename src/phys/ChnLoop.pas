@@ -256,6 +256,24 @@ begin
       ChnWaitSignal(P^.Ends[L].Wait);
 end;
 
+{ N characters of end E's wire have left it: the wire moves on, and is
+  empty at its end. }
+procedure WireMoved(P: pLoopPair; E, N: LongInt); inline;
+begin
+  with P^.Ends[E] do
+  begin
+    Inc(WirePos, N);
+    WireAt := WireAt + QWord(N) * QWord(CharUs);
+    if WirePos >= WireLen then
+    begin
+      WirePos := 0;
+      WireLen := 0;
+      LastEnd := WireAt;
+      Dec(P^.OnWire);
+    end;
+  end;
+end;
+
 { Hand N > 0 characters of end E's wire to every other open end (a
   garbled one inverted). Caller: the end whose call this is. }
 procedure Deliver(P: pLoopPair; E, N, Caller: LongInt);
@@ -277,18 +295,7 @@ begin
     Inc(P^.Garbled, Garbled);
     HandOver(P, E, @Wire[WirePos], N);
   end;
-  with P^.Ends[E] do
-  begin
-    Inc(WirePos, N);
-    WireAt := WireAt + QWord(N) * QWord(CharUs);
-    if WirePos >= WireLen then
-    begin
-      WirePos := 0;
-      WireLen := 0;
-      LastEnd := WireAt;
-      Dec(P^.OnWire);
-    end;
-  end;
+  WireMoved(P, E, N);
   SignalEnds(P, E, Caller);
 end;
 
@@ -351,14 +358,7 @@ begin
           RingPut(P^.Ends[O].Ring, @Wire[WirePos], N);
         end;
         Inc(P^.Chars, N);
-        Inc(WirePos, N);
-        if WirePos >= WireLen then
-        begin
-          WirePos := 0;
-          WireLen := 0;
-          LastEnd := WireAt;
-          Dec(P^.OnWire);
-        end;
+        WireMoved(P, E, N);
         if E <> Caller then
           ChnWaitSignal(Wait);
         if (O <> Caller) and P^.Ends[O].Open then
