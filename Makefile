@@ -128,22 +128,29 @@ $(BUILD)/units.stamp: $(LIBSRC) fpmake.pp | check-fpc
 	   echo '; implementation end.'; } > $(BUILD)/chnall.pas
 	@echo "fpc src/*/*.pas"
 	@$(FPC) $(UNITFLAGS) $(BUILD)/chnall.pas
+	@# the tools/lib units were compiled against the library as it was: fpc
+	@# checks a used unit only by the checksum of its interface, which can
+	@# miss a change (an inline routine's body, a record seen through another
+	@# unit), and a tool kept the old layout (chngate spun on a changed
+	@# record); the programs make rebuilds compile them afresh
+	@rm -rf $(TOOLUNITDIR)
 	@touch $@
 
 # The Lazarus package lists every unit of fpmake.pp (all OSes).
 chn.lpk: fpmake.pp $(wildcard src/*.inc src/*/*.inc src/*/*/*.inc) tools/mklpk.sh tools/units.sh
 	@bash tools/mklpk.sh
 
-# Which sources each program depends on (from the uses clauses).
+# Which sources each program depends on (from the uses clauses and the
+# {$I} include files, transitively through src/ and tools/lib).
 $(BUILD)/deps.mk: $(LIBSRC) $(TOOLLIB) $(PROGRAMS) $(BENCHES) tools/mkdeps.sh
 	@mkdir -p $(BUILD)
 	@bash tools/mkdeps.sh $(BINDIR) $(SRCDIRS) $(wildcard src/*/$(OSDIR)) tools/lib -- $(PROGRAMS) $(BENCHES) > $@.tmp && mv $@.tmp $@
 -include $(BUILD)/deps.mk
 
 # One program: its units are current (units.stamp, order only: a program
-# is rebuilt when a source it uses changed, see deps.mk), so fpc compiles
-# the program (and any tools/lib unit it uses) and links.
-$(PROGBINS) $(BENCHBINS): src/chn.inc | $(BUILD)/units.stamp
+# is rebuilt when a source or include file it uses changed, see deps.mk),
+# so fpc compiles the program (and any tools/lib unit it uses) and links.
+$(PROGBINS) $(BENCHBINS): | $(BUILD)/units.stamp
 	@mkdir -p $(TOOLUNITDIR)
 	@echo "fpc $(filter %/$(notdir $@).pas,$(PROGRAMS) $(BENCHES))"
 	@$(FPC) $(PROGFLAGS) $(filter %/$(notdir $@).pas,$(PROGRAMS) $(BENCHES))

@@ -63,6 +63,7 @@ type
     procedure TestBalancedTwinDirSaysSo;
     procedure TestLongestFramesTaken;
     procedure TestInterrogationKeepsATimedLineBusy;
+    procedure TestPollSleepsUntilTheAnswer;
   end;
 
 implementation
@@ -906,6 +907,78 @@ begin
   AssertTrue(Format('one slave: %.1f %% of the line', [P]), P >= 70);
   P := Share(4, 'IMT4');
   AssertTrue(Format('four slaves on one line: %.1f %% of the line', [P]), P >= 65);
+end;
+
+{ While a poll is on a timed line (9600 Bd: a 5-octet frame takes 5 ms
+  each way), the master's wait (IecMasterWaitEnd) ends at the service's
+  deadline, not at once: a program stepping it from ChnWaitAny sleeps
+  until the answer's characters come. A wait of 0 there spun through the
+  whole frame (360 rounds per poll here, 6 with the wait); the bound
+  allows the wakes of the characters and of the slave's step, and holds
+  on a loaded machine (a spin only gets fewer rounds when preempted). }
+procedure TTestChnIec101Master.TestPollSleepsUntilTheAnswer;
+const
+  Line = ' BD=9600 PAR=E';
+var
+  Err: string;
+  E: ShortString;
+  MChn, SChn: pChnVirt;
+  S: tIecSlaveStation;
+  O: tIecObject;
+  Rounds, Polls0, Polls: LongInt;
+  Deadline: QWord;
+  Busy: Boolean;
+  W: LongInt;
+begin
+  MChn := nil;
+  SChn := nil;
+  try
+    MChn := OpenStack(ChnFT1_2.cName, 'NAM=FT1_2 MS=ON MAS=MASTER LEN=0 NOD=0 DNO=1 NAM=LOOP PAIR=IMW END=1' + Line, Err);
+    AssertEquals(Err, '', Err);
+    SChn := OpenStack(ChnFT1_2.cName, 'NAM=FT1_2 MS=ON MAS=SLAVE LEN=0 NOD=1 DNO=0 NAM=LOOP PAIR=IMW END=2' + Line, Err);
+    AssertEquals(Err, '', Err);
+    AssertEquals(E, res_Ok, IecSlaveInit(S, SChn, IecDefaultParams, 1, E));
+    FillChar(O, SizeOf(O), 0);
+    O.Ioa := 100;
+    AssertEquals(E, res_Ok, IecSlaveAddPoint(S, M_ME_NC_1, O, 0, E));
+    AssertEquals(res_Ok, IecMasterInit(M, MChn, IecDefaultParams));
+    IecMasterAddSlave(M, 1);
+    M.OnObject := nil;
+    M.CycleMs := 20;
+    Rounds := 0;
+    Polls0 := -1;
+    Deadline := ChMsTick + 1500;
+    while ChMsTick < Deadline do
+    begin
+      Busy := IecMasterStep(M);
+      if IecSlaveStep(S) then
+        Busy := True;
+      if (Polls0 < 0) and (M.Slaves[0].State = isOnline) and (M.Job = ljNone) then
+      begin
+        Polls0 := M.Slaves[0].Class1 + M.Slaves[0].Class2;
+        Rounds := 0;                    { the link set up: count the polls' rounds }
+      end;
+      Inc(Rounds);
+      if not Busy then
+      begin
+        W := ChnWaitLeft(IecMasterWaitEnd(M));
+        if IecSlaveWaitMs(S) < W then
+          W := IecSlaveWaitMs(S);
+        if W > 100 then
+          W := 100;
+        ChnWaitAny(W);
+      end;
+    end;
+    AssertTrue('the slave came online', Polls0 >= 0);
+    Polls := M.Slaves[0].Class1 + M.Slaves[0].Class2 - Polls0;
+    AssertTrue(Format('polls answered in 1.5 s: %d', [Polls]), Polls >= 5);
+    AssertTrue(Format('%d rounds for %d polls', [Rounds, Polls]), Rounds <= 20 * Polls);
+  finally
+    if MChn <> nil then
+      Dispose(MChn, Done);
+    if SChn <> nil then
+      Dispose(SChn, Done);
+  end;
 end;
 
 initialization

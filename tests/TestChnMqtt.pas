@@ -7,7 +7,8 @@
   and sending none twice; a full queue dropping (and counting) its
   oldest; user name and password (a wrong password refused with the
   broker and the reason named) and TLS against a broker with a
-  certificate made for the test. Skipped, with the reason, where
+  certificate made for the test; an idle client waking only when its
+  keep-alive ping is due, and that ping keeping it connected. Skipped, with the reason, where
   mosquitto (or openssl) is not installed. }
 unit TestChnMqtt;
 
@@ -41,6 +42,7 @@ type
     procedure TestStateTextAndDefaults;
     {$IFDEF UNIX}
     procedure TestPublishAndSubscribe;
+    procedure TestIdleWakesOnlyForThePing;
     procedure TestBrokerRestartLosesNothingQueued;
     procedure TestFullQueueDropsTheOldest;
     procedure TestHandedOverSentOnceAfterLoss;
@@ -186,6 +188,44 @@ begin
   AssertEquals('topic', 'chn/set/x', M.Topic);
   AssertEquals('payload', '42', M.Payload);
   AssertFalse('one only', MqttTakeMessage(C, M));
+end;
+
+{ Idle, the client wakes only for its keep-alive PINGREQ (KeepAlive s
+  after the last traffic, and a second for the library's clock of whole
+  seconds), not on a tick: with KeepAlive 5 it sleeps about 6 s, where a
+  look every quarter of it woke 4 times. The ping keeps it connected past
+  the 7.5 s (1.5 KeepAlive) after which the broker drops a silent
+  client. }
+procedure TTestChnMqtt.TestIdleWakesOnlyForThePing;
+var
+  Deadline: QWord;
+  W, Wakes: LongInt;
+  Err: AnsiString;
+begin
+  StartBroker;
+  MqttInit(C);
+  C.Port := Broker.Port;
+  C.KeepAlive := 5;
+  AssertTrue(Err, MqttOpen(C, Err));
+  AssertTrue('connected: ' + C.LastError, StepUntil(C, @Connected, 5000));
+  MqttStep(C);
+  W := MqttWaitMs(C);
+  AssertTrue(Format('idle after the connect: a wait of %d ms', [W]), (W >= 5000) and (W <= 6100));
+  Wakes := 0;
+  Deadline := GetTickCount64 + 8500;
+  while GetTickCount64 < Deadline do
+  begin
+    W := MqttWaitMs(C);
+    if W > ChnWaitLeft(Deadline) then
+      W := ChnWaitLeft(Deadline);
+    ChnWaitAny(W);
+    MqttStep(C);
+    Inc(Wakes);
+  end;
+  AssertEquals('still connected (the ping went out): ' + C.LastError, 'connected', MqttStateText(C));
+  AssertEquals('one connection', 1, C.Connects);
+  { the ping's wait, its answer, the deadline; a quarter tick made 7 }
+  AssertTrue(Format('%d wakes in 8.5 s', [Wakes]), Wakes <= 4);
 end;
 
 procedure TTestChnMqtt.TestBrokerRestartLosesNothingQueued;

@@ -59,6 +59,17 @@ remade=$(make --debug=b BUILD="$BUILD" 2>/dev/null | sed -n "s/^ *Must remake ta
 if [ -z "$remade" ]; then pass "package: a make with nothing to do remakes nothing"
 else bad "package: a second make remakes: $(echo $remade)"; fi
 
+# a changed library source or include file remakes the library, the
+# programs that use it, and their tools/lib units afresh (make -n -W: what
+# make would run were the file new; nothing is built)
+would() { make -n -W "$1" BUILD="$BUILD" 2>/dev/null | sed -n 's/^fpc .* \([^ ]*\.pas\)$/\1/p; s/^rm -rf .*tool-units$/tool-units/p' | tr '\n' ' '; }
+w1=$(would src/core/chnversion.inc); w2=$(would src/df1/ChnPccc.pas); w3=$(would tools/lib/ChnGateway.pas)
+has() { case " $1 " in *" $2 "*) true;; *) false;; esac; }
+if has "$w1" "$BUILD/chnall.pas" && has "$w1" tool-units && has "$w1" tools/chngate.pas &&
+   has "$w2" tools/df1sim.pas && ! has "$w2" examples/icsread.pas && [ "$w3" = "tools/chngate.pas " ]; then
+  pass "package: a changed unit or include file remakes the programs that use it (and their tools/lib units), no other"
+else bad "package: make after a change would compile: chnversion.inc: $w1; ChnPccc.pas: $w2; ChnGateway.pas: $w3"; fi
+
 # the license: stated once in COPYING, the same words in fpmake.pp and chn.lpk
 lic=$(sed -n "s/^ *P\.License := '\(.*\)';/\1/p" fpmake.pp)
 if [ -f COPYING ] && [ -f COPYING.LGPL ] && grep -q "Lesser General Public License" COPYING &&

@@ -51,11 +51,15 @@ program df1sim;
 
 uses
   {$IFDEF UNIX}BaseUnix, ChnPty,{$ENDIF}
-  SysUtils, uString, ChnTypes, ChnOs, ChnVirt, ChnLayers, ChnTcp, ChnDF1,
+  SysUtils, uString, ChnTypes, ChnOs, ChnVirt, ChnWait, ChnLayers, ChnTcp, ChnDF1,
   ChnSlc, ChnDF1Link, ChnPccc, ChnCli;
 
 const
   LingerMs = 1000;   { after the last counted command: time for the master's ACK }
+  { Nothing to answer: wait for the line (ChnWaitAny ends at its first
+    byte) at most this long, for this loop's own timers and for a pty
+    without a client, which is not in the wait. }
+  WaitMs = 10;
 
 var
   Stop: Boolean = False;
@@ -281,7 +285,7 @@ begin
       Halt(1);
     end
     else
-      Sleep(1);
+      ChnWaitAny(WaitMs);
     if (TimeoutS > 0) and (ChMsTick - LastMsg > QWord(TimeoutS) * 1000) then
     begin
       LogLine(Format('df1sim: %d s without a message, done', [TimeoutS]));

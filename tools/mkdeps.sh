@@ -7,7 +7,9 @@
 # program's source and, transitively, every unit of SOURCE_DIRS it uses
 # (uses clauses read from the sources; units not found there, such as the
 # RTL's, are ignored; {$IFDEF}ed units count as used, which only costs a
-# relink). A program is relinked only when one of those files changed.
+# relink) and the files they include ({$I name}: chn.inc, a unit's per-OS
+# unix/ and win/ include files, chnversion.inc...). A program is relinked
+# only when one of those files changed.
 set -eu
 bindir=$1; shift
 dirs=()
@@ -24,7 +26,20 @@ uses_of() {
            for (i = 1; i <= n; i++) { u = a[i]; sub(/ in .*$/, "", u); gsub(/ /, "", u); if (u != "") print u } }'
 }
 
-declare -A file_of deps_of
+# the files a source includes ({$I name} or {$INCLUDE name}), as fpc finds
+# them: beside the including file, else in src/ (-Fisrc); nested includes too
+incs_of() {
+  local f=$1 dir n p
+  dir=$(dirname "$f")
+  grep -oiE '\{\$(I|INCLUDE) +[^}]+\}' "$f" | sed -E 's/^\{\$[A-Za-z]+ +//; s/ *\}$//' |
+    while read -r n; do
+      for p in "$dir/$n" "src/$n"; do
+        if [ -f "$p" ]; then echo "$p"; incs_of "$p"; break; fi
+      done
+    done
+}
+
+declare -A file_of deps_of incs
 for d in "${dirs[@]}"; do
   for f in "$d"/*.pas; do
     [ -e "$f" ] || continue
@@ -32,6 +47,7 @@ for d in "${dirs[@]}"; do
   done
 done
 for n in "${!file_of[@]}"; do
+  incs[$n]=$(incs_of "${file_of[$n]}" | tr '\n' ' ')
   deps_of[$n]=$(uses_of "${file_of[$n]}" | while read -r u; do
     [ -n "${file_of[$u]:-}" ] && echo "$u"; done | tr '\n' ' ')
 done
@@ -45,11 +61,12 @@ closure() {   # closure of unit names given on stdin
     seen[$u]=1
     todo+=(${deps_of[$u]:-})
   done
-  for u in "${!seen[@]}"; do echo "${file_of[$u]}"; done | sort
+  for u in "${!seen[@]}"; do echo "${file_of[$u]}"; printf '%s\n' ${incs[$u]}; done | sort -u
 }
 
 for p in "$@"; do
   name=$(basename "$p" .pas)
-  files=$(uses_of "$p" | while read -r u; do [ -n "${file_of[$u]:-}" ] && echo "$u"; done | closure | tr '\n' ' ')
+  files=$({ uses_of "$p" | while read -r u; do [ -n "${file_of[$u]:-}" ] && echo "$u"; done | closure
+           incs_of "$p"; } | sort -u | tr '\n' ' ')
   echo "$bindir/$name: $p $files"
 done

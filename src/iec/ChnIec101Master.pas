@@ -452,7 +452,11 @@ var
   T: QWord;
 begin
   Result := ChMsTick + QWord(IecTransportWaitMs(M.Link, 50));   { the link's timers }
-  if not M.Balanced then
+  if not M.Balanced and (M.Job <> ljNone) then
+    { a service under way: no poll starts before it ends, so its own
+      deadline is the next (its answer ends the wait sooner) }
+    Result := High(QWord)
+  else if not M.Balanced then
   begin
     Result := ChMsTick + QWord(M.DeadMaxMs);
     for I := 0 to M.SlaveCount - 1 do

@@ -14,6 +14,10 @@
   blocking (mosquitto_loop_read, loop_write, loop_misc for the keep-alive)
   and MqttWaitMs says how long the program may wait at most (the next
   keep-alive or reconnect). No thread of libmosquitto's own is started.
+  An idle client costs little: the socket is read only when the wait saw
+  it readable, and the program wakes for the keep-alive only when a
+  PINGREQ is due (KeepAlive s after the last traffic either way, plus the
+  second the library rounds its clock to), not on a fixed tick.
 
   Delivery. Every message goes through the client's own queue, bounded
   by QueueMax messages: while the broker is away (not yet connected, lost,
@@ -96,6 +100,7 @@ type
     Connects   : LongInt;
     LastError  : AnsiString;
     Changed    : Boolean;       {< the connection state changed (MqttStep's result) }
+    InAt, OutAt: QWord;         {< GetTickCount64 at or after the last traffic in, out }
   end;
 
 { Load libmosquitto (MqttLibName, or the file CHN_LIBMOSQUITTO names);
@@ -118,8 +123,13 @@ procedure MqttSubscribe(var C: tMqttClient; const Topic: AnsiString);
 { Do the client's work without blocking; True when a message arrived or
   the connection changed. Call after every ChnWaitAny. }
 function MqttStep(var C: tMqttClient): Boolean;
+{ The same, NowMs (GetTickCount64) read by the caller for its whole round
+  (a program that reads the clock once per wake-up). }
+function MqttStepAt(var C: tMqttClient; NowMs: QWord): Boolean;
 { Milliseconds the program may wait before the next MqttStep at most. }
 function MqttWaitMs(const C: tMqttClient): LongInt;
+{ The same as a GetTickCount64 time; High(QWord) when nothing is due. }
+function MqttDueAt(const C: tMqttClient): QWord;
 { The next received message; False when none. }
 function MqttTakeMessage(var C: tMqttClient; out M: tMqttMessage): Boolean;
 { Messages waiting in the queue (not yet acknowledged). }
@@ -478,13 +488,15 @@ begin
     mosquitto_subscribe(C.Mosq, nil, PChar(Topic), 1);
 end;
 
-{ Hand what waits in the queue to the library, in order. }
-procedure Flush(var C: tMqttClient);
+{ Hand what waits in the queue to the library, in order; True when it
+  handed any (the library wrote it). }
+function Flush(var C: tMqttClient): Boolean;
 var
   I, J: LongInt;
   Mid: cint;
   Rc: cint;
 begin
+  Result := False;
   I := 0;
   while (I < Length(C.Queue)) and (C.State = msConnected) do
   begin
@@ -493,6 +505,7 @@ begin
       Mid := 0;
       Rc := mosquitto_publish(C.Mosq, @Mid, PChar(C.Queue[I].Topic), Length(C.Queue[I].Payload),
         PChar(C.Queue[I].Payload), C.Queue[I].Qos, C.Queue[I].Retain);
+      Result := True;
       if Rc <> MOSQ_ERR_SUCCESS then
       begin
         if (Rc = MOSQ_ERR_NO_CONN) or (Rc = MOSQ_ERR_CONN_LOST) then
@@ -517,15 +530,34 @@ begin
 end;
 
 function MqttStep(var C: tMqttClient): Boolean;
+begin
+  Result := MqttStepAt(C, GetTickCount64);
+end;
+
+{ When loop_misc sends the PINGREQ: KeepAlive s after the last traffic in
+  or out, by the library's clock of whole seconds (hence the second more).
+  InAt and OutAt are never earlier than the library's own marks, so the
+  ping is due by then. }
+function PingAt(const C: tMqttClient): QWord;
+begin
+  Result := C.InAt;
+  if C.OutAt < Result then
+    Result := C.OutAt;
+  Result := Result + QWord(C.KeepAlive) * 1000 + 1000;
+end;
+
+function MqttStepAt(var C: tMqttClient; NowMs: QWord): Boolean;
 var
   Rc: cint;
+  Read, Wrote: Boolean;
+  T: QWord;
 begin
   C.Changed := False;
   if C.Mosq = nil then
     Exit(False);
   if C.State = msWaiting then
   begin
-    if GetTickCount64 >= C.RetryAt then
+    if NowMs >= C.RetryAt then
     begin
       C.State := msConnecting;
       Rc := mosquitto_reconnect_async(C.Mosq);
@@ -536,17 +568,41 @@ begin
   end;
   if C.State in [msConnecting, msConnected] then
   begin
-    Rc := mosquitto_loop_read(C.Mosq, 100);
+    { connected, its socket watched by the wait and not seen readable:
+      nothing came, no read (TLS may hold decrypted bytes the socket does
+      not show: always read) }
+    Read := (C.State <> msConnected) or C.Tls or not ChnWaitWatching(C.Src);
+    Wrote := False;
+    Rc := MOSQ_ERR_SUCCESS;
+    if Read then
+      Rc := mosquitto_loop_read(C.Mosq, 100);
     if (Rc = MOSQ_ERR_SUCCESS) and (C.State in [msConnecting, msConnected]) then
     begin
-      Flush(C);
+      Wrote := Flush(C);
       if mosquitto_want_write(C.Mosq) then
+      begin
+        Wrote := True;
         Rc := mosquitto_loop_write(C.Mosq, 100);
+      end;
     end;
     if (Rc = MOSQ_ERR_SUCCESS) and (C.State in [msConnecting, msConnected]) then
+    begin
+      if (C.State = msConnected) and (NowMs >= PingAt(C)) then
+        Wrote := True;                 { loop_misc sends the PINGREQ now }
       Rc := mosquitto_loop_misc(C.Mosq);
+    end;
     if (Rc <> MOSQ_ERR_SUCCESS) and (C.State in [msConnecting, msConnected]) then
       Lost(C, 'connection to ' + C.Host + ':' + IntToStr(C.Port) + ': ' + ErrText(Rc));
+    if Read or Wrote or C.Changed then
+    begin
+      { read after the traffic: never before the library's own marks (a
+        ping resets both: it waits KeepAlive for the answer) }
+      T := GetTickCount64;
+      if Read or C.Changed or (NowMs >= PingAt(C)) then
+        C.InAt := T;
+      if Wrote or C.Changed then
+        C.OutAt := T;
+    end;
     if C.Src <> nil then
     begin
       ChnWaitServed(C.Src, True);
@@ -556,21 +612,25 @@ begin
   Result := C.Changed or (C.InboxHead < Length(C.Inbox));
 end;
 
-function MqttWaitMs(const C: tMqttClient): LongInt;
+function MqttDueAt(const C: tMqttClient): QWord;
 begin
   case C.State of
-    msWaiting: Result := ChnWaitLeft(C.RetryAt);
+    msWaiting: Result := C.RetryAt;
     msConnecting:
-      Result := 1000;
+      Result := GetTickCount64 + 1000;
     msConnected:
-      { the keep-alive: loop_misc sends the ping once KeepAlive s passed
-        without traffic; looking every quarter of it sends it by 1.25
-        KeepAlive, before the broker gives up (1.5 KeepAlive), and an
-        idle program wakes no more often than that }
-      Result := C.KeepAlive * 250;
+      Result := PingAt(C);
   else
-    Result := High(LongInt);
+    Result := High(QWord);
   end;
+end;
+
+function MqttWaitMs(const C: tMqttClient): LongInt;
+begin
+  if C.State = msClosed then
+    Result := High(LongInt)
+  else
+    Result := ChnWaitLeft(MqttDueAt(C));
 end;
 
 function MqttTakeMessage(var C: tMqttClient; out M: tMqttMessage): Boolean;

@@ -978,11 +978,11 @@ begin
     Refuse(G, Topic_, E);
 end;
 
-{ MqttStep, and a log line when the connection came or went (why, and
+{ MqttStepAt, and a log line when the connection came or went (why, and
   when it is tried again). }
-procedure StepMqtt(var G: tGate);
+procedure StepMqtt(var G: tGate; Now_: QWord);
 begin
-  MqttStep(G.Mqtt);
+  MqttStepAt(G.Mqtt, Now_);
   if not G.Mqtt.Changed then
     Exit;
   if G.Mqtt.State = msConnected then
@@ -1079,18 +1079,23 @@ var
   Wr: tTagWrite;
   Changed: Boolean;
   Now_, Due: QWord;
-  Health, Moved: Boolean;
+  Health, Moved, Worked: Boolean;
 begin
+  { the clock is read once for an idle round (each read is a system call) }
   Now_ := GetTickCount64;
   Health := (G.HealthAt <> 0) and (Now_ >= G.HealthAt);
   if Health then
     G.HealthAt := 0;
   Moved := False;
-  Due := High(QWord);
-  StepMqtt(G);
+  Worked := False;
+  StepMqtt(G, Now_);
   while MqttTakeMessage(G.Mqtt, M) do
+  begin
     Command(G, M);
-  Result := MqttWaitMs(G.Mqtt);
+    Worked := True;
+  end;
+  Result := High(LongInt);
+  Due := MqttDueAt(G.Mqtt);
   { the control centre's requests and commands, before the devices' step }
   if G.Cfg.Iec104.Present then
     Result := Min(Result, Gate104Step(G.N104, G.Devs));
@@ -1109,6 +1114,7 @@ begin
       Moved := True;
     while TagTakeChange(G.Devs[I], Tag) do
     begin
+      Worked := True;
       Publish(G, Topic(G, G.Devs[I].Name, G.Devs[I].Tags[Tag].Name), GateTagPayload(G.Devs[I].Tags[Tag]), True);
       Gate104Change(G.N104, G.Devs, I, Tag);
     end;
@@ -1130,14 +1136,20 @@ begin
   end;
   if G.HealthAt <> 0 then
     Due := Min(Due, G.HealthAt);
-  W := ChnWaitLeft(Due);
+  Worked := Worked or Moved or (MqttQueued(G.Mqtt) > 0);
+  if Worked then
+    W := ChnWaitLeft(Due)              { the round took its time: the clock again }
+  else if Due <= Now_ then
+    W := 0
+  else
+    W := LongInt(Min(Due - Now_, QWord(High(LongInt))));
   if W < Result then
     Result := W;
   { what was queued in this round goes out now (an idle round queued
     nothing: no second look) }
-  if Moved or (Result = 0) or (MqttQueued(G.Mqtt) > 0) then
+  if Worked or (Result = 0) then
   begin
-    StepMqtt(G);
+    StepMqtt(G, Now_);
     if G.Cfg.Iec104.Present then
       Result := Min(Result, Gate104Step(G.N104, G.Devs));
   end;
