@@ -446,12 +446,13 @@ begin
   AssertEquals(res_Ok, A^.ChSendResult);
   AssertEquals('the line is busy', CHS_Sending, A^.ChSendReady);
   B^.ChReceiveBuffer(@D, SizeOf(D));
+  Len := 0;
   if B^.ChReceiveReady = CHS_ReceiveReady then
   begin
-    B^.ChReceive(Len);
+    B^.ChReceive(Len);    { a loaded machine may come here a character late }
     AssertTrue('not all at once: ' + IntToStr(Len), Len < 100);
   end;
-  AssertEquals(SizeOf(S), TimedDrain(B, D, SizeOf(S), Wakes));
+  AssertEquals(SizeOf(S) - Len, TimedDrain(B, D[Len..High(D)], SizeOf(S) - Len, Wakes));
   Took := GetTickCount64 - T0;
   AssertTrue('content', CompareMem(@S, @D, SizeOf(S)));
   AssertTrue('took ' + IntToStr(Took) + ' ms of 208', Took >= 206);
