@@ -10,7 +10,7 @@ program df1demo;
 {$MODE OBJFPC}{$H+}
 
 uses
-  SysUtils, ChnTypes, ChnVirt, ChnLayers, ChnDF1, ChnSlc, ChnDF1Link, ChnCli;
+  SysUtils, ChnTypes, ChnVirt, ChnWait, ChnLayers, ChnDF1, ChnSlc, ChnDF1Link, ChnCli;
 
 var
   Cli: tCli;
@@ -77,7 +77,7 @@ begin
   { let the slave take the master's last ACK }
   Deadline := ChMsTick + 100;
   while not DF1StationStep(Slave) and (ChMsTick <= Deadline) do
-    Sleep(1);
+    ChnWaitAny(10);                { the slave's line, at most 10 ms }
   { an echo: the same TNS (DF1Transact checked it), STS 0 and the data back }
   if (R = res_Ok) and (Rep.Sts = 0) and (RepLen = ReqLen) and
      (CompareByte(Rep.Data, Req.Data, ReqLen - 8) = 0) then

@@ -26,7 +26,7 @@ program df1echo;
 
 uses
   {$IFDEF UNIX}cthreads,{$ENDIF}
-  SysUtils, uString, ChnTypes, ChnVirt, ChnLayers, ChnDF1, ChnDF1Link, ChnCli;
+  SysUtils, uString, ChnTypes, ChnVirt, ChnWait, ChnLayers, ChnDF1, ChnDF1Link, ChnCli;
   { units register their layer names when they are linked in: ChnLayers
     links every layer, so any of them can be named in the parameter string }
 
@@ -66,7 +66,7 @@ var
 begin
   Deadline := ChMsTick + 3000;
   while (Chn^.ChReady <> State) and (Chn^.ChResult = res_Ok) and (ChMsTick < Deadline) do
-    Sleep(1);
+    ChnWaitAny(10);            { the line, at most 10 ms }
   Result := Chn^.ChReady = State;
 end;
 

@@ -21,7 +21,7 @@ program df1slave;
 {$MODE OBJFPC}{$H+}
 
 uses
-  SysUtils, ChnTypes, ChnVirt, ChnLayers, ChnDF1, ChnSlc, ChnDF1Link, ChnCli;
+  SysUtils, ChnTypes, ChnVirt, ChnWait, ChnLayers, ChnDF1, ChnSlc, ChnDF1Link, ChnCli;
 
 const
   DefaultParams = 'NAM=DF1 LSB=500 NOD=2 DNO=1 MAS=SLAVE FHD=FULL CRC=ON ' +
@@ -83,7 +83,7 @@ begin
       Halt(1);
     end
     else
-      Sleep(1);            { nothing waiting: do not burn the CPU }
+      ChnWaitAny(20);      { nothing waiting: until the line has something }
   until (IdleSec > 0) and (ChMsTick - LastMsg > QWord(IdleSec) * 1000);
   Chn^.ChDisConnect;
   Chn^.ChClose;

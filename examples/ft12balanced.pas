@@ -27,7 +27,7 @@ program ft12balanced;
 {$MODE OBJFPC}{$H-}
 
 uses
-  SysUtils, uString, ChnTypes, ChnVirt, ChnLayers, ChnFT1_2, ChnFT12Balanced,
+  SysUtils, uString, ChnTypes, ChnVirt, ChnWait, ChnLayers, ChnFT1_2, ChnFT12Balanced,
   ChnIec101Asdu, ChnIec101Print, ChnFT12Gap, ChnCli;
 
 var
@@ -159,7 +159,7 @@ begin
   begin
     if Chn^.ChResult <> res_Ok then Fail('line', Chn^.ChResult);
     if not FT12BalancedStep(L) then
-      Sleep(1);       { the physical layer may already wait; never spin hard }
+      ChnWaitAny(20);   { the line or the link's timers, at most 20 ms }
     if L.State <> Shown then
     begin
       Shown := L.State;

@@ -29,7 +29,7 @@ program ft12slave;
 uses
   SysUtils,
   ChnTypes,
-  ChnVirt,
+  ChnVirt, ChnWait,
   uString,
   ChnLayers,
   ChnFT12Codec,
@@ -119,7 +119,7 @@ begin
     if Chn^.ChResult <> res_Ok then Fail('line', Chn^.ChResult);
     if Chn^.ChReceiveReady <> CHS_ReceiveReady then
     begin
-      Sleep(1);     { the physical layer may already wait; never spin hard }
+      ChnWaitAny(20);   { until the line has something, at most 20 ms }
       Continue;
     end;
     Chn^.ChReceive(LReq);

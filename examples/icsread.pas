@@ -27,7 +27,7 @@ uses
   SysUtils,
   uString,
   ChnTypes,
-  ChnVirt,
+  ChnVirt, ChnWait,
   ChnLayers,
   ChnICS,
   ChnCli;
@@ -65,7 +65,7 @@ function Expired(Deadline: QWord): Boolean;
 begin
   Result := ChMsTick > Deadline;
   if not Result then
-    Sleep(1);     { the layer below may not wait by itself (NAM=LOOP) }
+    ChnWaitAny(10);   { the line, NAM=LOOP's too; at most 10 ms }
 end;
 
 var

@@ -25,7 +25,7 @@ uses
   SysUtils,
   uString,
   ChnTypes,
-  ChnVirt,
+  ChnVirt, ChnWait,
   ChnLayers,
   ChnICS,
   ChnCli;
@@ -156,7 +156,7 @@ begin
     begin
       if Chn^.ChResult <> res_Ok then
         Stop('line', Chn^.ChResult);         { device lost ... }
-      Sleep(1);
+      ChnWaitAny(20);                         { until the line has something }
       Continue;
     end;
     Chn^.ChReceive(Len);
@@ -177,7 +177,7 @@ begin
       if ChMsTick > Deadline then
         Stop('transmitter busy', res_Timeout)
       else
-        Sleep(1);
+        ChnWaitAny(10);
     Chn^.ChSend(@Ans, ALen);
     if Chn^.ChSendResult <> res_Ok then
       Stop('send', Chn^.ChSendResult);
