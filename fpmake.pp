@@ -68,7 +68,7 @@ begin
     P.License := 'LGPL-2.1-or-later with the static linking exception (modified LGPL, as the FPC RTL)';
     P.OSes := AllUnixOSes + AllWindowsOSes;
     P.Dependencies.Add('rtl-extra');   { Sockets, WinSock2 (ChnSock) }
-    P.Dependencies.Add('rtl-objpas');  { DateUtils (ChnTrc) }
+    P.Dependencies.Add('rtl-objpas');  { DateUtils (ChnTrc, ChnIecTime) }
     P.IncludePath.Add('src');          { chn.inc }
 
     { ---- src/core: types, tokens, the layer contract, the wait }
@@ -170,7 +170,9 @@ begin
     AddUnit(P, 'ChnIec104.pas', AllOSes, ['ChnTypes', 'ChnVirt', 'ChnProto', 'ChnIec104Codec',
       'uString', 'ChnTcp', 'ChnTrc']);
     { IEC 60870-5-101 application layer on the FT 1.2 link helpers or IEC 104 }
-    AddUnit(P, 'ChnIec101Asdu.pas', AllOSes, ['ChnTypes']);
+    { the time tags CP24Time2a/CP56Time2a, then the ASDU codec }
+    AddUnit(P, 'ChnIecTime.pas', AllOSes, []);
+    AddUnit(P, 'ChnIec101Asdu.pas', AllOSes, ['ChnTypes', 'ChnIecTime']);
     { the IEC 101 information objects as JSON or a readable line, for tools }
     AddUnit(P, 'ChnIec101Print.pas', AllOSes, ['ChnIec101Asdu']);
     AddUnit(P, 'ChnIecTransport.pas', AllOSes, ['ChnTypes', 'ChnVirt', 'ChnFT1_2', 'ChnFT12Link', 'ChnFT12Balanced',
