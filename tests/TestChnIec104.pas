@@ -76,15 +76,9 @@ begin
 end;
 
 function TTestChnIec104.OpenServerLayer(const Extra: string): Word;
-var
-  Err: string;
-  T: pChnVirt;
 begin
-  Layer := OpenStack('IEC104', Extra + ' NAM=TCP LISTEN=127.0.0.1:0', Err);
-  AssertNotNull(Err, Layer);
+  Layer := OpenListening('IEC104', Extra + ' NAM=TCP LISTEN=127.0.0.1:0', Result);
   Layer^.ChReceiveBuffer(@LBuf, SizeOf(LBuf));
-  T := Layer^.CH_Low;
-  Result := pChnTcp(T)^.ChLocalPort;
 end;
 
 procedure TTestChnIec104.OpenPeerClient(Port: Word);
@@ -98,13 +92,9 @@ begin
 end;
 
 function TTestChnIec104.OpenPeerServer: Word;
-var
-  Err: string;
 begin
-  Peer := OpenStack('TCP', 'LISTEN=127.0.0.1:0', Err);
-  AssertNotNull(Err, Peer);
+  Peer := OpenListening('TCP', 'LISTEN=127.0.0.1:0', Result);
   Peer^.ChReceiveBuffer(@PeerBuf, SizeOf(PeerBuf));
-  Result := pChnTcp(Peer)^.ChLocalPort;
   Got := '';
 end;
 

@@ -44,12 +44,23 @@ begin
   RemoveTempDir(FDir);
 end;
 
+procedure StepSlave(Data: Pointer);
+begin
+  if not IecSlaveStep(tIecSlaveStation(Data^)) then
+    Sleep(1);
+end;
+
+procedure StepMaster(Data: Pointer);
+begin
+  IecMasterStep(tIecMaster(Data^));
+  Sleep(5);
+end;
+
 procedure TTestIec101Docs.TestMasterProgram;
 var
   Exe, Out, Err: string;
   Chn: pChnVirt;
   P: TProcess;
-  Deadline: QWord;
   E: AnsiString;
   Es: ShortString;
 begin
@@ -69,16 +80,7 @@ begin
       ' BD=9600 PAR=E');
     P.Options := [poUsePipes, poStderrToOutPut];
     P.Execute;
-    Out := '';
-    Deadline := ChMsTick + 15000;
-    while P.Running and (ChMsTick < Deadline) do
-    begin
-      if not IecSlaveStep(S) then
-        Sleep(1);
-      Out := Out + PipeText(P.Output);
-    end;
-    Out := Out + PipeText(P.Output);
-    AssertFalse('ended', P.Running);
+    Out := ServeUntilEnded(P, 15000, @StepSlave, @S);
     Err := 'C_IC_NA_1 ACTIVATION_CON IOA 0 = 20' + LineEnding +
       'M_ME_NB_1 INTERROGATED_BY_STATION IOA 100 = -1' + LineEnding +
       'M_ME_NB_1 INTERROGATED_BY_STATION IOA 101 = 23' + LineEnding +
@@ -106,7 +108,6 @@ var
   P: TProcess;
   M: tIecMaster;
   O: tIecObject;
-  Deadline: QWord;
   Gi: TStringList;
   Line: string;
 begin
@@ -152,16 +153,7 @@ begin
     IecPollFor(M, 2200);
     { the changes every second, as events }
     AssertTrue(Objects.Text, Pos('M_ME_NB_1 3 100 = ', Objects.Text) > 0);
-    Out := '';
-    Deadline := ChMsTick + 10000;
-    while P.Running and (ChMsTick < Deadline) do
-    begin
-      IecMasterStep(M);
-      Sleep(5);
-      Out := Out + PipeText(P.Output);
-    end;
-    Out := Out + PipeText(P.Output);
-    AssertFalse('ended', P.Running);
+    Out := ServeUntilEnded(P, 10000, @StepMaster, @M);
     AssertEquals('C_SC_NA_1 IOA 5000 = 1 select TRUE' + LineEnding +
       'C_SC_NA_1 IOA 5000 = 1 select FALSE' + LineEnding + 'Ok' + LineEnding, Out);
   finally

@@ -38,12 +38,17 @@ begin
   RemoveTempDir(FDir);
 end;
 
+procedure StepSlave(Data: Pointer);
+begin
+  if not IecSlaveStep(tIecSlaveStation(Data^)) then
+    ChnWaitAny(5);
+end;
+
 procedure TTestIec104Docs.TestClientProgram;
 var
   Exe, Out, Want, Err: string;
   Chn: pChnVirt;
   P: TProcess;
-  Deadline: QWord;
   E: AnsiString;
   Es: ShortString;
 begin
@@ -63,16 +68,7 @@ begin
       IntToStr(pChnTcp(Chn^.CH_Low)^.ChLocalPort));
     P.Options := [poUsePipes, poStderrToOutPut];
     P.Execute;
-    Out := '';
-    Deadline := ChMsTick + 15000;
-    while P.Running and (ChMsTick < Deadline) do
-    begin
-      if not IecSlaveStep(S) then
-        ChnWaitAny(5);
-      Out := Out + PipeText(P.Output);
-    end;
-    Out := Out + PipeText(P.Output);
-    AssertFalse('ended', P.Running);
+    Out := ServeUntilEnded(P, 15000, @StepSlave, @S);
     Want := 'C_IC_NA_1 ACTIVATION_CON IOA 0 = 20' + LineEnding +
       'M_ME_NB_1 INTERROGATED_BY_STATION IOA 100 = -1' + LineEnding +
       'M_ME_NB_1 INTERROGATED_BY_STATION IOA 101 = 23' + LineEnding +

@@ -101,9 +101,7 @@ var
   O: tIecObject;
   Port: Word;
 begin
-  SChn := OpenStack('IEC104', 'NAM=IEC104 NAM=TCP LISTEN=127.0.0.1:0', Err);
-  AssertNotNull(Err, SChn);
-  Port := pChnTcp(SChn^.CH_Low)^.ChLocalPort;
+  SChn := OpenListening('IEC104', 'NAM=IEC104 NAM=TCP LISTEN=127.0.0.1:0', Port);
   AssertEquals('slave', res_Ok, IecSlaveInit(S, SChn, IecDefaultParams, 1, E));
   S.OnCommand := @OnCmd;
   S.Data := Self;

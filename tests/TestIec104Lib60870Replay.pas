@@ -153,10 +153,8 @@ var
   Deadline: QWord;
 begin
   Load('iec104-lib60870-server.trc');
-  FPeer := OpenStack('TCP', 'LISTEN=127.0.0.1:0', Err);
-  AssertNotNull(Err, FPeer);
+  FPeer := OpenListening('TCP', 'LISTEN=127.0.0.1:0', Port);
   FPeer^.ChReceiveBuffer(@FBuf, SizeOf(FBuf));
-  Port := pChnTcp(FPeer)^.ChLocalPort;
   FUs := OpenStack('IEC104', 'NAM=IEC104 NAM=TCP HOST=127.0.0.1 PORT=' + IntToStr(Port), Err);
   AssertNotNull(Err, FUs);
   AssertEquals(res_Ok, IecMasterInit(M, FUs, IecDefaultParams));
@@ -203,9 +201,7 @@ var
   Deadline: QWord;
 begin
   Load('iec104-lib60870-client.trc');
-  FUs := OpenStack('IEC104', 'NAM=IEC104 NAM=TCP LISTEN=127.0.0.1:0', Err);
-  AssertNotNull(Err, FUs);
-  Port := pChnTcp(FUs^.CH_Low)^.ChLocalPort;
+  FUs := OpenListening('IEC104', 'NAM=IEC104 NAM=TCP LISTEN=127.0.0.1:0', Port);
   AssertEquals(res_Ok, IecSlaveInit(S, FUs, IecDefaultParams, 1, E));
   AssertTrue(AE, IecLoadPoints(S, 'iec101-alltypes.points',
     ReadFileText(DataDir + 'iec101-alltypes.points'), AE));

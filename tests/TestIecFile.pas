@@ -256,9 +256,7 @@ begin
   else
   begin
     Addr := 0;
-    SChn := OpenStack('IEC104', 'NAM=IEC104 NAM=TCP LISTEN=127.0.0.1:0', Err);
-    AssertNotNull(Err, SChn);
-    Port := pChnTcp(SChn^.CH_Low)^.ChLocalPort;
+    SChn := OpenListening('IEC104', 'NAM=IEC104 NAM=TCP LISTEN=127.0.0.1:0', Port);
     MChn := OpenStack('IEC104', 'NAM=IEC104 NAM=TCP HOST=127.0.0.1 PORT=' + IntToStr(Port) + ' RECON=200', Err);
   end;
   AssertNotNull(Err, SChn);

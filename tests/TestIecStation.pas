@@ -148,9 +148,7 @@ begin
       end;
     pk104:
       begin
-        SChn := OpenStack('IEC104', 'NAM=IEC104 NAM=TCP LISTEN=127.0.0.1:0', Err);
-        AssertNotNull(Err, SChn);
-        Port := pChnTcp(SChn^.CH_Low)^.ChLocalPort;
+        SChn := OpenListening('IEC104', 'NAM=IEC104 NAM=TCP LISTEN=127.0.0.1:0', Port);
         MChn := OpenStack('IEC104', 'NAM=IEC104 NAM=TCP HOST=127.0.0.1 PORT=' + IntToStr(Port) +
           ' RECON=200', Err);
       end;

@@ -188,17 +188,12 @@ end;
 
 function ParamKey(const S: tWordString): ShortString;
 var
-  P, I: LongInt;
+  P: LongInt;
 begin
   P := OnlyEqualAt(S);
   if P = 0 then
     Exit('');
-  SetLength(Result, P - 1);
-  for I := 1 to P - 1 do
-    if S[I] in ['a'..'z'] then
-      Result[I] := Chr(Ord(S[I]) - 32)
-    else
-      Result[I] := S[I];
+  Result := UpStr(Copy(S, 1, P - 1));
 end;
 
 function ParamValue(const S: tWordString): ShortString;

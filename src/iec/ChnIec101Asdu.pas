@@ -667,6 +667,27 @@ begin
     or (LongWord(B[At + 3]) shl 24);
 end;
 
+{ One IOA of Size octets at D. A pointer, not an open array: FPC inlines
+  no routine with an open array, and the codec's loops write and read one
+  for every object (the callers have checked the room). }
+procedure PutIoaAt(Size: Byte; Ioa: LongWord; D: PByte); inline;
+begin
+  D[0] := Ioa and $FF;
+  if Size > 1 then
+    D[1] := (Ioa shr 8) and $FF;
+  if Size > 2 then
+    D[2] := (Ioa shr 16) and $FF;
+end;
+
+function GetIoaAt(Size: Byte; S: PByte): LongWord; inline;
+begin
+  Result := S[0];
+  if Size > 1 then
+    Result := Result or (LongWord(S[1]) shl 8);
+  if Size > 2 then
+    Result := Result or (LongWord(S[2]) shl 16);
+end;
+
 function PutSingle(X: Double; var B: array of Byte; At: Integer): Boolean;
 var
   S: Single;
@@ -716,61 +737,37 @@ begin
     Err := What + ' ' + IntToStr(V) + ' out of range (' + IntToStr(Lo) + '..' + IntToStr(Hi) + ')';
 end;
 
-{ The elements of control direction and system information (commands,
-  qualifiers, the test word, the delay) into B[At..]. }
-procedure PutControl(K: tIecKind; const O: tIecObject; var B: array of Byte; At: Integer;
-  var Err: ShortString);
+{ The octet after a measured value (at D): its quality in a report (K =
+  Mon), QL and S/E in a set-point command (K = SetPt), else the QPM of a
+  parameter. Inline: PutElement runs for every object. }
+procedure PutValueTail(K, Mon, SetPt: tIecKind; const O: tIecObject; D: PByte;
+  var Err: ShortString); inline;
 begin
-  case K of
-    ikEndInit, ikQualifier:
-      if Range('qualifier', O.Int, 0, 255, Err) then
-        B[At] := O.Int;
-    ikSingleCmd, ikDoubleCmd, ikStepCmd:
-      if ((K = ikSingleCmd) and Range('value', O.Int, 0, 1, Err))
-        or ((K <> ikSingleCmd) and Range('state', O.Int, 0, 3, Err)) then
-        if Range('QU', O.Qu, 0, 31, Err) then
-          B[At] := O.Int or (O.Qu shl 2) or (Ord(O.Select) shl 7);
-    ikBitsCmd:
-      PutLong(O.Bits, B, At);
-    ikRead, ikClock:
-      ;
-    ikTest, ikTestTime:
-      if Range('test word', O.Int, 0, $FFFF, Err) then
-        PutWord(O.Int, B, At);
-    ikDelay:
-      PutWord(O.Elapsed, B, At);
-  end;
+  if K = Mon then
+    D^ := O.Quality and $F1
+  else if K <> SetPt then
+    D^ := O.Qu
+  else if Range('QL', O.Qu, 0, 127, Err) then
+    D^ := O.Qu or (Ord(O.Select) shl 7);
 end;
 
-{ PutControl's elements from B[At..]. }
-procedure GetControl(K: tIecKind; const B: array of Byte; At: Integer; var O: tIecObject);
+{ PutValueTail's reverse, from the octet Q. }
+procedure GetValueTail(K, Mon, SetPt: tIecKind; Q: Byte; var O: tIecObject); inline;
 begin
-  case K of
-    ikEndInit, ikQualifier:
-      O.Int := B[At];
-    ikSingleCmd, ikDoubleCmd, ikStepCmd:
-      begin
-        if K = ikSingleCmd then
-          O.Int := B[At] and 1
-        else
-          O.Int := B[At] and 3;
-        O.Qu := (B[At] shr 2) and $1F;
-        O.Select := B[At] and $80 <> 0;
-      end;
-    ikBitsCmd:
-      O.Bits := GetLong(B, At);
-    ikRead, ikClock:
-      ;
-    ikTest, ikTestTime:
-      O.Int := GetWord(B, At);
-    ikDelay:
-      O.Elapsed := GetWord(B, At);
+  if K = Mon then
+    O.Quality := Q and $F1
+  else if K <> SetPt then
+    O.Qu := Q
+  else
+  begin
+    O.Qu := Q and $7F;
+    O.Select := Q and $80 <> 0;
   end;
 end;
 
 { The element of O (type Ti) into B[At..]; False with Err (the field) when
-  a value does not fit. Monitor direction here, in one case (a station's
-  reports: the hot path), control direction in PutControl. }
+  a value does not fit. One case for every kind: a station's reports and
+  a master's commands are the hot paths. }
 function PutElement(Ti: Byte; const O: tIecObject; var B: array of Byte; At: Integer;
   out Err: ShortString): Boolean;
 var
@@ -808,36 +805,20 @@ begin
       else
       begin
         PutWord(Word(Raw), B, At);
-        if K = ikNormal then
-        begin
-          if V = 3 then
-            B[At + 2] := O.Quality and $F1;
-        end
-        else if (K = ikSetNormal) and Range('QL', O.Qu, 0, 127, Err) then
-          B[At + 2] := O.Qu or (Ord(O.Select) shl 7)
-        else if K = ikParNormal then
-          B[At + 2] := O.Qu;
+        if V = 3 then    { M_ME_ND_1: no quality octet }
+          PutValueTail(K, ikNormal, ikSetNormal, O, @B[At + 2], Err);
       end;
     ikScaled, ikSetScaled, ikParScaled:
       if Range('scaled value', O.Int, -32768, 32767, Err) then
       begin
         PutWord(Word(SmallInt(O.Int)), B, At);
-        if K = ikScaled then
-          B[At + 2] := O.Quality and $F1
-        else if (K = ikSetScaled) and Range('QL', O.Qu, 0, 127, Err) then
-          B[At + 2] := O.Qu or (Ord(O.Select) shl 7)
-        else if K = ikParScaled then
-          B[At + 2] := O.Qu;
+        PutValueTail(K, ikScaled, ikSetScaled, O, @B[At + 2], Err);
       end;
     ikFloat, ikSetFloat, ikParFloat:
       if not PutSingle(O.Number, B, At) then
         Err := 'float value ' + FloatToStr(O.Number) + ' out of range of a short float'
-      else if K = ikFloat then
-        B[At + 4] := O.Quality and $F1
-      else if (K = ikSetFloat) and Range('QL', O.Qu, 0, 127, Err) then
-        B[At + 4] := O.Qu or (Ord(O.Select) shl 7)
-      else if K = ikParFloat then
-        B[At + 4] := O.Qu;
+      else
+        PutValueTail(K, ikFloat, ikSetFloat, O, @B[At + 4], Err);
     ikCounter:
       if Range('sequence number', O.Seq, 0, 31, Err) then
       begin
@@ -857,8 +838,22 @@ begin
         B[At + 1] := O.Quality and $F8;
         PutWord(O.Elapsed, B, At + 2);
       end;
-  else
-    PutControl(K, O, B, At, Err);
+    { control direction and system information }
+    ikEndInit, ikQualifier:
+      if Range('qualifier', O.Int, 0, 255, Err) then
+        B[At] := O.Int;
+    ikSingleCmd, ikDoubleCmd, ikStepCmd:
+      if ((K = ikSingleCmd) and Range('value', O.Int, 0, 1, Err))
+        or ((K <> ikSingleCmd) and Range('state', O.Int, 0, 3, Err)) then
+        if Range('QU', O.Qu, 0, 31, Err) then
+          B[At] := O.Int or (O.Qu shl 2) or (Ord(O.Select) shl 7);
+    ikBitsCmd:
+      PutLong(O.Bits, B, At);
+    ikTest, ikTestTime:
+      if Range('test word', O.Int, 0, $FFFF, Err) then
+        PutWord(O.Int, B, At);
+    ikDelay:
+      PutWord(O.Elapsed, B, At);
   end;
   if (Err = '') and (Types[I].Time <> tkNone) then
     if TimeFits(O.Time, Types[I].Time, Err) then
@@ -903,41 +898,18 @@ begin
       begin
         O.Int := SmallInt(GetWord(B, At));
         O.Number := O.Int / 32768;
-        if (K = ikNormal) and (V = 3) then
-          O.Quality := B[At + 2] and $F1
-        else if K = ikSetNormal then
-        begin
-          O.Qu := B[At + 2] and $7F;
-          O.Select := B[At + 2] and $80 <> 0;
-        end
-        else if K = ikParNormal then
-          O.Qu := B[At + 2];
+        if V = 3 then    { M_ME_ND_1: no quality octet }
+          GetValueTail(K, ikNormal, ikSetNormal, B[At + 2], O);
       end;
     ikScaled, ikSetScaled, ikParScaled:
       begin
         O.Int := SmallInt(GetWord(B, At));
-        if K = ikScaled then
-          O.Quality := B[At + 2] and $F1
-        else if K = ikSetScaled then
-        begin
-          O.Qu := B[At + 2] and $7F;
-          O.Select := B[At + 2] and $80 <> 0;
-        end
-        else
-          O.Qu := B[At + 2];
+        GetValueTail(K, ikScaled, ikSetScaled, B[At + 2], O);
       end;
     ikFloat, ikSetFloat, ikParFloat:
       begin
         O.Number := GetSingle(B, At);
-        if K = ikFloat then
-          O.Quality := B[At + 4] and $F1
-        else if K = ikSetFloat then
-        begin
-          O.Qu := B[At + 4] and $7F;
-          O.Select := B[At + 4] and $80 <> 0;
-        end
-        else
-          O.Qu := B[At + 4];
+        GetValueTail(K, ikFloat, ikSetFloat, B[At + 4], O);
       end;
     ikCounter:
       begin
@@ -957,8 +929,24 @@ begin
         O.Quality := B[At + 1] and $F8;
         O.Elapsed := GetWord(B, At + 2);
       end;
-  else
-    GetControl(K, B, At, O);
+    { control direction and system information }
+    ikEndInit, ikQualifier:
+      O.Int := B[At];
+    ikSingleCmd, ikDoubleCmd, ikStepCmd:
+      begin
+        if K = ikSingleCmd then
+          O.Int := B[At] and 1
+        else
+          O.Int := B[At] and 3;
+        O.Qu := (B[At] shr 2) and $1F;
+        O.Select := B[At] and $80 <> 0;
+      end;
+    ikBitsCmd:
+      O.Bits := GetLong(B, At);
+    ikTest, ikTestTime:
+      O.Int := GetWord(B, At);
+    ikDelay:
+      O.Elapsed := GetWord(B, At);
   end;
   if Types[I].Time <> tkNone then
     GetTime(B, At + V, Types[I].Time, O.Time);
@@ -977,7 +965,7 @@ begin
   Result := 'object ' + IntToStr(Index + 1);
 end;
 
-function IdentFits(const P: tIecParams; const H: tIecAsdu; out Err: ShortString): tChResult;
+function IdentFits(const P: tIecParams; const H: tIecAsdu; out Err: ShortString): tChResult; inline;
 begin
   Result := res_Ok;
   Err := '';
@@ -991,7 +979,9 @@ begin
       + IntToStr(P.CaSize) + ' octet(s)', Err));
 end;
 
-procedure PutIdent(const P: tIecParams; const H: tIecAsdu; var Buf: array of Byte; out At: Integer);
+{ TI VSQ COT [OA] CA of H at Buf (room checked by the callers; a pointer
+  to be inlined, as PutIoaAt); At: the octets written. }
+procedure PutIdent(const P: tIecParams; const H: tIecAsdu; Buf: PByte; out At: Integer); inline;
 begin
   Buf[0] := H.Ti;
   Buf[1] := H.Count or (Ord(H.Sq) shl 7);
@@ -1021,26 +1011,18 @@ begin
     Exit;
   if Length(Buf) < IecHeadLen(P) then
     Exit(Refuse(res_AsduLength, 'no room for the data unit identifier', Err));
-  PutIdent(P, H, Buf, A);
+  PutIdent(P, H, @Buf[0], A);
   At := A;
 end;
 
 procedure IecPutIoa(const P: tIecParams; Ioa: LongWord; var Buf: array of Byte; At: LongInt);
 begin
-  Buf[At] := Ioa and $FF;
-  if P.IoaSize > 1 then
-    Buf[At + 1] := (Ioa shr 8) and $FF;
-  if P.IoaSize > 2 then
-    Buf[At + 2] := (Ioa shr 16) and $FF;
+  PutIoaAt(P.IoaSize, Ioa, @Buf[At]);
 end;
 
 function IecGetIoa(const P: tIecParams; const Buf: array of Byte; At: LongInt): LongWord;
 begin
-  Result := Buf[At];
-  if P.IoaSize > 1 then
-    Result := Result or (LongWord(Buf[At + 1]) shl 8);
-  if P.IoaSize > 2 then
-    Result := Result or (LongWord(Buf[At + 2]) shl 16);
+  Result := GetIoaAt(P.IoaSize, @Buf[At]);
 end;
 
 procedure IecPutTime(const T: tIecTime; K: tIecTimeKind; var B: array of Byte; At: LongInt);
@@ -1082,7 +1064,7 @@ begin
   if (Need > Length(Buf)) or (Need > IecMaxAsdu) then
     Exit(Refuse(res_AsduLength, Types[TI].Name + ' with ' + IntToStr(H.Count) + ' objects needs '
       + IntToStr(Need) + ' octets, room for ' + IntToStr(Min(Length(Buf), IecMaxAsdu)), Err));
-  PutIdent(P, H, Buf, At);
+  PutIdent(P, H, @Buf[0], At);
   for I := 0 to H.Count - 1 do
   begin
     Ioa := Objs[I].Ioa;
@@ -1094,7 +1076,7 @@ begin
         + IntToStr(Objs[0].Ioa) + ' in a sequence', Err));
     if (I = 0) or not H.Sq then
     begin
-      IecPutIoa(P, Ioa, Buf, At);
+      PutIoaAt(P.IoaSize, Ioa, @Buf[At]);
       Inc(At, P.IoaSize);
     end;
     if not PutElement(H.Ti, Objs[I], Buf, At, E) then
@@ -1196,7 +1178,7 @@ begin
     At := H.HeadLen + Index * (P.IoaSize + H.ElemLen);
   if At + P.IoaSize + (Index * Ord(H.Sq) + 1) * H.ElemLen > H.Len then
     Exit(res_AsduCount);
-  Ioa := IecGetIoa(P, Buf, At);
+  Ioa := GetIoaAt(P.IoaSize, @Buf[At]);
   Inc(At, P.IoaSize);
   if H.Sq then
   begin

@@ -130,6 +130,7 @@ type
   private
     FPair: pLoopPair;
     FEnd: Byte;
+    FMe: ^tLoopEnd;             {< FPair^.Ends[FEnd] while open: the polls' path }
   public
     PairName: ShortString;      {< set before Open }
     EndNo: Byte;
@@ -255,6 +256,24 @@ begin
       ChnWaitSignal(P^.Ends[L].Wait);
 end;
 
+{ N characters of end E's wire have left it: the wire moves on, and is
+  empty at its end. }
+procedure WireMoved(P: pLoopPair; E, N: LongInt); inline;
+begin
+  with P^.Ends[E] do
+  begin
+    Inc(WirePos, N);
+    WireAt := WireAt + QWord(N) * QWord(CharUs);
+    if WirePos >= WireLen then
+    begin
+      WirePos := 0;
+      WireLen := 0;
+      LastEnd := WireAt;
+      Dec(P^.OnWire);
+    end;
+  end;
+end;
+
 { Hand N > 0 characters of end E's wire to every other open end (a
   garbled one inverted). Caller: the end whose call this is. }
 procedure Deliver(P: pLoopPair; E, N, Caller: LongInt);
@@ -276,18 +295,7 @@ begin
     Inc(P^.Garbled, Garbled);
     HandOver(P, E, @Wire[WirePos], N);
   end;
-  with P^.Ends[E] do
-  begin
-    Inc(WirePos, N);
-    WireAt := WireAt + QWord(N) * QWord(CharUs);
-    if WirePos >= WireLen then
-    begin
-      WirePos := 0;
-      WireLen := 0;
-      LastEnd := WireAt;
-      Dec(P^.OnWire);
-    end;
-  end;
+  WireMoved(P, E, N);
   SignalEnds(P, E, Caller);
 end;
 
@@ -305,6 +313,57 @@ begin
   for L := 1 to P^.Top do
     if (L <> E) and P^.Ends[L].Open and (RingRoom(P^.Ends[L].Ring) < Result) then
       Result := RingRoom(P^.Ends[L].Ring);
+end;
+
+{ The common line: two ends without a speed (a null modem without BD=),
+  end E writing Len characters at Src while every wire is empty. They go
+  into the other end's ring as far as they fit, as GoesStraight, HandOver
+  and SignalEnds would put them, without those loops over the ends: the
+  number put, or -1 when the line is not that one (or nobody listens). }
+function StraightToPeer(P: pLoopPair; E: LongInt; Src: PByte; Len: LongInt): LongInt; inline;
+var
+  O: LongInt;
+begin
+  Result := -1;
+  if (P^.Paced > 0) or (P^.OnWire > 0) or (P^.Top > 2) then
+    Exit;
+  O := 3 - E;
+  if not P^.Ends[O].Open then
+    Exit;
+  Result := RingPut(P^.Ends[O].Ring, Src, Len);
+  Inc(P^.Chars, Result);
+  if Result > 0 then
+    ChnWaitSignal(P^.Ends[O].Wait);
+end;
+
+{ PumpWires on the common line, two ends without a speed: each end's
+  wire moves into the other end's ring as far as it fits, as Deliver
+  would move it, without its loops over the ends. }
+procedure PumpPair(P: pLoopPair; Caller: LongInt);
+var
+  E, O, N: LongInt;
+begin
+  for E := 1 to 2 do
+    with P^.Ends[E] do
+      if WirePos < WireLen then
+      begin
+        O := 3 - E;
+        N := WireLen - WirePos;
+        if P^.Ends[O].Open then
+        begin
+          if RingRoom(P^.Ends[O].Ring) < N then
+            N := RingRoom(P^.Ends[O].Ring);
+          if N = 0 then
+            Continue;
+          RingPut(P^.Ends[O].Ring, @Wire[WirePos], N);
+        end;
+        Inc(P^.Chars, N);
+        WireMoved(P, E, N);
+        if E <> Caller then
+          ChnWaitSignal(Wait);
+        if (O <> Caller) and P^.Ends[O].Open then
+          ChnWaitSignal(P^.Ends[O].Wait);
+      end;
 end;
 
 { Move what has reached the other ends by Now (with a speed), or what
@@ -359,10 +418,15 @@ begin
 end;
 
 { Pump's calls come with every read, write and poll of an end; most find
-  every wire empty (a message is delivered whole as it is written). }
+  every wire empty (a message is delivered whole as it is written). Two
+  ends without a speed, the common line, take PumpPair's short way. }
 procedure Pump(P: pLoopPair; Now: QWord; Caller: LongInt); inline;
 begin
-  if P^.OnWire > 0 then
+  if P^.OnWire = 0 then
+    Exit;
+  if (P^.Paced = 0) and (P^.Top <= 2) then
+    PumpPair(P, Caller)
+  else
     PumpWires(P, Now, Caller);
 end;
 
@@ -374,6 +438,14 @@ begin
     Result := ChnClockUs
   else
     Result := 0;
+end;
+
+{ Pump at this time (the clock read only when characters are on a wire
+  of a line with a speed). }
+procedure PumpNow(P: pLoopPair; Caller: LongInt); inline;
+begin
+  if P^.OnWire > 0 then
+    Pump(P, PairNow(P), Caller);
 end;
 
 { Pump for a poll (a read's start, OutQueue, WaitInput, WaitOutput): with
@@ -427,6 +499,7 @@ begin
       P^.Top := EndNo;
     FPair := P;
     FEnd := EndNo;
+    FMe := @P^.Ends[EndNo];
     FOpen := True;
   finally
     LeaveCriticalSection(Lock);
@@ -460,7 +533,7 @@ begin
       end;
       Dec(FPair^.OpenCount);
       if FPair^.OpenCount > 0 then
-        Pump(FPair, PairNow(FPair), FEnd);     { this end's full ring held nobody back now }
+        PumpNow(FPair, FEnd);          { this end's full ring held nobody back now }
       if FPair^.OpenCount = 0 then
       begin
         Link := @Pairs;
@@ -470,6 +543,7 @@ begin
         Dispose(FPair);
       end;
       FPair := nil;
+      FMe := nil;
     finally
       LeaveCriticalSection(Lock);
     end;
@@ -479,15 +553,14 @@ end;
 
 function TChnPortLoop.DoRead(var Buf; Size: LongInt; out Got: LongInt): tChResult;
 begin
+  { no try..finally, as in the polls below: nothing here raises, and the
+    frame was a good part of a short read's cost }
   EnterCriticalSection(Lock);
-  try
-    PumpDue(FPair, FEnd);
-    Got := RingGet(FPair^.Ends[FEnd].Ring, @Buf, Size);
-    if Got > 0 then
-      Pump(FPair, PairNow(FPair), FEnd);       { room again for a held sender }
-  finally
-    LeaveCriticalSection(Lock);
-  end;
+  PumpDue(FPair, FEnd);
+  Got := RingGet(FMe^.Ring, @Buf, Size);
+  if Got > 0 then
+    PumpNow(FPair, FEnd);              { room again for a held sender }
+  LeaveCriticalSection(Lock);
   Result := res_Ok;
 end;
 
@@ -540,22 +613,30 @@ begin
   Result := res_Ok;
   EnterCriticalSection(Lock);
   try
-    Now := PairNow(FPair);
-    Pump(FPair, Now, FEnd);
     { what the wire and Pump would move at once goes into the other
       ends' rings without the copy onto the wire (the null modem: one
       message at a time); the rest waits on the wire }
-    Straight := GoesStraight(FPair, FEnd, Len);
+    Now := 0;                       { StraightToPeer: a line without a speed }
+    Straight := StraightToPeer(FPair, FEnd, @Buf, Len);
+    if Straight < 0 then
+    begin
+      Now := PairNow(FPair);
+      Pump(FPair, Now, FEnd);
+      Straight := GoesStraight(FPair, FEnd, Len);
+      if Straight > 0 then
+      begin
+        HandOver(FPair, FEnd, @Buf, Straight);
+        SignalEnds(FPair, FEnd, FEnd);
+      end;
+    end;
     if Straight > 0 then
     begin
-      HandOver(FPair, FEnd, @Buf, Straight);
-      SignalEnds(FPair, FEnd, FEnd);
       Done := Len;
       if Straight = Len then
         Exit;
     end;
     Rest := Len - Straight;
-    with FPair^.Ends[FEnd] do
+    with FMe^ do
     begin
       Idle := WirePos >= WireLen;
       if not Idle and (CharUs = 0) then
@@ -583,7 +664,7 @@ begin
       end;
     end;
     Done := Len;
-    if FPair^.Ends[FEnd].CharUs > 0 then
+    if FMe^.CharUs > 0 then
       Collide(FPair, FEnd);
     Pump(FPair, Now, FEnd);
   finally
@@ -595,7 +676,7 @@ function TChnPortLoop.OutQueue(out N: LongInt): tChResult;
 begin
   { nothing on this end's wire: only its own DoWrite puts characters
     there, so no lock and no Pump (the sender polls this for every send) }
-  with FPair^.Ends[FEnd] do
+  with FMe^ do
     if WirePos >= WireLen then
     begin
       N := 0;
@@ -603,7 +684,7 @@ begin
     end;
   EnterCriticalSection(Lock);
   PumpDue(FPair, FEnd);
-  with FPair^.Ends[FEnd] do
+  with FMe^ do
     N := WireLen - WirePos;
   LeaveCriticalSection(Lock);
   Result := res_Ok;
@@ -613,13 +694,13 @@ function TChnPortLoop.WaitInput(Ms: LongInt): Boolean;
 begin
   { input already here stays until this end reads it; without a speed
     nothing falls due (PumpDue): no lock, no Pump }
-  if FPair^.Ends[FEnd].Ring.Count > 0 then
+  if FMe^.Ring.Count > 0 then
     Exit(True);
   if FPair^.Paced = 0 then
     Exit(False);
   EnterCriticalSection(Lock);
   PumpDue(FPair, FEnd);
-  Result := FPair^.Ends[FEnd].Ring.Count > 0;
+  Result := FMe^.Ring.Count > 0;
   LeaveCriticalSection(Lock);
 end;
 
@@ -638,7 +719,7 @@ begin
   begin
     EnterCriticalSection(Lock);
     RingClear(FPair^.Ends[FEnd].Ring);
-    Pump(FPair, PairNow(FPair), FEnd);         { room again for a held sender }
+    PumpNow(FPair, FEnd);              { room again for a held sender }
     LeaveCriticalSection(Lock);
   end;
   Result := res_Ok;
@@ -664,7 +745,7 @@ procedure TChnPortLoop.WaitJoined(Src: pChnWaitSource);
 begin
   EnterCriticalSection(Lock);
   FPair^.Ends[FEnd].Wait := Src;
-  Pump(FPair, PairNow(FPair), FEnd);          { characters already on their way }
+  PumpNow(FPair, FEnd);               { characters already on their way }
   LeaveCriticalSection(Lock);
 end;
 

@@ -823,30 +823,31 @@ begin
     end;
     CH_RtsUp := True;
   end;
-  { the clock (a system call) only when RTSB=, TURN= or IFG= need it }
+  { the clock (a system call) and the start time only when RTSB=, TURN=
+    or IFG= need them }
   if (CH_RtsToggle and (CH_RtsBefore > 0)) or (CH_Turn > 0) or (CH_Ifg > 0) then
-    Now := ChnClockUs
-  else
-    Now := 0;
-  Start := ComTxStart(Now);
-  if Start > Now then
   begin
-    { RTSB=, TURN=, IFG=: all of it waits here for its time (ComPumpTx) }
-    if Len > CH_TxCap then
+    Now := ChnClockUs;
+    Start := ComTxStart(Now);
+    if Start > Now then
     begin
-      ReAllocMem(CH_TxBuf, Len);
-      CH_TxCap := Len;
+      { all of it waits here for its time (ComPumpTx) }
+      if Len > CH_TxCap then
+      begin
+        ReAllocMem(CH_TxBuf, Len);
+        CH_TxCap := Len;
+      end;
+      Move(Buff^, CH_TxBuf^, Len);
+      CH_TxLen := Len;
+      CH_TxPos := 0;
+      CH_TxAt := Start;
+      CH_SResult := res_Ok;
+      ChnWaitDue(CH_Wait, Start);
+      Exit;
     end;
-    Move(Buff^, CH_TxBuf^, Len);
-    CH_TxLen := Len;
-    CH_TxPos := 0;
-    CH_TxAt := Start;
-    CH_SResult := res_Ok;
-    ChnWaitDue(CH_Wait, Start);
-    Exit;
+    if Now > 0 then
+      CH_LastTxEndUs := Now + QWord(ComLineUs(Len));
   end;
-  if Now > 0 then
-    CH_LastTxEndUs := Now + QWord(ComLineUs(Len));
   { what the port takes now goes straight from the caller's buffer; only
     the rest is copied, to move on from later polls }
   R := CH_Port.Write(Buff^, Len, Written);
@@ -866,6 +867,9 @@ begin
   CH_TxLen := Rest;
   CH_TxPos := 0;
   CH_SResult := res_Ok;
+  { all of it taken and no RTS to drop: ComPumpTx above has done the rest }
+  if (Rest = 0) and not CH_RtsUp then
+    Exit;
   ComPumpTx;
   if CH_Fault <> res_Ok then
     CH_SResult := CH_Fault;

@@ -84,6 +84,8 @@ type
       this side the server when Server. NAM=IEC104 asks for it. }
     procedure ChPcapAsTcp(Server: Boolean);
     function  LogWrite(const Text: AnsiString): Boolean;
+  private
+    procedure LogClose;
   end;
 
   pAddChnTrc = ^tAddChnTrc;
@@ -205,21 +207,22 @@ begin
   CH_LogOpen := True;
   if CH_Pcap and not PcapStart then
   begin
-    if CH_OwnHandle then
-      FileClose(CH_Handle);
-    CH_LogOpen := False;
-    CH_OwnHandle := False;
+    LogClose;
     CH_Result := res_CannotOpen;
     Exit;
   end;
   inherited ChOpen;
   if CH_Result <> res_Ok then
-  begin
-    if CH_OwnHandle then
-      FileClose(CH_Handle);
-    CH_LogOpen := False;
-    CH_OwnHandle := False;
-  end;
+    LogClose;
+end;
+
+{ The log given up: closed when this layer opened it (not STDERR/STDOUT). }
+procedure tChnTrc.LogClose;
+begin
+  if CH_LogOpen and CH_OwnHandle then
+    FileClose(CH_Handle);
+  CH_LogOpen := False;
+  CH_OwnHandle := False;
 end;
 
 { MOD=PCAP at ChOpen: a new or empty file (or a pipe) gets the file header;
@@ -285,10 +288,7 @@ end;
 procedure tChnTrc.ChClose;
 begin
   inherited ChClose;
-  if CH_LogOpen and CH_OwnHandle then
-    FileClose(CH_Handle);
-  CH_LogOpen := False;
-  CH_OwnHandle := False;
+  LogClose;
 end;
 
 procedure tChnTrc.ChConnect;

@@ -1,21 +1,35 @@
 { DocProgram - a complete program a document of docs/ prints, cut out of
   it and built as a reader would build it: fpc against the library's units
-  (build/units), outside the tree. }
+  (build/units), outside the tree; then run while the test serves its
+  other end. }
 unit DocProgram;
 
 {$MODE OBJFPC}{$H+}
 
 interface
 
+uses
+  Process;
+
 { Cut program Name out of document Doc (the ```pascal block whose first
   line is "program Name;"), build it in Dir; the executable. Fails the
   test when the document lacks the program or it does not build. }
 function BuildDocProgram(const Doc, Name, Dir: string): string;
 
+type
+  { one step of the test's own end while the program runs (it waits a
+    little itself when it had nothing to do) }
+  TServeStep = procedure(Data: Pointer);
+
+{ Call Serve(Data) while P, started with its standard error in its
+  output, runs, for Ms at the most; what P printed. Fails the test when
+  P has not ended by then. }
+function ServeUntilEnded(P: TProcess; Ms: LongInt; Serve: TServeStep; Data: Pointer): string;
+
 implementation
 
 uses
-  SysUtils, Classes, fpcunit, BinSupport;
+  SysUtils, Classes, fpcunit, ChnVirt, BinSupport;
 
 function BuildDocProgram(const Doc, Name, Dir: string): string;
 var
@@ -51,6 +65,21 @@ begin
     '-FU' + Dir, '-FE' + Dir, Dir + '/' + Name + '.pas'], 120000, Output));
   Result := Dir + '/' + Name;
   TAssert.AssertTrue(Output, FileExists(Result));
+end;
+
+function ServeUntilEnded(P: TProcess; Ms: LongInt; Serve: TServeStep; Data: Pointer): string;
+var
+  Deadline: QWord;
+begin
+  Result := '';
+  Deadline := ChMsTick + QWord(Ms);
+  while P.Running and (ChMsTick < Deadline) do
+  begin
+    Serve(Data);
+    Result := Result + PipeText(P.Output);
+  end;
+  Result := Result + PipeText(P.Output);
+  TAssert.AssertFalse('ended', P.Running);
 end;
 
 end.

@@ -37,6 +37,11 @@ function WaitSent(Chn: pChnVirt; TimeoutMs: Integer; Other: pChnVirt = nil): Boo
 { Build a stack with ChNewInit + ChSetParam, open and connect it; nil and
   Err set when any step fails. }
 function OpenStack(const Name, Params: string; var Err: string): pChnVirt;
+{ OpenStack for a stack on a TCP server whose port the OS chooses
+  (Params end with NAM=TCP LISTEN=127.0.0.1:0, or are LISTEN=... for a
+  bare TCP layer); fails the test when it does not open. Port: the port
+  the server took. }
+function OpenListening(const Name, Params: string; out Port: Word): pChnVirt;
 { Build Params ('NAM=ICS ... NAM=NOISE ...', a NOISE layer at the bottom:
   a babbling line), open, connect, give a receive buffer and poll
   ChReceiveReady once: how many bytes that one poll took from the line
@@ -57,7 +62,7 @@ function CpuMs: Double;
 implementation
 
 uses
-  {$IFDEF LINUX}Linux, UnixType,{$ENDIF} SysUtils, uString, ChnNoise;
+  {$IFDEF LINUX}Linux, UnixType,{$ENDIF} SysUtils, fpcunit, uString, ChnNoise, ChnTcp;
 
 {$IFDEF LINUX}
 function CpuMs: Double;
@@ -203,6 +208,19 @@ begin
     Dispose(Result, Done);
     Result := nil;
   end;
+end;
+
+function OpenListening(const Name, Params: string; out Port: Word): pChnVirt;
+var
+  Err: string;
+  Low: pChnVirt;
+begin
+  Result := OpenStack(Name, Params, Err);
+  TAssert.AssertNotNull(Err, Result);
+  Low := Result;
+  while Low^.CH_Low <> nil do
+    Low := Low^.CH_Low;
+  Port := pChnTcp(Low)^.ChLocalPort;
 end;
 
 end.

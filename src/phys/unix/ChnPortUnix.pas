@@ -43,6 +43,7 @@ type
     FOverrunBase: LongWord;
     FNoCounters: Boolean;     {< the driver refused TIOCGICOUNT once: never ask again }
     function Fail(Err: cint): tChResult;
+    function IoFailed(Err: cint): tChResult;
     function Counters(out N: LongWord): Boolean;
     function Refuse(const Key: ShortString): tChResult;
     function FailSet(Err: cint): tChResult;
@@ -390,6 +391,16 @@ begin
     Result := SetOtherRate(T, S.Baud);
 end;
 
+{ A read or write of the non-blocking descriptor that failed with Err:
+  EAGAIN only says nothing can move now. }
+function TChnPortUnix.IoFailed(Err: cint): tChResult;
+begin
+  if (Err = ESysEAGAIN) or (Err = ESysEWOULDBLOCK) then
+    Result := res_Ok
+  else
+    Result := Fail(Err);
+end;
+
 function TChnPortUnix.DoRead(var Buf; Size: LongInt; out Got: LongInt): tChResult;
 var
   N: TSsize;
@@ -409,10 +420,8 @@ begin
     FOSError := ESysEIO;      { end of file on a tty: the line was hung up }
     Result := res_DeviceLost;
   end
-  else if (E = ESysEAGAIN) or (E = ESysEWOULDBLOCK) then
-    Result := res_Ok
   else
-    Result := Fail(E);
+    Result := IoFailed(E);
 end;
 
 function PollFd(Fd: cint; Events: cshort; Ms: LongInt): Boolean;
@@ -455,10 +464,8 @@ begin
     Done := N;
     Result := res_Ok;
   end
-  else if (E = ESysEAGAIN) or (E = ESysEWOULDBLOCK) then
-    Result := res_Ok
   else
-    Result := Fail(E);
+    Result := IoFailed(E);
 end;
 
 function TChnPortUnix.OutQueue(out N: LongInt): tChResult;
