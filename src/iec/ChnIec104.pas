@@ -306,7 +306,7 @@ begin
         pChnTrc(T)^.ChPcapAsTcp(not CH_Client);
       T := T^.CH_Low;
     end;
-    SetLength(CH_Queue, CH_QueLen);
+    SetLength(CH_Queue, 0);          { grows when ASDUs wait (ChSend) }
     SetLength(CH_SentAt, CH_K);
     CH_QHead := 0;
     CH_QCount := 0;
@@ -396,14 +396,14 @@ begin
     CH_Vs := (CH_Vs + 1) mod Apci104SeqMod;
     CH_AckVr := CH_Vr;              { the I frame acknowledges too }
     Inc(CH_ITx);
-    CH_QHead := (CH_QHead + 1) mod CH_QueLen;
+    CH_QHead := (CH_QHead + 1) mod Length(CH_Queue);
     Dec(CH_QCount);
   end;
 end;
 
 procedure tChnIec104.ChSend(Buff: Pointer; Len: Word);
 var
-  Slot: LongInt;
+  Slot, Old, I: LongInt;
 begin
   if (CH_State = CHS_Close) or (CH_State = CHS_Opening) then
   begin
@@ -423,11 +423,26 @@ begin
   if CH_QCount = CH_QueLen then
   begin
     { full: the oldest waiting ASDU gives way }
-    CH_QHead := (CH_QHead + 1) mod CH_QueLen;
+    CH_QHead := (CH_QHead + 1) mod Length(CH_Queue);
     Dec(CH_QCount);
     Inc(CH_Dropped);
+  end
+  else if CH_QCount = Length(CH_Queue) then
+  begin
+    { the ring grows as ASDUs wait (doubling, up to QUE=) instead of
+      holding QUE= slots of 250 octets from the start; the part that
+      wrapped round goes after the rest }
+    Old := Length(CH_Queue);
+    I := 2 * Old;
+    if I < 8 then
+      I := 8;
+    if I > CH_QueLen then
+      I := CH_QueLen;
+    SetLength(CH_Queue, I);
+    for I := 0 to CH_QHead - 1 do
+      CH_Queue[(Old + I) mod Length(CH_Queue)] := CH_Queue[I];
   end;
-  Slot := (CH_QHead + CH_QCount) mod CH_QueLen;
+  Slot := (CH_QHead + CH_QCount) mod Length(CH_Queue);
   CH_Queue[Slot].Len := Len;
   Move(Buff^, CH_Queue[Slot].Data[0], Len);
   Inc(CH_QCount);
