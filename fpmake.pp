@@ -68,7 +68,7 @@ begin
     P.License := 'LGPL-2.1-or-later with the static linking exception (modified LGPL, as the FPC RTL)';
     P.OSes := AllUnixOSes + AllWindowsOSes;
     P.Dependencies.Add('rtl-extra');   { Sockets, WinSock2 (ChnSock) }
-    P.Dependencies.Add('rtl-objpas');  { DateUtils (ChnTrc) }
+    P.Dependencies.Add('rtl-objpas');  { DateUtils (ChnTrc, ChnIecTime) }
     P.IncludePath.Add('src');          { chn.inc }
 
     { ---- src/core: types, tokens, the layer contract, the wait }
@@ -146,7 +146,8 @@ begin
     AddUnit(P, 'ChnDF1Link.pas', AllOSes, ['ChnTypes', 'ChnVirt', 'ChnDF1', 'ChnPcccNames', 'uString',
       'ChnWait']);
     AddUnit(P, 'ChnDF1Poll.pas', AllOSes, ['ChnTypes', 'ChnVirt', 'ChnDF1', 'ChnDF1Link', 'ChnWait', 'uString']);
-    AddUnit(P, 'ChnPccc.pas', AllOSes, ['ChnTypes', 'ChnDF1Codec', 'uString', 'ChnPcccNames']);
+    AddUnit(P, 'ChnPcccAddr.pas', AllOSes, ['ChnTypes', 'uString']);
+    AddUnit(P, 'ChnPccc.pas', AllOSes, ['ChnTypes', 'ChnDF1Codec', 'ChnPcccAddr', 'ChnPcccNames']);
     AddUnit(P, 'ChnPlc5.pas', AllOSes, ['ChnTypes', 'ChnDF1Codec', 'ChnPccc']);
     AddUnit(P, 'ChnPcccClient.pas', AllOSes, ['ChnTypes', 'ChnVirt', 'ChnDF1Codec', 'ChnDF1Link', 'ChnDF1Poll',
       'ChnPccc', 'ChnPlc5', 'uString', 'ChnWait']);
@@ -170,7 +171,9 @@ begin
     AddUnit(P, 'ChnIec104.pas', AllOSes, ['ChnTypes', 'ChnVirt', 'ChnProto', 'ChnIec104Codec',
       'uString', 'ChnTcp', 'ChnTrc']);
     { IEC 60870-5-101 application layer on the FT 1.2 link helpers or IEC 104 }
-    AddUnit(P, 'ChnIec101Asdu.pas', AllOSes, ['ChnTypes']);
+    { the time tags CP24Time2a/CP56Time2a, then the ASDU codec }
+    AddUnit(P, 'ChnIecTime.pas', AllOSes, []);
+    AddUnit(P, 'ChnIec101Asdu.pas', AllOSes, ['ChnTypes', 'ChnIecTime']);
     { the IEC 101 information objects as JSON or a readable line, for tools }
     AddUnit(P, 'ChnIec101Print.pas', AllOSes, ['ChnIec101Asdu']);
     AddUnit(P, 'ChnIecTransport.pas', AllOSes, ['ChnTypes', 'ChnVirt', 'ChnFT1_2', 'ChnFT12Link', 'ChnFT12Balanced',

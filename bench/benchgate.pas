@@ -27,13 +27,15 @@
     NAM=IEC104, a real TCP connection) and times each change's
     spontaneous M_ME_TE_1 (change -> IEC 104 and wire -> IEC 104);
   - chngate's CPU under load (% of one core), and idle (scan 60 s, nothing
-    to read) against the idle floor: the program-wide wait alone
+    to read, MQTT keep-alive 5 s, after the first read's $health went
+    out) against the idle floor: the program-wide wait alone
     (ChnWaitAny over as many descriptors - 9 serial lines on ptys for the
     gateway's 8 lines and its socket - woken as
     often as the gateway was), run as a child in the same run: CPU per
     second and the ratio;
-  - chngate's resident memory, and by what is mapped (its own code, the
-    anonymous memory of heap and stacks, each library).
+  - chngate's resident memory under load with the IEC 104 server and its
+    centre, and idle with MQTT only, and by what is mapped (its own code,
+    the anonymous memory of heap and stacks, each library).
   Skipped with the reason when mosquitto or libmosquitto is missing.
 
     benchgate [quick] [BD]   10 s under load, 20 s idle (the gateway and
@@ -48,13 +50,14 @@ program benchgate;
 uses
   {$IFDEF UNIX}cthreads,{$ENDIF}
   Classes, SysUtils, DateUtils, BaseUnix, Process, ChnTypes, ChnVirt, ChnWait, ChnLoop, ChnCom,
-  ChnPty, ChnDF1, ChnDF1Link, ChnSlc, ChnMqtt, ChnSock, ChnIec101Asdu, ChnIec101Master, ChnIec104, ProcStat;
+  ChnPty, ChnDF1, ChnDF1Link, ChnSlc, ChnMqtt, ChnGateway, ChnSock, ChnIec101Asdu, ChnIec101Master, ChnIec104, ProcStat;
 
 const
   Lines = 8;
   TagsPerLine = 100;
   ScanMs = 500;
   ChangeEveryMs = 25;
+  IdleKeepAlive = 5;        { s: the MQTT keep-alive of the idle run }
   FirstValue = 1000;        { change n writes FirstValue + n }
   MaxChanges = 30000;
 
@@ -282,8 +285,8 @@ begin
 end;
 
 { The configuration; With104: an [iec104] server too, line I's tags from
-  IOA Ioa104(I, 0). }
-function GateConfig(Scan: LongInt; With104: Boolean): string;
+  IOA Ioa104(I, 0); KeepAlive > 0: the MQTT keep-alive (s). }
+function GateConfig(Scan: LongInt; With104: Boolean; KeepAlive: LongInt = 0): string;
 var
   I, K: LongInt;
   Tags: string;
@@ -292,6 +295,8 @@ begin
   for K := 0 to TagsPerLine - 1 do
     Tags := Tags + ' N7:' + IntToStr(2 * K);
   Result := '[mqtt]'#10'port = ' + IntToStr(Port) + #10'prefix = bench'#10;
+  if KeepAlive > 0 then
+    Result := Result + 'keepalive = ' + IntToStr(KeepAlive) + #10;
   if With104 then
     Result := Result + #10'[iec104]'#10'listen = 127.0.0.1:' + IntToStr(Port104) + #10;
   for I := 0 to Lines - 1 do
@@ -300,9 +305,9 @@ begin
       'tags =' + Tags + #10'scan = ' + IntToStr(Scan) + #10'ioa = ' + IntToStr(Ioa104(I, 0)) + #10;
 end;
 
-function StartGate(Scan: LongInt; With104: Boolean): TProcess;
+function StartGate(Scan: LongInt; With104: Boolean; KeepAlive: LongInt = 0): TProcess;
 begin
-  WriteText(Dir + '/gate.conf', GateConfig(Scan, With104));
+  WriteText(Dir + '/gate.conf', GateConfig(Scan, With104, KeepAlive));
   Result := TProcess.Create(nil);
   Result.Executable := Bin('chngate');
   Result.Parameters.Add(Dir + '/gate.conf');
@@ -536,9 +541,9 @@ begin
 end;
 
 var
-  I, Reads, LoadMs, IdleMs, Requests, Rss, FloorMs, Lost, Lost104: LongInt;
+  I, Reads, LoadMs, IdleMs, Requests, Rss, RssIdle, FloorMs, Lost, Lost104: LongInt;
   Sub: tMqttClient;
-  Err, Check, Shares, Map: AnsiString;
+  Err, Check, Shares, Map, MapIdle: AnsiString;
   T0, T1: QWord;
   C0, C1: Int64;
   LoadCpu, GateNs, GateSleeps, FloorNs, FloorSleeps: Double;
@@ -657,10 +662,15 @@ begin
     CentreChn := nil;
     Stop(Gate);
     { idle: one read of everything, then nothing for 60 s (MQTT only, as
-      the floor has one socket) }
-    Gate := StartGate(60000, False);
-    Serve(Sub, GetTickCount64 + 3000, False);
+      the floor has one socket); measured once the $health of that first
+      read went out (GateHealthMs after it), with the shortest MQTT
+      keep-alive (5 s), so that the time measured holds several of the
+      only wake-ups left: the keep-alive's ping and its answer }
+    Gate := StartGate(60000, False, IdleKeepAlive);
+    Serve(Sub, GetTickCount64 + GateHealthMs + 2000, False);
     IdleCost(Gate.ProcessID, Sub, IdleMs, GateNs, GateSleeps);
+    RssIdle := ProcRssKb(Gate.ProcessID);
+    MapIdle := ProcRssByMapping(Gate.ProcessID);
     Stop(Gate);
     { the floor: the wait alone, woken as often as the gateway was }
     if GateSleeps > 0.01 then
@@ -685,13 +695,14 @@ begin
     WriteLn(Format('benchgate: wire -> IEC 104:   %s', [Quantiles(Wire104, NWire104)]));
     WriteLn(Format('benchgate: chngate CPU under load %.2f %% of a core', [LoadCpu]));
     if FloorNs > 0 then
-      WriteLn(Format('benchgate: idle: chngate %.1f us CPU/s, %.2f wake-ups/s; the wait alone (%d ' +
+      WriteLn(Format('benchgate: idle (keep-alive %d s): chngate %.1f us CPU/s, %.2f wake-ups/s; the wait alone (%d ' +
         'descriptors, ChnWaitAny(%d)) %.1f us/s, %.2f wake-ups/s; ratio %.2f',
-        [GateNs / 1000, GateSleeps, Lines + 1, FloorMs, FloorNs / 1000, FloorSleeps, GateNs / FloorNs]))
+        [IdleKeepAlive, GateNs / 1000, GateSleeps, Lines + 1, FloorMs, FloorNs / 1000, FloorSleeps, GateNs / FloorNs]))
     else
       WriteLn(Format('benchgate: idle: chngate %.1f us CPU/s, %.2f wake-ups/s; the wait alone %.1f us/s',
         [GateNs / 1000, GateSleeps, FloorNs / 1000]));
-    WriteLn(Format('benchgate: chngate RSS %d KiB: %s', [Rss, Map]));
+    WriteLn(Format('benchgate: chngate RSS %d KiB with the IEC 104 server and a centre: %s', [Rss, Map]));
+    WriteLn(Format('benchgate: chngate RSS %d KiB idle, MQTT only: %s', [RssIdle, MapIdle]));
   finally
     if CentreChn <> nil then
       Dispose(CentreChn, Done);

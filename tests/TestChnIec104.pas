@@ -51,6 +51,7 @@ type
     procedure TestUWithTwoFunctionsCloses;
     procedure TestBadLengthCloses;
     procedure TestQueueDropsOldestAndNoneTwice;
+    procedure TestQueueGrowsInOrder;
     procedure TestNeedsTcpBelow;
     procedure TestHalfFrameThenSilenceCloses;
     procedure TestSilentClientClosed;
@@ -378,6 +379,49 @@ begin
   AssertEquals('two dropped', 2, L^.CH_Dropped);
 end;
 
+{ The queue grows as ASDUs wait (QUE= is its bound, not what it holds
+  from the start): with k = 2 eleven ASDUs wait past the first growth
+  while the ring has wrapped round (two sent, six more queued), and all
+  go out in order, none dropped. }
+procedure TTestChnIec104.TestQueueGrowsInOrder;
+var
+  Port: Word;
+  B: Byte;
+  I: Integer;
+
+  procedure Send(N: Byte);
+  begin
+    B := N;
+    Layer^.ChSend(@B, 1);
+    AssertEquals('queued', res_Ok, Layer^.ChSendResult);
+  end;
+
+  { I frame N (0-based: V(S) = N) carrying the octet N + 1 }
+  function IFrame(N: Integer): string;
+  begin
+    Result := Format('68 05 %.2X %.2X 00 00 %.2X', [(2 * N) and $FF, (2 * N) shr 8, N + 1]);
+  end;
+
+begin
+  Port := OpenPeerServer;
+  OpenClientLayer(Port, 'NAM=IEC104 K=2 W=1 QUE=100');
+  AssertTrue('STARTDT act', PeerGets('68 04 07 00 00 00'));
+  PeerSend('68 04 0B 00 00 00');
+  Poll(50);
+  for I := 1 to 6 do
+    Send(I);
+  AssertTrue('two sent (k = 2)', PeerGets(IFrame(0) + ' ' + IFrame(1)));
+  for I := 7 to 11 do
+    Send(I);
+  for I := 1 to 5 do
+  begin
+    PeerSend(Format('68 04 01 00 %.2X 00', [4 * I]));      { S frame: N(R) = 2 I }
+    AssertTrue(Format('frames %d and %d', [2 * I, 2 * I + 1]),
+      PeerGets(IFrame(2 * I) + Copy(' ' + IFrame(2 * I + 1), 1, 100 * Ord(I < 5))));
+  end;
+  AssertEquals('none dropped', 0, L^.CH_Dropped);
+end;
+
 procedure TTestChnIec104.TestHalfFrameThenSilenceCloses;
 begin
   OpenPeerClient(OpenServerLayer('NAM=IEC104 T1=2 T2=1 T3=1'));
@@ -416,7 +460,7 @@ var
   Err: string;
   I: Integer;
   B: Byte;
-  Heap: PtrUInt;
+  Heap, Queue0: PtrUInt;
   Port: Word;
 begin
   Port := OpenServerLayer('NAM=IEC104');
@@ -435,6 +479,7 @@ begin
       Dispose(Others[I], Done);
   Poll(20);
   Heap := GetHeapStatus.TotalAllocated;
+  Queue0 := Length(L^.CH_Queue);
   for I := 1 to 100 do
     Others[I] := OpenStack('TCP', 'HOST=127.0.0.1 PORT=' + IntToStr(Port), Err);
   try
@@ -455,6 +500,9 @@ begin
         Dispose(Others[I], Done);
   end;
   Poll(50);
+  { the send queue grows as ASDUs wait (8 waited past k here): that is
+    its own growth, not the hundred clients' }
+  Heap := Heap + (Length(L^.CH_Queue) - Queue0) * SizeOf(tIec104Slot);
   AssertTrue('heap flat: ' + IntToStr(GetHeapStatus.TotalAllocated) + ' after ' + IntToStr(Heap),
     GetHeapStatus.TotalAllocated <= Heap + 1024);
 end;

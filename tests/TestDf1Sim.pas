@@ -13,7 +13,7 @@ interface
 uses
   {$IFDEF UNIX}BaseUnix,{$ENDIF}
   SysUtils, Classes, Process, fpcunit, testregistry, ChnTypes, ChnVirt,
-  ChnLoop, ChnCom, ChnDF1, ChnSlc, ChnDF1Link, ChnWait, ChnPcccClient, TestSupport, BinSupport, Df1Pair
+  ChnLoop, ChnCom, ChnDF1, ChnSlc, ChnDF1Link, ChnWait, ChnPcccClient, TestSupport, BinSupport, Df1Pair, SlcAsk
   {$IFDEF UNIX}, PtyPair{$ENDIF};
 
 type
@@ -103,24 +103,20 @@ var
   Req: tSendRecord;
   Rep: tRecRecord;
   RepLen: Word;
-  D: TBytes;
+  N: Integer;
   R: tChResult;
 begin
   FillChar(Req, SizeOf(Req), 0);
   Req.MessType := tpDataMess;
   Req.CF := CF;
   Req.Tns := Tns;
-  D := HexToBytes(DataHex);
-  if Length(D) > 0 then
-    Move(D[0], Req.Data[0], Length(D));
+  N := PutHex(DataHex, Req.Data);
   RepLen := 0;
-  R := DF1Transact(Master, Req, 8 + Length(D), Rep, RepLen, @StepStation, @Station, 500);
+  R := DF1Transact(Master, Req, 8 + N, Rep, RepLen, @StepStation, @Station, 500);
   AssertEquals('transaction result', res_Ok, R);
   AssertEquals('reply CF: the command''s, FNC included', CF or $4000, Rep.CF);
   AssertEquals('reply TNS', Tns, Rep.Tns);
-  Result := Format('STS=%.2x', [Rep.Sts]);
-  if RepLen > 8 then
-    Result := Result + ' ' + BytesToHex(Rep.Data, RepLen - 8);
+  Result := ReplyText(Rep.Sts, Rep.Data, RepLen - 8);
 end;
 
 procedure TTestDf1Sim.AllCommands(Full, Crc: Boolean; const Pair: string);

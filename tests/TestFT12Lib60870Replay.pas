@@ -95,7 +95,6 @@ var
   I, K, N0: Integer;
   Buf: array[0..1023] of Byte;
   Got: TBytes;
-  Len: Word;
   Ans: TCapFrames;
   B: TBytes;
 begin
@@ -124,14 +123,7 @@ begin
         Sleep(1);
       end;
       AssertEquals('request taken: ' + F[I].Hex, N0 + 1, FL.Frames);
-      while FRaw^.ChReceiveReady = CHS_ReceiveReady do
-      begin
-        Len := 0;
-        FRaw^.ChReceive(Len);
-        K := Length(Got);
-        SetLength(Got, K + Len);
-        Move(Buf, Got[K], Len);
-      end;
+      ReceiveAllInto(FRaw, @Buf, Got);
     end;
   AssertEquals('broken', 0, FL.Broken);
   AssertEquals('wrong DIR', 0, FL.BadDir);

@@ -36,20 +36,6 @@ const
   { half a DF1 frame: DLE STX DST SRC CMD, the rest never comes }
   HalfFrame: array[0..4] of Byte = ($10, $02, $01, $00, $06);
 
-function OpenFds: LongInt;
-var
-  SR: TSearchRec;
-begin
-  Result := 0;
-  if FindFirst('/proc/self/fd/*', faAnyFile, SR) = 0 then
-  begin
-    repeat
-      Inc(Result);
-    until FindNext(SR) <> 0;
-    FindClose(SR);
-  end;
-end;
-
 function HeapInUse: PtrUInt;
 begin
   Result := GetFPCHeapStatus.CurrHeapUsed;
@@ -57,7 +43,7 @@ end;
 
 procedure TTestFaultCycling.Before;
 begin
-  FFds := OpenFds;
+  FFds := OpenFdCount('self');
   FHeap := HeapInUse;
 end;
 
@@ -68,7 +54,7 @@ var
 begin
   { taken before the messages below are built: they are on the heap too }
   Heap := HeapInUse;
-  Fds := OpenFds;
+  Fds := OpenFdCount('self');
   AssertEquals(What + ': open descriptors', FFds, Fds);
   AssertEquals(What + ': heap in use', Int64(FHeap), Int64(Heap));
 end;

@@ -242,19 +242,10 @@ function TTestIec101Lib60870Replay.RawFrames: TCapFrames;
 var
   Buf: array[0..1023] of Byte;
   Got: TBytes;
-  Len: Word;
-  K: Integer;
 begin
   Got := nil;
   FRaw^.ChReceiveBuffer(@Buf, SizeOf(Buf));
-  while FRaw^.ChReceiveReady = CHS_ReceiveReady do
-  begin
-    Len := 0;
-    FRaw^.ChReceive(Len);
-    K := Length(Got);
-    SetLength(Got, K + Len);
-    Move(Buf, Got[K], Len);
-  end;
+  ReceiveAllInto(FRaw, @Buf, Got);
   Result := nil;
   CapSplit(Got, True, [], Result);
 end;

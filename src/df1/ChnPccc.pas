@@ -1,8 +1,8 @@
-{ ChnPccc - SLC 500 / MicroLogix data table addresses and the PCCC
-  requests that read and write them, without I/O: parse an address such as
-  'N7:0', 'F8:2', 'B3:1/4', 'B3/20', 'T4:0.ACC', 'C5:0.DN', 'ST9:0', 'L10:3';
-  plan a read or write of COUNT items as one or more requests; build each
-  request record (tSendRecord of ChnDF1Codec) and decode its reply.
+{ ChnPccc - the PCCC requests that read and write SLC 500 / MicroLogix
+  data table addresses ('N7:0', 'B3:1/4', 'T4:0.ACC': their syntax is
+  ChnPcccAddr's, its names are here too), without I/O: plan a read or
+  write of COUNT items as one or more requests; build each request record
+  (tSendRecord of ChnDF1Codec) and decode its reply.
 
   Commands (Rockwell publication 1770-6.5.16, "DF1 Protocol and Command Set
   Reference Manual", chapter 7; docs/PROTOCOLS.md):
@@ -27,12 +27,12 @@ unit ChnPccc;
 interface
 
 uses
-  ChnTypes, ChnDF1Codec;
+  ChnTypes, ChnDF1Codec, ChnPcccAddr;
 
 const
-  PcccLayer = 'PCCC';   {< ChResultText(R, PcccLayer) }
+  PcccLayer = ChnPcccAddr.PcccLayer;   {< ChResultText(R, PcccLayer) }
 
-  res_PcccAddress = res_Proto;       {< malformed or impossible address }
+  res_PcccAddress = ChnPcccAddr.res_PcccAddress;   {< malformed or impossible address }
   res_PcccCount   = res_Proto + 1;   {< count does not fit (file, array, frame) }
   res_PcccValue   = res_Proto + 2;   {< value out of range for the element }
   res_PcccReply   = res_Proto + 3;   {< reply length or content does not match }
@@ -40,20 +40,20 @@ const
   res_PcccNak     = res_Proto + 5;   {< the command was NAKed on every try }
   res_PcccUsage   = res_Proto + 6;   {< the address holds another kind of value }
 
-  { PCCC file type codes (1770-6.5.16, protected typed logical read) }
-  pft_Status  = $84;
-  pft_Bit     = $85;
-  pft_Timer   = $86;
-  pft_Counter = $87;
-  pft_Control = $88;
-  pft_Integer = $89;
-  pft_Float   = $8A;
-  pft_Output  = $8B;
-  pft_Input   = $8C;
-  pft_String  = $8D;
-  pft_Ascii   = $8E;
-  pft_Long    = $91;
-  pft_Bcd     = $8F;   {< PLC-5 D files (unit ChnPlc5): a word of four BCD digits }
+  { PCCC file type codes (ChnPcccAddr) }
+  pft_Status = ChnPcccAddr.pft_Status;
+  pft_Bit = ChnPcccAddr.pft_Bit;
+  pft_Timer = ChnPcccAddr.pft_Timer;
+  pft_Counter = ChnPcccAddr.pft_Counter;
+  pft_Control = ChnPcccAddr.pft_Control;
+  pft_Integer = ChnPcccAddr.pft_Integer;
+  pft_Float = ChnPcccAddr.pft_Float;
+  pft_Output = ChnPcccAddr.pft_Output;
+  pft_Input = ChnPcccAddr.pft_Input;
+  pft_String = ChnPcccAddr.pft_String;
+  pft_Ascii = ChnPcccAddr.pft_Ascii;
+  pft_Long = ChnPcccAddr.pft_Long;
+  pft_Bcd = ChnPcccAddr.pft_Bcd;
 
   CF_PcccRead3      = $0FA2;   {< = ChnDF1.CF_ProtectRead3Addr }
   CF_PcccWrite3     = $0FAA;   {< = ChnDF1.CF_ProtectWrite3Addr }
@@ -63,22 +63,19 @@ const
   PcccMaxItems    = 4096;      {< items of one read or write }
 
 type
-  { A parsed address. Sub is the word of a timer, counter or control element
-    (0 control bits, 1 PRE/LEN, 2 ACC/POS) when HasSub; Bit -1 when none. }
-  tPcccAddr = packed record
-    FileType: Byte;      {< pft_* }
-    FileNo  : Word;
-    Elem    : Word;
-    Sub     : Byte;
-    HasSub  : Boolean;
-    Bit     : ShortInt;
-  end;
+  { ChnPcccAddr's, for programs that use this unit alone }
+  tPcccAddr = ChnPcccAddr.tPcccAddr;
+  tPcccValueKind = ChnPcccAddr.tPcccValueKind;
+  tPcccDialect = ChnPcccAddr.tPcccDialect;
 
-  tPcccValueKind = (pvInt, pvFloat, pvString);
+const
+  pvInt = ChnPcccAddr.pvInt;
+  pvFloat = ChnPcccAddr.pvFloat;
+  pvString = ChnPcccAddr.pvString;
+  pdSlc = ChnPcccAddr.pdSlc;
+  pdPlc5 = ChnPcccAddr.pdPlc5;
 
-  { whose address rules: SLC 500 / MicroLogix, or PLC-5 }
-  tPcccDialect = (pdSlc, pdPlc5);
-
+type
   { How a read or write of Count items at Addr travels: requests of
     PerReq units (elements, or words for bits) each. }
   tPcccMode = (pmElems, pmSubs, pmBits);
@@ -93,32 +90,20 @@ type
     Write    : Boolean;
   end;
 
-{ Parse an address (case and surrounding blanks ignored). res_Ok, or
-  res_PcccAddress with Err naming the part that is wrong. }
+{ ChnPcccAddr's, for programs that use this unit alone (what each does:
+  there): PcccParseAddress, PcccParseAddressAs (by a family's rules),
+  PcccAddressText, PcccAddressTextAs, PcccFileLetter, PcccElemSize,
+  PcccValueKind, PcccFileByLetter, PcccFindSub, PcccSubName. }
 function PcccParseAddress(const S: ShortString; out A: tPcccAddr; out Err: ShortString): tChResult;
-{ The same by the rules of a family: pdSlc (SLC 500 / MicroLogix: files
-  up to 255, elements up to 65535, L files) or pdPlc5 (PLC-5, unit
-  ChnPlc5: files 3..999, elements 0..999, O and I elements octal 0..277
-  with octal bits 00..17, D files, no L). }
 function PcccParseAddressAs(Dialect: tPcccDialect; const S: ShortString; out A: tPcccAddr;
   out Err: ShortString): tChResult;
-{ The canonical text by a family's rules ('I:012/05' for a PLC-5). }
 function PcccAddressTextAs(Dialect: tPcccDialect; const A: tPcccAddr): ShortString;
-{ The canonical text of an address ('T4:0.ACC', 'B3:1/4'). }
 function PcccAddressText(const A: tPcccAddr): ShortString;
-{ The file letter(s) of a type code ('N', 'ST'); '' when unknown. }
 function PcccFileLetter(FileType: Byte): ShortString;
-{ Bytes of one element of a file type; 0 when unknown. }
 function PcccElemSize(FileType: Byte): Word;
-{ What kind of value an address reads and writes. }
 function PcccValueKind(const A: tPcccAddr): tPcccValueKind;
-{ The type code of file letter(s) ('N', 'ST', 'D'); 0 when unknown. Fixed
-  is the file's only number (O 0, I 1, S 2), -1 for the others. }
 function PcccFileByLetter(const Letters: ShortString; out Fixed: SmallInt): Byte;
-{ The sub-element '.ACC', '.DN' ... of a T, C or R file: its word (Sub)
-  and bit (-1: the whole word); False when the file has none of that name. }
 function PcccFindSub(FileType: Byte; const Name: ShortString; out Sub: Byte; out Bit: ShortInt): Boolean;
-{ The name of A's sub-element ('ACC', 'DN'); '' when none. }
 function PcccSubName(const A: tPcccAddr): ShortString;
 
 { Plan a read (Write False) or write of Count items at A, at most MaxBytes
@@ -201,430 +186,59 @@ function PcccCheckReply(const Rep: tRecRecord; RepLen: Word; Expect: Word; out E
 implementation
 
 uses
-  SysUtils, uString, ChnPcccNames;
+  SysUtils, ChnPcccNames;
 
-type
-  tFileInfo = record
-    Letter: string[2];
-    FType : Byte;
-    Size  : Word;
-    Fixed : SmallInt;   { the only file number allowed, -1: 3..255 }
-  end;
-
-const
-  Files: array[0..12] of tFileInfo = (
-    (Letter: 'O';  FType: pft_Output;  Size: 2;  Fixed: 0),
-    (Letter: 'I';  FType: pft_Input;   Size: 2;  Fixed: 1),
-    (Letter: 'S';  FType: pft_Status;  Size: 2;  Fixed: 2),
-    (Letter: 'B';  FType: pft_Bit;     Size: 2;  Fixed: -1),
-    (Letter: 'T';  FType: pft_Timer;   Size: 6;  Fixed: -1),
-    (Letter: 'C';  FType: pft_Counter; Size: 6;  Fixed: -1),
-    (Letter: 'R';  FType: pft_Control; Size: 6;  Fixed: -1),
-    (Letter: 'N';  FType: pft_Integer; Size: 2;  Fixed: -1),
-    (Letter: 'F';  FType: pft_Float;   Size: 4;  Fixed: -1),
-    (Letter: 'ST'; FType: pft_String;  Size: 84; Fixed: -1),
-    (Letter: 'A';  FType: pft_Ascii;   Size: 2;  Fixed: -1),
-    (Letter: 'L';  FType: pft_Long;    Size: 4;  Fixed: -1),
-    (Letter: 'D';  FType: pft_Bcd;     Size: 2;  Fixed: -1));
-
-type
-  tSubInfo = record
-    Name : string[3];
-    FType: Byte;
-    Sub  : Byte;
-    Bit  : ShortInt;
-  end;
-
-const
-  { sub-elements: the word, and the bit of the control word }
-  SubTable: array[0..22] of tSubInfo = (
-    (Name: 'PRE'; FType: pft_Timer;   Sub: 1; Bit: -1),
-    (Name: 'ACC'; FType: pft_Timer;   Sub: 2; Bit: -1),
-    (Name: 'EN';  FType: pft_Timer;   Sub: 0; Bit: 15),
-    (Name: 'TT';  FType: pft_Timer;   Sub: 0; Bit: 14),
-    (Name: 'DN';  FType: pft_Timer;   Sub: 0; Bit: 13),
-    (Name: 'PRE'; FType: pft_Counter; Sub: 1; Bit: -1),
-    (Name: 'ACC'; FType: pft_Counter; Sub: 2; Bit: -1),
-    (Name: 'CU';  FType: pft_Counter; Sub: 0; Bit: 15),
-    (Name: 'CD';  FType: pft_Counter; Sub: 0; Bit: 14),
-    (Name: 'DN';  FType: pft_Counter; Sub: 0; Bit: 13),
-    (Name: 'OV';  FType: pft_Counter; Sub: 0; Bit: 12),
-    (Name: 'UN';  FType: pft_Counter; Sub: 0; Bit: 11),
-    (Name: 'UA';  FType: pft_Counter; Sub: 0; Bit: 10),
-    (Name: 'LEN'; FType: pft_Control; Sub: 1; Bit: -1),
-    (Name: 'POS'; FType: pft_Control; Sub: 2; Bit: -1),
-    (Name: 'EN';  FType: pft_Control; Sub: 0; Bit: 15),
-    (Name: 'EU';  FType: pft_Control; Sub: 0; Bit: 14),
-    (Name: 'DN';  FType: pft_Control; Sub: 0; Bit: 13),
-    (Name: 'EM';  FType: pft_Control; Sub: 0; Bit: 12),
-    (Name: 'ER';  FType: pft_Control; Sub: 0; Bit: 11),
-    (Name: 'UL';  FType: pft_Control; Sub: 0; Bit: 10),
-    (Name: 'IN';  FType: pft_Control; Sub: 0; Bit: 9),
-    (Name: 'FD';  FType: pft_Control; Sub: 0; Bit: 8));
-
-function FileIndex(FileType: Byte): Integer;
-var
-  I: Integer;
-begin
-  for I := Low(Files) to High(Files) do
-    if Files[I].FType = FileType then
-      Exit(I);
-  Result := -1;
-end;
-
-function PcccFileLetter(FileType: Byte): ShortString;
-var
-  I: Integer;
-begin
-  I := FileIndex(FileType);
-  if I < 0 then
-    Result := ''
-  else
-    Result := Files[I].Letter;
-end;
-
-function PcccElemSize(FileType: Byte): Word;
-var
-  I: Integer;
-begin
-  I := FileIndex(FileType);
-  if I < 0 then
-    Result := 0
-  else
-    Result := Files[I].Size;
-end;
-
-function IsWordFile(FileType: Byte): Boolean;
-begin
-  Result := PcccElemSize(FileType) = 2;
-end;
-
-function IsTcr(FileType: Byte): Boolean;
-begin
-  Result := FileType in [pft_Timer, pft_Counter, pft_Control];
-end;
-
-function PcccValueKind(const A: tPcccAddr): tPcccValueKind;
-begin
-  if A.HasSub or (A.Bit >= 0) then
-    Result := pvInt
-  else if A.FileType = pft_Float then
-    Result := pvFloat
-  else if A.FileType = pft_String then
-    Result := pvString
-  else
-    Result := pvInt;
-end;
-
-function PcccFileByLetter(const Letters: ShortString; out Fixed: SmallInt): Byte;
-var
-  I: Integer;
-begin
-  Result := 0;
-  Fixed := -1;
-  for I := Low(Files) to High(Files) do
-    if Files[I].Letter = Letters then
-    begin
-      Fixed := Files[I].Fixed;
-      Exit(Files[I].FType);
-    end;
-end;
-
-function PcccFindSub(FileType: Byte; const Name: ShortString; out Sub: Byte; out Bit: ShortInt): Boolean;
-var
-  I: Integer;
-begin
-  Sub := 0;
-  Bit := -1;
-  for I := Low(SubTable) to High(SubTable) do
-    if (SubTable[I].FType = FileType) and (SubTable[I].Name = Name) then
-    begin
-      Sub := SubTable[I].Sub;
-      Bit := SubTable[I].Bit;
-      Exit(True);
-    end;
-  Result := False;
-end;
-
-function PcccSubName(const A: tPcccAddr): ShortString;
-var
-  I: Integer;
-begin
-  Result := '';
-  for I := Low(SubTable) to High(SubTable) do
-    if (SubTable[I].FType = A.FileType) and (SubTable[I].Sub = A.Sub) and
-       ((SubTable[I].Bit = -1) or (SubTable[I].Bit = A.Bit)) then
-      Exit(SubTable[I].Name);
-end;
-
-function PcccAddressText(const A: tPcccAddr): ShortString;
-var
-  Name: ShortString;
-begin
-  Result := PcccFileLetter(A.FileType) + IntToStr(A.FileNo) + ':' + IntToStr(A.Elem);
-  if A.HasSub then
-  begin
-    Name := PcccSubName(A);
-    if Name = '' then
-      Name := IntToStr(A.Sub);
-    Result := Result + '.' + Name;
-    if (A.Sub <> 0) and (A.Bit >= 0) then
-      Result := Result + '/' + IntToStr(A.Bit);
-  end
-  else if A.Bit >= 0 then
-    Result := Result + '/' + IntToStr(A.Bit);
-end;
+{- ------------------------------------------------------------ addresses }
 
 function PcccParseAddress(const S: ShortString; out A: tPcccAddr; out Err: ShortString): tChResult;
 begin
-  Result := PcccParseAddressAs(pdSlc, S, A, Err);
-end;
-
-type
-  tDialectRules = record
-    Missing  : Byte;          { the file type this family has not }
-    Letters  : string[27];
-    MaxFile  : LongInt;
-    MaxElem  : LongInt;
-    MaxBit   : LongInt;       { of a bit counted from the start of a B file }
-    OctalIo  : Boolean;       { O and I elements and bits in octal }
-  end;
-
-const
-  Rules: array[tPcccDialect] of tDialectRules = (
-    (Missing: pft_Bcd;  Letters: 'O I S B T C R N F ST A L'; MaxFile: 255; MaxElem: 65535;
-     MaxBit: 65535; OctalIo: False),
-    (Missing: pft_Long; Letters: 'O I S B T C R N F ST A D'; MaxFile: 999; MaxElem: 999;
-     MaxBit: 15999; OctalIo: True));
-  OctalIoMax = 191;           { 277 octal: the last rack/group of a PLC-5 }
-
-function IsIo(FileType: Byte): Boolean;
-begin
-  Result := FileType in [pft_Output, pft_Input];
-end;
-
-{ Octal digits to a number up to Max; False when empty, not octal or above. }
-function OctalToNum(const S: ShortString; Max: LongInt; out V: LongInt): Boolean;
-var
-  I: Integer;
-begin
-  V := 0;
-  Result := (S <> '') and (Length(S) <= 7);
-  if not Result then
-    Exit;
-  for I := 1 to Length(S) do
-  begin
-    if not (S[I] in ['0'..'7']) then
-      Exit(False);
-    V := V * 8 + Ord(S[I]) - Ord('0');
-  end;
-  Result := V <= Max;
-end;
-
-function OctalText(V: LongInt; Digits: Integer): ShortString;
-begin
-  Result := '';
-  repeat
-    Result := Chr(Ord('0') + V mod 8) + Result;
-    V := V div 8;
-  until V = 0;
-  while Length(Result) < Digits do
-    Result := '0' + Result;
-end;
-
-function PcccAddressTextAs(Dialect: tPcccDialect; const A: tPcccAddr): ShortString;
-begin
-  if Rules[Dialect].OctalIo and IsIo(A.FileType) then
-  begin
-    Result := PcccFileLetter(A.FileType) + ':' + OctalText(A.Elem, 3);
-    if A.Bit >= 0 then
-      Result := Result + '/' + OctalText(A.Bit, 2);
-  end
-  else
-    Result := PcccAddressText(A);
-end;
-
-{ The steps of PcccParseAddressAs on the upper-case text T, from P: each
-  takes its part (P past it) into A and returns '' or what is wrong. }
-
-{ The file: its letters (one of the dialect's) and number (O, I and S
-  may leave it out). }
-function ParseFile(const T: ShortString; var P: Integer; const R: tDialectRules;
-  var A: tPcccAddr; out Letters: ShortString): ShortString;
-var
-  Num: ShortString;
-  Q, I, FI: Integer;
-  V: LongInt;
-  HaveFile: Boolean;
-begin
-  Result := '';
-  P := 1;
-  while (P <= Length(T)) and (T[P] in ['A'..'Z']) do
-    Inc(P);
-  Letters := Copy(T, 1, P - 1);
-  FI := -1;
-  for I := Low(Files) to High(Files) do
-    if Files[I].Letter = Letters then
-      FI := I;
-  if (FI < 0) or (Files[FI].FType = R.Missing) then
-    Exit('file type "' + Letters + '" is none of ' + R.Letters);
-  A.FileType := Files[FI].FType;
-  { the file number (may be left out for O, I and S) }
-  Q := P;
-  while (P <= Length(T)) and (T[P] in ['0'..'9']) do
-    Inc(P);
-  Num := Copy(T, Q, P - Q);
-  HaveFile := Num <> '';
-  V := 0;
-  if HaveFile and not StrToNum(Num, 0, R.MaxFile, V) then
-    Exit('file number "' + Num + '" is not 0..' + IntToStr(R.MaxFile));
-  if Files[FI].Fixed >= 0 then
-  begin
-    if HaveFile and (V <> Files[FI].Fixed) then
-      Exit(Letters + ' is file ' + IntToStr(Files[FI].Fixed) + ', not ' + Num);
-    V := Files[FI].Fixed;
-  end
-  else if not HaveFile then
-    Exit('file number missing after ' + Letters)
-  else if V < 3 then
-    Exit('file number ' + Num + ' is not 3..' + IntToStr(R.MaxFile) + ' (0, 1, 2 are O, I, S)');
-  A.FileNo := V;
-end;
-
-{ B3/20: a bit number counted from the start of a B file (T[P] = '/'). }
-function ParseFileBit(const T: ShortString; P: Integer; const R: tDialectRules;
-  var A: tPcccAddr): ShortString;
-var
-  Num: ShortString;
-  V: LongInt;
-begin
-  Result := '';
-  if A.FileType <> pft_Bit then
-    Exit('a bit number without an element ("/n") is only for B files');
-  Num := Copy(T, P + 1, 255);
-  V := 0;
-  if not StrToNum(Num, 0, R.MaxBit, V) then
-    Exit('bit number "' + Num + '" is not 0..' + IntToStr(R.MaxBit));
-  A.Elem := V div 16;
-  A.Bit := V mod 16;
-end;
-
-{ ":element"; Octal: O and I count in octal in this dialect. }
-function ParseElement(const T: ShortString; var P: Integer; const R: tDialectRules;
-  var A: tPcccAddr; out Octal: Boolean): ShortString;
-var
-  Num: ShortString;
-  Q: Integer;
-  V: LongInt;
-begin
-  Result := '';
-  Octal := False;
-  if T[P] <> ':' then
-    Exit('":" expected after ' + Copy(T, 1, P - 1) + ', found "' + T[P] + '"');
-  Inc(P);
-  Q := P;
-  while (P <= Length(T)) and (T[P] in ['0'..'9']) do
-    Inc(P);
-  Num := Copy(T, Q, P - Q);
-  V := 0;
-  Octal := R.OctalIo and IsIo(A.FileType);
-  if Octal then
-  begin
-    if not OctalToNum(Num, OctalIoMax, V) then
-      Exit('element "' + Num + '" is not octal 0..277 (I/O racks and groups)');
-  end
-  else if not StrToNum(Num, 0, R.MaxElem, V) then
-    Exit('element "' + Num + '" is not 0..' + IntToStr(R.MaxElem));
-  A.Elem := V;
-end;
-
-{ ".sub-element" of a timer, counter or control element (T[P] = '.'). }
-function ParseSub(const T: ShortString; var P: Integer; const Letters: ShortString;
-  var A: tPcccAddr): ShortString;
-var
-  SubS: ShortString;
-  Q: Integer;
-begin
-  Result := '';
-  Inc(P);
-  Q := P;
-  while (P <= Length(T)) and (T[P] in ['A'..'Z']) do
-    Inc(P);
-  SubS := Copy(T, Q, P - Q);
-  if not IsTcr(A.FileType) then
-    Exit('".' + SubS + '": ' + Letters + ' elements have no sub-elements');
-  A.HasSub := PcccFindSub(A.FileType, SubS, A.Sub, A.Bit);
-  if not A.HasSub then
-    Exit('sub-element ".' + SubS + '" is not one of a ' + Letters + ' element');
-end;
-
-{ "/bit" of a word (T[P] = '/'), in octal where the element is; the rest
-  of T. }
-function ParseBit(const T: ShortString; var P: Integer; const Letters: ShortString;
-  Octal: Boolean; var A: tPcccAddr): ShortString;
-var
-  Num: ShortString;
-  V: LongInt;
-begin
-  Result := '';
-  Num := Copy(T, P + 1, 255);
-  if A.Bit >= 0 then
-    Exit('"/' + Num + '" after a bit sub-element');
-  if IsTcr(A.FileType) and not A.HasSub then
-    Exit('"/' + Num + '" on a whole ' + Letters + ' element: name a word (.PRE, .ACC) or a bit (.DN)');
-  if not IsWordFile(A.FileType) and not IsTcr(A.FileType) then
-    Exit('"/' + Num + '": ' + Letters + ' elements have no addressable bits');
-  V := 0;
-  if Octal then
-  begin
-    if not OctalToNum(Num, 15, V) then
-      Exit('bit "' + Num + '" is not octal 00..17');
-  end
-  else if not StrToNum(Num, 0, 15, V) then
-    Exit('bit "' + Num + '" is not 0..15');
-  A.Bit := V;
-  P := Length(T) + 1;
+  Result := ChnPcccAddr.PcccParseAddress(S, A, Err);
 end;
 
 function PcccParseAddressAs(Dialect: tPcccDialect; const S: ShortString; out A: tPcccAddr;
   out Err: ShortString): tChResult;
-var
-  T, Letters, Why: ShortString;
-  P: Integer;
-  Octal: Boolean;
 begin
-  FillChar(A, SizeOf(A), 0);
-  A.Bit := -1;
-  Err := '';
-  T := UpperCase(Trim(S));
-  P := 1;
-  Letters := '';
-  Octal := False;
-  if T = '' then
-    Why := 'empty'
-  else
-    Why := ParseFile(T, P, Rules[Dialect], A, Letters);
-  if (Why = '') and (P > Length(T)) then
-    Why := '":element" missing';
-  if Why = '' then
-    if T[P] = '/' then
-      Why := ParseFileBit(T, P, Rules[Dialect], A)
-    else
-    begin
-      Why := ParseElement(T, P, Rules[Dialect], A, Octal);
-      if (Why = '') and (P <= Length(T)) and (T[P] = '.') then
-        Why := ParseSub(T, P, Letters, A);
-      if (Why = '') and (P <= Length(T)) and (T[P] = '/') then
-        Why := ParseBit(T, P, Letters, Octal, A);
-      if (Why = '') and (P <= Length(T)) then
-        Why := '"' + Copy(T, P, 255) + '" after the element';
-    end;
-  if Why <> '' then
-  begin
-    Err := 'address "' + T + '": ' + Why;
-    Exit(res_PcccAddress);
-  end;
-  Result := res_Ok;
+  Result := ChnPcccAddr.PcccParseAddressAs(Dialect, S, A, Err);
+end;
+
+function PcccAddressTextAs(Dialect: tPcccDialect; const A: tPcccAddr): ShortString;
+begin
+  Result := ChnPcccAddr.PcccAddressTextAs(Dialect, A);
+end;
+
+function PcccAddressText(const A: tPcccAddr): ShortString;
+begin
+  Result := ChnPcccAddr.PcccAddressText(A);
+end;
+
+function PcccFileLetter(FileType: Byte): ShortString;
+begin
+  Result := ChnPcccAddr.PcccFileLetter(FileType);
+end;
+
+function PcccElemSize(FileType: Byte): Word;
+begin
+  Result := ChnPcccAddr.PcccElemSize(FileType);
+end;
+
+function PcccValueKind(const A: tPcccAddr): tPcccValueKind;
+begin
+  Result := ChnPcccAddr.PcccValueKind(A);
+end;
+
+function PcccFileByLetter(const Letters: ShortString; out Fixed: SmallInt): Byte;
+begin
+  Result := ChnPcccAddr.PcccFileByLetter(Letters, Fixed);
+end;
+
+function PcccFindSub(FileType: Byte; const Name: ShortString; out Sub: Byte; out Bit: ShortInt): Boolean;
+begin
+  Result := ChnPcccAddr.PcccFindSub(FileType, Name, Sub, Bit);
+end;
+
+function PcccSubName(const A: tPcccAddr): ShortString;
+begin
+  Result := ChnPcccAddr.PcccSubName(A);
 end;
 
 {- ------------------------------------------------------------- requests }
@@ -747,7 +361,7 @@ begin
   Room := MaxBytes;
   if Write and (Room > MaxDataLen - 9) then
     Room := MaxDataLen - 9;
-  if IsTcr(A.FileType) and A.HasSub then
+  if PcccHasSubs(A.FileType) and A.HasSub then
   begin
     P.Mode := pmSubs;         { one word of each element, one request each }
     P.UnitBytes := 2;
@@ -769,7 +383,7 @@ begin
     P.UnitBytes := PcccElemSize(A.FileType);
     P.Units := Count;
     P.PerReq := Room div P.UnitBytes;
-    if IsTcr(A.FileType) then
+    if PcccHasSubs(A.FileType) then
       P.PerItem := 3;
     if P.PerReq = 0 then
     begin
@@ -1194,7 +808,6 @@ begin
 end;
 
 initialization
-  ChRegisterResultText(PcccLayer, res_PcccAddress, 'bad PLC address');
   ChRegisterResultText(PcccLayer, res_PcccCount, 'count does not fit');
   ChRegisterResultText(PcccLayer, res_PcccValue, 'value out of range for the element');
   ChRegisterResultText(PcccLayer, res_PcccReply, 'reply does not match the request');

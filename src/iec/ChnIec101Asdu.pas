@@ -14,7 +14,8 @@
   1..21 and 30..40, end of initialisation 70, commands 45..51 and 58..64,
   system 100..107, parameters 110..113; the element layouts are those of
   clause 7.3. Time tags: CP24Time2a (ms, minute), CP56Time2a (ms, minute,
-  hour, day of month and of week, month, year) with IV and SU, CP16Time2a
+  hour, day of month and of week, month, year) with IV and SU (their
+  octets and checks are ChnIecTime's, their names here too), CP16Time2a
   (ms) for elapsed, duration and delay times.
 
   One information object of any type is one tIecObject: the fields the
@@ -37,7 +38,7 @@ unit ChnIec101Asdu;
 interface
 
 uses
-  ChnTypes;
+  ChnTypes, ChnIecTime;
 
 const
   Iec101Layer = 'IEC101';   {< ChResultText(R, Iec101Layer) }
@@ -130,22 +131,17 @@ type
     IoaSize: Byte;
   end;
 
-  { A CP56Time2a, or the ms and minute (and IV) of a CP24Time2a. Fields
-    hold what the wire bits hold; the encoder refuses what does not fit
-    them; IecTimeCheck tells a real date. Reserved bits are dropped. }
-  tIecTime = packed record
-    Msec     : Word;      {< milliseconds of the minute, 0..59999 }
-    Minute   : Byte;      {< 0..59 }
-    Hour     : Byte;      {< 0..23 }
-    Day      : Byte;      {< day of the month 1..31 }
-    DayOfWeek: Byte;      {< 1 Monday .. 7 Sunday, 0 not used }
-    Month    : Byte;      {< 1..12 }
-    Year     : Byte;      {< 0..99, years of the century }
-    Invalid  : Boolean;   {< IV }
-    Summer   : Boolean;   {< SU }
-  end;
+  { A CP56Time2a, or the ms and minute (and IV) of a CP24Time2a
+    (ChnIecTime); IecTimeCheck tells a real date. }
+  tIecTime = ChnIecTime.tIecTime;
+  tIecTimeKind = ChnIecTime.tIecTimeKind;
 
-  tIecTimeKind = (tkNone, tkCP24, tkCP56);
+const
+  tkNone = ChnIecTime.tkNone;
+  tkCP24 = ChnIecTime.tkCP24;
+  tkCP56 = ChnIecTime.tkCP56;
+
+type
 
   { What the element of a type holds, and which fields of tIecObject it
     fills (Quality always: the quality bits of the element, 0 if none):
@@ -271,14 +267,15 @@ function IecDecodeObject(const P: tIecParams; const H: tIecAsdu; const Buf: arra
 function IecDecodeAsdu(const P: tIecParams; const Buf: array of Byte; Len: Word;
   out H: tIecAsdu; var Objs: array of tIecObject; out Err: ShortString): tChResult;
 
-{ The fields of a time from a TDateTime (DayOfWeek filled, IV and SU
-  clear) and back; IecTimeToDateTime is False for a time that is no date
-  (month 13, minute 60 ...), DT then 0. A CP24Time2a gives only minutes
-  and ms: use IecTimeCheck with Short. }
+{ ChnIecTime's, for programs that use this unit alone: the fields of a
+  time from a TDateTime (DayOfWeek filled, IV and SU clear) and back;
+  IecTimeToDateTime is False for a time that is no date (month 13, minute
+  60 ...), DT then 0. A CP24Time2a gives only minutes and ms: use
+  IecTimeCheck with Short. }
 function IecTimeFromDateTime(DT: TDateTime): tIecTime;
 function IecTimeToDateTime(const T: tIecTime; out DT: TDateTime): Boolean;
 { res_Ok for a real time (Short: only Msec and Minute), else res_AsduValue
-  with Err naming the field. }
+  with Err naming the field (IecTimeValid as a result code). }
 function IecTimeCheck(const T: tIecTime; Short: Boolean; out Err: ShortString): tChResult;
 
 { A zero object (Quality 0, Time 0) with the IOA given. }
@@ -288,8 +285,8 @@ function IecObject(Ioa: LongWord): tIecObject;
   IecPutIdent writes TI VSQ COT [OA] CA of H into Buf (At: the octets
   written) after checking cause, originator and common address (Err names
   the field); IecPutIoa / IecGetIoa one IOA of P.IoaSize octets at At;
-  IecPutTime / IecGetTime a CP24Time2a or CP56Time2a at At. The callers
-  check that Buf is long enough. }
+  IecPutTime / IecGetTime a CP24Time2a or CP56Time2a at At (ChnIecTime's).
+  The callers check that Buf is long enough. }
 function IecPutIdent(const P: tIecParams; const H: tIecAsdu; var Buf: array of Byte;
   out At: Word; out Err: ShortString): tChResult;
 procedure IecPutIoa(const P: tIecParams; Ioa: LongWord; var Buf: array of Byte; At: LongInt);
@@ -304,7 +301,7 @@ function IecSetCot(var Buf: array of Byte; Len: Word; Cot: Byte; Negative: Boole
 implementation
 
 uses
-  SysUtils, DateUtils, Math;
+  SysUtils, Math;
 
 type
   tTypeInfo = record
@@ -530,114 +527,21 @@ end;
 {- ------------------------------------------------------------ time }
 
 function IecTimeFromDateTime(DT: TDateTime): tIecTime;
-var
-  Y, Mo, D, H, Mi, S, Ms: Word;
 begin
-  DecodeDateTime(DT, Y, Mo, D, H, Mi, S, Ms);
-  FillChar(Result, SizeOf(Result), 0);
-  Result.Msec := S * 1000 + Ms;
-  Result.Minute := Mi;
-  Result.Hour := H;
-  Result.Day := D;
-  Result.DayOfWeek := DayOfTheWeek(DT);   { ISO: 1 Monday .. 7 Sunday }
-  Result.Month := Mo;
-  Result.Year := Y mod 100;
+  Result := ChnIecTime.IecTimeFromDateTime(DT);
 end;
 
 function IecTimeCheck(const T: tIecTime; Short: Boolean; out Err: ShortString): tChResult;
 begin
-  Err := '';
-  if T.Msec > 59999 then
-    Err := 'milliseconds ' + IntToStr(T.Msec) + ' (0..59999)'
-  else if T.Minute > 59 then
-    Err := 'minute ' + IntToStr(T.Minute) + ' (0..59)'
-  else if not Short then
-    if T.Hour > 23 then
-      Err := 'hour ' + IntToStr(T.Hour) + ' (0..23)'
-    else if (T.Month < 1) or (T.Month > 12) then
-      Err := 'month ' + IntToStr(T.Month) + ' (1..12)'
-    else if (T.Day < 1) or (T.Day > DaysInAMonth(2000 + T.Year, T.Month)) then
-      Err := 'day ' + IntToStr(T.Day) + ' (1..' + IntToStr(DaysInAMonth(2000 + T.Year, T.Month)) + ')'
-    else if T.DayOfWeek > 7 then
-      Err := 'day of week ' + IntToStr(T.DayOfWeek) + ' (0..7)'
-    else if T.Year > 99 then
-      Err := 'year ' + IntToStr(T.Year) + ' (0..99)';
-  if Err = '' then
+  if IecTimeValid(T, Short, Err) then
     Result := res_Ok
   else
     Result := res_AsduValue;
 end;
 
 function IecTimeToDateTime(const T: tIecTime; out DT: TDateTime): Boolean;
-var
-  E: ShortString;
 begin
-  DT := 0;
-  Result := IecTimeCheck(T, False, E) = res_Ok;
-  if Result then
-    DT := EncodeDateTime(2000 + T.Year, T.Month, T.Day, T.Hour, T.Minute,
-      T.Msec div 1000, T.Msec mod 1000);
-end;
-
-{ The time tag fields must fit their bits; a refusal names the field. }
-function TimeFits(const T: tIecTime; K: tIecTimeKind; out Err: ShortString): Boolean;
-begin
-  Err := '';
-  if T.Minute > 63 then
-    Err := 'minute ' + IntToStr(T.Minute)
-  else if K = tkCP56 then
-    if T.Hour > 31 then
-      Err := 'hour ' + IntToStr(T.Hour)
-    else if T.Day > 31 then
-      Err := 'day ' + IntToStr(T.Day)
-    else if T.DayOfWeek > 7 then
-      Err := 'day of week ' + IntToStr(T.DayOfWeek)
-    else if T.Month > 15 then
-      Err := 'month ' + IntToStr(T.Month)
-    else if T.Year > 127 then
-      Err := 'year ' + IntToStr(T.Year);
-  Result := Err = '';
-end;
-
-procedure PutTime(const T: tIecTime; K: tIecTimeKind; var B: array of Byte; At: Integer);
-begin
-  B[At] := Lo(T.Msec);
-  B[At + 1] := Hi(T.Msec);
-  B[At + 2] := T.Minute or (Ord(T.Invalid) shl 7);
-  if K = tkCP56 then
-  begin
-    B[At + 3] := T.Hour or (Ord(T.Summer) shl 7);
-    B[At + 4] := T.Day or (T.DayOfWeek shl 5);
-    B[At + 5] := T.Month;
-    B[At + 6] := T.Year;
-  end;
-end;
-
-procedure GetTime(const B: array of Byte; At: Integer; K: tIecTimeKind; out T: tIecTime);
-begin
-  FillChar(T, SizeOf(T), 0);
-  T.Msec := B[At] or (Word(B[At + 1]) shl 8);
-  T.Minute := B[At + 2] and $3F;
-  T.Invalid := B[At + 2] and $80 <> 0;
-  if K = tkCP56 then
-  begin
-    T.Hour := B[At + 3] and $1F;
-    T.Summer := B[At + 3] and $80 <> 0;
-    T.Day := B[At + 4] and $1F;
-    T.DayOfWeek := B[At + 4] shr 5;
-    T.Month := B[At + 5] and $0F;
-    T.Year := B[At + 6] and $7F;
-  end;
-end;
-
-function TimeLen(K: tIecTimeKind): Integer;
-begin
-  case K of
-    tkCP24: Result := 3;
-    tkCP56: Result := 7;
-  else
-    Result := 0;
-  end;
+  Result := ChnIecTime.IecTimeToDateTime(T, DT);
 end;
 
 {- ------------------------------------------------------------ elements }
@@ -779,7 +683,7 @@ begin
   Err := '';
   Info(Ti, I);
   K := Types[I].Kind;
-  V := Types[I].Size - TimeLen(Types[I].Time);
+  V := Types[I].Size - IecTimeLen(Types[I].Time);
   Result := False;
   case K of
     ikSingle:
@@ -856,8 +760,8 @@ begin
       PutWord(O.Elapsed, B, At);
   end;
   if (Err = '') and (Types[I].Time <> tkNone) then
-    if TimeFits(O.Time, Types[I].Time, Err) then
-      PutTime(O.Time, Types[I].Time, B, At + V)
+    if IecTimeFits(O.Time, Types[I].Time, Err) then
+      ChnIecTime.IecPutTime(O.Time, Types[I].Time, B, At + V)
     else
       Err := 'time tag ' + Err + ' does not fit its bits';
   Result := Err = '';
@@ -871,7 +775,7 @@ var
 begin
   Info(Ti, I);
   K := Types[I].Kind;
-  V := Types[I].Size - TimeLen(Types[I].Time);
+  V := Types[I].Size - IecTimeLen(Types[I].Time);
   case K of
     ikSingle:
       begin
@@ -949,7 +853,7 @@ begin
       O.Elapsed := GetWord(B, At);
   end;
   if Types[I].Time <> tkNone then
-    GetTime(B, At + V, Types[I].Time, O.Time);
+    ChnIecTime.IecGetTime(B, At + V, Types[I].Time, O.Time);
 end;
 
 {- ------------------------------------------------------------ ASDU }
@@ -1027,12 +931,12 @@ end;
 
 procedure IecPutTime(const T: tIecTime; K: tIecTimeKind; var B: array of Byte; At: LongInt);
 begin
-  PutTime(T, K, B, At);
+  ChnIecTime.IecPutTime(T, K, B, At);
 end;
 
 procedure IecGetTime(const B: array of Byte; At: LongInt; K: tIecTimeKind; out T: tIecTime);
 begin
-  GetTime(B, At, K, T);
+  ChnIecTime.IecGetTime(B, At, K, T);
 end;
 
 function IecEncodeAsdu(const P: tIecParams; const H: tIecAsdu; const Objs: array of tIecObject;

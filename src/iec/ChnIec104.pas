@@ -137,6 +137,8 @@ type
     procedure TakeU(Func: Byte);
     procedure ServeStandby;
     function  StandbyState(Session: LongWord): LongInt;
+    procedure TakeOverStandby(I: LongInt);
+    procedure ForgetStandby;
   end;
 
   pAddChnIec104 = ^tAddChnIec104;
@@ -304,7 +306,7 @@ begin
         pChnTrc(T)^.ChPcapAsTcp(not CH_Client);
       T := T^.CH_Low;
     end;
-    SetLength(CH_Queue, CH_QueLen);
+    SetLength(CH_Queue, 0);          { grows when ASDUs wait (ChSend) }
     SetLength(CH_SentAt, CH_K);
     CH_QHead := 0;
     CH_QCount := 0;
@@ -394,14 +396,14 @@ begin
     CH_Vs := (CH_Vs + 1) mod Apci104SeqMod;
     CH_AckVr := CH_Vr;              { the I frame acknowledges too }
     Inc(CH_ITx);
-    CH_QHead := (CH_QHead + 1) mod CH_QueLen;
+    CH_QHead := (CH_QHead + 1) mod Length(CH_Queue);
     Dec(CH_QCount);
   end;
 end;
 
 procedure tChnIec104.ChSend(Buff: Pointer; Len: Word);
 var
-  Slot: LongInt;
+  Slot, Old, I: LongInt;
 begin
   if (CH_State = CHS_Close) or (CH_State = CHS_Opening) then
   begin
@@ -421,11 +423,26 @@ begin
   if CH_QCount = CH_QueLen then
   begin
     { full: the oldest waiting ASDU gives way }
-    CH_QHead := (CH_QHead + 1) mod CH_QueLen;
+    CH_QHead := (CH_QHead + 1) mod Length(CH_Queue);
     Dec(CH_QCount);
     Inc(CH_Dropped);
+  end
+  else if CH_QCount = Length(CH_Queue) then
+  begin
+    { the ring grows as ASDUs wait (doubling, up to QUE=) instead of
+      holding QUE= slots of 250 octets from the start; the part that
+      wrapped round goes after the rest }
+    Old := Length(CH_Queue);
+    I := 2 * Old;
+    if I < 8 then
+      I := 8;
+    if I > CH_QueLen then
+      I := CH_QueLen;
+    SetLength(CH_Queue, I);
+    for I := 0 to CH_QHead - 1 do
+      CH_Queue[(Old + I) mod Length(CH_Queue)] := CH_Queue[I];
   end;
-  Slot := (CH_QHead + CH_QCount) mod CH_QueLen;
+  Slot := (CH_QHead + CH_QCount) mod Length(CH_Queue);
   CH_Queue[Slot].Len := Len;
   Move(Buff^, CH_Queue[Slot].Data[0], Len);
   Inc(CH_QCount);
@@ -727,6 +744,116 @@ begin
   CH_Standby[Result].TestAt := 0;
 end;
 
+{ What standby connection I (its state St) sent: TESTFR act and STOPDT
+  act answered, TESTFR con noted, STARTDT act asked for (TakeOver). Got:
+  the octets read, < 0 when the connection is gone. '' or why it is to be
+  closed (a broken APDU, an I frame). }
+function StandbyFrames(T: pChnTcp; I: LongInt; var St: tIec104Standby; out TakeOver: Boolean;
+  out Got: LongInt): ShortString;
+var
+  J: LongInt;
+  Buf: array[0..255] of Byte;
+  U: array[0..5] of Byte;
+  N: Word;
+  A: tApci104;
+  E: ShortString;
+begin
+  Result := '';
+  TakeOver := False;
+  if T^.ChStandbyRead(I, Buf, SizeOf(Buf), Got) <> res_Ok then
+    Got := -1;
+  for J := 0 to Got - 1 do
+  begin
+    case Apci104Feed(St.Feed, Buf[J]) of
+      fe104Error: Result := 'standby connection: broken APDU';
+      fe104Apdu:
+        begin
+          St.LastRxAt := ChMsTick;
+          if Apci104Decode(St.Feed.Buf, St.Feed.Pos, A, E) <> res_Ok then
+            Result := 'standby connection: ' + E
+          else if A.Format = af104I then
+            Result := 'standby connection: I frame before STARTDT'
+          else if A.Format = af104U then
+            case A.UFunc of
+              U104TestFrAct, U104StopDtAct:
+                begin
+                  Apci104EncodeU(Apci104ConOf(A.UFunc), U, N);
+                  T^.ChStandbySend(I, U, N);
+                end;
+              U104TestFrCon: St.TestAt := 0;
+              U104StartDtAct: TakeOver := True;
+            end;
+          Apci104FeedReset(St.Feed);
+        end;
+    end;
+    if (Result <> '') or TakeOver then
+      Break;
+  end;
+end;
+
+{ The test procedure of standby connection I: TESTFR act after T3 s of
+  silence; '' or why it is to be closed (no TESTFR con within T1 s). }
+function StandbyTest(T: pChnTcp; I: LongInt; var St: tIec104Standby; T1, T3: LongInt): ShortString;
+var
+  U: array[0..5] of Byte;
+  N: Word;
+  Now_: QWord;
+begin
+  Result := '';
+  Now_ := ChMsTick;
+  if St.TestAt = 0 then
+  begin
+    if Now_ - St.LastRxAt >= QWord(T3) * 1000 then
+    begin
+      Apci104EncodeU(U104TestFrAct, U, N);
+      T^.ChStandbySend(I, U, N);
+      St.TestAt := Now_;
+    end;
+  end
+  else if Now_ - St.TestAt >= QWord(T1) * 1000 then
+    Result := 'standby connection: no TESTFR con within t1';
+end;
+
+{ Standby connection I asked for STARTDT: it carries the data from now.
+  The connection served so far is stopped (what it sent and was not read
+  is dropped with it) and becomes a standby one. }
+procedure tChnIec104.TakeOverStandby(I: LongInt);
+begin
+  ChLowDiscard;
+  Apci104FeedReset(CH_Feed);
+  pChnTcp(LowTcp)^.ChPromote(I);
+  Inc(CH_TakeOvers);
+  SyncSession;
+  SendU(U104StartDtCon);
+  CH_Started := True;
+  Flush;
+end;
+
+{ Forget the state of standby connections that are gone. }
+procedure tChnIec104.ForgetStandby;
+var
+  T: pChnTcp;
+  I, J: LongInt;
+  Live: Boolean;
+begin
+  T := pChnTcp(LowTcp);
+  I := 0;
+  while I < Length(CH_Standby) do
+  begin
+    Live := False;
+    for J := 0 to T^.ChStandbyCount - 1 do
+      if T^.ChStandbySession(J) = CH_Standby[I].Session then
+        Live := True;
+    if Live then
+      Inc(I)
+    else
+    begin
+      CH_Standby[I] := CH_Standby[High(CH_Standby)];
+      SetLength(CH_Standby, Length(CH_Standby) - 1);
+    end;
+  end;
+end;
+
 { The server's other connections: U frames only. TESTFR is answered and,
   after t3 of silence, sent (no con within t1: closed); STARTDT act makes
   the connection the one that carries data (the one before is stopped
@@ -735,16 +862,9 @@ end;
 procedure tChnIec104.ServeStandby;
 var
   T: pChnTcp;
-  I, J, K, Got: LongInt;
-  Buf: array[0..255] of Byte;
-  U: array[0..5] of Byte;
-  N: Word;
+  I, K, Got: LongInt;
   Why: ShortString;
-  A: tApci104;
-  E: ShortString;
   TakeOver: Boolean;
-  Now_: QWord;
-  Keep: array of LongWord;
 begin
   T := pChnTcp(LowTcp);
   if T = nil then
@@ -753,50 +873,9 @@ begin
   while I < T^.ChStandbyCount do
   begin
     K := StandbyState(T^.ChStandbySession(I));
-    Why := '';
-    TakeOver := False;
-    if T^.ChStandbyRead(I, Buf, SizeOf(Buf), Got) <> res_Ok then
-      Got := -1;
-    for J := 0 to Got - 1 do
-    begin
-      case Apci104Feed(CH_Standby[K].Feed, Buf[J]) of
-        fe104Error: Why := 'standby connection: broken APDU';
-        fe104Apdu:
-          begin
-            CH_Standby[K].LastRxAt := ChMsTick;
-            if Apci104Decode(CH_Standby[K].Feed.Buf, CH_Standby[K].Feed.Pos, A, E) <> res_Ok then
-              Why := 'standby connection: ' + E
-            else if A.Format = af104I then
-              Why := 'standby connection: I frame before STARTDT'
-            else if A.Format = af104U then
-              case A.UFunc of
-                U104TestFrAct, U104StopDtAct:
-                  begin
-                    Apci104EncodeU(Apci104ConOf(A.UFunc), U, N);
-                    T^.ChStandbySend(I, U, N);
-                  end;
-                U104TestFrCon: CH_Standby[K].TestAt := 0;
-                U104StartDtAct: TakeOver := True;
-              end;
-            Apci104FeedReset(CH_Standby[K].Feed);
-          end;
-      end;
-      if (Why <> '') or TakeOver then
-        Break;
-    end;
-    Now_ := ChMsTick;
+    Why := StandbyFrames(T, I, CH_Standby[K], TakeOver, Got);
     if (Why = '') and not TakeOver then
-      if CH_Standby[K].TestAt = 0 then
-      begin
-        if Now_ - CH_Standby[K].LastRxAt >= QWord(CH_T3) * 1000 then
-        begin
-          Apci104EncodeU(U104TestFrAct, U, N);
-          T^.ChStandbySend(I, U, N);
-          CH_Standby[K].TestAt := Now_;
-        end;
-      end
-      else if Now_ - CH_Standby[K].TestAt >= QWord(CH_T1) * 1000 then
-        Why := 'standby connection: no TESTFR con within t1';
+      Why := StandbyTest(T, I, CH_Standby[K], CH_T1, CH_T3);
     if Got < 0 then
       T^.ChStandbyHangUp(I)         { it left }
     else if Why <> '' then
@@ -805,42 +884,14 @@ begin
       CH_Reason := Why;
       T^.ChStandbyHangUp(I);
     end
-    else if TakeOver then
-    begin
-      { the connection served so far is stopped: what it sent and was not
-        read is dropped with it, and it is a standby one from now }
-      ChLowDiscard;
-      Apci104FeedReset(CH_Feed);
-      T^.ChPromote(I);
-      Inc(CH_TakeOvers);
-      SyncSession;
-      SendU(U104StartDtCon);
-      CH_Started := True;
-      Flush;
-      Inc(I);
-    end
-    else
-      Inc(I);
-  end;
-  { forget the state of connections that are gone }
-  SetLength(Keep, T^.ChStandbyCount);
-  for I := 0 to High(Keep) do
-    Keep[I] := T^.ChStandbySession(I);
-  I := 0;
-  while I < Length(CH_Standby) do
-  begin
-    TakeOver := False;
-    for J := 0 to High(Keep) do
-      if Keep[J] = CH_Standby[I].Session then
-        TakeOver := True;
-    if TakeOver then
-      Inc(I)
     else
     begin
-      CH_Standby[I] := CH_Standby[High(CH_Standby)];
-      SetLength(CH_Standby, Length(CH_Standby) - 1);
+      if TakeOver then
+        TakeOverStandby(I);
+      Inc(I);
     end;
   end;
+  ForgetStandby;
 end;
 
 function tChnIec104.ChTakeOvers: LongWord;

@@ -570,8 +570,12 @@ begin
   begin
     { connected, its socket watched by the wait and not seen readable:
       nothing came, no read (TLS may hold decrypted bytes the socket does
-      not show: always read) }
+      not show: always read; Windows' wait watches no socket) }
+    {$IFDEF WINDOWS}
+    Read := True;
+    {$ELSE}
     Read := (C.State <> msConnected) or C.Tls or not ChnWaitWatching(C.Src);
+    {$ENDIF}
     Wrote := False;
     Rc := MOSQ_ERR_SUCCESS;
     if Read then
@@ -619,7 +623,14 @@ begin
     msConnecting:
       Result := GetTickCount64 + 1000;
     msConnected:
-      Result := PingAt(C);
+      begin
+        Result := PingAt(C);
+        {$IFDEF WINDOWS}
+        { the wait watches no socket there: look every quarter of it }
+        if Result > GetTickCount64 + QWord(C.KeepAlive) * 250 then
+          Result := GetTickCount64 + QWord(C.KeepAlive) * 250;
+        {$ENDIF}
+      end;
   else
     Result := High(QWord);
   end;

@@ -142,20 +142,6 @@ begin
   CloseFile(F);
 end;
 
-function FdCount(Pid: TPid): LongInt;
-var
-  SR: TSearchRec;
-begin
-  Result := 0;
-  if FindFirst('/proc/' + IntToStr(Pid) + '/fd/*', faAnyFile, SR) = 0 then
-  begin
-    repeat
-      Inc(Result);
-    until FindNext(SR) <> 0;
-    FindClose(SR);
-  end;
-end;
-
 { the peer process and its standard output }
 type
   TPeer = record
@@ -273,17 +259,17 @@ end;
 procedure TakeStart(var St: TStats; Peer: TPid);
 begin
   St.RssStart := RssKb(FpGetPid);
-  St.FdStart := FdCount(FpGetPid);
+  St.FdStart := OpenFdCount(IntToStr(FpGetPid));
   St.PRssStart := RssKb(Peer);
-  St.PFdStart := FdCount(Peer);
+  St.PFdStart := OpenFdCount(IntToStr(Peer));
 end;
 
 procedure TakeEnd(var St: TStats; Peer: TPid);
 begin
   St.RssEnd := RssKb(FpGetPid);
-  St.FdEnd := FdCount(FpGetPid);
+  St.FdEnd := OpenFdCount(IntToStr(FpGetPid));
   St.PRssEnd := RssKb(Peer);
-  St.PFdEnd := FdCount(Peer);
+  St.PFdEnd := OpenFdCount(IntToStr(Peer));
 end;
 
 var

@@ -1,5 +1,6 @@
 { SlcAsk - one request to the simulator's table (tools/lib/ChnSlc) as
-  the DF1 link would hand it over, and the reply as text. }
+  the DF1 link would hand it over, and the reply as text; the request's
+  data and the reply's text for a DF1 transaction too. }
 unit SlcAsk;
 
 {$MODE OBJFPC}{$H+}
@@ -13,6 +14,10 @@ uses
   DataHex; checks the reply's head (a data message, CF with $40 and no
   FNC, the same TNS) and gives its STS and data as 'STS=00 01 02'. }
 function SlcAskText(var T: tSlcTable; CF: Word; const DataHex: string; Tns: Word): string;
+{ The octets of DataHex ('0A 07') at the start of Data; how many. }
+function PutHex(const DataHex: string; var Data: array of Byte): Integer;
+{ A reply as text: 'STS=00', then its first DataLen data octets, if any. }
+function ReplyText(Sts: Byte; const Data: array of Byte; DataLen: Integer): string;
 
 implementation
 
@@ -23,7 +28,7 @@ function SlcAskText(var T: tSlcTable; CF: Word; const DataHex: string; Tns: Word
 var
   Req: tRecRecord;
   Rep: tSendRecord;
-  D: TBytes;
+  N: Integer;
   RepLen: Word;
 begin
   FillChar(Req, SizeOf(Req), 0);
@@ -31,17 +36,30 @@ begin
   Req.MessType := tpDataMess;
   Req.CF := CF;
   Req.Tns := Tns;
-  D := HexToBytes(DataHex);
-  if Length(D) > 0 then
-    Move(D[0], Req.Data[0], Length(D));
+  N := PutHex(DataHex, Req.Data);
   RepLen := 0;
-  TAssert.AssertTrue('handled', SlcHandle(T, Req, 8 + Length(D), Rep, RepLen));
+  TAssert.AssertTrue('handled', SlcHandle(T, Req, 8 + N, Rep, RepLen));
   TAssert.AssertEquals('reply MessType', Ord(tpDataMess), Ord(Rep.MessType));
   TAssert.AssertEquals('reply CF: CMD + $40, no FNC', (CF and $FF00) or $4000, Rep.CF);
   TAssert.AssertEquals('reply TNS', Tns, Rep.Tns);
-  Result := Format('STS=%.2x', [Rep.Sts]);
-  if RepLen > 8 then
-    Result := Result + ' ' + BytesToHex(Rep.Data, RepLen - 8);
+  Result := ReplyText(Rep.Sts, Rep.Data, RepLen - 8);
+end;
+
+function PutHex(const DataHex: string; var Data: array of Byte): Integer;
+var
+  D: TBytes;
+begin
+  D := HexToBytes(DataHex);
+  Result := Length(D);
+  if Result > 0 then
+    Move(D[0], Data[0], Result);
+end;
+
+function ReplyText(Sts: Byte; const Data: array of Byte; DataLen: Integer): string;
+begin
+  Result := Format('STS=%.2x', [Sts]);
+  if DataLen > 0 then
+    Result := Result + ' ' + BytesToHex(Data, DataLen);
 end;
 
 end.

@@ -42,6 +42,12 @@ function OpenStack(const Name, Params: string; var Err: string): pChnVirt;
   bare TCP layer); fails the test when it does not open. Port: the port
   the server took. }
 function OpenListening(const Name, Params: string; out Port: Word): pChnVirt;
+{ Append to Got all Chn has received by now; Buf is the receive buffer
+  the caller gave it (ChReceiveBuffer). }
+procedure ReceiveAllInto(Chn: pChnVirt; Buf: PByte; var Got: TBytes);
+{ How many descriptors process Proc ('self' or a pid) holds open now: the
+  entries of /proc/Proc/fd (0 where there is no /proc). }
+function OpenFdCount(const Proc: string): LongInt;
 { Build Params ('NAM=ICS ... NAM=NOISE ...', a NOISE layer at the bottom:
   a babbling line), open, connect, give a receive buffer and poll
   ChReceiveReady once: how many bytes that one poll took from the line
@@ -221,6 +227,35 @@ begin
   while Low^.CH_Low <> nil do
     Low := Low^.CH_Low;
   Port := pChnTcp(Low)^.ChLocalPort;
+end;
+
+procedure ReceiveAllInto(Chn: pChnVirt; Buf: PByte; var Got: TBytes);
+var
+  Len: Word;
+  K: Integer;
+begin
+  while Chn^.ChReceiveReady = CHS_ReceiveReady do
+  begin
+    Len := 0;
+    Chn^.ChReceive(Len);
+    K := Length(Got);
+    SetLength(Got, K + Len);
+    Move(Buf^, Got[K], Len);
+  end;
+end;
+
+function OpenFdCount(const Proc: string): LongInt;
+var
+  SR: TSearchRec;
+begin
+  Result := 0;
+  if FindFirst('/proc/' + Proc + '/fd/*', faAnyFile, SR) = 0 then
+  begin
+    repeat
+      Inc(Result);
+    until FindNext(SR) <> 0;
+    FindClose(SR);
+  end;
 end;
 
 end.
