@@ -29,13 +29,14 @@ type
     procedure TestRefusedRead;
     procedure TestDeadDeviceDemotedOtherKeepsItsRate;
     procedure TestPlc5Device;
+    procedure TestBlocksKeepTheirScanOnABusyLine;
     {$ENDIF}
   end;
 
 implementation
 
 uses
-  {$IFDEF UNIX}BaseUnix, Process, BinSupport, PtyPair, ChnLayers,{$ENDIF}
+  {$IFDEF UNIX}BaseUnix, Process, BinSupport, PtyPair, ChnLayers, ChnDF1Link, ChnSlc,{$ENDIF}
   ChnWait, ChnVirt;
 
 procedure TTestChnPcccTags.TestParseKepwareNotation;
@@ -517,6 +518,93 @@ begin
     TagDeviceDone(Dead);
     Pair.Free;
     Sim.Free;
+  end;
+end;
+
+{ Two blocks on one 19200 Bd line (an in-memory line that takes each
+  character's time, an SLC station of tools/lib on its other end): the
+  122-word read keeps the line about 145 ms, the 100-word one about
+  120 ms, so at a 400 ms scan the line is busy two thirds of the time and
+  the second block always waits behind the first. Each block is still
+  read every 400 ms: its next read is due a scan after its last one was
+  due, not after it ended (that would add the read's own time and the
+  wait, 120..270 ms, to every cycle). }
+type
+  tBusyLine = record
+    Dev: pPcccDevice;
+    Station: tDF1Station;
+    LastDue: array[0..1] of QWord;
+    First, Last: array[0..1] of QWord;     { ChMsTick: first and last read seen done }
+    Reads: array[0..1] of LongInt;
+  end;
+  pBusyLine = ^tBusyLine;
+
+{ Serve the station; note each block's reads as they end (its Due moves on). }
+function BusyStep(Data: Pointer): Boolean;
+var
+  K: LongInt;
+begin
+  with pBusyLine(Data)^ do
+  begin
+    DF1StationStep(Station);
+    for K := 0 to 1 do
+      if Dev^.Blocks[K].Due <> LastDue[K] then
+      begin
+        LastDue[K] := Dev^.Blocks[K].Due;
+        if Reads[K] = 0 then
+          First[K] := ChMsTick;
+        Last[K] := ChMsTick;
+        Inc(Reads[K]);
+      end;
+  end;
+  Result := False;
+end;
+
+procedure TTestChnPcccTags.TestBlocksKeepTheirScanOnABusyLine;
+const
+  Scan = 400;
+var
+  D: tPcccDevice;
+  B: tBusyLine;
+  Table: tSlcTable;
+  StChn: pChnVirt;
+  ErrLine, K: LongInt;
+  Err: AnsiString;
+  Period: Double;
+begin
+  AssertTrue('table', SlcLoadConfig(Table, 'N7 256', ErrLine, Err));
+  StChn := ChnCollection^.ChNewInit('DF1');
+  TagDeviceInit(D, 'busy');
+  try
+    StChn^.ChSetParam('NOD=1 DNO=0 MAS=SLAVE FHD=FULL CRC=ON NAM=LOOP PAIR=TAGSBUSY END=2 BD=19200');
+    StChn^.ChOpen;
+    StChn^.ChConnect;
+    AssertEquals('station: ' + StChn^.ChErrorText, res_Ok, StChn^.ChResult);
+    FillChar(B, SizeOf(B), 0);
+    B.Dev := @D;
+    SlcStationInit(B.Station, StChn, @Table);
+    if PcccOpen(D.Client, 'NAM=DF1 NOD=0 DNO=1 FHD=FULL CRC=ON NAM=LOOP PAIR=TAGSBUSY END=1 BD=19200') <> res_Ok then
+      raise Exception.Create('open: ' + D.Client.Err);
+    Added(D, 'N7:0[122]', Scan);
+    Added(D, 'N7:122[100]', Scan);
+    TagDeviceStart(D);
+    AssertEquals('two reads', 2, TagDeviceReads(D));
+    for K := 0 to 1 do
+      B.LastDue[K] := D.Blocks[K].Due;
+    StepAll([@D], 4500, @BusyStep, @B);
+    AssertEquals('no read failed: ' + D.LastError, 0, D.Errors);
+    for K := 0 to 1 do
+    begin
+      AssertTrue(Format('block %d: %d reads', [K, B.Reads[K]]), B.Reads[K] >= 6);
+      Period := (B.Last[K] - B.First[K]) / (B.Reads[K] - 1);
+      { generous for a loaded machine: a late round is caught up with, it
+        does not move the schedule }
+      AssertTrue(Format('block %d read every %.0f ms at a %d ms scan', [K, Period, Scan]),
+        (Period > Scan - 30) and (Period < Scan + 50));
+    end;
+  finally
+    TagDeviceDone(D);
+    Dispose(StChn, Done);
   end;
 end;
 {$ENDIF}
