@@ -38,9 +38,11 @@
     the anonymous memory of heap and stacks, each library).
   Skipped with the reason when mosquitto or libmosquitto is missing.
 
-    benchgate [quick] [BD]   10 s under load, 20 s idle (the gateway and
+    benchgate [quick] [BD] [maxread=N]
+                             10 s under load, 20 s idle (the gateway and
                              the floor each); quick: 4 s and 5 s; BD the
-                             lines' rate (default 19200)
+                             lines' rate (default 19200); maxread=N the
+                             devices' maxread (default 244: 2 reads a line)
   Internal role: --floor N MS (the idle floor: N pty lines, ChnWaitAny(MS)
   until killed). }
 program benchgate;
@@ -90,6 +92,7 @@ type
 
 var
   Bd: LongInt = 19200;
+  MaxRead: LongInt = 0;     { the devices' maxread, 0 the gateway's default }
   L: array[0..Lines - 1] of tLine;
   Buf: array[0..4095] of Byte;
   Quick: Boolean;
@@ -104,7 +107,7 @@ var
     that request to the end of its reply (and what of it is not wire
     time: the stations served late), one block's reads one to the next }
   ToReq, Late, ReadGap: array of Double;   { ms }
-  ReqToEnd: array[Boolean] of array of Double;  { ms; [True]: the first block's reads (N7:0, 122 words) }
+  ReqToEnd: array[Boolean] of array of Double;  { ms; [True]: the reads of the block at N7:0 }
   NToReq, NLate, NReadGap: LongInt;
   NReqToEnd: array[Boolean] of LongInt;
   Measuring: Boolean;       { under load: the reads and replies timed }
@@ -379,9 +382,13 @@ begin
   if With104 then
     Result := Result + #10'[iec104]'#10'listen = 127.0.0.1:' + IntToStr(Port104) + #10;
   for I := 0 to Lines - 1 do
+  begin
     Result := Result + #10'[device plc' + IntToStr(I) + ']'#10 +
       'line = NAM=DF1 NOD=0 DNO=1 FHD=FULL CRC=ON NAM=COM DEV=' + L[I].Slave + #10 +
       'tags =' + Tags + #10'scan = ' + IntToStr(Scan) + #10'ioa = ' + IntToStr(Ioa104(I, 0)) + #10;
+    if MaxRead > 0 then
+      Result := Result + 'maxread = ' + IntToStr(MaxRead) + #10;
+  end;
 end;
 
 function StartGate(Scan: LongInt; With104: Boolean; KeepAlive: LongInt = 0): TProcess;
@@ -629,6 +636,8 @@ begin
   for I := 1 to ParamCount do
     if ParamStr(I) = 'quick' then
       Quick := True
+    else if Copy(ParamStr(I), 1, 8) = 'maxread=' then
+      MaxRead := StrToInt(Copy(ParamStr(I), 9, 10))
     else
       Bd := StrToIntDef(ParamStr(I), Bd);
   if Quick then LoadMs := 4000 else LoadMs := 10000;
@@ -771,7 +780,7 @@ begin
       [Quantiles(Lat104, N104), Lost104, Changes]));
     WriteLn(Format('benchgate: wire -> IEC 104:   %s', [Quantiles(Wire104, NWire104)]));
     WriteLn(Format('benchgate: change -> the request of the read that saw it: %s', [Quantiles(ToReq, NToReq)]));
-    WriteLn(Format('benchgate: request -> its reply''s end: N7:0[122] %s; N7:122[77] %s',
+    WriteLn(Format('benchgate: request -> its reply''s end: the block at N7:0 %s; the others %s',
       [Quantiles(ReqToEnd[True], NReqToEnd[True]), Quantiles(ReqToEnd[False], NReqToEnd[False])]));
     WriteLn(Format('benchgate: of it not wire time (the stations'' turnaround, this program served late): %s',
       [Quantiles(Late, NLate)]));

@@ -97,6 +97,21 @@ begin
   AssertEquals('N7:120 in block 0', 0, D.Tags[60].Block);
   AssertEquals('N7:122 in block 1', 1, D.Tags[61].Block);
   TagDeviceDone(D);
+  { reads of at most 100 bytes (50 words): N7:0..48 (25 tags, 49
+    elements, 98 bytes; N7:50 would make 102), N7:50..98, N7:100..148,
+    N7:150..198 }
+  TagDeviceInit(D, 'plc');
+  D.MaxRead := 100;
+  for I := 0 to 99 do
+    Added(D, 'N7:' + IntToStr(2 * I));
+  TagDeviceStart(D);
+  AssertEquals('100 bytes: reads per scan', 4, TagDeviceReads(D));
+  for I := 0 to 3 do
+  begin
+    AssertEquals('100 bytes: block first', 50 * I, D.Blocks[I].First);
+    AssertEquals('100 bytes: block elements', 49, D.Blocks[I].Elems);
+  end;
+  TagDeviceDone(D);
   { a gap wider than MaxGap (32 bytes = 16 words) is a read of its own:
     N7:0 and N7:17 (gap 16 words: 32 bytes, merged), N7:35 (gap 17: apart) }
   TagDeviceInit(D, 'plc');

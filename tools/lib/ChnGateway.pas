@@ -32,6 +32,7 @@ type
     DemoteMs : LongInt;
     DemoteAfter: LongInt;
     TimeoutMs: LongInt;
+    MaxRead  : LongInt;      { data bytes of one read (tags merged up to this) }
     Ioa      : LongInt;
     Plc5     : Boolean;      { family = plc5: PLC-5 addresses and commands }
     Points   : LongInt;      { IOAs its tags take on the IEC 104 server }
@@ -167,7 +168,7 @@ end;
 procedure CheckLines(var C: tChecker);
 const
   MqttKeys = ' host port prefix qos user password tls ca queue client_id keepalive ';
-  DeviceKeys = ' line family tags scan write deadband demote fails timeout ioa ' +
+  DeviceKeys = ' line family tags scan write deadband demote fails timeout maxread ioa ' +
     'slaves ca cot_size ca_size ioa_size points gi cycle ';
   Iec104Keys = ' listen ca con k w t0 t1 t2 t3 command_timeout ';
 var
@@ -453,7 +454,7 @@ var
   LineOk: Boolean;
 begin
   D.Iec := True;
-  for K in ['tags', 'scan', 'fails', 'family'] do
+  for K in ['tags', 'scan', 'fails', 'family', 'maxread'] do
     if Ini.ValueExists(Sec, K) then
       Bad(C, Sec, K, 'not for an IEC 101 device (the master demotes a slave by its own back-off)');
   with D.Iec101 do
@@ -524,6 +525,7 @@ begin
   D.DemoteMs := Num(C, Ini, Sec, 'demote', 100, 3600000, TagDemoteMsDefault);
   D.DemoteAfter := Num(C, Ini, Sec, 'fails', 1, 1000, TagDemoteAfterDefault);
   D.TimeoutMs := Num(C, Ini, Sec, 'timeout', 10, 60000, 1000);
+  D.MaxRead := Num(C, Ini, Sec, 'maxread', 2, TagMaxReadDefault, TagMaxReadDefault);
   D.Ioa := Num(C, Ini, Sec, 'ioa', 1, 16777215, 1);
   W := LowerCase(Trim(Ini.ReadString(Sec, 'family', 'slc')));
   D.Plc5 := W = 'plc5';
@@ -698,6 +700,7 @@ begin
     TagDevicePlc5(Dev);
   Dev.DemoteMs := D.DemoteMs;
   Dev.DemoteAfter := D.DemoteAfter;
+  Dev.MaxRead := D.MaxRead;
   for T in D.Tags do
   begin
     Name := T.Name;
