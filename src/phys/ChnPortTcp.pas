@@ -1000,19 +1000,17 @@ begin
 end;
 
 function TChnPortTcp.SetRts(On: Boolean): tChResult;
+const
+  Code: array[Boolean] of Byte = (CPC_RTSOFF, CPC_RTSON);
 begin
-  if On then
-    Result := SetControl(CPC_RTSON)
-  else
-    Result := SetControl(CPC_RTSOFF);
+  Result := SetControl(Code[On]);
 end;
 
 function TChnPortTcp.SetDtr(On: Boolean): tChResult;
+const
+  Code: array[Boolean] of Byte = (CPC_DTROFF, CPC_DTRON);
 begin
-  if On then
-    Result := SetControl(CPC_DTRON)
-  else
-    Result := SetControl(CPC_DTROFF);
+  Result := SetControl(Code[On]);
 end;
 
 function TChnPortTcp.GetLines(out Lines: tPortLines): tChResult;
