@@ -5,7 +5,9 @@
   built-in table (docs/df1sim.md), changes only (the free-running clock
   S2:4 moves, N7 does not; a deadband holds S2:4 back), a write that comes
   back as a change, a refused read, and a dead device that goes down, is
-  demoted and retried every DEMOTE ms while a live one keeps its rate. }
+  demoted and retried every DEMOTE ms while a live one keeps its rate;
+  reads of at most MaxRead bytes; and two blocks on a busy 19200 Bd line
+  (an SLC station of tools/lib on an in-memory line) each read every scan. }
 unit TestChnPcccTags;
 
 {$MODE OBJFPC}{$H+}
