@@ -500,27 +500,12 @@ begin
   end;
 end;
 
-procedure ReadDevice(var C: tChecker; Ini: TMemIniFile; const Sec: AnsiString; var D: tGateDeviceCfg;
-  var Probe: tPcccDevice);
+{ A DF1 device's numbers, PLC family, deadband and line. }
+procedure ReadDf1Settings(var C: tChecker; Ini: TMemIniFile; const Sec: AnsiString;
+  var D: tGateDeviceCfg);
 var
-  Words: TStringArray;
-  W, Name, Addr, Why, Layer: AnsiString;
-  P, At, Code, I, K, Scan: LongInt;
-  E: ShortString;
-  DB: Double;
+  W, Why: AnsiString;
 begin
-  D.Name := Trim(Copy(Sec, 8, MaxInt));
-  if (Pos('/', D.Name) > 0) or (Pos('+', D.Name) > 0) or (Pos('#', D.Name) > 0) or (Pos(' ', D.Name) > 0) then
-    Bad(C, Sec, '', '"' + D.Name + '": a device name is one topic level (no / + # or blanks)');
-  D.Line := Trim(Ini.ReadString(Sec, 'line', ''));
-  if UpperCase(ExtractWord(1, D.Line, [' '])) = 'NAM=FT1_2' then
-  begin
-    ReadIecDevice(C, Ini, Sec, D);
-    Exit;
-  end;
-  for W in IecOnlyKeys do
-    if Ini.ValueExists(Sec, W) then
-      Bad(C, Sec, W, 'only for an IEC 101 device (line = NAM=FT1_2 ...)');
   D.ScanMs := Num(C, Ini, Sec, 'scan', 10, 3600000, TagScanMsDefault);
   D.DemoteMs := Num(C, Ini, Sec, 'demote', 100, 3600000, TagDemoteMsDefault);
   D.DemoteAfter := Num(C, Ini, Sec, 'fails', 1, 1000, TagDemoteAfterDefault);
@@ -534,69 +519,71 @@ begin
   D.Deadband := Deadband(C, Ini, Sec);
   if D.Line = '' then
     Bad(C, Sec, 'line', 'missing: the parameter string of the device''s line (NAM=DF1 ... NAM=COM ...)')
+  else if UpperCase(ExtractWord(1, D.Line, [' '])) <> 'NAM=DF1' then
+    Bad(C, Sec, 'line', '"' + ExtractWord(1, D.Line, [' ']) + '": the line starts with NAM=DF1 or NAM=FT1_2')
   else
   begin
-    Layer := UpperCase(ExtractWord(1, D.Line, [' ']));
-    if Layer <> 'NAM=DF1' then
-      Bad(C, Sec, 'line', '"' + ExtractWord(1, D.Line, [' ']) + '": the line starts with NAM=DF1 or NAM=FT1_2')
-    else
-    begin
-      Why := CliParamsProblem(D.Line, 'DF1');
-      if Why <> '' then
-        Bad(C, Sec, 'line', Why);
-    end;
+    Why := CliParamsProblem(D.Line, 'DF1');
+    if Why <> '' then
+      Bad(C, Sec, 'line', Why);
   end;
-  { tags: [NAME=]ADDRESS[@MS] }
-  D.Tags := nil;
-  Words := Trim(Ini.ReadString(Sec, 'tags', '')).Split([' ', #9], TStringSplitOptions.ExcludeEmpty);
-  if Length(Words) = 0 then
-    Bad(C, Sec, 'tags', 'missing: the tags to read (N7:0[10] speed=F8:2 B3:0/5@500 ...)');
-  TagDeviceInit(Probe, D.Name);
-  if D.Plc5 then
-    TagDevicePlc5(Probe);
-  for W in Words do
+end;
+
+{ One word of tags = : [NAME=]ADDRESS[@MS], added to Probe and to D.Tags. }
+procedure ReadDf1Tag(var C: tChecker; const Sec, W: AnsiString; var D: tGateDeviceCfg;
+  var Probe: tPcccDevice);
+var
+  Name, Addr: AnsiString;
+  P, At, Code, I, K, Scan: LongInt;
+  E: ShortString;
+begin
+  Name := '';
+  Addr := W;
+  P := Pos('=', Addr);
+  if P > 0 then
   begin
-    Name := '';
-    Addr := W;
-    P := Pos('=', Addr);
-    if P > 0 then
-    begin
-      Name := Copy(Addr, 1, P - 1);
-      Addr := Copy(Addr, P + 1, MaxInt);
-      if (Name = '') or (Pos('/', Name) > 0) or (Pos('+', Name) > 0) or (Pos('#', Name) > 0) then
-        Bad(C, Sec, 'tags', '"' + W + '": a tag name is one topic level (not empty, no / + #)');
-    end;
-    Scan := D.ScanMs;
-    At := Pos('@', Addr);
-    if At > 0 then
-    begin
-      Val(Copy(Addr, At + 1, MaxInt), Scan, Code);
-      if (Code <> 0) or (Scan < 10) or (Scan > 3600000) then
-      begin
-        Bad(C, Sec, 'tags', '"' + W + '": the scan after @ is not a whole number 10..3600000 (ms)');
-        Scan := D.ScanMs;
-      end;
-      Addr := Copy(Addr, 1, At - 1);
-    end;
-    if TagAdd(Probe, Name, Addr, Scan, D.Deadband, False, E) <> res_Ok then
-    begin
-      Bad(C, Sec, 'tags', E);
-      Continue;
-    end;
-    Name := Probe.Tags[High(Probe.Tags)].Name;
-    for I := 0 to High(D.Tags) do
-      if D.Tags[I].Name = Name then
-        Bad(C, Sec, 'tags', '"' + Name + '" is there twice');
-    K := Length(D.Tags);
-    SetLength(D.Tags, K + 1);
-    D.Tags[K].Name := Name;
-    D.Tags[K].Address := Addr;
-    D.Tags[K].ScanMs := Scan;
-    D.Tags[K].Writable := False;
+    Name := Copy(Addr, 1, P - 1);
+    Addr := Copy(Addr, P + 1, MaxInt);
+    if (Name = '') or (Pos('/', Name) > 0) or (Pos('+', Name) > 0) or (Pos('#', Name) > 0) then
+      Bad(C, Sec, 'tags', '"' + W + '": a tag name is one topic level (not empty, no / + #)');
   end;
-  { the writable ones, by name or address }
-  Words := Trim(Ini.ReadString(Sec, 'write', '')).Split([' ', #9], TStringSplitOptions.ExcludeEmpty);
-  for W in Words do
+  Scan := D.ScanMs;
+  At := Pos('@', Addr);
+  if At > 0 then
+  begin
+    Val(Copy(Addr, At + 1, MaxInt), Scan, Code);
+    if (Code <> 0) or (Scan < 10) or (Scan > 3600000) then
+    begin
+      Bad(C, Sec, 'tags', '"' + W + '": the scan after @ is not a whole number 10..3600000 (ms)');
+      Scan := D.ScanMs;
+    end;
+    Addr := Copy(Addr, 1, At - 1);
+  end;
+  if TagAdd(Probe, Name, Addr, Scan, D.Deadband, False, E) <> res_Ok then
+  begin
+    Bad(C, Sec, 'tags', E);
+    Exit;
+  end;
+  Name := Probe.Tags[High(Probe.Tags)].Name;
+  for I := 0 to High(D.Tags) do
+    if D.Tags[I].Name = Name then
+      Bad(C, Sec, 'tags', '"' + Name + '" is there twice');
+  K := Length(D.Tags);
+  SetLength(D.Tags, K + 1);
+  D.Tags[K].Name := Name;
+  D.Tags[K].Address := Addr;
+  D.Tags[K].ScanMs := Scan;
+  D.Tags[K].Writable := False;
+end;
+
+{ write = : the writable tags, by name or address. }
+procedure ReadDf1Write(var C: tChecker; Ini: TMemIniFile; const Sec: AnsiString;
+  var D: tGateDeviceCfg; var Probe: tPcccDevice);
+var
+  W: AnsiString;
+  K: LongInt;
+begin
+  for W in Trim(Ini.ReadString(Sec, 'write', '')).Split([' ', #9], TStringSplitOptions.ExcludeEmpty) do
   begin
     K := TagFind(Probe, W);
     if K < 0 then
@@ -609,6 +596,38 @@ begin
       Probe.Tags[K].Writable := True;
     end;
   end;
+end;
+
+procedure ReadDevice(var C: tChecker; Ini: TMemIniFile; const Sec: AnsiString; var D: tGateDeviceCfg;
+  var Probe: tPcccDevice);
+var
+  Words: TStringArray;
+  W: AnsiString;
+begin
+  D.Name := Trim(Copy(Sec, 8, MaxInt));
+  if (Pos('/', D.Name) > 0) or (Pos('+', D.Name) > 0) or (Pos('#', D.Name) > 0) or (Pos(' ', D.Name) > 0) then
+    Bad(C, Sec, '', '"' + D.Name + '": a device name is one topic level (no / + # or blanks)');
+  D.Line := Trim(Ini.ReadString(Sec, 'line', ''));
+  if UpperCase(ExtractWord(1, D.Line, [' '])) = 'NAM=FT1_2' then
+  begin
+    ReadIecDevice(C, Ini, Sec, D);
+    Exit;
+  end;
+  for W in IecOnlyKeys do
+    if Ini.ValueExists(Sec, W) then
+      Bad(C, Sec, W, 'only for an IEC 101 device (line = NAM=FT1_2 ...)');
+  ReadDf1Settings(C, Ini, Sec, D);
+  { tags: [NAME=]ADDRESS[@MS] }
+  D.Tags := nil;
+  Words := Trim(Ini.ReadString(Sec, 'tags', '')).Split([' ', #9], TStringSplitOptions.ExcludeEmpty);
+  if Length(Words) = 0 then
+    Bad(C, Sec, 'tags', 'missing: the tags to read (N7:0[10] speed=F8:2 B3:0/5@500 ...)');
+  TagDeviceInit(Probe, D.Name);
+  if D.Plc5 then
+    TagDevicePlc5(Probe);
+  for W in Words do
+    ReadDf1Tag(C, Sec, W, D, Probe);
+  ReadDf1Write(C, Ini, Sec, D, Probe);
   D.Points := Gate104DevicePoints(Probe);
   D.TablePoints := Gate104TablePoints(Probe);
 end;
