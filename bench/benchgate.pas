@@ -38,9 +38,11 @@
     the anonymous memory of heap and stacks, each library).
   Skipped with the reason when mosquitto or libmosquitto is missing.
 
-    benchgate [quick] [BD]   10 s under load, 20 s idle (the gateway and
+    benchgate [quick] [BD] [maxread=N]
+                             10 s under load, 20 s idle (the gateway and
                              the floor each); quick: 4 s and 5 s; BD the
-                             lines' rate (default 19200)
+                             lines' rate (default 19200); maxread=N the
+                             devices' maxread (default 244: 2 reads a line)
   Internal role: --floor N MS (the idle floor: N pty lines, ChnWaitAny(MS)
   until killed). }
 program benchgate;
@@ -62,6 +64,14 @@ const
   MaxChanges = 30000;
 
 type
+  { A DF1 frame coming in (full duplex: DLE STX data DLE ETX CRC CRC):
+    its data unstuffed, its octets on the wire counted. }
+  tFrameIn = record
+    Data  : AnsiString;
+    Octets: LongInt;
+    State : Byte;
+  end;
+
   tLine = record
     Table  : tSlcTable;
     Station: tDF1Station;
@@ -72,14 +82,17 @@ type
     Pair   : string;
     Busy0  : QWord;         { the line's busy time (us) when measuring began }
     Requests: LongInt;      { frames from chngate longer than an ACK }
-    { the station's frame coming in (DF1 full duplex: DLE STX data DLE
-      ETX CRC CRC), unstuffed, to find the changes it carries }
-    Rx     : AnsiString;
-    RxState: Byte;
+    Rx     : tFrameIn;      { the station's frames, to find the changes they carry }
+    Tx     : tFrameIn;      { chngate's requests, to time each block's reads }
+    ReqAt  : QWord;         { ChnClockUs: the last request handed to the line }
+    ReqElem: LongInt;       { its first element (the block it reads) }
+    ReqOctets: LongInt;     { its octets on the wire }
+    LastAt : array[0..255] of QWord;   { ChnClockUs of the last read of the block at element K }
   end;
 
 var
   Bd: LongInt = 19200;
+  MaxRead: LongInt = 0;     { the devices' maxread, 0 the gateway's default }
   L: array[0..Lines - 1] of tLine;
   Buf: array[0..4095] of Byte;
   Quick: Boolean;
@@ -90,6 +103,14 @@ var
   Arrived, Arrived104: array[0..MaxChanges - 1] of Boolean;
   WireAt: array[0..MaxChanges - 1] of QWord;     { ChnClockUs: the end of the reply carrying it, 0 none yet }
   Changes: LongInt;
+  { where a change's time goes: to the request of the read that sees it,
+    that request to the end of its reply (and what of it is not wire
+    time: the stations served late), one block's reads one to the next }
+  ToReq, Late, ReadGap: array of Double;   { ms }
+  ReqToEnd: array[Boolean] of array of Double;  { ms; [True]: the reads of the block at N7:0 }
+  NToReq, NLate, NReadGap: LongInt;
+  NReqToEnd: array[Boolean] of LongInt;
+  Measuring: Boolean;       { under load: the reads and replies timed }
   ChangeLat, ReadLat, WireLat, Lat104, Wire104: array of Double;   { ms }
   Port104: Word;
 
@@ -184,31 +205,103 @@ begin
   end;
 end;
 
-{ Move what came from Src to Dst; the number of chunks longer than 2. }
-function Pass(Src, Dst: pChnVirt): LongInt;
+{ Octet B of a frame coming in; True when it ended the frame (the CRC's
+  second octet). }
+function FrameOctet(var F: tFrameIn; B: Byte): Boolean;
+const
+  DLE = $10; STX = $02; ETX = $03;
+begin
+  Result := False;
+  Inc(F.Octets);
+  case F.State of
+    0: if B = DLE then F.State := 1;
+    1: if B = STX then begin F.Data := ''; F.Octets := 2; F.State := 2; end else F.State := 0;
+    2: if B = DLE then F.State := 3 else F.Data := F.Data + Chr(B);
+    3: if B = DLE then begin F.Data := F.Data + Chr(B); F.State := 2; end
+       else if B = ETX then F.State := 4
+       else F.State := 2;
+    4: F.State := 5;                    { CRC, low }
+    5: begin Result := True; F.State := 0; end;
+  end;
+end;
+
+procedure Add(var A: array of Double; var N: LongInt; V: Double);
+begin
+  if N <= High(A) then
+  begin
+    A[N] := V;
+    Inc(N);
+  end;
+end;
+
+{ The octets on the wire take this long (8N1: 10 bits each), us. }
+function WireUs(Octets: LongInt): Double;
+begin
+  Result := Octets * 10 * 1e6 / Bd;
+end;
+
+{ A request of line I ended at AtUs: a typed read (DST SRC CMD STS TNS
+  TNS FNC size file type element) is timed against the last read of the
+  same block. }
+procedure RequestEnded(I: LongInt; AtUs: QWord);
+var
+  K: LongInt;
+begin
+  with L[I] do
+  begin
+    if Length(Tx.Data) < 11 then
+      Exit;
+    K := Ord(Tx.Data[11]);
+    ReqAt := AtUs;
+    ReqElem := K;
+    ReqOctets := Tx.Octets;
+    if Measuring and (LastAt[K] <> 0) then
+      Add(ReadGap, NReadGap, (AtUs - LastAt[K]) / 1000);
+    LastAt[K] := AtUs;
+  end;
+end;
+
+{ Move chngate's octets of line I to the station's line; the number of
+  chunks longer than 2 (the requests, not the ACKs). }
+function Pass(I: LongInt): LongInt;
 var
   N: Word;
+  K: LongInt;
+  AtUs: QWord;
 begin
   Result := 0;
-  while Src^.ChReceiveReady = CHS_ReceiveReady do
+  while L[I].Pty^.ChReceiveReady = CHS_ReceiveReady do
   begin
     N := 0;
-    Src^.ChReceive(N);
+    L[I].Pty^.ChReceive(N);
     if N = 0 then
       Break;
     if N > 2 then
       Inc(Result);
-    Dst^.ChSend(@Buf, N);
+    L[I].Wire^.ChSend(@Buf, N);
+    AtUs := ChnClockUs;
+    for K := 0 to N - 1 do
+      if FrameOctet(L[I].Tx, Buf[K]) then
+        RequestEnded(I, AtUs);
   end;
 end;
 
 { A frame of line I ended at AtUs: the changes of that line whose value
-  it carries (as a little-endian word) ended on the wire then. }
+  it carries (as a little-endian word) ended on the wire then; the time
+  from its request on is the reply's wire time and the stations' lateness. }
 procedure FrameEnded(I: LongInt; AtUs: QWord);
 var
   N, V: LongInt;
   W: string[2];
+  Us: Double;
 begin
+  if Measuring and (L[I].ReqAt <> 0) then
+  begin
+    Us := AtUs - L[I].ReqAt;
+    Add(ReqToEnd[L[I].ReqElem = 0], NReqToEnd[L[I].ReqElem = 0], Us / 1000);
+    { request, the station's DLE ACK, the reply }
+    Add(Late, NLate, (Us - WireUs(L[I].ReqOctets + 2 + L[I].Rx.Octets)) / 1000);
+  end;
   N := Changes - 1;
   while (N >= 0) and (N >= Changes - 2 * Lines * TagsPerLine) do
   begin
@@ -216,8 +309,12 @@ begin
     begin
       V := FirstValue + N;
       W := Chr(V and $FF) + Chr(V shr 8);
-      if Pos(W, L[I].Rx) > 0 then
+      if Pos(W, L[I].Rx.Data) > 0 then
+      begin
         WireAt[N] := AtUs;
+        if L[I].ReqAt <> 0 then
+          Add(ToReq, NToReq, (Int64(L[I].ReqAt) - Int64(ChangeAt[N])) / 1000);
+      end;
     end;
     Dec(N);
   end;
@@ -225,27 +322,12 @@ end;
 
 { The station's octets of line I, as they are handed to chngate. }
 procedure Watch(I: LongInt; N: Word; AtUs: QWord);
-const
-  DLE = $10; STX = $02; ETX = $03;
 var
   K: LongInt;
-  B: Byte;
 begin
-  with L[I] do
-    for K := 0 to N - 1 do
-    begin
-      B := Buf[K];
-      case RxState of
-        0: if B = DLE then RxState := 1;
-        1: if B = STX then begin Rx := ''; RxState := 2; end else RxState := 0;
-        2: if B = DLE then RxState := 3 else Rx := Rx + Chr(B);
-        3: if B = DLE then begin Rx := Rx + Chr(B); RxState := 2; end
-           else if B = ETX then RxState := 4
-           else RxState := 2;
-        4: RxState := 5;                    { CRC, low }
-        5: begin FrameEnded(I, AtUs); RxState := 0; end;
-      end;
-    end;
+  for K := 0 to N - 1 do
+    if FrameOctet(L[I].Rx, Buf[K]) then
+      FrameEnded(I, AtUs);
 end;
 
 procedure StepLines;
@@ -255,7 +337,7 @@ var
 begin
   for I := 0 to Lines - 1 do
   begin
-    Inc(L[I].Requests, Pass(L[I].Pty, L[I].Wire));
+    Inc(L[I].Requests, Pass(I));
     DF1StationStep(L[I].Station);
     while L[I].Wire^.ChReceiveReady = CHS_ReceiveReady do
     begin
@@ -300,9 +382,13 @@ begin
   if With104 then
     Result := Result + #10'[iec104]'#10'listen = 127.0.0.1:' + IntToStr(Port104) + #10;
   for I := 0 to Lines - 1 do
+  begin
     Result := Result + #10'[device plc' + IntToStr(I) + ']'#10 +
       'line = NAM=DF1 NOD=0 DNO=1 FHD=FULL CRC=ON NAM=COM DEV=' + L[I].Slave + #10 +
       'tags =' + Tags + #10'scan = ' + IntToStr(Scan) + #10'ioa = ' + IntToStr(Ioa104(I, 0)) + #10;
+    if MaxRead > 0 then
+      Result := Result + 'maxread = ' + IntToStr(MaxRead) + #10;
+  end;
 end;
 
 function StartGate(Scan: LongInt; With104: Boolean; KeepAlive: LongInt = 0): TProcess;
@@ -339,15 +425,6 @@ end;
 function NowUtcMs: Int64;
 begin
   Result := Round((LocalTimeToUniversal(Now) - UnixDateDelta) * MSecsPerDay);
-end;
-
-procedure Add(var A: array of Double; var N: LongInt; V: Double);
-begin
-  if N <= High(A) then
-  begin
-    A[N] := V;
-    Inc(N);
-  end;
 end;
 
 { Change n: line n mod Lines, tag n div Lines (each tag changes once in
@@ -559,6 +636,8 @@ begin
   for I := 1 to ParamCount do
     if ParamStr(I) = 'quick' then
       Quick := True
+    else if Copy(ParamStr(I), 1, 8) = 'maxread=' then
+      MaxRead := StrToInt(Copy(ParamStr(I), 9, 10))
     else
       Bd := StrToIntDef(ParamStr(I), Bd);
   if Quick then LoadMs := 4000 else LoadMs := 10000;
@@ -578,6 +657,11 @@ begin
   SetLength(WireLat, MaxChanges);
   SetLength(Lat104, MaxChanges);
   SetLength(Wire104, MaxChanges);
+  SetLength(ToReq, MaxChanges);
+  SetLength(ReqToEnd[False], MaxChanges);
+  SetLength(ReqToEnd[True], MaxChanges);
+  SetLength(Late, MaxChanges);
+  SetLength(ReadGap, MaxChanges);
   CentreChn := nil;
   Dir := GetTempDir + 'chn-benchgate-' + IntToStr(GetProcessID);
   ForceDirectories(Dir);
@@ -635,6 +719,7 @@ begin
     end;
     C0 := ProcRunNs(Gate.ProcessID);
     T0 := ChnClockUs;
+    Measuring := True;
     Serve(Sub, GetTickCount64 + QWord(LoadMs), True);
     T1 := ChnClockUs;
     C1 := ProcRunNs(Gate.ProcessID);
@@ -648,6 +733,7 @@ begin
     end;
     { the last changes' messages }
     Serve(Sub, GetTickCount64 + 2 * ScanMs + 500, False);
+    Measuring := False;
     Lost := 0;
     for I := 0 to Changes - 1 do
       if not Arrived[I] then
@@ -693,6 +779,12 @@ begin
     WriteLn(Format('benchgate: change -> IEC 104: %s; %d of %d changes not arrived',
       [Quantiles(Lat104, N104), Lost104, Changes]));
     WriteLn(Format('benchgate: wire -> IEC 104:   %s', [Quantiles(Wire104, NWire104)]));
+    WriteLn(Format('benchgate: change -> the request of the read that saw it: %s', [Quantiles(ToReq, NToReq)]));
+    WriteLn(Format('benchgate: request -> its reply''s end: the block at N7:0 %s; the others %s',
+      [Quantiles(ReqToEnd[True], NReqToEnd[True]), Quantiles(ReqToEnd[False], NReqToEnd[False])]));
+    WriteLn(Format('benchgate: of it not wire time (the stations'' turnaround, this program served late): %s',
+      [Quantiles(Late, NLate)]));
+    WriteLn(Format('benchgate: a block''s reads, one to the next (scan %d ms): %s', [ScanMs, Quantiles(ReadGap, NReadGap)]));
     WriteLn(Format('benchgate: chngate CPU under load %.2f %% of a core', [LoadCpu]));
     if FloorNs > 0 then
       WriteLn(Format('benchgate: idle (keep-alive %d s): chngate %.1f us CPU/s, %.2f wake-ups/s; the wait alone (%d ' +

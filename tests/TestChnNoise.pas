@@ -172,6 +172,9 @@ begin
       AssertEquals(Bad[I] + ' named', Bad[I], C^.ChParamError);
       AssertEquals(Bad[I] + ' changed nothing', 'BER=0', C^.ChGetParam('BER'));
     end;
+    { a rate says what it takes }
+    C^.ChSetParam('NAM=NOISE DRP=2');
+    AssertEquals('bad parameter (DRP=2): a probability 0..1 (0.01, 1E-5)', C^.ChErrorText);
   finally
     Dispose(C, Done);
   end;

@@ -5,7 +5,9 @@
   built-in table (docs/df1sim.md), changes only (the free-running clock
   S2:4 moves, N7 does not; a deadband holds S2:4 back), a write that comes
   back as a change, a refused read, and a dead device that goes down, is
-  demoted and retried every DEMOTE ms while a live one keeps its rate. }
+  demoted and retried every DEMOTE ms while a live one keeps its rate;
+  reads of at most MaxRead bytes; and two blocks on a busy 19200 Bd line
+  (an SLC station of tools/lib on an in-memory line) each read every scan. }
 unit TestChnPcccTags;
 
 {$MODE OBJFPC}{$H+}
@@ -29,13 +31,14 @@ type
     procedure TestRefusedRead;
     procedure TestDeadDeviceDemotedOtherKeepsItsRate;
     procedure TestPlc5Device;
+    procedure TestBlocksKeepTheirScanOnABusyLine;
     {$ENDIF}
   end;
 
 implementation
 
 uses
-  {$IFDEF UNIX}BaseUnix, Process, BinSupport, PtyPair, ChnLayers,{$ENDIF}
+  {$IFDEF UNIX}BaseUnix, Process, BinSupport, PtyPair, ChnLayers, ChnDF1Link, ChnSlc,{$ENDIF}
   ChnWait, ChnVirt;
 
 procedure TTestChnPcccTags.TestParseKepwareNotation;
@@ -95,6 +98,21 @@ begin
   AssertEquals('block 1 elements', 77, D.Blocks[1].Elems);
   AssertEquals('N7:120 in block 0', 0, D.Tags[60].Block);
   AssertEquals('N7:122 in block 1', 1, D.Tags[61].Block);
+  TagDeviceDone(D);
+  { reads of at most 100 bytes (50 words): N7:0..48 (25 tags, 49
+    elements, 98 bytes; N7:50 would make 102), N7:50..98, N7:100..148,
+    N7:150..198 }
+  TagDeviceInit(D, 'plc');
+  D.MaxRead := 100;
+  for I := 0 to 99 do
+    Added(D, 'N7:' + IntToStr(2 * I));
+  TagDeviceStart(D);
+  AssertEquals('100 bytes: reads per scan', 4, TagDeviceReads(D));
+  for I := 0 to 3 do
+  begin
+    AssertEquals('100 bytes: block first', 50 * I, D.Blocks[I].First);
+    AssertEquals('100 bytes: block elements', 49, D.Blocks[I].Elems);
+  end;
   TagDeviceDone(D);
   { a gap wider than MaxGap (32 bytes = 16 words) is a read of its own:
     N7:0 and N7:17 (gap 16 words: 32 bytes, merged), N7:35 (gap 17: apart) }
@@ -517,6 +535,93 @@ begin
     TagDeviceDone(Dead);
     Pair.Free;
     Sim.Free;
+  end;
+end;
+
+{ Two blocks on one 19200 Bd line (an in-memory line that takes each
+  character's time, an SLC station of tools/lib on its other end): the
+  122-word read keeps the line about 145 ms, the 100-word one about
+  120 ms, so at a 400 ms scan the line is busy two thirds of the time and
+  the second block always waits behind the first. Each block is still
+  read every 400 ms: its next read is due a scan after its last one was
+  due, not after it ended (that would add the read's own time and the
+  wait, 120..270 ms, to every cycle). }
+type
+  tBusyLine = record
+    Dev: pPcccDevice;
+    Station: tDF1Station;
+    LastDue: array[0..1] of QWord;
+    First, Last: array[0..1] of QWord;     { ChMsTick: first and last read seen done }
+    Reads: array[0..1] of LongInt;
+  end;
+  pBusyLine = ^tBusyLine;
+
+{ Serve the station; note each block's reads as they end (its Due moves on). }
+function BusyStep(Data: Pointer): Boolean;
+var
+  K: LongInt;
+begin
+  with pBusyLine(Data)^ do
+  begin
+    DF1StationStep(Station);
+    for K := 0 to 1 do
+      if Dev^.Blocks[K].Due <> LastDue[K] then
+      begin
+        LastDue[K] := Dev^.Blocks[K].Due;
+        if Reads[K] = 0 then
+          First[K] := ChMsTick;
+        Last[K] := ChMsTick;
+        Inc(Reads[K]);
+      end;
+  end;
+  Result := False;
+end;
+
+procedure TTestChnPcccTags.TestBlocksKeepTheirScanOnABusyLine;
+const
+  Scan = 400;
+var
+  D: tPcccDevice;
+  B: tBusyLine;
+  Table: tSlcTable;
+  StChn: pChnVirt;
+  ErrLine, K: LongInt;
+  Err: AnsiString;
+  Period: Double;
+begin
+  AssertTrue('table', SlcLoadConfig(Table, 'N7 256', ErrLine, Err));
+  StChn := ChnCollection^.ChNewInit('DF1');
+  TagDeviceInit(D, 'busy');
+  try
+    StChn^.ChSetParam('NOD=1 DNO=0 MAS=SLAVE FHD=FULL CRC=ON NAM=LOOP PAIR=TAGSBUSY END=2 BD=19200');
+    StChn^.ChOpen;
+    StChn^.ChConnect;
+    AssertEquals('station: ' + StChn^.ChErrorText, res_Ok, StChn^.ChResult);
+    FillChar(B, SizeOf(B), 0);
+    B.Dev := @D;
+    SlcStationInit(B.Station, StChn, @Table);
+    if PcccOpen(D.Client, 'NAM=DF1 NOD=0 DNO=1 FHD=FULL CRC=ON NAM=LOOP PAIR=TAGSBUSY END=1 BD=19200') <> res_Ok then
+      raise Exception.Create('open: ' + D.Client.Err);
+    Added(D, 'N7:0[122]', Scan);
+    Added(D, 'N7:122[100]', Scan);
+    TagDeviceStart(D);
+    AssertEquals('two reads', 2, TagDeviceReads(D));
+    for K := 0 to 1 do
+      B.LastDue[K] := D.Blocks[K].Due;
+    StepAll([@D], 4500, @BusyStep, @B);
+    AssertEquals('no read failed: ' + D.LastError, 0, D.Errors);
+    for K := 0 to 1 do
+    begin
+      AssertTrue(Format('block %d: %d reads', [K, B.Reads[K]]), B.Reads[K] >= 6);
+      Period := (B.Last[K] - B.First[K]) / (B.Reads[K] - 1);
+      { generous for a loaded machine: a late round is caught up with, it
+        does not move the schedule }
+      AssertTrue(Format('block %d read every %.0f ms at a %d ms scan', [K, Period, Scan]),
+        (Period > Scan - 30) and (Period < Scan + 50));
+    end;
+  finally
+    TagDeviceDone(D);
+    Dispose(StChn, Done);
   end;
 end;
 {$ENDIF}

@@ -46,6 +46,17 @@ begin
     Code := RunBin('chngate', ['--check', Dir + '/g.conf'], 5000, Output);
     AssertEquals('good: exit 0'#10 + Output, 0, Code);
     AssertEquals(Dir + '/g.conf: good: 1 devices, 3 tags, 2 reads per scan' + LineEnding, Output);
+    { maxread: reads of at most 20 bytes: N7:0[10] fills one, N7:20 (merged
+      with it up to 244 bytes) takes a read of its own }
+    WriteFileText(Dir + '/m.conf', '[mqtt]'#10'prefix = plant'#10#10'[device plc1]'#10 +
+      'line = NAM=DF1 NOD=0 DNO=1 NAM=COM DEV=/dev/ttyUSB0'#10'tags = N7:0[10] N7:20 F8:0'#10'maxread = 20'#10);
+    Code := RunBin('chngate', ['--check', Dir + '/m.conf'], 5000, Output);
+    AssertEquals(Dir + '/m.conf: good: 1 devices, 3 tags, 3 reads per scan' + LineEnding, Output);
+    WriteFileText(Dir + '/m.conf', '[mqtt]'#10'prefix = plant'#10#10'[device plc1]'#10 +
+      'line = NAM=DF1 NOD=0 DNO=1 NAM=COM DEV=/dev/ttyUSB0'#10'tags = N7:0'#10'maxread = 245'#10);
+    Code := RunBin('chngate', ['--check', Dir + '/m.conf'], 5000, Output);
+    AssertEquals('maxread 245: exit 2'#10 + Output, 2, Code);
+    AssertTrue('the maxread'#10 + Output, Pos(Dir + '/m.conf:7: [device plc1] maxread: "245" is not a whole number 2..244', Output) > 0);
     WriteFileText(Dir + '/b.conf', '[mqtt]'#10'prefix = plant'#10'port = x'#10#10'[device plc1]'#10 +
       'line = NAM=DF1 NOD=0 DNO=1 NAM=COM DEV=/dev/ttyUSB0'#10'tags = N7:0[10] X9:1'#10);
     Code := RunBin('chngate', ['--check', Dir + '/b.conf'], 5000, Output);

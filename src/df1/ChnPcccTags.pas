@@ -7,7 +7,9 @@
   Reads. The tags of one data file and one scan class that lie close
   together (gaps of at most MaxGap bytes) are read by one protected typed
   logical read (CMD 0F FNC A2) of whole elements, as long as it stays
-  within MaxBytes (244, what one DF1 frame carries); each tag is decoded
+  within MaxRead bytes (at most 244, what one DF1 frame carries; fewer
+  make more reads with shorter replies: a change waits up to one scan for
+  its read, then for that read's reply on the line); each tag is decoded
   from its block's bytes by unit ChnPccc. TagDeviceReads tells how many
   requests one scan of every tag takes: 100 tags scattered over N7:0..99
   are one read.
@@ -43,6 +45,7 @@ uses
   ChnTypes, ChnRing, ChnVirt, ChnDF1Codec, ChnDF1Link, ChnPccc, ChnPlc5, ChnPcccClient;
 
 const
+  TagMaxReadDefault     = MaxDataLen;   {< data bytes of one read: a whole DF1 frame }
   TagMaxGapDefault      = 32;      {< bytes read in vain rather than a request more }
   TagDemoteAfterDefault = 3;
   TagDemoteMsDefault    = 10000;
@@ -104,6 +107,7 @@ type
     Tags       : array of tPcccTag;
     Blocks     : array of tPcccBlock;
     MaxGap     : LongInt;
+    MaxRead    : LongInt;    {< data bytes one read merges tags into, 2..TagMaxReadDefault }
     DemoteAfter: LongInt;
     DemoteMs   : LongInt;
     State      : tTagDeviceState;
@@ -256,6 +260,7 @@ begin
   D.Name := Name;
   PcccClientInit(D.Client, nil);
   D.MaxGap := TagMaxGapDefault;
+  D.MaxRead := TagMaxReadDefault;
   D.DemoteAfter := TagDemoteAfterDefault;
   D.DemoteMs := TagDemoteMsDefault;
   D.Cur := -1;
@@ -412,7 +417,7 @@ begin
     if (B <> nil) and (B^.FileType = T^.Addr.FileType) and (B^.FileNo = T^.Addr.FileNo) and
        (B^.ScanMs = T^.ScanMs) and
        ((T^.First - (B^.First + B^.Elems)) * Size <= D.MaxGap) and
-       ((Last - B^.First + 1) * Size <= MaxDataLen) then
+       ((Last - B^.First + 1) * Size <= D.MaxRead) then
     begin
       if Last - B^.First + 1 > B^.Elems then
         B^.Elems := Last - B^.First + 1;

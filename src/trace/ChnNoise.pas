@@ -244,7 +244,7 @@ var
 begin
   P := 0;
   if not StrToReal(ParamValue(S), 0, MaxRate, P) then
-    Exit(res_BadParam);
+    Exit(ParamBad('a probability 0..1 (0.01, 1E-5)'));
   if CmdL = cmd_Set then
   begin
     Rate := P;

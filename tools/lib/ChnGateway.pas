@@ -32,6 +32,7 @@ type
     DemoteMs : LongInt;
     DemoteAfter: LongInt;
     TimeoutMs: LongInt;
+    MaxRead  : LongInt;      { data bytes of one read (tags merged up to this) }
     Ioa      : LongInt;
     Plc5     : Boolean;      { family = plc5: PLC-5 addresses and commands }
     Points   : LongInt;      { IOAs its tags take on the IEC 104 server }
@@ -167,7 +168,7 @@ end;
 procedure CheckLines(var C: tChecker);
 const
   MqttKeys = ' host port prefix qos user password tls ca queue client_id keepalive ';
-  DeviceKeys = ' line family tags scan write deadband demote fails timeout ioa ' +
+  DeviceKeys = ' line family tags scan write deadband demote fails timeout maxread ioa ' +
     'slaves ca cot_size ca_size ioa_size points gi cycle ';
   Iec104Keys = ' listen ca con k w t0 t1 t2 t3 command_timeout ';
 var
@@ -453,7 +454,7 @@ var
   LineOk: Boolean;
 begin
   D.Iec := True;
-  for K in ['tags', 'scan', 'fails', 'family'] do
+  for K in ['tags', 'scan', 'fails', 'family', 'maxread'] do
     if Ini.ValueExists(Sec, K) then
       Bad(C, Sec, K, 'not for an IEC 101 device (the master demotes a slave by its own back-off)');
   with D.Iec101 do
@@ -499,14 +500,109 @@ begin
   end;
 end;
 
+{ A DF1 device's numbers, PLC family, deadband and line. }
+procedure ReadDf1Settings(var C: tChecker; Ini: TMemIniFile; const Sec: AnsiString;
+  var D: tGateDeviceCfg);
+var
+  W, Why: AnsiString;
+begin
+  D.ScanMs := Num(C, Ini, Sec, 'scan', 10, 3600000, TagScanMsDefault);
+  D.DemoteMs := Num(C, Ini, Sec, 'demote', 100, 3600000, TagDemoteMsDefault);
+  D.DemoteAfter := Num(C, Ini, Sec, 'fails', 1, 1000, TagDemoteAfterDefault);
+  D.TimeoutMs := Num(C, Ini, Sec, 'timeout', 10, 60000, 1000);
+  D.MaxRead := Num(C, Ini, Sec, 'maxread', 2, TagMaxReadDefault, TagMaxReadDefault);
+  D.Ioa := Num(C, Ini, Sec, 'ioa', 1, 16777215, 1);
+  W := LowerCase(Trim(Ini.ReadString(Sec, 'family', 'slc')));
+  D.Plc5 := W = 'plc5';
+  if (W <> 'slc') and not D.Plc5 then
+    Bad(C, Sec, 'family', '"' + W + '" is neither slc (SLC 500, MicroLogix) nor plc5');
+  D.Deadband := Deadband(C, Ini, Sec);
+  if D.Line = '' then
+    Bad(C, Sec, 'line', 'missing: the parameter string of the device''s line (NAM=DF1 ... NAM=COM ...)')
+  else if UpperCase(ExtractWord(1, D.Line, [' '])) <> 'NAM=DF1' then
+    Bad(C, Sec, 'line', '"' + ExtractWord(1, D.Line, [' ']) + '": the line starts with NAM=DF1 or NAM=FT1_2')
+  else
+  begin
+    Why := CliParamsProblem(D.Line, 'DF1');
+    if Why <> '' then
+      Bad(C, Sec, 'line', Why);
+  end;
+end;
+
+{ One word of tags = : [NAME=]ADDRESS[@MS], added to Probe and to D.Tags. }
+procedure ReadDf1Tag(var C: tChecker; const Sec, W: AnsiString; var D: tGateDeviceCfg;
+  var Probe: tPcccDevice);
+var
+  Name, Addr: AnsiString;
+  P, At, Code, I, K, Scan: LongInt;
+  E: ShortString;
+begin
+  Name := '';
+  Addr := W;
+  P := Pos('=', Addr);
+  if P > 0 then
+  begin
+    Name := Copy(Addr, 1, P - 1);
+    Addr := Copy(Addr, P + 1, MaxInt);
+    if (Name = '') or (Pos('/', Name) > 0) or (Pos('+', Name) > 0) or (Pos('#', Name) > 0) then
+      Bad(C, Sec, 'tags', '"' + W + '": a tag name is one topic level (not empty, no / + #)');
+  end;
+  Scan := D.ScanMs;
+  At := Pos('@', Addr);
+  if At > 0 then
+  begin
+    Val(Copy(Addr, At + 1, MaxInt), Scan, Code);
+    if (Code <> 0) or (Scan < 10) or (Scan > 3600000) then
+    begin
+      Bad(C, Sec, 'tags', '"' + W + '": the scan after @ is not a whole number 10..3600000 (ms)');
+      Scan := D.ScanMs;
+    end;
+    Addr := Copy(Addr, 1, At - 1);
+  end;
+  if TagAdd(Probe, Name, Addr, Scan, D.Deadband, False, E) <> res_Ok then
+  begin
+    Bad(C, Sec, 'tags', E);
+    Exit;
+  end;
+  Name := Probe.Tags[High(Probe.Tags)].Name;
+  for I := 0 to High(D.Tags) do
+    if D.Tags[I].Name = Name then
+      Bad(C, Sec, 'tags', '"' + Name + '" is there twice');
+  K := Length(D.Tags);
+  SetLength(D.Tags, K + 1);
+  D.Tags[K].Name := Name;
+  D.Tags[K].Address := Addr;
+  D.Tags[K].ScanMs := Scan;
+  D.Tags[K].Writable := False;
+end;
+
+{ write = : the writable tags, by name or address. }
+procedure ReadDf1Write(var C: tChecker; Ini: TMemIniFile; const Sec: AnsiString;
+  var D: tGateDeviceCfg; var Probe: tPcccDevice);
+var
+  W: AnsiString;
+  K: LongInt;
+begin
+  for W in Trim(Ini.ReadString(Sec, 'write', '')).Split([' ', #9], TStringSplitOptions.ExcludeEmpty) do
+  begin
+    K := TagFind(Probe, W);
+    if K < 0 then
+      Bad(C, Sec, 'write', '"' + W + '" is none of the device''s tags')
+    else if (Probe.Tags[K].Kind = pvString) or (PcccPlanValues(Probe.Tags[K].Plan) <> 1) then
+      Bad(C, Sec, 'write', '"' + W + '": only a tag of one integer, bit or float can be written')
+    else
+    begin
+      D.Tags[K].Writable := True;
+      Probe.Tags[K].Writable := True;
+    end;
+  end;
+end;
+
 procedure ReadDevice(var C: tChecker; Ini: TMemIniFile; const Sec: AnsiString; var D: tGateDeviceCfg;
   var Probe: tPcccDevice);
 var
   Words: TStringArray;
-  W, Name, Addr, Why, Layer: AnsiString;
-  P, At, Code, I, K, Scan: LongInt;
-  E: ShortString;
-  DB: Double;
+  W: AnsiString;
 begin
   D.Name := Trim(Copy(Sec, 8, MaxInt));
   if (Pos('/', D.Name) > 0) or (Pos('+', D.Name) > 0) or (Pos('#', D.Name) > 0) or (Pos(' ', D.Name) > 0) then
@@ -520,30 +616,7 @@ begin
   for W in IecOnlyKeys do
     if Ini.ValueExists(Sec, W) then
       Bad(C, Sec, W, 'only for an IEC 101 device (line = NAM=FT1_2 ...)');
-  D.ScanMs := Num(C, Ini, Sec, 'scan', 10, 3600000, TagScanMsDefault);
-  D.DemoteMs := Num(C, Ini, Sec, 'demote', 100, 3600000, TagDemoteMsDefault);
-  D.DemoteAfter := Num(C, Ini, Sec, 'fails', 1, 1000, TagDemoteAfterDefault);
-  D.TimeoutMs := Num(C, Ini, Sec, 'timeout', 10, 60000, 1000);
-  D.Ioa := Num(C, Ini, Sec, 'ioa', 1, 16777215, 1);
-  W := LowerCase(Trim(Ini.ReadString(Sec, 'family', 'slc')));
-  D.Plc5 := W = 'plc5';
-  if (W <> 'slc') and not D.Plc5 then
-    Bad(C, Sec, 'family', '"' + W + '" is neither slc (SLC 500, MicroLogix) nor plc5');
-  D.Deadband := Deadband(C, Ini, Sec);
-  if D.Line = '' then
-    Bad(C, Sec, 'line', 'missing: the parameter string of the device''s line (NAM=DF1 ... NAM=COM ...)')
-  else
-  begin
-    Layer := UpperCase(ExtractWord(1, D.Line, [' ']));
-    if Layer <> 'NAM=DF1' then
-      Bad(C, Sec, 'line', '"' + ExtractWord(1, D.Line, [' ']) + '": the line starts with NAM=DF1 or NAM=FT1_2')
-    else
-    begin
-      Why := CliParamsProblem(D.Line, 'DF1');
-      if Why <> '' then
-        Bad(C, Sec, 'line', Why);
-    end;
-  end;
+  ReadDf1Settings(C, Ini, Sec, D);
   { tags: [NAME=]ADDRESS[@MS] }
   D.Tags := nil;
   Words := Trim(Ini.ReadString(Sec, 'tags', '')).Split([' ', #9], TStringSplitOptions.ExcludeEmpty);
@@ -553,60 +626,8 @@ begin
   if D.Plc5 then
     TagDevicePlc5(Probe);
   for W in Words do
-  begin
-    Name := '';
-    Addr := W;
-    P := Pos('=', Addr);
-    if P > 0 then
-    begin
-      Name := Copy(Addr, 1, P - 1);
-      Addr := Copy(Addr, P + 1, MaxInt);
-      if (Name = '') or (Pos('/', Name) > 0) or (Pos('+', Name) > 0) or (Pos('#', Name) > 0) then
-        Bad(C, Sec, 'tags', '"' + W + '": a tag name is one topic level (not empty, no / + #)');
-    end;
-    Scan := D.ScanMs;
-    At := Pos('@', Addr);
-    if At > 0 then
-    begin
-      Val(Copy(Addr, At + 1, MaxInt), Scan, Code);
-      if (Code <> 0) or (Scan < 10) or (Scan > 3600000) then
-      begin
-        Bad(C, Sec, 'tags', '"' + W + '": the scan after @ is not a whole number 10..3600000 (ms)');
-        Scan := D.ScanMs;
-      end;
-      Addr := Copy(Addr, 1, At - 1);
-    end;
-    if TagAdd(Probe, Name, Addr, Scan, D.Deadband, False, E) <> res_Ok then
-    begin
-      Bad(C, Sec, 'tags', E);
-      Continue;
-    end;
-    Name := Probe.Tags[High(Probe.Tags)].Name;
-    for I := 0 to High(D.Tags) do
-      if D.Tags[I].Name = Name then
-        Bad(C, Sec, 'tags', '"' + Name + '" is there twice');
-    K := Length(D.Tags);
-    SetLength(D.Tags, K + 1);
-    D.Tags[K].Name := Name;
-    D.Tags[K].Address := Addr;
-    D.Tags[K].ScanMs := Scan;
-    D.Tags[K].Writable := False;
-  end;
-  { the writable ones, by name or address }
-  Words := Trim(Ini.ReadString(Sec, 'write', '')).Split([' ', #9], TStringSplitOptions.ExcludeEmpty);
-  for W in Words do
-  begin
-    K := TagFind(Probe, W);
-    if K < 0 then
-      Bad(C, Sec, 'write', '"' + W + '" is none of the device''s tags')
-    else if (Probe.Tags[K].Kind = pvString) or (PcccPlanValues(Probe.Tags[K].Plan) <> 1) then
-      Bad(C, Sec, 'write', '"' + W + '": only a tag of one integer, bit or float can be written')
-    else
-    begin
-      D.Tags[K].Writable := True;
-      Probe.Tags[K].Writable := True;
-    end;
-  end;
+    ReadDf1Tag(C, Sec, W, D, Probe);
+  ReadDf1Write(C, Ini, Sec, D, Probe);
   D.Points := Gate104DevicePoints(Probe);
   D.TablePoints := Gate104TablePoints(Probe);
 end;
@@ -698,6 +719,7 @@ begin
     TagDevicePlc5(Dev);
   Dev.DemoteMs := D.DemoteMs;
   Dev.DemoteAfter := D.DemoteAfter;
+  Dev.MaxRead := D.MaxRead;
   for T in D.Tags do
   begin
     Name := T.Name;
