@@ -14,7 +14,7 @@ uses
   {$IFDEF UNIX}BaseUnix,{$ENDIF}
   SysUtils, Classes, Process, fpcunit, testregistry, ChnTypes, ChnVirt,
   ChnLoop, ChnCom, ChnDF1, ChnSlc, ChnDF1Link, ChnWait, ChnPcccClient, TestSupport, BinSupport, Df1Pair, SlcAsk
-  {$IFDEF UNIX}, PtyPair{$ENDIF};
+  {$IFDEF UNIX}, PtyPair, ProcStat{$ENDIF};
 
 type
   TTestDf1Sim = class(TDf1PairCase)
@@ -437,30 +437,6 @@ begin
   end;
 end;
 
-{ voluntary context switches of a process so far (its wake-ups), -1 when
-  /proc does not say }
-function Wakeups(Pid: LongInt): LongInt;
-var
-  L: TStringList;
-  I: LongInt;
-begin
-  Result := -1;
-  L := TStringList.Create;
-  try
-    try
-      L.LoadFromFile('/proc/' + IntToStr(Pid) + '/status');
-    except
-      on E: Exception do
-        Exit;
-    end;
-    for I := 0 to L.Count - 1 do
-      if Copy(L[I], 1, 24) = 'voluntary_ctxt_switches:' then
-        Exit(StrToIntDef(Trim(Copy(L[I], 25, MaxInt)), -1));
-  finally
-    L.Free;
-  end;
-end;
-
 { With nothing to answer df1sim waits for the line instead of waking every
   millisecond: over one idle second with a master connected it wakes far
   fewer than 1000 times (about 100: its own 10 ms timers). }
@@ -469,18 +445,18 @@ var
   PtyPath: string;
   C: tPcccClient;
   A: array[0..0] of LongInt;
-  W0, W1: LongInt;
+  W0, W1: Int64;
   Deadline: QWord;
 begin
   Proc := StartSimPty(['--timeout=10', '--quiet'], PtyPath);
   AssertEquals('open', res_Ok, PcccOpen(C, 'NAM=DF1 NOD=0 DNO=1 FHD=FULL CRC=ON NAM=COM DEV=' + PtyPath));
   try
     AssertEquals('a read: ' + C.Err, res_Ok, PcccReadInts(C, 'S2:4', 1, A));
-    W0 := Wakeups(Proc.ProcessID);
+    W0 := ProcSleeps(Proc.ProcessID);
     Deadline := ChMsTick + 1000;
     while ChMsTick < Deadline do
       ChnWaitAny(ChnWaitLeft(Deadline));
-    W1 := Wakeups(Proc.ProcessID);
+    W1 := ProcSleeps(Proc.ProcessID);
     AssertTrue('/proc/PID/status has voluntary_ctxt_switches', (W0 >= 0) and (W1 >= W0));
     AssertTrue(Format('df1sim woke %d times in an idle second', [W1 - W0]), W1 - W0 < 400);
     { and it still answers at once }

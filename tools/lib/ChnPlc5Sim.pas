@@ -135,6 +135,15 @@ begin
     Result := PcccElemSize(J.F^.FType);
 end;
 
+{ True, the request refused, when Bytes from the file's byte At run past
+  its end. }
+function PastEnd(var J: tPlc5Job; At, Bytes: LongInt): Boolean;
+begin
+  Result := At + Bytes > Length(J.F^.Data);
+  if Result then
+    Fail(J, sts_ExtSts, ext_WrongSize);
+end;
+
 { FNC 26: as many (address, AND, OR) as the command holds. }
 procedure ReadModifyWrite(var J: tPlc5Job);
 var
@@ -183,11 +192,8 @@ begin
     Fail(J, sts_IllegalCmd, 0);
     Exit;
   end;
-  if At + Bytes > Length(J.F^.Data) then
-  begin
-    Fail(J, sts_ExtSts, ext_WrongSize);
+  if PastEnd(J, At, Bytes) then
     Exit;
-  end;
   if Fnc = $01 then
   begin
     Move(J.F^.Data[At], J.Rep^.Data[0], Bytes);
@@ -223,11 +229,8 @@ begin
     Fail(J, sts_ExtSts, ext_TooLarge);
     Exit;
   end;
-  if At + Bytes > Length(J.F^.Data) then
-  begin
-    Fail(J, sts_ExtSts, ext_WrongSize);
+  if PastEnd(J, At, Bytes) then
     Exit;
-  end;
   { 9x 09 [size] element-parameter, then the data }
   K := 0;
   ElemType := FileElemType(J.F^.FType, J.HasSub);
@@ -277,11 +280,8 @@ begin
     Exit;
   end;
   At := AddressAt(J) + Offset * Unit_;
-  if At + Bytes > Length(J.F^.Data) then
-  begin
-    Fail(J, sts_ExtSts, ext_WrongSize);
+  if PastEnd(J, At, Bytes) then
     Exit;
-  end;
   Move(J.Req^.Data[J.P], J.F^.Data[At], Bytes);
 end;
 
