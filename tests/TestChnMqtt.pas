@@ -40,6 +40,7 @@ type
   {$ENDIF}
   published
     procedure TestStateTextAndDefaults;
+    procedure TestQueueKeepsOrderAsItGrows;
     {$IFDEF UNIX}
     procedure TestPublishAndSubscribe;
     procedure TestIdleWakesOnlyForThePing;
@@ -74,8 +75,35 @@ begin
   MqttPublish(Q, 'a', '3', False);
   AssertEquals('queued', 2, MqttQueued(Q));
   AssertEquals('dropped', 1, Q.Dropped);
-  AssertEquals('oldest kept', '2', Q.Queue[0].Payload);
+  AssertEquals('oldest kept', '2', MqttQueuedMessage(Q, 0).Payload);
   MqttClose(Q);
+end;
+
+{ Without a broker the queue grows past its first room and wraps around
+  as the oldest go: whatever its room, the newest QueueMax stay, in order. }
+procedure TTestChnMqtt.TestQueueKeepsOrderAsItGrows;
+var
+  Q: tMqttClient;
+  I: LongInt;
+begin
+  MqttInit(Q);
+  Q.QueueMax := 40;
+  for I := 1 to 25 do
+    MqttPublish(Q, 't', IntToStr(I), False);
+  AssertEquals('25 queued', 25, MqttQueued(Q));
+  for I := 0 to 24 do
+    AssertEquals('in order', IntToStr(I + 1), MqttQueuedMessage(Q, I).Payload);
+  for I := 26 to 100 do
+    MqttPublish(Q, 't', IntToStr(I), I mod 2 = 0);
+  AssertEquals('full', 40, MqttQueued(Q));
+  AssertEquals('dropped', 60, Q.Dropped);
+  for I := 0 to 39 do
+  begin
+    AssertEquals('the newest, in order', IntToStr(61 + I), MqttQueuedMessage(Q, I).Payload);
+    AssertEquals('retain kept', (61 + I) mod 2 = 0, MqttQueuedMessage(Q, I).Retain);
+  end;
+  MqttClose(Q);
+  AssertEquals('closed: empty', 0, MqttQueued(Q));
 end;
 
 {$IFDEF UNIX}
@@ -319,7 +347,7 @@ begin
   StepUntil(C, @Waiting, 500);          { handed over; no PUBACK can come }
   AssertEquals('still queued', 5, MqttQueued(C));
   for I := 0 to 4 do
-    AssertTrue('handed over', C.Queue[I].Sent);
+    AssertTrue('handed over', MqttQueuedMessage(C, I).Sent);
   Broker.Stop(SIGKILL);
   AssertTrue('the client saw the broker go', StepUntil(C, @Waiting, 10000));
   Broker.Start;

@@ -90,7 +90,12 @@ type
     Sock       : LongInt;
     RetryAt    : QWord;
     BackoffMs  : LongInt;
+    { the queue, a ring: QueueCount messages from QueueHead on (oldest
+      first; those handed to the library and not acknowledged come first);
+      its room doubles as it fills, up to QueueMax }
     Queue      : array of tMqttMessage;
+    QueueHead  : LongInt;
+    QueueCount : LongInt;
     Subs       : array of AnsiString;
     Inbox      : array of tMqttMessage;
     InboxHead  : LongInt;
@@ -134,6 +139,8 @@ function MqttDueAt(const C: tMqttClient): QWord;
 function MqttTakeMessage(var C: tMqttClient; out M: tMqttMessage): Boolean;
 { Messages waiting in the queue (not yet acknowledged). }
 function MqttQueued(const C: tMqttClient): LongInt;
+{ The I-th of them, oldest first (0 .. MqttQueued - 1). }
+function MqttQueuedMessage(const C: tMqttClient; I: LongInt): tMqttMessage;
 { 'connected', 'connecting', 'waiting' (to reconnect), 'closed'. }
 function MqttStateText(const C: tMqttClient): AnsiString;
 
@@ -268,7 +275,66 @@ end;
 
 function MqttQueued(const C: tMqttClient): LongInt;
 begin
-  Result := Length(C.Queue);
+  Result := C.QueueCount;
+end;
+
+{- ------------------------------------------------------------ the queue }
+
+{ The slot of the I-th message, oldest first. }
+function QueueSlot(const C: tMqttClient; I: LongInt): LongInt; inline;
+begin
+  Result := (C.QueueHead + I) mod Length(C.Queue);
+end;
+
+function MqttQueuedMessage(const C: tMqttClient; I: LongInt): tMqttMessage;
+begin
+  Result := C.Queue[QueueSlot(C, I)];
+end;
+
+{ Room for one more: the ring doubles (16 at first, QueueMax at most),
+  its messages moved to the front in order. Growing one slot at a time
+  moved the whole queue on every message and left the heap full of holes. }
+procedure QueueGrow(var C: tMqttClient);
+var
+  Old: array of tMqttMessage;
+  Room, I: LongInt;
+begin
+  if C.QueueCount < Length(C.Queue) then
+    Exit;
+  Room := 2 * Length(C.Queue);
+  if Room < 16 then
+    Room := 16;
+  if (C.QueueMax > 0) and (Room > C.QueueMax) then
+    Room := C.QueueMax;
+  if Room <= C.QueueCount then
+    Room := C.QueueCount + 1;
+  Old := C.Queue;
+  C.Queue := nil;
+  SetLength(C.Queue, Room);
+  for I := 0 to C.QueueCount - 1 do
+    C.Queue[I] := Old[(C.QueueHead + I) mod Length(Old)];
+  C.QueueHead := 0;
+end;
+
+{ Take the I-th message out, the ones after it closing up. }
+procedure QueueRemove(var C: tMqttClient; I: LongInt);
+var
+  J: LongInt;
+begin
+  if I = 0 then
+  begin
+    Finalize(C.Queue[C.QueueHead]);
+    C.QueueHead := (C.QueueHead + 1) mod Length(C.Queue);
+  end
+  else
+  begin
+    for J := I + 1 to C.QueueCount - 1 do
+      C.Queue[QueueSlot(C, J - 1)] := C.Queue[QueueSlot(C, J)];
+    Finalize(C.Queue[QueueSlot(C, C.QueueCount - 1)]);
+  end;
+  Dec(C.QueueCount);
+  if C.QueueCount = 0 then
+    C.QueueHead := 0;
 end;
 
 function ErrText(Rc: cint): AnsiString;
@@ -348,21 +414,20 @@ begin
       [pMqttClient(Obj)^.Host, pMqttClient(Obj)^.Port, ErrText(Rc)]));
 end;
 
-procedure OnPublish(Mosq, Obj: Pointer; Mid: cint); cdecl;
+procedure OnPublish(Mosq, Obj: Pointer; Mid_: cint); cdecl;
 var
   C: pMqttClient;
-  I, J: LongInt;
+  I: LongInt;
 begin
   C := pMqttClient(Obj);
-  for I := 0 to High(C^.Queue) do
-    if C^.Queue[I].Sent and (C^.Queue[I].Mid = Mid) then
-    begin
-      for J := I + 1 to High(C^.Queue) do
-        C^.Queue[J - 1] := C^.Queue[J];
-      SetLength(C^.Queue, Length(C^.Queue) - 1);
-      Inc(C^.Delivered);
-      Exit;
-    end;
+  for I := 0 to C^.QueueCount - 1 do
+    with C^.Queue[QueueSlot(C^, I)] do
+      if Sent and (Mid = cint(Mid_)) then
+      begin
+        QueueRemove(C^, I);
+        Inc(C^.Delivered);
+        Exit;
+      end;
 end;
 
 procedure OnMessage(Mosq, Obj: Pointer; Msg: PMosqMessage); cdecl;
@@ -455,29 +520,30 @@ begin
   ChnWaitLeave(C.Src);
   C.Sock := -1;
   C.Queue := nil;
+  C.QueueHead := 0;
+  C.QueueCount := 0;
   C.Inbox := nil;
   C.Subs := nil;
 end;
 
 procedure MqttPublish(var C: tMqttClient; const Topic, Payload: AnsiString; Retain: Boolean);
 var
-  I: LongInt;
+  M: ^tMqttMessage;
 begin
-  if (C.QueueMax > 0) and (Length(C.Queue) >= C.QueueMax) then
+  if (C.QueueMax > 0) and (C.QueueCount >= C.QueueMax) then
   begin
-    for I := 1 to High(C.Queue) do
-      C.Queue[I - 1] := C.Queue[I];
-    SetLength(C.Queue, Length(C.Queue) - 1);
+    QueueRemove(C, 0);
     Inc(C.Dropped);
   end;
-  I := Length(C.Queue);
-  SetLength(C.Queue, I + 1);
-  C.Queue[I].Topic := Topic;
-  C.Queue[I].Payload := Payload;
-  C.Queue[I].Qos := C.Qos;
-  C.Queue[I].Retain := Retain;
-  C.Queue[I].Mid := 0;
-  C.Queue[I].Sent := False;
+  QueueGrow(C);
+  Inc(C.QueueCount);
+  M := @C.Queue[QueueSlot(C, C.QueueCount - 1)];
+  M^.Topic := Topic;
+  M^.Payload := Payload;
+  M^.Qos := C.Qos;
+  M^.Retain := Retain;
+  M^.Mid := 0;
+  M^.Sent := False;
 end;
 
 procedure MqttSubscribe(var C: tMqttClient; const Topic: AnsiString);
@@ -492,38 +558,38 @@ end;
   handed any (the library wrote it). }
 function Flush(var C: tMqttClient): Boolean;
 var
-  I, J: LongInt;
+  I: LongInt;
+  M: ^tMqttMessage;
   Mid: cint;
   Rc: cint;
 begin
   Result := False;
   I := 0;
-  while (I < Length(C.Queue)) and (C.State = msConnected) do
+  while (I < C.QueueCount) and (C.State = msConnected) do
   begin
-    if not C.Queue[I].Sent then
+    M := @C.Queue[QueueSlot(C, I)];
+    if not M^.Sent then
     begin
       Mid := 0;
-      Rc := mosquitto_publish(C.Mosq, @Mid, PChar(C.Queue[I].Topic), Length(C.Queue[I].Payload),
-        PChar(C.Queue[I].Payload), C.Queue[I].Qos, C.Queue[I].Retain);
+      Rc := mosquitto_publish(C.Mosq, @Mid, PChar(M^.Topic), Length(M^.Payload), PChar(M^.Payload), M^.Qos,
+        M^.Retain);
       Result := True;
       if Rc <> MOSQ_ERR_SUCCESS then
       begin
         if (Rc = MOSQ_ERR_NO_CONN) or (Rc = MOSQ_ERR_CONN_LOST) then
           Lost(C, 'publish: ' + ErrText(Rc))
         else
-          C.LastError := 'publish ' + C.Queue[I].Topic + ': ' + ErrText(Rc);
+          C.LastError := 'publish ' + M^.Topic + ': ' + ErrText(Rc);
         Exit;
       end;
-      if C.Queue[I].Qos = 0 then
+      if M^.Qos = 0 then
       begin
-        for J := I + 1 to High(C.Queue) do
-          C.Queue[J - 1] := C.Queue[J];
-        SetLength(C.Queue, Length(C.Queue) - 1);
+        QueueRemove(C, I);
         Inc(C.Delivered);
         Continue;
       end;
-      C.Queue[I].Mid := Mid;
-      C.Queue[I].Sent := True;
+      M^.Mid := Mid;
+      M^.Sent := True;
     end;
     Inc(I);
   end;
