@@ -15,6 +15,7 @@ type
     procedure TestPutStopsWhenFull;
     procedure TestTailSpanNeverCrossesTheEnd;
     procedure TestAgainstAQueueModel;
+    procedure TestIndexQueueInOrderAndGivenBack;
   end;
 
 implementation
@@ -123,6 +124,39 @@ begin
     end;
   AssertEquals(Length(Model), R.Count);
   RingFree(R);
+end;
+
+{ The index queue keeps order through growth while it is taken from, and
+  gives its storage back once it ran empty. }
+procedure TTestChnRing.TestIndexQueueInOrderAndGivenBack;
+var
+  Q: tIndexQueue;
+  I, V: LongInt;
+begin
+  IndexQueueClear(Q);
+  for I := 1 to 10 do
+    IndexQueuePut(Q, I);
+  for I := 1 to 4 do
+  begin
+    AssertTrue('taken', IndexQueueTake(Q, V));
+    AssertEquals('oldest first', I, V);
+  end;
+  for I := 11 to 100 do
+    IndexQueuePut(Q, I);
+  AssertEquals('waiting', 96, IndexQueueCount(Q));
+  AssertTrue('room for them', Length(Q.Items) >= 100);
+  for I := 5 to 100 do
+  begin
+    AssertTrue('taken', IndexQueueTake(Q, V));
+    AssertEquals('in order', I, V);
+  end;
+  AssertFalse('empty', IndexQueueTake(Q, V));
+  AssertEquals('none', -1, V);
+  AssertEquals('storage given back', 0, Length(Q.Items));
+  AssertEquals('count', 0, IndexQueueCount(Q));
+  IndexQueuePut(Q, 7);
+  AssertTrue('again', IndexQueueTake(Q, V) and (V = 7));
+  IndexQueueClear(Q);
 end;
 
 initialization

@@ -21,10 +21,12 @@ type
     Held : Boolean;   {< the flag ChnWaitHeld keeps for this ring }
   end;
 
-  { Indices in the order they were put; Items[Head..] wait. }
+  { Indices in the order they were put; Items[Head..Tail - 1] wait. Items
+    doubles as it fills (growing it by one moved it on every put). }
   tIndexQueue = record
     Items: array of LongInt;
     Head : LongInt;
+    Tail : LongInt;
   end;
 
 { (Re)allocate for Cap bytes and empty the ring; ReportHeld as above. }
@@ -156,13 +158,15 @@ end;
 
 procedure IndexQueuePut(var Q: tIndexQueue; I: LongInt);
 begin
-  SetLength(Q.Items, Length(Q.Items) + 1);
-  Q.Items[High(Q.Items)] := I;
+  if Q.Tail >= Length(Q.Items) then
+    SetLength(Q.Items, 2 * Length(Q.Items) + 16);
+  Q.Items[Q.Tail] := I;
+  Inc(Q.Tail);
 end;
 
 function IndexQueueTake(var Q: tIndexQueue; out I: LongInt): Boolean;
 begin
-  Result := Q.Head < Length(Q.Items);
+  Result := Q.Head < Q.Tail;
   if not Result then
   begin
     I := -1;
@@ -175,13 +179,14 @@ end;
 
 function IndexQueueCount(const Q: tIndexQueue): LongInt;
 begin
-  Result := Length(Q.Items) - Q.Head;
+  Result := Q.Tail - Q.Head;
 end;
 
 procedure IndexQueueClear(var Q: tIndexQueue);
 begin
   Q.Items := nil;
   Q.Head := 0;
+  Q.Tail := 0;
 end;
 
 end.
