@@ -68,8 +68,10 @@ PROGFLAGS := $(COMMON) $(if $(SYNAPSE_DIR),-dCHN_SYNAPSE) -Fu$(UNITDIR) -Futools
              -FU$(TOOLUNITDIR) -FE$(BINDIR)
 # tests: range, overflow and stack checks, heaptrc, line info (and -Xs-:
 # Debian's fpc.cfg strips it otherwise, and failures could not say where);
-# -B rebuilds everything, as FPC's one-second timestamps can miss a quick edit
-TESTFLAGS := $(COMMON) $(SYNAPSE_FLAGS) $(SRCPATH) -Futools/lib -Futests/support -B -Cr -Co -Ct -gh -gl -Xs- \
+# -B rebuilds everything, as FPC's one-second timestamps can miss a quick edit;
+# CHN_HEAPTRC: a program that would use the C allocator (cmem) keeps FPC's
+# heap, the one heaptrc watches
+TESTFLAGS := $(COMMON) $(SYNAPSE_FLAGS) $(SRCPATH) -Futools/lib -Futests/support -B -Cr -Co -Ct -gh -gl -Xs- -dCHN_HEAPTRC \
              -Fu$(BUILD)/fpcunit -FU$(TUNITDIR) -FE$(TBINDIR) -Fi$(BUILD)
 # FPCUnit rebuilt from Debian's fpc-source without optimisation, so that a
 # failing assert's location names the test's own line (the prebuilt one

@@ -297,10 +297,11 @@ end;
 procedure Gate104Build(var N: tGate104; const Devs: array of tPcccDevice; const Bases: array of LongInt;
   Reload: Boolean);
 var
-  D, T, K, P: LongInt;
+  D, T, K, P, Used: LongInt;
   Ti, Cmd: Byte;
   O: tIecObject;
   E: ShortString;
+  Pt: ^tGate104Point;
 begin
   if N.S = nil then
     Exit;
@@ -312,6 +313,15 @@ begin
     IecSlaveInit(N.S^, N.Chn, IecDefaultParams, N.Cfg.Ca, E);
   N.S^.OnCommand := @OnCommand;
   N.S^.Data := @N;
+  { the table at its size at once: grown one point at a time, it moved on
+    every point and left the heap full of holes }
+  K := 0;
+  for D := 0 to High(Devs) do
+    for T := 0 to High(Devs[D].Tags) do
+      if Gate104TagType(Devs[D].Tags[T]) <> 0 then
+        Inc(K, Length(Devs[D].Tags[T].Values));
+  SetLength(N.Points, K);
+  Used := 0;
   for D := 0 to High(Devs) do
   begin
     P := Bases[D];
@@ -323,8 +333,9 @@ begin
       Cmd := Gate104CommandType(Devs[D].Tags[T]);
       for K := 0 to High(Devs[D].Tags[T].Values) do
       begin
-        SetLength(N.Points, Length(N.Points) + 1);
-        with N.Points[High(N.Points)] do
+        Pt := @N.Points[Used];
+        Inc(Used);
+        with Pt^ do
         begin
           Ioa := P;
           Dev := D;
@@ -335,11 +346,11 @@ begin
           if K <= High(Devs[D].Tags[T].Values) then
             Sent := Devs[D].Tags[T].Values[K];
         end;
-        N.Points[High(N.Points)].Ti := Ti;
-        N.Points[High(N.Points)].Cmd := Cmd;
-        N.Points[High(N.Points)].CmdIoa := P;
-        N.Points[High(N.Points)].Owner := Devs[D].Name + ' ' + Devs[D].Tags[T].Name;
-        O := PointObject(Ti, Devs[D].Tags[T], K, N.Points[High(N.Points)].SentQ);
+        Pt^.Ti := Ti;
+        Pt^.Cmd := Cmd;
+        Pt^.CmdIoa := P;
+        Pt^.Owner := Devs[D].Name + ' ' + Devs[D].Tags[T].Name;
+        O := PointObject(Ti, Devs[D].Tags[T], K, Pt^.SentQ);
         O.Ioa := P;
         if (IecSlaveAddPoint(N.S^, Ti, O, 0, E) <> res_Ok) or
            (IecSlaveEventType(N.S^, P, TimeTagged(Ti), E) <> res_Ok) then

@@ -529,8 +529,9 @@ begin
   end;
 end;
 
-{ One word of tags = : [NAME=]ADDRESS[@MS], added to Probe and to D.Tags. }
-procedure ReadDf1Tag(var C: tChecker; const Sec, W: AnsiString; var D: tGateDeviceCfg;
+{ One word of tags = : [NAME=]ADDRESS[@MS], added to Probe and as D.Tags[Count]
+  (Count then counts it). }
+procedure ReadDf1Tag(var C: tChecker; const Sec, W: AnsiString; var D: tGateDeviceCfg; var Count: LongInt;
   var Probe: tPcccDevice);
 var
   Name, Addr: AnsiString;
@@ -565,11 +566,11 @@ begin
     Exit;
   end;
   Name := Probe.Tags[High(Probe.Tags)].Name;
-  for I := 0 to High(D.Tags) do
+  for I := 0 to Count - 1 do
     if D.Tags[I].Name = Name then
       Bad(C, Sec, 'tags', '"' + Name + '" is there twice');
-  K := Length(D.Tags);
-  SetLength(D.Tags, K + 1);
+  K := Count;
+  Inc(Count);
   D.Tags[K].Name := Name;
   D.Tags[K].Address := Addr;
   D.Tags[K].ScanMs := Scan;
@@ -603,6 +604,7 @@ procedure ReadDevice(var C: tChecker; Ini: TMemIniFile; const Sec: AnsiString; v
 var
   Words: TStringArray;
   W: AnsiString;
+  Count: LongInt;
 begin
   D.Name := Trim(Copy(Sec, 8, MaxInt));
   if (Pos('/', D.Name) > 0) or (Pos('+', D.Name) > 0) or (Pos('#', D.Name) > 0) or (Pos(' ', D.Name) > 0) then
@@ -625,8 +627,12 @@ begin
   TagDeviceInit(Probe, D.Name);
   if D.Plc5 then
     TagDevicePlc5(Probe);
+  { room for every word at once (one at a time moved them on every tag) }
+  SetLength(D.Tags, Length(Words));
+  Count := 0;
   for W in Words do
-    ReadDf1Tag(C, Sec, W, D, Probe);
+    ReadDf1Tag(C, Sec, W, D, Count, Probe);
+  SetLength(D.Tags, Count);
   ReadDf1Write(C, Ini, Sec, D, Probe);
   D.Points := Gate104DevicePoints(Probe);
   D.TablePoints := Gate104TablePoints(Probe);
