@@ -115,7 +115,9 @@ type
   application parameters P and common address Ca. res_WrongLayer (no
   tChnFT1_2), res_AsduParam (Err), res_BadParam (Ca above the CA size),
   res_BadMessage (an unbalanced master channel). S must not move
-  afterwards (the channel receives into it). }
+  afterwards (the channel receives into it). Its point table is a dynamic
+  array: S is a variable, a field or New's (memory Pascal initialised),
+  and Dispose or the end of its scope frees the table. }
 function IecSlaveInit(var S: tIecSlaveStation; Chn: pChnVirt; const P: tIecParams; Ca: Word;
   out Err: ShortString): tChResult;
 { Add a point; Obj.Ioa is its address. One monitoring point per IOA; a
@@ -507,6 +509,7 @@ function IecSlaveInit(var S: tIecSlaveStation; Chn: pChnVirt; const P: tIecParam
 var
   Balanced, Primary: Boolean;
 begin
+  S.Points := nil;              { a station set up again: its old table goes }
   FillChar(S, SizeOf(S), 0);
   S.Params := P;
   S.Ca := Ca;

@@ -167,6 +167,8 @@ begin
     Err := 'point ' + IntToStr(Obj.Ioa) + ': ' + Err;
     Exit;
   end;
+  if S.PointCount >= Length(S.Points) then
+    SetLength(S.Points, Length(S.Points) + IecSlavePointStep);
   P := @S.Points[S.PointCount];
   FillChar(P^, SizeOf(P^), 0);
   P^.Ti := Ti;

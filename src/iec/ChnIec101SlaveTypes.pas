@@ -19,6 +19,7 @@ uses
 
 const
   IecSlaveMaxPoints = 1024;
+  IecSlavePointStep = 64;        {< the point table grows by so many points }
   IecSlaveQueueLen  = 64;        {< ASDUs waiting per class }
   IecSlaveSelectMs  = 10000;     {< default select-before-operate timeout }
   IecSlaveMaxDeferred = 16;      {< commands waiting for IecSlaveConfirm at once }
@@ -82,7 +83,10 @@ type
     Over104  : Boolean;       {< on an IEC104 channel }
     Station  : tFT12Station;  {< unbalanced link }
     Link     : tIecTransport; {< balanced link or IEC 104 }
-    Points   : array[0..IecSlaveMaxPoints - 1] of tIecPoint;
+    { the point table: PointCount points; it grows IecSlavePointStep
+      points at a time as points are added, up to IecSlaveMaxPoints (a
+      fixed table of the maximum held 133 KB whatever a station served) }
+    Points   : array of tIecPoint;
     PointCount: LongInt;
     Class1, Class2: tIecQueue;
     { interrogation under way (station/group or counters) }
