@@ -42,6 +42,7 @@ type
   published
     procedure TestInitRefusesOtherChannels;
     procedure TestAddPointRefusals;
+    procedure TestTableGrowsToItsMaximum;
     procedure TestStationInterrogation;
     procedure TestGroupInterrogation;
     procedure TestSpontaneousEventsInClass1WithAcd;
@@ -286,6 +287,40 @@ begin
   AssertEquals(2, S.PointCount);
   P := IecDefaultParams;
   AssertEquals(3, P.IoaSize);
+end;
+
+{ The point table grows as points come (it is no fixed table any more):
+  every point of a full table keeps its value, one more is refused, and
+  a station set up again starts empty (heaptrc: the old table freed). }
+procedure TTestChnIec101Slave.TestTableGrowsToItsMaximum;
+var
+  O: tIecObject;
+  E: ShortString;
+  I: LongInt;
+begin
+  Open;
+  IecSlaveReservePoints(S, 10);
+  AssertEquals('reserved', 10, Length(S.Points));
+  for I := 0 to IecSlaveMaxPoints - 1 do
+  begin
+    O := IecObject(100 + I);
+    O.Int := I mod 30000;
+    AssertEquals('point ' + IntToStr(I), res_Ok, IecSlaveAddPoint(S, M_ME_NB_1, O, 0, E));
+  end;
+  AssertEquals(IecSlaveMaxPoints, S.PointCount);
+  for I := 0 to IecSlaveMaxPoints - 1 do
+  begin
+    AssertEquals('IOA kept', 100 + I, S.Points[I].Obj.Ioa);
+    AssertEquals('value kept', I mod 30000, S.Points[I].Obj.Int);
+  end;
+  AssertEquals(res_Busy, IecSlaveAddPoint(S, M_ME_NB_1, IecObject(5000), 0, E));
+  AssertEquals('point 5000: table full (1024 points)', E);
+  IecSlaveReservePoints(S, 5000);
+  AssertEquals('never beyond the maximum', IecSlaveMaxPoints, Length(S.Points));
+  AssertEquals(res_Ok, IecSlaveInit(S, FS, IecDefaultParams, 1, E));
+  AssertEquals('set up again: empty', 0, S.PointCount);
+  AssertEquals('its table freed', 0, Length(S.Points));
+  AssertEquals(res_Ok, IecSlaveAddPoint(S, M_SP_NA_1, IecObject(7), 0, E));
 end;
 
 procedure TTestChnIec101Slave.TestStationInterrogation;

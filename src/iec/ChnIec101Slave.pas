@@ -130,6 +130,10 @@ function IecSlaveInit(var S: tIecSlaveStation; Chn: pChnVirt; const P: tIecParam
   Err names the point and what is wrong. }
 function IecSlaveAddPoint(var S: tIecSlaveStation; Ti: Byte; const Obj: tIecObject; Group: Byte;
   out Err: ShortString): tChResult;
+{ Room for N points in all (IecSlaveMaxPoints at most) at once: a program
+  that knows its table's size saves the table's steps of
+  IecSlavePointStep points (each moves the table). }
+procedure IecSlaveReservePoints(var S: tIecSlaveStation; N: LongInt);
 { Index of the point with this IOA (its monitoring point when a command
   point shares the IOA), -1 when there is none. }
 function IecSlaveFind(const S: tIecSlaveStation; Ioa: LongWord): LongInt;
@@ -207,6 +211,11 @@ function IecSlaveAddPoint(var S: tIecSlaveStation; Ti: Byte; const Obj: tIecObje
   out Err: ShortString): tChResult;
 begin
   Result := ChnIec101SlavePoints.IecSlaveAddPoint(S, Ti, Obj, Group, Err);
+end;
+
+procedure IecSlaveReservePoints(var S: tIecSlaveStation; N: LongInt);
+begin
+  ChnIec101SlavePoints.IecSlaveReservePoints(S, N);
 end;
 
 function IecSlaveFind(const S: tIecSlaveStation; Ioa: LongWord): LongInt;

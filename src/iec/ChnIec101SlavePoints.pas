@@ -23,6 +23,7 @@ function FindCommand(const S: tIecSlaveStation; Ioa: LongWord; Ti: Byte): LongIn
 { The point at Ioa (its monitoring point when a command point shares it); -1 when none. }
 function IecSlaveFind(const S: tIecSlaveStation; Ioa: LongWord): LongInt;
 { The public calls of ChnIec101Slave, which documents them. }
+procedure IecSlaveReservePoints(var S: tIecSlaveStation; N: LongInt);
 function IecSlaveAddPoint(var S: tIecSlaveStation; Ti: Byte; const Obj: tIecObject; Group: Byte;
   out Err: ShortString): tChResult;
 function IecSlaveEventType(var S: tIecSlaveStation; Ioa: LongWord; Ti: Byte;
@@ -121,6 +122,14 @@ begin
   end;
 end;
 
+procedure IecSlaveReservePoints(var S: tIecSlaveStation; N: LongInt);
+begin
+  if N > IecSlaveMaxPoints then
+    N := IecSlaveMaxPoints;
+  if N > Length(S.Points) then
+    SetLength(S.Points, N);
+end;
+
 function IecSlaveAddPoint(var S: tIecSlaveStation; Ti: Byte; const Obj: tIecObject; Group: Byte;
   out Err: ShortString): tChResult;
 var
@@ -168,7 +177,7 @@ begin
     Exit;
   end;
   if S.PointCount >= Length(S.Points) then
-    SetLength(S.Points, Length(S.Points) + IecSlavePointStep);
+    IecSlaveReservePoints(S, Length(S.Points) + IecSlavePointStep);
   P := @S.Points[S.PointCount];
   FillChar(P^, SizeOf(P^), 0);
   P^.Ti := Ti;

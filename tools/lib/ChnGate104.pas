@@ -297,7 +297,7 @@ end;
 procedure Gate104Build(var N: tGate104; const Devs: array of tPcccDevice; const Bases: array of LongInt;
   Reload: Boolean);
 var
-  D, T, K, P, Used: LongInt;
+  D, T, K, P, Used, Cmds: LongInt;
   Ti, Cmd: Byte;
   O: tIecObject;
   E: ShortString;
@@ -316,11 +316,17 @@ begin
   { the table at its size at once: grown one point at a time, it moved on
     every point and left the heap full of holes }
   K := 0;
+  Cmds := 0;
   for D := 0 to High(Devs) do
     for T := 0 to High(Devs[D].Tags) do
       if Gate104TagType(Devs[D].Tags[T]) <> 0 then
+      begin
         Inc(K, Length(Devs[D].Tags[T].Values));
+        if Gate104CommandType(Devs[D].Tags[T]) <> 0 then
+          Inc(Cmds, 2 * Length(Devs[D].Tags[T].Values));
+      end;
   SetLength(N.Points, K);
+  IecSlaveReservePoints(N.S^, K + Cmds);
   Used := 0;
   for D := 0 to High(Devs) do
   begin
