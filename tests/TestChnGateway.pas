@@ -20,6 +20,7 @@ type
     procedure TestTagPayloads;
     procedure TestIec104Config;
     procedure TestIec104Types;
+    procedure TestBurstRule;
   end;
 
 implementation
@@ -268,6 +269,27 @@ begin
   finally
     TagDeviceDone(D);
   end;
+end;
+
+{ A burst is over when the north queues ran empty after holding
+  GateBurst or more at once; small ups and downs are none. }
+procedure TTestChnGateway.TestBurstRule;
+var
+  High: LongInt;
+begin
+  High := 0;
+  AssertFalse('nothing queued', GateBurstOver(High, 0));
+  AssertFalse('a few', GateBurstOver(High, 5));
+  AssertFalse('emptied after a few', GateBurstOver(High, 0));
+  AssertFalse('rising', GateBurstOver(High, GateBurst - 1));
+  AssertFalse('falling, not empty', GateBurstOver(High, 3));
+  AssertFalse('empty below a burst', GateBurstOver(High, 0));
+  AssertFalse('a burst', GateBurstOver(High, GateBurst));
+  AssertEquals('kept', GateBurst, High);
+  AssertFalse('draining', GateBurstOver(High, 10));
+  AssertTrue('over', GateBurstOver(High, 0));
+  AssertFalse('once', GateBurstOver(High, 0));
+  AssertEquals('counting anew', 0, High);
 end;
 
 initialization

@@ -39,6 +39,7 @@ uses
 const
   cName = 'IEC104';
   Iec104DefaultQueue = 256;
+  Iec104QueueFirst = 8;      {< slots of the send queue's ring at first (it doubles up to QUE=) }
 
 type
   tIec104Slot = record
@@ -399,6 +400,13 @@ begin
     CH_QHead := (CH_QHead + 1) mod Length(CH_Queue);
     Dec(CH_QCount);
   end;
+  if (CH_QCount = 0) and (Length(CH_Queue) > Iec104QueueFirst) then
+  begin
+    { a burst went out (a start's first values, a reconnect): the ring goes
+      back to its first size, and the memory to the program }
+    SetLength(CH_Queue, Iec104QueueFirst);
+    CH_QHead := 0;
+  end;
 end;
 
 procedure tChnIec104.ChSend(Buff: Pointer; Len: Word);
@@ -434,8 +442,8 @@ begin
       wrapped round goes after the rest }
     Old := Length(CH_Queue);
     I := 2 * Old;
-    if I < 8 then
-      I := 8;
+    if I < Iec104QueueFirst then
+      I := Iec104QueueFirst;
     if I > CH_QueLen then
       I := CH_QueLen;
     SetLength(CH_Queue, I);

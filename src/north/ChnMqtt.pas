@@ -50,6 +50,7 @@ uses
 const
   MqttLibName = {$IFDEF WINDOWS}'mosquitto.dll'{$ELSE}'libmosquitto.so.1'{$ENDIF};
   MqttQueueDefault = 10000;
+  MqttQueueFirst = 16;       {< the queue's room at first (it doubles up to QueueMax) }
   MqttKeepAliveDefault = 30;
   MqttBackoffMinMs = 1000;
   MqttBackoffMaxMs = 30000;
@@ -291,9 +292,10 @@ begin
   Result := C.Queue[QueueSlot(C, I)];
 end;
 
-{ Room for one more: the ring doubles (16 at first, QueueMax at most),
-  its messages moved to the front in order. Growing one slot at a time
-  moved the whole queue on every message and left the heap full of holes. }
+{ Room for one more: the ring doubles (MqttQueueFirst at first, QueueMax
+  at most), its messages moved to the front in order. Growing one slot at
+  a time moved the whole queue on every message and left the heap full of
+  holes. }
 procedure QueueGrow(var C: tMqttClient);
 var
   Old: array of tMqttMessage;
@@ -302,8 +304,8 @@ begin
   if C.QueueCount < Length(C.Queue) then
     Exit;
   Room := 2 * Length(C.Queue);
-  if Room < 16 then
-    Room := 16;
+  if Room < MqttQueueFirst then
+    Room := MqttQueueFirst;
   if (C.QueueMax > 0) and (Room > C.QueueMax) then
     Room := C.QueueMax;
   if Room <= C.QueueCount then
@@ -334,7 +336,14 @@ begin
   end;
   Dec(C.QueueCount);
   if C.QueueCount = 0 then
+  begin
     C.QueueHead := 0;
+    { a burst went out (a start's first values, the queue of a broker
+      outage): the ring goes back to its first size, the memory to the
+      program }
+    if Length(C.Queue) > MqttQueueFirst then
+      SetLength(C.Queue, MqttQueueFirst);
+  end;
 end;
 
 function ErrText(Rc: cint): AnsiString;

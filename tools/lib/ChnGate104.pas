@@ -133,6 +133,8 @@ function Gate104IecWriteDone(var N: tGate104; const W: tIecTableWrite): Boolean;
 function Gate104IecChange(var N: tGate104; D: pGateIecDevice; P: LongInt): AnsiString;
 { Serve the control centre: requests, commands to the devices, commands
   that waited too long. The ms the program may wait (ChnWaitAny). }
+{ ASDUs the server holds for its control centres (its class queues). }
+function Gate104Queued(const N: tGate104): LongInt;
 function Gate104Step(var N: tGate104; var Devs: array of tPcccDevice): LongInt;
 { Refuse what waits and close the server. }
 procedure Gate104Close(var N: tGate104);
@@ -680,6 +682,13 @@ begin
   if (TP^.Tagged and (IecSlaveUpdateAt(N.S^, N.Points[K].Ioa, O, True, E) <> res_Ok)) or
      (not TP^.Tagged and (IecSlaveUpdate(N.S^, N.Points[K].Ioa, O, True, E) <> res_Ok)) then
     Say(N, 'IOA ' + IntToStr(N.Points[K].Ioa) + ': ' + E);
+end;
+
+function Gate104Queued(const N: tGate104): LongInt;
+begin
+  Result := 0;
+  if N.S <> nil then
+    Result := N.S^.Class1.Count + N.S^.Class2.Count;
 end;
 
 function Gate104Step(var N: tGate104; var Devs: array of tPcccDevice): LongInt;

@@ -79,7 +79,15 @@ type
     Marks  : array of tGateHealthMark;
     Log    : tGateLog;
     WriteId: LongInt;
+    QueuedHigh: LongInt;          { the most messages queued north since the last burst }
+    GiveBacks : LongInt;          { bursts after which freed memory went back to the system }
   end;
+
+const
+  { Messages queued north at once (MQTT and the IEC 104 server's queues)
+    that make a burst: a start's first values, a broker's outage, a
+    reload. }
+  GateBurst = 128;
 
 { Read and check FileName. False with Errors (one line per fault,
   "FILE:LINE: [section] key: what is wrong"); nothing is opened. }
@@ -103,6 +111,10 @@ procedure GateReload(var G: tGate; const Cfg: tGateConfig);
 function GateStep(var G: tGate): LongInt;
 { Publish offline, give the queue up to Ms to go out, close everything. }
 procedure GateStop(var G: tGate; Ms: LongInt);
+{ The burst rule, Queued the messages queued north now: True once the
+  queues ran empty after holding GateBurst or more at once; High keeps
+  the most they held since (the last burst, or 0 at first). }
+function GateBurstOver(var High: LongInt; Queued: LongInt): Boolean;
 
 { The payload of a tag: an object with value, quality and ts (docs/chngate.md). }
 function GateTagPayload(const T: tPcccTag): AnsiString;
@@ -112,7 +124,7 @@ function GateHealthPayload(const D: tPcccDevice): AnsiString;
 implementation
 
 uses
-  IniFiles, StrUtils, Math, ChnWait, ChnPcccClient, ChnJson, ChnCli, ChnIec101Slave, ChnIecPointTable;
+  IniFiles, StrUtils, Math, DynLibs, ChnWait, ChnPcccClient, ChnJson, ChnCli, ChnIec101Slave, ChnIecPointTable;
 
 { ------------------------------------------------------------ configuration }
 
@@ -1100,6 +1112,41 @@ begin
   StepHealth(G, I, Changed, Health, GetTickCount64);
 end;
 
+function GateBurstOver(var High: LongInt; Queued: LongInt): Boolean;
+begin
+  Result := (Queued = 0) and (High >= GateBurst);
+  if Result or (Queued > High) then
+    High := Queued;
+end;
+
+{$IFDEF LINUX}
+var
+  MallocTrim: function(Pad: PtrUInt): LongInt; cdecl = nil;
+  MallocTrimLooked: Boolean = False;
+{$ENDIF}
+
+{ After a burst the C allocator (chngate's, cmem) keeps what it freed:
+  glibc's malloc_trim gives it back to the system. Looked up at run time,
+  so nothing happens where the C library has none (and off Linux). }
+procedure GiveBackFreeMemory;
+{$IFDEF LINUX}
+var
+  Lib: TLibHandle;
+{$ENDIF}
+begin
+  {$IFDEF LINUX}
+  if not MallocTrimLooked then
+  begin
+    MallocTrimLooked := True;
+    Lib := LoadLibrary('libc.so.6');   { loaded already: never unloaded }
+    if Lib <> NilHandle then
+      Pointer(MallocTrim) := GetProcedureAddress(Lib, 'malloc_trim');
+  end;
+  if Assigned(MallocTrim) then
+    MallocTrim(0);
+  {$ENDIF}
+end;
+
 function GateStep(var G: tGate): LongInt;
 var
   I, Tag, W: LongInt;
@@ -1180,6 +1227,11 @@ begin
     StepMqtt(G, Now_);
     if G.Cfg.Iec104.Present then
       Result := Min(Result, Gate104Step(G.N104, G.Devs));
+    if GateBurstOver(G.QueuedHigh, MqttQueued(G.Mqtt) + Gate104Queued(G.N104)) then
+    begin
+      GiveBackFreeMemory;
+      Inc(G.GiveBacks);
+    end;
   end;
 end;
 
