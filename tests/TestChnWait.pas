@@ -820,7 +820,8 @@ end;
 { A source that ended ChnWaitAny (nobody's own wait) leaves the OS wait
   as it fires and is put back when its owner has read: one epoll_ctl per
   wake-up (one-shot, re-armed with EPOLL_CTL_MOD), where a DEL when it
-  fired and an ADD when served made two. }
+  fired and an ADD when served made two - also after its own poll's wait
+  had kept it level-triggered (the first wake-up then costs two). }
 procedure TTestChnWait.TestFiredSourceIsArmedAgainWithOneCall;
 const
   Bytes = 20;
@@ -832,8 +833,15 @@ var
   Calls: LongWord;
   T0: QWord;
 begin
-  OpenComs(1, 'IDL=0');
+  OpenComs(1, 'IDL=200');
   FChn[0]^.ChReceiveBuffer(@Buf, SizeOf(Buf));
+  { a byte its own poll waits for first }
+  B := 0;
+  FPty[0].MasterWrite(B, 1);
+  T0 := GetTickCount64;
+  while (FChn[0]^.ChReceiveReady <> CHS_ReceiveReady) and (GetTickCount64 - T0 < 2000) do;
+  FChn[0]^.ChReceive(Len);
+  AssertEquals('the first byte taken', 1, Len);
   ChnWaitAny(0);
   Calls := ChnWaitOsChanges;
   Woken := 0;
