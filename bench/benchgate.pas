@@ -28,30 +28,35 @@
     spontaneous M_ME_TE_1 (change -> IEC 104 and wire -> IEC 104);
   - chngate's CPU under load (% of one core), and idle (scan 60 s, nothing
     to read, MQTT keep-alive 5 s, after the first read's $health went
-    out) against the idle floor: the program-wide wait alone
-    (ChnWaitAny over as many descriptors - 9 serial lines on ptys for the
-    gateway's 8 lines and its socket - woken as
-    often as the gateway was), run as a child in the same run: CPU per
-    second and the ratio;
+    out; measured over whole keep-alive cycles, from just after one)
+    against two idle floors, each run as a child in the same run: the
+    program-wide wait alone (ChnWaitAny over as many descriptors - 9
+    serial lines on ptys for the gateway's 8 lines and its socket - woken
+    as often as the gateway was), and that wait with the broker's socket
+    in it and the same MQTT session kept alive by libmosquitto itself
+    (loop_read, loop_misc, loop_write, the least a keep-alive costs):
+    CPU per second and the ratios;
   - chngate's resident memory under load with the IEC 104 server and its
     centre, and idle with MQTT only, and by what is mapped (its own code,
     the anonymous memory of heap and stacks, each library).
   Skipped with the reason when mosquitto or libmosquitto is missing.
 
     benchgate [quick] [BD] [maxread=N]
-                             10 s under load, 20 s idle (the gateway and
-                             the floor each); quick: 4 s and 5 s; BD the
+                             10 s under load, 18 s idle (the gateway and
+                             the floors each: 3 keep-alive cycles);
+                             quick: 4 s and 6 s (one cycle); BD the
                              lines' rate (default 19200); maxread=N the
                              devices' maxread (default 244: 2 reads a line)
-  Internal role: --floor N MS (the idle floor: N pty lines, ChnWaitAny(MS)
-  until killed). }
+  Internal roles: --floor N MS (the idle floor: N pty lines, ChnWaitAny(MS)
+  until killed); --floor-mqtt N PORT KEEPALIVE (the second floor: N pty
+  lines and libmosquitto's session in the wait). }
 program benchgate;
 
 {$MODE OBJFPC}{$H+}
 
 uses
   {$IFDEF UNIX}cthreads,{$ENDIF}
-  Classes, SysUtils, DateUtils, BaseUnix, Process, ChnTypes, ChnVirt, ChnWait, ChnLoop, ChnCom,
+  Classes, SysUtils, DateUtils, BaseUnix, Process, DynLibs, ctypes, ChnTypes, ChnVirt, ChnWait, ChnLoop, ChnCom,
   ChnPty, ChnDF1, ChnDF1Link, ChnSlc, ChnMqtt, ChnGateway, ChnSock, ChnIec101Asdu, ChnIec101Master, ChnIec104, ProcStat;
 
 const
@@ -563,20 +568,23 @@ end;
 
 { --floor N MS: N lines (pty slaves, their masters held here) in the
   program-wide wait and nothing else, ChnWaitAny(MS) until killed. }
-procedure Floor(N, Ms: LongInt);
+procedure OpenFloorLines(N: LongInt);
 var
   I: LongInt;
   Fd: cint;
   Slave: AnsiString;
-  Chn: array of pChnVirt;
 begin
-  SetLength(Chn, N);
   for I := 0 to N - 1 do
   begin
     if PtyCreate(Fd, Slave) <> 0 then
       Fail('floor: no pty');
-    Chn[I] := OpenRaw('COM', 'DEV=' + Slave + ' IDL=0');
+    OpenRaw('COM', 'DEV=' + Slave + ' IDL=0');
   end;
+end;
+
+procedure Floor(N, Ms: LongInt);
+begin
+  OpenFloorLines(N);
   WriteLn('ready');
   Flush(Output);
   repeat
@@ -584,22 +592,101 @@ begin
   until False;
 end;
 
-function StartFloor(N, Ms: LongInt): TProcess;
+{ --floor-mqtt N PORT KEEPALIVE: N lines and an MQTT session to the
+  broker at PORT kept alive by libmosquitto itself, its socket in the
+  same wait: the least a program serving lines and a broker does when
+  idle. The calls as libmosquitto's documentation has them for an
+  external loop, with no clock read of this program's own: wait until
+  the broker sends (the PINGRESP) or KEEPALIVE + 1 s passed (the
+  library's clock is whole seconds: its PINGREQ is due by then), read
+  what came, loop_misc (sends the PINGREQ), write what waits, put the
+  socket back into the wait. }
+procedure FloorMqtt(N, Port, KeepAlive: LongInt);
+var
+  Lib: TLibHandle;
+  lib_init: function: cint; cdecl;
+  new_: function(Id: PChar; Clean: Boolean; Obj: Pointer): Pointer; cdecl;
+  connect: function(Mosq: Pointer; Host: PChar; Port, KeepAlive: cint): cint; cdecl;
+  socket_: function(Mosq: Pointer): cint; cdecl;
+  loop_read, loop_write: function(Mosq: Pointer; MaxPackets: cint): cint; cdecl;
+  loop_misc: function(Mosq: Pointer): cint; cdecl;
+  want_write: function(Mosq: Pointer): Boolean; cdecl;
+  Mosq: Pointer;
+  Src: pChnWaitSource;
+
+  procedure Get(var P; const Name: string);
+  begin
+    Pointer(P) := GetProcedureAddress(Lib, Name);
+    if Pointer(P) = nil then
+      Fail('floor: ' + Name + ' not in ' + MqttLibName);
+  end;
+
+begin
+  Lib := LoadLibrary(MqttLibName);
+  if Lib = NilHandle then
+    Fail('floor: ' + MqttLibName + ' not found');
+  Get(lib_init, 'mosquitto_lib_init');
+  Get(new_, 'mosquitto_new');
+  Get(connect, 'mosquitto_connect');
+  Get(socket_, 'mosquitto_socket');
+  Get(loop_read, 'mosquitto_loop_read');
+  Get(loop_write, 'mosquitto_loop_write');
+  Get(loop_misc, 'mosquitto_loop_misc');
+  Get(want_write, 'mosquitto_want_write');
+  lib_init();
+  OpenFloorLines(N);
+  Mosq := new_(nil, True, nil);
+  if (Mosq = nil) or (connect(Mosq, '127.0.0.1', Port, KeepAlive) <> 0) then
+    Fail('floor: no connection to the broker');
+  Src := ChnWaitJoin(wkDescriptor, socket_(Mosq), nil, nil);
+  { the CONNACK }
+  ChnWaitAny(5000);
+  loop_read(Mosq, 1);
+  ChnWaitServed(Src, True);
+  WriteLn('ready');
+  Flush(Output);
+  repeat
+    if ChnWaitAny((KeepAlive + 1) * 1000) then
+      loop_read(Mosq, 1);
+    loop_misc(Mosq);
+    if want_write(Mosq) then
+      loop_write(Mosq, 1);
+    ChnWaitServed(Src, True);
+  until False;
+end;
+
+function StartFloor(const Args: array of string): TProcess;
 var
   S: string;
   C: Char;
+  I: LongInt;
 begin
   Result := TProcess.Create(nil);
   Result.Executable := ParamStr(0);
-  Result.Parameters.Add('--floor');
-  Result.Parameters.Add(IntToStr(N));
-  Result.Parameters.Add(IntToStr(Ms));
+  for I := 0 to High(Args) do
+    Result.Parameters.Add(Args[I]);
   Result.Options := [poUsePipes];
   Result.Execute;
   S := '';
   while (Pos('ready', S) = 0) and Result.Running do
     if Result.Output.Read(C, 1) = 1 then
       S := S + C;
+end;
+
+{ Serve until Pid went to sleep again after a wake-up (its voluntary
+  context switches moved), and 200 ms more for the wake-up that may
+  follow (the PINGRESP after the PINGREQ): a window measured from here
+  holds whole keep-alive cycles. At most MaxMs. }
+procedure AfterWake(Pid: TPid; var Sub: tMqttClient; MaxMs: LongInt);
+var
+  S0: Int64;
+  Deadline: QWord;
+begin
+  S0 := ProcSleeps(Pid);
+  Deadline := GetTickCount64 + QWord(MaxMs);
+  while (ProcSleeps(Pid) = S0) and (GetTickCount64 < Deadline) do
+    Serve(Sub, GetTickCount64 + 20, False);
+  Serve(Sub, GetTickCount64 + 200, False);
 end;
 
 { CPU ns and sleeps a second of Pid over Ms, this program serving the
@@ -623,13 +710,18 @@ var
   Err, Check, Shares, Map, MapIdle: AnsiString;
   T0, T1: QWord;
   C0, C1: Int64;
-  LoadCpu, GateNs, GateSleeps, FloorNs, FloorSleeps: Double;
+  LoadCpu, GateNs, GateSleeps, FloorNs, FloorSleeps, MosqNs, MosqSleeps: Double;
   FloorProc: TProcess;
 
 begin
   if ParamStr(1) = '--floor' then
   begin
     Floor(StrToInt(ParamStr(2)), StrToInt(ParamStr(3)));
+    Halt(0);
+  end;
+  if ParamStr(1) = '--floor-mqtt' then
+  begin
+    FloorMqtt(StrToInt(ParamStr(2)), StrToInt(ParamStr(3)), StrToInt(ParamStr(4)));
     Halt(0);
   end;
   Quick := False;
@@ -641,7 +733,9 @@ begin
     else
       Bd := StrToIntDef(ParamStr(I), Bd);
   if Quick then LoadMs := 4000 else LoadMs := 10000;
-  if Quick then IdleMs := 5000 else IdleMs := 20000;
+  { whole keep-alive cycles (a PINGREQ every keep-alive + 1 s) }
+  if Quick then IdleMs := 1 else IdleMs := 3;
+  IdleMs := IdleMs * (IdleKeepAlive + 1) * 1000;
   if not MqttLoad(Err) then
   begin
     WriteLn('benchgate: skipped: ', Err);
@@ -754,6 +848,7 @@ begin
       only wake-ups left: the keep-alive's ping and its answer }
     Gate := StartGate(60000, False, IdleKeepAlive);
     Serve(Sub, GetTickCount64 + GateHealthMs + 2000, False);
+    AfterWake(Gate.ProcessID, Sub, (IdleKeepAlive + 2) * 1000);
     IdleCost(Gate.ProcessID, Sub, IdleMs, GateNs, GateSleeps);
     RssIdle := ProcRssKb(Gate.ProcessID);
     MapIdle := ProcRssByMapping(Gate.ProcessID);
@@ -763,9 +858,17 @@ begin
       FloorMs := Round(1000 / GateSleeps)
     else
       FloorMs := 60000;
-    FloorProc := StartFloor(Lines + 1, FloorMs);
+    FloorProc := StartFloor(['--floor', IntToStr(Lines + 1), IntToStr(FloorMs)]);
     Sleep(500);
+    AfterWake(FloorProc.ProcessID, Sub, FloorMs + 1000);    { warm, as the gateway is }
     IdleCost(FloorProc.ProcessID, Sub, IdleMs, FloorNs, FloorSleeps);
+    Stop(FloorProc);
+    { the second floor: the same wait with the broker's socket one of its
+      descriptors, the same session kept alive by libmosquitto itself }
+    FloorProc := StartFloor(['--floor-mqtt', IntToStr(Lines), IntToStr(Port), IntToStr(IdleKeepAlive)]);
+    Sleep(500);
+    AfterWake(FloorProc.ProcessID, Sub, (IdleKeepAlive + 2) * 1000);
+    IdleCost(FloorProc.ProcessID, Sub, IdleMs, MosqNs, MosqSleeps);
     Stop(FloorProc);
 
     WriteLn(Format('benchgate: %d DF1 lines at %d Bd x %d tags, scan %d ms: %d reads per scan planned ' +
@@ -793,6 +896,11 @@ begin
     else
       WriteLn(Format('benchgate: idle: chngate %.1f us CPU/s, %.2f wake-ups/s; the wait alone %.1f us/s',
         [GateNs / 1000, GateSleeps, FloorNs / 1000]));
+    if MosqNs > 0 then
+      WriteLn(Format('benchgate: idle against the wait plus libmosquitto''s own keep-alive (%d descriptors, ' +
+        'the broker''s socket one of them, ChnWaitAny(%d)): chngate %.1f us CPU/s, %.2f wake-ups/s; ' +
+        'the floor %.1f us/s, %.2f wake-ups/s; ratio %.2f',
+        [Lines + 1, (IdleKeepAlive + 1) * 1000, GateNs / 1000, GateSleeps, MosqNs / 1000, MosqSleeps, GateNs / MosqNs]));
     WriteLn(Format('benchgate: chngate RSS %d KiB with the IEC 104 server and a centre: %s', [Rss, Map]));
     WriteLn(Format('benchgate: chngate RSS %d KiB idle, MQTT only: %s', [RssIdle, MapIdle]));
   finally

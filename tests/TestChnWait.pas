@@ -53,6 +53,8 @@ type
     {$IFDEF LINUX}
     procedure TestManyLinesAnswerAsFastAsOne;
     procedure TestIdleLinesWakeAThousandTimesASecondAtMost;
+    procedure TestFiredSourceIsArmedAgainWithOneCall;
+    procedure TestOwnSourceStaysInItsWait;
     {$ENDIF}
   end;
 
@@ -792,6 +794,120 @@ begin
   AssertTrue(Format('a round over 64 lines takes about 64 ms: %.1f rounds/s', [C.PollPerS]),
     C.PollPerS < 40);
   AssertTrue(Format('CPU under 10 %% of a core: %.2f', [C.CpuPct]), C.CpuPct < IdleCpuBound(10));
+end;
+
+type
+  { Writes Count bytes to a pty master, DelayMs before each. }
+  TPacedSender = class(TThread)
+    Pty: TPtyPair;
+    Count, DelayMs: Integer;
+    procedure Execute; override;
+  end;
+
+procedure TPacedSender.Execute;
+var
+  I: Integer;
+  B: Byte;
+begin
+  for I := 1 to Count do
+  begin
+    Sleep(DelayMs);
+    B := I;
+    Pty.MasterWrite(B, 1);
+  end;
+end;
+
+{ A source that ended ChnWaitAny (nobody's own wait) leaves the OS wait
+  as it fires and is put back when its owner has read: one epoll_ctl per
+  wake-up (one-shot, re-armed with EPOLL_CTL_MOD), where a DEL when it
+  fired and an ADD when served made two - also after its own poll's wait
+  had kept it level-triggered (the first wake-up then costs two). }
+procedure TTestChnWait.TestFiredSourceIsArmedAgainWithOneCall;
+const
+  Bytes = 20;
+var
+  Buf: array[0..63] of Byte;
+  Len: Word;
+  I, Woken: Integer;
+  B: Byte;
+  Calls: LongWord;
+  T0: QWord;
+begin
+  OpenComs(1, 'IDL=200');
+  FChn[0]^.ChReceiveBuffer(@Buf, SizeOf(Buf));
+  { a byte its own poll waits for first }
+  B := 0;
+  FPty[0].MasterWrite(B, 1);
+  T0 := GetTickCount64;
+  while (FChn[0]^.ChReceiveReady <> CHS_ReceiveReady) and (GetTickCount64 - T0 < 2000) do;
+  FChn[0]^.ChReceive(Len);
+  AssertEquals('the first byte taken', 1, Len);
+  ChnWaitAny(0);
+  Calls := ChnWaitOsChanges;
+  Woken := 0;
+  for I := 1 to Bytes do
+  begin
+    B := I;
+    FPty[0].MasterWrite(B, 1);
+    if ChnWaitAny(2000) then
+      Inc(Woken);
+    { the pty may hand the byte over a moment after the wake-up }
+    T0 := GetTickCount64;
+    while (FChn[0]^.ChReceiveReady <> CHS_ReceiveReady) and (GetTickCount64 - T0 < 2000) do
+      ChnWaitAny(100);
+    FChn[0]^.ChReceive(Len);
+    AssertEquals('byte ' + IntToStr(I) + ' taken', 1, Len);
+  end;
+  Calls := ChnWaitOsChanges - Calls;
+  WriteLn(Format('info  wait: %d wake-ups of ChnWaitAny for a byte each: %d calls changing the OS wait',
+    [Woken, Calls]));
+  AssertEquals('every byte woke the wait', Bytes, Woken);
+  AssertTrue(Format('%d calls for %d wake-ups: one each (out and in again made two)', [Calls, Bytes]),
+    Calls <= Bytes + 2);
+end;
+
+{ A line whose own poll's wait (ChnWaitIdle) ends for its input reads at
+  once: its descriptor stays in the OS wait, no call per message (the
+  first one may switch it from one-shot, at one call). }
+procedure TTestChnWait.TestOwnSourceStaysInItsWait;
+const
+  Bytes = 10;
+var
+  S: TPacedSender;
+  Buf: array[0..63] of Byte;
+  Len: Word;
+  Got: Integer;
+  Calls: LongWord;
+  T0: QWord;
+begin
+  OpenComs(1, 'IDL=500');
+  FChn[0]^.ChReceiveBuffer(@Buf, SizeOf(Buf));
+  FChn[0]^.ChReceiveReady;
+  Calls := ChnWaitOsChanges;
+  Got := 0;
+  S := TPacedSender.Create(True);
+  try
+    S.Pty := FPty[0];
+    S.Count := Bytes;
+    S.DelayMs := 60;
+    S.Start;
+    T0 := GetTickCount64;
+    while (Got < Bytes) and (GetTickCount64 - T0 < 10000) do
+      if FChn[0]^.ChReceiveReady = CHS_ReceiveReady then
+      begin
+        FChn[0]^.ChReceive(Len);
+        Inc(Got, Len);
+      end;
+    S.WaitFor;
+  finally
+    S.Free;
+  end;
+  Calls := ChnWaitOsChanges - Calls;
+  WriteLn(Format('info  wait: %d bytes to a line polled with IDL=500: %d calls changing the OS wait',
+    [Got, Calls]));
+  AssertEquals('every byte arrived', Bytes, Got);
+  AssertTrue(Format('%d calls for %d bytes its own wait saw: the line stays in the wait', [Calls, Bytes]),
+    Calls <= 2);
 end;
 {$ENDIF}
 

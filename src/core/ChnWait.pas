@@ -29,8 +29,9 @@
   thread that took events out of the OS wait while other threads were
   blocked in it wakes them too, so none of them misses its own input.
 
-  OS parts: Linux epoll (level-triggered; a fired descriptor of another
-  channel is taken out of the set until served) plus a pipe for wake-ups;
+  OS parts: Linux epoll (a fired descriptor of another channel leaves the
+  wait until served: one-shot, put back with one call; the caller's own
+  stays in, level-triggered, at no call) plus a pipe for wake-ups;
   Windows WaitForMultipleObjects over the armed handles plus a
   manual-reset event for wake-ups (63 handles per wait: with more, each
   wait takes the caller's own handle and a rotating window of the others).
@@ -60,6 +61,8 @@ type
     Kind   : tChnWaitKind;
     Os     : PtrInt;          {< descriptor or handle }
     Armed  : Boolean;         {< in the OS wait now }
+    InSet  : Boolean;         {< in the OS set, armed or (one-shot, fired) not }
+    OneShot: Boolean;         {< the OS takes it out of the wait when it fires }
     Fired  : Boolean;         {< ended a wait; its owner has not looked since }
     Hungry : Boolean;         {< the owner can take input now }
     WantOut: Boolean;         {< the owner waits for room to send }
@@ -120,6 +123,10 @@ function  ChnClockUs: QWord;
 procedure ChnWaitDue(Src: pChnWaitSource; AtUs: QWord);
 { Number of sources in the set now (open physical layers). }
 function  ChnWaitCount: LongInt;
+{ Calls this process made to change the OS wait (Linux: epoll_ctl; 0
+  where the wait has no kernel set): what arming and re-arming the
+  sources cost, for tests and benchmarks. }
+function  ChnWaitOsChanges: LongWord;
 { A layer holds input that has arrived but that the program has not taken
   (bytes in its buffer, a decoded message waiting for ChReceive). Held is
   the layer's own flag (False when it is created); the call keeps one
@@ -163,6 +170,7 @@ var
   Blocked: LongInt = 0;              { threads inside the OS wait now }
   HeldCount: LongInt = 0;            { layers holding input not yet taken }
   DueCount: LongInt = 0;             { sources with a Due time }
+  OsChanges: LongWord = 0;           { calls that changed the OS wait }
 
 {$IFDEF UNIX}{$I unix/chnwait.inc}{$ENDIF}
 {$IFDEF WINDOWS}{$I win/chnwait.inc}{$ENDIF}
@@ -202,6 +210,11 @@ begin
     InterLockedIncrement(HeldCount)
   else
     InterLockedDecrement(HeldCount);
+end;
+
+function ChnWaitOsChanges: LongWord;
+begin
+  Result := OsChanges;
 end;
 
 function ChnWaitHeldCount: LongInt;
@@ -318,6 +331,8 @@ begin
     S^.Kind := Kind;
     S^.Os := Os;
     S^.Armed := False;
+    S^.InSet := False;
+    S^.OneShot := True;               { most fire in another's wait: OsWait }
     S^.Fired := False;
     S^.Hungry := True;
     S^.WantOut := False;

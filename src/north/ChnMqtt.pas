@@ -106,7 +106,7 @@ type
     Connects   : LongInt;
     LastError  : AnsiString;
     Changed    : Boolean;       {< the connection state changed (MqttStep's result) }
-    InAt, OutAt: QWord;         {< GetTickCount64 at or after the last traffic in, out }
+    InAt, OutAt: QWord;         {< GetTickCount64 of the round that saw the last traffic in, out }
   end;
 
 { Load libmosquitto (MqttLibName, or the file CHN_LIBMOSQUITTO names);
@@ -130,7 +130,8 @@ procedure MqttSubscribe(var C: tMqttClient; const Topic: AnsiString);
   the connection changed. Call after every ChnWaitAny. }
 function MqttStep(var C: tMqttClient): Boolean;
 { The same, NowMs (GetTickCount64) read by the caller for its whole round
-  (a program that reads the clock once per wake-up). }
+  (a program that reads the clock once per wake-up; the round, from NowMs
+  to its MqttStepAt, shorter than a second). }
 function MqttStepAt(var C: tMqttClient; NowMs: QWord): Boolean;
 { Milliseconds the program may wait before the next MqttStep at most. }
 function MqttWaitMs(const C: tMqttClient): LongInt;
@@ -610,9 +611,10 @@ begin
 end;
 
 { When loop_misc sends the PINGREQ: KeepAlive s after the last traffic in
-  or out, by the library's clock of whole seconds (hence the second more).
-  InAt and OutAt are never earlier than the library's own marks, so the
-  ping is due by then. }
+  or out, by the library's clock of whole seconds - at the latest
+  KeepAlive s after the traffic itself. InAt and OutAt are the time of
+  the round that saw the traffic, less than a second before the library's
+  own marks (the second more), so the ping is due by then. }
 function PingAt(const C: tMqttClient): QWord;
 begin
   Result := C.InAt;
@@ -625,7 +627,6 @@ function MqttStepAt(var C: tMqttClient; NowMs: QWord): Boolean;
 var
   Rc: cint;
   Read, Wrote: Boolean;
-  T: QWord;
 begin
   C.Changed := False;
   if C.Mosq = nil then
@@ -674,13 +675,14 @@ begin
       Lost(C, 'connection to ' + C.Host + ':' + IntToStr(C.Port) + ': ' + ErrText(Rc));
     if Read or Wrote or C.Changed then
     begin
-      { read after the traffic: never before the library's own marks (a
-        ping resets both: it waits KeepAlive for the answer) }
-      T := GetTickCount64;
+      { the round's time, not the clock read again (a system call): it
+        is before the library's own marks by the round's few us, well
+        within the second PingAt adds (a ping resets both: it waits
+        KeepAlive for the answer) }
       if Read or C.Changed or (NowMs >= PingAt(C)) then
-        C.InAt := T;
+        C.InAt := NowMs;
       if Wrote or C.Changed then
-        C.OutAt := T;
+        C.OutAt := NowMs;
     end;
     if C.Src <> nil then
     begin

@@ -1076,7 +1076,7 @@ begin
 end;
 
 { One round of IEC 101 device I; the ms it may wait. }
-function StepIec(var G: tGate; I: LongInt; Health: Boolean): LongInt;
+function StepIec(var G: tGate; I: LongInt; Health: Boolean; Now_: QWord): LongInt;
 var
   D: pGateIecDevice;
   P: LongInt;
@@ -1109,7 +1109,7 @@ begin
   Changed := GateIecTakeHealth(D);
   if Changed then
     Say(G, D^.Name + ': ' + GateIecHealthPayload(D));
-  StepHealth(G, I, Changed, Health, GetTickCount64);
+  StepHealth(G, I, Changed, Health, Now_);
 end;
 
 function GateBurstOver(var High: LongInt; Queued: LongInt): Boolean;
@@ -1178,7 +1178,7 @@ begin
   begin
     if G.Iecs[I] <> nil then
     begin
-      W := StepIec(G, I, Health);
+      W := StepIec(G, I, Health, Now_);
       if W < Result then
         Result := W;
       Continue;
@@ -1213,8 +1213,8 @@ begin
     Due := Min(Due, G.HealthAt);
   Worked := Worked or Moved or (MqttQueued(G.Mqtt) > 0);
   if Worked then
-    W := ChnWaitLeft(Due)              { the round took its time: the clock again }
-  else if Due <= Now_ then
+    Now_ := GetTickCount64;            { the round took its time: the clock again }
+  if Due <= Now_ then
     W := 0
   else
     W := LongInt(Min(Due - Now_, QWord(High(LongInt))));
