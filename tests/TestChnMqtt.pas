@@ -105,6 +105,20 @@ begin
   end;
   MqttClose(Q);
   AssertEquals('closed: empty', 0, MqttQueued(Q));
+  { grown while its oldest message is not at the ring's start: the part
+    that wrapped round comes after the rest }
+  MqttInit(Q);
+  Q.QueueMax := 16;
+  for I := 1 to 20 do
+    MqttPublish(Q, 't', IntToStr(I), False);
+  AssertEquals('4 dropped', 4, Q.Dropped);
+  Q.QueueMax := 40;
+  for I := 21 to 30 do
+    MqttPublish(Q, 't', IntToStr(I), False);
+  AssertEquals('26 queued', 26, MqttQueued(Q));
+  for I := 0 to 25 do
+    AssertEquals('in order after growing', IntToStr(5 + I), MqttQueuedMessage(Q, I).Payload);
+  MqttClose(Q);
 end;
 
 {$IFDEF UNIX}
