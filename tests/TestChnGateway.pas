@@ -271,8 +271,8 @@ begin
   end;
 end;
 
-{ A burst is over when the north queues ran empty after holding
-  GateBurst or more at once; small ups and downs are none. }
+{ A burst is over when the north queues fell to GateBurstLow after
+  holding GateBurst or more at once; small ups and downs are none. }
 procedure TTestChnGateway.TestBurstRule;
 var
   High: LongInt;
@@ -286,10 +286,10 @@ begin
   AssertFalse('empty below a burst', GateBurstOver(High, 0));
   AssertFalse('a burst', GateBurstOver(High, GateBurst));
   AssertEquals('kept', GateBurst, High);
-  AssertFalse('draining', GateBurstOver(High, 10));
-  AssertTrue('over', GateBurstOver(High, 0));
+  AssertFalse('draining', GateBurstOver(High, GateBurstLow + 1));
+  AssertTrue('over', GateBurstOver(High, GateBurstLow));
   AssertFalse('once', GateBurstOver(High, 0));
-  AssertEquals('counting anew', 0, High);
+  AssertEquals('counting anew from there', GateBurstLow, High);
 end;
 
 initialization

@@ -88,6 +88,9 @@ const
     that make a burst: a start's first values, a broker's outage, a
     reload. }
   GateBurst = 128;
+  { ... and that left it (a gateway under load seldom has nothing queued
+    at the end of a round: a change's message waits for its PUBACK) }
+  GateBurstLow = 8;
 
 { Read and check FileName. False with Errors (one line per fault,
   "FILE:LINE: [section] key: what is wrong"); nothing is opened. }
@@ -112,8 +115,8 @@ function GateStep(var G: tGate): LongInt;
 { Publish offline, give the queue up to Ms to go out, close everything. }
 procedure GateStop(var G: tGate; Ms: LongInt);
 { The burst rule, Queued the messages queued north now: True once the
-  queues ran empty after holding GateBurst or more at once; High keeps
-  the most they held since (the last burst, or 0 at first). }
+  queues fell to GateBurstLow after holding GateBurst or more at once;
+  High keeps the most they held since (the last burst, or 0 at first). }
 function GateBurstOver(var High: LongInt; Queued: LongInt): Boolean;
 
 { The payload of a tag: an object with value, quality and ts (docs/chngate.md). }
@@ -1114,7 +1117,7 @@ end;
 
 function GateBurstOver(var High: LongInt; Queued: LongInt): Boolean;
 begin
-  Result := (Queued = 0) and (High >= GateBurst);
+  Result := (Queued <= GateBurstLow) and (High >= GateBurst);
   if Result or (Queued > High) then
     High := Queued;
 end;
