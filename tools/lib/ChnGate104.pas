@@ -131,10 +131,10 @@ function Gate104IecWriteDone(var N: tGate104; const W: tIecTableWrite): Boolean;
   '', or the reason a new point is refused (its IOA is another device's
   point's, the table is full ...): said once, the point is not served. }
 function Gate104IecChange(var N: tGate104; D: pGateIecDevice; P: LongInt): AnsiString;
-{ Serve the control centre: requests, commands to the devices, commands
-  that waited too long. The ms the program may wait (ChnWaitAny). }
 { ASDUs the server holds for its control centres (its class queues). }
 function Gate104Queued(const N: tGate104): LongInt;
+{ Serve the control centre: requests, commands to the devices, commands
+  that waited too long. The ms the program may wait (ChnWaitAny). }
 function Gate104Step(var N: tGate104; var Devs: array of tPcccDevice): LongInt;
 { Refuse what waits and close the server. }
 procedure Gate104Close(var N: tGate104);

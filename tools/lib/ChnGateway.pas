@@ -80,7 +80,6 @@ type
     Log    : tGateLog;
     WriteId: LongInt;
     QueuedHigh: LongInt;          { the most messages queued north since the last burst }
-    GiveBacks : LongInt;          { bursts after which freed memory went back to the system }
   end;
 
 const
@@ -88,8 +87,9 @@ const
     that make a burst: a start's first values, a broker's outage, a
     reload. }
   GateBurst = 128;
-  { ... and that left it (a gateway under load seldom has nothing queued
-    at the end of a round: a change's message waits for its PUBACK) }
+  { ... and the number it falls to that ends it (a gateway under load
+    seldom has nothing queued at the end of a round: a change's message
+    waits for its PUBACK) }
   GateBurstLow = 8;
 
 { Read and check FileName. False with Errors (one line per fault,
@@ -1233,10 +1233,7 @@ begin
     if G.Cfg.Iec104.Present then
       Result := Min(Result, Gate104Step(G.N104, G.Devs));
     if GateBurstOver(G.QueuedHigh, MqttQueued(G.Mqtt) + Gate104Queued(G.N104)) then
-    begin
       GiveBackFreeMemory;
-      Inc(G.GiveBacks);
-    end;
   end;
 end;
 
